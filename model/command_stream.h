@@ -1,0 +1,109 @@
+// The command stream: the one contract between host, bit-accurate model, cycle model and RTL.
+//
+// Binary form (what the RTL's cmd port carries): a sequence of 64-bit words. Each command is a
+// header word followed by its payload words.
+//
+//   header[63:56]  opcode
+//   MATERIAL  0x01 header[15:0] = payload words. Payload: ambient[channels] (series format),
+//                  spec_colour[lights*channels] (spec_colour format, light-major),
+//                  exponent (u10.16), then unit parameters (SpecularUnit-defined, may be empty).
+//   TRIANGLE  0x02 header[47:32] = xo, header[31:16] = yo (signed 16-bit origin pixel),
+//                  header[15:0] = payload words = 6 * series_per_triangle. Payload: for each
+//                  series (diffuse l-major/c-minor, then specular per light), T0 T1 T2 T3 T4 T5
+//                  in coef format, sign-extended to 64 bits. The quadratic in integer pixel
+//                  offsets dx = x - xo, dy = y - yo is
+//                  T0 + T1*dy + T2*dx + T3*dy^2 + T4*dx*dy + T5*dx^2.
+//   SPAN      0x03 header[55] = last span of its scanline in this frame, header[47:32] = y,
+//                  header[31:16] = x0, header[15:0] = length (>= 1). No payload.
+//   TABLE     0x04 header[31:16] = base address, header[15:0] = entries; payload one entry/word.
+//   END_FRAME 0x0F no payload.
+//
+// Text form: one command per line, '#' starts a comment, a first line
+// "shadesim-commands 1 <config json>" carries the unit configuration so a saved stream replays
+// on its own.
+//   material ambient A.. spec_colour S.. exponent E params P..
+//   tri XO YO | T0 T1 T2 T3 T4 T5 | T0 ... (one group per series)
+//   span Y X0 LEN [last]
+//   table BASE E0 E1 ...
+//   end
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "model/unit_config.h"
+
+namespace shadesim {
+
+enum class Opcode : uint8_t {
+  kMaterial = 0x01,
+  kTriangle = 0x02,
+  kSpan = 0x03,
+  kTable = 0x04,
+  kEndFrame = 0x0F,
+};
+
+struct MaterialCmd {
+  std::vector<int64_t> ambient;      // [channels], series format
+  std::vector<int64_t> spec_colour;  // [lights * channels], spec_colour format
+  int64_t exponent = 0;              // u10.16
+  std::vector<int64_t> unit_params;  // specular-unit defined
+};
+
+struct TriangleCmd {
+  int32_t xo = 0, yo = 0;
+  std::vector<int64_t> coef;  // [series_per_triangle * 6], coef format
+};
+
+struct SpanCmd {
+  int32_t y = 0, x0 = 0, length = 1;
+  bool last_in_row = false;
+};
+
+struct TableCmd {
+  uint32_t base = 0;
+  std::vector<int64_t> entries;
+};
+
+struct EndFrameCmd {
+};
+
+using Command = std::variant<MaterialCmd, TriangleCmd, SpanCmd, TableCmd, EndFrameCmd>;
+
+constexpr int kExponentFracBits = 16;  // the MATERIAL exponent word is u10.16
+constexpr int kTermsPerSeries = 6;
+
+// Error in a stream: names the source (file or "<binary>"), the line or word index, and what
+// was expected.
+class CommandStreamError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct CommandStream {
+  UnitConfig config;
+  std::vector<Command> commands;
+
+  // Checks every command's payload sizes and field ranges against `config`.
+  void validate(const std::string& source) const;
+
+  std::vector<uint64_t> encode() const;
+  static CommandStream decode(const std::vector<uint64_t>& words, const UnitConfig& config,
+                              const std::string& source);
+
+  void write_text(std::ostream& os) const;
+  static CommandStream read_text(std::istream& is, const std::string& source);
+
+  void save(const std::string& path) const;  // text form
+  static CommandStream load(const std::string& path);
+};
+
+// UnitConfig <-> JSON (one line), used by the text header and by reports.
+std::string config_to_json(const UnitConfig& config);
+UnitConfig config_from_json(const std::string& text, const std::string& source);
+
+}  // namespace shadesim

@@ -1,0 +1,81 @@
+// Fixed-point formats and the one place where quantization and overflow rules live.
+//
+// Conventions follow IEEE 1666 (SystemC sc_fix / sc_ufix) so that sc_fix can serve as the
+// independent oracle in tests:
+//   wl  = total word length in bits (including the sign bit for signed formats)
+//   iwl = integer word length (including the sign bit for signed formats); may be negative
+//         or larger than wl
+//   frac_bits() = wl - iwl
+// A value is held as a raw two's-complement integer `raw`, meaning raw * 2^-frac_bits().
+//
+// The RTL mirrors these rules in rtl/fixed_round.sv (round/truncate) and rtl/fixed_sat.sv
+// (saturate/wrap); keep the two in step.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace shadesim {
+
+enum class Quantization {
+  kTruncate,      // floor toward -inf (sc_fix SC_TRN): drop the low bits
+  kRoundNearest,  // add half an LSB, then floor (sc_fix SC_RND: ties toward +inf)
+};
+
+enum class Overflow {
+  kSaturate,  // clamp to the representable range (sc_fix SC_SAT)
+  kWrap,      // keep the low wl bits, two's complement (sc_fix SC_WRAP)
+};
+
+using Int128 = __int128;
+
+struct FixedFormat {
+  int wl = 32;
+  int iwl = 4;
+  bool is_signed = true;
+  Quantization quant = Quantization::kTruncate;
+  Overflow overflow = Overflow::kSaturate;
+
+  constexpr int frac_bits() const { return wl - iwl; }
+
+  constexpr int64_t raw_max() const {
+    return is_signed ? (int64_t{1} << (wl - 1)) - 1 : (int64_t{1} << wl) - 1;
+  }
+  constexpr int64_t raw_min() const { return is_signed ? -(int64_t{1} << (wl - 1)) : 0; }
+
+  // Throws std::invalid_argument with a message naming `what` when the format is unusable.
+  void validate(const std::string& what) const;
+
+  // Quantize a raw value that carries `src_frac` fractional bits into this format: first the
+  // quantization rule (only when bits are dropped), then the overflow rule. This is the single
+  // definition every model class uses; RTL mirrors it.
+  int64_t quantize(Int128 raw, int src_frac) const;
+
+  // Quantize a double. Exact for |x| < 2^62 * 2^-src_frac, which covers every format we allow.
+  int64_t from_double(double x) const;
+
+  double to_double(int64_t raw) const;
+
+  // Short text form, e.g. "s4.28" (signed, 4 integer bits incl. sign, 28 fraction) or "u1.16";
+  // with rounding and overflow suffixes when not the defaults: "s4.28:rnd:wrap".
+  std::string to_string() const;
+};
+
+// Parse "s4.28", "u1.16", "s4.28:rnd", "u1.16:trn:wrap". Throws std::invalid_argument naming
+// `what` and the text on malformed input.
+FixedFormat parse_fixed_format(const std::string& text, const std::string& what);
+
+// Shift helpers that never invoke undefined behaviour for negative values or large shifts.
+constexpr Int128 shift_left(Int128 v, int n) { return n >= 0 ? v * (Int128{1} << n) : v; }
+
+// floor(v / 2^n) for n >= 0.
+constexpr Int128 floor_shift_right(Int128 v, int n) {
+  if (n <= 0) return v;
+  const Int128 d = Int128{1} << n;
+  Int128 q = v / d;
+  if ((v % d) != 0 && v < 0) --q;
+  return q;
+}
+
+}  // namespace shadesim

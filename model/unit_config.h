@@ -1,0 +1,44 @@
+// The configuration of one shading unit: every width and structural choice. In the model these
+// are run-time values (a width sweep needs no rebuild); in the RTL they are parameters of
+// shade_unit with the same names.
+#pragma once
+
+#include <string>
+
+#include "model/fixed_point.h"
+#include "model/specular_config.h"
+
+namespace shadesim {
+
+struct UnitConfig {
+  // Structure: "model only what a scene needs" - a grey scene uses one channel, one light.
+  int channels = 1;  // 1 (grey) or 3 (RGB)
+  int lights = 1;    // directional lights, each with its own diffuse and specular series
+
+  // Screen coordinates: unsigned, image up to 2^xy_bits pixels on a side.
+  int xy_bits = 12;
+
+  // Per-triangle Taylor coefficients T0..T5 as loaded from the command stream.
+  FixedFormat coef{36, 4, true, Quantization::kRoundNearest, Overflow::kSaturate};
+  // Forward-difference accumulators v, d, d2. Span setup rounds its exact start values into
+  // this format with its quantization rule; the per-pixel additions follow its overflow rule.
+  FixedFormat series{32, 4, true, Quantization::kTruncate, Overflow::kWrap};
+  // Specular colour (ks * light colour) per light and channel, multiplied by the unit's output.
+  FixedFormat spec_colour{13, 1, false, Quantization::kRoundNearest, Overflow::kSaturate};
+  // Output code width per channel; a code c stands for c / 2^out_bits (saturating at the top).
+  int out_bits = 8;
+
+  SpecularConfig specular;
+
+  int diffuse_series() const { return lights * channels; }
+  int specular_series() const { return lights * specular.series_per_light(); }
+  int series_per_triangle() const { return diffuse_series() + specular_series(); }
+
+  // Throws std::invalid_argument naming the offending field.
+  void validate() const;
+
+  // One line, e.g. "rgb/1L coef=s4.32:rnd series=s4.28:wrap out=8 spec=ideal".
+  std::string to_string() const;
+};
+
+}  // namespace shadesim
