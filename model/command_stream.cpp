@@ -1,0 +1,395 @@
+#include "model/command_stream.h"
+
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace shadesim {
+namespace {
+
+constexpr int kOpcodeShift = 56;
+constexpr uint64_t kMask16 = 0xFFFF;
+constexpr uint64_t kLastInRowBit = uint64_t{1} << 55;
+
+uint64_t header(Opcode op) { return static_cast<uint64_t>(op) << kOpcodeShift; }
+
+int32_t sign_extend16(uint64_t v) { return static_cast<int16_t>(static_cast<uint16_t>(v & kMask16)); }
+
+std::string where(const std::string& source, size_t index, const char* unit) {
+  return source + ":" + unit + " " + std::to_string(index) + ": ";
+}
+
+bool fits(int64_t raw, const FixedFormat& f) { return raw >= f.raw_min() && raw <= f.raw_max(); }
+
+// One rule for every payload check, so binary and text input fail with the same message.
+void check_payload(const std::string& loc, const char* field, const std::vector<int64_t>& values,
+                   size_t expected_count, const FixedFormat& format) {
+  if (values.size() != expected_count) {
+    throw CommandStreamError(loc + field + ": expected " + std::to_string(expected_count) +
+                             " values, got " + std::to_string(values.size()));
+  }
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (!fits(values[i], format)) {
+      throw CommandStreamError(loc + field + "[" + std::to_string(i) + "] = " +
+                               std::to_string(values[i]) + " does not fit format " +
+                               format.to_string());
+    }
+  }
+}
+
+void validate_command(const Command& cmd, const UnitConfig& cfg, const std::string& loc) {
+  const int64_t xy_max = (int64_t{1} << cfg.xy_bits) - 1;
+  if (const auto* m = std::get_if<MaterialCmd>(&cmd)) {
+    check_payload(loc, "material.ambient", m->ambient, cfg.channels, cfg.series);
+    check_payload(loc, "material.spec_colour", m->spec_colour,
+                  static_cast<size_t>(cfg.lights * cfg.channels), cfg.spec_colour);
+    const int64_t exp_max = (int64_t{1000}) << kExponentFracBits;
+    if (m->exponent < 0 || m->exponent > exp_max) {
+      throw CommandStreamError(loc + "material.exponent = " + std::to_string(m->exponent) +
+                               ": expected 0..1000 in u10.16 (raw 0.." + std::to_string(exp_max) +
+                               ")");
+    }
+    if (m->ambient.size() + m->spec_colour.size() + 1 + m->unit_params.size() > kMask16) {
+      throw CommandStreamError(loc + "material: too many payload words");
+    }
+  } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
+    check_payload(loc, "tri.coef", t->coef,
+                  static_cast<size_t>(cfg.series_per_triangle() * kTermsPerSeries), cfg.coef);
+    if (t->xo < -32768 || t->xo > 32767 || t->yo < -32768 || t->yo > 32767) {
+      throw CommandStreamError(loc + "tri: origin outside the signed 16-bit range");
+    }
+  } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
+    if (s->y < 0 || s->y > xy_max || s->x0 < 0 || s->x0 > xy_max) {
+      throw CommandStreamError(loc + "span: y and x0 must be 0.." + std::to_string(xy_max) +
+                               " (xy_bits " + std::to_string(cfg.xy_bits) + "), got y=" +
+                               std::to_string(s->y) + " x0=" + std::to_string(s->x0));
+    }
+    if (s->length < 1 || s->x0 + s->length - 1 > xy_max) {
+      throw CommandStreamError(loc + "span: length must be >= 1 and end inside the screen, got " +
+                               std::to_string(s->length) + " from x0=" + std::to_string(s->x0));
+    }
+  } else if (const auto* tb = std::get_if<TableCmd>(&cmd)) {
+    if (tb->entries.empty() || tb->entries.size() > kMask16 || tb->base > kMask16) {
+      throw CommandStreamError(loc + "table: expected 1..65535 entries at base 0..65535");
+    }
+  }
+}
+
+}  // namespace
+
+void CommandStream::validate(const std::string& source) const {
+  config.validate();
+  for (size_t i = 0; i < commands.size(); ++i) {
+    validate_command(commands[i], config, where(source, i, "command"));
+  }
+}
+
+std::vector<uint64_t> CommandStream::encode() const {
+  std::vector<uint64_t> words;
+  for (const auto& cmd : commands) {
+    if (const auto* m = std::get_if<MaterialCmd>(&cmd)) {
+      const size_t n = m->ambient.size() + m->spec_colour.size() + 1 + m->unit_params.size();
+      words.push_back(header(Opcode::kMaterial) | n);
+      for (auto v : m->ambient) words.push_back(static_cast<uint64_t>(v));
+      for (auto v : m->spec_colour) words.push_back(static_cast<uint64_t>(v));
+      words.push_back(static_cast<uint64_t>(m->exponent));
+      for (auto v : m->unit_params) words.push_back(static_cast<uint64_t>(v));
+    } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
+      words.push_back(header(Opcode::kTriangle) | ((static_cast<uint64_t>(t->xo) & kMask16) << 32) |
+                      ((static_cast<uint64_t>(t->yo) & kMask16) << 16) | t->coef.size());
+      for (auto v : t->coef) words.push_back(static_cast<uint64_t>(v));
+    } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
+      words.push_back(header(Opcode::kSpan) | (s->last_in_row ? kLastInRowBit : 0) |
+                      (static_cast<uint64_t>(s->y) << 32) | (static_cast<uint64_t>(s->x0) << 16) |
+                      static_cast<uint64_t>(s->length));
+    } else if (const auto* tb = std::get_if<TableCmd>(&cmd)) {
+      words.push_back(header(Opcode::kTable) | (static_cast<uint64_t>(tb->base) << 16) |
+                      tb->entries.size());
+      for (auto v : tb->entries) words.push_back(static_cast<uint64_t>(v));
+    } else {
+      words.push_back(header(Opcode::kEndFrame));
+    }
+  }
+  return words;
+}
+
+CommandStream CommandStream::decode(const std::vector<uint64_t>& words, const UnitConfig& config,
+                                    const std::string& source) {
+  CommandStream cs;
+  cs.config = config;
+  size_t i = 0;
+  auto take = [&](size_t count, size_t at) {
+    if (i + count > words.size()) {
+      throw CommandStreamError(where(source, at, "word") + "command needs " +
+                               std::to_string(count) + " payload words, stream ends after " +
+                               std::to_string(words.size() - i));
+    }
+    std::vector<int64_t> out(words.begin() + static_cast<long>(i),
+                             words.begin() + static_cast<long>(i + count));
+    i += count;
+    return out;
+  };
+  while (i < words.size()) {
+    const size_t at = i;
+    const uint64_t h = words[i++];
+    const auto op = static_cast<uint8_t>(h >> kOpcodeShift);
+    const size_t count = h & kMask16;
+    switch (static_cast<Opcode>(op)) {
+      case Opcode::kMaterial: {
+        const size_t fixed = static_cast<size_t>(config.channels + config.lights * config.channels + 1);
+        if (count < fixed) {
+          throw CommandStreamError(where(source, at, "word") + "material: expected at least " +
+                                   std::to_string(fixed) + " payload words, header says " +
+                                   std::to_string(count));
+        }
+        auto p = take(count, at);
+        MaterialCmd m;
+        m.ambient.assign(p.begin(), p.begin() + config.channels);
+        m.spec_colour.assign(p.begin() + config.channels, p.begin() + static_cast<long>(fixed) - 1);
+        m.exponent = p[fixed - 1];
+        m.unit_params.assign(p.begin() + static_cast<long>(fixed), p.end());
+        cs.commands.emplace_back(std::move(m));
+        break;
+      }
+      case Opcode::kTriangle: {
+        TriangleCmd t;
+        t.xo = sign_extend16(h >> 32);
+        t.yo = sign_extend16(h >> 16);
+        t.coef = take(count, at);
+        cs.commands.emplace_back(std::move(t));
+        break;
+      }
+      case Opcode::kSpan: {
+        SpanCmd s;
+        s.last_in_row = (h & kLastInRowBit) != 0;
+        s.y = static_cast<int32_t>((h >> 32) & kMask16);
+        s.x0 = static_cast<int32_t>((h >> 16) & kMask16);
+        s.length = static_cast<int32_t>(count);
+        cs.commands.emplace_back(s);
+        break;
+      }
+      case Opcode::kTable: {
+        TableCmd tb;
+        tb.base = static_cast<uint32_t>((h >> 16) & kMask16);
+        tb.entries = take(count, at);
+        cs.commands.emplace_back(std::move(tb));
+        break;
+      }
+      case Opcode::kEndFrame:
+        cs.commands.emplace_back(EndFrameCmd{});
+        break;
+      default: {
+        std::ostringstream os;
+        os << where(source, at, "word") << "unknown opcode 0x" << std::hex << int{op}
+           << "; expected 0x01 material, 0x02 tri, 0x03 span, 0x04 table, 0x0f end";
+        throw CommandStreamError(os.str());
+      }
+    }
+    validate_command(cs.commands.back(), config, where(source, at, "word"));
+  }
+  return cs;
+}
+
+void CommandStream::write_text(std::ostream& os) const {
+  os << "shadesim-commands 1 " << config_to_json(config) << '\n';
+  auto list = [&os](const std::vector<int64_t>& v) {
+    for (auto x : v) os << ' ' << x;
+  };
+  for (const auto& cmd : commands) {
+    if (const auto* m = std::get_if<MaterialCmd>(&cmd)) {
+      os << "material ambient";
+      list(m->ambient);
+      os << " spec_colour";
+      list(m->spec_colour);
+      os << " exponent " << m->exponent << " params";
+      list(m->unit_params);
+      os << '\n';
+    } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
+      os << "tri " << t->xo << ' ' << t->yo;
+      for (size_t k = 0; k < t->coef.size(); ++k) {
+        if (k % kTermsPerSeries == 0) os << " |";
+        os << ' ' << t->coef[k];
+      }
+      os << '\n';
+    } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
+      os << "span " << s->y << ' ' << s->x0 << ' ' << s->length << (s->last_in_row ? " last" : "")
+         << '\n';
+    } else if (const auto* tb = std::get_if<TableCmd>(&cmd)) {
+      os << "table " << tb->base;
+      list(tb->entries);
+      os << '\n';
+    } else {
+      os << "end\n";
+    }
+  }
+}
+
+CommandStream CommandStream::read_text(std::istream& is, const std::string& source) {
+  CommandStream cs;
+  std::string line;
+  size_t line_no = 0;
+  bool have_header = false;
+  while (std::getline(is, line)) {
+    ++line_no;
+    const std::string loc = source + ":" + std::to_string(line_no) + ": ";
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    std::istringstream ls(line);
+    std::string op;
+    if (!(ls >> op)) continue;
+    if (!have_header) {
+      if (op != "shadesim-commands") {
+        throw CommandStreamError(loc + "expected the header 'shadesim-commands 1 {config}', got '" +
+                                 op + "'");
+      }
+      int version = 0;
+      if (!(ls >> version) || version != 1) {
+        throw CommandStreamError(loc + "unsupported command-stream version; expected 1");
+      }
+      std::string json;
+      std::getline(ls, json);
+      cs.config = config_from_json(json, loc);
+      have_header = true;
+      continue;
+    }
+    auto read_int = [&](const char* field) {
+      long long v = 0;
+      if (!(ls >> v)) throw CommandStreamError(loc + op + ": expected an integer for " + field);
+      return static_cast<int64_t>(v);
+    };
+    // Reads integers until the next keyword (or end of line); leaves the keyword in `next`.
+    auto read_list = [&](std::string* next) {
+      std::vector<int64_t> v;
+      std::string tok;
+      next->clear();
+      while (ls >> tok) {
+        try {
+          size_t used = 0;
+          const long long x = std::stoll(tok, &used);
+          if (used != tok.size()) throw std::invalid_argument(tok);
+          v.push_back(x);
+        } catch (const std::logic_error&) {
+          *next = tok;
+          break;
+        }
+      }
+      return v;
+    };
+    auto expect_keyword = [&](const std::string& got, const char* want) {
+      if (got != want) {
+        throw CommandStreamError(loc + op + ": expected keyword '" + want + "', got '" + got + "'");
+      }
+    };
+    if (op == "material") {
+      MaterialCmd m;
+      std::string kw;
+      ls >> kw;
+      expect_keyword(kw, "ambient");
+      m.ambient = read_list(&kw);
+      expect_keyword(kw, "spec_colour");
+      m.spec_colour = read_list(&kw);
+      expect_keyword(kw, "exponent");
+      m.exponent = read_int("exponent");
+      ls >> kw;
+      expect_keyword(kw, "params");
+      m.unit_params = read_list(&kw);
+      if (!kw.empty()) throw CommandStreamError(loc + "material: unexpected '" + kw + "'");
+      cs.commands.emplace_back(std::move(m));
+    } else if (op == "tri") {
+      TriangleCmd t;
+      t.xo = static_cast<int32_t>(read_int("xo"));
+      t.yo = static_cast<int32_t>(read_int("yo"));
+      std::string tok;
+      while (ls >> tok) {
+        if (tok == "|") continue;
+        try {
+          size_t used = 0;
+          t.coef.push_back(std::stoll(tok, &used));
+          if (used != tok.size()) throw std::invalid_argument(tok);
+        } catch (const std::logic_error&) {
+          throw CommandStreamError(loc + "tri: expected an integer coefficient, got '" + tok + "'");
+        }
+      }
+      cs.commands.emplace_back(std::move(t));
+    } else if (op == "span") {
+      SpanCmd s;
+      s.y = static_cast<int32_t>(read_int("y"));
+      s.x0 = static_cast<int32_t>(read_int("x0"));
+      s.length = static_cast<int32_t>(read_int("length"));
+      std::string flag;
+      if (ls >> flag) {
+        if (flag != "last") throw CommandStreamError(loc + "span: expected 'last' or nothing, got '" + flag + "'");
+        s.last_in_row = true;
+      }
+      cs.commands.emplace_back(s);
+    } else if (op == "table") {
+      TableCmd tb;
+      const int64_t base = read_int("base");
+      if (base < 0) throw CommandStreamError(loc + "table: base must be >= 0");
+      tb.base = static_cast<uint32_t>(base);
+      std::string kw;
+      tb.entries = read_list(&kw);
+      if (!kw.empty()) throw CommandStreamError(loc + "table: expected integers, got '" + kw + "'");
+      cs.commands.emplace_back(std::move(tb));
+    } else if (op == "end") {
+      cs.commands.emplace_back(EndFrameCmd{});
+    } else {
+      throw CommandStreamError(loc + "unknown command '" + op +
+                               "'; expected material, tri, span, table or end");
+    }
+    validate_command(cs.commands.back(), cs.config, loc);
+  }
+  if (!have_header) throw CommandStreamError(source + ": empty command stream (no header line)");
+  return cs;
+}
+
+void CommandStream::save(const std::string& path) const {
+  std::ofstream os(path);
+  if (!os) throw CommandStreamError(path + ": cannot open for writing");
+  write_text(os);
+  if (!os) throw CommandStreamError(path + ": write failed");
+}
+
+CommandStream CommandStream::load(const std::string& path) {
+  std::ifstream is(path);
+  if (!is) throw CommandStreamError(path + ": cannot open command stream");
+  return read_text(is, path);
+}
+
+std::string config_to_json(const UnitConfig& c) {
+  nlohmann::json j;
+  j["channels"] = c.channels;
+  j["lights"] = c.lights;
+  j["xy_bits"] = c.xy_bits;
+  j["coef"] = c.coef.to_string();
+  j["series"] = c.series.to_string();
+  j["spec_colour"] = c.spec_colour.to_string();
+  j["out_bits"] = c.out_bits;
+  j["specular"] = {{"kind", to_string(c.specular.kind)}, {"out", c.specular.out.to_string()}};
+  return j.dump();
+}
+
+UnitConfig config_from_json(const std::string& text, const std::string& source) {
+  UnitConfig c;
+  try {
+    const auto j = nlohmann::json::parse(text);
+    c.channels = j.at("channels").get<int>();
+    c.lights = j.at("lights").get<int>();
+    c.xy_bits = j.at("xy_bits").get<int>();
+    c.coef = parse_fixed_format(j.at("coef").get<std::string>(), "config.coef");
+    c.series = parse_fixed_format(j.at("series").get<std::string>(), "config.series");
+    c.spec_colour = parse_fixed_format(j.at("spec_colour").get<std::string>(), "config.spec_colour");
+    c.out_bits = j.at("out_bits").get<int>();
+    const auto& s = j.at("specular");
+    c.specular.kind = parse_specular_unit(s.at("kind").get<std::string>(), "config.specular.kind");
+    c.specular.out = parse_fixed_format(s.at("out").get<std::string>(), "config.specular.out");
+    c.validate();
+  } catch (const nlohmann::json::exception& e) {
+    throw CommandStreamError(source + "config: " + e.what());
+  } catch (const std::invalid_argument& e) {
+    throw CommandStreamError(source + e.what());
+  }
+  return c;
+}
+
+}  // namespace shadesim

@@ -1,0 +1,33 @@
+#include "model/shade_unit.h"
+
+namespace shadesim {
+
+ShadeUnit::ShadeUnit(const UnitConfig& config)
+    : config_(config),
+      span_setup_(config.coef, config.series),
+      specular_(config),
+      combine_(config),
+      engines_(static_cast<size_t>(config.series_per_triangle()), SeriesEngine(config.series)),
+      ambient_(static_cast<size_t>(config.channels), 0),
+      spec_colour_(static_cast<size_t>(config.lights * config.channels), 0),
+      values_(static_cast<size_t>(config.series_per_triangle()), 0),
+      spec_(static_cast<size_t>(config.lights), 0) {
+  config_.validate();
+}
+
+void ShadeUnit::load_material(const MaterialCmd& m) {
+  ambient_ = m.ambient;
+  spec_colour_ = m.spec_colour;
+  specular_.load_material(m);
+  have_material_ = true;
+}
+
+std::vector<PixelOut> ShadeUnit::run(const CommandStream& stream) {
+  std::vector<PixelOut> pixels;
+  for (const auto& cmd : stream.commands) {
+    consume(cmd, [&pixels](const PixelOut& p) { pixels.push_back(p); });
+  }
+  return pixels;
+}
+
+}  // namespace shadesim

@@ -1,0 +1,45 @@
+// SpanSetup: start value and differences of one series for one span, from the triangle's
+// quantized Taylor coefficients. Mirrors rtl/span_setup.sv stage for stage.
+//
+//   stage 1  exact products with the integer offsets dx = x0 - xo, dy = y - yo
+//   stage 2  exact sums (coef fraction bits, wide enough that nothing is lost)
+//              v  = T0 + T1 dy + T2 dx + T3 dy^2 + T4 dx dy + T5 dx^2   value at the first pixel
+//              d  = T2 + T4 dy + T5 (2 dx + 1)                          first forward difference
+//              d2 = 2 T5                                                second difference
+//   stage 3  each rounded once into the series format (its quantization and overflow rule)
+//
+// Only stage 3 loses bits, so with truncation the per-pixel value after k steps differs from the
+// exact quantized quadratic by at most 2^-F (1 + k + k(k-1)/2): the design brief's drift bound.
+#pragma once
+
+#include <cstdint>
+
+#include "model/fixed_point.h"
+
+namespace shadesim {
+
+struct SeriesStart {
+  int64_t v = 0, d = 0, d2 = 0;  // series format raw
+};
+
+class SpanSetup {
+ public:
+  SpanSetup(const FixedFormat& coef, const FixedFormat& series) : coef_(coef), series_(series) {}
+
+  // t[0..5] = T0..T5 raw in the coef format.
+  SeriesStart operator()(const int64_t* t, int32_t dx, int32_t dy) const {
+    const Int128 x = dx, y = dy;
+    const Int128 v = Int128{t[0]} + Int128{t[1]} * y + Int128{t[2]} * x + Int128{t[3]} * y * y +
+                     Int128{t[4]} * x * y + Int128{t[5]} * x * x;
+    const Int128 d = Int128{t[2]} + Int128{t[4]} * y + Int128{t[5]} * (2 * x + 1);
+    const Int128 d2 = 2 * Int128{t[5]};
+    const int f = coef_.frac_bits();
+    return {series_.quantize(v, f), series_.quantize(d, f), series_.quantize(d2, f)};
+  }
+
+ private:
+  FixedFormat coef_;
+  FixedFormat series_;
+};
+
+}  // namespace shadesim

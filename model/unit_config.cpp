@@ -1,0 +1,38 @@
+#include "model/unit_config.h"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace shadesim {
+
+void UnitConfig::validate() const {
+  auto fail = [](const std::string& msg) { throw std::invalid_argument("unit config: " + msg); };
+  if (channels != 1 && channels != 3) fail("channels must be 1 or 3, got " + std::to_string(channels));
+  if (lights < 1 || lights > 8) fail("lights must be 1..8, got " + std::to_string(lights));
+  if (xy_bits < 4 || xy_bits > 15) fail("xy_bits must be 4..15, got " + std::to_string(xy_bits));
+  if (out_bits < 1 || out_bits > 16) fail("out_bits must be 1..16, got " + std::to_string(out_bits));
+  coef.validate("unit config: coef");
+  series.validate("unit config: series");
+  spec_colour.validate("unit config: spec_colour");
+  specular.out.validate("unit config: specular.out");
+  if (!coef.is_signed || !series.is_signed) fail("coef and series formats must be signed");
+  if (spec_colour.is_signed || specular.out.is_signed)
+    fail("spec_colour and specular.out formats must be unsigned");
+  if (series.iwl < 2) fail("series needs at least 2 integer bits (sign + 1) to hold 1.0");
+  if (series.frac_bits() < out_bits) fail("series needs at least out_bits fraction bits");
+  // Span setup multiplies coefficients by offsets up to 2^(xy_bits+1) squared; the exact
+  // intermediate must fit the model's 128-bit arithmetic and the RTL's declared widths.
+  if (coef.wl + 2 * (xy_bits + 2) + 4 > 120) fail("coef too wide for span setup's intermediate");
+  if (specular.out.iwl < 1) fail("specular.out needs an integer bit to hold 1.0");
+  if (spec_colour.iwl < 1) fail("spec_colour needs an integer bit to hold 1.0");
+}
+
+std::string UnitConfig::to_string() const {
+  std::ostringstream os;
+  os << (channels == 1 ? "grey" : "rgb") << '/' << lights << "L coef=" << coef.to_string()
+     << " series=" << series.to_string() << " out=" << out_bits
+     << " spec=" << shadesim::to_string(specular.kind) << ':' << specular.out.to_string();
+  return os.str();
+}
+
+}  // namespace shadesim

@@ -1,0 +1,16 @@
+// Subcommand registration. Each subcommand lives in its own sim/cmd_*.cpp and registers itself
+// here; its callback stores the process exit code in `exit_code` (non-zero on a failed check)
+// and throws std::exception for bad input, which main() reports as "shadesim: error: ...".
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace shadesim {
+
+void register_render(CLI::App& app, int& exit_code);
+
+inline void register_commands(CLI::App& app, int& exit_code) {
+  register_render(app, exit_code);
+}
+
+}  // namespace shadesim
