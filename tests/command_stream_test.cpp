@@ -1,0 +1,138 @@
+// Command stream: binary and text round trips, and clear errors on malformed streams.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <sstream>
+
+#include "model/command_stream.h"
+
+namespace shadesim {
+namespace {
+
+UnitConfig rgb_two_lights() {
+  UnitConfig c;
+  c.channels = 3;
+  c.lights = 2;
+  return c;
+}
+
+CommandStream sample_stream(const UnitConfig& c, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  CommandStream cs;
+  cs.config = c;
+  MaterialCmd m;
+  for (int i = 0; i < c.channels; ++i) m.ambient.push_back(static_cast<int64_t>(rng() % 1000000) - 500000);
+  for (int i = 0; i < c.lights * c.channels; ++i) m.spec_colour.push_back(static_cast<int64_t>(rng() % 4096));
+  m.exponent = int64_t{37} << kExponentFracBits;
+  m.unit_params = {1, -2, 3};
+  cs.commands.emplace_back(m);
+  cs.commands.emplace_back(TableCmd{5, {1, 2, 3, 255}});
+  for (int tri = 0; tri < 3; ++tri) {
+    TriangleCmd t;
+    t.xo = static_cast<int32_t>(rng() % 4096) - 100;
+    t.yo = -static_cast<int32_t>(rng() % 50);
+    std::uniform_int_distribution<int64_t> coef(c.coef.raw_min(), c.coef.raw_max());
+    for (int i = 0; i < c.series_per_triangle() * kTermsPerSeries; ++i) t.coef.push_back(coef(rng));
+    cs.commands.emplace_back(t);
+    SpanCmd s;
+    s.y = static_cast<int32_t>(rng() % 4096);
+    s.x0 = static_cast<int32_t>(rng() % 2048);
+    s.length = 1 + static_cast<int32_t>(rng() % 2048);
+    s.last_in_row = tri == 1;
+    cs.commands.emplace_back(s);
+  }
+  cs.commands.emplace_back(EndFrameCmd{});
+  return cs;
+}
+
+TEST(CommandStream, BinaryRoundTripIsIdentity) {
+  const auto c = rgb_two_lights();
+  const auto cs = sample_stream(c, 1);
+  const auto words = cs.encode();
+  const auto back = CommandStream::decode(words, c, "<test>");
+  EXPECT_EQ(back.encode(), words);
+  ASSERT_EQ(back.commands.size(), cs.commands.size());
+  const auto& t = std::get<TriangleCmd>(back.commands[2]);
+  const auto& t0 = std::get<TriangleCmd>(cs.commands[2]);
+  EXPECT_EQ(t.xo, t0.xo);
+  EXPECT_EQ(t.yo, t0.yo);  // negative origins survive the 16-bit field
+  EXPECT_EQ(t.coef, t0.coef);
+}
+
+TEST(CommandStream, TextRoundTripKeepsConfigAndWords) {
+  const auto c = rgb_two_lights();
+  const auto cs = sample_stream(c, 2);
+  std::stringstream ss;
+  cs.write_text(ss);
+  const auto back = CommandStream::read_text(ss, "<text>");
+  EXPECT_EQ(back.encode(), cs.encode());
+  EXPECT_EQ(back.config.to_string(), c.to_string());
+}
+
+TEST(CommandStream, HeaderWordLayoutMatchesDocumentation) {
+  CommandStream cs;
+  cs.commands.emplace_back(SpanCmd{7, 9, 300, true});
+  const auto w = cs.encode();
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0] >> 56, 0x03u);
+  EXPECT_EQ((w[0] >> 55) & 1, 1u);
+  EXPECT_EQ((w[0] >> 32) & 0xFFFF, 7u);
+  EXPECT_EQ((w[0] >> 16) & 0xFFFF, 9u);
+  EXPECT_EQ(w[0] & 0xFFFF, 300u);
+}
+
+void expect_text_error(const std::string& body, const std::string& needle) {
+  std::stringstream ss("shadesim-commands 1 " + config_to_json(UnitConfig{}) + "\n" + body);
+  try {
+    CommandStream::read_text(ss, "bad.cmd");
+    FAIL() << "accepted: " << body;
+  } catch (const CommandStreamError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("bad.cmd:2:"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(needle), std::string::npos) << msg;
+  }
+}
+
+TEST(CommandStream, TextErrorsNameLineAndExpectation) {
+  expect_text_error("tri 0 0 | 1 2 3\n", "expected 12 values, got 3");
+  expect_text_error("span 1 2\n", "expected an integer for length");
+  expect_text_error("span 1 2 0\n", "length must be >= 1");
+  expect_text_error("span 1 5000 3\n", "xy_bits");
+  expect_text_error("span 1 2 3 first\n", "expected 'last'");
+  expect_text_error("frobnicate\n", "unknown command 'frobnicate'");
+  expect_text_error("material ambient 1 spec_colour 1 exponent 99999999999 params\n", "exponent");
+  expect_text_error("material ambient 1 2 spec_colour 1 exponent 5 params\n", "material.ambient");
+  expect_text_error("tri 0 0 | 1 2 3 4 5 x\n", "expected an integer coefficient");
+}
+
+TEST(CommandStream, MissingHeaderAndEmptyStreamAreErrors) {
+  std::stringstream a("span 1 2 3\n");
+  EXPECT_THROW(CommandStream::read_text(a, "a.cmd"), CommandStreamError);
+  std::stringstream b("");
+  EXPECT_THROW(CommandStream::read_text(b, "b.cmd"), CommandStreamError);
+  std::stringstream c("shadesim-commands 1 {\"channels\": 2}\n");
+  EXPECT_THROW(CommandStream::read_text(c, "c.cmd"), CommandStreamError);
+}
+
+TEST(CommandStream, BinaryErrorsNameWordIndex) {
+  const UnitConfig c;
+  // Truncated triangle payload.
+  std::vector<uint64_t> words = {(uint64_t{0x02} << 56) | 12, 1, 2, 3};
+  try {
+    CommandStream::decode(words, c, "dump.bin");
+    FAIL();
+  } catch (const CommandStreamError& e) {
+    EXPECT_NE(std::string(e.what()).find("dump.bin:word 0"), std::string::npos) << e.what();
+  }
+  // Unknown opcode at word 1.
+  words = {uint64_t{0x0F} << 56, uint64_t{0x7E} << 56};
+  try {
+    CommandStream::decode(words, c, "dump.bin");
+    FAIL();
+  } catch (const CommandStreamError& e) {
+    EXPECT_NE(std::string(e.what()).find("word 1: unknown opcode 0x7e"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace shadesim
