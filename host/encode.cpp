@@ -1,0 +1,134 @@
+#include "host/encode.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace shadesim {
+namespace {
+
+double channel(const Vec3& v, int c) { return c == 0 ? v.x : (c == 1 ? v.y : v.z); }
+
+// Affine maps a*t + b turning the specular cosine into the series each unit consumes. The ideal
+// unit reads t itself.
+std::vector<std::pair<double, double>> specular_affine(const UnitConfig& config, double exponent) {
+  (void)exponent;
+  switch (config.specular.kind) {
+    case SpecularUnitKind::kIdeal:
+      return {{1.0, 0.0}};
+    default:
+      throw std::invalid_argument("encoder: specular unit '" + to_string(config.specular.kind) +
+                                  "' is not supported by this encoder yet");
+  }
+}
+
+class CoefficientWriter {
+ public:
+  CoefficientWriter(const FixedFormat& coef, EncodeStats& stats) : coef_(coef), stats_(stats) {}
+
+  // Appends a*q + b (q about the origin pixel's centre) as T0..T5.
+  void append(const Quadratic& q, double a, double b, std::vector<int64_t>& out) const {
+    for (int k = 0; k < kTermsPerSeries; ++k) {
+      const double value = a * q.t[k] + (k == 0 ? b : 0.0);
+      if (!std::isfinite(value)) throw std::runtime_error("encoder: non-finite Taylor coefficient");
+      const int64_t raw = coef_.from_double(value);
+      if (raw == coef_.raw_max() || raw == coef_.raw_min()) ++stats_.saturated_coefficients;
+      out.push_back(raw);
+    }
+  }
+
+ private:
+  FixedFormat coef_;
+  EncodeStats& stats_;
+};
+
+MaterialCmd material_command(const Scene& scene, const UnitConfig& config, const Material& m) {
+  MaterialCmd cmd;
+  for (int c = 0; c < config.channels; ++c) {
+    cmd.ambient.push_back(config.series.from_double(channel(m.ambient, c) * channel(scene.ambient_light, c)));
+  }
+  for (int l = 0; l < config.lights; ++l) {
+    for (int c = 0; c < config.channels; ++c) {
+      cmd.spec_colour.push_back(
+          config.spec_colour.from_double(channel(m.specular, c) * channel(scene.lights[static_cast<size_t>(l)].colour, c)));
+    }
+  }
+  const FixedFormat exponent{26, 10, false, Quantization::kRoundNearest, Overflow::kSaturate};
+  cmd.exponent = exponent.from_double(m.exponent);
+  return cmd;
+}
+
+}  // namespace
+
+UnitConfig config_for_scene(const Scene& scene, UnitConfig base) {
+  base.channels = scene.is_grey() ? 1 : 3;
+  base.lights = static_cast<int>(scene.lights.size());
+  base.validate();
+  return base;
+}
+
+EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const SetupResult& setup,
+                          const Visibility& vis) {
+  if (static_cast<int>(scene.lights.size()) != config.lights) {
+    throw std::invalid_argument("encoder: unit configured for " + std::to_string(config.lights) +
+                                " lights, scene has " + std::to_string(scene.lights.size()));
+  }
+  EncodedFrame frame;
+  frame.stream.config = config;
+  auto& cmds = frame.stream.commands;
+  EncodeStats& stats = frame.stats;
+  const CoefficientWriter writer(config.coef, stats);
+  int current_material = -1;
+
+  size_t i = 0;
+  while (i < vis.spans.size()) {
+    const uint32_t tri_index = vis.spans[i].triangle;
+    if (tri_index >= setup.triangles.size()) throw std::logic_error("encoder: span names an unknown triangle");
+    const ScreenTriangle& tri = setup.triangles[tri_index];
+    const TriangleSeries& series = setup.series[tri_index];
+    const Material& material = scene.materials.at(static_cast<size_t>(tri.material));
+
+    if (tri.material != current_material) {
+      cmds.emplace_back(material_command(scene, config, material));
+      current_material = tri.material;
+      ++stats.materials;
+    }
+
+    // Origin: the pixel holding the centroid. Integer offsets from it keep span setup's
+    // products exact; the quadratic is re-expanded about that pixel's centre.
+    const double xc = (tri.v[0].x + tri.v[1].x + tri.v[2].x) / 3.0;
+    const double yc = (tri.v[0].y + tri.v[1].y + tri.v[2].y) / 3.0;
+    TriangleCmd t;
+    t.xo = static_cast<int32_t>(std::floor(xc));
+    t.yo = static_cast<int32_t>(std::floor(yc));
+    const double ox = t.xo + 0.5, oy = t.yo + 0.5;
+    for (int l = 0; l < config.lights; ++l) {
+      const Quadratic q = series.diffuse[static_cast<size_t>(l)].recentred(ox, oy);
+      const Vec3& light = scene.lights[static_cast<size_t>(l)].colour;
+      for (int c = 0; c < config.channels; ++c) {
+        writer.append(q, channel(material.diffuse, c) * channel(light, c), 0.0, t.coef);
+      }
+    }
+    const auto affine = specular_affine(config, material.exponent);
+    for (int l = 0; l < config.lights; ++l) {
+      const Quadratic q = series.specular[static_cast<size_t>(l)].recentred(ox, oy);
+      for (const auto& [a, b] : affine) writer.append(q, a, b, t.coef);
+    }
+    cmds.emplace_back(std::move(t));
+    ++stats.triangles;
+
+    for (; i < vis.spans.size() && vis.spans[i].triangle == tri_index; ++i) {
+      const Span& s = vis.spans[i];
+      cmds.emplace_back(SpanCmd{s.y, s.x0, s.length, s.last_in_row});
+      ++stats.spans;
+      stats.pixels += static_cast<size_t>(s.length);
+    }
+  }
+  cmds.emplace_back(EndFrameCmd{});
+  stats.words = frame.stream.encode().size();
+  frame.stream.validate("encoder");
+  return frame;
+}
+
+}  // namespace shadesim

@@ -1,0 +1,39 @@
+// Encoder: from set-up triangles and visibility spans to the command stream the unit consumes.
+// Here the per-triangle double quadratics become fixed-point words: colours are rolled into the
+// diffuse series (so the per-pixel path has no multiplier), the specular series is pre-scaled
+// for the unit, and each quadratic is re-expanded about an integer origin pixel.
+#pragma once
+
+#include <cstddef>
+
+#include "host/scene.h"
+#include "host/screen.h"
+#include "host/triangle_setup.h"
+#include "model/command_stream.h"
+#include "model/unit_config.h"
+
+namespace shadesim {
+
+// `base` with the structure the scene needs: one channel for a grey scene, one series set per
+// light. Widths are kept.
+UnitConfig config_for_scene(const Scene& scene, UnitConfig base);
+
+struct EncodeStats {
+  std::size_t materials = 0;    // MATERIAL commands (material switches, including the first)
+  std::size_t triangles = 0;    // TRI commands: triangles that own at least one pixel
+  std::size_t spans = 0;
+  std::size_t pixels = 0;
+  std::size_t words = 0;        // 64-bit words on the cmd port
+  std::size_t saturated_coefficients = 0;  // coefficients clipped by the coef format: widen it
+};
+
+struct EncodedFrame {
+  CommandStream stream;
+  EncodeStats stats;
+};
+
+// setup.triangles are the triangles vis.owner / vis.spans refer to.
+EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const SetupResult& setup,
+                          const Visibility& vis);
+
+}  // namespace shadesim

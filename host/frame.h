@@ -1,0 +1,40 @@
+// The host pipeline for one frame: scene file -> projection -> triangle setup (with
+// subdivision) -> visibility -> command stream. Shared by `render`, `regress` and `cycles`.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "host/encode.h"
+#include "host/raster.h"
+#include "host/scene.h"
+#include "host/triangle_setup.h"
+#include "model/unit_config.h"
+
+namespace shadesim {
+
+struct FrameOptions {
+  UnitConfig base;                                   // widths; structure comes from the scene
+  std::optional<double> budget_lsb;                  // unset: the scene's error_budget_lsb
+  int max_depth = 12;                                // subdivision depth limit
+  std::optional<SpecularUnitKind> specular_override; // unset: the scene's (first) material unit
+};
+
+struct FrameTimings {
+  double load_s = 0, project_s = 0, setup_s = 0, visibility_s = 0, encode_s = 0;
+};
+
+struct PreparedFrame {
+  Scene scene;
+  UnitConfig config;
+  ProjectStats project;
+  SetupResult setup;
+  Visibility visibility;
+  EncodedFrame encoded;
+  FrameTimings timings;
+};
+
+// Throws SceneError for bad scene/mesh input and std::invalid_argument for impossible options.
+PreparedFrame prepare_frame(const std::string& scene_path, const FrameOptions& options);
+
+}  // namespace shadesim

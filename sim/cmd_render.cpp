@@ -1,0 +1,195 @@
+#if __has_include("host/reference.h")  // TEMPORARY until the reference renderer lands
+#include "host/reference.h"
+// shadesim render SCENE: shade a scene through the bit-accurate model, beside the float
+// reference, and report the error with the cost.
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "host/frame.h"
+#include "host/image.h"
+#include "host/metrics.h"
+#include "model/shade_unit.h"
+#include "sim/commands.h"
+#include "sim/width_options.h"
+
+namespace shadesim {
+namespace {
+
+struct RenderOptions {
+  std::string scene;
+  std::string out_dir;
+  std::string json_path;
+  std::string stream_path;
+  WidthOptions widths;
+  double budget_lsb = std::nan("");
+  int max_depth = 12;
+  std::string specular;
+  double heat_scale_lsb = 4.0;
+  bool quiet = false;
+};
+
+Image model_image(const std::vector<PixelOut>& pixels, int width, int height, int channels, int out_bits) {
+  Image img(width, height, channels);
+  const int shift = out_bits > 8 ? out_bits - 8 : 0;
+  for (const auto& p : pixels) {
+    for (int c = 0; c < channels; ++c) {
+      img.pixels[(static_cast<size_t>(p.y) * static_cast<size_t>(width) + p.x) * static_cast<size_t>(channels) +
+                 static_cast<size_t>(c)] = static_cast<uint8_t>(p.colour[static_cast<size_t>(c)] >> shift);
+    }
+  }
+  return img;
+}
+
+std::string format_db(double db) {
+  if (std::isinf(db)) return "inf (identical)";
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(2) << db << " dB";
+  return os.str();
+}
+
+int run_render(const RenderOptions& o) {
+  FrameOptions fo;
+  fo.base = o.widths.to_config();
+  if (!std::isnan(o.budget_lsb)) fo.budget_lsb = o.budget_lsb;
+  fo.max_depth = o.max_depth;
+  if (!o.specular.empty()) fo.specular_override = parse_specular_unit(o.specular, "--specular");
+
+  const PreparedFrame frame = prepare_frame(o.scene, fo);
+  const Scene& scene = frame.scene;
+  const UnitConfig& cfg = frame.config;
+
+  ShadeUnit unit(cfg);
+  std::vector<PixelOut> pixels;
+  pixels.reserve(frame.encoded.stats.pixels);
+  const auto t0 = std::chrono::steady_clock::now();
+  for (const auto& cmd : frame.encoded.stream.commands) {
+    unit.consume(cmd, [&pixels](const PixelOut& p) { pixels.push_back(p); });
+  }
+  const double model_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  const auto t1 = std::chrono::steady_clock::now();
+  const ReferenceImage ref = render_reference(frame.setup.triangles, frame.visibility.owner, scene, cfg.channels);
+  const double reference_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+
+  const ErrorMap err = compare_to_reference(pixels, ref.values, frame.visibility.owner, scene.width,
+                                            scene.height, cfg.channels, cfg.out_bits);
+
+  // Images: model, reference, error heat map, and the three side by side.
+  const std::filesystem::path out_dir =
+      o.out_dir.empty() ? std::filesystem::path("out") / std::filesystem::path(o.scene).stem()
+                        : std::filesystem::path(o.out_dir);
+  std::filesystem::create_directories(out_dir);
+  const Image model_png = model_image(pixels, scene.width, scene.height, cfg.channels, cfg.out_bits);
+  Image ref_png(scene.width, scene.height, cfg.channels);
+  ref_png.pixels = reference_codes(ref.values, cfg.out_bits);
+  const Image heat = error_heat_map(err.per_pixel_lsb, scene.width, scene.height, o.heat_scale_lsb);
+  write_png((out_dir / "model.png").string(), model_png);
+  write_png((out_dir / "reference.png").string(), ref_png);
+  write_png((out_dir / "error.png").string(), heat);
+  write_png((out_dir / "compare.png").string(), hstack({model_png, ref_png, heat}, 4));
+  if (!o.stream_path.empty()) frame.encoded.stream.save(o.stream_path);
+
+  const auto& st = frame.setup.stats;
+  const auto& es = err.stats;
+  const std::string unit_label = to_string(cfg.specular.kind) +
+                                 (cfg.specular.kind == SpecularUnitKind::kIdeal ? " (exact pow of the fixed-point t; not hardware)" : "");
+  if (!o.quiet) {
+    std::cout << "scene        " << o.scene << "  (" << scene.width << "x" << scene.height << ", "
+              << scene.lights.size() << " light(s), eye " << (scene.eye_at_infinity ? "at infinity" : "finite") << ")\n"
+              << "unit         " << cfg.to_string() << "\n"
+              << "specular     " << unit_label << "\n"
+              << "triangles    " << frame.project.triangles_in << " in mesh, " << frame.project.emitted
+              << " after culling; " << st.triangles_out << " after setup (" << st.inputs_split
+              << " split, " << st.splits << " splits, " << st.over_budget << " over budget at depth "
+              << fo.max_depth << ")\n"
+              << "stream       " << frame.encoded.stats.triangles << " tri, " << frame.encoded.stats.spans
+              << " spans, " << frame.encoded.stats.materials << " material loads, "
+              << frame.encoded.stats.words << " words\n"
+              << "pixels       " << es.pixels << " shaded\n"
+              << "error        max " << es.max_code_lsb << " LSB (8-bit codes vs rounded reference), mean "
+              << std::setprecision(4) << es.mean_code_lsb << " LSB, PSNR " << format_db(es.psnr_db) << "\n"
+              << "             max " << std::setprecision(3) << es.max_real_lsb
+              << " LSB before rounding the reference; " << es.pixels_over_1lsb << " pixel(s) off by more than 1\n"
+              << "setup budget " << (fo.budget_lsb ? *fo.budget_lsb : scene.error_budget_lsb)
+              << " LSB Taylor error per triangle; worst measured " << std::setprecision(3) << st.worst_error_lsb << " LSB\n"
+              << "time         setup " << std::setprecision(3) << frame.timings.setup_s << " s, visibility "
+              << frame.timings.visibility_s << " s, model " << model_s << " s ("
+              << std::setprecision(3) << (model_s > 0 ? es.pixels / model_s / 1e6 : 0) << " Mpixel/s), reference "
+              << reference_s << " s\n"
+              << "images       " << (out_dir / "compare.png").string() << " (model | reference | error, full scale "
+              << o.heat_scale_lsb << " LSB)\n";
+    if (frame.encoded.stats.saturated_coefficients > 0) {
+      std::cout << "warning      " << frame.encoded.stats.saturated_coefficients
+                << " Taylor coefficient(s) saturated the coef format " << cfg.coef.to_string()
+                << "; widen it with --coef\n";
+    }
+  }
+  if (!o.json_path.empty()) {
+    nlohmann::json j;
+    j["scene"] = o.scene;
+    j["width"] = scene.width;
+    j["height"] = scene.height;
+    j["config"] = nlohmann::json::parse(config_to_json(cfg));
+    j["specular_unit"] = unit_label;
+    j["triangles"] = {{"mesh", frame.project.triangles_in}, {"projected", frame.project.emitted},
+                      {"after_setup", st.triangles_out}, {"inputs_split", st.inputs_split},
+                      {"splits", st.splits}, {"over_budget", st.over_budget},
+                      {"worst_setup_error_lsb", st.worst_error_lsb}};
+    j["stream"] = {{"triangles", frame.encoded.stats.triangles}, {"spans", frame.encoded.stats.spans},
+                   {"materials", frame.encoded.stats.materials}, {"words", frame.encoded.stats.words},
+                   {"saturated_coefficients", frame.encoded.stats.saturated_coefficients}};
+    j["pixels"] = es.pixels;
+    j["error"] = {{"max_code_lsb", es.max_code_lsb}, {"mean_code_lsb", es.mean_code_lsb},
+                  {"psnr_db", std::isinf(es.psnr_db) ? nlohmann::json(nullptr) : nlohmann::json(es.psnr_db)},
+                  {"max_real_lsb", es.max_real_lsb}, {"pixels_over_1lsb", es.pixels_over_1lsb},
+                  {"metric", "output codes vs reference rounded by the same rule; real: before rounding the reference"}};
+    j["time_s"] = {{"load", frame.timings.load_s}, {"project", frame.timings.project_s},
+                   {"setup", frame.timings.setup_s}, {"visibility", frame.timings.visibility_s},
+                   {"encode", frame.timings.encode_s}, {"model", model_s}, {"reference", reference_s}};
+    j["model_mpixel_per_s"] = model_s > 0 ? es.pixels / model_s / 1e6 : 0.0;
+    j["images"] = {{"model", (out_dir / "model.png").string()}, {"reference", (out_dir / "reference.png").string()},
+                   {"error", (out_dir / "error.png").string()}, {"compare", (out_dir / "compare.png").string()}};
+    std::ofstream os(o.json_path);
+    if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
+    os << j.dump(2) << '\n';
+  }
+  return 0;
+}
+
+}  // namespace
+
+void register_render(CLI::App& app, int& exit_code) {
+  auto opts = std::make_shared<RenderOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "render",
+      "Shade a scene through the bit-accurate model and the double-precision reference; write\n"
+      "model.png, reference.png, error.png (heat map) and compare.png, and print the error\n"
+      "(max/mean LSB, PSNR) beside the cost (triangles split, stream words, model speed).");
+  sub->add_option("scene", opts->scene, "scene JSON file (see scenes/)")->required()->check(CLI::ExistingFile);
+  sub->add_option("-o,--out", opts->out_dir, "output directory (default out/<scene name>)");
+  sub->add_option("--json", opts->json_path, "write the figures as JSON to this file");
+  sub->add_option("--save-stream", opts->stream_path, "save the command stream (text form) for replay");
+  sub->add_option("--budget", opts->budget_lsb,
+                  "Taylor error budget per triangle in output LSBs (default: the scene's, else 1)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--max-depth", opts->max_depth, "subdivision depth limit per triangle")
+      ->check(CLI::Range(0, 16))->capture_default_str();
+  sub->add_option("--specular", opts->specular, "override the specular unit: ideal|lut|schlick|wpow");
+  sub->add_option("--heat-scale", opts->heat_scale_lsb, "error heat map full scale in LSBs")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  sub->add_flag("-q,--quiet", opts->quiet, "print nothing (use with --json)");
+  add_width_options(*sub, opts->widths);
+  sub->callback([opts, &exit_code]() { exit_code = run_render(*opts); });
+}
+
+}  // namespace shadesim
+#else
+#include "sim/commands.h"
+void shadesim::register_render(CLI::App& app, int&) { app.add_subcommand("render", "not built yet"); }
+#endif
