@@ -1,0 +1,105 @@
+#include "host/reference.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace shadesim {
+namespace {
+
+double clamp01(double v) { return std::min(1.0, std::max(0.0, v)); }
+
+// Barycentric weights of (x, y). Written independently of AffineField (which solves for
+// gradients) so the two interpolations check each other in tests.
+std::array<double, 3> barycentric(const ScreenTriangle& t, double x, double y) {
+  const auto& v = t.v;
+  const double area =
+      (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y);
+  if (!(area != 0.0) || !std::isfinite(area)) return {1.0 / 3, 1.0 / 3, 1.0 / 3};
+  std::array<double, 3> w;
+  for (int k = 0; k < 3; ++k) {
+    const ScreenVertex& p = v[(k + 1) % 3];
+    const ScreenVertex& q = v[(k + 2) % 3];
+    w[k] = ((q.x - p.x) * (y - p.y) - (q.y - p.y) * (x - p.x)) / area;
+  }
+  return w;
+}
+
+}  // namespace
+
+ReferenceImage render_reference(const std::vector<ScreenTriangle>& triangles,
+                                const std::vector<int32_t>& owner, int width, int height,
+                                const Scene& scene, int channels) {
+  if (channels != 1 && channels != 3) {
+    throw std::invalid_argument("render_reference: channels " + std::to_string(channels) +
+                                ", expected 1 or 3");
+  }
+  if (width < 0 || height < 0 ||
+      owner.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height)) {
+    throw std::invalid_argument("render_reference: owner buffer has " +
+                                std::to_string(owner.size()) + " entries, expected width * height = " +
+                                std::to_string(width) + " * " + std::to_string(height));
+  }
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const int m = triangles[i].material;
+    if (m < 0 || static_cast<std::size_t>(m) >= scene.materials.size()) {
+      throw std::invalid_argument("render_reference: triangle " + std::to_string(i) +
+                                  " has material index " + std::to_string(m) + ", expected 0.." +
+                                  std::to_string(scene.materials.size()) + " - 1");
+    }
+  }
+  std::vector<Vec3> L, H_inf;
+  const Vec3 V = normalize(scene.camera.position - scene.camera.target);
+  for (const DirectionalLight& light : scene.lights) {
+    L.push_back(normalize(light.direction));
+    H_inf.push_back(normalize(L.back() + V));
+  }
+
+  ReferenceImage img;
+  img.width = width;
+  img.height = height;
+  img.channels = channels;
+  img.values.assign(owner.size() * static_cast<std::size_t>(channels), 0.0);
+  for (int py = 0; py < height; ++py) {
+    for (int px = 0; px < width; ++px) {
+      const std::size_t pixel = static_cast<std::size_t>(py) * width + px;
+      const int32_t o = owner[pixel];
+      if (o < 0) continue;
+      if (static_cast<std::size_t>(o) >= triangles.size()) {
+        throw std::invalid_argument("render_reference: owner of pixel (" + std::to_string(px) +
+                                    ", " + std::to_string(py) + ") is triangle " +
+                                    std::to_string(o) + ", expected -1.." +
+                                    std::to_string(triangles.size()) + " - 1");
+      }
+      const ScreenTriangle& t = triangles[static_cast<std::size_t>(o)];
+      const Material& mat = scene.materials[static_cast<std::size_t>(t.material)];
+      const auto w = barycentric(t, px + 0.5, py + 0.5);
+      const Vec3 n = t.v[0].normal * w[0] + t.v[1].normal * w[1] + t.v[2].normal * w[2];
+      const Vec3 e = t.v[0].to_eye * w[0] + t.v[1].to_eye * w[1] + t.v[2].to_eye * w[2];
+      const double n_len = length(n);
+      Vec3 colour{mat.ambient.x * scene.ambient_light.x, mat.ambient.y * scene.ambient_light.y,
+                  mat.ambient.z * scene.ambient_light.z};
+      for (std::size_t l = 0; l < L.size(); ++l) {
+        const Vec3 H = scene.eye_at_infinity ? H_inf[l] : normalize(e + L[l]);
+        const double t_d = n_len > 0 ? dot(n, L[l]) / n_len : 0.0;
+        const double t_s = n_len > 0 ? dot(n, H) / n_len : 0.0;
+        const double diffuse = std::max(0.0, t_d);
+        const double specular = std::pow(std::max(0.0, t_s), mat.exponent);
+        const Vec3& lc = scene.lights[l].colour;
+        colour.x += lc.x * (mat.diffuse.x * diffuse + mat.specular.x * specular);
+        colour.y += lc.y * (mat.diffuse.y * diffuse + mat.specular.y * specular);
+        colour.z += lc.z * (mat.diffuse.z * diffuse + mat.specular.z * specular);
+      }
+      double* out = &img.values[pixel * static_cast<std::size_t>(channels)];
+      out[0] = clamp01(colour.x);
+      if (channels == 3) {
+        out[1] = clamp01(colour.y);
+        out[2] = clamp01(colour.z);
+      }
+    }
+  }
+  return img;
+}
+
+}  // namespace shadesim

@@ -1,0 +1,42 @@
+// The float reference: double-precision shading per pixel with per-pixel normalisation and exact
+// pow, over the same triangles and visibility the model shades. Ground truth for error figures.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "host/scene.h"
+#include "host/screen.h"
+
+namespace shadesim {
+
+struct ReferenceImage {
+  int width = 0, height = 0, channels = 0;
+  std::vector<double> values;  // row-major, channels interleaved: ((y * width) + x) * channels + c
+
+  double at(int x, int y, int c) const {
+    return values[(static_cast<std::size_t>(y) * width + x) * channels + c];
+  }
+};
+
+// Per owned pixel, at its centre (px + 0.5, py + 0.5), with N and the to-eye vector E interpolated
+// affinely in screen space from the owner's vertices (the same fields the Taylor series expand):
+//   colour = clamp01(ambient_mat * ambient_light
+//                    + sum_l kd * Lc * max(0, N.L / |N|) + ks * Lc * max(0, N.H / |N|)^n)
+// with L = normalize(light.direction), H = normalize(L + V) (eye at infinity, V toward the eye
+// from the camera) or normalize(E + L) (finite eye). Specular is deliberately NOT gated by
+// N.L > 0: the hardware model computes it the same way. A zero |N| or |H| gives a zero term.
+// Pixels with owner -1 are 0. channels 1 uses the first (x, red) component of every colour.
+// Throws std::invalid_argument when channels is not 1 or 3, owner.size() != width * height, an
+// owner index is out of range, or a material index is not in scene.materials.
+ReferenceImage render_reference(const std::vector<ScreenTriangle>& triangles,
+                                const std::vector<int32_t>& owner, int width, int height,
+                                const Scene& scene, int channels);
+
+inline ReferenceImage render_reference(const std::vector<ScreenTriangle>& triangles,
+                                       const Visibility& vis, const Scene& scene, int channels) {
+  return render_reference(triangles, vis.owner, vis.width, vis.height, scene, channels);
+}
+
+}  // namespace shadesim

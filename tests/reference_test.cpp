@@ -1,0 +1,215 @@
+// Float reference: closed-form Lambert and Blinn values at known normals, clamping, background,
+// and agreement with the affine fields the Taylor series expand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "host/reference.h"
+#include "host/shading_field.h"
+
+namespace shadesim {
+namespace {
+
+ScreenVertex vert(double x, double y, Vec3 n, Vec3 e = {0, 0, 1}) {
+  ScreenVertex v;
+  v.x = x;
+  v.y = y;
+  v.normal = n;
+  v.to_eye = e;
+  return v;
+}
+
+// Default camera looks from (0, 0, 5) at the origin: V = (0, 0, 1).
+Scene one_light_scene(Vec3 dir, Vec3 colour, Material m) {
+  Scene s;
+  s.width = 40;
+  s.height = 30;
+  s.lights.push_back(DirectionalLight{dir, colour});
+  s.ambient_light = {0.5, 0.5, 0.5};
+  s.materials.push_back(m);
+  return s;
+}
+
+// Owner buffer from an inside test at pixel centres (closed; these tests do not share edges).
+std::vector<int32_t> owners(const ScreenTriangle& t, int w, int h) {
+  std::vector<int32_t> o(static_cast<std::size_t>(w) * h, -1);
+  const auto& v = t.v;
+  for (int py = 0; py < h; ++py)
+    for (int px = 0; px < w; ++px) {
+      const double x = px + 0.5, y = py + 0.5;
+      bool pos = true, neg = true;
+      for (int k = 0; k < 3; ++k) {
+        const auto& a = v[k];
+        const auto& b = v[(k + 1) % 3];
+        const double e = (b.x - a.x) * (y - a.y) - (b.y - a.y) * (x - a.x);
+        pos = pos && e >= 0;
+        neg = neg && e <= 0;
+      }
+      if (pos || neg) o[static_cast<std::size_t>(py) * w + px] = 0;
+    }
+  return o;
+}
+
+TEST(Reference, FlatTriangleIsClosedFormPhongBlinnEverywhere) {
+  Material m;
+  m.ambient = {0.1, 0.2, 0.05};
+  m.diffuse = {0.5, 0.4, 0.3};
+  m.specular = {0.3, 0.2, 0.1};
+  m.exponent = 20;
+  // Light direction deliberately not unit: the reference normalises it.
+  const Scene s = one_light_scene({2, 2, 4}, {0.9, 0.8, 0.7}, m);
+  const Vec3 n{0.2, -0.3, 1.0};  // not unit either: normalised per pixel
+  ScreenTriangle t;
+  t.v = {vert(2, 3, n), vert(37, 5, n), vert(15, 28, n)};
+  const auto own = owners(t, s.width, s.height);
+  const ReferenceImage img = render_reference({t}, own, s.width, s.height, s, 3);
+  ASSERT_EQ(img.values.size(), 40u * 30u * 3u);
+
+  // Hand evaluation: |n| = sqrt(1.13), L = (1, 1, 2)/sqrt(6), H = normalize(L + (0, 0, 1)).
+  const double nl = (0.2 - 0.3 + 2.0) / std::sqrt(6.0) / std::sqrt(1.13);
+  const double lz = 2 / std::sqrt(6.0) + 1;
+  const double hlen = std::sqrt(2.0 / 6.0 + lz * lz);
+  const double nh = (0.2 / std::sqrt(6.0) - 0.3 / std::sqrt(6.0) + lz) / hlen / std::sqrt(1.13);
+  const double spec = std::pow(nh, 20);
+  const double expect[3] = {0.05 + 0.9 * (0.5 * nl + 0.3 * spec),
+                            0.10 + 0.8 * (0.4 * nl + 0.2 * spec),
+                            0.025 + 0.7 * (0.3 * nl + 0.1 * spec)};
+  int owned = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        if (own[static_cast<std::size_t>(y) * s.width + x] < 0) {
+          EXPECT_EQ(img.at(x, y, c), 0.0);
+        } else {
+          owned += c == 0;
+          EXPECT_NEAR(img.at(x, y, c), expect[c], 1e-14) << x << "," << y << " ch " << c;
+        }
+      }
+  EXPECT_GT(owned, 300);
+
+  const ReferenceImage grey = render_reference({t}, own, s.width, s.height, s, 1);
+  ASSERT_EQ(grey.values.size(), 40u * 30u);
+  EXPECT_NEAR(grey.at(15, 12, 0), expect[0], 1e-14);
+}
+
+// Vertices symmetric about the centre of pixel (20, 15), so there N is the vertex mean.
+ScreenTriangle centred_triangle(Vec3 mean, Vec3 d0, Vec3 d1, Vec3 e_mean, Vec3 e0, Vec3 e1) {
+  const double cx = 20.5, cy = 15.5;
+  ScreenTriangle t;
+  t.v = {vert(cx - 9, cy - 6, mean + d0, e_mean + e0), vert(cx + 12, cy - 3, mean + d1, e_mean + e1),
+         vert(cx - 3, cy + 9, mean - d0 - d1, e_mean - e0 - e1)};
+  return t;
+}
+
+TEST(Reference, KnownNormalGivesBlinnValue) {
+  Material m;
+  m.ambient = {0, 0, 0};
+  m.diffuse = {0, 0, 0};
+  m.specular = {1, 1, 1};
+  m.exponent = 50;
+  const Vec3 L = Vec3{0.3, 0.1, 1} / std::sqrt(1.1);
+  const Scene s = one_light_scene(L, {1, 1, 1}, m);
+  const Vec3 mean{0.3, 0.1, 0.8};
+  const ScreenTriangle t = centred_triangle(mean, {0.2, 0, 0}, {0, 0.2, 0.1}, {0, 0, 1}, {}, {});
+  std::vector<int32_t> own(40 * 30, -1);
+  own[15 * 40 + 20] = 0;
+  own[9 * 40 + 11] = 0;  // (11.5, 9.5) is vertex 0
+  const ReferenceImage img = render_reference({t}, own, 40, 30, s, 1);
+  const Vec3 H = normalize(L + Vec3{0, 0, 1});
+  EXPECT_NEAR(img.at(20, 15, 0), std::pow(dot(normalize(mean), H), 50), 1e-13);
+  EXPECT_NEAR(img.at(11, 9, 0), std::pow(dot(normalize(t.v[0].normal), H), 50), 1e-13);
+}
+
+TEST(Reference, FiniteEyeUsesInterpolatedEyeVector) {
+  Material m;
+  m.ambient = {0, 0, 0};
+  m.diffuse = {0, 0, 0};
+  m.specular = {1, 1, 1};
+  m.exponent = 30;
+  const Vec3 L = normalize(Vec3{-0.2, 0.3, 1});
+  Scene s = one_light_scene(L, {1, 1, 1}, m);
+  s.eye_at_infinity = false;
+  const Vec3 mean{0.1, 0.05, 0.9}, e_mean{0.2, -0.1, 0.95};
+  const ScreenTriangle t =
+      centred_triangle(mean, {0.1, 0, 0}, {0, -0.1, 0}, e_mean, {0.05, 0.02, 0}, {-0.03, 0.04, 0});
+  std::vector<int32_t> own(40 * 30, -1);
+  own[15 * 40 + 20] = 0;
+  const ReferenceImage img = render_reference({t}, own, 40, 30, s, 1);
+  const Vec3 H = normalize(e_mean + L);
+  EXPECT_NEAR(img.at(20, 15, 0), std::pow(dot(normalize(mean), H), 30), 1e-13);
+}
+
+TEST(Reference, SpecularIsNotGatedByNDotL) {
+  Material m;
+  m.ambient = {0, 0, 0};
+  m.diffuse = {1, 1, 1};
+  m.specular = {1, 1, 1};
+  m.exponent = 4;
+  const Vec3 L = normalize(Vec3{1, 0, 0.05});
+  const Scene s = one_light_scene(L, {1, 1, 1}, m);
+  const Vec3 n = normalize(Vec3{-0.3, 0, 1});
+  ASSERT_LT(dot(n, L), 0.0);
+  ScreenTriangle t;
+  t.v = {vert(2, 3, n), vert(37, 5, n), vert(15, 28, n)};
+  const ReferenceImage img = render_reference({t}, owners(t, 40, 30), 40, 30, s, 1);
+  const double nh = dot(n, normalize(L + Vec3{0, 0, 1}));
+  ASSERT_GT(nh, 0.0);
+  EXPECT_NEAR(img.at(15, 12, 0), std::pow(nh, 4), 1e-14);  // diffuse 0, specular present
+}
+
+TEST(Reference, ClampsToOne) {
+  Material m;
+  m.diffuse = {1, 1, 1};
+  const Scene s = one_light_scene({0, 0, 1}, {5, 5, 5}, m);
+  ScreenTriangle t;
+  t.v = {vert(2, 3, {0, 0, 1}), vert(37, 5, {0, 0, 1}), vert(15, 28, {0, 0, 1})};
+  const ReferenceImage img = render_reference({t}, owners(t, 40, 30), 40, 30, s, 3);
+  EXPECT_EQ(img.at(15, 12, 1), 1.0);
+}
+
+TEST(Reference, MatchesExactShadingOfTheAffineField) {
+  // Diffuse-only, curved triangle: the reference (barycentric) and diffuse_exact (solved
+  // gradients) are two routes to the same field.
+  Material m;
+  m.ambient = {0, 0, 0};
+  m.diffuse = {1, 1, 1};
+  m.specular = {0, 0, 0};
+  const Vec3 L = normalize(Vec3{0.3, -0.4, 1});
+  const Scene s = one_light_scene(L, {1, 1, 1}, m);
+  ScreenTriangle t;
+  t.v = {vert(2, 3, normalize(Vec3{-0.5, -0.4, 1})), vert(37, 5, normalize(Vec3{0.6, -0.2, 1})),
+         vert(15, 28, normalize(Vec3{0, 0.7, 1}))};
+  const auto own = owners(t, 40, 30);
+  const ReferenceImage img = render_reference({t}, own, 40, 30, s, 1);
+  const AffineField N = *normal_field(t);
+  for (int y = 0; y < 30; ++y) {
+    for (int x = 0; x < 40; ++x) {
+      if (own[static_cast<std::size_t>(y) * 40 + x] == 0) {
+        EXPECT_NEAR(img.at(x, y, 0), std::max(0.0, diffuse_exact(N, L, x + 0.5, y + 0.5)), 1e-13);
+      }
+    }
+  }
+}
+
+TEST(Reference, BadInputIsRejected) {
+  Material m;
+  const Scene s = one_light_scene({0, 0, 1}, {1, 1, 1}, m);
+  ScreenTriangle t;
+  t.v = {vert(2, 3, {0, 0, 1}), vert(37, 5, {0, 0, 1}), vert(15, 28, {0, 0, 1})};
+  std::vector<int32_t> own(40 * 30, -1);
+  EXPECT_THROW(render_reference({t}, own, 40, 30, s, 2), std::invalid_argument);
+  EXPECT_THROW(render_reference({t}, own, 41, 30, s, 3), std::invalid_argument);
+  own[5] = 1;
+  try {
+    render_reference({t}, own, 40, 30, s, 3);
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("pixel (5, 0)"), std::string::npos) << e.what();
+  }
+  own[5] = 0;
+  t.material = 2;
+  EXPECT_THROW(render_reference({t}, own, 40, 30, s, 3), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace shadesim
