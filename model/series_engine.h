@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "model/fixed_point.h"
 #include "model/span_setup.h"
@@ -40,6 +41,61 @@ class SeriesEngine {
   int shift_;
   int64_t max_, min_;
   SeriesStart state_;
+};
+
+// SeriesBank: the unit's series engines side by side (the RTL's generate loop over
+// series_engine), stored as arrays so one pixel step touches contiguous memory and the overflow
+// rule is chosen once per step, not once per addition. Bit-identical to N SeriesEngines.
+class SeriesBank {
+ public:
+  SeriesBank(const FixedFormat& series, int count)
+      : wrap_(series.overflow == Overflow::kWrap),
+        offset_(series.raw_max() + 1),
+        mask_(static_cast<uint64_t>(series.raw_max()) * 2 + 1),
+        max_(series.raw_max()),
+        min_(series.raw_min()),
+        v_(static_cast<size_t>(count)),
+        d_(static_cast<size_t>(count)),
+        d2_(static_cast<size_t>(count)) {}
+
+  int size() const { return static_cast<int>(v_.size()); }
+  void load(int i, const SeriesStart& s) {
+    v_[static_cast<size_t>(i)] = s.v;
+    d_[static_cast<size_t>(i)] = s.d;
+    d2_[static_cast<size_t>(i)] = s.d2;
+  }
+  const int64_t* values() const { return v_.data(); }
+
+  void step() {
+    const size_t n = v_.size();
+    int64_t* v = v_.data();
+    int64_t* d = d_.data();
+    const int64_t* d2 = d2_.data();
+    if (wrap_) {
+      // Two's-complement wrap to wl bits: ((x + 2^(wl-1)) mod 2^wl) - 2^(wl-1).
+      for (size_t i = 0; i < n; ++i) {
+        v[i] = wrap(v[i] + d[i]);
+        d[i] = wrap(d[i] + d2[i]);
+      }
+    } else {
+      for (size_t i = 0; i < n; ++i) {
+        v[i] = saturate(v[i] + d[i]);
+        d[i] = saturate(d[i] + d2[i]);
+      }
+    }
+  }
+
+ private:
+  int64_t wrap(int64_t x) const {
+    return static_cast<int64_t>((static_cast<uint64_t>(x + offset_)) & mask_) - offset_;
+  }
+  int64_t saturate(int64_t x) const { return x > max_ ? max_ : (x < min_ ? min_ : x); }
+
+  bool wrap_;
+  int64_t offset_;
+  uint64_t mask_;
+  int64_t max_, min_;
+  std::vector<int64_t> v_, d_, d2_;
 };
 
 }  // namespace shadesim

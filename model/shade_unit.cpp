@@ -7,10 +7,9 @@ ShadeUnit::ShadeUnit(const UnitConfig& config)
       span_setup_(config.coef, config.series),
       specular_(config),
       combine_(config),
-      engines_(static_cast<size_t>(config.series_per_triangle()), SeriesEngine(config.series)),
+      series_(config.series, config.series_per_triangle()),
       ambient_(static_cast<size_t>(config.channels), 0),
       spec_colour_(static_cast<size_t>(config.lights * config.channels), 0),
-      values_(static_cast<size_t>(config.series_per_triangle()), 0),
       spec_(static_cast<size_t>(config.lights), 0) {
   config_.validate();
 }

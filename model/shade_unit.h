@@ -44,15 +44,13 @@ class ShadeUnit {
   SpanSetup span_setup_;
   SpecularUnit specular_;
   PixelCombine combine_;
-  std::vector<SeriesEngine> engines_;  // diffuse (l-major, c-minor) then specular per light
+  SeriesBank series_;  // diffuse (l-major, c-minor) then specular per light
   std::vector<int64_t> ambient_;
   std::vector<int64_t> spec_colour_;
   TriangleCmd triangle_;
   bool have_material_ = false;
   bool have_triangle_ = false;
-  // Scratch per pixel: series values and specular intensities.
-  std::vector<int64_t> values_;
-  std::vector<int64_t> spec_;
+  std::vector<int64_t> spec_;  // scratch: specular intensity per light
 };
 
 template <typename Sink>
@@ -61,26 +59,25 @@ void ShadeUnit::consume(const Command& cmd, Sink&& sink) {
     if (!have_triangle_ || !have_material_) {
       throw CommandStreamError("span before any tri/material command");
     }
-    const int n = static_cast<int>(engines_.size());
     const int32_t dx = s->x0 - triangle_.xo;
     const int32_t dy = s->y - triangle_.yo;
-    for (int i = 0; i < n; ++i) {
-      engines_[i].load(span_setup_(&triangle_.coef[static_cast<size_t>(i) * kTermsPerSeries], dx, dy));
+    for (int i = 0; i < series_.size(); ++i) {
+      series_.load(i, span_setup_(&triangle_.coef[static_cast<size_t>(i) * kTermsPerSeries], dx, dy));
     }
     const int diffuse = config_.diffuse_series();
     const int per_light = config_.specular.series_per_light();
     PixelOut px;
     px.y = static_cast<uint16_t>(s->y);
     for (int32_t k = 0; k < s->length; ++k) {
-      for (int i = 0; i < n; ++i) values_[i] = engines_[i].value();
+      const int64_t* values = series_.values();
       for (int l = 0; l < config_.lights; ++l) {
-        spec_[l] = specular_.evaluate(&values_[diffuse + l * per_light]);
+        spec_[l] = specular_.evaluate(&values[diffuse + l * per_light]);
       }
       px.x = static_cast<uint16_t>(s->x0 + k);
-      px.colour = combine_(values_.data(), spec_.data(), ambient_.data(), spec_colour_.data());
+      px.colour = combine_(values, spec_.data(), ambient_.data(), spec_colour_.data());
       px.end_of_row = s->last_in_row && k == s->length - 1;
       sink(static_cast<const PixelOut&>(px));
-      for (int i = 0; i < n; ++i) engines_[i].step();
+      series_.step();
     }
   } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
     triangle_ = *t;

@@ -1,5 +1,3 @@
-#if __has_include("host/reference.h")  // TEMPORARY until the reference renderer lands
-#include "host/reference.h"
 // shadesim render SCENE: shade a scene through the bit-accurate model, beside the float
 // reference, and report the error with the cost.
 #include <chrono>
@@ -14,6 +12,7 @@
 #include "host/frame.h"
 #include "host/image.h"
 #include "host/metrics.h"
+#include "host/reference.h"
 #include "model/shade_unit.h"
 #include "sim/commands.h"
 #include "sim/width_options.h"
@@ -74,7 +73,7 @@ int run_render(const RenderOptions& o) {
   const double model_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   const auto t1 = std::chrono::steady_clock::now();
-  const ReferenceImage ref = render_reference(frame.setup.triangles, frame.visibility.owner, scene, cfg.channels);
+  const ReferenceImage ref = render_reference(frame.setup.triangles, frame.visibility, scene, cfg.channels);
   const double reference_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
 
   const ErrorMap err = compare_to_reference(pixels, ref.values, frame.visibility.owner, scene.width,
@@ -189,7 +188,3 @@ void register_render(CLI::App& app, int& exit_code) {
 }
 
 }  // namespace shadesim
-#else
-#include "sim/commands.h"
-void shadesim::register_render(CLI::App& app, int&) { app.add_subcommand("render", "not built yet"); }
-#endif

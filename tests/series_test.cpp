@@ -111,5 +111,26 @@ TEST(Series, WrapAndSaturateFollowTheFormat) {
   EXPECT_EQ(s.value(), 127);
 }
 
+TEST(Series, BankIsBitIdenticalToSeparateEngines) {
+  std::mt19937_64 rng(11);
+  for (auto o : {Overflow::kWrap, Overflow::kSaturate}) {
+    const FixedFormat f{12, 3, true, Quantization::kTruncate, o};  // narrow: overflow happens
+    std::uniform_int_distribution<int64_t> raw(f.raw_min(), f.raw_max());
+    const int n = 5;
+    SeriesBank bank(f, n);
+    std::vector<SeriesEngine> engines(n, SeriesEngine(f));
+    for (int i = 0; i < n; ++i) {
+      const SeriesStart s{raw(rng), raw(rng) / 16, raw(rng) / 256};
+      bank.load(i, s);
+      engines[static_cast<size_t>(i)].load(s);
+    }
+    for (int k = 0; k < 500; ++k) {
+      for (int i = 0; i < n; ++i) ASSERT_EQ(bank.values()[i], engines[static_cast<size_t>(i)].value()) << k;
+      bank.step();
+      for (auto& e : engines) e.step();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace shadesim
