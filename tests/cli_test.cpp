@@ -1,0 +1,88 @@
+// The shadesim CLI as a user runs it: outputs, JSON figures, and clear errors on bad input.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "host/image.h"
+
+namespace shadesim {
+namespace {
+
+struct Result {
+  int status = 0;
+  std::string output;  // stdout and stderr
+};
+
+Result run(const std::string& args) {
+  const std::string cmd = std::string(SHADESIM_BINARY_DIR) + "/shadesim " + args + " 2>&1";
+  Result r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return {-1, "popen failed"};
+  std::array<char, 4096> buf{};
+  size_t n = 0;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
+  const int raw = pclose(p);
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return r;
+}
+
+std::filesystem::path temp_dir(const std::string& name) {
+  auto d = std::filesystem::temp_directory_path() / ("shadesim_cli_" + name + "_" + std::to_string(getpid()));
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+const std::string kScenes = std::string(SHADESIM_SOURCE_DIR) + "/scenes/";
+
+TEST(Cli, RenderWritesImagesAndJsonFigures) {
+  const auto dir = temp_dir("render");
+  const Result r = run("render " + kScenes + "sphere.json --out " + dir.string() + " --json " +
+                       (dir / "r.json").string() + " --save-stream " + (dir / "s.cmd").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("PSNR"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ideal (exact pow"), std::string::npos) << "the ideal unit must be labelled";
+  std::ifstream js(dir / "r.json");
+  const auto j = nlohmann::json::parse(js);
+  EXPECT_LE(j["error"]["max_code_lsb"].get<int>(), 1);
+  EXPECT_GT(j["pixels"].get<int>(), 10000);
+  for (const char* png : {"model.png", "reference.png", "error.png", "compare.png"}) {
+    const Image img = read_png((dir / png).string());
+    EXPECT_EQ(img.height, 256) << png;
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir / "s.cmd"));
+  std::filesystem::remove_all(dir);
+}
+
+void expect_error(const std::string& args, const std::string& needle) {
+  const Result r = run(args);
+  EXPECT_NE(r.status, 0) << args;
+  EXPECT_NE(r.output.find(needle), std::string::npos) << args << "\n" << r.output;
+  EXPECT_EQ(r.output.find("terminate called"), std::string::npos) << r.output;
+}
+
+TEST(Cli, BadInputGivesClearErrors) {
+  const auto dir = temp_dir("bad");
+  expect_error("render /nonexistent/scene.json", "scene.json");
+  expect_error("render " + kScenes + "sphere.json --series q4.28", "--series");
+  expect_error("render " + kScenes + "sphere.json --series s4.4", "out_bits");
+  expect_error("render " + kScenes + "sphere.json --specular phong", "--specular");
+  std::ofstream(dir / "broken.json") << "{\"image\": {\"width\": 64,";
+  expect_error("render " + (dir / "broken.json").string(), "broken.json");
+  expect_error("frobnicate", "subcommand");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, HelpListsSubcommandAndWidthDefaults) {
+  const Result r = run("render --help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.output.find("--series"), std::string::npos);
+  EXPECT_NE(r.output.find("s4.28"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace shadesim
