@@ -32,9 +32,11 @@ class CoefficientWriter {
     for (int k = 0; k < kTermsPerSeries; ++k) {
       const double value = a * q.t[k] + (k == 0 ? b : 0.0);
       if (!std::isfinite(value)) throw std::runtime_error("encoder: non-finite Taylor coefficient");
-      const int64_t raw = coef_.from_double(value);
-      if (raw == coef_.raw_max() || raw == coef_.raw_min()) ++stats_.saturated_coefficients;
-      out.push_back(raw);
+      const double lsb = std::ldexp(1.0, -coef_.frac_bits());
+      if (value >= (coef_.raw_max() + 0.5) * lsb || value < (coef_.raw_min() - 0.5) * lsb) {
+        ++stats_.coefficients_out_of_range;
+      }
+      out.push_back(coef_.from_double(value));
     }
   }
 

@@ -18,6 +18,9 @@ void UnitConfig::validate() const {
   if (!coef.is_signed || !series.is_signed) fail("coef and series formats must be signed");
   if (spec_colour.is_signed || specular.out.is_signed)
     fail("spec_colour and specular.out formats must be unsigned");
+  if (coef.overflow == Overflow::kWrap && coef.iwl < series.iwl)
+    fail("a wrapping coef format needs at least the series' integer bits (" + coef.to_string() +
+         " vs " + series.to_string() + "), or the modulo arithmetic loses the value");
   if (series.iwl < 2) fail("series needs at least 2 integer bits (sign + 1) to hold 1.0");
   if (series.frac_bits() < out_bits) fail("series needs at least out_bits fraction bits");
   // Span setup multiplies coefficients by offsets up to 2^(xy_bits+1) squared; the exact

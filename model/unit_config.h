@@ -18,8 +18,11 @@ struct UnitConfig {
   // Screen coordinates: unsigned, image up to 2^xy_bits pixels on a side.
   int xy_bits = 12;
 
-  // Per-triangle Taylor coefficients T0..T5 as loaded from the command stream.
-  FixedFormat coef{36, 4, true, Quantization::kRoundNearest, Overflow::kSaturate};
+  // Per-triangle Taylor coefficients T0..T5 as loaded from the command stream. Wrapping is
+  // exact here: span setup multiplies them only by integers, so every sum is right modulo
+  // 2^iwl, and a pixel value that lies in range comes out right even when a coefficient of a
+  // sliver triangle (huge gradient, origin outside it) does not fit.
+  FixedFormat coef{36, 4, true, Quantization::kRoundNearest, Overflow::kWrap};
   // Forward-difference accumulators v, d, d2. Span setup rounds its exact start values into
   // this format with its quantization rule; the per-pixel additions follow its overflow rule.
   FixedFormat series{32, 4, true, Quantization::kTruncate, Overflow::kWrap};

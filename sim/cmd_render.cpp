@@ -123,10 +123,16 @@ int run_render(const RenderOptions& o) {
               << reference_s << " s\n"
               << "images       " << (out_dir / "compare.png").string() << " (model | reference | error, full scale "
               << o.heat_scale_lsb << " LSB)\n";
-    if (frame.encoded.stats.saturated_coefficients > 0) {
-      std::cout << "warning      " << frame.encoded.stats.saturated_coefficients
-                << " Taylor coefficient(s) saturated the coef format " << cfg.coef.to_string()
-                << "; widen it with --coef\n";
+    if (frame.encoded.stats.coefficients_out_of_range > 0) {
+      if (cfg.coef.overflow == Overflow::kSaturate) {
+        std::cout << "warning      " << frame.encoded.stats.coefficients_out_of_range
+                  << " Taylor coefficient(s) saturated the coef format " << cfg.coef.to_string()
+                  << "; pixels of those triangles are wrong: widen --coef or let it :wrap\n";
+      } else {
+        std::cout << "note         " << frame.encoded.stats.coefficients_out_of_range
+                  << " Taylor coefficient(s) wrapped in " << cfg.coef.to_string()
+                  << " (exact modulo 2^" << cfg.coef.iwl << "; sliver triangles)\n";
+      }
     }
   }
   if (!o.json_path.empty()) {
@@ -142,7 +148,7 @@ int run_render(const RenderOptions& o) {
                       {"worst_setup_error_lsb", st.worst_error_lsb}};
     j["stream"] = {{"triangles", frame.encoded.stats.triangles}, {"spans", frame.encoded.stats.spans},
                    {"materials", frame.encoded.stats.materials}, {"words", frame.encoded.stats.words},
-                   {"saturated_coefficients", frame.encoded.stats.saturated_coefficients}};
+                   {"coefficients_out_of_range", frame.encoded.stats.coefficients_out_of_range}};
     j["pixels"] = es.pixels;
     j["error"] = {{"max_code_lsb", es.max_code_lsb}, {"mean_code_lsb", es.mean_code_lsb},
                   {"psnr_db", std::isinf(es.psnr_db) ? nlohmann::json(nullptr) : nlohmann::json(es.psnr_db)},
