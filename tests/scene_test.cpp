@@ -300,6 +300,24 @@ TEST(MeshFiles, ObjWithoutNormalsGetsSmoothNormals) {
   }
 }
 
+TEST(MeshFiles, PlyAndStlLoad) {
+  TempDir dir;
+  const std::string ply = dir.write("quad.ply",
+                                    "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
+                                    "property float y\nproperty float z\nelement face 1\n"
+                                    "property list uchar int vertex_indices\nend_header\n"
+                                    "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+  const Mesh quad = load_mesh_file(ply);
+  EXPECT_EQ(quad.triangles.size(), 2u);  // the quad is triangulated
+  for (const Vec3& n : quad.normals) EXPECT_LT(max_abs_diff(n, {0, 0, 1}), 1e-6);
+  const std::string stl = dir.write("tri.stl",
+                                    "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"
+                                    "vertex 2 0 0\nvertex 0 2 0\nendloop\nendfacet\nendsolid t\n");
+  const Mesh one = load_mesh_file(stl);
+  ASSERT_EQ(one.triangles.size(), 1u);
+  for (const Vec3& n : one.normals) EXPECT_LT(max_abs_diff(n, {0, 0, 1}), 1e-6);
+}
+
 TEST(MeshFiles, EveryAssimpInvalidModelGivesSceneError) {
   const fs::path invalid = fs::path(kAssimpModels) / "invalid";
   if (!fs::exists(invalid)) GTEST_SKIP() << invalid << " is absent (assimp-testmodels not installed)";

@@ -1,0 +1,269 @@
+#include "host/raster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace shadesim {
+namespace {
+
+using Int128 = __int128;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr int64_t kOne = int64_t{1} << kRasterFractionBits;  // one pixel in raster units
+constexpr int64_t kHalf = kOne / 2;                          // offset of a pixel centre
+
+// floor(a / b) and ceil(a / b) for b > 0.
+Int128 floor_div(Int128 a, Int128 b) {
+  Int128 q = a / b;
+  if (a % b != 0 && a < 0) --q;
+  return q;
+}
+Int128 ceil_div(Int128 a, Int128 b) { return -floor_div(-a, b); }
+
+int64_t to_raster_units(double v, const char* axis, int vertex) {
+  if (!std::isfinite(v) || std::fabs(v) > kMaxScreenCoordinate) {
+    throw std::logic_error(std::string("rasterizer: vertex ") + std::to_string(vertex) + " " + axis +
+                           " = " + std::to_string(v) + " is not a finite screen coordinate within +-2^28");
+  }
+  const double scaled = std::ldexp(v, kRasterFractionBits);  // exact: a power-of-two scale
+  if (scaled != std::floor(scaled)) {
+    throw std::logic_error(std::string("rasterizer: vertex ") + std::to_string(vertex) + " " + axis +
+                           " is not on the 2^-" + std::to_string(kRasterFractionBits) + " pixel grid");
+  }
+  return static_cast<int64_t>(scaled);
+}
+
+// Calls row(y, x_begin, x_end, z_at_x_begin, dz_dx) for each non-empty covered row, top to bottom.
+template <typename RowFn>
+void rasterize(const ScreenTriangle& triangle, int width, int height, RowFn&& row) {
+  int64_t x[3], y[3];
+  double z[3];
+  for (int i = 0; i < 3; ++i) {
+    x[i] = to_raster_units(triangle.v[i].x, "x", i);
+    y[i] = to_raster_units(triangle.v[i].y, "y", i);
+    z[i] = triangle.v[i].z;
+  }
+  // Twice the signed area; the interior is where all three edge functions are positive.
+  Int128 area = Int128(x[1] - x[0]) * (y[2] - y[0]) - Int128(y[1] - y[0]) * (x[2] - x[0]);
+  if (area == 0) return;
+  if (area < 0) {
+    std::swap(x[1], x[2]);
+    std::swap(y[1], y[2]);
+    std::swap(z[1], z[2]);
+    area = -area;
+  }
+  // Edge i runs from vertex i to vertex i+1: E_i(P) = dx (Py - ay) - dy (Px - ax), whose gradient
+  // (-dy, dx) points inward. A centre exactly on the edge (E = 0) counts only for a left edge
+  // (inward normal toward +x: dy < 0) or a top edge (horizontal, inward toward +y: dy == 0, dx > 0).
+  int64_t edge_dx[3], edge_dy[3], threshold[3];
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    edge_dx[i] = x[j] - x[i];
+    edge_dy[i] = y[j] - y[i];
+    const bool top_left = edge_dy[i] < 0 || (edge_dy[i] == 0 && edge_dx[i] > 0);
+    threshold[i] = top_left ? 0 : 1;
+  }
+  // Vertex opposite edge i is i+2; its barycentric weight is E_i / area.
+  const double inv_area = 1.0 / static_cast<double>(area);
+  double dz_dx = 0;
+  for (int i = 0; i < 3; ++i) dz_dx += z[(i + 2) % 3] * static_cast<double>(-edge_dy[i]) * kOne;
+  dz_dx *= inv_area;
+
+  const int64_t min_x = std::min({x[0], x[1], x[2]}), max_x = std::max({x[0], x[1], x[2]});
+  const int64_t min_y = std::min({y[0], y[1], y[2]}), max_y = std::max({y[0], y[1], y[2]});
+  // Pixels whose centre lies within the bounding box, clipped to the screen.
+  const int64_t px_lo = std::max<int64_t>(0, static_cast<int64_t>(ceil_div(min_x - kHalf, kOne)));
+  const int64_t px_hi = std::min<int64_t>(width - 1, static_cast<int64_t>(floor_div(max_x - kHalf, kOne)));
+  const int64_t py_lo = std::max<int64_t>(0, static_cast<int64_t>(ceil_div(min_y - kHalf, kOne)));
+  const int64_t py_hi = std::min<int64_t>(height - 1, static_cast<int64_t>(floor_div(max_y - kHalf, kOne)));
+  if (px_lo > px_hi) return;
+
+  const int64_t centre_x0 = px_lo * kOne + kHalf;
+  for (int64_t py = py_lo; py <= py_hi; ++py) {
+    const int64_t centre_y = py * kOne + kHalf;
+    Int128 lo = px_lo, hi = px_hi;  // inclusive
+    Int128 e_at_lo[3];
+    bool empty = false;
+    for (int i = 0; i < 3 && !empty; ++i) {
+      const Int128 e0 = Int128(edge_dx[i]) * (centre_y - y[i]) - Int128(edge_dy[i]) * (centre_x0 - x[i]);
+      e_at_lo[i] = e0;
+      // E_i(px_lo + k) = e0 + k * step must reach threshold[i].
+      const Int128 step = -Int128(edge_dy[i]) * kOne;
+      const Int128 need = threshold[i] - e0;
+      if (step > 0) {
+        lo = std::max(lo, px_lo + ceil_div(need, step));
+      } else if (step < 0) {
+        hi = std::min(hi, px_lo + floor_div(-need, -step));
+      } else if (need > 0) {
+        empty = true;
+      }
+    }
+    if (empty || lo > hi) continue;
+    double z_lo = 0;
+    for (int i = 0; i < 3; ++i) z_lo += z[(i + 2) % 3] * static_cast<double>(e_at_lo[i]);
+    z_lo = z_lo * inv_area + dz_dx * static_cast<double>(lo - px_lo);
+    row(static_cast<int>(py), static_cast<int>(lo), static_cast<int>(hi) + 1, z_lo, dz_dx);
+  }
+}
+
+struct ViewBasis {
+  Vec3 right, up, forward;
+};
+
+ViewBasis view_basis(const Camera& camera) {
+  ViewBasis b;
+  b.forward = normalize(camera.target - camera.position);
+  b.right = normalize(cross(b.forward, camera.up));
+  b.up = cross(b.right, b.forward);
+  return b;
+}
+
+struct ProjectedVertex {
+  ScreenVertex screen;
+  bool behind_near = false;
+  bool out_of_range = false;
+};
+
+double snap(double v) {
+  constexpr double kGrid = double(1 << kSubpixelBits);
+  return std::nearbyint(v * kGrid) / kGrid;
+}
+
+}  // namespace
+
+std::vector<CoveredRow> covered_rows(const ScreenTriangle& triangle, int width, int height) {
+  std::vector<CoveredRow> rows;
+  rasterize(triangle, width, height, [&](int y, int x_begin, int x_end, double, double) {
+    rows.push_back({y, x_begin, x_end});
+  });
+  return rows;
+}
+
+std::vector<ScreenTriangle> project_scene(const Scene& scene, ProjectStats* stats) {
+  ProjectStats local;
+  ProjectStats& s = stats ? *stats : local;
+  s = ProjectStats{};
+  const Camera& camera = scene.camera;
+  const ViewBasis basis = view_basis(camera);
+  const bool perspective = camera.kind == Camera::Kind::kPerspective;
+  const double pixels_per_unit = perspective
+                                     ? (scene.height / 2.0) / std::tan(camera.fov_y_deg * kPi / 360.0)
+                                     : scene.height / camera.ortho_height;
+  const double near = camera.near_plane, far = camera.far_plane;
+
+  std::vector<ScreenTriangle> out;
+  std::vector<ProjectedVertex> projected;
+  for (size_t object_index = 0; object_index < scene.objects.size(); ++object_index) {
+    const Object& object = scene.objects[object_index];
+    const Mesh& mesh = object.mesh;
+    projected.assign(mesh.positions.size(), ProjectedVertex{});
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+      const Vec3 rel = mesh.positions[i] - camera.position;
+      const double xv = dot(rel, basis.right), yv = dot(rel, basis.up), d = dot(rel, basis.forward);
+      ProjectedVertex& pv = projected[i];
+      pv.behind_near = !(d >= near);
+      if (pv.behind_near) continue;
+      const double scale = perspective ? pixels_per_unit / d : pixels_per_unit;
+      pv.screen.x = snap(scene.width / 2.0 + xv * scale);
+      pv.screen.y = snap(scene.height / 2.0 - yv * scale);
+      pv.screen.z = perspective ? far * (d - near) / (d * (far - near)) : d;
+      pv.screen.normal = mesh.normals[i];
+      pv.screen.to_eye = normalize(camera.position - mesh.positions[i]);
+      pv.out_of_range = !(std::fabs(pv.screen.x) <= kMaxScreenCoordinate &&
+                          std::fabs(pv.screen.y) <= kMaxScreenCoordinate);
+    }
+    for (const auto& t : mesh.triangles) {
+      ++s.triangles_in;
+      const ProjectedVertex& a = projected[t[0]];
+      const ProjectedVertex& b = projected[t[1]];
+      const ProjectedVertex& c = projected[t[2]];
+      if (a.behind_near || b.behind_near || c.behind_near) {
+        ++s.dropped_near;
+        continue;
+      }
+      if (a.out_of_range || b.out_of_range || c.out_of_range) {
+        ++s.dropped_out_of_range;
+        continue;
+      }
+      // Exact sign of the snapped area: counter-clockwise from outside is negative on a y-down screen.
+      constexpr double kGrid = double(1 << kSubpixelBits);
+      const int64_t ax = static_cast<int64_t>(a.screen.x * kGrid), ay = static_cast<int64_t>(a.screen.y * kGrid);
+      const int64_t bx = static_cast<int64_t>(b.screen.x * kGrid), by = static_cast<int64_t>(b.screen.y * kGrid);
+      const int64_t cx = static_cast<int64_t>(c.screen.x * kGrid), cy = static_cast<int64_t>(c.screen.y * kGrid);
+      const Int128 area = Int128(bx - ax) * (cy - ay) - Int128(by - ay) * (cx - ax);
+      if (area >= 0) {
+        ++s.culled_back_face;
+        continue;
+      }
+      ScreenTriangle st;
+      st.v = {a.screen, b.screen, c.screen};
+      st.material = object.material;
+      st.object = static_cast<int>(object_index);
+      st.parent = -1;
+      out.push_back(st);
+      ++s.emitted;
+    }
+  }
+  return out;
+}
+
+Visibility resolve_visibility(const std::vector<ScreenTriangle>& triangles, int width, int height) {
+  if (width < 0 || height < 0) throw std::invalid_argument("resolve_visibility: negative image size");
+  Visibility vis;
+  vis.width = width;
+  vis.height = height;
+  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+  vis.owner.assign(pixels, -1);
+  std::vector<double> depth(pixels, std::numeric_limits<double>::infinity());
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const int32_t id = static_cast<int32_t>(t);
+    rasterize(triangles[t], width, height, [&](int y, int x_begin, int x_end, double z, double dz_dx) {
+      const size_t row = static_cast<size_t>(y) * width;
+      for (int x = x_begin; x < x_end; ++x, z += dz_dx) {
+        // Strictly nearer only: on a tie the earlier (lower-index) triangle keeps the pixel.
+        if (z < depth[row + x]) {
+          depth[row + x] = z;
+          vis.owner[row + x] = id;
+        }
+      }
+    });
+  }
+
+  // Runs of equal owner, bucketed by triangle. Scanning rows top-down and left to right already
+  // yields y-then-x0 order within each triangle, so a stable counting sort suffices.
+  std::vector<size_t> first(triangles.size() + 1, 0);
+  auto for_each_run = [&](auto&& emit) {
+    for (int y = 0; y < height; ++y) {
+      const int32_t* row = vis.owner.data() + static_cast<size_t>(y) * width;
+      int x = 0;
+      while (x < width) {
+        const int32_t owner = row[x];
+        int end = x + 1;
+        while (end < width && row[end] == owner) ++end;
+        if (owner >= 0) emit(y, x, end - x, owner);
+        x = end;
+      }
+    }
+  };
+  for_each_run([&](int, int, int, int32_t owner) { ++first[owner + 1]; });
+  for (size_t t = 0; t < triangles.size(); ++t) first[t + 1] += first[t];
+  vis.spans.resize(first.back());
+  std::vector<size_t> next(first.begin(), first.end() - 1);
+  for_each_run([&](int y, int x0, int length, int32_t owner) {
+    Span& span = vis.spans[next[owner]++];
+    span.y = y;
+    span.x0 = x0;
+    span.length = length;
+    span.triangle = static_cast<uint32_t>(owner);
+  });
+  std::vector<int64_t> last_of_row(height, -1);
+  for (size_t i = 0; i < vis.spans.size(); ++i) last_of_row[vis.spans[i].y] = static_cast<int64_t>(i);
+  for (int64_t i : last_of_row)
+    if (i >= 0) vis.spans[i].last_in_row = true;
+  return vis;
+}
+
+}  // namespace shadesim

@@ -1,0 +1,51 @@
+// Projection of a scene to screen triangles, and exact rasterization / visibility into spans.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "host/scene.h"
+#include "host/screen.h"
+
+namespace shadesim {
+
+struct ProjectStats {
+  int64_t triangles_in = 0;       // mesh triangles of all objects
+  int64_t culled_back_face = 0;   // clockwise-from-outside on screen, or zero screen area
+  int64_t dropped_near = 0;       // a vertex nearer than the near plane (no clipping is done)
+  int64_t dropped_out_of_range = 0;  // a vertex beyond kMaxScreenCoordinate
+  int64_t emitted = 0;
+};
+
+// Screen coordinates must stay within +-kMaxScreenCoordinate pixels so edge functions are exact.
+constexpr double kMaxScreenCoordinate = double(1 << 28);
+// Rasterization works on integers in units of 2^-kRasterFractionBits pixels: kSubpixelBits of the
+// snapped vertices plus up to 16 halvings by subdivision midpoints.
+constexpr int kRasterFractionBits = 24;
+
+// World -> camera -> screen (y down, pixel centres at +0.5). Perspective: z = far(d - near) /
+// (d (far - near)), affine in screen space, 0 at the near plane; orthographic: z = view depth d.
+// x and y are rounded to the 2^-kSubpixelBits grid before back-face culling, so the cull decision
+// is the exact sign of the snapped triangle's area. Emitted triangles keep the mesh winding
+// (counter-clockwise from outside, which is clockwise on the y-down screen). `stats` may be null.
+std::vector<ScreenTriangle> project_scene(const Scene& scene, ProjectStats* stats);
+
+// Pixel rows covered by one triangle: pixel centres inside it by the top-left fill rule
+// (a centre on an edge belongs to the triangle if the edge is a top edge — horizontal, interior
+// below — or a left edge — interior to its right). Either winding is accepted. Only pixels within
+// [0, width) x [0, height) are reported. Throws std::logic_error if a vertex x or y is not on the
+// 2^-kRasterFractionBits grid or exceeds kMaxScreenCoordinate.
+struct CoveredRow {
+  int y = 0;
+  int x_begin = 0;  // first covered pixel
+  int x_end = 0;    // one past the last
+};
+std::vector<CoveredRow> covered_rows(const ScreenTriangle& triangle, int width, int height);
+
+// Z-buffer at pixel centres over the triangles in index order: the nearest triangle owns the
+// pixel; on equal depth the lower index wins. Then runs of equal owner along each row become
+// spans, grouped by triangle ascending, within a triangle by y then x0; the span of each row that
+// comes last in that order has last_in_row set.
+Visibility resolve_visibility(const std::vector<ScreenTriangle>& triangles, int width, int height);
+
+}  // namespace shadesim
