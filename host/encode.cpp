@@ -52,8 +52,9 @@ MaterialCmd material_command(const Scene& scene, const UnitConfig& config, const
   }
   for (int l = 0; l < config.lights; ++l) {
     for (int c = 0; c < config.channels; ++c) {
-      cmd.spec_colour.push_back(
-          config.spec_colour.from_double(channel(m.specular, c) * channel(scene.lights[static_cast<size_t>(l)].colour, c)));
+      const bool present = l < static_cast<int>(scene.lights.size());
+      cmd.spec_colour.push_back(config.spec_colour.from_double(
+          present ? channel(m.specular, c) * channel(scene.lights[static_cast<size_t>(l)].colour, c) : 0.0));
     }
   }
   const FixedFormat exponent{26, 10, false, Quantization::kRoundNearest, Overflow::kSaturate};
@@ -70,12 +71,23 @@ UnitConfig config_for_scene(const Scene& scene, UnitConfig base) {
   return base;
 }
 
+void check_scene_fits(const Scene& scene, const UnitConfig& config) {
+  if (static_cast<int>(scene.lights.size()) > config.lights) {
+    throw std::invalid_argument(scene.path + ": scene has " + std::to_string(scene.lights.size()) +
+                                " lights; the unit (" + config.to_string() + ") has series for " +
+                                std::to_string(config.lights));
+  }
+  if (!scene.is_grey() && config.channels < 3) {
+    throw std::invalid_argument(scene.path + ": scene has colour; the unit (" + config.to_string() +
+                                ") has one channel");
+  }
+}
+
 EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const SetupResult& setup,
                           const Visibility& vis) {
-  if (static_cast<int>(scene.lights.size()) != config.lights) {
-    throw std::invalid_argument("encoder: unit configured for " + std::to_string(config.lights) +
-                                " lights, scene has " + std::to_string(scene.lights.size()));
-  }
+  check_scene_fits(scene, config);
+  const int scene_lights = static_cast<int>(scene.lights.size());
+  const Quadratic zero{};
   EncodedFrame frame;
   frame.stream.config = config;
   auto& cmds = frame.stream.commands;
@@ -106,15 +118,19 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
     t.yo = static_cast<int32_t>(std::floor(yc));
     const double ox = t.xo + 0.5, oy = t.yo + 0.5;
     for (int l = 0; l < config.lights; ++l) {
-      const Quadratic q = series.diffuse[static_cast<size_t>(l)].recentred(ox, oy);
-      const Vec3& light = scene.lights[static_cast<size_t>(l)].colour;
+      const bool present = l < scene_lights;
+      const Quadratic q = present ? series.diffuse[static_cast<size_t>(l)].recentred(ox, oy) : zero;
       for (int c = 0; c < config.channels; ++c) {
-        writer.append(q, channel(material.diffuse, c) * channel(light, c), 0.0, t.coef);
+        const double scale =
+            present ? channel(material.diffuse, c) * channel(scene.lights[static_cast<size_t>(l)].colour, c) : 0.0;
+        writer.append(q, scale, 0.0, t.coef);
       }
     }
     const auto affine = specular_affine(config, material.exponent);
     for (int l = 0; l < config.lights; ++l) {
-      const Quadratic q = series.specular[static_cast<size_t>(l)].recentred(ox, oy);
+      // An absent light's specular series still feeds the unit (its colour is 0): give it the
+      // unit's value for t = 0 so it stays in the unit's input range.
+      const Quadratic q = l < scene_lights ? series.specular[static_cast<size_t>(l)].recentred(ox, oy) : zero;
       for (const auto& [a, b] : affine) writer.append(q, a, b, t.coef);
     }
     cmds.emplace_back(std::move(t));

@@ -34,7 +34,13 @@ struct EncodedFrame {
   EncodeStats stats;
 };
 
-// setup.triangles are the triangles vis.owner / vis.spans refer to.
+// Throws std::invalid_argument naming what does not fit when a unit built for `config` cannot
+// shade `scene`: it needs at least the scene's lights, and three channels unless the scene is grey.
+void check_scene_fits(const Scene& scene, const UnitConfig& config);
+
+// setup.triangles are the triangles vis.owner / vis.spans refer to. The unit may be larger than
+// the scene needs (a fixed RTL configuration): lights beyond the scene's get all-zero series and
+// colours, and a grey scene on an RGB unit repeats its one channel.
 EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const SetupResult& setup,
                           const Visibility& vis);
 

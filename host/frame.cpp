@@ -19,7 +19,9 @@ PreparedFrame prepare_frame(const std::string& scene_path, const FrameOptions& o
   f.timings.load_s = seconds_since(t0);
 
   UnitConfig base = options.base;
-  if (options.specular_override) {
+  if (options.fixed_unit) {
+    base.validate();
+  } else if (options.specular_override) {
     base.specular.kind = *options.specular_override;
   } else {
     // One specular unit per build: the scene's materials must agree on it.
@@ -33,7 +35,8 @@ PreparedFrame prepare_frame(const std::string& scene_path, const FrameOptions& o
       }
     }
   }
-  f.config = config_for_scene(f.scene, base);
+  f.config = options.fixed_unit ? base : config_for_scene(f.scene, base);
+  check_scene_fits(f.scene, f.config);
   if (f.scene.width > (1 << f.config.xy_bits) || f.scene.height > (1 << f.config.xy_bits)) {
     throw std::invalid_argument(scene_path + ": image " + std::to_string(f.scene.width) + "x" +
                                 std::to_string(f.scene.height) + " does not fit xy_bits=" +

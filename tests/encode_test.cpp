@@ -6,6 +6,7 @@
 
 #include "host/frame.h"
 #include "model/series_engine.h"
+#include "model/shade_unit.h"
 #include "model/span_setup.h"
 
 namespace shadesim {
@@ -83,6 +84,29 @@ TEST(Encode, NarrowTruncatedFormatsStayInsideTheirLargerBound) {
   c.coef = parse_fixed_format("s4.20", "coef");
   c.series = parse_fixed_format("s4.16", "series");
   check_scene("torus.json", c);
+}
+
+TEST(Encode, GreyOneLightSceneOnALargerFixedUnitShadesTheSame) {
+  // A fixed RTL build (RGB, two lights) must give a grey one-light scene the same pixels in every
+  // channel as the unit sized for it: the extra light's series are zero.
+  FrameOptions small;
+  const PreparedFrame a = prepare_frame(std::string(SHADESIM_SOURCE_DIR) + "/scenes/sphere.json", small);
+  FrameOptions big;
+  big.fixed_unit = true;
+  big.base.channels = 3;
+  big.base.lights = 2;
+  const PreparedFrame b = prepare_frame(std::string(SHADESIM_SOURCE_DIR) + "/scenes/sphere.json", big);
+  const auto pa = ShadeUnit(a.config).run(a.encoded.stream);
+  const auto pb = ShadeUnit(b.config).run(b.encoded.stream);
+  ASSERT_EQ(pa.size(), pb.size());
+  for (size_t i = 0; i < pa.size(); ++i) {
+    ASSERT_EQ(pa[i].x, pb[i].x);
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(pb[i].colour[static_cast<size_t>(c)], pa[i].colour[0]) << i;
+  }
+  // And a scene that needs more than the unit has is refused with a reason.
+  FrameOptions tiny;
+  tiny.fixed_unit = true;  // grey, one light
+  EXPECT_THROW(prepare_frame(std::string(SHADESIM_SOURCE_DIR) + "/scenes/multi.json", tiny), std::invalid_argument);
 }
 
 TEST(Encode, GreySceneUsesOneChannelAndRgbSceneThree) {
