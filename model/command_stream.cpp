@@ -365,7 +365,23 @@ std::string config_to_json(const UnitConfig& c) {
   j["series"] = c.series.to_string();
   j["spec_colour"] = c.spec_colour.to_string();
   j["out_bits"] = c.out_bits;
-  j["specular"] = {{"kind", to_string(c.specular.kind)}, {"out", c.specular.out.to_string()}};
+  const SpecularConfig& sp = c.specular;
+  j["specular"] = {{"kind", to_string(sp.kind)}, {"out", sp.out.to_string()}};
+  j["specular"]["lut"] = {{"addr_bits", sp.lut.addr_bits},
+                          {"entry_bits", sp.lut.entry_bits},
+                          {"interp_bits", sp.lut.interp_bits},
+                          {"index", to_string(sp.lut.index)},
+                          {"addressing", to_string(sp.lut.addressing)},
+                          {"shared_range_log2", sp.lut.shared_range_log2},
+                          {"fit", to_string(sp.lut.fit)}};
+  j["specular"]["schlick"] = {{"quotient_bits", sp.schlick.quotient_bits},
+                              {"operand_bits", sp.schlick.operand_bits},
+                              {"timing", to_string(sp.schlick.timing)},
+                              {"fit", to_string(sp.schlick.fit)}};
+  j["specular"]["wpow"] = {{"max_m", sp.wpow.max_m},
+                           {"base_bits", sp.wpow.base_bits},
+                           {"timing", to_string(sp.wpow.timing)},
+                           {"fit", to_string(sp.wpow.fit)}};
   return j.dump();
 }
 
@@ -383,6 +399,41 @@ UnitConfig config_from_json(const std::string& text, const std::string& source) 
     const auto& s = j.at("specular");
     c.specular.kind = parse_specular_unit(s.at("kind").get<std::string>(), "config.specular.kind");
     c.specular.out = parse_fixed_format(s.at("out").get<std::string>(), "config.specular.out");
+    // Unit widths: absent keys keep their defaults (streams written before the units existed).
+    auto get_int = [](const nlohmann::json& o, const char* key, int& v) {
+      if (o.contains(key)) v = o.at(key).get<int>();
+    };
+    auto get_str = [](const nlohmann::json& o, const char* key, const std::string& what,
+                      auto parse, auto& v) {
+      if (o.contains(key)) v = parse(o.at(key).get<std::string>(), what);
+    };
+    if (s.contains("lut")) {
+      const auto& o = s.at("lut");
+      get_int(o, "addr_bits", c.specular.lut.addr_bits);
+      get_int(o, "entry_bits", c.specular.lut.entry_bits);
+      get_int(o, "interp_bits", c.specular.lut.interp_bits);
+      get_int(o, "shared_range_log2", c.specular.lut.shared_range_log2);
+      get_str(o, "index", "config.specular.lut.index", parse_lut_index, c.specular.lut.index);
+      get_str(o, "addressing", "config.specular.lut.addressing", parse_lut_addressing,
+              c.specular.lut.addressing);
+      get_str(o, "fit", "config.specular.lut.fit", parse_fit_objective, c.specular.lut.fit);
+    }
+    if (s.contains("schlick")) {
+      const auto& o = s.at("schlick");
+      get_int(o, "quotient_bits", c.specular.schlick.quotient_bits);
+      get_int(o, "operand_bits", c.specular.schlick.operand_bits);
+      get_str(o, "timing", "config.specular.schlick.timing", parse_unit_timing,
+              c.specular.schlick.timing);
+      get_str(o, "fit", "config.specular.schlick.fit", parse_fit_objective, c.specular.schlick.fit);
+    }
+    if (s.contains("wpow")) {
+      const auto& o = s.at("wpow");
+      get_int(o, "max_m", c.specular.wpow.max_m);
+      get_int(o, "base_bits", c.specular.wpow.base_bits);
+      get_str(o, "timing", "config.specular.wpow.timing", parse_unit_timing, c.specular.wpow.timing);
+      get_str(o, "fit", "config.specular.wpow.fit", parse_fit_objective, c.specular.wpow.fit);
+    }
+    c.specular.validate();
     c.validate();
   } catch (const nlohmann::json::exception& e) {
     throw CommandStreamError(source + "config: " + e.what());

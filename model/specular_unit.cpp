@@ -7,18 +7,26 @@ namespace shadesim {
 
 SpecularUnit::SpecularUnit(const UnitConfig& config)
     : kind_(config.specular.kind), ideal_(config.series, config.specular.out) {
-  if (kind_ != SpecularUnitKind::kIdeal) {
-    throw std::invalid_argument("specular unit '" + to_string(kind_) +
-                                "' is not available in this build of the model");
+  config.specular.validate();
+  const SpecularConfig& s = config.specular;
+  switch (kind_) {
+    case SpecularUnitKind::kLut: lut_.emplace(s.lut, config.series, s.out); break;
+    case SpecularUnitKind::kSchlick: schlick_.emplace(s.schlick, config.series, s.out); break;
+    case SpecularUnitKind::kWpow: wpow_.emplace(s.wpow, config.series, s.out); break;
+    case SpecularUnitKind::kIdeal: break;
   }
 }
 
 void SpecularUnit::load_material(const MaterialCmd& m) {
   ideal_.set_exponent(std::ldexp(static_cast<double>(m.exponent), -kExponentFracBits));
+  if (lut_) lut_->load_params(m.unit_params);
+  if (schlick_) schlick_->load_params(m.unit_params);
+  if (wpow_) wpow_->load_params(m.unit_params);
 }
 
-void SpecularUnit::load_table(const TableCmd&) {
-  // The ideal unit has no table; a TABLE command is legal and ignored.
+void SpecularUnit::load_table(const TableCmd& t) {
+  // Only the LUT has a table; for the other units a TABLE command is legal and ignored.
+  if (lut_) lut_->load_table(t);
 }
 
 }  // namespace shadesim

@@ -1,0 +1,89 @@
+#include "model/exponent_lut.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+
+namespace shadesim {
+
+namespace {
+bool centred(const LutConfig& c) { return c.index == LutIndex::kTruncate && c.interp_bits == 0; }
+}  // namespace
+
+ExponentLut::ExponentLut(const LutConfig& config, const FixedFormat& series, const FixedFormat& out)
+    : config_(config), series_(series), out_(out) {
+  address_.wl = config.addr_bits + config.interp_bits;
+  address_.iwl = config.addr_bits;
+  address_.is_signed = false;
+  address_.quant = config.index == LutIndex::kTruncate ? Quantization::kTruncate
+                                                       : Quantization::kRoundNearest;
+  address_.overflow = Overflow::kSaturate;
+  table_.assign(static_cast<size_t>(entries()), 0);
+}
+
+void ExponentLut::load_params(const std::vector<int64_t>& p) {
+  const int64_t shift = p.empty() ? 0 : p[0];
+  if (p.size() > 1 || shift < 0 || shift > series_.frac_bits()) {
+    throw std::invalid_argument("lut: MATERIAL unit_params must be [shift] with shift 0.." +
+                                std::to_string(series_.frac_bits()));
+  }
+  shift_ = static_cast<int>(shift);
+}
+
+void ExponentLut::load_table(const TableCmd& t) {
+  const int64_t limit = int64_t{1} << config_.entry_bits;
+  for (size_t k = 0; k < t.entries.size(); ++k) {
+    const uint64_t addr = t.base + k;
+    if (addr >= table_.size()) {
+      throw std::invalid_argument("lut: TABLE address " + std::to_string(addr) + " past the " +
+                                  std::to_string(table_.size()) + "-entry table");
+    }
+    if (t.entries[k] < 0 || t.entries[k] >= limit) {
+      throw std::invalid_argument("lut: TABLE entry at address " + std::to_string(addr) + " is " +
+                                  std::to_string(t.entries[k]) + "; expected 0.." +
+                                  std::to_string(limit - 1) + " (B = " +
+                                  std::to_string(config_.entry_bits) + " bits)");
+    }
+    table_[addr] = t.entries[k];
+  }
+}
+
+int64_t ExponentLut::evaluate(int64_t series_raw) const {
+  const int f = config_.interp_bits;
+  // 1. ADDRESS
+  const int64_t a = address_.quantize(series_raw, series_.frac_bits() - shift_ - config_.addr_bits);
+  const int64_t idx = a >> f;
+  // 2. READ
+  const int64_t e0 = table_[static_cast<size_t>(idx)];
+  if (f == 0) return out_.quantize(e0, config_.entry_bits);  // 4. OUTPUT
+  const int64_t frac = a & ((int64_t{1} << f) - 1);
+  const int64_t e1 = table_[static_cast<size_t>(std::min<int64_t>(idx + 1, entries() - 1))];
+  // 3. INTERP
+  const Int128 v = Int128{e0} * (Int128{1} << f) + Int128{frac} * (e1 - e0);
+  return out_.quantize(v, config_.entry_bits + f);  // 4. OUTPUT
+}
+
+void ExponentLut::write_hex(const std::string& path) const {
+  std::ofstream os(path);
+  if (!os) throw std::runtime_error(path + ": cannot open for writing the LUT hex file");
+  const int digits = (config_.entry_bits + 3) / 4;
+  char buf[32];
+  for (int64_t e : table_) {
+    std::snprintf(buf, sizeof buf, "%0*llx\n", digits, static_cast<unsigned long long>(e));
+    os << buf;
+  }
+  if (!os) throw std::runtime_error(path + ": write failed");
+}
+
+double ExponentLut::argument_scale(const LutConfig& c) {
+  const double n = static_cast<double>(int64_t{1} << c.addr_bits);
+  return centred(c) ? 1.0 : (n - 1.0) / n;
+}
+
+double ExponentLut::sample_argument(const LutConfig& c, int i) {
+  const double n = static_cast<double>(int64_t{1} << c.addr_bits);
+  return centred(c) ? (i + 0.5) / n : i / (n - 1.0);
+}
+
+}  // namespace shadesim

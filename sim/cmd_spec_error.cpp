@@ -1,0 +1,647 @@
+// `shadesim spec-error`: the speed-against-error report for the specular units.
+//
+// For each unit configuration (a built-in width set) and each exponent, the bit-accurate unit is
+// run over the metric grids of host/specular_setup.h and compared with exact t^n; beside the
+// error stand the costs (table bits, multipliers, divider iterations, cycles per pixel, latency,
+// reload cycles, an area proxy). Then the reproduced paper figures: Bishop & Weimer's table
+// sizes and Romanyuk et al.'s Table 1, each with our metric named.
+#include <png.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "host/specular_setup.h"
+#include "model/exponent_lut.h"
+#include "model/schlick_divider.h"
+#include "model/wpow_unit.h"
+#include "sim/commands.h"
+
+namespace shadesim {
+namespace {
+
+// ------------------------------------------------------------------ configurations and cost
+struct Candidate {
+  std::string name;
+  SpecularConfig spec;
+};
+
+struct Cost {
+  int64_t table_bits = 0;
+  int multipliers = 0;
+  int divider_iterations = 0;
+  int cycles_per_pixel = 1;
+  int latency = 0;
+  int64_t reload_cycles = 0;
+  double area = 0;  // proxy: ROM bit = 1, full-adder bit = 8 (stated in the report)
+};
+
+constexpr double kFullAdder = 8.0;
+
+Cost cost_of(const SpecularConfig& s) {
+  Cost c;
+  switch (s.kind) {
+    case SpecularUnitKind::kLut:
+      c.table_bits = ExponentLut::table_bits(s.lut);
+      c.multipliers = ExponentLut::multipliers(s.lut);
+      c.cycles_per_pixel = ExponentLut::cycles_per_pixel(s.lut);
+      c.latency = ExponentLut::latency(s.lut);
+      c.reload_cycles = ExponentLut::reload_cycles(s.lut);
+      c.area = static_cast<double>(c.table_bits) +
+               (s.lut.interp_bits > 0
+                    ? kFullAdder * ((s.lut.interp_bits + 1) * (s.lut.entry_bits + 1) +
+                                    s.lut.entry_bits + s.lut.interp_bits)
+                    : 0.0);
+      break;
+    case SpecularUnitKind::kSchlick:
+      c.divider_iterations = SchlickDivider::iterations(s.schlick);
+      c.cycles_per_pixel = SchlickDivider::cycles_per_pixel(s.schlick);
+      c.latency = SchlickDivider::latency(s.schlick);
+      c.area = kFullAdder * SchlickDivider::subtractor_stages(s.schlick) * (s.schlick.operand_bits + 3);
+      break;
+    case SpecularUnitKind::kWpow: {
+      c.multipliers = WpowUnit::multipliers(s.wpow);
+      c.cycles_per_pixel = WpowUnit::cycles_per_pixel(s.wpow);
+      c.latency = WpowUnit::latency(s.wpow);
+      const double b = s.wpow.base_bits + 1;
+      c.area = kFullAdder * c.multipliers * b * b / 2.0;  // a squarer is about half a multiplier
+      break;
+    }
+    case SpecularUnitKind::kIdeal:
+      break;
+  }
+  return c;
+}
+
+std::vector<Candidate> builtin_candidates() {
+  std::vector<Candidate> v;
+  auto add = [&](const std::string& name, SpecularConfig s) {
+    s.validate();
+    v.push_back({name, s});
+  };
+  for (auto [a, b] : std::vector<std::pair<int, int>>{{10, 8}, {13, 8}, {10, 16}, {13, 16}}) {
+    SpecularConfig s;
+    s.kind = SpecularUnitKind::kLut;
+    s.lut.addr_bits = a;
+    s.lut.entry_bits = b;
+    add("lut-n A" + std::to_string(a) + " B" + std::to_string(b), s);
+  }
+  {
+    SpecularConfig s;
+    s.kind = SpecularUnitKind::kLut;
+    s.lut.addr_bits = 8;
+    s.lut.entry_bits = 16;
+    s.lut.interp_bits = 8;
+    add("lut-n A8 B16 interp8", s);
+  }
+  for (int a : {10, 12}) {
+    for (FitObjective f : {FitObjective::kNone, FitObjective::kAbsolute}) {
+      SpecularConfig s;
+      s.kind = SpecularUnitKind::kLut;
+      s.lut.addressing = LutAddressing::kShared;
+      s.lut.index = LutIndex::kNearest;
+      s.lut.addr_bits = a;
+      s.lut.entry_bits = 16;
+      s.lut.fit = f;
+      add("lut-exp A" + std::to_string(a) + " B16" + (f == FitObjective::kNone ? " k=n" : " k=fit"), s);
+    }
+  }
+  for (int q : {8, 12, 16}) {
+    SpecularConfig s;
+    s.kind = SpecularUnitKind::kSchlick;
+    s.schlick.quotient_bits = q;
+    add("schlick Q" + std::to_string(q) + " iter", s);
+  }
+  {
+    SpecularConfig s;
+    s.kind = SpecularUnitKind::kSchlick;
+    s.schlick.timing = UnitTiming::kPipelined;
+    add("schlick Q16 pipe", s);
+    s.schlick.fit = FitObjective::kAbsolute;
+    s.schlick.timing = UnitTiming::kIterative;
+    add("schlick Q16 iter n'=fit", s);
+  }
+  for (int m : {4, 8, 16}) {
+    SpecularConfig s;
+    s.kind = SpecularUnitKind::kWpow;
+    s.wpow.max_m = m;
+    add("wpow m" + std::to_string(m) + " B16 pipe", s);
+  }
+  for (int b : {10, 12}) {
+    SpecularConfig s;
+    s.kind = SpecularUnitKind::kWpow;
+    s.wpow.base_bits = b;
+    s.wpow.fit = FitObjective::kAbsolute;
+    add("wpow m16 B" + std::to_string(b) + " pipe z=fit-abs", s);
+  }
+  for (FitObjective f : {FitObjective::kEpicentre, FitObjective::kAbsolute}) {
+    SpecularConfig s;
+    s.kind = SpecularUnitKind::kWpow;
+    s.wpow.fit = f;
+    add(std::string("wpow m16 B16 pipe z=fit-") + (f == FitObjective::kEpicentre ? "epi" : "abs"), s);
+  }
+  {
+    SpecularConfig s;
+    s.kind = SpecularUnitKind::kWpow;
+    s.wpow.fit = FitObjective::kAbsolute;
+    s.wpow.timing = UnitTiming::kIterative;
+    add("wpow m16 B16 iter z=fit-abs", s);
+  }
+  return v;
+}
+
+// "1-1000", "16,32,64", "1-1000:10", "2.5". Throws std::invalid_argument naming the item.
+std::vector<double> parse_exponents(const std::string& text) {
+  std::vector<double> out;
+  std::stringstream ss(text);
+  std::string item;
+  auto number = [&](const std::string& s) {
+    size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(s, &used);
+    } catch (const std::logic_error&) {
+      used = 0;
+    }
+    if (used == 0 || used != s.size() || !(v > 0.0) || v > 1023.0) {
+      throw std::invalid_argument("--exponents: cannot read '" + s +
+                                  "'; expected numbers in (0, 1023], ranges a-b or a-b:step, "
+                                  "comma-separated (e.g. 1-1000, 16,32,64, 1-1000:10)");
+    }
+    return v;
+  };
+  while (std::getline(ss, item, ',')) {
+    if (item.empty()) throw std::invalid_argument("--exponents: empty item in '" + text + "'");
+    const auto dash = item.find('-');
+    if (dash == std::string::npos) {
+      out.push_back(number(item));
+      continue;
+    }
+    std::string hi_text = item.substr(dash + 1);
+    double step = 1.0;
+    if (const auto colon = hi_text.find(':'); colon != std::string::npos) {
+      step = number(hi_text.substr(colon + 1));
+      hi_text = hi_text.substr(0, colon);
+    }
+    const double lo = number(item.substr(0, dash)), hi = number(hi_text);
+    if (hi < lo) throw std::invalid_argument("--exponents: range '" + item + "' runs backwards");
+    for (double n = lo; n <= hi + 1e-9; n += step) out.push_back(n);
+  }
+  if (out.empty()) throw std::invalid_argument("--exponents: no exponents in '" + text + "'");
+  return out;
+}
+
+struct Result {
+  Candidate cand;
+  Cost cost;
+  SpecErrors worst;
+  double worst_epi_n = 0, worst_bloom_n = 0, worst_abs_n = 0;
+  double n_within_1pct = 0;  // largest n of the run such that every n' <= n keeps abs <= 1 %
+  std::vector<std::pair<double, SpecErrors>> per_n;
+};
+
+// ------------------------------------------------------------------ PNG plot
+// 5x7 glyphs, one byte per row (low 5 bits, MSB left).
+const std::array<uint8_t, 7>* glyph(char ch) {
+  struct G { char c; std::array<uint8_t, 7> rows; };
+  static const G kFont[] = {
+      {'0', {14, 17, 19, 21, 25, 17, 14}}, {'1', {4, 12, 4, 4, 4, 4, 14}},
+      {'2', {14, 17, 1, 2, 4, 8, 31}},     {'3', {31, 2, 4, 2, 1, 17, 14}},
+      {'4', {2, 6, 10, 18, 31, 2, 2}},     {'5', {31, 16, 30, 1, 1, 17, 14}},
+      {'6', {6, 8, 16, 30, 17, 17, 14}},   {'7', {31, 1, 2, 4, 8, 8, 8}},
+      {'8', {14, 17, 17, 14, 17, 17, 14}}, {'9', {14, 17, 17, 15, 1, 2, 12}},
+      {'A', {14, 17, 17, 31, 17, 17, 17}}, {'B', {30, 17, 17, 30, 17, 17, 30}},
+      {'C', {14, 17, 16, 16, 16, 17, 14}}, {'D', {28, 18, 17, 17, 17, 18, 28}},
+      {'E', {31, 16, 16, 30, 16, 16, 31}}, {'F', {31, 16, 16, 30, 16, 16, 16}},
+      {'G', {14, 17, 16, 23, 17, 17, 15}}, {'H', {17, 17, 17, 31, 17, 17, 17}},
+      {'I', {14, 4, 4, 4, 4, 4, 14}},      {'J', {7, 2, 2, 2, 2, 18, 12}},
+      {'K', {17, 18, 20, 24, 20, 18, 17}}, {'L', {16, 16, 16, 16, 16, 16, 31}},
+      {'M', {17, 27, 21, 21, 17, 17, 17}}, {'N', {17, 17, 25, 21, 19, 17, 17}},
+      {'O', {14, 17, 17, 17, 17, 17, 14}}, {'P', {30, 17, 17, 30, 16, 16, 16}},
+      {'Q', {14, 17, 17, 17, 21, 18, 13}}, {'R', {30, 17, 17, 30, 20, 18, 17}},
+      {'S', {15, 16, 16, 14, 1, 1, 30}},   {'T', {31, 4, 4, 4, 4, 4, 4}},
+      {'U', {17, 17, 17, 17, 17, 17, 14}}, {'V', {17, 17, 17, 17, 17, 10, 4}},
+      {'W', {17, 17, 17, 21, 21, 21, 10}}, {'X', {17, 17, 10, 4, 10, 17, 17}},
+      {'Y', {17, 17, 17, 10, 4, 4, 4}},    {'Z', {31, 1, 2, 4, 8, 16, 31}},
+      {'.', {0, 0, 0, 0, 0, 12, 12}},      {'-', {0, 0, 0, 31, 0, 0, 0}},
+      {'+', {0, 4, 4, 31, 4, 4, 0}},       {'=', {0, 0, 31, 0, 31, 0, 0}},
+      {'%', {24, 25, 2, 4, 8, 19, 3}},     {'/', {0, 1, 2, 4, 8, 16, 0}},
+      {'(', {2, 4, 8, 8, 8, 4, 2}},        {')', {8, 4, 2, 2, 2, 4, 8}},
+      {':', {0, 12, 12, 0, 12, 12, 0}},    {',', {0, 0, 0, 0, 12, 4, 8}},
+      {'^', {4, 10, 17, 0, 0, 0, 0}},      {'\'', {4, 4, 8, 0, 0, 0, 0}},
+      {'[', {14, 8, 8, 8, 8, 8, 14}},      {']', {14, 2, 2, 2, 2, 2, 14}},
+      {'*', {0, 4, 21, 14, 21, 4, 0}},     {'_', {0, 0, 0, 0, 0, 0, 31}},
+  };
+  if (ch >= 'a' && ch <= 'z') ch = static_cast<char>(ch - 'a' + 'A');
+  for (const G& g : kFont) {
+    if (g.c == ch) return &g.rows;
+  }
+  return nullptr;
+}
+
+struct Canvas {
+  int w, h;
+  std::vector<uint8_t> rgb;
+  Canvas(int w_, int h_) : w(w_), h(h_), rgb(static_cast<size_t>(w_) * h_ * 3, 255) {}
+  void px(int x, int y, std::array<uint8_t, 3> c) {
+    if (x < 0 || y < 0 || x >= w || y >= h) return;
+    std::copy(c.begin(), c.end(), rgb.begin() + (static_cast<size_t>(y) * w + x) * 3);
+  }
+  void line(int x0, int y0, int x1, int y1, std::array<uint8_t, 3> c) {
+    const int steps = std::max({std::abs(x1 - x0), std::abs(y1 - y0), 1});
+    for (int i = 0; i <= steps; ++i) {
+      px(x0 + (x1 - x0) * i / steps, y0 + (y1 - y0) * i / steps, c);
+    }
+  }
+  void text(int x, int y, const std::string& s, std::array<uint8_t, 3> c) {
+    for (char ch : s) {
+      if (const auto* g = glyph(ch)) {
+        for (int r = 0; r < 7; ++r)
+          for (int k = 0; k < 5; ++k)
+            if ((*g)[r] & (16 >> k)) px(x + k, y + r, c);
+      }
+      x += 6;
+    }
+  }
+  void marker(int x, int y, int kind, std::array<uint8_t, 3> c) {
+    for (int dy = -3; dy <= 3; ++dy)
+      for (int dx = -3; dx <= 3; ++dx) {
+        const bool on = kind == 0   ? dx * dx + dy * dy <= 10
+                        : kind == 1 ? true
+                        : kind == 2 ? std::abs(dx) + std::abs(dy) <= 3
+                                    : (dy >= -3 && std::abs(dx) <= (dy + 3) / 2);
+        if (on) px(x + dx, y + dy, c);
+      }
+  }
+  void ring(int x, int y, std::array<uint8_t, 3> c) {
+    for (int a = 0; a < 64; ++a) {
+      const double th = a * 2 * M_PI / 64;
+      px(x + static_cast<int>(std::lround(6 * std::cos(th))), y + static_cast<int>(std::lround(6 * std::sin(th))), c);
+    }
+  }
+  void save(const std::string& path) const {
+    FILE* fp = std::fopen(path.c_str(), "wb");
+    if (!fp) throw std::runtime_error(path + ": cannot open for writing the plot");
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    if (!png || !info || setjmp(png_jmpbuf(png))) {
+      png_destroy_write_struct(&png, &info);
+      std::fclose(fp);
+      throw std::runtime_error(path + ": PNG write failed");
+    }
+    png_init_io(png, fp);
+    png_set_IHDR(png, info, static_cast<png_uint_32>(w), static_cast<png_uint_32>(h), 8,
+                 PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+                 PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    for (int y = 0; y < h; ++y) {
+      png_write_row(png, const_cast<png_bytep>(rgb.data() + static_cast<size_t>(y) * w * 3));
+    }
+    png_write_end(png, nullptr);
+    png_destroy_write_struct(&png, &info);
+    if (std::fclose(fp) != 0) throw std::runtime_error(path + ": PNG write failed");
+  }
+};
+
+double at_cost(const Result& r) { return std::max(1.0, r.cost.area * r.cost.cycles_per_pixel); }
+double plot_error(const Result& r) { return std::max(r.worst.abs_lsb, 0.01); }
+
+std::vector<bool> pareto_front(const std::vector<Result>& rs) {
+  std::vector<bool> front(rs.size(), true);
+  for (size_t i = 0; i < rs.size(); ++i)
+    for (size_t j = 0; j < rs.size(); ++j) {
+      if (i == j) continue;
+      const bool no_worse = at_cost(rs[j]) <= at_cost(rs[i]) && plot_error(rs[j]) <= plot_error(rs[i]);
+      const bool better = at_cost(rs[j]) < at_cost(rs[i]) || plot_error(rs[j]) < plot_error(rs[i]);
+      if (no_worse && better) front[i] = false;
+    }
+  return front;
+}
+
+void write_plot(const std::string& path, const std::vector<Result>& rs, const std::string& range) {
+  const int W = 900, H = 600, L = 80, R = 250, T = 40, B = 60;
+  Canvas cv(W, H);
+  const std::array<uint8_t, 3> black{0, 0, 0}, grey{200, 200, 200};
+  const std::array<std::array<uint8_t, 3>, 3> colours{{{31, 119, 180}, {214, 39, 40}, {44, 160, 44}}};
+  double x_lo = 1e300, x_hi = -1e300, y_lo = 1e300, y_hi = -1e300;
+  for (const Result& r : rs) {
+    x_lo = std::min(x_lo, std::log10(at_cost(r)));
+    x_hi = std::max(x_hi, std::log10(at_cost(r)));
+    y_lo = std::min(y_lo, std::log10(plot_error(r)));
+    y_hi = std::max(y_hi, std::log10(plot_error(r)));
+  }
+  x_lo = std::floor(x_lo), x_hi = std::ceil(x_hi) + (std::ceil(x_hi) == std::floor(x_lo) ? 1 : 0);
+  y_lo = std::floor(y_lo), y_hi = std::ceil(y_hi) + (std::ceil(y_hi) == std::floor(y_lo) ? 1 : 0);
+  auto sx = [&](double v) { return L + static_cast<int>((v - x_lo) / (x_hi - x_lo) * (W - L - R)); };
+  auto sy = [&](double v) { return H - B - static_cast<int>((v - y_lo) / (y_hi - y_lo) * (H - T - B)); };
+  for (int d = static_cast<int>(x_lo); d <= static_cast<int>(x_hi); ++d) {
+    cv.line(sx(d), T, sx(d), H - B, grey);
+    cv.text(sx(d) - 9, H - B + 8, "1E" + std::to_string(d), black);
+  }
+  for (int d = static_cast<int>(y_lo); d <= static_cast<int>(y_hi); ++d) {
+    cv.line(L, sy(d), W - R, sy(d), grey);
+    cv.text(L - 36, sy(d) - 3, "1E" + std::to_string(d), black);
+  }
+  cv.line(L, H - B, W - R, H - B, black);
+  cv.line(L, T, L, H - B, black);
+  cv.text(L, 12, "SPECULAR UNITS: WORST ABS ERROR VS AREA X CYCLES/PIXEL, N " + range, black);
+  cv.text(L + 60, H - 25, "COST = AREA PROXY (ROM BIT 1, FULL ADDER BIT 8) X CYCLES PER PIXEL", black);
+  cv.text(6, T - 14, "MAX ABS ERR (8-BIT LSB)", black);
+  const std::vector<bool> front = pareto_front(rs);
+  // Pareto front: a staircase through the front points in cost order.
+  std::vector<size_t> idx;
+  for (size_t i = 0; i < rs.size(); ++i)
+    if (front[i]) idx.push_back(i);
+  std::sort(idx.begin(), idx.end(), [&](size_t a, size_t b) { return at_cost(rs[a]) < at_cost(rs[b]); });
+  for (size_t k = 1; k < idx.size(); ++k) {
+    const int x0 = sx(std::log10(at_cost(rs[idx[k - 1]]))), y0 = sy(std::log10(plot_error(rs[idx[k - 1]])));
+    const int x1 = sx(std::log10(at_cost(rs[idx[k]]))), y1 = sy(std::log10(plot_error(rs[idx[k]])));
+    cv.line(x0, y0, x1, y0, black);
+    cv.line(x1, y0, x1, y1, black);
+  }
+  int legend_y = T;
+  for (size_t i = 0; i < rs.size(); ++i) {
+    const int kind = static_cast<int>(rs[i].cand.spec.kind) - 1;  // lut 0, schlick 1, wpow 2
+    const auto colour = colours[static_cast<size_t>(std::clamp(kind, 0, 2))];
+    const int x = sx(std::log10(at_cost(rs[i]))), y = sy(std::log10(plot_error(rs[i])));
+    cv.marker(x, y, kind, colour);
+    if (front[i]) cv.ring(x, y, black);
+    cv.text(x + 8, y - 3, std::to_string(i + 1), colour);
+    cv.marker(W - R + 14, legend_y + 3, kind, colour);
+    std::string label = std::to_string(i + 1) + " " + rs[i].cand.name + (front[i] ? " *" : "");
+    cv.text(W - R + 22, legend_y, label.substr(0, 36), black);
+    legend_y += 12;
+  }
+  cv.text(W - R + 10, legend_y + 6, "* = PARETO FRONT (RINGED)", black);
+  cv.save(path);
+}
+
+// ------------------------------------------------------------------ output
+std::string fmt(double v, int prec) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(prec) << v;
+  return os.str();
+}
+
+std::string exp_label(double n) {
+  std::ostringstream os;
+  os << n;
+  return os.str();
+}
+
+void print_table(std::ostream& os, const std::vector<Result>& rs, const std::string& range) {
+  os << "Specular units against exact t^n, n " << range << " (worst over n; n where it occurs)\n"
+     << "  epi%   = max relative error where t^n >= 0.5 (epicentre)\n"
+     << "  bloom% = max relative error where 2^-8 <= t^n < 0.5 (blooming zone, q = 8)\n"
+     << "  absLSB = max |unit - t^n| over t in [0,1], 8-bit LSBs; n<=1% = largest n of the run with\n"
+     << "           every exponent up to it within 2.56 LSB (1 % of full scale)\n"
+     << "  area   = proxy: ROM bit 1, full-adder bit 8; cyc/px = cycles per pixel; lat = latency\n\n";
+  os << std::left << std::setw(4) << "#" << std::setw(30) << "unit" << std::right << std::setw(9)
+     << "epi%" << std::setw(7) << "@n" << std::setw(10) << "bloom%" << std::setw(7) << "@n"
+     << std::setw(9) << "absLSB" << std::setw(7) << "@n" << std::setw(8) << "n<=1%" << std::setw(10)
+     << "tbl bits" << std::setw(5) << "mul" << std::setw(5) << "div" << std::setw(7) << "cyc/px"
+     << std::setw(5) << "lat" << std::setw(8) << "reload" << std::setw(9) << "area" << '\n';
+  const std::vector<bool> front = pareto_front(rs);
+  for (size_t i = 0; i < rs.size(); ++i) {
+    const Result& r = rs[i];
+    os << std::left << std::setw(4) << (std::to_string(i + 1) + (front[i] ? "*" : ""))
+       << std::setw(30) << r.cand.name << std::right << std::setw(9) << fmt(100 * r.worst.epi_rel, 3)
+       << std::setw(7) << exp_label(r.worst_epi_n) << std::setw(10) << fmt(100 * r.worst.bloom_rel, 1)
+       << std::setw(7) << exp_label(r.worst_bloom_n) << std::setw(9) << fmt(r.worst.abs_lsb, 2)
+       << std::setw(7) << exp_label(r.worst_abs_n) << std::setw(8) << exp_label(r.n_within_1pct)
+       << std::setw(10) << r.cost.table_bits << std::setw(5) << r.cost.multipliers << std::setw(5)
+       << r.cost.divider_iterations << std::setw(7) << r.cost.cycles_per_pixel << std::setw(5)
+       << r.cost.latency << std::setw(8) << r.cost.reload_cycles << std::setw(9)
+       << fmt(r.cost.area, 0) << '\n';
+  }
+  os << "  (* = on the Pareto front of worst absLSB against area x cycles/pixel)\n";
+}
+
+struct PaperFigures {
+  int bishop_exact_1k, bishop_exact_8k, bishop_closed_1k, bishop_closed_8k, bishop_round_1k,
+      bishop_round_8k;
+  struct Row { std::string name; double paper_before, paper_after, ours_before, ours_after; };
+  std::vector<Row> romanyuk;
+  double w16_fit_epi;
+};
+
+PaperFigures paper_figures() {
+  PaperFigures p;
+  p.bishop_exact_1k = bishop_n_max(1024, 0.01, true);
+  p.bishop_exact_8k = bishop_n_max(8192, 0.01, true);
+  p.bishop_closed_1k = bishop_n_max_closed_form(1024, 0.01);
+  p.bishop_closed_8k = bishop_n_max_closed_form(8192, 0.01);
+  p.bishop_round_1k = bishop_n_max(1024, 0.01, false);
+  p.bishop_round_8k = bishop_n_max(8192, 0.01, false);
+  struct Spec { std::string name; int m; double before, after; };
+  const Spec specs[] = {{"W4", 4, 8.0, 35.2}, {"W8", 8, 3.8, 16.2}, {"W16", 16, 1.0, 7.6}, {"Schlick", 0, 22.4, 98.2}};
+  for (const Spec& s : specs) {
+    SpecErrors worst;
+    for (int n = 16; n <= 1000; ++n) {
+      const SpecErrors e = measure_errors(n, [&](double t) {
+        return s.m == 0 ? schlick_float(t, n) : wpow_float(t, static_cast<double>(n) / s.m, s.m);
+      });
+      worst.epi_rel = std::max(worst.epi_rel, e.epi_rel);
+      worst.bloom_rel = std::max(worst.bloom_rel, e.bloom_rel);
+    }
+    p.romanyuk.push_back({s.name, s.before, s.after, 100 * worst.epi_rel, 100 * worst.bloom_rel});
+  }
+  p.w16_fit_epi = 0;
+  for (int n = 16; n <= 1000; n += 8) {
+    const double z = fit_wpow_zeta(n, 16, FitObjective::kEpicentre);
+    p.w16_fit_epi = std::max(
+        p.w16_fit_epi, measure_errors(n, [&](double t) { return wpow_float(t, z, 16); }).epi_rel);
+  }
+  return p;
+}
+
+void print_paper(std::ostream& os, const PaperFigures& p) {
+  os << "\nBishop & Weimer: largest n within 1 % with a table of N one-byte entries\n"
+     << "  metric: nearest-entry indexing of t (entries at cell centres), max absolute error\n"
+     << "  against full scale 1, all t in [0,1]; closed form floor(ln 0.99 / ln(1 - 1/(2N)))\n"
+     << "                     paper   ours (exact entries)  closed form  ours (entries rounded to 8 bits)\n"
+     << "  1 KiB (N = 1024)    20      " << std::setw(4) << p.bishop_exact_1k << "                 "
+     << std::setw(4) << p.bishop_closed_1k << "         " << std::setw(4) << p.bishop_round_1k << '\n'
+     << "  8 KiB (N = 8192)   164      " << std::setw(4) << p.bishop_exact_8k << "                 "
+     << std::setw(4) << p.bishop_closed_8k << "         " << std::setw(4) << p.bishop_round_8k << '\n'
+     << "  The paper's figures hold only with exact entries; real 8-bit entries (e / 256, round to\n"
+     << "  nearest, saturating at 255) lose the 1 % budget sooner.\n";
+  os << "\nRomanyuk et al., Table 1: max relative error before / after the cusp point, in %\n"
+     << "  ours: double precision, zeta = n/m, integer n in [16, 1000]; 'before' = epicentre\n"
+     << "  (t^n >= 0.5), 'after' = blooming zone 2^-8 <= t^n < 0.5 (the paper states no bound)\n"
+     << "              paper before  ours before   paper after  ours after\n";
+  for (const auto& r : p.romanyuk) {
+    os << "  " << std::left << std::setw(10) << r.name << std::right << std::setw(12)
+       << fmt(r.paper_before, 1) << std::setw(13) << fmt(r.ours_before, 2) << std::setw(14)
+       << fmt(r.paper_after, 1) << std::setw(12) << fmt(r.ours_after, 1) << '\n';
+  }
+  os << "  The table does NOT reproduce: our epicentre figures differ from the paper's (W16 "
+     << fmt(p.romanyuk[2].ours_before, 2) << " vs 1.0, Schlick " << fmt(p.romanyuk[3].ours_before, 1)
+     << " vs 22.4),\n  and in the blooming zone W_m reaches zero while t^n >= 2^-8 (100 % for W4),"
+     << " Schlick's\n  slow tail gives errors far above 100 %. We report what this metric measures and"
+     << " do not tune it.\n"
+     << "  W16 with zeta fitted per exponent for the epicentre (n in [16, 1000] step 8): "
+     << fmt(100 * p.w16_fit_epi, 2) << " %\n";
+}
+
+void run(const std::string& exponents_text, const std::string& units, int points,
+         const std::string& json_path, const std::string& csv_path, const std::string& plot_path,
+         bool no_papers, int& exit_code) {
+  const std::vector<double> exponents = parse_exponents(exponents_text);
+  if (points < 16 || points > 1000000) throw std::invalid_argument("--points must be 16..1000000");
+  std::vector<Candidate> cands;
+  for (const Candidate& c : builtin_candidates()) {
+    const std::string kind = to_string(c.spec.kind);
+    if (units == "all" || ("," + units + ",").find("," + kind + ",") != std::string::npos) cands.push_back(c);
+  }
+  for (std::stringstream ss(units); ;) {
+    std::string u;
+    if (!std::getline(ss, u, ',')) break;
+    if (u != "all" && u != "lut" && u != "schlick" && u != "wpow")
+      throw std::invalid_argument("--units: unknown unit '" + u + "'; expected all or a comma list of lut, schlick, wpow");
+  }
+  if (cands.empty()) throw std::invalid_argument("--units: no configuration selected");
+
+  UnitConfig base;  // default series format and output: what the shading unit feeds the slot
+  const auto start = std::chrono::steady_clock::now();
+  auto last = start;
+  std::vector<Result> results;
+  const size_t total = cands.size() * exponents.size();
+  size_t done = 0;
+  for (const Candidate& c : cands) {
+    Result r;
+    r.cand = c;
+    r.cost = cost_of(c.spec);
+    UnitConfig cfg = base;
+    cfg.specular = c.spec;
+    bool all_ok = true;
+    for (double n : exponents) {
+      const SpecErrors e = measure_unit(cfg, n, points);
+      r.per_n.push_back({n, e});
+      if (e.epi_rel > r.worst.epi_rel) r.worst.epi_rel = e.epi_rel, r.worst_epi_n = n;
+      if (e.bloom_rel > r.worst.bloom_rel) r.worst.bloom_rel = e.bloom_rel, r.worst_bloom_n = n;
+      if (e.abs_lsb > r.worst.abs_lsb) r.worst.abs_lsb = e.abs_lsb, r.worst_abs_n = n;
+      all_ok = all_ok && e.abs_lsb <= 2.56;
+      if (all_ok) r.n_within_1pct = n;
+      ++done;
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last > std::chrono::seconds(2)) {
+        last = now;
+        std::cerr << "spec-error: " << done << "/" << total << " (" << c.name << ", n = " << n << ")\n";
+      }
+    }
+    results.push_back(std::move(r));
+  }
+  const std::string range = exponents.size() == 1 ? exp_label(exponents[0])
+                                                  : "in [" + exp_label(*std::min_element(exponents.begin(), exponents.end())) +
+                                                        ", " + exp_label(*std::max_element(exponents.begin(), exponents.end())) +
+                                                        "] (" + std::to_string(exponents.size()) + " values)";
+  print_table(std::cout, results, range);
+  PaperFigures papers{};
+  if (!no_papers) {
+    papers = paper_figures();
+    print_paper(std::cout, papers);
+  }
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cout << "\n(" << total << " unit x exponent runs, " << fmt(secs, 1) << " s)\n";
+
+  if (!json_path.empty()) {
+    nlohmann::json j;
+    j["exponents"] = exponents;
+    j["metrics"] = {{"epi_rel", "max relative error where t^n >= 0.5"},
+                    {"bloom_rel", "max relative error where 2^-8 <= t^n < 0.5"},
+                    {"abs_lsb", "max |unit - t^n| over t in [0,1], in 8-bit LSBs"},
+                    {"area", "proxy: ROM bit 1, full-adder bit 8"}};
+    const std::vector<bool> front = pareto_front(results);
+    for (size_t i = 0; i < results.size(); ++i) {
+      const Result& r = results[i];
+      nlohmann::json per_n = nlohmann::json::array();
+      for (const auto& [n, e] : r.per_n) per_n.push_back({{"n", n}, {"epi_rel", e.epi_rel}, {"bloom_rel", e.bloom_rel}, {"abs_lsb", e.abs_lsb}});
+      j["units"].push_back({{"name", r.cand.name}, {"config", r.cand.spec.describe()},
+                            {"epi_rel", r.worst.epi_rel}, {"epi_rel_n", r.worst_epi_n},
+                            {"bloom_rel", r.worst.bloom_rel}, {"bloom_rel_n", r.worst_bloom_n},
+                            {"abs_lsb", r.worst.abs_lsb}, {"abs_lsb_n", r.worst_abs_n},
+                            {"n_within_1pct", r.n_within_1pct},
+                            {"table_bits", r.cost.table_bits}, {"multipliers", r.cost.multipliers},
+                            {"divider_iterations", r.cost.divider_iterations},
+                            {"cycles_per_pixel", r.cost.cycles_per_pixel}, {"latency", r.cost.latency},
+                            {"reload_cycles", r.cost.reload_cycles}, {"area", r.cost.area},
+                            {"pareto", static_cast<bool>(front[i])}, {"per_n", per_n}});
+    }
+    if (!no_papers) {
+      j["bishop"] = {{"metric", "nearest-entry (cell-centre) indexing, max abs error vs full scale, 1 %"},
+                     {"paper", {20, 164}},
+                     {"ours_exact_entries", {papers.bishop_exact_1k, papers.bishop_exact_8k}},
+                     {"closed_form", {papers.bishop_closed_1k, papers.bishop_closed_8k}},
+                     {"ours_8bit_entries", {papers.bishop_round_1k, papers.bishop_round_8k}}};
+      for (const auto& row : papers.romanyuk)
+        j["romanyuk_table1"].push_back({{"function", row.name}, {"paper_before_pct", row.paper_before},
+                                        {"ours_before_pct", row.ours_before}, {"paper_after_pct", row.paper_after},
+                                        {"ours_after_pct", row.ours_after}});
+      j["w16_fitted_zeta_epi_pct"] = 100 * papers.w16_fit_epi;
+    }
+    std::ofstream os(json_path);
+    if (!os) throw std::runtime_error(json_path + ": cannot open for writing (--json)");
+    os << j.dump(1) << '\n';
+    if (!os) throw std::runtime_error(json_path + ": write failed (--json)");
+  }
+  if (!csv_path.empty()) {
+    std::ofstream os(csv_path);
+    if (!os) throw std::runtime_error(csv_path + ": cannot open for writing (--csv)");
+    os << "unit,config,n,epi_rel,bloom_rel,abs_lsb,table_bits,multipliers,divider_iterations,"
+          "cycles_per_pixel,latency,reload_cycles,area\n";
+    os << std::setprecision(9);
+    for (const Result& r : results)
+      for (const auto& [n, e] : r.per_n)
+        os << '"' << r.cand.name << "\",\"" << r.cand.spec.describe() << "\"," << n << ','
+           << e.epi_rel << ',' << e.bloom_rel << ',' << e.abs_lsb << ',' << r.cost.table_bits << ','
+           << r.cost.multipliers << ',' << r.cost.divider_iterations << ',' << r.cost.cycles_per_pixel
+           << ',' << r.cost.latency << ',' << r.cost.reload_cycles << ',' << r.cost.area << '\n';
+    if (!os) throw std::runtime_error(csv_path + ": write failed (--csv)");
+  }
+  if (!plot_path.empty()) write_plot(plot_path, results, range);
+  exit_code = 0;
+}
+
+}  // namespace
+
+void register_spec_error(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand(
+      "spec-error",
+      "Speed against error of the specular units (LUT, Schlick divider, W_m): bit-accurate units "
+      "against exact t^n, with their costs, plus the reproduced paper figures");
+  struct Options {
+    std::string exponents = "1-1000";
+    std::string units = "all";
+    int points = 256;
+    std::string json, csv, plot;
+    bool no_papers = false;
+  };
+  auto opt = std::make_shared<Options>();
+  cmd->add_option("--exponents", opt->exponents,
+                  "exponents n: numbers, ranges a-b, a-b:step, comma-separated (default 1-1000)");
+  cmd->add_option("--units", opt->units, "all, or a comma list of lut, schlick, wpow (default all)");
+  cmd->add_option("--points", opt->points,
+                  "sample points per zone (epicentre, blooming, [0,1]) per exponent (default 256)");
+  cmd->add_option("--json", opt->json, "write the results as JSON");
+  cmd->add_option("--csv", opt->csv, "write one row per unit and exponent as CSV");
+  cmd->add_option("--plot", opt->plot, "write a PNG of error against cost with the Pareto front");
+  cmd->add_flag("--no-papers", opt->no_papers, "skip the Bishop and Romanyuk reproductions");
+  cmd->callback([opt, &exit_code]() {
+    run(opt->exponents, opt->units, opt->points, opt->json, opt->csv, opt->plot, opt->no_papers,
+        exit_code);
+  });
+}
+
+}  // namespace shadesim
