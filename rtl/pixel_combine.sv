@@ -1,0 +1,74 @@
+// pixel_combine: ambient + diffuse + specular per channel, clamp, round to the output code
+// (model/pixel_combine.h, class PixelCombine). Combinational; shade_unit registers the result.
+//   stage 1  each diffuse value clamped below at 0; each specular intensity s_l times the
+//            light's specular colour k_lc, brought to the series fraction bits by the series
+//            rule (fixed_round + fixed_sat)
+//   stage 2  exact sum per channel: ambient_c + sum_l max(0, D_lc) + sum_l s_l k_lc
+//   stage 3  round to nearest into u0.OUT_BITS, saturating
+module pixel_combine #(
+  parameter int CHANNELS         = 1,
+  parameter int LIGHTS           = 1,
+  parameter int SERIES_WL        = 32,
+  parameter int SERIES_IWL       = 4,
+  parameter int SERIES_QUANT     = 0,
+  parameter int SERIES_OVERFLOW  = 1,
+  parameter int SPEC_COLOUR_WL   = 13,
+  parameter int SPEC_COLOUR_IWL  = 1,
+  parameter int SPECULAR_OUT_WL  = 17,
+  parameter int SPECULAR_OUT_IWL = 1,
+  parameter int OUT_BITS         = 8
+) (
+  input  logic [LIGHTS*CHANNELS*SERIES_WL-1:0]      diffuse_i,      // [l*CHANNELS + c]
+  input  logic [LIGHTS*SPECULAR_OUT_WL-1:0]         spec_i,         // [l]
+  input  logic [CHANNELS*SERIES_WL-1:0]             ambient_i,      // [c]
+  input  logic [LIGHTS*CHANNELS*SPEC_COLOUR_WL-1:0] spec_colour_i,  // [l*CHANNELS + c]
+  output logic [CHANNELS*OUT_BITS-1:0]              colour_o        // [c]
+);
+  localparam int SeriesFrac = SERIES_WL - SERIES_IWL;
+  localparam int ProdW      = SPECULAR_OUT_WL + SPEC_COLOUR_WL + 1;  // unsigned product + sign
+  localparam int ProdFrac   = (SPECULAR_OUT_WL - SPECULAR_OUT_IWL) + (SPEC_COLOUR_WL - SPEC_COLOUR_IWL);
+  localparam int ProdDrop   = ProdFrac - SeriesFrac;
+  localparam int ProdRndW   = ProdW + 1 - ProdDrop;
+  localparam int AccW       = SERIES_WL + $clog2(2 * LIGHTS + 1) + 1;
+  localparam int OutDrop    = SeriesFrac - OUT_BITS;
+  localparam int OutRndW    = AccW + 1 - OutDrop;
+
+  for (genvar c = 0; c < CHANNELS; c++) begin : g_chan
+    localparam int NTerms = 2 * LIGHTS + 1;
+    logic [NTerms*AccW-1:0] terms;  // ambient, then per light: diffuse, specular
+    assign terms[0 +: AccW] = AccW'($signed(ambient_i[c*SERIES_WL +: SERIES_WL]));
+
+    for (genvar l = 0; l < LIGHTS; l++) begin : g_light
+      logic signed [SERIES_WL-1:0] diffuse;
+      logic [SPECULAR_OUT_WL-1:0]  spec;
+      logic [SPEC_COLOUR_WL-1:0]   colour;
+      logic signed [ProdW-1:0]     product;
+      logic signed [ProdRndW-1:0]  product_rnd;
+      logic [SERIES_WL-1:0]        product_fit;
+
+      assign diffuse = $signed(diffuse_i[(l*CHANNELS + c)*SERIES_WL +: SERIES_WL]);
+      assign spec    = spec_i[l*SPECULAR_OUT_WL +: SPECULAR_OUT_WL];
+      assign colour  = spec_colour_i[(l*CHANNELS + c)*SPEC_COLOUR_WL +: SPEC_COLOUR_WL];
+      assign product = $signed({1'b0, (ProdW - 1)'(spec) * (ProdW - 1)'(colour)});
+
+      fixed_round #(.IN_W(ProdW), .DROP(ProdDrop), .ROUND(SERIES_QUANT))
+        u_round (.in_i(product), .out_o(product_rnd));
+      fixed_sat #(.IN_W(ProdRndW), .OUT_W(SERIES_WL), .OUT_SIGNED(1), .WRAP(SERIES_OVERFLOW))
+        u_sat (.in_i(product_rnd), .out_o(product_fit));
+
+      assign terms[(1 + 2*l)*AccW +: AccW] = diffuse[SERIES_WL-1] ? '0 : AccW'(diffuse);
+      assign terms[(2 + 2*l)*AccW +: AccW] = AccW'($signed(product_fit));
+    end
+
+    logic signed [AccW-1:0] acc;
+    always_comb begin
+      acc = '0;
+      for (int i = 0; i < NTerms; i++) acc = acc + $signed(terms[i*AccW +: AccW]);
+    end
+
+    logic signed [OutRndW-1:0] out_rnd;
+    fixed_round #(.IN_W(AccW), .DROP(OutDrop), .ROUND(1)) u_round_out (.in_i(acc), .out_o(out_rnd));
+    fixed_sat #(.IN_W(OutRndW), .OUT_W(OUT_BITS), .OUT_SIGNED(0), .WRAP(0))
+      u_sat_out (.in_i(out_rnd), .out_o(colour_o[c*OUT_BITS +: OUT_BITS]));
+  end
+endmodule

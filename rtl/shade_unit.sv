@@ -1,0 +1,320 @@
+// shade_unit: the whole shading unit (model/shade_unit.h, class ShadeUnit).
+//
+// cmd port: the command stream's binary words (model/command_stream.h), one per handshake.
+// pix port: one pixel per span pixel, in stream order; pix_eor_o marks the last pixel of a
+// span flagged last_in_row. Both ports are valid/ready; cmd_ready_o and the pipeline's
+// advance depend combinationally on pix_ready_i (no skid buffers).
+//
+// Pipeline (see notes/rtl.md for the latency / initiation-interval table):
+//   decoder      header + payload words; TRIANGLE payload -> coefficient registers,
+//                MATERIAL payload -> ambient / spec_colour registers and the specular slots,
+//                TABLE payload -> specular slots. MATERIAL waits until the datapath is empty.
+//   span_setup   3 stages (products, sums, rounding) per series; a SPAN header enters stage 1
+//                whenever stage 1 is free, so setup overlaps the previous span's pixels.
+//   engines      series_engine per series; loaded from stage 3 on the cycle the previous
+//                span's last pixel leaves the engines (back-to-back spans have no bubble).
+//   output       pixel_combine + specular slots (combinational) into the pix register.
+module shade_unit #(
+  parameter int CHANNELS         = 1,
+  parameter int LIGHTS           = 1,
+  parameter int XY_BITS          = 12,
+  parameter int COEF_WL          = 36,
+  parameter int COEF_IWL         = 4,
+  parameter int SERIES_WL        = 32,
+  parameter int SERIES_IWL       = 4,
+  parameter int SERIES_QUANT     = 0,  // Quantization: 0 truncate, 1 round to nearest
+  parameter int SERIES_OVERFLOW  = 1,  // Overflow: 0 saturate, 1 wrap
+  parameter int SPEC_COLOUR_WL   = 13,
+  parameter int SPEC_COLOUR_IWL  = 1,
+  parameter int OUT_BITS         = 8,
+  parameter int SPECULAR_KIND    = 0,  // SpecularUnitKind: 0 ideal, 1 lut, 2 schlick, 3 wpow
+  parameter int SPECULAR_OUT_WL  = 17,
+  parameter int SPECULAR_OUT_IWL = 1,
+  // Deliberate faults for the harness's own tests (-1 = off): add 1 LSB to channel 0 of every
+  // pixel of row FAULT_LSB_ROW; hold the engines one extra cycle before the last_in_row span
+  // of row FAULT_STALL_ROW (first occurrence only).
+  parameter int FAULT_LSB_ROW    = -1,
+  parameter int FAULT_STALL_ROW  = -1
+) (
+  input  logic                         clk_i,
+  input  logic                         rst_ni,
+  input  logic [63:0]                  cmd_data_i,
+  input  logic                         cmd_valid_i,
+  output logic                         cmd_ready_o,
+  output logic [XY_BITS-1:0]           pix_x_o,
+  output logic [XY_BITS-1:0]           pix_y_o,
+  output logic [CHANNELS*OUT_BITS-1:0] pix_colour_o,
+  output logic                         pix_eor_o,
+  output logic                         pix_valid_o,
+  input  logic                         pix_ready_i
+);
+  localparam int SeriesPerLight = SPECULAR_KIND == 2 ? 2 : 1;
+  localparam int NDiff          = LIGHTS * CHANNELS;
+  localparam int NSer           = NDiff + LIGHTS * SeriesPerLight;
+  localparam int NCoef          = 6 * NSer;
+  localparam int NMatFixed      = CHANNELS + LIGHTS * CHANNELS;  // ambient + spec_colour words
+  localparam int OfsW           = 17;  // x0 - xo with x0 < 2^15 and xo a signed 16-bit value
+
+  localparam logic [7:0] OpMaterial = 8'h01;
+  localparam logic [7:0] OpTriangle = 8'h02;
+  localparam logic [7:0] OpSpan     = 8'h03;
+  localparam logic [7:0] OpTable    = 8'h04;
+
+  typedef enum logic [1:0] {PaySkip, PayMaterial, PayTriangle, PayTable} pay_e;
+
+  // ---- handshakes and pipeline movement ------------------------------------------------
+  logic adv;       // the pix register can take a new value this cycle
+  logic emit;      // the engines hand a pixel to the pix register
+  logic last_pix;  // ... and it is the last of their span
+  logic load_eng;  // the engines take the span waiting in setup stage 3
+  logic stall_fault;
+  logic s1_v_q, s2_v_q, s3_v_q, run_q;
+  logic s1_move, s2_move, s1_free, s3_free;
+  logic datapath_empty;
+  logic cmd_fire, hdr_fire, pay_fire, span_fire;
+
+  // ---- decoder state ----------------------------------------------------------------------
+  logic        in_payload_q;
+  pay_e        pay_op_q;
+  logic [15:0] pay_idx_q, pay_last_q, tbl_base_q;
+  logic [7:0]  hdr_op;
+  logic [15:0] hdr_count;
+  logic        hdr_ready;
+
+  assign hdr_op    = cmd_data_i[63:56];
+  assign hdr_count = cmd_data_i[15:0];
+
+  assign datapath_empty = !s1_v_q && !s2_v_q && !s3_v_q && !run_q;
+
+  always_comb begin
+    case (hdr_op)
+      OpMaterial: hdr_ready = datapath_empty;
+      OpSpan:     hdr_ready = s1_free;
+      default:    hdr_ready = 1'b1;
+    endcase
+  end
+
+  assign cmd_ready_o = in_payload_q ? 1'b1 : hdr_ready;
+  assign cmd_fire    = cmd_valid_i && cmd_ready_o;
+  assign hdr_fire    = cmd_fire && !in_payload_q;
+  assign pay_fire    = cmd_fire && in_payload_q;
+  assign span_fire   = hdr_fire && hdr_op == OpSpan;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      in_payload_q <= 1'b0;
+      pay_op_q     <= PaySkip;
+      pay_idx_q    <= 16'd0;
+      pay_last_q   <= 16'd0;
+      tbl_base_q   <= 16'd0;
+    end else if (hdr_fire) begin
+      pay_idx_q  <= 16'd0;
+      pay_last_q <= hdr_count - 16'd1;
+      tbl_base_q <= cmd_data_i[31:16];
+      case (hdr_op)
+        OpMaterial: begin pay_op_q <= PayMaterial; in_payload_q <= hdr_count != 16'd0; end
+        OpTriangle: begin pay_op_q <= PayTriangle; in_payload_q <= hdr_count != 16'd0; end
+        OpTable:    begin pay_op_q <= PayTable;    in_payload_q <= hdr_count != 16'd0; end
+        default:    begin pay_op_q <= PaySkip;     in_payload_q <= 1'b0; end
+      endcase
+    end else if (pay_fire) begin
+      pay_idx_q <= pay_idx_q + 16'd1;
+      if (pay_idx_q == pay_last_q) in_payload_q <= 1'b0;
+    end
+  end
+
+  // Triangle origin and coefficients; material registers.
+  logic signed [15:0]             xo_q, yo_q;
+  logic [NCoef*COEF_WL-1:0]       coef_q;
+  logic [CHANNELS*SERIES_WL-1:0]  ambient_q;
+  logic [NDiff*SPEC_COLOUR_WL-1:0] spec_colour_q;
+
+  always_ff @(posedge clk_i) begin
+    if (hdr_fire && hdr_op == OpTriangle) begin
+      xo_q <= cmd_data_i[47:32];
+      yo_q <= cmd_data_i[31:16];
+    end
+    if (pay_fire && pay_op_q == PayTriangle) begin
+      for (int i = 0; i < NCoef; i++) begin
+        if (pay_idx_q == 16'(i)) coef_q[i*COEF_WL +: COEF_WL] <= cmd_data_i[COEF_WL-1:0];
+      end
+    end
+    if (pay_fire && pay_op_q == PayMaterial) begin
+      for (int i = 0; i < CHANNELS; i++) begin
+        if (pay_idx_q == 16'(i)) ambient_q[i*SERIES_WL +: SERIES_WL] <= cmd_data_i[SERIES_WL-1:0];
+      end
+      for (int i = 0; i < NDiff; i++) begin
+        if (pay_idx_q == 16'(CHANNELS + i)) begin
+          spec_colour_q[i*SPEC_COLOUR_WL +: SPEC_COLOUR_WL] <= cmd_data_i[SPEC_COLOUR_WL-1:0];
+        end
+      end
+    end
+  end
+
+  // Configuration words for the specular slots: MATERIAL exponent (index 0) and unit
+  // parameters (1..), TABLE entries at base + index.
+  logic        cfg_valid, cfg_table;
+  logic [15:0] cfg_addr;
+  assign cfg_table = pay_op_q == PayTable;
+  assign cfg_valid = pay_fire && (cfg_table ||
+                     (pay_op_q == PayMaterial && pay_idx_q >= 16'(NMatFixed)));
+  assign cfg_addr  = cfg_table ? tbl_base_q + pay_idx_q : pay_idx_q - 16'(NMatFixed);
+
+  // ---- span setup: three stages, valid bits and span descriptors here --------------------
+  typedef struct packed {
+    logic [XY_BITS-1:0] y;
+    logic [XY_BITS-1:0] x0;
+    logic [15:0]        len;
+    logic               last;
+  } span_t;
+
+  span_t span_in, s1_q, s2_q, s3_q;
+  assign span_in.y    = cmd_data_i[32 +: XY_BITS];
+  assign span_in.x0   = cmd_data_i[16 +: XY_BITS];
+  assign span_in.len  = cmd_data_i[15:0];
+  assign span_in.last = cmd_data_i[55];
+
+  logic signed [OfsW-1:0] dx, dy;
+  assign dx = $signed(OfsW'(span_in.x0)) - OfsW'(xo_q);
+  assign dy = $signed(OfsW'(span_in.y)) - OfsW'(yo_q);
+
+  assign s3_free = !s3_v_q || load_eng;
+  assign s2_move = s2_v_q && s3_free;
+  assign s1_move = s1_v_q && (!s2_v_q || s2_move);
+  assign s1_free = !s1_v_q || s1_move;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      s1_v_q <= 1'b0;
+      s2_v_q <= 1'b0;
+      s3_v_q <= 1'b0;
+    end else begin
+      if (span_fire)    s1_v_q <= 1'b1;
+      else if (s1_move) s1_v_q <= 1'b0;
+      if (s1_move)      s2_v_q <= 1'b1;
+      else if (s2_move) s2_v_q <= 1'b0;
+      if (s2_move)       s3_v_q <= 1'b1;
+      else if (load_eng) s3_v_q <= 1'b0;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (span_fire) s1_q <= span_in;
+    if (s1_move)   s2_q <= s1_q;
+    if (s2_move)   s3_q <= s2_q;
+  end
+
+  logic [NSer*SERIES_WL-1:0] start_v, start_d, start_d2, eng_v;
+
+  for (genvar i = 0; i < NSer; i++) begin : g_series
+    span_setup #(
+      .COEF_WL(COEF_WL), .COEF_IWL(COEF_IWL), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
+      .SERIES_QUANT(SERIES_QUANT), .SERIES_OVERFLOW(SERIES_OVERFLOW), .OFS_W(OfsW)
+    ) u_setup (
+      .clk_i, .s1_en_i(span_fire), .s2_en_i(s1_move), .s3_en_i(s2_move),
+      .coef_i(coef_q[i*6*COEF_WL +: 6*COEF_WL]), .dx_i(dx), .dy_i(dy),
+      .v_o(start_v[i*SERIES_WL +: SERIES_WL]), .d_o(start_d[i*SERIES_WL +: SERIES_WL]),
+      .d2_o(start_d2[i*SERIES_WL +: SERIES_WL])
+    );
+    series_engine #(.SERIES_WL(SERIES_WL), .SERIES_OVERFLOW(SERIES_OVERFLOW)) u_engine (
+      .clk_i, .load_i(load_eng), .step_i(emit),
+      .v_i(start_v[i*SERIES_WL +: SERIES_WL]), .d_i(start_d[i*SERIES_WL +: SERIES_WL]),
+      .d2_i(start_d2[i*SERIES_WL +: SERIES_WL]), .v_o(eng_v[i*SERIES_WL +: SERIES_WL])
+    );
+  end
+
+  // ---- engines: span run control --------------------------------------------------------
+  logic [15:0]        rem_q;
+  logic [XY_BITS-1:0] x_q, y_q;
+  logic               last_q, fault_done_q;
+
+  assign adv      = !pix_valid_o || pix_ready_i;
+  assign emit     = run_q && adv;
+  assign last_pix = rem_q == 16'd1;
+
+  if (FAULT_STALL_ROW >= 0) begin : g_stall_fault
+    assign stall_fault = !fault_done_q && s3_q.last && s3_q.y == XY_BITS'(FAULT_STALL_ROW);
+  end else begin : g_no_stall_fault
+    // verilator lint_off UNUSED
+    logic unused_fault_done;
+    assign unused_fault_done = fault_done_q;
+    // verilator lint_on UNUSED
+    assign stall_fault = 1'b0;
+  end
+  assign load_eng = s3_v_q && (!run_q || (emit && last_pix)) && !stall_fault;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      run_q        <= 1'b0;
+      fault_done_q <= 1'b0;
+    end else begin
+      if (load_eng)                   run_q <= 1'b1;
+      else if (emit && last_pix)      run_q <= 1'b0;
+      if (s3_v_q && stall_fault && (!run_q || (emit && last_pix))) fault_done_q <= 1'b1;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (load_eng) begin
+      rem_q  <= s3_q.len;
+      x_q    <= s3_q.x0;
+      y_q    <= s3_q.y;
+      last_q <= s3_q.last;
+    end else if (emit) begin
+      rem_q <= rem_q - 16'd1;
+      x_q   <= x_q + XY_BITS'(1);
+    end
+  end
+
+  // ---- per-pixel colour: specular slots and pixel combine --------------------------------
+  logic [LIGHTS*SPECULAR_OUT_WL-1:0] spec;
+  for (genvar l = 0; l < LIGHTS; l++) begin : g_spec
+    specular_slot #(
+      .SPECULAR_KIND(SPECULAR_KIND), .SERIES_WL(SERIES_WL), .SERIES_PER_LIGHT(SeriesPerLight),
+      .SPECULAR_OUT_WL(SPECULAR_OUT_WL)
+    ) u_slot (
+      .clk_i, .rst_ni, .en_i(emit),
+      .series_i(eng_v[(NDiff + l*SeriesPerLight)*SERIES_WL +: SeriesPerLight*SERIES_WL]),
+      .cfg_valid_i(cfg_valid), .cfg_table_i(cfg_table), .cfg_addr_i(cfg_addr),
+      .cfg_data_i(cmd_data_i), .spec_o(spec[l*SPECULAR_OUT_WL +: SPECULAR_OUT_WL])
+    );
+  end
+
+  logic [CHANNELS*OUT_BITS-1:0] colour, colour_out;
+  pixel_combine #(
+    .CHANNELS(CHANNELS), .LIGHTS(LIGHTS), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
+    .SERIES_QUANT(SERIES_QUANT), .SERIES_OVERFLOW(SERIES_OVERFLOW),
+    .SPEC_COLOUR_WL(SPEC_COLOUR_WL), .SPEC_COLOUR_IWL(SPEC_COLOUR_IWL),
+    .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL), .OUT_BITS(OUT_BITS)
+  ) u_combine (
+    .diffuse_i(eng_v[NDiff*SERIES_WL-1:0]), .spec_i(spec), .ambient_i(ambient_q),
+    .spec_colour_i(spec_colour_q), .colour_o(colour)
+  );
+
+  if (FAULT_LSB_ROW >= 0) begin : g_lsb_fault
+    always_comb begin
+      colour_out = colour;
+      if (y_q == XY_BITS'(FAULT_LSB_ROW)) colour_out[OUT_BITS-1:0] = colour[OUT_BITS-1:0] + OUT_BITS'(1);
+    end
+  end else begin : g_no_lsb_fault
+    assign colour_out = colour;
+  end
+
+  // ---- output register ------------------------------------------------------------------------
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      pix_valid_o <= 1'b0;
+    end else if (adv) begin
+      pix_valid_o <= run_q;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (emit) begin
+      pix_x_o      <= x_q;
+      pix_y_o      <= y_q;
+      pix_colour_o <= colour_out;
+      pix_eor_o    <= last_q && last_pix;
+    end
+  end
+endmodule

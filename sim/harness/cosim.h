@@ -1,0 +1,63 @@
+// One co-simulation run and its result, shared by the Verilator C++ and SystemC backends.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "model/command_stream.h"
+#include "model/shade_unit.h"
+#include "sim/harness/cycle_model.h"
+#include "sim/harness/rtl_config.h"
+#include "sim/harness/scoreboard.h"
+#include "sim/harness/stimulus.h"
+
+namespace shadesim {
+
+struct CosimJob {
+  RtlConfig config;
+  std::string scenario;  // for reports; "replay" for a loaded stream
+  CommandStream stream;
+  Stimulus stim;
+};
+
+struct CosimResult {
+  Mismatch first;  // kind kNone when the run passed
+  uint64_t cycles = 0, pixels = 0, scanlines = 0;
+  double seconds = 0;
+  bool passed() const { return first.kind == Mismatch::Kind::kNone; }
+};
+
+// Everything both backends need before the first clock: the words on the cmd port, the
+// bit-accurate model's pixels, and a cycle bound past which the run counts as hung.
+struct Prepared {
+  std::vector<uint64_t> words;
+  std::vector<PixelOut> expected;
+  uint64_t cycle_limit = 0;
+};
+
+inline Prepared prepare(const CosimJob& job) {
+  Prepared p;
+  p.words = job.stream.encode();
+  ShadeUnit unit(job.config.unit);
+  p.expected = unit.run(job.stream);
+  p.cycle_limit = CycleModel::run(p.words, job.stim).cycles + 1000;
+  return p;
+}
+
+// Reset cycles before cycle 0 (rst_ni low on these edges).
+constexpr int kResetCycles = 4;
+
+// Unpacks the pix_colour_o bus (channel c in bits [c*out_bits +: out_bits]).
+inline PixelOut unpack_pixel(uint64_t x, uint64_t y, uint64_t colour, bool eor, int channels,
+                             int out_bits) {
+  PixelOut p;
+  p.x = static_cast<uint16_t>(x);
+  p.y = static_cast<uint16_t>(y);
+  const uint64_t mask = (uint64_t{1} << out_bits) - 1;
+  for (int c = 0; c < channels; ++c) p.colour[c] = static_cast<uint16_t>((colour >> (c * out_bits)) & mask);
+  p.end_of_row = eor;
+  return p;
+}
+
+}  // namespace shadesim

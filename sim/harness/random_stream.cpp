@@ -1,0 +1,111 @@
+#include "sim/harness/random_stream.h"
+
+#include <algorithm>
+#include <random>
+#include <stdexcept>
+
+namespace shadesim {
+
+std::vector<std::string> scenario_names() {
+  return {"mixed", "long", "short", "slow", "maxbp", "switch"};
+}
+
+Scenario scenario_by_name(const std::string& name) {
+  Scenario s;
+  s.name = name;
+  if (name == "mixed") {
+    s.stim.gap_pct = 30; s.stim.max_gap = 6; s.stim.stall_pct = 30;
+  } else if (name == "long") {
+    s.shape.rows = 6; s.shape.full_rows = true; s.shape.p_new_triangle = 1.0;
+    s.stim.gap_pct = 10; s.stim.max_gap = 3; s.stim.stall_pct = 10;
+  } else if (name == "short") {
+    s.shape.rows = 200; s.shape.max_spans_per_row = 8; s.shape.min_len = 1; s.shape.max_len = 3;
+    s.shape.p_new_triangle = 0.2; s.shape.p_material = 0.01;
+  } else if (name == "slow") {
+    s.shape.rows = 16; s.shape.max_len = 50;
+    s.stim.gap_pct = 100; s.stim.max_gap = 40;
+  } else if (name == "maxbp") {
+    s.shape.rows = 16; s.shape.max_len = 100;
+    s.stim.stall_pct = 90;
+  } else if (name == "switch") {
+    s.shape.rows = 32; s.shape.max_len = 30; s.shape.p_material = 0.5;
+    s.stim.gap_pct = 20; s.stim.max_gap = 4; s.stim.stall_pct = 20;
+  } else {
+    std::string all;
+    for (const auto& n : scenario_names()) all += (all.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("unknown scenario '" + name + "'; expected one of " + all);
+  }
+  return s;
+}
+
+CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  auto uni = [&rng](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  auto irange = [&rng](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+  auto chance = [&](double p) { return uni(0.0, 1.0) < p; };
+
+  CommandStream cs;
+  cs.config = config;
+  const int width = 1 << config.xy_bits;
+  const int series = config.series_per_triangle();
+
+  auto material = [&]() {
+    if (chance(shape.p_table)) {
+      TableCmd t;
+      t.base = static_cast<uint32_t>(irange(0, 1023));
+      const int n = irange(1, 8);
+      for (int i = 0; i < n; ++i) t.entries.push_back(static_cast<int64_t>(rng() >> 1));
+      cs.commands.emplace_back(t);
+    }
+    MaterialCmd m;
+    for (int c = 0; c < config.channels; ++c) m.ambient.push_back(config.series.from_double(uni(0.0, 0.25)));
+    m.spec_colour.assign(static_cast<size_t>(config.lights * config.channels), 0);
+    m.exponent = int64_t{irange(1, 200)} << kExponentFracBits;
+    cs.commands.emplace_back(m);
+  };
+  auto triangle = [&](int x0, int y) {
+    TriangleCmd t;
+    const bool wild = chance(shape.p_wild);
+    if (wild && chance(0.5)) {
+      t.xo = chance(0.5) ? -32768 : 32767;
+      t.yo = chance(0.5) ? -32768 : 32767;
+    } else {
+      t.xo = x0 + irange(-40, 40);
+      t.yo = y + irange(-40, 40);
+    }
+    const double k = wild ? 64.0 : 1.0;
+    for (int s = 0; s < series; ++s) {
+      const double terms[kTermsPerSeries] = {
+          uni(-0.3, 1.2) * k,           uni(-1, 1) / 256 * k,          uni(-1, 1) / 256 * k,
+          uni(-1, 1) / 16384 * k,       uni(-1, 1) / 16384 * k,        uni(-1, 1) / 16384 * k};
+      for (double v : terms) t.coef.push_back(config.coef.from_double(v));
+    }
+    cs.commands.emplace_back(t);
+  };
+
+  material();
+  bool have_triangle = false;
+  int y = irange(0, 3);
+  for (int row = 0; row < shape.rows; ++row, y = (y + 1) % width) {
+    const int spans = shape.full_rows ? 1 : irange(1, shape.max_spans_per_row);
+    int x = shape.full_rows ? 0 : irange(0, 16);
+    for (int s = 0; s < spans && x < width; ++s) {
+      SpanCmd span;
+      span.y = y;
+      span.x0 = x;
+      span.length = shape.full_rows ? std::min(width, 2048) : std::min(irange(shape.min_len, shape.max_len), width - x);
+      x += span.length + irange(0, 8);
+      span.last_in_row = s == spans - 1 || x >= width;
+      if (chance(shape.p_material)) material();
+      if (!have_triangle || chance(shape.p_new_triangle)) triangle(span.x0, span.y);
+      have_triangle = true;
+      cs.commands.emplace_back(span);
+      if (span.last_in_row) break;
+    }
+  }
+  cs.commands.emplace_back(EndFrameCmd{});
+  cs.validate("random_stream");
+  return cs;
+}
+
+}  // namespace shadesim

@@ -1,0 +1,190 @@
+// SystemC backend: the Verilated shade_unit (verilate(... SYSTEMC)) under an sc_clock, fed by a
+// Driver and drained by a Sink (SC_MODULEs), with the cycle model wrapped as a third module that
+// steps in lockstep. Every module acts on the rising edge: it samples the handshake signals as
+// they were just before the edge (what the RTL saw) and drives the next cycle's inputs, so
+// cycle numbers match the C++ backend's exactly.
+//
+// A SystemC kernel elaborates once per process: one run per process.
+#pragma once
+
+#include <chrono>
+#include <systemc>
+#include <type_traits>
+#include <utility>
+
+#include "sim/harness/cosim.h"
+
+namespace shadesim {
+
+constexpr double kScPeriodNs = 10.0;
+
+// Posedge index of the current time; posedge kResetCycles is cycle 0.
+inline int64_t sc_cycle_now() {
+  return static_cast<int64_t>(sc_core::sc_time_stamp() / sc_core::sc_time(kScPeriodNs, sc_core::SC_NS)) -
+         kResetCycles;
+}
+
+SC_MODULE(ScDriver) {
+  sc_core::sc_in<bool> clk;
+  sc_core::sc_in<bool> cmd_ready;
+  sc_core::sc_out<bool> rst_n;
+  sc_core::sc_out<bool> cmd_valid;
+  sc_core::sc_out<uint64_t> cmd_data;
+
+  SC_HAS_PROCESS(ScDriver);
+  ScDriver(sc_core::sc_module_name name, const std::vector<uint64_t>& words, const Stimulus& stim)
+      : sc_module(name), driver_(words, stim) {
+    SC_METHOD(tick);
+    sensitive << clk.pos();
+    dont_initialize();
+  }
+
+  void tick() {
+    const int64_t cycle = sc_cycle_now();
+    if (cycle >= 0) {
+      const bool fire = driver_.valid() && cmd_ready.read();
+      driver_.clock(fire);
+    }
+    rst_n.write(cycle >= -1);
+    const bool run = cycle >= -1;
+    cmd_valid.write(run && driver_.valid());
+    cmd_data.write(driver_.word());
+  }
+
+ private:
+  CommandDriver driver_;
+};
+
+template <class XT, class CT>
+struct ScSink : sc_core::sc_module {
+  sc_core::sc_in<bool> clk;
+  sc_core::sc_in<bool> pix_valid;
+  sc_core::sc_in<XT> pix_x, pix_y;
+  sc_core::sc_in<CT> pix_colour;
+  sc_core::sc_in<bool> pix_eor;
+  sc_core::sc_out<bool> pix_ready;
+
+  SC_HAS_PROCESS(ScSink);
+  ScSink(sc_core::sc_module_name name, const Stimulus& stim, const UnitConfig& cfg, Scoreboard& board)
+      : sc_module(name), stim_(stim), channels_(cfg.channels), out_bits_(cfg.out_bits), board_(board) {
+    SC_METHOD(tick);
+    sensitive << clk.pos();
+    dont_initialize();
+  }
+
+  void tick() {
+    const int64_t cycle = sc_cycle_now();
+    if (cycle >= 0 && pix_valid.read() && stim_.pix_ready(static_cast<uint64_t>(cycle))) {
+      board_.rtl_pixel(unpack_pixel(pix_x.read(), pix_y.read(), pix_colour.read(), pix_eor.read(),
+                                    channels_, out_bits_),
+                       static_cast<uint64_t>(cycle));
+    }
+    const int64_t next = cycle + 1;
+    pix_ready.write(next >= 0 && stim_.pix_ready(static_cast<uint64_t>(next)));
+  }
+
+ private:
+  Stimulus stim_;
+  int channels_, out_bits_;
+  Scoreboard& board_;
+};
+
+// The cycle model as a SystemC module: same stimulus, own driver, lockstep with the RTL; it
+// also ends the simulation when the scoreboard is complete, failed or the run hangs.
+SC_MODULE(ScCycleModel) {
+  sc_core::sc_in<bool> clk;
+
+  SC_HAS_PROCESS(ScCycleModel);
+  ScCycleModel(sc_core::sc_module_name name, const std::vector<uint64_t>& words, const Stimulus& stim,
+               Scoreboard& board, uint64_t cycle_limit)
+      : sc_module(name), driver_(words, stim), stim_(stim), board_(board), limit_(cycle_limit) {
+    SC_METHOD(tick);
+    sensitive << clk.pos();
+    dont_initialize();
+  }
+
+  void tick() {
+    const int64_t cycle = sc_cycle_now();
+    if (cycle < 0) return;
+    const auto c = static_cast<uint64_t>(cycle);
+    const CycleModel::Edge e = model_.clock(driver_.valid(), driver_.word(), stim_.pix_ready(c));
+    driver_.clock(e.cmd_fire);
+    if (e.pix_fire && e.pix_eor) board_.model_scanline({e.pix_y, c});
+    // The sink may record this edge's pixel after this check: completion is seen one edge
+    // later, which changes nothing that is compared.
+    if (board_.failed() || board_.complete()) {
+      sc_core::sc_stop();
+    } else if (c > limit_) {
+      board_.timeout(c);
+      sc_core::sc_stop();
+    }
+  }
+
+ private:
+  CommandDriver driver_;
+  Stimulus stim_;
+  CycleModel model_;
+  Scoreboard& board_;
+  uint64_t limit_;
+};
+
+template <class V>
+CosimResult run_verilated_systemc(const CosimJob& job) {
+  // Verilator picks bool / uint32_t / uint64_t per port width; follow it.
+  using XT = typename std::remove_reference_t<decltype(std::declval<V&>().pix_x_o)>::data_type;
+  using CT = typename std::remove_reference_t<decltype(std::declval<V&>().pix_colour_o)>::data_type;
+  const Prepared prep = prepare(job);
+  const UnitConfig& cfg = job.config.unit;
+  Scoreboard board(prep.expected, cfg.channels);
+
+  sc_core::sc_clock clk("clk", kScPeriodNs, sc_core::SC_NS, 0.5, 0, sc_core::SC_NS, true);
+  sc_core::sc_signal<bool> rst_n("rst_n"), cmd_valid("cmd_valid"), cmd_ready("cmd_ready");
+  sc_core::sc_signal<uint64_t> cmd_data("cmd_data");
+  sc_core::sc_signal<XT> pix_x("pix_x"), pix_y("pix_y");
+  sc_core::sc_signal<CT> pix_colour("pix_colour");
+  sc_core::sc_signal<bool> pix_eor("pix_eor"), pix_valid("pix_valid"), pix_ready("pix_ready");
+
+  V dut("dut");
+  dut.clk_i(clk);
+  dut.rst_ni(rst_n);
+  dut.cmd_data_i(cmd_data);
+  dut.cmd_valid_i(cmd_valid);
+  dut.cmd_ready_o(cmd_ready);
+  dut.pix_x_o(pix_x);
+  dut.pix_y_o(pix_y);
+  dut.pix_colour_o(pix_colour);
+  dut.pix_eor_o(pix_eor);
+  dut.pix_valid_o(pix_valid);
+  dut.pix_ready_i(pix_ready);
+
+  ScDriver driver("driver", prep.words, job.stim);
+  driver.clk(clk);
+  driver.cmd_ready(cmd_ready);
+  driver.rst_n(rst_n);
+  driver.cmd_valid(cmd_valid);
+  driver.cmd_data(cmd_data);
+
+  ScSink<XT, CT> sink("sink", job.stim, cfg, board);
+  sink.clk(clk);
+  sink.pix_valid(pix_valid);
+  sink.pix_x(pix_x);
+  sink.pix_y(pix_y);
+  sink.pix_colour(pix_colour);
+  sink.pix_eor(pix_eor);
+  sink.pix_ready(pix_ready);
+
+  ScCycleModel model("cycle_model", prep.words, job.stim, board, prep.cycle_limit);
+  model.clk(clk);
+
+  const auto t0 = std::chrono::steady_clock::now();
+  sc_core::sc_start();
+  CosimResult r;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.first = board.first_mismatch();
+  r.cycles = board.cycles();
+  r.pixels = board.pixels_checked();
+  r.scanlines = board.scanlines_checked();
+  return r;
+}
+
+}  // namespace shadesim
