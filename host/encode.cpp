@@ -1,5 +1,7 @@
 #include "host/encode.h"
 
+#include "host/specular_setup.h"
+
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -9,19 +11,6 @@ namespace shadesim {
 namespace {
 
 double channel(const Vec3& v, int c) { return c == 0 ? v.x : (c == 1 ? v.y : v.z); }
-
-// Affine maps a*t + b turning the specular cosine into the series each unit consumes. The ideal
-// unit reads t itself.
-std::vector<std::pair<double, double>> specular_affine(const UnitConfig& config, double exponent) {
-  (void)exponent;
-  switch (config.specular.kind) {
-    case SpecularUnitKind::kIdeal:
-      return {{1.0, 0.0}};
-    default:
-      throw std::invalid_argument("encoder: specular unit '" + to_string(config.specular.kind) +
-                                  "' is not supported by this encoder yet");
-  }
-}
 
 class CoefficientWriter {
  public:
@@ -45,7 +34,8 @@ class CoefficientWriter {
   EncodeStats& stats_;
 };
 
-MaterialCmd material_command(const Scene& scene, const UnitConfig& config, const Material& m) {
+MaterialCmd material_command(const Scene& scene, const UnitConfig& config, const Material& m,
+                             const SpecularSeriesPlan& plan) {
   MaterialCmd cmd;
   for (int c = 0; c < config.channels; ++c) {
     cmd.ambient.push_back(config.series.from_double(channel(m.ambient, c) * channel(scene.ambient_light, c)));
@@ -59,6 +49,7 @@ MaterialCmd material_command(const Scene& scene, const UnitConfig& config, const
   }
   const FixedFormat exponent{26, 10, false, Quantization::kRoundNearest, Overflow::kSaturate};
   cmd.exponent = exponent.from_double(m.exponent);
+  cmd.unit_params = plan.unit_params;
   return cmd;
 }
 
@@ -95,6 +86,16 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
   const CoefficientWriter writer(config.coef, stats);
   int current_material = -1;
 
+  // The unit's specular series plan per material: affine pre-scaling of t, unit parameters, and
+  // for a per-exponent LUT the table to load on every switch to that material.
+  std::vector<SpecularSeriesPlan> plans;
+  for (const auto& m : scene.materials) plans.push_back(plan_specular(config, m.exponent));
+  // A shared table (no reload) is loaded once, before the first pixel.
+  for (auto& t : shared_lut_tables(config)) {
+    stats.table_words += t.entries.size();
+    cmds.emplace_back(std::move(t));
+  }
+
   size_t i = 0;
   while (i < vis.spans.size()) {
     const uint32_t tri_index = vis.spans[i].triangle;
@@ -103,8 +104,14 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
     const TriangleSeries& series = setup.series[tri_index];
     const Material& material = scene.materials.at(static_cast<size_t>(tri.material));
 
+    const SpecularSeriesPlan& plan = plans[static_cast<size_t>(tri.material)];
     if (tri.material != current_material) {
-      cmds.emplace_back(material_command(scene, config, material));
+      cmds.emplace_back(material_command(scene, config, material, plan));
+      for (const auto& t : plan.tables) {
+        stats.table_words += t.entries.size();
+        cmds.emplace_back(t);
+      }
+      stats.table_load_cycles += plan.load_cycles;
       current_material = tri.material;
       ++stats.materials;
     }
@@ -126,12 +133,11 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
         writer.append(q, scale, 0.0, t.coef);
       }
     }
-    const auto affine = specular_affine(config, material.exponent);
     for (int l = 0; l < config.lights; ++l) {
       // An absent light's specular series still feeds the unit (its colour is 0): give it the
       // unit's value for t = 0 so it stays in the unit's input range.
       const Quadratic q = l < scene_lights ? series.specular[static_cast<size_t>(l)].recentred(ox, oy) : zero;
-      for (const auto& [a, b] : affine) writer.append(q, a, b, t.coef);
+      for (const auto& [a, b] : plan.affine) writer.append(q, a, b, t.coef);
     }
     cmds.emplace_back(std::move(t));
     ++stats.triangles;

@@ -15,6 +15,7 @@ void UnitConfig::validate() const {
   series.validate("unit config: series");
   spec_colour.validate("unit config: spec_colour");
   specular.out.validate("unit config: specular.out");
+  specular.validate();
   if (!coef.is_signed || !series.is_signed) fail("coef and series formats must be signed");
   if (spec_colour.is_signed || specular.out.is_signed)
     fail("spec_colour and specular.out formats must be unsigned");

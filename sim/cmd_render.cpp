@@ -31,6 +31,7 @@ struct RenderOptions {
   std::string specular;
   double heat_scale_lsb = 4.0;
   bool quiet = false;
+  bool all_units = false;
 };
 
 Image model_image(const std::vector<PixelOut>& pixels, int width, int height, int channels, int out_bits) {
@@ -96,7 +97,7 @@ int run_render(const RenderOptions& o) {
 
   const auto& st = frame.setup.stats;
   const auto& es = err.stats;
-  const std::string unit_label = to_string(cfg.specular.kind) +
+  const std::string unit_label = cfg.specular.describe() +
                                  (cfg.specular.kind == SpecularUnitKind::kIdeal ? " (exact pow of the fixed-point t; not hardware)" : "");
   if (!o.quiet) {
     std::cout << "scene        " << o.scene << "  (" << scene.width << "x" << scene.height << ", "
@@ -167,6 +168,67 @@ int run_render(const RenderOptions& o) {
   return 0;
 }
 
+// Every specular unit on the same scene: the highlights side by side with the reference, and
+// one line of error per unit, so a designer can look before reading.
+int run_all_units(const RenderOptions& o) {
+  FrameOptions fo;
+  fo.base = o.widths.to_config();
+  if (!std::isnan(o.budget_lsb)) fo.budget_lsb = o.budget_lsb;
+  fo.max_depth = o.max_depth;
+  const std::filesystem::path out_dir =
+      o.out_dir.empty() ? std::filesystem::path("out") / std::filesystem::path(o.scene).stem()
+                        : std::filesystem::path(o.out_dir);
+  std::filesystem::create_directories(out_dir);
+
+  std::vector<Image> images, heats;
+  nlohmann::json units = nlohmann::json::array();
+  if (!o.quiet) {
+    std::cout << std::left << std::setw(9) << "unit" << std::setw(9) << "max LSB" << std::setw(11)
+              << "mean LSB" << std::setw(18) << "PSNR" << "configuration\n";
+  }
+  for (const auto kind : {SpecularUnitKind::kIdeal, SpecularUnitKind::kLut, SpecularUnitKind::kSchlick,
+                          SpecularUnitKind::kWpow}) {
+    fo.specular_override = kind;
+    const PreparedFrame frame = prepare_frame(o.scene, fo);
+    const auto pixels = ShadeUnit(frame.config).run(frame.encoded.stream);
+    const ReferenceImage ref = render_reference(frame.setup.triangles, frame.visibility, frame.scene, frame.config.channels);
+    const ErrorMap err = compare_to_reference(pixels, ref.values, frame.visibility.owner, frame.scene.width,
+                                              frame.scene.height, frame.config.channels, frame.config.out_bits);
+    if (images.empty()) {
+      Image ref_png(frame.scene.width, frame.scene.height, frame.config.channels);
+      ref_png.pixels = reference_codes(ref.values, frame.config.out_bits);
+      images.push_back(ref_png);
+    }
+    images.push_back(model_image(pixels, frame.scene.width, frame.scene.height, frame.config.channels, frame.config.out_bits));
+    heats.push_back(error_heat_map(err.per_pixel_lsb, frame.scene.width, frame.scene.height, o.heat_scale_lsb));
+    const auto& e = err.stats;
+    const std::string description = frame.config.specular.describe();
+    if (!o.quiet) {
+      std::cout << std::left << std::setw(9) << to_string(kind) << std::setw(9) << e.max_code_lsb << std::setw(11)
+                << std::setprecision(4) << e.mean_code_lsb << std::setw(18) << format_db(e.psnr_db)
+                << description << (kind == SpecularUnitKind::kIdeal ? " (exact pow; not hardware)" : "") << "\n";
+    }
+    units.push_back({{"unit", to_string(kind)}, {"configuration", description},
+                     {"max_code_lsb", e.max_code_lsb}, {"mean_code_lsb", e.mean_code_lsb},
+                     {"psnr_db", std::isinf(e.psnr_db) ? nlohmann::json(nullptr) : nlohmann::json(e.psnr_db)},
+                     {"max_real_lsb", e.max_real_lsb}, {"table_load_cycles", frame.encoded.stats.table_load_cycles},
+                     {"stream_words", frame.encoded.stats.words}});
+  }
+  write_png((out_dir / "units.png").string(), hstack(images, 4));
+  write_png((out_dir / "units_error.png").string(), hstack(heats, 4));
+  if (!o.quiet) {
+    std::cout << "images   " << (out_dir / "units.png").string() << " (reference | ideal | lut | schlick | wpow)\n"
+              << "         " << (out_dir / "units_error.png").string() << " (error heat maps, same order without the reference; full scale "
+              << o.heat_scale_lsb << " LSB)\n";
+  }
+  if (!o.json_path.empty()) {
+    std::ofstream os(o.json_path);
+    if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
+    os << nlohmann::json{{"scene", o.scene}, {"units", units}}.dump(2) << '\n';
+  }
+  return 0;
+}
+
 }  // namespace
 
 void register_render(CLI::App& app, int& exit_code) {
@@ -189,8 +251,12 @@ void register_render(CLI::App& app, int& exit_code) {
   sub->add_option("--heat-scale", opts->heat_scale_lsb, "error heat map full scale in LSBs")
       ->check(CLI::PositiveNumber)->capture_default_str();
   sub->add_flag("-q,--quiet", opts->quiet, "print nothing (use with --json)");
+  sub->add_flag("--all-units", opts->all_units,
+                "render with every specular unit (ideal, lut, schlick, wpow) and write units.png:\n"
+                "the highlights side by side with the reference, and one error line per unit")
+      ->excludes("--specular");
   add_width_options(*sub, opts->widths);
-  sub->callback([opts, &exit_code]() { exit_code = run_render(*opts); });
+  sub->callback([opts, &exit_code]() { exit_code = opts->all_units ? run_all_units(*opts) : run_render(*opts); });
 }
 
 }  // namespace shadesim

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "host/image.h"
 
@@ -55,6 +56,24 @@ TEST(Cli, RenderWritesImagesAndJsonFigures) {
     EXPECT_EQ(img.height, 256) << png;
   }
   EXPECT_TRUE(std::filesystem::exists(dir / "s.cmd"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, AllUnitsWritesTheHighlightStripAndOneLinePerUnit) {
+  const auto dir = temp_dir("units");
+  const Result r = run("render " + kScenes + "specular.json --all-units --out " + dir.string() + " --json " +
+                       (dir / "u.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream js(dir / "u.json");
+  const auto j = nlohmann::json::parse(js);
+  ASSERT_EQ(j["units"].size(), 4u);
+  std::set<std::string> names;
+  for (const auto& u : j["units"]) names.insert(u["unit"].get<std::string>());
+  EXPECT_EQ(names, (std::set<std::string>{"ideal", "lut", "schlick", "wpow"}));
+  // The ideal unit differs from the reference only by the setup budget and rounding.
+  EXPECT_LE(j["units"][0]["max_code_lsb"].get<int>(), 1);
+  const Image strip = read_png((dir / "units.png").string());
+  EXPECT_EQ(strip.width, 5 * 256 + 4 * 4);  // reference + four units, 4-pixel gaps
   std::filesystem::remove_all(dir);
 }
 
