@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <optional>
 
 #include "host/frame.h"
 #include "host/metrics.h"
@@ -12,9 +13,11 @@ namespace shadesim {
 namespace {
 
 ErrorStats render(const std::string& scene, const UnitConfig& base = UnitConfig{},
-                  EncodeStats* encode_stats = nullptr) {
+                  EncodeStats* encode_stats = nullptr,
+                  std::optional<SpecularUnitKind> specular = std::nullopt) {
   FrameOptions o;
   o.base = base;
+  o.specular_override = specular;
   const PreparedFrame f = prepare_frame(std::string(SHADESIM_SOURCE_DIR) + "/scenes/" + scene, o);
   if (encode_stats) *encode_stats = f.encoded.stats;
   ShadeUnit unit(f.config);
@@ -62,7 +65,7 @@ TEST(Render, RealMeshSliversAreExactThroughWrappingCoefficients) {
   EXPECT_GT(es.max_code_lsb, 1);
 }
 
-TEST(Render, EveryShippedSceneShadesEachVisiblePixelOnce) {
+TEST(Render, EveryShippedSceneWithEveryUnitShadesEachVisiblePixelOnce) {
   for (const auto& entry : std::filesystem::directory_iterator(std::string(SHADESIM_SOURCE_DIR) + "/scenes")) {
     if (entry.path().extension() != ".json") continue;
     if (entry.path().filename() == "suzanne.json" &&
@@ -70,9 +73,12 @@ TEST(Render, EveryShippedSceneShadesEachVisiblePixelOnce) {
       std::cout << "skipping " << entry.path() << ": assimp-testmodels not installed\n";
       continue;
     }
-    SCOPED_TRACE(entry.path().string());
-    const ErrorStats e = render(entry.path().filename().string());
-    EXPECT_GT(e.pixels, 1000u);
+    for (const auto unit : {SpecularUnitKind::kIdeal, SpecularUnitKind::kLut, SpecularUnitKind::kSchlick,
+                            SpecularUnitKind::kWpow}) {
+      SCOPED_TRACE(entry.path().string() + " with " + to_string(unit));
+      const ErrorStats e = render(entry.path().filename().string(), UnitConfig{}, nullptr, unit);
+      EXPECT_GT(e.pixels, 1000u);
+    }
   }
 }
 
