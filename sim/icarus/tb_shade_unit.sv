@@ -1,0 +1,155 @@
+// tb_shade_unit: Icarus Verilog (-g2012) testbench of rtl/shade_unit.sv, an independent
+// simulator of the same RTL the Verilator harness runs. It replays a command stream's binary
+// words and writes every output pixel, so its pixels can be compared with the bit-accurate
+// model (sim/icarus/stream_tool.cpp writes both files), and its cycle count with the harness's.
+//
+//   vvp tb.vvp +words=/abs/stream.hex [+pixels=/abs/out.txt]
+//
+// Stimulus: no idle gaps on the cmd port and pix_ready always high (the harness's
+// --gap-pct 0 --stall-pct 0), so the cycle count equals rtl_cosim_*'s `cycles=` for the same
+// stream. Cycle 0 is the first clock edge after reset, as in the harness; the count is the last
+// pixel's cycle + 1.
+//
+// Parameters are shade_unit's, set per configuration with iverilog -Ptb_shade_unit.NAME=VALUE.
+module tb_shade_unit #(
+  parameter int CHANNELS         = 1,
+  parameter int LIGHTS           = 1,
+  parameter int XY_BITS          = 12,
+  parameter int COEF_WL          = 36,
+  parameter int COEF_IWL         = 4,
+  parameter int SERIES_WL        = 32,
+  parameter int SERIES_IWL       = 4,
+  parameter int SERIES_QUANT     = 0,
+  parameter int SERIES_OVERFLOW  = 1,
+  parameter int SPEC_COLOUR_WL   = 13,
+  parameter int SPEC_COLOUR_IWL  = 1,
+  parameter int OUT_BITS         = 8,
+  parameter int SPECULAR_KIND    = 0,
+  parameter int SPECULAR_OUT_WL  = 17,
+  parameter int SPECULAR_OUT_IWL = 1,
+  parameter int FAULT_LSB_ROW    = -1,
+  parameter int FAULT_STALL_ROW  = -1,
+  // Capacity of the word memory (Icarus allocates it all: ~45 bytes a word); a longer stream
+  // is a hard error, never a silent truncation.
+  parameter int MAX_WORDS        = 1 << 20,
+  // After the last word is accepted, this many cycles without a pixel mean the unit is drained
+  // (its pipeline is a few cycles deep). Without any progress for HANG_CYCLES it is hung.
+  parameter int DRAIN_CYCLES     = 64,
+  parameter int HANG_CYCLES      = 100000
+);
+  localparam int ResetCycles = 4;  // sim/harness/cosim.h kResetCycles
+
+  logic clk = 1'b0;
+  logic rst_n = 1'b0;
+  always #5 clk = ~clk;
+
+  logic [63:0]                  cmd_data = '0;
+  logic                         cmd_valid = 1'b0;
+  logic                         cmd_ready;
+  logic [XY_BITS-1:0]           pix_x, pix_y;
+  logic [CHANNELS*OUT_BITS-1:0] pix_colour;
+  logic                         pix_eor, pix_valid;
+  logic                         pix_ready = 1'b1;
+
+  shade_unit #(
+    .CHANNELS(CHANNELS), .LIGHTS(LIGHTS), .XY_BITS(XY_BITS),
+    .COEF_WL(COEF_WL), .COEF_IWL(COEF_IWL),
+    .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
+    .SERIES_QUANT(SERIES_QUANT), .SERIES_OVERFLOW(SERIES_OVERFLOW),
+    .SPEC_COLOUR_WL(SPEC_COLOUR_WL), .SPEC_COLOUR_IWL(SPEC_COLOUR_IWL), .OUT_BITS(OUT_BITS),
+    .SPECULAR_KIND(SPECULAR_KIND),
+    .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL),
+    .FAULT_LSB_ROW(FAULT_LSB_ROW), .FAULT_STALL_ROW(FAULT_STALL_ROW)
+  ) dut (
+    .clk_i(clk), .rst_ni(rst_n),
+    .cmd_data_i(cmd_data), .cmd_valid_i(cmd_valid), .cmd_ready_o(cmd_ready),
+    .pix_x_o(pix_x), .pix_y_o(pix_y), .pix_colour_o(pix_colour), .pix_eor_o(pix_eor),
+    .pix_valid_o(pix_valid), .pix_ready_i(pix_ready)
+  );
+
+  logic [63:0] words [0:MAX_WORDS-1];  // unloaded entries stay X
+  int n_words = 0;
+  int next_word = 0;
+  longint cycle = 0;
+  longint last_pixel_cycle = -1;
+  longint last_progress = 0;
+  longint pixels = 0;
+  int idle = 0;
+  bit running = 1'b0;
+  int pix_fd = 0;
+  string words_path, pixels_path;
+
+  function automatic bit loaded(int i);
+    return (^words[i]) !== 1'bx;
+  endfunction
+
+  initial begin
+    int fd;
+    reg [8*512-1:0] header;  // Icarus 11: $fgets wants a reg, not a string
+    if (!$value$plusargs("words=%s", words_path)) begin
+      $fatal(1, "tb_shade_unit: missing +words=FILE (the command stream as $readmemh hex words)");
+    end
+    // $readmemh only warns about a missing file and leaves the memory X: check first. The
+    // first line (a comment to $readmemh) gives the word count.
+    fd = $fopen(words_path, "r");
+    if (fd == 0) $fatal(1, "tb_shade_unit: +words=%0s: cannot open the file", words_path);
+    if ($fgets(header, fd) == 0 || $sscanf(header, "// shadesim-words %d", n_words) != 1 || n_words < 1) begin
+      $fatal(1, "tb_shade_unit: %0s: line 1: expected \"// shadesim-words N ...\" with N >= 1 (icarus_stream_tool export writes it)",
+             words_path);
+    end
+    $fclose(fd);
+    if (n_words > MAX_WORDS) begin
+      $fatal(1, "tb_shade_unit: %0s: %0d words, more than MAX_WORDS=%0d; compile with a larger -Ptb_shade_unit.MAX_WORDS",
+             words_path, n_words, MAX_WORDS);
+    end
+    $readmemh(words_path, words, 0, n_words - 1);
+    if (!loaded(n_words - 1)) begin
+      $fatal(1, "tb_shade_unit: %0s: fewer hex words than the %0d the first line promises", words_path, n_words);
+    end
+    if ($value$plusargs("pixels=%s", pixels_path)) begin
+      pix_fd = $fopen(pixels_path, "w");
+      if (pix_fd == 0) $fatal(1, "tb_shade_unit: +pixels=%0s: cannot open for writing", pixels_path);
+    end
+    repeat (ResetCycles) @(posedge clk);
+    rst_n     <= 1'b1;
+    cmd_valid <= 1'b1;
+    cmd_data  <= words[0];
+    running   <= 1'b1;
+  end
+
+  // Everything sampled here is what the RTL saw before this edge; the inputs for the next
+  // cycle are driven with nonblocking assignments, as a register would.
+  always @(posedge clk) begin
+    if (running) begin
+      if (cmd_valid && cmd_ready) begin
+        next_word = next_word + 1;
+        last_progress = cycle;
+        cmd_valid <= next_word < n_words;
+        cmd_data  <= next_word < n_words ? words[next_word] : 64'd0;
+      end
+      if (pix_valid && pix_ready) begin
+        pixels = pixels + 1;
+        last_pixel_cycle = cycle;
+        last_progress = cycle;
+        idle = 0;
+        if (pix_fd != 0) begin
+          $fwrite(pix_fd, "%0d %0d", pix_x, pix_y);
+          for (int c = 0; c < CHANNELS; c++) $fwrite(pix_fd, " %0d", pix_colour[c*OUT_BITS +: OUT_BITS]);
+          $fwrite(pix_fd, " %0d\n", pix_eor);
+        end
+      end else if (next_word >= n_words) begin
+        idle = idle + 1;
+      end
+      if (next_word >= n_words && idle >= DRAIN_CYCLES) begin
+        if (pix_fd != 0) $fclose(pix_fd);
+        $display("tb_shade_unit: words=%0d pixels=%0d cycles=%0d", n_words, pixels, last_pixel_cycle + 1);
+        $finish;
+      end
+      if (cycle - last_progress > HANG_CYCLES) begin
+        $fatal(1, "tb_shade_unit: hung: no word accepted and no pixel for %0d cycles at cycle %0d (word %0d of %0d, %0d pixels out)",
+               HANG_CYCLES, cycle, next_word, n_words, pixels);
+      end
+      cycle = cycle + 1;
+    end
+  end
+endmodule
