@@ -1,0 +1,299 @@
+// Hard cases for co-simulation (scenes/hard/): each scene is rendered through the whole pipeline
+// and the bit-accurate model, checked against the double reference, and checked to really contain
+// the stream property that makes it hard (a 2048-pixel span, 1-pixel spans, 10,000 triangles,
+// frequent material switches, a finite-eye specular that varies across a flat plane).
+//
+// Error bounds are derived, not observed: the setup measures each triangle's Taylor error (max
+// over the pixel centres it covers, in output LSBs), and the fixed-point error on top of it is
+// bounded below from the stream itself (span lengths, offsets from the triangle origin, widths).
+// If the model's value before output rounding is within E LSB of the reference, the two rounded
+// codes differ by at most floor(E) + 1 - so by at most 1 when E < 1.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "host/frame.h"
+#include "host/metrics.h"
+#include "host/reference.h"
+#include "model/shade_unit.h"
+
+namespace shadesim {
+namespace {
+
+std::string hard_scene(const std::string& name) {
+  return std::string(SHADESIM_SOURCE_DIR) + "/scenes/hard/" + name;
+}
+
+struct Rendered {
+  PreparedFrame frame;
+  std::vector<PixelOut> pixels;
+  ReferenceImage reference;
+  ErrorStats error;
+};
+
+Rendered render(const std::string& path, const FrameOptions& options = FrameOptions{}) {
+  Rendered r;
+  r.frame = prepare_frame(path, options);
+  const PreparedFrame& f = r.frame;
+  ShadeUnit unit(f.config);
+  r.pixels = unit.run(f.encoded.stream);
+  r.reference = render_reference(f.setup.triangles, f.visibility, f.scene, f.config.channels);
+  // Throws if a pixel is shaded twice or model and visibility disagree on coverage.
+  r.error = compare_to_reference(r.pixels, r.reference.values, f.visibility.owner, f.scene.width,
+                                 f.scene.height, f.config.channels, f.config.out_bits)
+                .stats;
+  return r;
+}
+
+template <typename T>
+std::vector<T> commands_of(const CommandStream& s) {
+  std::vector<T> out;
+  for (const Command& c : s.commands)
+    if (const auto* x = std::get_if<T>(&c)) out.push_back(*x);
+  return out;
+}
+
+double quantization_step(const FixedFormat& f) {
+  const double ulp = std::ldexp(1.0, -f.frac_bits());
+  return f.quant == Quantization::kTruncate ? ulp : ulp / 2;
+}
+
+// Upper bound, in output LSBs, on |model value before output rounding - value of the setup's
+// double quadratics| over every pixel of the stream, for the ideal specular unit (exact pow of
+// the fixed-point t). Terms, per series (one light's t, or a colour-scaled diffuse t):
+//   coefficients: each T_i is off by at most half a coef ulp (round-to-nearest encoder), so the
+//     value at integer offsets (dx, dy) from the origin is off by at most q (1 + |dx| + |dy|)^2;
+//   span setup: v, d, d2 each quantized once into the series format (error < e, one series
+//     step: e = ulp with truncation, ulp/2 with rounding), after k steps at most
+//     e (1 + k + k(k-1)/2) - the design brief's drift bound; the additions themselves are exact.
+// The specular series error reaches the colour through clamp01(t)^n, n-Lipschitz on [0, 1] for
+// n >= 1, times ks; then the unit output, the specular colour and the product are quantized, and
+// the ambient colour is quantized once. Output saturation and max(0, .) only shrink errors.
+double fixed_point_bound_lsb(const PreparedFrame& f) {
+  const UnitConfig& c = f.config;
+  EXPECT_EQ(c.specular.kind, SpecularUnitKind::kIdeal) << "the bound is for the ideal unit";
+  const double coef_half_ulp = std::ldexp(1.0, -c.coef.frac_bits() - 1);
+  EXPECT_EQ(c.coef.quant, Quantization::kRoundNearest);
+  const double series_step = quantization_step(c.series);
+  const double series_ulp = std::ldexp(1.0, -c.series.frac_bits());
+
+  double worst_series = 0;  // max over spans of the per-series error at the span's worst pixel
+  TriangleCmd tri;
+  for (const Command& cmd : f.encoded.stream.commands) {
+    if (const auto* t = std::get_if<TriangleCmd>(&cmd)) tri = *t;
+    if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
+      const double dy = std::abs(s->y - tri.yo);
+      const double dx = std::max(std::abs(s->x0 - tri.xo), std::abs(s->x0 + s->length - 1 - tri.xo));
+      const double k = s->length - 1;
+      const double coef = coef_half_ulp * (1 + dx + dy) * (1 + dx + dy);
+      const double drift = series_step * (1 + k + k * (k - 1) / 2);
+      worst_series = std::max(worst_series, coef + drift);
+    }
+  }
+  double worst = 0;
+  for (const Material& m : f.scene.materials) {
+    for (int ch = 0; ch < c.channels; ++ch) {
+      double e = series_ulp;  // ambient quantized into the series format
+      for (const DirectionalLight& light : f.scene.lights) {
+        const double lc = ch == 0 ? light.colour.x : ch == 1 ? light.colour.y : light.colour.z;
+        const double ks = (ch == 0 ? m.specular.x : ch == 1 ? m.specular.y : m.specular.z) * lc;
+        const double n = m.exponent;
+        // The exponent word is u10.16 rounded: |d t^n / dn| = |t^n ln t| <= 1/(e n).
+        const double exponent_error = std::ldexp(1.0, -kExponentFracBits - 1) / (std::exp(1.0) * n);
+        const double unit_out = std::ldexp(1.0, -c.specular.out.frac_bits());  // truncated
+        const double spec = ks * (n * worst_series + exponent_error + unit_out) +
+                            quantization_step(c.spec_colour) + series_step;
+        e += worst_series + spec;
+      }
+      worst = std::max(worst, e);
+    }
+  }
+  return worst * std::ldexp(1.0, c.out_bits);
+}
+
+// Taylor error measured by setup plus the fixed-point bound: the model's value before output
+// rounding is within this many LSBs of the reference.
+double total_bound_lsb(const PreparedFrame& f) {
+  return f.setup.stats.worst_error_lsb + fixed_point_bound_lsb(f);
+}
+
+int code_bound(double real_bound_lsb) { return static_cast<int>(std::floor(real_bound_lsb)) + 1; }
+
+void report(const char* scene, const Rendered& r, double bound) {
+  std::cout << scene << ": " << r.frame.config.to_string() << ": max error " << r.error.max_code_lsb
+            << " LSB (codes), derived bound " << bound << " LSB real -> " << code_bound(bound)
+            << " LSB codes (Taylor " << r.frame.setup.stats.worst_error_lsb << ")\n";
+}
+
+TEST(HardScenes, LongSpanHas2048PixelSpansAndStaysWithinTheDerivedDriftBound) {
+  const Rendered r = render(hard_scene("long_span.json"));
+  const auto spans = commands_of<SpanCmd>(r.frame.encoded.stream);
+  ASSERT_EQ(spans.size(), 8u) << "one triangle covers every row";
+  for (const SpanCmd& s : spans) {
+    EXPECT_EQ(s.x0, 0);
+    EXPECT_EQ(s.length, 2048);
+  }
+  // The shading really changes along the row (from the double reference, not the model), so
+  // d and d2 carry it across the whole span.
+  const double left = r.reference.at(0, 4, 0), right = r.reference.at(2047, 4, 0);
+  EXPECT_GT(std::fabs(right - left) * 256, 20.0) << left << " .. " << right;
+
+  // With the default s4.28 series, truncation drift over 2047 steps is 2^-28 * 2096129, about
+  // 2 LSB per series, amplified by n * ks = 2.4 through the specular power: more than the 1 LSB
+  // the Taylor budget alone would give. Assert the derived bound, and that it is needed.
+  const double bound = total_bound_lsb(r.frame);
+  report("long_span", r, bound);
+  EXPECT_GT(bound, 1.0);
+  EXPECT_LE(r.error.max_code_lsb, code_bound(bound)) << "bound " << bound << " LSB";
+  EXPECT_GT(r.error.max_code_lsb, 1) << "drift no longer shows: the scene lost its hard case";
+
+  // Wider accumulators (the brief: F >= 30 for L = 2048, here 34 to cover the x2.4 specular
+  // slope) bring the derived bound under 1 LSB, hence codes within 1.
+  FrameOptions wide;
+  wide.base.coef = parse_fixed_format("s4.40:rnd:wrap", "coef");
+  wide.base.series = parse_fixed_format("s4.34:wrap", "series");
+  const Rendered w = render(hard_scene("long_span.json"), wide);
+  const double wide_bound = total_bound_lsb(w.frame);
+  report("long_span (wide)", w, wide_bound);
+  ASSERT_LT(wide_bound, 1.0);
+  EXPECT_LE(w.error.max_code_lsb, 1);
+}
+
+TEST(HardScenes, SinglePixelsIsMostlyOnePixelSpansWithinOneLsb) {
+  const Rendered r = render(hard_scene("single_pixels.json"));
+  const auto spans = commands_of<SpanCmd>(r.frame.encoded.stream);
+  const auto ones = std::count_if(spans.begin(), spans.end(), [](const SpanCmd& s) { return s.length == 1; });
+  EXPECT_GT(ones, 2000);
+  EXPECT_GT(static_cast<double>(ones), 0.9 * static_cast<double>(spans.size()));
+  // Back-to-back TRI, SPAN, TRI, SPAN: triangles that own exactly one pixel.
+  size_t tri_then_single_span = 0;
+  const auto& cmds = r.frame.encoded.stream.commands;
+  for (size_t i = 0; i + 2 < cmds.size(); ++i) {
+    const auto* s = std::get_if<SpanCmd>(&cmds[i + 1]);
+    if (std::holds_alternative<TriangleCmd>(cmds[i]) && s && s->length == 1 &&
+        !std::holds_alternative<SpanCmd>(cmds[i + 2]))
+      ++tri_then_single_span;
+  }
+  EXPECT_GT(tri_then_single_span, 500u);
+
+  // Setup keeps the Taylor error under the scene's 0.9 LSB budget and 1-pixel spans add almost
+  // no fixed-point error, so the real error is under 1 LSB and the rounded codes differ by <= 1.
+  const double bound = total_bound_lsb(r.frame);
+  report("single_pixels", r, bound);
+  ASSERT_LT(bound, 1.0);
+  EXPECT_LE(r.error.max_code_lsb, 1);
+  size_t span_pixels = 0;
+  for (const SpanCmd& s : spans) span_pixels += static_cast<size_t>(s.length);
+  EXPECT_EQ(r.error.pixels, span_pixels);
+}
+
+TEST(HardScenes, ManyTrianglesHasTenThousandTriCommandsWithinOneLsb) {
+  const Rendered r = render(hard_scene("many_triangles.json"));
+  const auto tris = commands_of<TriangleCmd>(r.frame.encoded.stream);
+  EXPECT_GE(tris.size(), 10000u);
+  EXPECT_LE(r.frame.scene.width, 384);
+  EXPECT_LE(r.frame.scene.height, 384);
+  // Setup keeps the Taylor error under the 0.9 LSB budget; fixed-point error adds little, so the
+  // real error is under 1 LSB and the rounded codes differ by at most 1.
+  const double bound = total_bound_lsb(r.frame);
+  report("many_triangles", r, bound);
+  ASSERT_LT(bound, 1.0);
+  EXPECT_LE(r.error.max_code_lsb, 1);
+}
+
+TEST(HardScenes, MaterialSwitchSwitchesOnEveryObjectWithinOneLsb) {
+  const Rendered r = render(hard_scene("material_switch.json"));
+  const auto materials = commands_of<MaterialCmd>(r.frame.encoded.stream);
+  // 144 spheres, consecutive ones always of different materials, all visible.
+  EXPECT_GE(materials.size(), 144u);
+  for (size_t i = 1; i < materials.size(); ++i) {
+    EXPECT_NE(materials[i].exponent, materials[i - 1].exponent) << "MATERIAL " << i << " is no switch";
+  }
+  const double bound = total_bound_lsb(r.frame);
+  report("material_switch", r, bound);
+  ASSERT_LT(bound, 1.0);
+  EXPECT_LE(r.error.max_code_lsb, 1);
+
+  // On a per-exponent LUT every switch is followed by its table: the reload the hard case is for.
+  FrameOptions lut;
+  lut.specular_override = SpecularUnitKind::kLut;
+  const Rendered l = render(hard_scene("material_switch.json"), lut);
+  const auto& cmds = l.frame.encoded.stream.commands;
+  size_t switches = 0;
+  for (size_t i = 0; i < cmds.size(); ++i) {
+    if (!std::holds_alternative<MaterialCmd>(cmds[i])) continue;
+    ++switches;
+    ASSERT_LT(i + 1, cmds.size());
+    EXPECT_TRUE(std::holds_alternative<TableCmd>(cmds[i + 1])) << "MATERIAL at " << i << " without a table";
+  }
+  EXPECT_GE(switches, 144u);
+  EXPECT_EQ(l.error.pixels, r.error.pixels);
+}
+
+// Every specular quadratic term T1..T5 (raw, coef format) of every TRI command: zero means the
+// specular cosine is constant over that triangle.
+std::vector<int64_t> specular_slopes(const PreparedFrame& f) {
+  std::vector<int64_t> out;
+  const int first = f.config.diffuse_series() * kTermsPerSeries;
+  for (const TriangleCmd& t : commands_of<TriangleCmd>(f.encoded.stream)) {
+    for (int s = 0; s < f.config.specular_series(); ++s)
+      for (int k = 1; k < kTermsPerSeries; ++k) out.push_back(t.coef[first + s * kTermsPerSeries + k]);
+  }
+  return out;
+}
+
+TEST(HardScenes, FiniteEyeSpecularVariesAcrossAFlatPlane) {
+  const Rendered r = render(hard_scene("finite_eye_plane.json"));
+  ASSERT_FALSE(r.frame.scene.eye_at_infinity);
+  const auto slopes = specular_slopes(r.frame);
+  const auto varying = std::count_if(slopes.begin(), slopes.end(), [](int64_t v) { return v != 0; });
+  EXPECT_GT(varying, static_cast<long>(slopes.size() / 2));
+  // A visible highlight: the reference spans most of the output range over the plane.
+  double lo = 1, hi = 0;
+  for (size_t p = 0; p < r.frame.visibility.owner.size(); ++p) {
+    if (r.frame.visibility.owner[p] < 0) continue;
+    lo = std::min(lo, r.reference.values[p]);
+    hi = std::max(hi, r.reference.values[p]);
+  }
+  EXPECT_GT(hi - lo, 0.5);
+  // The highlight costs subdivision: the Taylor series of a sharp finite-eye lobe fit only over
+  // small triangles.
+  EXPECT_GT(r.frame.setup.stats.splits, 50u);
+  // The error bound multiplies the series error by n * ks = 84 (the steepest slope of the lobe),
+  // so at the default s4.28 spans of a few hundred pixels already take it past 1 LSB: assert the
+  // derived bound there, and <= 1 LSB with accumulators wide enough for E < 1.
+  const double bound = total_bound_lsb(r.frame);
+  report("finite_eye_plane", r, bound);
+  EXPECT_LE(r.error.max_code_lsb, code_bound(bound)) << "bound " << bound << " LSB";
+  FrameOptions wide;
+  wide.base.coef = parse_fixed_format("s4.40:rnd:wrap", "coef");
+  wide.base.series = parse_fixed_format("s4.34:wrap", "series");
+  const Rendered w = render(hard_scene("finite_eye_plane.json"), wide);
+  const double wide_bound = total_bound_lsb(w.frame);
+  report("finite_eye_plane (wide)", w, wide_bound);
+  ASSERT_LT(wide_bound, 1.0);
+  EXPECT_LE(w.error.max_code_lsb, 1);
+
+  // Control: the same scene with the eye at infinity has one H for the whole plane, so the
+  // specular series is constant on every triangle - the variation above is the finite eye's.
+  nlohmann::json scene;
+  std::ifstream(hard_scene("finite_eye_plane.json")) >> scene;
+  scene["eye"] = "infinite";
+  // Same directory as the original would matter only for mesh files; the plane is procedural.
+  const std::string infinite_path = testing::TempDir() + "finite_eye_plane_infinite.json";
+  std::ofstream(infinite_path) << scene.dump(2);
+  const Rendered inf = render(infinite_path);
+  for (int64_t v : specular_slopes(inf.frame)) EXPECT_EQ(v, 0);
+  EXPECT_EQ(inf.frame.setup.stats.splits, 0u);
+}
+
+}  // namespace
+}  // namespace shadesim
