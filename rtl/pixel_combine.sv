@@ -34,9 +34,9 @@ module pixel_combine #(
   localparam int OutRndW    = AccW + 1 - OutDrop;
 
   for (genvar c = 0; c < CHANNELS; c++) begin : g_chan
-    localparam int NTerms = 2 * LIGHTS + 1;
-    logic [NTerms*AccW-1:0] terms;  // ambient, then per light: diffuse, specular
-    assign terms[0 +: AccW] = AccW'($signed(ambient_i[c*SERIES_WL +: SERIES_WL]));
+    // Running sum over the lights: sums[0] = ambient, sums[l+1] = sums[l] + diffuse + specular.
+    logic [(LIGHTS + 1)*AccW-1:0] sums /*verilator split_var*/;
+    assign sums[0 +: AccW] = AccW'($signed(ambient_i[c*SERIES_WL +: SERIES_WL]));
 
     for (genvar l = 0; l < LIGHTS; l++) begin : g_light
       logic signed [SERIES_WL-1:0] diffuse;
@@ -45,6 +45,7 @@ module pixel_combine #(
       logic signed [ProdW-1:0]     product;
       logic signed [ProdRndW-1:0]  product_rnd;
       logic [SERIES_WL-1:0]        product_fit;
+      logic signed [AccW-1:0]      diffuse_term, spec_term;
 
       assign diffuse = $signed(diffuse_i[(l*CHANNELS + c)*SERIES_WL +: SERIES_WL]);
       assign spec    = spec_i[l*SPECULAR_OUT_WL +: SPECULAR_OUT_WL];
@@ -56,15 +57,13 @@ module pixel_combine #(
       fixed_sat #(.IN_W(ProdRndW), .OUT_W(SERIES_WL), .OUT_SIGNED(1), .WRAP(SERIES_OVERFLOW))
         u_sat (.in_i(product_rnd), .out_o(product_fit));
 
-      assign terms[(1 + 2*l)*AccW +: AccW] = diffuse[SERIES_WL-1] ? '0 : AccW'(diffuse);
-      assign terms[(2 + 2*l)*AccW +: AccW] = AccW'($signed(product_fit));
+      assign diffuse_term = diffuse[SERIES_WL-1] ? '0 : AccW'(diffuse);
+      assign spec_term    = AccW'($signed(product_fit));
+      assign sums[(l + 1)*AccW +: AccW] = $signed(sums[l*AccW +: AccW]) + diffuse_term + spec_term;
     end
 
     logic signed [AccW-1:0] acc;
-    always_comb begin
-      acc = '0;
-      for (int i = 0; i < NTerms; i++) acc = acc + $signed(terms[i*AccW +: AccW]);
-    end
+    assign acc = $signed(sums[LIGHTS*AccW +: AccW]);
 
     logic signed [OutRndW-1:0] out_rnd;
     fixed_round #(.IN_W(AccW), .DROP(OutDrop), .ROUND(1)) u_round_out (.in_i(acc), .out_o(out_rnd));

@@ -125,7 +125,10 @@ module shade_unit #(
 
   // Triangle origin and coefficients; material registers.
   logic signed [15:0]             xo_q, yo_q;
-  logic [NCoef*COEF_WL-1:0]       coef_q;
+  // An array, not one packed vector: a partial write of a 1000+-bit vector costs the Verilated
+  // model a full copy every clock.
+  localparam int CoefIdxW = $clog2(NCoef);
+  logic [COEF_WL-1:0]             coef_q [NCoef];
   logic [CHANNELS*SERIES_WL-1:0]  ambient_q;
   logic [NDiff*SPEC_COLOUR_WL-1:0] spec_colour_q;
 
@@ -134,10 +137,8 @@ module shade_unit #(
       xo_q <= cmd_data_i[47:32];
       yo_q <= cmd_data_i[31:16];
     end
-    if (pay_fire && pay_op_q == PayTriangle) begin
-      for (int i = 0; i < NCoef; i++) begin
-        if (pay_idx_q == 16'(i)) coef_q[i*COEF_WL +: COEF_WL] <= cmd_data_i[COEF_WL-1:0];
-      end
+    if (pay_fire && pay_op_q == PayTriangle && pay_idx_q < 16'(NCoef)) begin
+      coef_q[pay_idx_q[CoefIdxW-1:0]] <= cmd_data_i[COEF_WL-1:0];
     end
     if (pay_fire && pay_op_q == PayMaterial) begin
       for (int i = 0; i < CHANNELS; i++) begin
@@ -212,7 +213,8 @@ module shade_unit #(
       .SERIES_QUANT(SERIES_QUANT), .SERIES_OVERFLOW(SERIES_OVERFLOW), .OFS_W(OfsW)
     ) u_setup (
       .clk_i, .s1_en_i(span_fire), .s2_en_i(s1_move), .s3_en_i(s2_move),
-      .coef_i(coef_q[i*6*COEF_WL +: 6*COEF_WL]), .dx_i(dx), .dy_i(dy),
+      .coef_i({coef_q[6*i+5], coef_q[6*i+4], coef_q[6*i+3], coef_q[6*i+2], coef_q[6*i+1], coef_q[6*i]}),
+      .dx_i(dx), .dy_i(dy),
       .v_o(start_v[i*SERIES_WL +: SERIES_WL]), .d_o(start_d[i*SERIES_WL +: SERIES_WL]),
       .d2_o(start_d2[i*SERIES_WL +: SERIES_WL])
     );

@@ -30,17 +30,9 @@ module span_setup #(
   localparam int SumW  = ProdW + 3;          // six terms: never overflows
   localparam int Drop  = (COEF_WL - COEF_IWL) - (SERIES_WL - SERIES_IWL);
 
-  // Sign-extension helpers keep every operand of a product at the product's width.
-  function automatic logic signed [ProdW-1:0] ext_coef(input logic [COEF_WL-1:0] c);
-    ext_coef = {{(ProdW - COEF_WL){c[COEF_WL-1]}}, c};
-  endfunction
-  function automatic logic signed [ProdW-1:0] ext_sq(input logic signed [SqW-1:0] s);
-    ext_sq = {{(ProdW - SqW){s[SqW-1]}}, s};
-  endfunction
-  function automatic logic signed [SumW-1:0] ext_sum(input logic signed [ProdW-1:0] p);
-    ext_sum = {{(SumW - ProdW){p[ProdW-1]}}, p};
-  endfunction
-
+  // Every product operand is cast to the product's width (signed casts sign-extend), so the
+  // multiplications are exact. Casts rather than functions: a Verilated function zeroes its
+  // wide temporaries on every clock.
   logic [COEF_WL-1:0] t0, t1, t2, t3, t4, t5;
   assign {t5, t4, t3, t2, t1, t0} = coef_i;
 
@@ -57,16 +49,16 @@ module span_setup #(
   logic signed [ProdW-1:0] p_t2_q, p_t4y_q, p_t5x_q, p_t5_q;
   always_ff @(posedge clk_i) begin
     if (s1_en_i) begin
-      p_t0_q   <= ext_coef(t0);
-      p_t1y_q  <= ext_coef(t1) * ext_sq(dy_w);
-      p_t2x_q  <= ext_coef(t2) * ext_sq(dx_w);
-      p_t3yy_q <= ext_coef(t3) * ext_sq(dyy);
-      p_t4xy_q <= ext_coef(t4) * ext_sq(dxy);
-      p_t5xx_q <= ext_coef(t5) * ext_sq(dxx);
-      p_t2_q   <= ext_coef(t2);
-      p_t4y_q  <= ext_coef(t4) * ext_sq(dy_w);
-      p_t5x_q  <= ext_coef(t5) * ext_sq(dx2p1);
-      p_t5_q   <= ext_coef(t5);
+      p_t0_q   <= ProdW'($signed(t0));
+      p_t1y_q  <= ProdW'($signed(t1)) * ProdW'(dy_w);
+      p_t2x_q  <= ProdW'($signed(t2)) * ProdW'(dx_w);
+      p_t3yy_q <= ProdW'($signed(t3)) * ProdW'(dyy);
+      p_t4xy_q <= ProdW'($signed(t4)) * ProdW'(dxy);
+      p_t5xx_q <= ProdW'($signed(t5)) * ProdW'(dxx);
+      p_t2_q   <= ProdW'($signed(t2));
+      p_t4y_q  <= ProdW'($signed(t4)) * ProdW'(dy_w);
+      p_t5x_q  <= ProdW'($signed(t5)) * ProdW'(dx2p1);
+      p_t5_q   <= ProdW'($signed(t5));
     end
   end
 
@@ -74,10 +66,10 @@ module span_setup #(
   logic signed [SumW-1:0] v_sum_q, d_sum_q, d2_sum_q;
   always_ff @(posedge clk_i) begin
     if (s2_en_i) begin
-      v_sum_q  <= ext_sum(p_t0_q) + ext_sum(p_t1y_q) + ext_sum(p_t2x_q) + ext_sum(p_t3yy_q)
-                + ext_sum(p_t4xy_q) + ext_sum(p_t5xx_q);
-      d_sum_q  <= ext_sum(p_t2_q) + ext_sum(p_t4y_q) + ext_sum(p_t5x_q);
-      d2_sum_q <= ext_sum(p_t5_q) <<< 1;
+      v_sum_q  <= SumW'(p_t0_q) + SumW'(p_t1y_q) + SumW'(p_t2x_q) + SumW'(p_t3yy_q)
+                + SumW'(p_t4xy_q) + SumW'(p_t5xx_q);
+      d_sum_q  <= SumW'(p_t2_q) + SumW'(p_t4y_q) + SumW'(p_t5x_q);
+      d2_sum_q <= SumW'(p_t5_q) <<< 1;
     end
   end
 
