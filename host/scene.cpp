@@ -233,6 +233,25 @@ json parse_file(const std::string& path) {
     if (colon != std::string::npos) reason = reason.substr(colon + 2);
     throw SceneError(path + ":" + std::to_string(line) + ":" + std::to_string(column) +
                      ": malformed JSON: " + reason);
+  } catch (const json::exception& e) {
+    // A number beyond double range ("1e999") is out_of_range.406, not a parse error, and carries
+    // no position: locate the quoted token from the message in the text instead.
+    std::string reason = e.what();
+    const auto bracket = reason.find("] ");
+    if (bracket != std::string::npos) reason = reason.substr(bracket + 2);
+    std::string where;
+    const auto open = reason.find('\''), close = reason.rfind('\'');
+    if (open != std::string::npos && close > open + 1) {
+      const size_t at = text.find(reason.substr(open + 1, close - open - 1));
+      if (at != std::string::npos) {
+        const size_t line = 1 + static_cast<size_t>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+        const size_t line_start = text.rfind('\n', at == 0 ? 0 : at - 1);
+        const size_t column = line_start == std::string::npos || at == 0 ? at + 1 : at - line_start;
+        where = ":" + std::to_string(line) + ":" + std::to_string(column);
+      }
+    }
+    throw SceneError(path + where + ": malformed JSON: " + reason +
+                     " (expected a number within double range)");
   }
 }
 

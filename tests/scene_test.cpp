@@ -464,6 +464,17 @@ TEST(SceneErrors, MalformedJsonReportsLineAndColumn) {
   EXPECT_EQ(message.rfind(file + ":2:15: malformed JSON", 0), 0u) << message;
 }
 
+TEST(SceneErrors, NumberBeyondDoubleRangeIsASceneErrorWithItsPosition) {
+  // nlohmann reports "1e999" as out_of_range (no position), not as a parse error; found by
+  // mutation_test. The 1e999 on line 3 starts at column 14.
+  TempDir dir;
+  const std::string file = dir.write("overflow.json", "{\n  \"image\": {\n    \"width\": 1e999}\n}\n");
+  const std::string message = scene_error([&] { load_scene(file); });
+  EXPECT_EQ(message.rfind(file + ":3:14: malformed JSON: number overflow", 0), 0u) << message;
+  const std::string negative = dir.write("negative.json", "[-1e999]");
+  EXPECT_EQ(scene_error([&] { load_scene(negative); }).rfind(negative + ":1:2: malformed JSON", 0), 0u);
+}
+
 TEST(SceneErrors, TruncatedAndGarbageFiles) {
   TempDir dir;
   const std::string text = valid_scene().dump(2);
