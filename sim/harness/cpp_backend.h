@@ -50,7 +50,7 @@ CosimResult run_verilated_cpp(const CosimJob& job) {
     }
     const CycleModel::Edge e = model.clock(model_driver.valid(), model_driver.word(), ready);
     model_driver.clock(e.cmd_fire);
-    if (e.pix_fire && e.pix_eor) board.model_scanline({e.pix_y, cycle});
+    if (e.pix_fire && e.pix_eor) board.model_scanline({e.pix_y, cycle, e.pix_x});
     top.clk_i = 1;
     top.eval();
     top.clk_i = 0;

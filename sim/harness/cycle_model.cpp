@@ -97,7 +97,7 @@ CycleRun CycleModel::run(const std::vector<uint64_t>& words, const Stimulus& sti
     driver.clock(e.cmd_fire);
     if (e.pix_fire) {
       ++r.pixels;
-      if (e.pix_eor) r.scanlines.push_back({e.pix_y, cycle});
+      if (e.pix_eor) r.scanlines.push_back({e.pix_y, cycle, e.pix_x});
     }
     ++cycle;
   }

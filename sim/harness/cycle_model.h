@@ -18,6 +18,7 @@ namespace shadesim {
 struct ScanlineDone {
   int y = 0;
   uint64_t cycle = 0;
+  int x = -1;  // x of the end-of-row pixel, when known
 };
 
 struct CycleRun {

@@ -109,7 +109,7 @@ SC_MODULE(ScCycleModel) {
     const auto c = static_cast<uint64_t>(cycle);
     const CycleModel::Edge e = model_.clock(driver_.valid(), driver_.word(), stim_.pix_ready(c));
     driver_.clock(e.cmd_fire);
-    if (e.pix_fire && e.pix_eor) board_.model_scanline({e.pix_y, c});
+    if (e.pix_fire && e.pix_eor) board_.model_scanline({e.pix_y, c, e.pix_x});
     // The sink may record this edge's pixel after this check: completion is seen one edge
     // later, which changes nothing that is compared.
     if (board_.failed() || board_.complete()) {

@@ -65,8 +65,8 @@ void Scoreboard::rtl_pixel(const PixelOut& got, uint64_t cycle) {
   cycles_ = cycle + 1;
   if (want.end_of_row) {
     ++scanline_;
-    rtl_rows_.push_back({got.y, cycle});
-    rtl_done_.push_back({got.y, cycle});
+    rtl_rows_.push_back({got.y, cycle, got.x});
+    rtl_done_.push_back({got.y, cycle, got.x});
     compare_rows();
   }
 }
@@ -87,6 +87,7 @@ void Scoreboard::compare_rows() {
       mm.kind = Mismatch::Kind::kCycle;
       mm.scanline = static_cast<int>(rows_compared_);
       mm.y = m.y;
+      mm.x = r.x;
       mm.expected = "y=" + std::to_string(m.y) + " done at cycle " + std::to_string(m.cycle) +
                     " (cycle model)";
       mm.got = "y=" + std::to_string(r.y) + " done at cycle " + std::to_string(r.cycle) + " (RTL)";
