@@ -65,7 +65,7 @@ void validate_command(const Command& cmd, const UnitConfig& cfg, const std::stri
                                " (xy_bits " + std::to_string(cfg.xy_bits) + "), got y=" +
                                std::to_string(s->y) + " x0=" + std::to_string(s->x0));
     }
-    if (s->length < 1 || s->x0 + s->length - 1 > xy_max) {
+    if (s->length < 1 || int64_t{s->x0} + s->length - 1 > xy_max) {
       throw CommandStreamError(loc + "span: length must be >= 1 and end inside the screen, got " +
                                std::to_string(s->length) + " from x0=" + std::to_string(s->x0));
     }
@@ -252,11 +252,17 @@ CommandStream CommandStream::read_text(std::istream& is, const std::string& sour
       have_header = true;
       continue;
     }
-    auto read_int = [&](const char* field) {
+    // Reads one integer of a bounded field; a value outside [lo, hi] is an error, never truncated.
+    auto read_int = [&](const char* field, int64_t lo = INT64_MIN, int64_t hi = INT64_MAX) {
       long long v = 0;
       if (!(ls >> v)) throw CommandStreamError(loc + op + ": expected an integer for " + field);
+      if (v < lo || v > hi) {
+        throw CommandStreamError(loc + op + ": " + field + " = " + std::to_string(v) + " is outside " +
+                                 std::to_string(lo) + ".." + std::to_string(hi));
+      }
       return static_cast<int64_t>(v);
     };
+    constexpr int64_t kField16 = 0xFFFF;
     // Reads integers until the next keyword (or end of line); leaves the keyword in `next`.
     auto read_list = [&](std::string* next) {
       std::vector<int64_t> v;
@@ -297,8 +303,8 @@ CommandStream CommandStream::read_text(std::istream& is, const std::string& sour
       cs.commands.emplace_back(std::move(m));
     } else if (op == "tri") {
       TriangleCmd t;
-      t.xo = static_cast<int32_t>(read_int("xo"));
-      t.yo = static_cast<int32_t>(read_int("yo"));
+      t.xo = static_cast<int32_t>(read_int("xo", -32768, 32767));
+      t.yo = static_cast<int32_t>(read_int("yo", -32768, 32767));
       std::string tok;
       while (ls >> tok) {
         if (tok == "|") continue;
@@ -313,9 +319,9 @@ CommandStream CommandStream::read_text(std::istream& is, const std::string& sour
       cs.commands.emplace_back(std::move(t));
     } else if (op == "span") {
       SpanCmd s;
-      s.y = static_cast<int32_t>(read_int("y"));
-      s.x0 = static_cast<int32_t>(read_int("x0"));
-      s.length = static_cast<int32_t>(read_int("length"));
+      s.y = static_cast<int32_t>(read_int("y", 0, kField16));
+      s.x0 = static_cast<int32_t>(read_int("x0", 0, kField16));
+      s.length = static_cast<int32_t>(read_int("length", 1, kField16));
       std::string flag;
       if (ls >> flag) {
         if (flag != "last") throw CommandStreamError(loc + "span: expected 'last' or nothing, got '" + flag + "'");
@@ -324,9 +330,7 @@ CommandStream CommandStream::read_text(std::istream& is, const std::string& sour
       cs.commands.emplace_back(s);
     } else if (op == "table") {
       TableCmd tb;
-      const int64_t base = read_int("base");
-      if (base < 0) throw CommandStreamError(loc + "table: base must be >= 0");
-      tb.base = static_cast<uint32_t>(base);
+      tb.base = static_cast<uint32_t>(read_int("base", 0, kField16));
       std::string kw;
       tb.entries = read_list(&kw);
       if (!kw.empty()) throw CommandStreamError(loc + "table: expected integers, got '" + kw + "'");
@@ -385,28 +389,65 @@ std::string config_to_json(const UnitConfig& c) {
   return j.dump();
 }
 
+namespace {
+
+// An integer field of the config JSON: must be a JSON integer (not 12.9, not true) within [lo, hi].
+int json_int(const nlohmann::json& j, const char* key, int lo, int hi) {
+  if (!j.contains(key)) throw std::invalid_argument(std::string("config.") + key + ": missing");
+  const auto& v = j.at(key);
+  if (!v.is_number_integer()) {
+    throw std::invalid_argument(std::string("config.") + key + ": expected an integer, got " + v.dump());
+  }
+  const auto x = v.get<int64_t>();
+  if (x < lo || x > hi) {
+    throw std::invalid_argument(std::string("config.") + key + ": expected " + std::to_string(lo) + ".." +
+                                std::to_string(hi) + ", got " + v.dump());
+  }
+  return static_cast<int>(x);
+}
+
+std::string json_string(const nlohmann::json& j, const char* key, const std::string& path) {
+  if (!j.contains(key) || !j.at(key).is_string()) {
+    throw std::invalid_argument(path + key + ": expected a string" +
+                                (j.contains(key) ? ", got " + j.at(key).dump() : " (missing)"));
+  }
+  return j.at(key).get<std::string>();
+}
+
+}  // namespace
+
 UnitConfig config_from_json(const std::string& text, const std::string& source) {
   UnitConfig c;
   try {
     const auto j = nlohmann::json::parse(text);
-    c.channels = j.at("channels").get<int>();
-    c.lights = j.at("lights").get<int>();
-    c.xy_bits = j.at("xy_bits").get<int>();
-    c.coef = parse_fixed_format(j.at("coef").get<std::string>(), "config.coef");
-    c.series = parse_fixed_format(j.at("series").get<std::string>(), "config.series");
-    c.spec_colour = parse_fixed_format(j.at("spec_colour").get<std::string>(), "config.spec_colour");
-    c.out_bits = j.at("out_bits").get<int>();
+    if (!j.is_object()) throw std::invalid_argument("config: expected a JSON object");
+    c.channels = json_int(j, "channels", 1, 3);
+    c.lights = json_int(j, "lights", 1, 8);
+    c.xy_bits = json_int(j, "xy_bits", 1, 16);
+    c.coef = parse_fixed_format(json_string(j, "coef", "config."), "config.coef");
+    c.series = parse_fixed_format(json_string(j, "series", "config."), "config.series");
+    c.spec_colour = parse_fixed_format(json_string(j, "spec_colour", "config."), "config.spec_colour");
+    c.out_bits = json_int(j, "out_bits", 1, 16);
+    if (!j.contains("specular") || !j.at("specular").is_object()) {
+      throw std::invalid_argument("config.specular: expected an object");
+    }
     const auto& s = j.at("specular");
-    c.specular.kind = parse_specular_unit(s.at("kind").get<std::string>(), "config.specular.kind");
-    c.specular.out = parse_fixed_format(s.at("out").get<std::string>(), "config.specular.out");
-    // Unit widths: absent keys keep their defaults (streams written before the units existed).
+    c.specular.kind = parse_specular_unit(json_string(s, "kind", "config.specular."), "config.specular.kind");
+    c.specular.out = parse_fixed_format(json_string(s, "out", "config.specular."), "config.specular.out");
+    // Unit widths: absent keys keep their defaults (streams written before the units existed);
+    // present ones must be integers / strings (validate() then checks their ranges).
     auto get_int = [](const nlohmann::json& o, const char* key, int& v) {
-      if (o.contains(key)) v = o.at(key).get<int>();
+      if (o.contains(key)) v = json_int(o, key, -1000000, 1000000);
     };
     auto get_str = [](const nlohmann::json& o, const char* key, const std::string& what,
                       auto parse, auto& v) {
-      if (o.contains(key)) v = parse(o.at(key).get<std::string>(), what);
+      if (o.contains(key)) v = parse(json_string(o, key, what.substr(0, what.size() - std::string(key).size())), what);
     };
+    for (const char* unit : {"lut", "schlick", "wpow"}) {
+      if (s.contains(unit) && !s.at(unit).is_object()) {
+        throw std::invalid_argument(std::string("config.specular.") + unit + ": expected an object");
+      }
+    }
     if (s.contains("lut")) {
       const auto& o = s.at("lut");
       get_int(o, "addr_bits", c.specular.lut.addr_bits);

@@ -96,7 +96,7 @@ void expect_text_error(const std::string& body, const std::string& needle) {
 TEST(CommandStream, TextErrorsNameLineAndExpectation) {
   expect_text_error("tri 0 0 | 1 2 3\n", "expected 12 values, got 3");
   expect_text_error("span 1 2\n", "expected an integer for length");
-  expect_text_error("span 1 2 0\n", "length must be >= 1");
+  expect_text_error("span 1 2 0\n", "length = 0 is outside 1..65535");
   expect_text_error("span 1 5000 3\n", "xy_bits");
   expect_text_error("span 1 2 3 first\n", "expected 'last'");
   expect_text_error("frobnicate\n", "unknown command 'frobnicate'");

@@ -456,32 +456,6 @@ std::vector<std::vector<long double>> integers_per_command(const std::string& te
   return out;
 }
 
-// The known defect in CommandStream::read_text (model/command_stream.cpp, reported, not ours to
-// fix): span y/x0/length and tri xo/yo are read as 64-bit and cast to int32, table base to
-// uint32, without a range check, so 4294967297 loads as 1. A mismatch is that defect exactly when
-// every differing value is the 32-bit truncation of what the text says. Counted and printed, not
-// failed, so the test guards everything else; DISABLED_TextReaderRejectsIntegersThatDoNotFitTheirField
-// reproduces it for the fix.
-bool is_known_32bit_narrowing(const std::vector<std::vector<long double>>& said,
-                              const std::vector<std::vector<long double>>& held) {
-  if (said.size() != held.size()) return false;
-  for (size_t k = 0; k < said.size(); ++k) {
-    if (said[k].size() != held[k].size()) return false;
-    for (size_t m = 0; m < said[k].size(); ++m) {
-      if (said[k][m] == held[k][m]) continue;
-      const long double v = said[k][m];
-      if (!(std::fabs(v) < 1.9e19L)) return false;
-      constexpr long double k32 = 4294967296.0L;
-      long double low = std::fmod(v, k32);  // exact: v is an integer below 2^64
-      if (low < 0) low += k32;
-      const long double as_uint32 = low;
-      const long double as_int32 = low >= k32 / 2 ? low - k32 : low;
-      if (held[k][m] != as_int32 && held[k][m] != as_uint32) return false;
-    }
-  }
-  return true;
-}
-
 // Runs a loaded stream through the model: it must shade or stop with a stream/unit error, never
 // crash. Streams whose spans would emit absurdly many pixels are reported, not run.
 void run_loaded(const CommandStream& s, const std::string& input, size_t i, const std::string& what,
@@ -512,7 +486,6 @@ void run_loaded(const CommandStream& s, const std::string& input, size_t i, cons
 TEST(Mutation, CommandStreamTextLoadsFaithfullyOrThrowsNamingTheSource) {
   Mutator mutator(kSeed + 2);
   Tally tally;
-  size_t known_narrowing = 0;
   for (const SeedStream& seed : seed_streams()) {
     const std::string text = to_text(seed.stream);
     std::istringstream unmutated(text);
@@ -532,10 +505,6 @@ TEST(Mutation, CommandStreamTextLoadsFaithfullyOrThrowsNamingTheSource) {
       // What loaded is what the text says: same integers, command by command.
       const auto said = integers_per_command(mutant);
       const auto held = integers_per_command(to_text(loaded));
-      if (said != held && is_known_32bit_narrowing(said, held)) {
-        ++known_narrowing;
-        continue;
-      }
       if (said != held) {
         std::string diff;
         for (size_t k = 0; k < std::min(said.size(), held.size()); ++k) {
@@ -560,8 +529,6 @@ TEST(Mutation, CommandStreamTextLoadsFaithfullyOrThrowsNamingTheSource) {
       run_loaded(loaded, seed.name, i, what, tally);
     }
   }
-  std::cout << "read_text: " << known_narrowing
-            << " loaded mutant(s) hold a 32-bit truncation of an integer the text gives (known defect)\n";
   expect_no_problems("read_text", tally);
 }
 
@@ -608,32 +575,24 @@ TEST(Mutation, CommandStreamBinaryDecodesOrThrowsNamingTheSource) {
 }
 
 // Numeric leaves of `said` (a mutant config) that `held` (config_to_json of what loaded) does not
-// hold as the same number. `narrowed` counts those that are exactly nlohmann's get<int>() of the
-// value - the known defect (config_from_json reads with get<int>(), which truncates 12.9 to 12,
-// wraps 4294967297 to 1 and takes true as 1); anything else is returned as a problem.
-std::string config_mismatch(const nlohmann::json& said, const nlohmann::json& held, const std::string& path,
-                            size_t* narrowed) {
+// hold as the same number (12.9 read as 12, 4294967297 as 1, true as 1), as a problem.
+std::string config_mismatch(const nlohmann::json& said, const nlohmann::json& held, const std::string& path) {
   if (said.is_object()) {
     for (const auto& item : said.items()) {
       if (!held.is_object() || !held.contains(item.key())) continue;  // unknown keys are ignored
-      const std::string m = config_mismatch(item.value(), held.at(item.key()), path + "." + item.key(), narrowed);
+      const std::string m = config_mismatch(item.value(), held.at(item.key()), path + "." + item.key());
       if (!m.empty()) return m;
     }
     return "";
   }
   if (!held.is_number()) return "";  // strings are formats and names, checked by their parsers
   if (said.is_number() && said.get<double>() == held.get<double>()) return "";
-  if ((said.is_number() || said.is_boolean()) && said.get<int>() == held.get<int>()) {
-    ++*narrowed;
-    return "";
-  }
   return path + ": text says " + said.dump() + ", loaded " + held.dump();
 }
 
 TEST(Mutation, StreamHeaderConfigLoadsFaithfullyOrThrowsNamingTheSource) {
   Mutator mutator(kSeed + 4);
   Tally tally;
-  size_t narrowed = 0;
   for (const SeedStream& seed : seed_streams()) {
     const std::string json = config_to_json(seed.stream.config);
     for (size_t i = 0; i < 300; ++i) {
@@ -645,12 +604,10 @@ TEST(Mutation, StreamHeaderConfigLoadsFaithfullyOrThrowsNamingTheSource) {
                                                         source, seed.name, i, what, tally))
         continue;
       const std::string m = config_mismatch(nlohmann::json::parse(mutant),
-                                            nlohmann::json::parse(config_to_json(loaded)), "config", &narrowed);
+                                            nlohmann::json::parse(config_to_json(loaded)), "config");
       if (!m.empty()) tally.problem(seed.name, i, what, "loaded config differs from the text: " + m);
     }
   }
-  std::cout << "config_from_json: " << narrowed
-            << " loaded value(s) narrowed to int from what the text gives (known defect)\n";
   expect_no_problems("config_from_json", tally);
 }
 
@@ -707,24 +664,23 @@ TEST(Mutation, SceneValuesThatLoadGoThroughThePipelineOrThrowDocumentedErrors) {
   EXPECT_GT(tally.loaded, 20u) << "too few value mutants survive loading to exercise the pipeline";
 }
 
-// Reproducers for two defects the text mutants found in CommandStream::read_text
-// (model/command_stream.cpp). Disabled until that file is fixed; run with
-// --gtest_also_run_disabled_tests to see them fail.
+// Regressions for defects the mutants found in CommandStream::read_text and config_from_json
+// (32-bit truncation of integers, int overflow in the span check, get<int>() of non-integers).
 CommandStream read_one_line(const std::string& line) {
   std::istringstream is("shadesim-commands 1 " + config_to_json(UnitConfig{}) + "\n" + line + "\n");
   return CommandStream::read_text(is, "repro.txt");
 }
 
-TEST(Mutation, DISABLED_TextReaderRejectsIntegersThatDoNotFitTheirField) {
-  // Each loads today, as the 32-bit truncation: x0 0, y 0, length 1, xo 1, table base 0.
+TEST(Mutation, TextReaderRejectsIntegersThatDoNotFitTheirField) {
+  // Each used to load as its 32-bit truncation: x0 0, y 0, length 1, xo 1, table base 0.
   for (const char* line : {"span 0 4294967296 5", "span 4294967296 0 5", "span 0 0 4294967297",
                            "tri 4294967297 0 | 0 0 0 0 0 0 | 0 0 0 0 0 0", "table 4294967296 1 2"}) {
     EXPECT_THROW(read_one_line(line), CommandStreamError) << line;
   }
 }
 
-TEST(Mutation, DISABLED_ConfigHeaderRejectsNumbersThatAreNotInts) {
-  // config_from_json reads every width with get<int>(): each of these loads today as 1, 12, 1.
+TEST(Mutation, ConfigHeaderRejectsNumbersThatAreNotInts) {
+  // config_from_json used to read every width with get<int>(): these loaded as 1, 12, 1.
   const std::string json = config_to_json(UnitConfig{});
   auto with = [&](const std::string& from, const std::string& to) {
     std::string t = json;
@@ -738,11 +694,9 @@ TEST(Mutation, DISABLED_ConfigHeaderRejectsNumbersThatAreNotInts) {
   }
 }
 
-TEST(Mutation, DISABLED_TextReaderRejectsASpanPastTheScreenWhateverItsLength) {
-  // validate_command tests x0 + length - 1 > xy_max in int32: 100 + 2147483647 overflows
-  // (undefined behaviour; in practice it wraps negative), so the span validates. The model then
-  // shades 2^31 pixels (x wrapping in uint16), and encode() ORs the length into the x0 and y
-  // fields of the header word.
+TEST(Mutation, TextReaderRejectsASpanPastTheScreenWhateverItsLength) {
+  // validate_command used to test x0 + length - 1 > xy_max in int32: 100 + 2147483647 overflowed
+  // (undefined behaviour), so the span validated and the model shaded 2^31 pixels.
   EXPECT_THROW(read_one_line("span 0 100 2147483647"), CommandStreamError);
 }
 
