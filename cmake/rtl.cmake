@@ -156,7 +156,7 @@ foreach(name grey_s428w rgb2_s320s)
   add_test(NAME rtl_cosim_cpp_${name}
     COMMAND rtl_cosim_cpp --config ${name} --scenario all --seed 1 --runs 3
             --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
-  foreach(scenario mixed long short slow maxbp switch)
+  foreach(scenario mixed long short slow maxbp switch tiny)
     add_test(NAME rtl_cosim_sc_${name}_${scenario}
       COMMAND rtl_cosim_sc --config ${name} --scenario ${scenario} --seed 7
               --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)

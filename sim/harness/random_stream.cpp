@@ -7,7 +7,7 @@
 namespace shadesim {
 
 std::vector<std::string> scenario_names() {
-  return {"mixed", "long", "short", "slow", "maxbp", "switch"};
+  return {"mixed", "long", "short", "slow", "maxbp", "switch", "tiny"};
 }
 
 Scenario scenario_by_name(const std::string& name) {
@@ -30,6 +30,11 @@ Scenario scenario_by_name(const std::string& name) {
   } else if (name == "switch") {
     s.shape.rows = 32; s.shape.max_len = 30; s.shape.p_material = 0.5;
     s.stim.gap_pct = 20; s.stim.max_gap = 4; s.stim.stall_pct = 20;
+  } else if (name == "tiny") {
+    // About 10,000 small triangles: every span gets its own, 1..4 pixels long.
+    s.shape.rows = 2200; s.shape.max_spans_per_row = 8; s.shape.min_len = 1; s.shape.max_len = 4;
+    s.shape.p_new_triangle = 1.0; s.shape.p_material = 0.002;
+    s.stim.gap_pct = 5; s.stim.max_gap = 3; s.stim.stall_pct = 10;
   } else {
     std::string all;
     for (const auto& n : scenario_names()) all += (all.empty() ? "" : ", ") + n;

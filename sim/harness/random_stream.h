@@ -31,8 +31,8 @@ struct Scenario {
   Stimulus stim;
 };
 
-// "mixed", "long", "short", "slow", "maxbp", "switch". Throws std::invalid_argument naming
-// the accepted names.
+// "mixed", "long", "short", "slow", "maxbp", "switch", "tiny" (~10,000 triangles). Throws
+// std::invalid_argument naming the accepted names.
 Scenario scenario_by_name(const std::string& name);
 std::vector<std::string> scenario_names();
 
