@@ -162,6 +162,9 @@ foreach(name grey_s428w rgb2_s320s)
               --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
   endforeach()
 endforeach()
+# Both backends give the same pixels, scanlines and cycles on the same run.
+add_test(NAME rtl_cosim_backends_agree
+  COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/same_results.sh ${CMAKE_BINARY_DIR} rgb2_s320s mixed 11)
 # The harness must catch deliberate faults at the right scanline.
 add_test(NAME rtl_cosim_catches_lsb_fault
   COMMAND rtl_cosim_cpp --config fault_lsb --scenario mixed --seed 3 --stall-pct 0
