@@ -1,0 +1,60 @@
+#include "sim/process.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+extern char** environ;
+
+namespace shadesim {
+
+ProcessResult run_process(const std::vector<std::string>& argv, const std::string& log_path) {
+  if (argv.empty()) throw std::invalid_argument("run_process: no program");
+  // Without a log file, capture through a temporary file (simple, no pipe deadlocks).
+  std::string path = log_path;
+  if (path.empty()) {
+    char tmpl[] = "/tmp/shadesim_out_XXXXXX";
+    const int fd = mkstemp(tmpl);
+    if (fd < 0) throw std::runtime_error(std::string("run_process: mkstemp: ") + std::strerror(errno));
+    close(fd);
+    path = tmpl;
+  }
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) {
+    throw std::runtime_error("cannot run '" + argv[0] + "': " + std::strerror(rc));
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
+  }
+  ProcessResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  if (log_path.empty()) {
+    std::ifstream is(path);
+    std::stringstream ss;
+    ss << is.rdbuf();
+    r.output = ss.str();
+    std::remove(path.c_str());
+  }
+  return r;
+}
+
+}  // namespace shadesim
