@@ -18,8 +18,9 @@
 //               1..K-s pass b through unchanged (a bypass mux), the last s square.
 //   K+1. OUTPUT quantize(b, B fraction bits) into the specular out format.
 // Timing: pipelined = K (B+1)x(B+1) squarers, one pixel per cycle, latency K + 1 (base register
-// plus one per squaring stage); iterative = one squarer reused, one pixel per K cycles, latency
-// K + 1. Same bits either way.
+// plus one per squaring stage); iterative = one squarer on one working register (loaded with the
+// base, then K steps), one pixel per K + 1 cycles, latency K + 1: the result stays in the
+// register until the next pixel starts, as with the iterative divider. Same bits either way.
 #pragma once
 
 #include <cstdint>
@@ -47,7 +48,7 @@ class WpowUnit {
     return c.timing == UnitTiming::kPipelined ? stages(c) : (stages(c) > 0 ? 1 : 0);
   }
   static int cycles_per_pixel(const WpowConfig& c) {
-    return c.timing == UnitTiming::kPipelined ? 1 : (stages(c) > 0 ? stages(c) : 1);
+    return c.timing == UnitTiming::kPipelined ? 1 : stages(c) + 1;
   }
   static int latency(const WpowConfig& c) { return stages(c) + 1; }
 
