@@ -1,0 +1,139 @@
+# Standalone checks of the specular units' RTL (rtl/exponent_lut.sv, schlick_divider.sv,
+# wpow_unit.sv, specular_slot.sv) against their model classes.
+#
+# Every configuration is Verilated once, straight into the one test executable rtl_units_test;
+# its parameters are written to a generated header as "NAME=VALUE ..." text, which the test
+# parses into the model's LutConfig / SchlickConfig / WpowConfig, so CMake and C++ cannot disagree.
+find_package(verilator 5 HINTS $ENV{VERILATOR_ROOT})
+if(NOT verilator_FOUND)
+  message(WARNING "Verilator not found: specular-unit RTL tests are skipped")
+  return()
+endif()
+find_program(IVERILOG iverilog)
+find_program(YOSYS yosys)
+
+set(RTL_UNITS_DIR ${CMAKE_SOURCE_DIR}/rtl)
+set(RTL_UNITS_GEN ${CMAKE_BINARY_DIR}/verilated/units)
+set(RTL_UNITS_COMMON ${RTL_UNITS_DIR}/fixed_round.sv ${RTL_UNITS_DIR}/fixed_sat.sv)
+# The real specular_slot adds a busy_o port, so it waits in rtl/pending/ until shade_unit connects
+# it (notes/spec_rtl.md); rtl/specular_slot.sv is the zero stub until then.
+if(EXISTS ${RTL_UNITS_DIR}/pending/specular_slot.sv)
+  set(RTL_UNITS_SLOT ${RTL_UNITS_DIR}/pending/specular_slot.sv)
+else()
+  set(RTL_UNITS_SLOT ${RTL_UNITS_DIR}/specular_slot.sv)
+endif()
+set(RTL_UNITS_SOURCES ${RTL_UNITS_COMMON} ${RTL_UNITS_DIR}/exponent_lut.sv
+    ${RTL_UNITS_DIR}/schlick_divider.sv ${RTL_UNITS_DIR}/wpow_unit.sv ${RTL_UNITS_SLOT})
+# The per-exponent table the "lut_file" configuration loads at time 0 ($readmemh); the test
+# writes it with ExponentLut::write_hex before it builds the model, and removes it to check that
+# a missing file is fatal.
+set(RTL_UNITS_TABLE_FILE ${RTL_UNITS_GEN}/lut_file_table.hex)
+
+add_executable(rtl_units_test
+  ${CMAKE_SOURCE_DIR}/tests/rtl_units/lut_rtl_test.cpp
+  ${CMAKE_SOURCE_DIR}/tests/rtl_units/schlick_rtl_test.cpp
+  ${CMAKE_SOURCE_DIR}/tests/rtl_units/wpow_rtl_test.cpp
+  ${CMAKE_SOURCE_DIR}/tests/rtl_units/slot_rtl_test.cpp)
+
+set(RTL_UNITS_ENTRIES "")
+set(RTL_UNITS_INCLUDES "")
+# rtl_unit(<name> <top module> <NAME=VALUE>...): one Verilated configuration of a unit.
+function(rtl_unit name top)
+  set(gparams "")
+  foreach(p ${ARGN})
+    list(APPEND gparams -G${p})
+  endforeach()
+  set(extra "")
+  if(name STREQUAL "lut_file")
+    set(extra "-GTABLE_FILE=\"${RTL_UNITS_TABLE_FILE}\"")
+  endif()
+  verilate(rtl_units_test
+    SOURCES ${RTL_UNITS_SOURCES}
+    TOP_MODULE ${top}
+    PREFIX V${name}
+    DIRECTORY ${RTL_UNITS_GEN}/${name}
+    VERILATOR_ARGS -Wall ${gparams} ${extra} --x-assign unique --x-initial unique)
+  string(REPLACE ";" " " text "${ARGN}")
+  set(RTL_UNITS_ENTRIES "${RTL_UNITS_ENTRIES}X(${name}, \"${text}\") \\\n" PARENT_SCOPE)
+  set(RTL_UNITS_INCLUDES "${RTL_UNITS_INCLUDES}#include \"V${name}.h\"\n" PARENT_SCOPE)
+  # Static checks of the same configuration: lint clean, Icarus accepts it.
+  add_test(NAME rtl_units_lint_${name}
+    COMMAND verilator --lint-only -Wall ${gparams} --top-module ${top} ${RTL_UNITS_SOURCES})
+  if(IVERILOG)
+    set(pparams "")
+    foreach(p ${ARGN})
+      list(APPEND pparams -P${top}.${p})
+    endforeach()
+    add_test(NAME rtl_units_iverilog_${name}
+      COMMAND ${IVERILOG} -g2012 -Wall ${pparams} -s ${top}
+              -o ${RTL_UNITS_GEN}/${name}.vvp ${RTL_UNITS_SOURCES})
+  endif()
+endfunction()
+
+# Exponent LUT: smallest widths with exhaustive inputs; interpolation with nearest index and a
+# rounded output; the default-sized table loaded from a $readmemh file.
+rtl_unit(lut_small exponent_lut ADDR_BITS=4 ENTRY_BITS=6 INTERP_BITS=0 INDEX=0
+         SERIES_WL=12 SERIES_IWL=3 OUT_WL=9 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
+rtl_unit(lut_interp exponent_lut ADDR_BITS=5 ENTRY_BITS=8 INTERP_BITS=3 INDEX=1
+         SERIES_WL=14 SERIES_IWL=3 OUT_WL=7 OUT_IWL=1 OUT_QUANT=1 OUT_OVERFLOW=0)
+rtl_unit(lut_file exponent_lut ADDR_BITS=10 ENTRY_BITS=8 INTERP_BITS=0 INDEX=0
+         SERIES_WL=32 SERIES_IWL=4 OUT_WL=17 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
+# Schlick divider: smallest widths (exhaustive operand pairs, output wider than the quotient)
+# both timings; the default widths iterative; a long pipeline with a rounded narrow output.
+rtl_unit(schlick_small_pipe schlick_divider QUOTIENT_BITS=3 OPERAND_BITS=2 TIMING=0
+         SERIES_WL=7 SERIES_IWL=2 OUT_WL=5 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
+rtl_unit(schlick_small_iter schlick_divider QUOTIENT_BITS=3 OPERAND_BITS=2 TIMING=1
+         SERIES_WL=7 SERIES_IWL=2 OUT_WL=5 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
+rtl_unit(schlick_iter schlick_divider QUOTIENT_BITS=16 OPERAND_BITS=24 TIMING=1
+         SERIES_WL=32 SERIES_IWL=4 OUT_WL=17 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
+rtl_unit(schlick_pipe schlick_divider QUOTIENT_BITS=20 OPERAND_BITS=12 TIMING=0
+         SERIES_WL=23 SERIES_IWL=3 OUT_WL=13 OUT_IWL=1 OUT_QUANT=1 OUT_OVERFLOW=0)
+# W_m: m = 4 with 4-bit base both timings (exhaustive), m = 1 (no squarer), W16 default
+# pipelined, m = 32 iterative with a rounded output.
+rtl_unit(wpow_small_pipe wpow_unit MAX_M=4 BASE_BITS=4 TIMING=0
+         SERIES_WL=8 SERIES_IWL=2 OUT_WL=6 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
+rtl_unit(wpow_small_iter wpow_unit MAX_M=4 BASE_BITS=4 TIMING=1
+         SERIES_WL=8 SERIES_IWL=2 OUT_WL=6 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
+rtl_unit(wpow_m1 wpow_unit MAX_M=1 BASE_BITS=2 TIMING=1
+         SERIES_WL=8 SERIES_IWL=2 OUT_WL=4 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
+rtl_unit(wpow_w16 wpow_unit MAX_M=16 BASE_BITS=16 TIMING=0
+         SERIES_WL=32 SERIES_IWL=4 OUT_WL=17 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
+rtl_unit(wpow_m32_iter wpow_unit MAX_M=32 BASE_BITS=12 TIMING=1
+         SERIES_WL=23 SERIES_IWL=3 OUT_WL=9 OUT_IWL=1 OUT_QUANT=1 OUT_OVERFLOW=0)
+# The slot: the cfg-port mapping and the timing contract through the wrapper.
+rtl_unit(slot_lut specular_slot SPECULAR_KIND=1 SERIES_WL=16 SERIES_IWL=3 SERIES_PER_LIGHT=1
+         SPECULAR_OUT_WL=12 SPECULAR_OUT_IWL=1 LUT_ADDR_BITS=6 LUT_ENTRY_BITS=10
+         LUT_INTERP_BITS=2 LUT_INDEX=1)
+rtl_unit(slot_schlick specular_slot SPECULAR_KIND=2 SERIES_WL=32 SERIES_IWL=4 SERIES_PER_LIGHT=2
+         SPECULAR_OUT_WL=17 SPECULAR_OUT_IWL=1 SCHLICK_QUOTIENT_BITS=12 SCHLICK_OPERAND_BITS=16
+         SCHLICK_TIMING=1)
+rtl_unit(slot_wpow specular_slot SPECULAR_KIND=3 SERIES_WL=20 SERIES_IWL=4 SERIES_PER_LIGHT=1
+         SPECULAR_OUT_WL=11 SPECULAR_OUT_IWL=1 WPOW_MAX_M=8 WPOW_BASE_BITS=10 WPOW_TIMING=1)
+rtl_unit(slot_ideal specular_slot SPECULAR_KIND=0 SERIES_WL=32 SERIES_IWL=4 SERIES_PER_LIGHT=1
+         SPECULAR_OUT_WL=17 SPECULAR_OUT_IWL=1)
+
+file(WRITE ${RTL_UNITS_GEN}/rtl_units_configs.inc.new
+     "// Generated by cmake/rtl_units.cmake: the unit configurations Verilated into rtl_units_test.\n${RTL_UNITS_INCLUDES}#define SHADESIM_RTL_UNIT_CONFIGS(X) \\\n${RTL_UNITS_ENTRIES}\n")
+configure_file(${RTL_UNITS_GEN}/rtl_units_configs.inc.new ${RTL_UNITS_GEN}/rtl_units_configs.inc COPYONLY)
+target_include_directories(rtl_units_test PRIVATE ${CMAKE_SOURCE_DIR} ${RTL_UNITS_GEN})
+target_compile_definitions(rtl_units_test PRIVATE
+  SHADESIM_RTL_UNITS_TABLE_FILE="${RTL_UNITS_TABLE_FILE}")
+target_link_libraries(rtl_units_test PRIVATE shadesim_model GTest::gtest_main)
+add_test(NAME rtl_units_test COMMAND rtl_units_test)
+set_tests_properties(rtl_units_test PROPERTIES LABELS rtl TIMEOUT 300)
+
+# Yosys: each unit synthesizes without latches (small widths: this is about structure).
+if(YOSYS)
+  foreach(cfg
+      "lut:-set SPECULAR_KIND 1 -set LUT_ADDR_BITS 6 -set LUT_INTERP_BITS 3"
+      "schlick_iter:-set SPECULAR_KIND 2 -set SERIES_PER_LIGHT 2 -set SCHLICK_QUOTIENT_BITS 10 -set SCHLICK_OPERAND_BITS 12 -set SCHLICK_TIMING 1"
+      "schlick_pipe:-set SPECULAR_KIND 2 -set SERIES_PER_LIGHT 2 -set SCHLICK_QUOTIENT_BITS 10 -set SCHLICK_OPERAND_BITS 12 -set SCHLICK_TIMING 0"
+      "wpow_pipe:-set SPECULAR_KIND 3 -set WPOW_BASE_BITS 10 -set WPOW_TIMING 0"
+      "wpow_iter:-set SPECULAR_KIND 3 -set WPOW_BASE_BITS 10 -set WPOW_TIMING 1")
+    string(REGEX REPLACE ":.*" "" cname "${cfg}")
+    string(REGEX REPLACE "^[^:]*:" "" cparams "${cfg}")
+    add_test(NAME rtl_units_yosys_${cname}
+      COMMAND ${CMAKE_SOURCE_DIR}/tests/rtl_units/yosys_unit_check.sh ${YOSYS}
+              ${RTL_UNITS_GEN}/yosys_${cname}.log "${cparams}" ${RTL_UNITS_SOURCES})
+  endforeach()
+endif()

@@ -1,0 +1,165 @@
+// exponent_lut: t^n from a table (model/exponent_lut.h, class ExponentLut; Bishop & Weimer).
+//
+// Parameters mirror LutConfig and the unit's formats: ADDR_BITS (A, 2^A entries), ENTRY_BITS
+// (B, entry e means e / 2^B), INTERP_BITS (F, 0 = no interpolation), INDEX (LutIndex: 0 truncate,
+// 1 nearest); SERIES_WL/IWL (the series format, fs = SERIES_WL - SERIES_IWL >= 1 fraction bits);
+// OUT_WL/IWL/QUANT/OVERFLOW (the specular out format, unsigned). Shared vs per-exponent
+// addressing is the host's business: the hardware is the same.
+//
+// Stages (each a register clocked by en_i, in the model's order):
+//   1. ADDRESS  a = quantize(series << shift, unsigned A.F, INDEX rule, saturate)
+//               (series << shift is exact; the rounding/saturation is fixed_round + fixed_sat)
+//   2. READ     e0 = table[a >> F]; with F > 0 also e1 = table[min(idx + 1, 2^A - 1)] and frac
+//   3. INTERP   (F > 0 only) v = e0 * 2^F + frac * (e1 - e0), exact
+//   4. OUTPUT   quantize(v) into the out format: combinational after the last register
+// Timing: a pipeline of LATENCY = 2 (+1 with F > 0) registers, all enabled by en_i (advance):
+// spec_o shows the result of the series_i sampled at the LATENCY-th most recent en_i edge.
+// One pixel per cycle (busy never).
+//
+// Configuration (the specular slot's cfg port; words in stream order):
+//   MATERIAL (cfg_table_i = 0): cfg_addr_i 0 = exponent word (resets shift to 0: empty
+//            unit_params mean shift 0), 1 = unit_params[0] = shift (0..fs, low bits taken).
+//   TABLE    (cfg_table_i = 1): cfg_addr_i = entry address (base + i), cfg_data_i[B-1:0] = entry;
+//            addresses >= 2^A are ignored (the model rejects them).
+// TABLE_FILE: optional $readmemh file written by ExponentLut::write_hex (absolute path), loaded at
+// time 0; a missing file is a $fatal error, not $readmemh's warning.
+module exponent_lut #(
+  parameter int ADDR_BITS    = 10,
+  parameter int ENTRY_BITS   = 8,
+  parameter int INTERP_BITS  = 0,
+  parameter int INDEX        = 0,  // LutIndex: 0 kTruncate, 1 kNearest
+  parameter int SERIES_WL    = 32,
+  parameter int SERIES_IWL   = 4,
+  parameter int OUT_WL       = 17,
+  parameter int OUT_IWL      = 1,
+  parameter int OUT_QUANT    = 0,  // Quantization: 0 truncate, 1 round to nearest
+  parameter int OUT_OVERFLOW = 0,  // Overflow: 0 saturate, 1 wrap
+  parameter int CFG_ADDR_W   = 16,
+  parameter     TABLE_FILE   = ""
+) (
+  input  logic                  clk_i,
+  input  logic                  rst_ni,
+  input  logic                  en_i,
+  input  logic [SERIES_WL-1:0]  series_i,
+  input  logic                  cfg_valid_i,
+  input  logic                  cfg_table_i,
+  input  logic [CFG_ADDR_W-1:0] cfg_addr_i,
+  // verilator lint_off UNUSEDSIGNAL
+  input  logic [63:0]           cfg_data_i,  // only the low B (entry) / shift bits are used
+  // verilator lint_on UNUSEDSIGNAL
+  output logic [OUT_WL-1:0]     spec_o
+);
+  // verilator lint_off UNUSEDPARAM
+  localparam int LATENCY = INTERP_BITS > 0 ? 3 : 2;  // = ExponentLut::latency; see specular_slot
+  // verilator lint_on UNUSEDPARAM
+  localparam int Fs      = SERIES_WL - SERIES_IWL;
+  localparam int ShiftW  = $clog2(Fs + 1);
+  localparam int AW      = ADDR_BITS + INTERP_BITS;
+  localparam int Entries = 1 << ADDR_BITS;
+  localparam int XW      = SERIES_WL + Fs;           // series << shift for any shift 0..fs
+  localparam int AdrDrop = Fs - ADDR_BITS - INTERP_BITS;
+  localparam int AdrRndW = XW + 1 - AdrDrop;
+  localparam int VW      = ENTRY_BITS + INTERP_BITS + 2;  // signed, holds e0*2^F + frac*(e1-e0)
+  localparam int OutDrop = ENTRY_BITS + INTERP_BITS - (OUT_WL - OUT_IWL);
+  localparam int OutRndW = VW + 1 - OutDrop;
+
+  // ---- per-material parameter: the input shift ------------------------------------------
+  logic [ShiftW-1:0] shift_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      shift_q <= '0;
+    end else if (cfg_valid_i && !cfg_table_i) begin
+      if (cfg_addr_i == CFG_ADDR_W'(0))      shift_q <= '0;
+      else if (cfg_addr_i == CFG_ADDR_W'(1)) shift_q <= cfg_data_i[ShiftW-1:0];
+    end
+  end
+
+  // ---- table RAM: written by TABLE words, two registered read ports -----------------------
+  logic [ENTRY_BITS-1:0] mem_q [Entries];
+  logic                  tbl_we;
+  logic [ADDR_BITS-1:0]  tbl_waddr;
+  if (CFG_ADDR_W > ADDR_BITS) begin : g_wide_cfg
+    assign tbl_we    = cfg_valid_i && cfg_table_i && cfg_addr_i[CFG_ADDR_W-1:ADDR_BITS] == '0;
+    assign tbl_waddr = cfg_addr_i[ADDR_BITS-1:0];
+  end else begin : g_narrow_cfg
+    assign tbl_we    = cfg_valid_i && cfg_table_i;
+    assign tbl_waddr = ADDR_BITS'(cfg_addr_i);
+  end
+  always_ff @(posedge clk_i) begin
+    if (tbl_we) mem_q[tbl_waddr] <= cfg_data_i[ENTRY_BITS-1:0];
+  end
+
+  if (TABLE_FILE != "") begin : g_init
+`ifndef SYNTHESIS
+    initial begin
+      int fd;
+      fd = $fopen(TABLE_FILE, "r");
+      if (fd == 0) $fatal(1, "exponent_lut: cannot open TABLE_FILE '%s' (ExponentLut::write_hex output expected)", TABLE_FILE);
+      $fclose(fd);
+      $readmemh(TABLE_FILE, mem_q);
+    end
+`else
+    initial $readmemh(TABLE_FILE, mem_q);
+`endif
+  end
+
+  // ---- 1. ADDRESS ------------------------------------------------------------------------------
+  logic signed [XW-1:0]      shifted;
+  logic signed [AdrRndW-1:0] a_rnd;
+  logic [AW-1:0]             a_d, a_q;
+  assign shifted = {{Fs{series_i[SERIES_WL-1]}}, series_i} << shift_q;
+  fixed_round #(.IN_W(XW), .DROP(AdrDrop), .ROUND(INDEX)) u_adr_round (.in_i(shifted), .out_o(a_rnd));
+  fixed_sat #(.IN_W(AdrRndW), .OUT_W(AW), .OUT_SIGNED(0), .WRAP(0)) u_adr_sat (.in_i(a_rnd), .out_o(a_d));
+  always_ff @(posedge clk_i) begin
+    if (en_i) a_q <= a_d;
+  end
+
+  // ---- 2. READ, 3. INTERP --------------------------------------------------------------------
+  logic [ADDR_BITS-1:0]  idx;
+  logic [ENTRY_BITS-1:0] e0_q;
+  logic signed [VW-1:0]  v;  // the value OUTPUT quantizes, ENTRY_BITS + INTERP_BITS fraction bits
+  assign idx = a_q[AW-1:INTERP_BITS];
+  always_ff @(posedge clk_i) begin
+    if (en_i) e0_q <= mem_q[idx];
+  end
+
+  if (INTERP_BITS > 0) begin : g_interp
+    logic [ADDR_BITS-1:0]    idx1;
+    logic [ENTRY_BITS-1:0]   e1_q;
+    logic [INTERP_BITS-1:0]  frac_q;
+    logic signed [VW-1:0]    v_d, v_q;
+    assign idx1 = idx == ADDR_BITS'(Entries - 1) ? idx : idx + ADDR_BITS'(1);
+    always_ff @(posedge clk_i) begin
+      if (en_i) begin
+        e1_q   <= mem_q[idx1];
+        frac_q <= a_q[INTERP_BITS-1:0];
+      end
+    end
+    // (F+1) x (B+1) signed multiplier: frac * (e1 - e0)
+    logic signed [ENTRY_BITS:0]  diff;
+    logic signed [INTERP_BITS:0] frac_s;
+    logic signed [VW-1:0]        prod;
+    assign diff   = $signed({1'b0, e1_q}) - $signed({1'b0, e0_q});
+    assign frac_s = $signed({1'b0, frac_q});
+    assign prod   = frac_s * diff;
+    assign v_d    = $signed(VW'({e0_q, {INTERP_BITS{1'b0}}})) + prod;
+    always_ff @(posedge clk_i) begin
+      if (en_i) v_q <= v_d;
+    end
+    assign v = v_q;
+  end else begin : g_no_interp
+    assign v = $signed(VW'(e0_q));
+  end
+
+  // ---- 4. OUTPUT -------------------------------------------------------------------------------
+  logic signed [OutRndW-1:0] out_rnd;
+  fixed_round #(.IN_W(VW), .DROP(OutDrop), .ROUND(OUT_QUANT)) u_out_round (.in_i(v), .out_o(out_rnd));
+  fixed_sat #(.IN_W(OutRndW), .OUT_W(OUT_WL), .OUT_SIGNED(0), .WRAP(OUT_OVERFLOW))
+    u_out_sat (.in_i(out_rnd), .out_o(spec_o));
+
+`ifndef SYNTHESIS
+  initial begin
+    if (Fs < 1) $fatal(1, "exponent_lut: the series format needs at least one fraction bit");
+  end
+`endif
+endmodule

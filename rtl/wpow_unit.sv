@@ -1,0 +1,154 @@
+// wpow_unit: W_m(t) = (zeta (t - 1) + 1)^m by repeated squaring (model/wpow_unit.h, class
+// WpowUnit; Romanyuk et al.). zeta and the pre-scale live in the series (host setup).
+//
+// Parameters mirror WpowConfig and the formats: MAX_M (m, a power of two 1..32; K = log2(m)
+// squaring stages), BASE_BITS (B, fraction bits of the base and of every square), TIMING
+// (UnitTiming: 0 pipelined, 1 iterative); SERIES_WL/IWL (fs = SERIES_WL - SERIES_IWL >= 1);
+// OUT_WL/IWL/QUANT/OVERFLOW (the specular out format, unsigned).
+//
+// Stages, in the model's order:
+//   0. BASE      b = quantize(series << shift, unsigned 1.B, truncate, saturate); b = min(b, 1.0)
+//                (the clamp is correctness: a negative base squared would come back large).
+//   1..K SQUARE  b = quantize(b * b, 2B -> B fraction bits, truncate). Stages 1..K-s pass b
+//                through (bypass), the last s square (s = squarings, per material).
+//   K+1. OUTPUT  quantize(b, B fraction bits) into the out format: combinational.
+// b <= 1.0 throughout, so a square never overflows u1.B (the model's saturation never fires).
+//
+// Timing, LATENCY = K + 1 either way:
+//   TIMING 0 (pipelined): K + 1 registers (base, one per squarer), all enabled by en_i
+//            (advance): spec_o shows the result of the series sampled at the (K+1)-th most
+//            recent en_i edge. One pixel per cycle; busy_o = 0.
+//   TIMING 1 (iterative): one working register and one squarer. en_i while !busy_o loads the
+//            base (cycle c); cycles c+1 .. c+K run the K steps (bypass or square), busy_o high
+//            then (en_i ignored); the result is on spec_o from cycle c+K+1 until the edge that
+//            ends the next start cycle. II = K + 1 (1 when K = 0).
+//
+// Configuration (the specular slot's cfg port, MATERIAL words, cfg_table_i = 0):
+//   cfg_addr_i 0 = exponent word: resets shift = 0, squarings = K (empty unit_params);
+//   1 = unit_params[0] = shift (0..fs); 2 = unit_params[1] = squarings s (0..K).
+// Out-of-range values are the model's error; the hardware takes the low bits.
+module wpow_unit #(
+  parameter int MAX_M        = 16,
+  parameter int BASE_BITS    = 16,
+  parameter int TIMING       = 0,  // UnitTiming: 0 kPipelined, 1 kIterative
+  parameter int SERIES_WL    = 32,
+  parameter int SERIES_IWL   = 4,
+  parameter int OUT_WL       = 17,
+  parameter int OUT_IWL      = 1,
+  parameter int OUT_QUANT    = 0,  // Quantization: 0 truncate, 1 round to nearest
+  parameter int OUT_OVERFLOW = 0,  // Overflow: 0 saturate, 1 wrap
+  parameter int CFG_ADDR_W   = 16
+) (
+  input  logic                  clk_i,
+  input  logic                  rst_ni,
+  input  logic                  en_i,
+  input  logic [SERIES_WL-1:0]  series_i,
+  input  logic                  cfg_valid_i,
+  input  logic                  cfg_table_i,
+  input  logic [CFG_ADDR_W-1:0] cfg_addr_i,
+  // verilator lint_off UNUSEDSIGNAL
+  input  logic [63:0]           cfg_data_i,  // only the low shift / squarings bits are used
+  // verilator lint_on UNUSEDSIGNAL
+  output logic [OUT_WL-1:0]     spec_o,
+  output logic                  busy_o
+);
+  localparam int K       = $clog2(MAX_M);
+  // verilator lint_off UNUSEDPARAM
+  localparam int LATENCY = K + 1;  // = WpowUnit::latency; see specular_slot
+  // verilator lint_on UNUSEDPARAM
+  localparam int B       = BASE_BITS;
+  localparam int BW      = B + 1;                    // unsigned 1.B
+  localparam int Fs      = SERIES_WL - SERIES_IWL;
+  localparam int ShiftW  = $clog2(Fs + 1);
+  localparam int SqW     = $clog2(K + 1) > 0 ? $clog2(K + 1) : 1;
+  localparam int XW      = SERIES_WL + Fs;           // series << shift for any shift 0..fs
+  localparam int BaseDrop = Fs - B;
+  localparam int BaseRndW = XW + 1 - BaseDrop;
+  localparam int OutDrop = B - (OUT_WL - OUT_IWL);
+  localparam int OutRndW = BW + 2 - OutDrop;
+  localparam logic [BW-1:0] One = BW'(1) << B;
+
+  // ---- per-material parameters --------------------------------------------------------------
+  logic [ShiftW-1:0] shift_q;
+  logic [SqW-1:0]    sq_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      shift_q <= '0;
+      sq_q    <= SqW'(K);
+    end else if (cfg_valid_i && !cfg_table_i) begin
+      if (cfg_addr_i == CFG_ADDR_W'(0)) begin
+        shift_q <= '0;
+        sq_q    <= SqW'(K);
+      end else if (cfg_addr_i == CFG_ADDR_W'(1)) begin
+        shift_q <= cfg_data_i[ShiftW-1:0];
+      end else if (cfg_addr_i == CFG_ADDR_W'(2)) begin
+        sq_q <= cfg_data_i[SqW-1:0];
+      end
+    end
+  end
+
+  // (b * b) >> B, truncating; exact in 2B+1 bits because b <= 2^B.
+  function automatic logic [BW-1:0] square(input logic [BW-1:0] b);
+    // verilator lint_off UNUSEDSIGNAL
+    logic [2*B:0] p;  // the low B bits are what truncation drops
+    // verilator lint_on UNUSEDSIGNAL
+    p = (2*B+1)'(b) * (2*B+1)'(b);
+    square = p[2*B:B];
+  endfunction
+
+  // ---- 0. BASE ---------------------------------------------------------------------------------
+  logic signed [XW-1:0]       shifted;
+  logic signed [BaseRndW-1:0] base_rnd;
+  logic [BW-1:0]              base_sat, base_d;
+  assign shifted = {{Fs{series_i[SERIES_WL-1]}}, series_i} << shift_q;
+  fixed_round #(.IN_W(XW), .DROP(BaseDrop), .ROUND(0)) u_base_round (.in_i(shifted), .out_o(base_rnd));
+  fixed_sat #(.IN_W(BaseRndW), .OUT_W(BW), .OUT_SIGNED(0), .WRAP(0)) u_base_sat (.in_i(base_rnd), .out_o(base_sat));
+  assign base_d = base_sat > One ? One : base_sat;
+
+  // ---- 1..K. SQUARE ----------------------------------------------------------------------------
+  logic [BW-1:0] b_out;
+
+  if (TIMING == 0 || K == 0) begin : g_pipelined
+    logic [BW-1:0] b_q [K+1];  // b_q[0]: base; b_q[k]: after stage k
+    always_ff @(posedge clk_i) begin
+      if (en_i) begin
+        b_q[0] <= base_d;
+        for (int k = 1; k <= K; k++) begin
+          // Stage k squares iff k > K - s, i.e. s >= K - k + 1.
+          b_q[k] <= sq_q >= SqW'(K - k + 1) ? square(b_q[k-1]) : b_q[k-1];
+        end
+      end
+    end
+    assign b_out  = b_q[K];
+    assign busy_o = 1'b0;
+  end else begin : g_iterative
+    localparam int CntW = $clog2(K + 1);
+    logic [CntW-1:0] cnt_q;  // steps still to do; the step done with cnt_q = c squares iff c <= s
+    logic [BW-1:0]   w_q;
+    assign busy_o = cnt_q != '0;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni)               cnt_q <= '0;
+      else if (en_i && !busy_o)  cnt_q <= CntW'(K);
+      else if (busy_o)           cnt_q <= cnt_q - CntW'(1);
+    end
+    always_ff @(posedge clk_i) begin
+      if (en_i && !busy_o)                  w_q <= base_d;
+      else if (busy_o && cnt_q <= sq_q)     w_q <= square(w_q);
+    end
+    assign b_out = w_q;
+  end
+
+  // ---- K+1. OUTPUT ---------------------------------------------------------------------------
+  logic signed [OutRndW-1:0] out_rnd;
+  fixed_round #(.IN_W(BW + 1), .DROP(OutDrop), .ROUND(OUT_QUANT))
+    u_out_round (.in_i($signed({1'b0, b_out})), .out_o(out_rnd));
+  fixed_sat #(.IN_W(OutRndW), .OUT_W(OUT_WL), .OUT_SIGNED(0), .WRAP(OUT_OVERFLOW))
+    u_out_sat (.in_i(out_rnd), .out_o(spec_o));
+
+`ifndef SYNTHESIS
+  initial begin
+    if (Fs < 1) $fatal(1, "wpow_unit: the series format needs at least one fraction bit");
+    if (MAX_M < 1 || (1 << K) != MAX_M) $fatal(1, "wpow_unit: MAX_M must be a power of two, got %0d", MAX_M);
+  end
+`endif
+endmodule

@@ -1,0 +1,129 @@
+// rtl/wpow_unit.sv against WpowUnit: every output bit, latency K + 1, II 1 (pipelined) or K + 1
+// (iterative), over every shift and squaring count; exhaustive series values at small widths,
+// hard cases (base 0 and just below/above, 1, > 1, < 0) plus random at real widths.
+#include <gtest/gtest.h>
+
+#include "model/command_stream.h"
+#include "model/wpow_unit.h"
+#include "tests/rtl_units/rtl_unit_driver.h"
+
+namespace shadesim {
+namespace rtl_units {
+namespace {
+
+WpowConfig wpow_config(const Params& p, const std::string& prefix = "") {
+  WpowConfig c;
+  c.max_m = static_cast<int>(get(p, prefix + "MAX_M"));
+  c.base_bits = static_cast<int>(get(p, prefix + "BASE_BITS"));
+  c.timing = get(p, prefix + "TIMING") ? UnitTiming::kIterative : UnitTiming::kPipelined;
+  return c;
+}
+
+template <class V>
+void send_param(V& dut, uint32_t addr, int64_t data) {
+  dut.en_i = 0;
+  dut.cfg_valid_i = 1;
+  dut.cfg_table_i = 0;
+  dut.cfg_addr_i = addr;
+  dut.cfg_data_i = static_cast<uint64_t>(data);
+  dut.eval();
+  clock_edge(dut);
+  dut.cfg_valid_i = 0;
+}
+
+// Series values whose base (series << shift, B fraction bits) lands on 0, 1 and their
+// neighbours, for this shift; then the generic hard cases and random values near [0, 1].
+std::vector<int64_t> wpow_inputs(const FixedFormat& f, int shift, int base_bits, std::mt19937_64& rng,
+                                 int n_random) {
+  std::vector<int64_t> v = hard_series(f);
+  const int src = f.frac_bits() - shift;  // fraction bits of the shifted series
+  const int64_t lsb = src > base_bits ? int64_t{1} << (src - base_bits) : 1;
+  const int64_t one = src >= 0 && src < 62 ? int64_t{1} << src : 0;
+  for (int64_t centre : {int64_t{0}, one, lsb, one - lsb})
+    for (int64_t d : {-lsb - 1, -lsb, int64_t{-1}, int64_t{0}, int64_t{1}, lsb - 1, lsb, lsb + 1}) {
+      const int64_t x = centre + d;
+      if (x >= f.raw_min() && x <= f.raw_max()) v.push_back(x);
+    }
+  std::uniform_int_distribution<int64_t> any(f.raw_min(), f.raw_max());
+  const int64_t hi = std::min<int64_t>(f.raw_max(), one + one / 8);
+  std::uniform_int_distribution<int64_t> near(std::max<int64_t>(f.raw_min(), -one / 8), hi);
+  for (int i = 0; i < n_random; ++i) v.push_back(i % 5 == 0 ? any(rng) : near(rng));
+  return v;
+}
+
+template <class V>
+void check_wpow(const std::string& name, bool exhaustive, int n_random) {
+  const Params p = config_params(name);
+  const WpowConfig c = wpow_config(p);
+  const FixedFormat series = series_format(p);
+  const FixedFormat out = out_format(p, "OUT_");
+  const int k_stages = WpowUnit::stages(c);
+  WpowUnit model(c, series, out);
+  std::mt19937_64 rng(static_cast<uint64_t>(name.size()) * 7919u);
+  V dut;
+  reset(dut);
+  std::vector<int64_t> all;
+  if (exhaustive)
+    for (int64_t x = series.raw_min(); x <= series.raw_max(); ++x) all.push_back(x);
+
+  // Every squaring count with a few shifts (every shift when exhaustive), then empty
+  // unit_params (defaults shift 0, s = K) after a non-default material.
+  struct Material {
+    int shift, squarings;
+    bool defaults;
+  };
+  std::vector<Material> materials;
+  for (int s = 0; s <= k_stages; ++s)
+    for (int shift = 0; shift <= series.frac_bits(); ++shift)
+      if (exhaustive || shift == 0 || shift == 2 || shift == series.frac_bits() || shift == s + 3)
+        materials.push_back({shift, s, false});
+  materials.push_back({0, k_stages, true});
+
+  for (const Material& m : materials) {
+    send_param(dut, 0, int64_t{40} << kExponentFracBits);
+    if (m.defaults) {
+      model.load_params({});
+    } else {
+      send_param(dut, 1, m.shift);
+      send_param(dut, 2, m.squarings);
+      model.load_params({m.shift, m.squarings});
+    }
+    const std::vector<int64_t> inputs =
+        exhaustive ? all : wpow_inputs(series, m.shift, c.base_bits, rng, n_random);
+    Mismatch mm;
+    UnitRun<V> run{dut, WpowUnit::latency(c), rng};
+    run.set_input = [&](int64_t k) {
+      const int64_t raw = k >= 0 ? inputs[static_cast<size_t>(k)] : static_cast<int64_t>(rng());
+      dut.series_i = to_bits(raw, series.wl);
+    };
+    run.expected = [&](int64_t k) { return model.evaluate(inputs[static_cast<size_t>(k)]); };
+    run.describe = [&](int64_t k) {
+      return name + " series " + std::to_string(inputs[static_cast<size_t>(k)]) + " shift " +
+             std::to_string(m.shift) + " squarings " + std::to_string(m.squarings);
+    };
+    run.busy = [&] { return dut.busy_o != 0; };
+    run.mismatch = &mm;
+    const auto n = static_cast<int64_t>(inputs.size());
+    if (WpowUnit::cycles_per_pixel(c) == 1) {
+      run.pipelined(n, 85);
+    } else {
+      ASSERT_EQ(WpowUnit::cycles_per_pixel(c), WpowUnit::latency(c));
+      run.iterative(n);
+    }
+    EXPECT_EQ(mm.count, 0) << name << " shift " << m.shift << " squarings " << m.squarings
+                           << (m.defaults ? " (empty unit_params)" : "") << ": first mismatch "
+                           << mm.first;
+  }
+}
+
+TEST(WpowUnitRtl, M4SmallestPipelinedExhaustive) { check_wpow<Vwpow_small_pipe>("wpow_small_pipe", true, 0); }
+TEST(WpowUnitRtl, M4SmallestIterativeExhaustive) { check_wpow<Vwpow_small_iter>("wpow_small_iter", true, 0); }
+TEST(WpowUnitRtl, M1NoSquarerExhaustive) { check_wpow<Vwpow_m1>("wpow_m1", true, 0); }
+TEST(WpowUnitRtl, W16PipelinedHardAndRandom) { check_wpow<Vwpow_w16>("wpow_w16", false, 4000); }
+TEST(WpowUnitRtl, M32IterativeRoundedOutputHardAndRandom) {
+  check_wpow<Vwpow_m32_iter>("wpow_m32_iter", false, 2000);
+}
+
+}  // namespace
+}  // namespace rtl_units
+}  // namespace shadesim
