@@ -82,9 +82,17 @@ target_link_libraries(icarus_stream_tool PRIVATE shadesim_harness CLI11::CLI11)
 # scripts/bench-cosim.
 set(ICARUS_DIR ${CMAKE_BINARY_DIR}/icarus)
 set(ICARUS_TB ${CMAKE_SOURCE_DIR}/sim/icarus/tb_shade_unit.sv)
+file(READ ${ICARUS_TB} _icarus_tb_text)
 foreach(name ${RTL_CONFIG_NAMES})
   set(params "")
   foreach(p ${RTL_CONFIG_${name}_PARAMS})
+    # iverilog -P sets parameters of the root module only: the testbench must mirror each of
+    # shade_unit's (an unknown -P is only a warning, and the RTL would silently get its default).
+    string(REGEX REPLACE "^-G([A-Za-z0-9_]+)=.*$" "\\1" pname "${p}")
+    if(NOT _icarus_tb_text MATCHES "parameter int ${pname} ")
+      message(FATAL_ERROR "cmake/icarus.cmake: configuration ${name} sets shade_unit parameter ${pname}, "
+                          "which sim/icarus/tb_shade_unit.sv does not declare and pass on; add it there")
+    endif()
     string(REGEX REPLACE "^-G" "-Ptb_shade_unit." p "${p}")
     list(APPEND params ${p})
   endforeach()
