@@ -83,9 +83,8 @@ rtl_config(fault_stall CHANNELS 1 LIGHTS 1 XY_BITS 12 COEF s4.32:rnd SERIES s4.2
            SPEC_COLOUR u1.12:rnd OUT_BITS 8 SPECULAR ideal SPECULAR_OUT u1.16
            FAULT_STALL_ROW 23 BACKENDS "cpp")
 
-# ---- plain C++ harness: stimulus, cycle model, scoreboard, random streams -------------------
+# ---- plain C++ harness: scoreboard, random streams (stimulus and cycle model are in model/) ----
 add_library(shadesim_harness STATIC
-  ${CMAKE_SOURCE_DIR}/sim/harness/cycle_model.cpp
   ${CMAKE_SOURCE_DIR}/sim/harness/scoreboard.cpp
   ${CMAKE_SOURCE_DIR}/sim/harness/random_stream.cpp
   ${CMAKE_SOURCE_DIR}/sim/harness/rtl_config.cpp)

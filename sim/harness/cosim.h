@@ -7,10 +7,10 @@
 
 #include "model/command_stream.h"
 #include "model/shade_unit.h"
-#include "sim/harness/cycle_model.h"
+#include "model/cycle_model.h"
 #include "sim/harness/rtl_config.h"
 #include "sim/harness/scoreboard.h"
-#include "sim/harness/stimulus.h"
+#include "model/stimulus.h"
 
 namespace shadesim {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "model/command_stream.h"
-#include "sim/harness/stimulus.h"
+#include "model/stimulus.h"
 
 namespace shadesim {
 

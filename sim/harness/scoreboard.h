@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "model/shade_unit.h"
-#include "sim/harness/cycle_model.h"
+#include "model/cycle_model.h"
 
 namespace shadesim {
 

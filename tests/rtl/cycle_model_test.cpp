@@ -2,11 +2,16 @@
 // (notes/rtl.md): a SPAN header accepted on cycle t has its pixel k leave on cycle t + 5 + k
 // (so a span of length L ends on t + 4 + L)
 // when nothing stalls; back-to-back spans leave no bubble; MATERIAL waits for an empty
-// datapath; pixels leave only on cycles where pix_ready is high.
+// datapath; pixels leave only on cycles where pix_ready is high. A pipelined specular slot of
+// latency L adds L to every pixel; an iterative one of interval Q has pixel k leave on
+// t + 5 + Q (k + 1). The cycle breakdown is checked against hand-counted schedules.
 #include <gtest/gtest.h>
 
+#include <random>
+#include <stdexcept>
+
 #include "model/command_stream.h"
-#include "sim/harness/cycle_model.h"
+#include "model/cycle_model.h"
 
 namespace shadesim {
 namespace {
@@ -108,6 +113,222 @@ TEST(CycleModel, CountsPixelsAndScanlines) {
   EXPECT_EQ(r.scanlines[1].y, 1);
   EXPECT_LT(r.scanlines[0].cycle, r.scanlines[1].cycle);
   EXPECT_GE(r.cycles, 9u + 5u);
+}
+
+// ---- specular slot timing ---------------------------------------------------------------
+
+TEST(CycleModel, PipelinedSlotAddsItsLatencyToEveryPixel) {
+  for (int lat : {1, 3, 6}) {
+    for (int len : {1, 4}) {
+      const CycleRun r =
+          CycleModel::run(words({span(0, 0, len, true), span(1, 0, 3, true)}), Stimulus{}, SlotTiming{lat, 1});
+      ASSERT_EQ(r.scanlines.size(), 2u);
+      EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(len + 4 + lat)) << lat << "," << len;
+      EXPECT_EQ(r.scanlines[1].cycle, static_cast<uint64_t>(len + 3 + 4 + lat)) << lat << "," << len;
+    }
+  }
+}
+
+TEST(CycleModel, IterativeSlotTakesItsIntervalPerPixel) {
+  for (int q : {2, 5, 16}) {
+    for (int a : {1, 3}) {
+      const int b = 2;
+      const CycleRun r =
+          CycleModel::run(words({span(0, 0, a, true), span(1, 0, b, true)}), Stimulus{}, SlotTiming{q, q});
+      ASSERT_EQ(r.scanlines.size(), 2u);
+      EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(5 + q * a)) << q << "," << a;
+      EXPECT_EQ(r.scanlines[1].cycle, static_cast<uint64_t>(5 + q * (a + b))) << q << "," << a;
+    }
+  }
+}
+
+TEST(CycleModel, MaterialDrainIncludesTheSlot) {
+  MaterialCmd m;
+  m.ambient = {0};
+  m.spec_colour = {0};
+  m.exponent = 1;  // header count 3
+  for (int lat : {0, 2, 7}) {
+    const CycleRun r =
+        CycleModel::run(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{}, SlotTiming{lat, 1});
+    ASSERT_EQ(r.scanlines.size(), 2u);
+    // Last pixel leaves on 14 + lat; MATERIAL accepted then, payload 3 words, SPAN 4 cycles
+    // after it, its pixel 5 + lat cycles later.
+    EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(14 + lat)) << lat;
+    EXPECT_EQ(r.scanlines[1].cycle, static_cast<uint64_t>(14 + lat + 4 + 5 + lat)) << lat;
+  }
+}
+
+TEST(CycleModel, RejectsImpossibleSlotTimings) {
+  EXPECT_THROW(CycleModel(SlotTiming{-1, 1}), std::invalid_argument);
+  EXPECT_THROW(CycleModel(SlotTiming{0, 0}), std::invalid_argument);
+  EXPECT_THROW(CycleModel(SlotTiming{3, 4}), std::invalid_argument);
+}
+
+// ---- cycle breakdown -------------------------------------------------------------------------
+
+TEST(CycleBreakdown, SingleSpanIsFillThenPixels) {
+  for (int lat : {0, 3}) {
+    const int len = 9;
+    const CycleRun r = CycleModel::run(words({span(0, 0, len, true)}), Stimulus{}, SlotTiming{lat, 1});
+    const CycleBreakdown& b = r.breakdown;
+    EXPECT_EQ(b.pixel, static_cast<uint64_t>(len));
+    EXPECT_EQ(b.setup_load, static_cast<uint64_t>(5 + lat));
+    EXPECT_EQ(b.total(), r.cycles);
+    EXPECT_EQ(b.back_pressure + b.unit_stall + b.command_gap + b.material + b.table + b.command_words, 0u);
+  }
+}
+
+TEST(CycleBreakdown, MaterialSwitchCostsItsWordsAndARefill) {
+  MaterialCmd m;
+  m.ambient = {0};
+  m.spec_colour = {0};
+  m.exponent = 1;  // header + 3 payload words
+  const CycleRun r = CycleModel::run(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{});
+  const CycleBreakdown& b = r.breakdown;
+  EXPECT_EQ(r.cycles, 24u);
+  EXPECT_EQ(b.pixel, 11u);
+  EXPECT_EQ(b.setup_load, 5u);  // the first span's fill
+  // The header is accepted with the last pixel; then 3 payload words, the SPAN header and
+  // 4 more cycles of its latency pass without a pixel.
+  EXPECT_EQ(b.material, 3u + 5u);
+  EXPECT_EQ(b.total(), r.cycles);
+}
+
+TEST(CycleBreakdown, GapsBeforeEveryWordAreChargedToTheInput) {
+  Stimulus s;
+  s.gap_pct = 100;
+  s.max_gap = 1;  // one idle cycle before every word: one span per 2 cycles
+  const int n = 20;
+  std::vector<Command> cmds;
+  for (int i = 0; i < n; ++i) cmds.push_back(span(i, 0, 1, true));
+  const CycleRun r = CycleModel::run(words(cmds), s);
+  const CycleBreakdown& b = r.breakdown;
+  // SPAN i accepted on 2i + 1, its pixel leaves on 2i + 6.
+  EXPECT_EQ(r.cycles, static_cast<uint64_t>(2 * n + 5));
+  EXPECT_EQ(b.pixel, static_cast<uint64_t>(n));
+  EXPECT_EQ(b.setup_load, 5u);
+  EXPECT_EQ(b.command_gap, static_cast<uint64_t>(n));  // cycle 5 and every cycle between pixels
+  EXPECT_EQ(b.total(), r.cycles);
+}
+
+TEST(CycleBreakdown, SmallTrianglesAreCommandBound) {
+  const int k = 30;
+  std::vector<Command> cmds;
+  for (int i = 0; i < k; ++i) {
+    TriangleCmd t;
+    t.coef.assign(12, 0);  // grey, 1 light: 2 series x 6 coefficients
+    cmds.push_back(t);
+    cmds.push_back(span(i, 0, 2, true));
+  }
+  const CycleRun r = CycleModel::run(words(cmds), Stimulus{});
+  const CycleBreakdown& b = r.breakdown;
+  // 14 words per triangle at one per clock; its 2 pixels leave 5 and 6 cycles after its SPAN.
+  EXPECT_EQ(r.cycles, static_cast<uint64_t>(14 * (k - 1) + 20));
+  EXPECT_EQ(b.pixel, static_cast<uint64_t>(2 * k));
+  EXPECT_EQ(b.setup_load, 5u);
+  EXPECT_EQ(b.command_words, static_cast<uint64_t>(13 + 12 * (k - 1)));
+  EXPECT_EQ(b.total(), r.cycles);
+}
+
+TEST(CycleBreakdown, TableWordsBetweenSpansAreCharged) {
+  TableCmd t;
+  t.base = 0;
+  t.entries.assign(20, 0);
+  const CycleRun r = CycleModel::run(words({span(0, 0, 2, true), t, span(1, 0, 2, true)}), Stimulus{});
+  const CycleBreakdown& b = r.breakdown;
+  // SPAN 0 on 0 (pixels 5, 6); TABLE header 1 + 20 words on 1..21; SPAN 1 on 22 (pixels 27, 28).
+  EXPECT_EQ(r.cycles, 29u);
+  EXPECT_EQ(b.pixel, 4u);
+  EXPECT_EQ(b.setup_load, 5u);
+  EXPECT_EQ(b.table, 29u - 4u - 5u);  // 7..26 look back to 2..21: all TABLE words
+  EXPECT_EQ(b.total(), r.cycles);
+}
+
+TEST(CycleBreakdown, BackPressureCountsCyclesAPixelWaited) {
+  // Ready on every third cycle (see PixelsLeaveOnlyWhenReady): pixels leave on 6, 9, 12, 15
+  // and one waits on 5, 7, 8, 10, 11, 13, 14.
+  const auto w = words({span(0, 0, 4, true)});
+  CycleModel m;
+  CommandDriver d(w, Stimulus{});
+  int pixel = 0, bp = 0, fill = 0, other = 0;
+  for (uint64_t c = 0; c < 16; ++c) {
+    const auto e = m.clock(d.valid(), d.word(), c % 3 == 0);
+    d.clock(e.cmd_fire);
+    switch (e.category) {
+      case CycleModel::Category::kPixel: ++pixel; break;
+      case CycleModel::Category::kBackPressure: ++bp; break;
+      case CycleModel::Category::kSetupLoad: ++fill; break;
+      default: ++other; break;
+    }
+  }
+  EXPECT_TRUE(m.idle());
+  EXPECT_EQ(pixel, 4);
+  EXPECT_EQ(bp, 7);
+  EXPECT_EQ(fill, 5);
+  EXPECT_EQ(other, 0);
+}
+
+TEST(CycleBreakdown, IterativeUnitStallsAreItsIntervalAndLatency) {
+  for (int q : {2, 8}) {
+    const int n = 6;
+    const CycleRun r = CycleModel::run(words({span(0, 0, n, true)}), Stimulus{}, SlotTiming{q, q});
+    const CycleBreakdown& b = r.breakdown;
+    EXPECT_EQ(r.cycles, static_cast<uint64_t>(6 + q * n));
+    EXPECT_EQ(b.pixel, static_cast<uint64_t>(n));
+    EXPECT_EQ(b.setup_load, 5u);
+    EXPECT_EQ(b.unit_stall, static_cast<uint64_t>(q + (n - 1) * (q - 1)));
+    EXPECT_EQ(b.total(), r.cycles);
+  }
+}
+
+// On random streams and stimuli the categories still partition the run and the pixel count.
+TEST(CycleBreakdown, PartitionsRandomRuns) {
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 40; ++trial) {
+    std::vector<Command> cmds;
+    int y = 0;
+    for (int i = 0; i < 60; ++i) {
+      const int kind = static_cast<int>(rng() % 6);
+      if (kind == 0) {
+        MaterialCmd m;
+        m.ambient = {0};
+        m.spec_colour = {0};
+        m.exponent = 1;
+        cmds.push_back(m);
+      } else if (kind == 1) {
+        TableCmd t;
+        t.entries.assign(1 + rng() % 9, 0);
+        cmds.push_back(t);
+      } else if (kind == 2) {
+        TriangleCmd t;
+        t.coef.assign(12, 0);
+        cmds.push_back(t);
+      } else {
+        const bool last = rng() % 2 == 0;
+        cmds.push_back(span(y, 0, 1 + static_cast<int>(rng() % 12), last));
+        if (last) ++y;
+      }
+    }
+    Stimulus s;
+    s.seed = static_cast<uint64_t>(trial);
+    s.gap_pct = static_cast<int>(rng() % 60);
+    s.max_gap = 1 + static_cast<int>(rng() % 8);
+    s.stall_pct = static_cast<int>(rng() % 60);
+    const int q = static_cast<int>(rng() % 4);
+    const SlotTiming timing = q >= 2 ? SlotTiming{q, q} : SlotTiming{static_cast<int>(rng() % 5), 1};
+    const CycleRun r = CycleModel::run(words(cmds), s, timing);
+    EXPECT_EQ(r.breakdown.total(), r.cycles) << "trial " << trial;
+    EXPECT_EQ(r.breakdown.pixel, r.pixels) << "trial " << trial;
+    if (timing.interval == 1) {
+      EXPECT_EQ(r.breakdown.unit_stall, 0u) << "trial " << trial;
+    }
+    if (s.stall_pct == 0) {
+      EXPECT_EQ(r.breakdown.back_pressure, 0u) << "trial " << trial;
+    }
+    if (s.gap_pct == 0) {
+      EXPECT_EQ(r.breakdown.command_gap, 0u) << "trial " << trial;
+    }
+  }
 }
 
 }  // namespace
