@@ -37,10 +37,10 @@ int64_t FixedFormat::quantize(Int128 raw, int src_frac) const {
   const Int128 lo = raw_min();
   if (v >= lo && v <= hi) return static_cast<int64_t>(v);
   if (overflow == Overflow::kSaturate) return static_cast<int64_t>(v > hi ? hi : lo);
-  // Wrap: keep the low wl bits, then sign-extend for signed formats.
+  // Wrap: keep the low wl bits (a mask, exact in two's complement), then sign-extend for signed
+  // formats.
   const Int128 modulus = Int128{1} << wl;
-  Int128 w = v % modulus;
-  if (w < 0) w += modulus;
+  Int128 w = v & (modulus - 1);
   if (is_signed && w > hi) w -= modulus;
   return static_cast<int64_t>(w);
 }

@@ -69,13 +69,8 @@ FixedFormat parse_fixed_format(const std::string& text, const std::string& what)
 // Shift helpers that never invoke undefined behaviour for negative values or large shifts.
 constexpr Int128 shift_left(Int128 v, int n) { return n >= 0 ? v * (Int128{1} << n) : v; }
 
-// floor(v / 2^n) for n >= 0.
-constexpr Int128 floor_shift_right(Int128 v, int n) {
-  if (n <= 0) return v;
-  const Int128 d = Int128{1} << n;
-  Int128 q = v / d;
-  if ((v % d) != 0 && v < 0) --q;
-  return q;
-}
+// floor(v / 2^n) for 0 <= n < 128: an arithmetic shift (GCC and Clang define >> on negative
+// signed values as arithmetic; C++20 requires it), not a 128-bit division.
+constexpr Int128 floor_shift_right(Int128 v, int n) { return n <= 0 ? v : (v >> n); }
 
 }  // namespace shadesim
