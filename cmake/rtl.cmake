@@ -97,18 +97,26 @@ if(NOT TARGET Verilator::systemc)
   target_link_libraries(Verilator::systemc INTERFACE PkgConfig::SYSTEMC)
 endif()
 
-foreach(backend cpp sc)
+# rtl_cosim_cpp_trace: the C++ backend with FST tracing compiled in (--waves); a separate build
+# because tracing support slows every Verilated model, traced or not.
+foreach(backend cpp sc cpp_trace)
   set(exe rtl_cosim_${backend})
   set(entries "")
   set(includes "")
   add_executable(${exe} ${CMAKE_SOURCE_DIR}/sim/harness/cosim_main.cpp)
   foreach(name ${RTL_CONFIG_NAMES})
-    if(NOT backend IN_LIST RTL_CONFIG_${name}_BACKENDS)
+    set(want ${backend})
+    if(backend STREQUAL "cpp_trace")
+      set(want cpp)
+    endif()
+    if(NOT want IN_LIST RTL_CONFIG_${name}_BACKENDS)
       continue()
     endif()
     set(extra "")
     if(backend STREQUAL "sc")
       set(extra SYSTEMC)
+    elseif(backend STREQUAL "cpp_trace")
+      set(extra TRACE_FST)
     endif()
     verilate(${exe} ${extra}
       SOURCES ${RTL_SOURCES}
@@ -130,8 +138,8 @@ foreach(backend cpp sc)
   if(backend STREQUAL "sc")
     target_compile_definitions(${exe} PRIVATE SHADESIM_COSIM_SYSTEMC=1)
     verilator_link_systemc(${exe})
-  else()
-    # SystemC's library is not linked here; model code never calls it.
+  elseif(backend STREQUAL "cpp_trace")
+    target_compile_definitions(${exe} PRIVATE SHADESIM_COSIM_TRACE=1)
   endif()
 endforeach()
 
@@ -178,3 +186,11 @@ set_tests_properties(rtl_cosim_catches_lsb_fault rtl_cosim_catches_stall_fault P
 add_executable(rtl_cycle_model_test ${CMAKE_SOURCE_DIR}/tests/rtl/cycle_model_test.cpp)
 target_link_libraries(rtl_cycle_model_test PRIVATE shadesim_harness GTest::gtest_main)
 add_test(NAME rtl_cycle_model_test COMMAND rtl_cycle_model_test)
+
+# The executables' machine interface: --json, exit codes, replay, --list --json; --waves.
+add_test(NAME rtl_cosim_cli
+  COMMAND ${CMAKE_COMMAND} -DMODE=json -DCOSIM=$<TARGET_FILE:rtl_cosim_cpp> -DWORK=${CMAKE_BINARY_DIR}/rtl_cli
+          -P ${CMAKE_SOURCE_DIR}/sim/harness/cosim_cli_check.cmake)
+add_test(NAME rtl_cosim_waves
+  COMMAND ${CMAKE_COMMAND} -DMODE=waves -DCOSIM=$<TARGET_FILE:rtl_cosim_cpp_trace> -DWORK=${CMAKE_BINARY_DIR}/rtl_waves
+          -P ${CMAKE_SOURCE_DIR}/sim/harness/cosim_cli_check.cmake)

@@ -21,12 +21,23 @@ struct CosimJob {
   Stimulus stim;
 };
 
+// Cycles to dump into an FST file (trace-enabled builds only), inclusive. The run goes on past
+// a mismatch until `last` so the window shows what followed it.
+struct WaveWindow {
+  std::string path;
+  uint64_t first = 0, last = 0;
+};
+
 struct CosimResult {
   Mismatch first;  // kind kNone when the run passed
   uint64_t cycles = 0, pixels = 0, scanlines = 0;
   double seconds = 0;
   bool passed() const { return first.kind == Mismatch::Kind::kNone; }
 };
+
+// Time stamp of a cycle in waveforms: 10 units per clock, reset cycles first; the rising edge
+// of cycle c is at 10 (c + kResetCycles) + 5.
+constexpr uint64_t kWaveUnitsPerCycle = 10;
 
 // Everything both backends need before the first clock: the words on the cmd port, the
 // bit-accurate model's pixels, and a cycle bound past which the run counts as hung.

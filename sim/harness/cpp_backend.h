@@ -3,21 +3,50 @@
 #pragma once
 
 #include <chrono>
+#include <memory>
+#include <stdexcept>
 
 #include "sim/harness/cosim.h"
 #include "verilated.h"
+#ifdef SHADESIM_COSIM_TRACE
+#include "verilated_fst_c.h"
+#endif
 
 namespace shadesim {
 
+// With `waves`, only a trace-enabled build (SHADESIM_COSIM_TRACE, verilate(... TRACE_FST))
+// dumps the window into an FST file; other builds throw std::invalid_argument.
 template <class V>
-CosimResult run_verilated_cpp(const CosimJob& job) {
+CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nullptr) {
   const Prepared prep = prepare(job);
   const auto t0 = std::chrono::steady_clock::now();  // simulation speed excludes preparation
   const UnitConfig& cfg = job.config.unit;
   Scoreboard board(prep.expected, cfg.channels);
 
   VerilatedContext context;
+#ifdef SHADESIM_COSIM_TRACE
+  std::unique_ptr<VerilatedFstC> fst;
+  if (waves) context.traceEverOn(true);
+#else
+  if (waves) {
+    throw std::invalid_argument("waveforms need the trace-enabled build (rtl_cosim_cpp_trace); this one has no tracing");
+  }
+#endif
   V top(&context);
+#ifdef SHADESIM_COSIM_TRACE
+  if (waves) {
+    fst = std::make_unique<VerilatedFstC>();
+    top.trace(fst.get(), 99);
+    fst->open(waves->path.c_str());
+    if (!fst->isOpen()) throw std::runtime_error(waves->path + ": cannot open for writing the waveform");
+  }
+  // Dumps the state at `units` (time stamp) when `cycle` is inside the window.
+  auto dump = [&](uint64_t cycle, uint64_t units) {
+    if (fst && cycle >= waves->first && cycle <= waves->last) fst->dump(units);
+  };
+#else
+  auto dump = [](uint64_t, uint64_t) {};
+#endif
   top.clk_i = 0;
   top.rst_ni = 0;
   top.cmd_valid_i = 0;
@@ -42,6 +71,8 @@ CosimResult run_verilated_cpp(const CosimJob& job) {
     top.cmd_data_i = rtl_driver.word();
     top.pix_ready_i = ready;
     top.eval();
+    const uint64_t t = (cycle + kResetCycles) * kWaveUnitsPerCycle;
+    dump(cycle, t);
     const bool cmd_fire = valid && top.cmd_ready_o;
     if (top.pix_valid_o && ready) {
       board.rtl_pixel(unpack_pixel(top.pix_x_o, top.pix_y_o, top.pix_colour_o, top.pix_eor_o,
@@ -53,15 +84,21 @@ CosimResult run_verilated_cpp(const CosimJob& job) {
     if (e.pix_fire && e.pix_eor) board.model_scanline({e.pix_y, cycle, e.pix_x});
     top.clk_i = 1;
     top.eval();
+    dump(cycle, t + kWaveUnitsPerCycle / 2);
     top.clk_i = 0;
     rtl_driver.clock(cmd_fire);
-    if (board.failed() || board.complete()) break;
+    // With a wave window, run on to its end (or to the natural end of the stream).
+    const bool window_open = waves && cycle < waves->last && !board.complete();
+    if ((board.failed() && !window_open) || board.complete()) break;
     if (cycle > prep.cycle_limit) {
       board.timeout(cycle);
       break;
     }
   }
   top.final();
+#ifdef SHADESIM_COSIM_TRACE
+  if (fst) fst->close();
+#endif
   CosimResult r;
   r.first = board.first_mismatch();
   r.cycles = board.cycles();
