@@ -16,6 +16,8 @@
 #include <sstream>
 #include <thread>
 
+#include <cstdlib>
+
 #include "host/frame.h"
 #include "sim/commands.h"
 #include "sim/junit.h"
@@ -45,6 +47,7 @@ struct CosimConfig {
   std::string name;
   UnitConfig unit;
   bool faulty = false;
+  std::vector<std::string> backends;  // the executables this configuration is Verilated into
 };
 
 struct Job {
@@ -65,6 +68,17 @@ struct Job {
   std::string log_path;
   std::string waves_path;
 };
+
+// A field of a result file, or `fallback` when it is absent or null.
+template <typename T>
+T field(const nlohmann::json& j, const char* key, T fallback) {
+  if (!j.is_object() || !j.contains(key) || j.at(key).is_null()) return fallback;
+  try {
+    return j.at(key).get<T>();
+  } catch (const nlohmann::json::exception&) {
+    return fallback;
+  }
+}
 
 std::string executable(const std::string& dir, const std::string& backend, bool trace = false) {
   const std::string name = backend == "cpp" ? (trace ? "rtl_cosim_cpp_trace" : "rtl_cosim_cpp") : "rtl_cosim_sc";
@@ -87,23 +101,35 @@ std::string find_cosim_dir(const std::string& requested) {
       "; build with -DSHADESIM_RTL=ON (the default) or point --cosim-dir at them");
 }
 
+// Every configuration Verilated into either backend's executable, with the backends that have it.
 std::vector<CosimConfig> list_configs(const std::string& cosim_dir) {
-  const ProcessResult r = run_process({executable(cosim_dir, "cpp"), "--list", "--json"}, "");
-  if (r.exit_code != 0) {
-    throw std::runtime_error("regress: '" + executable(cosim_dir, "cpp") + " --list --json' failed (exit " +
-                             std::to_string(r.exit_code) + "): " + r.output.substr(0, 400));
-  }
   std::vector<CosimConfig> configs;
-  try {
-    for (const auto& e : nlohmann::json::parse(r.output)) {
-      CosimConfig c;
-      c.name = e.at("name").get<std::string>();
-      c.unit = config_from_json(e.at("unit").dump(), "rtl_cosim_cpp --list: " + c.name + ": ");
-      c.faulty = !e.value("faults", nlohmann::json::object()).empty();
-      configs.push_back(std::move(c));
+  for (const std::string backend : {"cpp", "systemc"}) {
+    const std::string exe = executable(cosim_dir, backend);
+    if (!fs::exists(exe)) continue;
+    const ProcessResult r = run_process({exe, "--list", "--json"}, "");
+    if (r.exit_code != 0) {
+      throw std::runtime_error("regress: '" + exe + " --list --json' failed (exit " + std::to_string(r.exit_code) +
+                               "): " + r.output.substr(0, 400));
     }
-  } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(std::string("regress: cannot read the configuration list: ") + e.what());
+    try {
+      for (const auto& e : nlohmann::json::parse(r.output)) {
+        const std::string name = e.at("name").get<std::string>();
+        auto it = std::find_if(configs.begin(), configs.end(), [&](const CosimConfig& c) { return c.name == name; });
+        if (it == configs.end()) {
+          CosimConfig c;
+          c.name = name;
+          c.unit = config_from_json(e.at("unit").dump(), exe + " --list: " + name + ": ");
+          const auto faults = e.contains("faults") ? e.at("faults") : nlohmann::json();
+          c.faulty = !(faults.is_null() || faults.empty());
+          configs.push_back(std::move(c));
+          it = configs.end() - 1;
+        }
+        it->backends.push_back(backend);
+      }
+    } catch (const nlohmann::json::exception& e) {
+      throw std::runtime_error("regress: cannot read the configuration list of " + exe + ": " + e.what());
+    }
   }
   return configs;
 }
@@ -130,20 +156,18 @@ void run_job(Job& job, const RegressOptions& o, const std::string& cosim_dir, co
   } catch (const nlohmann::json::exception&) {
     j = nlohmann::json();
   }
-  if (j.is_object()) {
-    job.cycles = j.value("cycles", uint64_t{0});
-    job.seconds = j.value("seconds", 0.0);
-    job.cycles_per_second = j.value("cycles_per_second", 0.0);
-    job.replay = j.value("replay", std::string());
-  }
-  if (r.exit_code == 0 && j.is_object() && j.value("passed", false)) {
+  job.cycles = field(j, "cycles", uint64_t{0});
+  job.seconds = field(j, "seconds", 0.0);
+  job.cycles_per_second = field(j, "cycles_per_second", 0.0);
+  job.replay = field(j, "replay", std::string());
+  if (r.exit_code == 0 && field(j, "passed", false)) {
     job.status = "pass";
     return;
   }
   if (r.exit_code == 1 && j.is_object()) {
     job.status = "mismatch";
-    const auto& m = j.value("first_mismatch", nlohmann::json::object());
-    job.message = m.value("message", std::string("mismatch (no message)"));
+    job.message = field(field(j, "first_mismatch", nlohmann::json::object()), "message",
+                        std::string("mismatch (the result names none)"));
     if (o.waves && job.backend == "cpp") {
       const fs::path fst = out / "waves" / (base + ".fst");
       args[0] = executable(cosim_dir, "cpp", true);
@@ -156,12 +180,13 @@ void run_job(Job& job, const RegressOptions& o, const std::string& cosim_dir, co
     return;
   }
   job.status = "error";
+  // The last non-empty line of the log says why; the whole log is kept beside the results.
   std::ifstream log(job.log_path);
-  std::stringstream tail;
-  tail << log.rdbuf();
-  std::string text = tail.str();
-  if (text.size() > 600) text = "..." + text.substr(text.size() - 600);
-  job.message = "co-simulation exited with " + std::to_string(r.exit_code) + ": " + text;
+  std::string line, last;
+  while (std::getline(log, line)) {
+    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
+  }
+  job.message = "co-simulation exited with " + std::to_string(r.exit_code) + ": " + last + " (log: " + job.log_path + ")";
 }
 
 std::string fmt(double v, int precision) {
@@ -185,11 +210,16 @@ void print_table(const std::vector<Job>& jobs) {
 }
 
 int run_regress(const RegressOptions& o) {
+  // The children are SystemC programs too: keep their logs free of its banner.
+  setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
   const std::string cosim_dir = find_cosim_dir(o.cosim_dir);
   std::vector<CosimConfig> configs = list_configs(cosim_dir);
   if (o.list) {
     for (const auto& c : configs) {
-      std::cout << std::left << std::setw(22) << c.name << c.unit.to_string() << (c.faulty ? "  (injected fault)" : "") << '\n';
+      std::string backends;
+      for (const auto& b : c.backends) backends += (backends.empty() ? "" : ",") + b;
+      std::cout << std::left << std::setw(22) << c.name << std::setw(13) << backends << c.unit.to_string()
+                << (c.faulty ? "  (injected fault)" : "") << '\n';
     }
     return 0;
   }
@@ -206,8 +236,19 @@ int run_regress(const RegressOptions& o) {
     }
     configs = chosen;
   } else {
-    configs.erase(std::remove_if(configs.begin(), configs.end(), [](const CosimConfig& c) { return c.faulty; }),
+    // By default: the hardware builds. Injected-fault builds exist to prove the harness fails,
+    // and an `ideal` build has no specular hardware (its slot outputs 0), so it cannot match
+    // the model on a scene with highlights.
+    configs.erase(std::remove_if(configs.begin(), configs.end(),
+                                 [](const CosimConfig& c) {
+                                   return c.faulty || c.unit.specular.kind == SpecularUnitKind::kIdeal;
+                                 }),
                   configs.end());
+    if (configs.empty()) {
+      throw std::invalid_argument(
+          "regress: no hardware configuration is built (only ideal or fault-injection builds); name one "
+          "with --configs, see --list");
+    }
   }
   for (const auto& b : o.backends) {
     if (b != "cpp" && b != "systemc") throw std::invalid_argument("--backends: '" + b + "': expected cpp or systemc");
@@ -260,7 +301,13 @@ int run_regress(const RegressOptions& o) {
         Job j = proto;
         j.backend = b;
         j.seed = job_seed;
-        jobs.push_back(j);
+        if (std::find(c.backends.begin(), c.backends.end(), b) == c.backends.end()) {
+          j.status = "skipped";
+          j.message = "configuration " + c.name + " is not Verilated into the " + b + " backend";
+          skipped.push_back(j);
+        } else {
+          jobs.push_back(j);
+        }
       }
       ++job_seed;
     }
@@ -274,7 +321,12 @@ int run_regress(const RegressOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   auto worker = [&]() {
     for (size_t i = next++; i < jobs.size(); i = next++) {
-      run_job(jobs[i], o, cosim_dir, out);
+      try {
+        run_job(jobs[i], o, cosim_dir, out);
+      } catch (const std::exception& e) {
+        jobs[i].status = "error";
+        jobs[i].message = e.what();
+      }
       const size_t n = ++done;
       std::lock_guard<std::mutex> lock(print_mutex);
       const Job& j = jobs[i];
@@ -308,7 +360,7 @@ int run_regress(const RegressOptions& o) {
   };
   const long passed = count("pass"), mismatched = count("mismatch"), errors = count("error"), skips = count("skipped");
   std::cout << "\nregress: " << passed << " passed, " << mismatched << " mismatched, " << errors << " error(s), "
-            << skips << " skipped (scene does not fit the build) in " << fmt(wall, 1) << " s with " << workers
+            << skips << " skipped (not in the build, or the scene does not fit it) in " << fmt(wall, 1) << " s with " << workers
             << " job(s); seed " << o.seed << '\n';
 
   if (!o.junit_path.empty()) {
@@ -359,8 +411,9 @@ void register_regress(CLI::App& app, int& exit_code) {
       "input gaps and output back-pressure. Exits 1 on any mismatch, naming it with a replay command.");
   sub->add_option("scenes", o->scenes, "scene files (default: scenes/*.json)")->check(CLI::ExistingFile);
   sub->add_option("--configs", o->configs, "configurations to run (default: all without injected faults; see --list)")
-      ->delimiter(',');
-  sub->add_option("--backends", o->backends, "cpp, systemc or both")->delimiter(',')->capture_default_str();
+      ->delimiter(',')->allow_extra_args(false);
+  sub->add_option("--backends", o->backends, "cpp, systemc or both (comma-separated)")
+      ->delimiter(',')->allow_extra_args(false)->capture_default_str();
   sub->add_option("--seed", o->seed, "seed of the stimulus (printed on every run)")->capture_default_str();
   sub->add_option("-j,--jobs", o->jobs, "parallel co-simulations (default: hardware threads)")->check(CLI::NonNegativeNumber);
   sub->add_option("--gap-pct", o->gap_pct, "chance of idle cycles before a command word")->check(CLI::Range(0, 100))->capture_default_str();
