@@ -77,6 +77,53 @@ TEST(Cli, AllUnitsWritesTheHighlightStripAndOneLinePerUnit) {
   std::filesystem::remove_all(dir);
 }
 
+nlohmann::json run_json(const std::string& args, const std::filesystem::path& json_path) {
+  const Result r = run(args + " --json " + json_path.string());
+  EXPECT_EQ(r.status, 0) << args << "\n" << r.output;
+  std::ifstream js(json_path);
+  return nlohmann::json::parse(js);
+}
+
+TEST(Cli, CyclesBreakdownPartitionsTheRunAndShowsBackPressure) {
+  const auto dir = temp_dir("cycles");
+  const auto free_run = run_json("cycles " + kScenes + "sphere.json", dir / "a.json");
+  const auto pressed = run_json("cycles " + kScenes + "sphere.json --stall-pct 50 --seed 3", dir / "b.json");
+  for (const auto* j : {&free_run, &pressed}) {
+    uint64_t sum = 0, pixel_row = 0;
+    for (const auto& row : (*j)["breakdown"]) {
+      sum += row["cycles"].get<uint64_t>();
+      if (row["name"] == "pixel") pixel_row = row["cycles"].get<uint64_t>();
+    }
+    EXPECT_EQ(sum, (*j)["cycles"].get<uint64_t>());
+    EXPECT_EQ(pixel_row, (*j)["pixels"].get<uint64_t>());  // one pixel leaves per pixel cycle
+    EXPECT_GE((*j)["cycles_per_pixel"].get<double>(), 1.0);
+  }
+  EXPECT_GT(pressed["cycles"].get<uint64_t>(), free_run["cycles"].get<uint64_t>());
+  for (const auto& row : pressed["breakdown"]) {
+    if (row["name"] == "back_pressure") EXPECT_GT(row["cycles"].get<uint64_t>(), 0u);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, CyclesEstimateEqualsTheRtlOnTheSameSceneAndStimulus) {
+  if (!std::filesystem::exists(std::string(SHADESIM_BINARY_DIR) + "/rtl_cosim_cpp")) {
+    GTEST_SKIP() << "RTL not built (configure with -DSHADESIM_RTL=ON)";
+  }
+  // The cycle model alone against the Verilated RTL (rtl_cosim_cpp via regress), with gaps and
+  // back-pressure: the cycle counts must be equal, not close.
+  const auto dir = temp_dir("cycles_rtl");
+  const std::string stim = " --gap-pct 20 --max-gap 8 --stall-pct 20 --seed 7";
+  const auto estimate = run_json("cycles " + kScenes + "sphere.json --channels 1 --lights 1 --coef s4.32:rnd" + stim,
+                                 dir / "c.json");
+  const auto regress = run_json("regress " + kScenes + "sphere.json --configs grey_s428w --backends cpp --out " +
+                                    (dir / "reg").string() + stim,
+                                dir / "r.json");
+  ASSERT_EQ(regress["jobs"].size(), 1u);
+  EXPECT_EQ(regress["jobs"][0]["status"], "pass") << regress.dump(2);
+  EXPECT_EQ(regress["jobs"][0]["cycles"].get<uint64_t>(), estimate["cycles"].get<uint64_t>());
+  std::filesystem::remove_all(dir);
+}
+
 void expect_error(const std::string& args, const std::string& needle) {
   const Result r = run(args);
   EXPECT_NE(r.status, 0) << args;
