@@ -15,8 +15,9 @@ set(RTL_DIR ${CMAKE_SOURCE_DIR}/rtl)
 # Dependency order (leaves first) for tools that want it.
 set(RTL_SOURCES
   ${RTL_DIR}/fixed_round.sv ${RTL_DIR}/fixed_sat.sv ${RTL_DIR}/span_setup.sv
-  ${RTL_DIR}/series_engine.sv ${RTL_DIR}/pixel_combine.sv ${RTL_DIR}/specular_slot.sv
-  ${RTL_DIR}/shade_unit.sv)
+  ${RTL_DIR}/series_engine.sv ${RTL_DIR}/pixel_combine.sv
+  ${RTL_DIR}/exponent_lut.sv ${RTL_DIR}/schlick_divider.sv ${RTL_DIR}/wpow_unit.sv
+  ${RTL_DIR}/specular_slot.sv ${RTL_DIR}/shade_unit.sv)
 
 # Fixed-point format text ("s4.28:rnd:wrap", as FixedFormat::to_string writes it) -> parameters.
 function(_rtl_format_params prefix text out)
@@ -40,11 +41,54 @@ function(_rtl_format_params prefix text out)
   set(${out} ${params} PARENT_SCOPE)
 endfunction()
 
+# A specular unit's fields ("addr_bits=10 index=nearest", the JSON names of its config) ->
+# parameters with the unit's prefix (LUT_ADDR_BITS=10 LUT_INDEX=1). Host-only fields (LUT
+# addressing and shared range, fit objectives) shape the stream, not the hardware: no parameter.
+function(_rtl_unit_params name kind text out)
+  set(params "")
+  string(TOUPPER "${kind}" prefix)
+  separate_arguments(pairs UNIX_COMMAND "${text}")
+  foreach(pair ${pairs})
+    if(NOT pair MATCHES "^([a-z_0-9]+)=(.+)$")
+      message(FATAL_ERROR "rtl config ${name}: UNIT entry '${pair}': expected key=value")
+    endif()
+    set(key ${CMAKE_MATCH_1})
+    set(value ${CMAKE_MATCH_2})
+    if(key STREQUAL "addressing" OR key STREQUAL "shared_range_log2" OR key STREQUAL "fit")
+      continue()
+    endif()
+    if(key STREQUAL "index")
+      set(map_truncate 0)
+      set(map_nearest 1)
+    elseif(key STREQUAL "timing")
+      set(map_pipelined 0)
+      set(map_iterative 1)
+    endif()
+    if(key STREQUAL "index" OR key STREQUAL "timing")
+      if(NOT DEFINED map_${value})
+        message(FATAL_ERROR "rtl config ${name}: UNIT ${key}=${value} is not a known value")
+      endif()
+      set(value ${map_${value}})
+    elseif(NOT value MATCHES "^[0-9]+$")
+      message(FATAL_ERROR "rtl config ${name}: UNIT ${key}=${value}: expected a non-negative integer")
+    endif()
+    string(TOUPPER "${key}" ukey)
+    list(APPEND params -G${prefix}_${ukey}=${value})
+  endforeach()
+  set(${out} ${params} PARENT_SCOPE)
+endfunction()
+
 # One configuration: the UnitConfig fields as text (the harness parses the same strings into a
 # UnitConfig, so CMake and C++ cannot disagree), plus the deliberate-fault rows (-1 = none).
+# Ideal-unit configurations go to RTL_CONFIG_NAMES; configurations with a hardware specular unit
+# (UNIT = its fields) to RTL_SPECULAR_CONFIG_NAMES, kept apart because their extra parameters are
+# not (yet) mirrored by the Icarus testbench (cmake/icarus.cmake iterates RTL_CONFIG_NAMES).
+# RTL_CONFIG_<name>_ENTRY keeps its 12 fields (read by cmake/icarus.cmake); the co-simulation
+# executables use RTL_CONFIG_<name>_COSIM_ENTRY, which adds UNIT.
 set(RTL_CONFIG_NAMES "")
+set(RTL_SPECULAR_CONFIG_NAMES "")
 function(rtl_config name)
-  cmake_parse_arguments(C "" "CHANNELS;LIGHTS;XY_BITS;COEF;SERIES;SPEC_COLOUR;OUT_BITS;SPECULAR;SPECULAR_OUT;FAULT_LSB_ROW;FAULT_STALL_ROW" "BACKENDS" ${ARGN})
+  cmake_parse_arguments(C "" "CHANNELS;LIGHTS;XY_BITS;COEF;SERIES;SPEC_COLOUR;OUT_BITS;SPECULAR;SPECULAR_OUT;UNIT;FAULT_LSB_ROW;FAULT_STALL_ROW" "BACKENDS" ${ARGN})
   foreach(field FAULT_LSB_ROW FAULT_STALL_ROW)
     if(NOT DEFINED C_${field})
       set(C_${field} -1)
@@ -62,12 +106,30 @@ function(rtl_config name)
   set(params -GCHANNELS=${C_CHANNELS} -GLIGHTS=${C_LIGHTS} -GXY_BITS=${C_XY_BITS}
       ${coef} ${series} ${spec_colour} -GOUT_BITS=${C_OUT_BITS} -GSPECULAR_KIND=${kind}
       ${spec_out} -GFAULT_LSB_ROW=${C_FAULT_LSB_ROW} -GFAULT_STALL_ROW=${C_FAULT_STALL_ROW})
+  if(kind GREATER 0)
+    set(quant 0)
+    set(overflow 0)
+    if(C_SPECULAR_OUT MATCHES ":rnd")
+      set(quant 1)
+    endif()
+    if(C_SPECULAR_OUT MATCHES ":wrap")
+      set(overflow 1)
+    endif()
+    _rtl_unit_params(${name} ${C_SPECULAR} "${C_UNIT}" unit)
+    list(APPEND params -GSPECULAR_OUT_QUANT=${quant} -GSPECULAR_OUT_OVERFLOW=${overflow} ${unit})
+  elseif(C_UNIT)
+    message(FATAL_ERROR "rtl config ${name}: UNIT given for the ideal unit, which has no parameters")
+  endif()
   set(RTL_CONFIG_${name}_PARAMS ${params} PARENT_SCOPE)
   set(RTL_CONFIG_${name}_BACKENDS ${C_BACKENDS} PARENT_SCOPE)
-  set(RTL_CONFIG_${name}_ENTRY
-      "X(${name}, ${C_CHANNELS}, ${C_LIGHTS}, ${C_XY_BITS}, \"${C_COEF}\", \"${C_SERIES}\", \"${C_SPEC_COLOUR}\", ${C_OUT_BITS}, \"${C_SPECULAR}\", \"${C_SPECULAR_OUT}\", ${C_FAULT_LSB_ROW}, ${C_FAULT_STALL_ROW})"
-      PARENT_SCOPE)
-  set(RTL_CONFIG_NAMES ${RTL_CONFIG_NAMES} ${name} PARENT_SCOPE)
+  set(head "${name}, ${C_CHANNELS}, ${C_LIGHTS}, ${C_XY_BITS}, \"${C_COEF}\", \"${C_SERIES}\", \"${C_SPEC_COLOUR}\", ${C_OUT_BITS}, \"${C_SPECULAR}\", \"${C_SPECULAR_OUT}\", ${C_FAULT_LSB_ROW}, ${C_FAULT_STALL_ROW}")
+  set(RTL_CONFIG_${name}_ENTRY "X(${head})" PARENT_SCOPE)
+  set(RTL_CONFIG_${name}_COSIM_ENTRY "X(${head}, \"${C_UNIT}\")" PARENT_SCOPE)
+  if(kind GREATER 0)
+    set(RTL_SPECULAR_CONFIG_NAMES ${RTL_SPECULAR_CONFIG_NAMES} ${name} PARENT_SCOPE)
+  else()
+    set(RTL_CONFIG_NAMES ${RTL_CONFIG_NAMES} ${name} PARENT_SCOPE)
+  endif()
 endfunction()
 
 # The default configurations: two width sets (wrap vs saturate, truncate vs round, grey vs RGB
@@ -82,6 +144,25 @@ rtl_config(fault_lsb CHANNELS 1 LIGHTS 1 XY_BITS 12 COEF s4.32:rnd SERIES s4.28:
 rtl_config(fault_stall CHANNELS 1 LIGHTS 1 XY_BITS 12 COEF s4.32:rnd SERIES s4.28:wrap
            SPEC_COLOUR u1.12:rnd OUT_BITS 8 SPECULAR ideal SPECULAR_OUT u1.16
            FAULT_STALL_ROW 23 BACKENDS "cpp")
+
+# The specular-unit regression (milestone 2): RGB with 2 lights (every shipped scene fits: the
+# encoder pads lights and repeats grey channels) x {per-exponent LUT, Schlick iterative, Schlick
+# pipelined, W_m m=16} x two width sets: "d" = UnitConfig's defaults (coef s4.32:rnd:wrap,
+# series s4.28 truncate+wrap, spec colour u1.12:rnd, out 8, xy 12, specular out u1.16, unit
+# defaults) and "n" = narrower (coef s3.30:rnd, series s3.20 round+saturate, spec colour
+# u1.10:rnd, out 8, xy 11, specular out u1.12, smaller units).
+set(_rtl_d CHANNELS 3 LIGHTS 2 XY_BITS 12 COEF s4.32:rnd:wrap SERIES s4.28:wrap SPEC_COLOUR u1.12:rnd
+           OUT_BITS 8 SPECULAR_OUT u1.16)
+set(_rtl_n CHANNELS 3 LIGHTS 2 XY_BITS 11 COEF s3.30:rnd:wrap SERIES s3.20:rnd SPEC_COLOUR u1.10:rnd
+           OUT_BITS 8 SPECULAR_OUT u1.12)
+rtl_config(lut_d ${_rtl_d} SPECULAR lut UNIT "addr_bits=10 entry_bits=8" BACKENDS "cpp;sc")
+rtl_config(schlick_iter_d ${_rtl_d} SPECULAR schlick UNIT "quotient_bits=16 operand_bits=24 timing=iterative" BACKENDS "cpp;sc")
+rtl_config(schlick_pipe_d ${_rtl_d} SPECULAR schlick UNIT "quotient_bits=16 operand_bits=24 timing=pipelined" BACKENDS "cpp")
+rtl_config(wpow16_d ${_rtl_d} SPECULAR wpow UNIT "max_m=16 base_bits=16 timing=pipelined" BACKENDS "cpp")
+rtl_config(lut_n ${_rtl_n} SPECULAR lut UNIT "addr_bits=8 entry_bits=8 interp_bits=4 index=nearest" BACKENDS "cpp")
+rtl_config(schlick_iter_n ${_rtl_n} SPECULAR schlick UNIT "quotient_bits=12 operand_bits=16 timing=iterative" BACKENDS "cpp")
+rtl_config(schlick_pipe_n ${_rtl_n} SPECULAR schlick UNIT "quotient_bits=12 operand_bits=16 timing=pipelined" BACKENDS "cpp")
+rtl_config(wpow16_n ${_rtl_n} SPECULAR wpow UNIT "max_m=16 base_bits=12 timing=iterative" BACKENDS "cpp")
 
 # ---- plain C++ harness: scoreboard, random streams (stimulus and cycle model are in model/) ----
 add_library(shadesim_harness STATIC
@@ -104,7 +185,7 @@ foreach(backend cpp sc cpp_trace)
   set(entries "")
   set(includes "")
   add_executable(${exe} ${CMAKE_SOURCE_DIR}/sim/harness/cosim_main.cpp)
-  foreach(name ${RTL_CONFIG_NAMES})
+  foreach(name ${RTL_CONFIG_NAMES} ${RTL_SPECULAR_CONFIG_NAMES})
     set(want ${backend})
     if(backend STREQUAL "cpp_trace")
       set(want cpp)
@@ -124,7 +205,7 @@ foreach(backend cpp sc cpp_trace)
       PREFIX V${name}
       DIRECTORY ${CMAKE_BINARY_DIR}/verilated/${backend}/${name}
       VERILATOR_ARGS ${RTL_CONFIG_${name}_PARAMS} --x-assign fast --x-initial fast -O3)
-    string(APPEND entries "${RTL_CONFIG_${name}_ENTRY}\n")
+    string(APPEND entries "${RTL_CONFIG_${name}_COSIM_ENTRY}\n")
     string(APPEND includes "#include \"V${name}.h\"\n")
   endforeach()
   file(WRITE ${CMAKE_BINARY_DIR}/verilated/${backend}/rtl_configs.inc.new
@@ -140,6 +221,8 @@ foreach(backend cpp sc cpp_trace)
     verilator_link_systemc(${exe})
   elseif(backend STREQUAL "cpp_trace")
     target_compile_definitions(${exe} PRIVATE SHADESIM_COSIM_TRACE=1)
+    # Only ever re-runs one failing job: build time matters more than speed here.
+    target_compile_options(${exe} PRIVATE -O1)
   endif()
 endforeach()
 
@@ -156,6 +239,14 @@ endif()
 if(YOSYS)
   add_test(NAME rtl_yosys_no_latch
     COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_check.sh ${YOSYS} ${CMAKE_BINARY_DIR}/rtl_yosys.log ${RTL_SOURCES})
+  # shade_unit's slot glue: the metadata delay line (pipelined W_m, latency 3) and the pending
+  # register of an iterative unit (W_m iterative); small units keep synthesis quick.
+  foreach(timing 0 1)
+    add_test(NAME rtl_yosys_no_latch_wpow_timing${timing}
+      COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_check.sh ${YOSYS} ${CMAKE_BINARY_DIR}/rtl_yosys_wpow${timing}.log ${RTL_SOURCES})
+    set_tests_properties(rtl_yosys_no_latch_wpow_timing${timing} PROPERTIES
+      ENVIRONMENT "YOSYS_CHPARAM=-set SPECULAR_KIND 3 -set WPOW_MAX_M 4 -set WPOW_BASE_BITS 8 -set WPOW_TIMING ${timing}")
+  endforeach()
 endif()
 
 # Co-simulation: every scenario, several seeds, both backends, both width sets.
@@ -169,6 +260,22 @@ foreach(name grey_s428w rgb2_s320s)
               --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
   endforeach()
 endforeach()
+# The specular-unit configurations: every scenario (non-zero specular colours, unit parameters,
+# LUT tables), one seed each in CI; the SystemC backend on one scenario where it is built.
+foreach(name ${RTL_SPECULAR_CONFIG_NAMES})
+  add_test(NAME rtl_lint_${name}
+    COMMAND verilator --lint-only -Wall ${RTL_CONFIG_${name}_PARAMS} --top-module shade_unit ${RTL_SOURCES})
+  add_test(NAME rtl_cosim_cpp_${name}
+    COMMAND rtl_cosim_cpp --config ${name} --scenario all --seed 21 --runs 1 --min-spec-pct 25
+            --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
+  if("sc" IN_LIST RTL_CONFIG_${name}_BACKENDS)
+    add_test(NAME rtl_cosim_sc_${name}_mixed
+      COMMAND rtl_cosim_sc --config ${name} --scenario mixed --seed 23 --min-spec-pct 25
+              --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
+  endif()
+endforeach()
+add_test(NAME rtl_cosim_backends_agree_schlick_iter_d
+  COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/same_results.sh ${CMAKE_BINARY_DIR} schlick_iter_d switch 5)
 # Both backends give the same pixels, scanlines and cycles on the same run.
 add_test(NAME rtl_cosim_backends_agree
   COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/same_results.sh ${CMAKE_BINARY_DIR} rgb2_s320s mixed 11)

@@ -2,9 +2,27 @@
 
 #include <stdexcept>
 
+#include "model/exponent_lut.h"
+#include "model/schlick_divider.h"
+#include "model/wpow_unit.h"
+
 namespace shadesim {
 namespace {
 constexpr unsigned kOpMaterial = 0x01, kOpTriangle = 0x02, kOpSpan = 0x03, kOpTable = 0x04;
+}
+
+SlotTiming slot_timing(const SpecularConfig& config) {
+  switch (config.kind) {
+    case SpecularUnitKind::kLut:
+      return {ExponentLut::latency(config.lut), ExponentLut::cycles_per_pixel(config.lut)};
+    case SpecularUnitKind::kSchlick:
+      return {SchlickDivider::latency(config.schlick), SchlickDivider::cycles_per_pixel(config.schlick)};
+    case SpecularUnitKind::kWpow:
+      return {WpowUnit::latency(config.wpow), WpowUnit::cycles_per_pixel(config.wpow)};
+    case SpecularUnitKind::kIdeal:
+    default:
+      return {0, 1};
+  }
 }
 
 std::string to_string(CycleModel::Category c) {
@@ -97,7 +115,7 @@ CycleModel::Edge CycleModel::clock(bool cmd_valid, uint64_t word, bool pix_ready
   const unsigned op = static_cast<unsigned>(word >> 56) & 0xFF;
   const unsigned count = static_cast<unsigned>(word & 0xFFFF);
   bool hdr_ready = true;
-  if (op == kOpMaterial) hdr_ready = empty;
+  if (op == kOpMaterial || op == kOpTable) hdr_ready = empty;
   if (op == kOpSpan) hdr_ready = s1_free;
   e.cmd_ready = in_payload_ || hdr_ready;
   e.cmd_fire = cmd_valid && e.cmd_ready;

@@ -4,7 +4,7 @@
 // scanline's completion cycle must match exactly.
 //
 // Mirrored structure (names as in the RTL): a command decoder (headers, payload counting;
-// MATERIAL waits for an empty datapath), three span-setup stages s1..s3 with valid bits, the
+// MATERIAL and TABLE wait for an empty datapath), three span-setup stages s1..s3 with valid bits, the
 // engines' run state (run, rem), the specular slot's timing (a LATENCY-deep delay line for a
 // pipelined unit, one in-flight pixel and a busy count for an iterative one), and the pix output
 // register with advance = !valid || ready.
@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "model/specular_config.h"
 #include "model/stimulus.h"
 
 namespace shadesim {
@@ -23,6 +24,10 @@ struct SlotTiming {
   int latency = 0;   // registers from the engines' values to the specular result
   int interval = 1;  // cycles per pixel; > 1: iterative unit (then latency == interval)
 };
+
+// The selected unit's timing (ExponentLut / SchlickDivider / WpowUnit latency and
+// cycles_per_pixel; ideal: 0 and 1), as rtl/specular_slot.sv builds it.
+SlotTiming slot_timing(const SpecularConfig& config);
 
 // Where a scanline ends: the cycle on which its end-of-row pixel leaves the unit.
 struct ScanlineDone {

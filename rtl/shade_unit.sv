@@ -13,7 +13,12 @@
 //                whenever stage 1 is free, so setup overlaps the previous span's pixels.
 //   engines      series_engine per series; loaded from stage 3 on the cycle the previous
 //                span's last pixel leaves the engines (back-to-back spans have no bubble).
-//   output       pixel_combine + specular slots (combinational) into the pix register.
+//   slot         specular_slot per light (LATENCY / INTERVAL below). Pipelined units
+//                (INTERVAL 1): a LATENCY-deep metadata line (valid, x, y, eor, diffuse values)
+//                moves with the slot on the global advance. Iterative units (INTERVAL > 1): one
+//                pixel in flight in a pending register; the engines step only when the unit
+//                can start, which is also when the pending pixel is handed over.
+//   output       pixel_combine into the pix register.
 module shade_unit #(
   parameter int CHANNELS         = 1,
   parameter int LIGHTS           = 1,
@@ -30,6 +35,22 @@ module shade_unit #(
   parameter int SPECULAR_KIND    = 0,  // SpecularUnitKind: 0 ideal, 1 lut, 2 schlick, 3 wpow
   parameter int SPECULAR_OUT_WL  = 17,
   parameter int SPECULAR_OUT_IWL = 1,
+  // The specular unit's own parameters (specular_slot; model/specular_config.h field names
+  // with the unit's prefix). Unused unless SPECULAR_KIND selects that unit.
+  // verilator lint_off UNUSEDPARAM
+  parameter int SPECULAR_OUT_QUANT    = 0,  // Quantization: 0 truncate, 1 round to nearest
+  parameter int SPECULAR_OUT_OVERFLOW = 0,  // Overflow: 0 saturate, 1 wrap
+  parameter int LUT_ADDR_BITS         = 10,
+  parameter int LUT_ENTRY_BITS        = 8,
+  parameter int LUT_INTERP_BITS       = 0,
+  parameter int LUT_INDEX             = 0,  // 0 truncate, 1 nearest
+  parameter int SCHLICK_QUOTIENT_BITS = 16,
+  parameter int SCHLICK_OPERAND_BITS  = 24,
+  parameter int SCHLICK_TIMING        = 1,  // 0 pipelined, 1 iterative
+  parameter int WPOW_MAX_M            = 16,
+  parameter int WPOW_BASE_BITS        = 16,
+  parameter int WPOW_TIMING           = 0,  // 0 pipelined, 1 iterative
+  // verilator lint_on UNUSEDPARAM
   // Deliberate faults for the harness's own tests (-1 = off): add 1 LSB to channel 0 of every
   // pixel of row FAULT_LSB_ROW; hold the engines one extra cycle before the last_in_row span
   // of row FAULT_STALL_ROW (first occurrence only).
@@ -54,6 +75,16 @@ module shade_unit #(
   localparam int NCoef          = 6 * NSer;
   localparam int NMatFixed      = CHANNELS + LIGHTS * CHANNELS;  // ambient + spec_colour words
   localparam int OfsW           = 17;  // x0 - xo with x0 < 2^15 and xo a signed 16-bit value
+  // The slot's timing (specular_slot's LATENCY / INTERVAL; notes/spec_rtl.md).
+  localparam int WpowK          = $clog2(WPOW_MAX_M);
+  localparam int SpecLatency    =
+      SPECULAR_KIND == 1 ? (LUT_INTERP_BITS > 0 ? 3 : 2) :
+      SPECULAR_KIND == 2 ? SCHLICK_QUOTIENT_BITS :
+      SPECULAR_KIND == 3 ? WpowK + 1 : 0;
+  localparam int SpecInterval   =
+      SPECULAR_KIND == 2 && SCHLICK_TIMING == 1 ? SCHLICK_QUOTIENT_BITS :
+      SPECULAR_KIND == 3 && WPOW_TIMING == 1 ? WpowK + 1 : 1;
+  localparam bit Iterative      = SpecInterval > 1;
 
   localparam logic [7:0] OpMaterial = 8'h01;
   localparam logic [7:0] OpTriangle = 8'h02;
@@ -70,7 +101,9 @@ module shade_unit #(
   logic stall_fault;
   logic s1_v_q, s2_v_q, s3_v_q, run_q;
   logic s1_move, s2_move, s1_free, s3_free;
-  logic datapath_empty;
+  logic datapath_empty, slot_empty;
+  logic spec_busy;  // an iterative specular unit cannot start (all lights run in lockstep)
+  logic out_adv;    // the pix register takes the slot's output pixel
   logic cmd_fire, hdr_fire, pay_fire, span_fire;
 
   // ---- decoder state ----------------------------------------------------------------------
@@ -84,11 +117,15 @@ module shade_unit #(
   assign hdr_op    = cmd_data_i[63:56];
   assign hdr_count = cmd_data_i[15:0];
 
-  assign datapath_empty = !s1_v_q && !s2_v_q && !s3_v_q && !run_q;
+  assign datapath_empty = !s1_v_q && !s2_v_q && !s3_v_q && !run_q && slot_empty;
 
+  // MATERIAL (ambient, spec_colour, exponent and unit parameters) and TABLE (LUT entries) must
+  // not change what in-flight pixels read: both wait for an empty datapath, as the model
+  // applies them in stream order.
   always_comb begin
     case (hdr_op)
       OpMaterial: hdr_ready = datapath_empty;
+      OpTable:    hdr_ready = datapath_empty;
       OpSpan:     hdr_ready = s1_free;
       default:    hdr_ready = 1'b1;
     endcase
@@ -231,7 +268,7 @@ module shade_unit #(
   logic               last_q, fault_done_q;
 
   assign adv      = !pix_valid_o || pix_ready_i;
-  assign emit     = run_q && adv;
+  assign emit     = run_q && adv && !spec_busy;
   assign last_pix = rem_q == 16'd1;
 
   if (FAULT_STALL_ROW >= 0) begin : g_stall_fault
@@ -268,20 +305,91 @@ module shade_unit #(
     end
   end
 
-  // ---- per-pixel colour: specular slots and pixel combine --------------------------------
+  // ---- specular slots and the metadata that travels with them ------------------------------
+  typedef struct packed {
+    logic [XY_BITS-1:0]         x, y;
+    logic                       eor;
+    logic [NDiff*SERIES_WL-1:0] diffuse;
+  } meta_t;
+
+  meta_t meta_in, meta_out;  // from the engines; at the slot's output
+  logic  meta_out_valid;
+  assign meta_in.x       = x_q;
+  assign meta_in.y       = y_q;
+  assign meta_in.eor     = last_q && last_pix;
+  assign meta_in.diffuse = eng_v[NDiff*SERIES_WL-1:0];
+
   logic [LIGHTS*SPECULAR_OUT_WL-1:0] spec;
+  logic [LIGHTS-1:0]                 busy;
+  logic                              slot_en;
+  assign slot_en   = Iterative ? emit : adv;
+  assign spec_busy = |busy;
   for (genvar l = 0; l < LIGHTS; l++) begin : g_spec
     specular_slot #(
-      .SPECULAR_KIND(SPECULAR_KIND), .SERIES_WL(SERIES_WL), .SERIES_PER_LIGHT(SeriesPerLight),
-      .SPECULAR_OUT_WL(SPECULAR_OUT_WL)
+      .SPECULAR_KIND(SPECULAR_KIND), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
+      .SERIES_PER_LIGHT(SeriesPerLight), .SPECULAR_OUT_WL(SPECULAR_OUT_WL),
+      .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL), .SPECULAR_OUT_QUANT(SPECULAR_OUT_QUANT),
+      .SPECULAR_OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW),
+      .LUT_ADDR_BITS(LUT_ADDR_BITS), .LUT_ENTRY_BITS(LUT_ENTRY_BITS),
+      .LUT_INTERP_BITS(LUT_INTERP_BITS), .LUT_INDEX(LUT_INDEX),
+      .SCHLICK_QUOTIENT_BITS(SCHLICK_QUOTIENT_BITS), .SCHLICK_OPERAND_BITS(SCHLICK_OPERAND_BITS),
+      .SCHLICK_TIMING(SCHLICK_TIMING),
+      .WPOW_MAX_M(WPOW_MAX_M), .WPOW_BASE_BITS(WPOW_BASE_BITS), .WPOW_TIMING(WPOW_TIMING)
     ) u_slot (
-      .clk_i, .rst_ni, .en_i(emit),
+      .clk_i, .rst_ni, .en_i(slot_en),
       .series_i(eng_v[(NDiff + l*SeriesPerLight)*SERIES_WL +: SeriesPerLight*SERIES_WL]),
       .cfg_valid_i(cfg_valid), .cfg_table_i(cfg_table), .cfg_addr_i(cfg_addr),
-      .cfg_data_i(cmd_data_i), .spec_o(spec[l*SPECULAR_OUT_WL +: SPECULAR_OUT_WL])
+      .cfg_data_i(cmd_data_i), .spec_o(spec[l*SPECULAR_OUT_WL +: SPECULAR_OUT_WL]),
+      .busy_o(busy[l])
     );
   end
 
+  if (Iterative) begin : g_pending
+    // One pixel in flight: captured when the unit starts it, handed to the pix register when
+    // the unit is done - on the same edge as the next start (en_i = emit).
+    logic  pend_v_q;
+    meta_t pend_q;
+    assign out_adv        = adv && !spec_busy;
+    assign meta_out       = pend_q;
+    assign meta_out_valid = pend_v_q;
+    assign slot_empty     = !pend_v_q;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) pend_v_q <= 1'b0;
+      else if (out_adv) pend_v_q <= run_q;
+    end
+    always_ff @(posedge clk_i) begin
+      if (out_adv) pend_q <= meta_in;
+    end
+  end else if (SpecLatency > 0) begin : g_delay
+    // SpecLatency stages moving with the slot's pipeline on the global advance (en_i = adv).
+    logic [SpecLatency-1:0] line_v_q;
+    meta_t                  line_q [SpecLatency];
+    assign out_adv        = adv;
+    assign meta_out       = line_q[SpecLatency-1];
+    assign meta_out_valid = line_v_q[SpecLatency-1];
+    assign slot_empty     = line_v_q == '0;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        line_v_q <= '0;
+      end else if (adv) begin
+        line_v_q[0] <= run_q;
+        for (int i = 1; i < SpecLatency; i++) line_v_q[i] <= line_v_q[i-1];
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      if (adv) begin
+        line_q[0] <= meta_in;
+        for (int i = 1; i < SpecLatency; i++) line_q[i] <= line_q[i-1];
+      end
+    end
+  end else begin : g_direct
+    assign out_adv        = adv;
+    assign meta_out       = meta_in;
+    assign meta_out_valid = run_q;
+    assign slot_empty     = 1'b1;
+  end
+
+  // ---- pixel combine ----------------------------------------------------------------------------
   logic [CHANNELS*OUT_BITS-1:0] colour, colour_out;
   pixel_combine #(
     .CHANNELS(CHANNELS), .LIGHTS(LIGHTS), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
@@ -289,14 +397,14 @@ module shade_unit #(
     .SPEC_COLOUR_WL(SPEC_COLOUR_WL), .SPEC_COLOUR_IWL(SPEC_COLOUR_IWL),
     .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL), .OUT_BITS(OUT_BITS)
   ) u_combine (
-    .diffuse_i(eng_v[NDiff*SERIES_WL-1:0]), .spec_i(spec), .ambient_i(ambient_q),
+    .diffuse_i(meta_out.diffuse), .spec_i(spec), .ambient_i(ambient_q),
     .spec_colour_i(spec_colour_q), .colour_o(colour)
   );
 
   if (FAULT_LSB_ROW >= 0) begin : g_lsb_fault
     always_comb begin
       colour_out = colour;
-      if (y_q == XY_BITS'(FAULT_LSB_ROW)) colour_out[OUT_BITS-1:0] = colour[OUT_BITS-1:0] + OUT_BITS'(1);
+      if (meta_out.y == XY_BITS'(FAULT_LSB_ROW)) colour_out[OUT_BITS-1:0] = colour[OUT_BITS-1:0] + OUT_BITS'(1);
     end
   end else begin : g_no_lsb_fault
     assign colour_out = colour;
@@ -307,16 +415,16 @@ module shade_unit #(
     if (!rst_ni) begin
       pix_valid_o <= 1'b0;
     end else if (adv) begin
-      pix_valid_o <= run_q;
+      pix_valid_o <= out_adv && meta_out_valid;
     end
   end
 
   always_ff @(posedge clk_i) begin
-    if (emit) begin
-      pix_x_o      <= x_q;
-      pix_y_o      <= y_q;
+    if (out_adv && meta_out_valid) begin
+      pix_x_o      <= meta_out.x;
+      pix_y_o      <= meta_out.y;
       pix_colour_o <= colour_out;
-      pix_eor_o    <= last_q && last_pix;
+      pix_eor_o    <= meta_out.eor;
     end
   end
 endmodule

@@ -1,17 +1,52 @@
-// specular_slot: the place of one light's specular unit (model/specular_unit.h, class
-// SpecularUnit). This milestone has no specular hardware: the slot outputs 0, so the unit is
-// bit-exact with the model whenever MATERIAL's spec_colour is 0 (PixelCombine adds s*0 = 0).
-// The ports are the ones the LUT / Schlick / W_m units will need: this light's specular series
-// values, a per-pixel enable, and the configuration words of MATERIAL (exponent, unit
-// parameters) and TABLE commands. Combinational today; LATENCY > 0 units must be matched by
-// a delay line in shade_unit (see rtl.md).
+// specular_slot: one light's specular unit, whichever the configuration selects
+// (model/specular_unit.h, class SpecularUnit). SPECULAR_KIND: 0 ideal, 1 lut (exponent_lut),
+// 2 schlick (schlick_divider), 3 wpow (wpow_unit). Ideal is pow() in double, not hardware: the
+// slot outputs 0 for it (bit-exact with the model whenever spec_colour is 0).
+//
+// Unit parameters carry the unit's prefix: LUT_ADDR_BITS = LutConfig::addr_bits, ...;
+// the out format is SPECULAR_OUT_WL/IWL/QUANT/OVERFLOW (unsigned), the series format SERIES_WL/IWL.
+//
+// Timing contract (notes/spec_rtl.md has the integration recipe):
+//   LATENCY  (localparam) registers between series_i and spec_o:
+//              ideal 0; lut 2 (+1 with LUT_INTERP_BITS > 0); schlick SCHLICK_QUOTIENT_BITS;
+//              wpow log2(WPOW_MAX_M) + 1.
+//   INTERVAL (localparam) cycles per pixel: 1, except schlick with SCHLICK_TIMING = 1 (iterative):
+//              SCHLICK_QUOTIENT_BITS, and wpow with WPOW_TIMING = 1: log2(WPOW_MAX_M) + 1.
+//   INTERVAL == 1: en_i is the pipeline's advance (clock enable of every stage); spec_o is the
+//              result for the series_i sampled at the LATENCY-th most recent en_i edge.
+//   INTERVAL > 1 (iterative, LATENCY == INTERVAL): en_i starts a computation on series_i when
+//              busy_o is low (ignored while busy_o is high). Started in cycle c: busy_o is high in
+//              cycles c+1 .. c+LATENCY-1, the result is on spec_o from cycle c+LATENCY until the
+//              edge that ends the next start cycle. busy_o depends only on registers.
+// cfg port: MATERIAL words after ambient/spec_colour (cfg_table_i = 0, cfg_addr_i = 0 for the
+// exponent, 1.. for unit_params[0..]) and TABLE entries (cfg_table_i = 1, cfg_addr_i = base + i).
+// The exponent word resets the unit parameters to their defaults (empty unit_params).
 module specular_slot #(
-  // verilator lint_off UNUSED
-  parameter int SPECULAR_KIND    = 0,  // SpecularUnitKind: 0 ideal, 1 lut, 2 schlick, 3 wpow
-  // verilator lint_on UNUSED
-  parameter int SERIES_WL        = 32,
-  parameter int SERIES_PER_LIGHT = 1,
-  parameter int SPECULAR_OUT_WL  = 17
+  // Each unit's parameters are unused when another unit is selected.
+  // verilator lint_off UNUSEDPARAM
+  parameter int SPECULAR_KIND         = 0,  // SpecularUnitKind: 0 ideal, 1 lut, 2 schlick, 3 wpow
+  parameter int SERIES_WL             = 32,
+  parameter int SERIES_IWL            = 4,
+  parameter int SERIES_PER_LIGHT      = 1,  // 2 for schlick: [0] numerator, [1] denominator
+  parameter int SPECULAR_OUT_WL       = 17,
+  parameter int SPECULAR_OUT_IWL      = 1,
+  parameter int SPECULAR_OUT_QUANT    = 0,  // Quantization: 0 truncate, 1 round to nearest
+  parameter int SPECULAR_OUT_OVERFLOW = 0,  // Overflow: 0 saturate, 1 wrap
+  // LutConfig
+  parameter int LUT_ADDR_BITS         = 10,
+  parameter int LUT_ENTRY_BITS        = 8,
+  parameter int LUT_INTERP_BITS       = 0,
+  parameter int LUT_INDEX             = 0,  // 0 truncate, 1 nearest
+  parameter     LUT_TABLE_FILE        = "", // optional $readmemh file (ExponentLut::write_hex)
+  // SchlickConfig
+  parameter int SCHLICK_QUOTIENT_BITS = 16,
+  parameter int SCHLICK_OPERAND_BITS  = 24,
+  parameter int SCHLICK_TIMING        = 1,  // 0 pipelined, 1 iterative
+  // WpowConfig
+  parameter int WPOW_MAX_M            = 16,
+  parameter int WPOW_BASE_BITS        = 16,
+  parameter int WPOW_TIMING           = 0   // 0 pipelined, 1 iterative
+  // verilator lint_on UNUSEDPARAM
 ) (
   input  logic                                  clk_i,
   input  logic                                  rst_ni,
@@ -21,12 +56,84 @@ module specular_slot #(
   input  logic                                  cfg_table_i,  // 1: TABLE entry, 0: MATERIAL word
   input  logic [15:0]                           cfg_addr_i,   // table address / material index
   input  logic [63:0]                           cfg_data_i,
-  output logic [SPECULAR_OUT_WL-1:0]            spec_o
+  output logic [SPECULAR_OUT_WL-1:0]            spec_o,
+  output logic                                  busy_o
 );
-  // verilator lint_off UNUSED
-  logic unused_inputs;
-  assign unused_inputs = clk_i ^ rst_ni ^ en_i ^ (^series_i) ^ cfg_valid_i ^ cfg_table_i ^
-                         (^cfg_addr_i) ^ (^cfg_data_i);
-  // verilator lint_on UNUSED
-  assign spec_o = '0;
+  localparam int WpowK = $clog2(WPOW_MAX_M);
+  // verilator lint_off UNUSEDPARAM
+  localparam int LATENCY =
+      SPECULAR_KIND == 1 ? (LUT_INTERP_BITS > 0 ? 3 : 2) :
+      SPECULAR_KIND == 2 ? SCHLICK_QUOTIENT_BITS :
+      SPECULAR_KIND == 3 ? WpowK + 1 : 0;
+  localparam int INTERVAL =
+      SPECULAR_KIND == 2 && SCHLICK_TIMING == 1 ? SCHLICK_QUOTIENT_BITS :
+      SPECULAR_KIND == 3 && WPOW_TIMING == 1 ? WpowK + 1 : 1;
+  // verilator lint_on UNUSEDPARAM
+
+  if (SPECULAR_KIND == 1) begin : g_lut
+    exponent_lut #(
+      .ADDR_BITS(LUT_ADDR_BITS), .ENTRY_BITS(LUT_ENTRY_BITS), .INTERP_BITS(LUT_INTERP_BITS),
+      .INDEX(LUT_INDEX), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
+      .OUT_WL(SPECULAR_OUT_WL), .OUT_IWL(SPECULAR_OUT_IWL), .OUT_QUANT(SPECULAR_OUT_QUANT),
+      .OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW), .CFG_ADDR_W(16), .TABLE_FILE(LUT_TABLE_FILE)
+    ) u_lut (
+      .clk_i, .rst_ni, .en_i, .series_i(series_i[SERIES_WL-1:0]),
+      .cfg_valid_i, .cfg_table_i, .cfg_addr_i, .cfg_data_i, .spec_o
+    );
+    assign busy_o = 1'b0;
+    if (SERIES_PER_LIGHT > 1) begin : g_unused_series
+      // verilator lint_off UNUSEDSIGNAL
+      logic unused_series;
+      assign unused_series = ^series_i[SERIES_PER_LIGHT*SERIES_WL-1:SERIES_WL];
+      // verilator lint_on UNUSEDSIGNAL
+    end
+  end else if (SPECULAR_KIND == 2) begin : g_schlick
+    schlick_divider #(
+      .QUOTIENT_BITS(SCHLICK_QUOTIENT_BITS), .OPERAND_BITS(SCHLICK_OPERAND_BITS),
+      .TIMING(SCHLICK_TIMING), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
+      .OUT_WL(SPECULAR_OUT_WL), .OUT_IWL(SPECULAR_OUT_IWL), .OUT_QUANT(SPECULAR_OUT_QUANT),
+      .OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW)
+    ) u_schlick (
+      .clk_i, .rst_ni, .en_i, .num_i(series_i[SERIES_WL-1:0]),
+      .den_i(series_i[SERIES_PER_LIGHT*SERIES_WL-1 -: SERIES_WL]), .spec_o, .busy_o
+    );
+    // No per-material parameters and no table: the cfg port is not used.
+    // verilator lint_off UNUSEDSIGNAL
+    logic unused_cfg;
+    assign unused_cfg = cfg_valid_i ^ cfg_table_i ^ (^cfg_addr_i) ^ (^cfg_data_i);
+    // verilator lint_on UNUSEDSIGNAL
+  end else if (SPECULAR_KIND == 3) begin : g_wpow
+    wpow_unit #(
+      .MAX_M(WPOW_MAX_M), .BASE_BITS(WPOW_BASE_BITS), .TIMING(WPOW_TIMING),
+      .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
+      .OUT_WL(SPECULAR_OUT_WL), .OUT_IWL(SPECULAR_OUT_IWL), .OUT_QUANT(SPECULAR_OUT_QUANT),
+      .OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW), .CFG_ADDR_W(16)
+    ) u_wpow (
+      .clk_i, .rst_ni, .en_i, .series_i(series_i[SERIES_WL-1:0]),
+      .cfg_valid_i, .cfg_table_i, .cfg_addr_i, .cfg_data_i, .spec_o, .busy_o
+    );
+    if (SERIES_PER_LIGHT > 1) begin : g_unused_series
+      // verilator lint_off UNUSEDSIGNAL
+      logic unused_series;
+      assign unused_series = ^series_i[SERIES_PER_LIGHT*SERIES_WL-1:SERIES_WL];
+      // verilator lint_on UNUSEDSIGNAL
+    end
+  end else begin : g_ideal
+    // verilator lint_off UNUSEDSIGNAL
+    logic unused_inputs;
+    assign unused_inputs = clk_i ^ rst_ni ^ en_i ^ (^series_i) ^ cfg_valid_i ^ cfg_table_i ^
+                           (^cfg_addr_i) ^ (^cfg_data_i);
+    // verilator lint_on UNUSEDSIGNAL
+    assign spec_o = '0;
+    assign busy_o = 1'b0;
+  end
+
+`ifndef SYNTHESIS
+  initial begin
+    if (SPECULAR_KIND == 2 && SERIES_PER_LIGHT != 2)
+      $fatal(1, "specular_slot: schlick needs SERIES_PER_LIGHT = 2 (numerator, denominator)");
+    if (SPECULAR_KIND == 1 && LUT_ADDR_BITS > 16)
+      $fatal(1, "specular_slot: LUT_ADDR_BITS %0d > 16: cfg_addr_i cannot reach every entry", LUT_ADDR_BITS);
+  end
+`endif
 endmodule

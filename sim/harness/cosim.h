@@ -1,7 +1,9 @@
 // One co-simulation run and its result, shared by the Verilator C++ and SystemC backends.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <variant>
 #include <string>
 #include <vector>
 
@@ -52,8 +54,29 @@ inline Prepared prepare(const CosimJob& job) {
   p.words = job.stream.encode();
   ShadeUnit unit(job.config.unit);
   p.expected = unit.run(job.stream);
-  p.cycle_limit = CycleModel::run(p.words, job.stim).cycles + 1000;
+  p.cycle_limit = CycleModel::run(p.words, job.stim, slot_timing(job.config.unit.specular)).cycles + 1000;
   return p;
+}
+
+// How many of the model's pixels the specular term changes: the same stream with every
+// spec_colour set to 0, pixel by pixel. A run checks the specular units' bits only where this
+// is non-zero.
+inline uint64_t specular_affected_pixels(const CosimJob& job, const std::vector<PixelOut>& expected) {
+  CommandStream dark = job.stream;
+  for (auto& cmd : dark.commands) {
+    if (auto* m = std::get_if<MaterialCmd>(&cmd)) std::fill(m->spec_colour.begin(), m->spec_colour.end(), 0);
+  }
+  const std::vector<PixelOut> plain = ShadeUnit(job.config.unit).run(dark);
+  uint64_t n = 0;
+  for (size_t i = 0; i < expected.size() && i < plain.size(); ++i) {
+    for (int c = 0; c < job.config.unit.channels; ++c) {
+      if (expected[i].colour[c] != plain[i].colour[c]) {
+        ++n;
+        break;
+      }
+    }
+  }
+  return n;
 }
 
 // Reset cycles before cycle 0 (rst_ni low on these edges).

@@ -73,9 +73,10 @@ std::vector<Entry> registry() {
 #define SHADESIM_RUN(V, job, waves) run_verilated_cpp<V>(job, waves)
 #endif
 #define X(name, channels, lights, xy_bits, coef, series, spec_colour, out_bits, specular, spec_out, \
-          fault_lsb, fault_stall)                                                                  \
+          fault_lsb, fault_stall, unit_params)                                                     \
   entries.push_back({make_rtl_config(#name, channels, lights, xy_bits, coef, series, spec_colour,     \
-                                     out_bits, specular, spec_out, fault_lsb, fault_stall),           \
+                                     out_bits, specular, spec_out, fault_lsb, fault_stall,            \
+                                     unit_params),                                                    \
                      [](const CosimJob& job, const WaveWindow* waves) { return SHADESIM_RUN(V##name, job, waves); }});
   SHADESIM_RTL_CONFIGS(X)
 #undef X
@@ -95,6 +96,7 @@ struct Options {
   std::string json_path;
   std::string waves_path;
   uint64_t waves_before = 200, waves_after = 16;
+  double min_spec_pct = 0;
   bool list = false;
 };
 
@@ -131,6 +133,7 @@ void write_json(const std::string& path, const nlohmann::json& j) {
 struct Outcome {
   CosimJob job;
   CosimResult result;
+  int64_t spec_affected = -1;  // pixels the specular term changes (-1: ideal unit, not counted)
   std::string saved_stream, replay;
   WaveWindow waves;  // path empty: none written
 };
@@ -151,6 +154,7 @@ nlohmann::json outcome_json(const Outcome& o) {
   j["scanlines"] = r.scanlines;
   j["seconds"] = r.seconds;
   j["cycles_per_second"] = r.seconds > 0 ? static_cast<double>(r.cycles) / r.seconds : 0.0;
+  j["spec_affected_pixels"] = o.spec_affected >= 0 ? nlohmann::json(o.spec_affected) : nlohmann::json(nullptr);
   if (r.passed()) {
     j["first_mismatch"] = nullptr;
   } else {
@@ -278,6 +282,18 @@ int run_all(const Options& o) {
                   r.seconds > 0 ? static_cast<double>(r.cycles) / r.seconds / 1e6 : 0.0,
                   r.passed() ? "PASS" : "MISMATCH");
     std::cout << line << '\n';
+    if (job.config.unit.specular.kind != SpecularUnitKind::kIdeal) {
+      const Prepared prep = prepare(job);
+      out.spec_affected = static_cast<int64_t>(specular_affected_pixels(job, prep.expected));
+      const double pct = prep.expected.empty() ? 0.0 : 100.0 * static_cast<double>(out.spec_affected) /
+                                                           static_cast<double>(prep.expected.size());
+      std::printf("  specular term changes %lld of %zu pixels (%.1f%%)\n", static_cast<long long>(out.spec_affected),
+                  prep.expected.size(), pct);
+      if (pct < o.min_spec_pct) {
+        std::printf("  FAIL: fewer than --min-spec-pct %.1f%% of the pixels exercise the specular unit\n", o.min_spec_pct);
+        ++failures;
+      }
+    }
     if (!r.passed()) {
       ++failures;
       const Mismatch& m = r.first;
@@ -378,6 +394,9 @@ int cosim_main(int argc, char** argv) {
                        ->expected(0, 1);
   app.add_option("--waves", o.waves_path,
                  "on a mismatch, re-run with tracing and write an FST of the cycles around it (rtl_cosim_cpp_trace)");
+  app.add_option("--min-spec-pct", o.min_spec_pct,
+                 "fail a run where the specular term changes fewer than this percentage of the pixels")
+      ->check(CLI::Range(0.0, 100.0));
   app.add_option("--waves-before", o.waves_before, "cycles before the mismatch in the waveform")->capture_default_str();
   app.add_option("--waves-after", o.waves_after, "cycles after the mismatch in the waveform")->capture_default_str();
   try {

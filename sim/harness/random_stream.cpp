@@ -4,6 +4,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "model/wpow_unit.h"
+
 namespace shadesim {
 
 std::vector<std::string> scenario_names() {
@@ -54,18 +56,44 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
   const int width = 1 << config.xy_bits;
   const int series = config.series_per_triangle();
 
+  // Specular units: random table contents and unit parameters within the model's legal ranges,
+  // and non-zero specular colours (the ideal unit is pow() in double, not hardware: the RTL slot
+  // outputs 0 for it, so its streams keep spec_colour = 0).
+  const SpecularConfig& spec = config.specular;
+  const bool has_spec_hw = spec.kind != SpecularUnitKind::kIdeal;
+  const int lut_size = 1 << spec.lut.addr_bits;
+  auto lut_table = [&](int base, int n) {
+    TableCmd t;
+    t.base = static_cast<uint32_t>(base);
+    const uint64_t limit = uint64_t{1} << spec.lut.entry_bits;
+    for (int i = 0; i < n; ++i) t.entries.push_back(static_cast<int64_t>(rng() % limit));
+    cs.commands.emplace_back(t);
+  };
   auto material = [&]() {
     if (chance(shape.p_table)) {
-      TableCmd t;
-      t.base = static_cast<uint32_t>(irange(0, 1023));
-      const int n = irange(1, 8);
-      for (int i = 0; i < n; ++i) t.entries.push_back(static_cast<int64_t>(rng() >> 1));
-      cs.commands.emplace_back(t);
+      if (spec.kind == SpecularUnitKind::kLut) {
+        const int n = std::min(irange(1, 8), lut_size);
+        lut_table(irange(0, lut_size - n), n);
+      } else {
+        TableCmd t;  // ignored by units without a table
+        t.base = static_cast<uint32_t>(irange(0, 1023));
+        const int n = irange(1, 8);
+        for (int i = 0; i < n; ++i) t.entries.push_back(static_cast<int64_t>(rng() >> 1));
+        cs.commands.emplace_back(t);
+      }
     }
     MaterialCmd m;
     for (int c = 0; c < config.channels; ++c) m.ambient.push_back(config.series.from_double(uni(0.0, 0.25)));
     m.spec_colour.assign(static_cast<size_t>(config.lights * config.channels), 0);
+    if (has_spec_hw) {
+      for (auto& v : m.spec_colour) v = config.spec_colour.from_double(uni(0.0, 0.5));
+    }
     m.exponent = int64_t{irange(1, 200)} << kExponentFracBits;
+    if (spec.kind == SpecularUnitKind::kLut && chance(0.5)) {
+      m.unit_params = {irange(0, std::min(4, config.series.frac_bits()))};
+    } else if (spec.kind == SpecularUnitKind::kWpow && chance(0.5)) {
+      m.unit_params = {irange(0, std::min(3, config.series.frac_bits())), irange(0, WpowUnit::stages(spec.wpow))};
+    }
     cs.commands.emplace_back(m);
   };
   auto triangle = [&](int x0, int y) {
@@ -80,14 +108,19 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
     }
     const double k = wild ? 64.0 : 1.0;
     for (int s = 0; s < series; ++s) {
+      // With a specular unit, keep most pixels below the output's saturation so the specular
+      // term shows in the bits: diffuse terms scaled down by the light count.
+      const double base = has_spec_hw && s < config.diffuse_series() ? 0.5 / config.lights : 1.0;
       const double terms[kTermsPerSeries] = {
-          uni(-0.3, 1.2) * k,           uni(-1, 1) / 256 * k,          uni(-1, 1) / 256 * k,
+          uni(-0.3, 1.2) * base * k,    uni(-1, 1) / 256 * k,          uni(-1, 1) / 256 * k,
           uni(-1, 1) / 16384 * k,       uni(-1, 1) / 16384 * k,        uni(-1, 1) / 16384 * k};
       for (double v : terms) t.coef.push_back(config.coef.from_double(v));
     }
     cs.commands.emplace_back(t);
   };
 
+  // The LUT's RAM has no reset: load every entry before the first pixel.
+  if (spec.kind == SpecularUnitKind::kLut) lut_table(0, lut_size);
   material();
   bool have_triangle = false;
   int y = irange(0, 3);

@@ -1,7 +1,9 @@
 // Random command streams for co-simulation: random triangles (coefficients mostly in the range
 // real shading produces, sometimes wild enough to overflow), spans from 1 pixel to the full
 // screen width, back-to-back spans, material switches with TABLE loads. Uses model/ only.
-// Specular colours are 0 while the RTL's specular slot is empty (see rtl.md).
+// Configurations with a hardware specular unit get non-zero specular colours, random unit
+// parameters and (LUT) a full table first, then partial TABLE reloads; the ideal unit's streams
+// keep spec_colour = 0 (the RTL slot outputs 0 for it).
 #pragma once
 
 #include <cstdint>

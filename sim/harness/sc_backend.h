@@ -96,8 +96,8 @@ SC_MODULE(ScCycleModel) {
 
   SC_HAS_PROCESS(ScCycleModel);
   ScCycleModel(sc_core::sc_module_name name, const std::vector<uint64_t>& words, const Stimulus& stim,
-               Scoreboard& board, uint64_t cycle_limit)
-      : sc_module(name), driver_(words, stim), stim_(stim), board_(board), limit_(cycle_limit) {
+               SlotTiming timing, Scoreboard& board, uint64_t cycle_limit)
+      : sc_module(name), driver_(words, stim), stim_(stim), model_(timing), board_(board), limit_(cycle_limit) {
     SC_METHOD(tick);
     sensitive << clk.pos();
     dont_initialize();
@@ -173,7 +173,7 @@ CosimResult run_verilated_systemc(const CosimJob& job) {
   sink.pix_eor(pix_eor);
   sink.pix_ready(pix_ready);
 
-  ScCycleModel model("cycle_model", prep.words, job.stim, board, prep.cycle_limit);
+  ScCycleModel model("cycle_model", prep.words, job.stim, slot_timing(cfg.specular), board, prep.cycle_limit);
   model.clk(clk);
 
   const auto t0 = std::chrono::steady_clock::now();

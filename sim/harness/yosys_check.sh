@@ -1,9 +1,12 @@
 #!/bin/sh
 # Synthesize shade_unit with Yosys and fail if any latch was inferred.
 # usage: yosys_check.sh YOSYS LOG rtl/*.sv
+# YOSYS_CHPARAM (optional): chparam arguments for shade_unit, e.g. "-set SPECULAR_KIND 3".
 set -e
 yosys="$1"; log="$2"; shift 2
-"$yosys" -q -l "$log" -p "read_verilog -sv $*; synth -top shade_unit; stat" >/dev/null
+chparam=""
+[ -n "$YOSYS_CHPARAM" ] && chparam="chparam $YOSYS_CHPARAM shade_unit;"
+"$yosys" -q -l "$log" -p "read_verilog -sv $*; $chparam synth -top shade_unit; stat" >/dev/null
 if grep -E 'Latch inferred|\$dlatch|\$_DLATCH' "$log"; then
   echo "yosys_check: latch inferred (see $log)" >&2
   exit 1

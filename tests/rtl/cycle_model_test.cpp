@@ -158,6 +158,36 @@ TEST(CycleModel, MaterialDrainIncludesTheSlot) {
   }
 }
 
+// The units' timing as notes/spec_rtl.md tabulates it for the RTL slot.
+TEST(CycleModel, SlotTimingPerUnit) {
+  SpecularConfig c;
+  EXPECT_EQ(slot_timing(c).latency, 0);
+  EXPECT_EQ(slot_timing(c).interval, 1);
+  c.kind = SpecularUnitKind::kLut;
+  c.lut.interp_bits = 0;
+  EXPECT_EQ(slot_timing(c).latency, 2);
+  EXPECT_EQ(slot_timing(c).interval, 1);
+  c.lut.interp_bits = 4;
+  EXPECT_EQ(slot_timing(c).latency, 3);
+  c.kind = SpecularUnitKind::kSchlick;
+  c.schlick.quotient_bits = 12;
+  c.schlick.timing = UnitTiming::kIterative;
+  EXPECT_EQ(slot_timing(c).latency, 12);
+  EXPECT_EQ(slot_timing(c).interval, 12);
+  c.schlick.timing = UnitTiming::kPipelined;
+  EXPECT_EQ(slot_timing(c).latency, 12);
+  EXPECT_EQ(slot_timing(c).interval, 1);
+  c.kind = SpecularUnitKind::kWpow;
+  c.wpow.max_m = 16;
+  c.wpow.timing = UnitTiming::kPipelined;
+  EXPECT_EQ(slot_timing(c).latency, 5);
+  EXPECT_EQ(slot_timing(c).interval, 1);
+  c.wpow.timing = UnitTiming::kIterative;
+  c.wpow.max_m = 8;
+  EXPECT_EQ(slot_timing(c).latency, 4);
+  EXPECT_EQ(slot_timing(c).interval, 4);
+}
+
 TEST(CycleModel, RejectsImpossibleSlotTimings) {
   EXPECT_THROW(CycleModel(SlotTiming{-1, 1}), std::invalid_argument);
   EXPECT_THROW(CycleModel(SlotTiming{0, 0}), std::invalid_argument);
@@ -230,17 +260,20 @@ TEST(CycleBreakdown, SmallTrianglesAreCommandBound) {
   EXPECT_EQ(b.total(), r.cycles);
 }
 
-TEST(CycleBreakdown, TableWordsBetweenSpansAreCharged) {
+TEST(CycleBreakdown, TableWaitsForTheDatapathAndIsCharged) {
   TableCmd t;
   t.base = 0;
   t.entries.assign(20, 0);
   const CycleRun r = CycleModel::run(words({span(0, 0, 2, true), t, span(1, 0, 2, true)}), Stimulus{});
   const CycleBreakdown& b = r.breakdown;
-  // SPAN 0 on 0 (pixels 5, 6); TABLE header 1 + 20 words on 1..21; SPAN 1 on 22 (pixels 27, 28).
-  EXPECT_EQ(r.cycles, 29u);
+  // SPAN 0 on 0 (pixels 5, 6; engines empty from 6); the TABLE header waits 1..5, is accepted
+  // on 6, its 20 words take 7..26; SPAN 1 on 27 (pixels 32, 33).
+  ASSERT_EQ(r.scanlines.size(), 2u);
+  EXPECT_EQ(r.scanlines[1].cycle, 33u);
+  EXPECT_EQ(r.cycles, 34u);
   EXPECT_EQ(b.pixel, 4u);
   EXPECT_EQ(b.setup_load, 5u);
-  EXPECT_EQ(b.table, 29u - 4u - 5u);  // 7..26 look back to 2..21: all TABLE words
+  EXPECT_EQ(b.table, 34u - 4u - 5u);  // 7..31 look back to 2..26: TABLE waiting or its words
   EXPECT_EQ(b.total(), r.cycles);
 }
 
