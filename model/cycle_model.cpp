@@ -11,7 +11,7 @@ namespace {
 constexpr unsigned kOpMaterial = 0x01, kOpTriangle = 0x02, kOpSpan = 0x03, kOpTable = 0x04;
 }
 
-SlotTiming slot_timing(const SpecularConfig& config) {
+SlotTiming SlotTiming::of(const SpecularConfig& config) {
   switch (config.kind) {
     case SpecularUnitKind::kLut:
       return {ExponentLut::latency(config.lut), ExponentLut::cycles_per_pixel(config.lut)};

@@ -23,11 +23,11 @@ namespace shadesim {
 struct SlotTiming {
   int latency = 0;   // registers from the engines' values to the specular result
   int interval = 1;  // cycles per pixel; > 1: iterative unit (then latency == interval)
-};
 
-// The selected unit's timing (ExponentLut / SchlickDivider / WpowUnit latency and
-// cycles_per_pixel; ideal: 0 and 1), as rtl/specular_slot.sv builds it.
-SlotTiming slot_timing(const SpecularConfig& config);
+  // The selected unit's timing (ExponentLut / SchlickDivider / WpowUnit latency and
+  // cycles_per_pixel; ideal: 0 and 1), as rtl/specular_slot.sv builds it.
+  static SlotTiming of(const SpecularConfig& config);
+};
 
 // Where a scanline ends: the cycle on which its end-of-row pixel leaves the unit.
 struct ScanlineDone {

@@ -62,7 +62,7 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
 
   CommandDriver rtl_driver(prep.words, job.stim);
   CommandDriver model_driver(prep.words, job.stim);
-  CycleModel model(slot_timing(cfg.specular));
+  CycleModel model(SlotTiming::of(cfg.specular));
   uint64_t cycle = 0;
   for (;; ++cycle) {
     const bool ready = job.stim.pix_ready(cycle);

@@ -173,7 +173,7 @@ CosimResult run_verilated_systemc(const CosimJob& job) {
   sink.pix_eor(pix_eor);
   sink.pix_ready(pix_ready);
 
-  ScCycleModel model("cycle_model", prep.words, job.stim, slot_timing(cfg.specular), board, prep.cycle_limit);
+  ScCycleModel model("cycle_model", prep.words, job.stim, SlotTiming::of(cfg.specular), board, prep.cycle_limit);
   model.clk(clk);
 
   const auto t0 = std::chrono::steady_clock::now();

@@ -161,31 +161,31 @@ TEST(CycleModel, MaterialDrainIncludesTheSlot) {
 // The units' timing as notes/spec_rtl.md tabulates it for the RTL slot.
 TEST(CycleModel, SlotTimingPerUnit) {
   SpecularConfig c;
-  EXPECT_EQ(slot_timing(c).latency, 0);
-  EXPECT_EQ(slot_timing(c).interval, 1);
+  EXPECT_EQ(SlotTiming::of(c).latency, 0);
+  EXPECT_EQ(SlotTiming::of(c).interval, 1);
   c.kind = SpecularUnitKind::kLut;
   c.lut.interp_bits = 0;
-  EXPECT_EQ(slot_timing(c).latency, 2);
-  EXPECT_EQ(slot_timing(c).interval, 1);
+  EXPECT_EQ(SlotTiming::of(c).latency, 2);
+  EXPECT_EQ(SlotTiming::of(c).interval, 1);
   c.lut.interp_bits = 4;
-  EXPECT_EQ(slot_timing(c).latency, 3);
+  EXPECT_EQ(SlotTiming::of(c).latency, 3);
   c.kind = SpecularUnitKind::kSchlick;
   c.schlick.quotient_bits = 12;
   c.schlick.timing = UnitTiming::kIterative;
-  EXPECT_EQ(slot_timing(c).latency, 12);
-  EXPECT_EQ(slot_timing(c).interval, 12);
+  EXPECT_EQ(SlotTiming::of(c).latency, 12);
+  EXPECT_EQ(SlotTiming::of(c).interval, 12);
   c.schlick.timing = UnitTiming::kPipelined;
-  EXPECT_EQ(slot_timing(c).latency, 12);
-  EXPECT_EQ(slot_timing(c).interval, 1);
+  EXPECT_EQ(SlotTiming::of(c).latency, 12);
+  EXPECT_EQ(SlotTiming::of(c).interval, 1);
   c.kind = SpecularUnitKind::kWpow;
   c.wpow.max_m = 16;
   c.wpow.timing = UnitTiming::kPipelined;
-  EXPECT_EQ(slot_timing(c).latency, 5);
-  EXPECT_EQ(slot_timing(c).interval, 1);
+  EXPECT_EQ(SlotTiming::of(c).latency, 5);
+  EXPECT_EQ(SlotTiming::of(c).interval, 1);
   c.wpow.timing = UnitTiming::kIterative;
   c.wpow.max_m = 8;
-  EXPECT_EQ(slot_timing(c).latency, 4);
-  EXPECT_EQ(slot_timing(c).interval, 4);
+  EXPECT_EQ(SlotTiming::of(c).latency, 4);
+  EXPECT_EQ(SlotTiming::of(c).interval, 4);
 }
 
 TEST(CycleModel, RejectsImpossibleSlotTimings) {
