@@ -157,12 +157,12 @@ set(_rtl_n CHANNELS 3 LIGHTS 2 XY_BITS 11 COEF s3.30:rnd:wrap SERIES s3.20:rnd S
            OUT_BITS 8 SPECULAR_OUT u1.12)
 rtl_config(lut_d ${_rtl_d} SPECULAR lut UNIT "addr_bits=10 entry_bits=8" BACKENDS "cpp;sc")
 rtl_config(schlick_iter_d ${_rtl_d} SPECULAR schlick UNIT "quotient_bits=16 operand_bits=24 timing=iterative" BACKENDS "cpp;sc")
-rtl_config(schlick_pipe_d ${_rtl_d} SPECULAR schlick UNIT "quotient_bits=16 operand_bits=24 timing=pipelined" BACKENDS "cpp")
-rtl_config(wpow16_d ${_rtl_d} SPECULAR wpow UNIT "max_m=16 base_bits=16 timing=pipelined" BACKENDS "cpp")
-rtl_config(lut_n ${_rtl_n} SPECULAR lut UNIT "addr_bits=8 entry_bits=8 interp_bits=4 index=nearest" BACKENDS "cpp")
-rtl_config(schlick_iter_n ${_rtl_n} SPECULAR schlick UNIT "quotient_bits=12 operand_bits=16 timing=iterative" BACKENDS "cpp")
-rtl_config(schlick_pipe_n ${_rtl_n} SPECULAR schlick UNIT "quotient_bits=12 operand_bits=16 timing=pipelined" BACKENDS "cpp")
-rtl_config(wpow16_n ${_rtl_n} SPECULAR wpow UNIT "max_m=16 base_bits=12 timing=iterative" BACKENDS "cpp")
+rtl_config(schlick_pipe_d ${_rtl_d} SPECULAR schlick UNIT "quotient_bits=16 operand_bits=24 timing=pipelined" BACKENDS "cpp;sc")
+rtl_config(wpow16_d ${_rtl_d} SPECULAR wpow UNIT "max_m=16 base_bits=16 timing=pipelined" BACKENDS "cpp;sc")
+rtl_config(lut_n ${_rtl_n} SPECULAR lut UNIT "addr_bits=8 entry_bits=8 interp_bits=4 index=nearest" BACKENDS "cpp;sc")
+rtl_config(schlick_iter_n ${_rtl_n} SPECULAR schlick UNIT "quotient_bits=12 operand_bits=16 timing=iterative" BACKENDS "cpp;sc")
+rtl_config(schlick_pipe_n ${_rtl_n} SPECULAR schlick UNIT "quotient_bits=12 operand_bits=16 timing=pipelined" BACKENDS "cpp;sc")
+rtl_config(wpow16_n ${_rtl_n} SPECULAR wpow UNIT "max_m=16 base_bits=12 timing=iterative" BACKENDS "cpp;sc")
 
 # ---- plain C++ harness: scoreboard, random streams (stimulus and cycle model are in model/) ----
 add_library(shadesim_harness STATIC

@@ -15,13 +15,7 @@ find_program(YOSYS yosys)
 set(RTL_UNITS_DIR ${CMAKE_SOURCE_DIR}/rtl)
 set(RTL_UNITS_GEN ${CMAKE_BINARY_DIR}/verilated/units)
 set(RTL_UNITS_COMMON ${RTL_UNITS_DIR}/fixed_round.sv ${RTL_UNITS_DIR}/fixed_sat.sv)
-# The real specular_slot adds a busy_o port, so it waits in rtl/pending/ until shade_unit connects
-# it (notes/spec_rtl.md); rtl/specular_slot.sv is the zero stub until then.
-if(EXISTS ${RTL_UNITS_DIR}/pending/specular_slot.sv)
-  set(RTL_UNITS_SLOT ${RTL_UNITS_DIR}/pending/specular_slot.sv)
-else()
-  set(RTL_UNITS_SLOT ${RTL_UNITS_DIR}/specular_slot.sv)
-endif()
+set(RTL_UNITS_SLOT ${RTL_UNITS_DIR}/specular_slot.sv)
 set(RTL_UNITS_SOURCES ${RTL_UNITS_COMMON} ${RTL_UNITS_DIR}/exponent_lut.sv
     ${RTL_UNITS_DIR}/schlick_divider.sv ${RTL_UNITS_DIR}/wpow_unit.sv ${RTL_UNITS_SLOT})
 # The per-exponent table the "lut_file" configuration loads at time 0 ($readmemh); the test

@@ -10,9 +10,6 @@
 
 #include "host/frame.h"
 #include "model/cycle_model.h"
-#include "model/exponent_lut.h"
-#include "model/schlick_divider.h"
-#include "model/wpow_unit.h"
 #include "sim/commands.h"
 #include "sim/width_options.h"
 
@@ -29,21 +26,6 @@ struct CyclesOptions {
   int gap_pct = 0, max_gap = 1, stall_pct = 0;
   std::string json_path;
 };
-
-// The specular slot's latency and initiation interval, from the unit's model class.
-SlotTiming slot_timing(const SpecularConfig& s) {
-  switch (s.kind) {
-    case SpecularUnitKind::kLut:
-      return {ExponentLut::latency(s.lut), ExponentLut::cycles_per_pixel(s.lut)};
-    case SpecularUnitKind::kSchlick:
-      return {SchlickDivider::latency(s.schlick), SchlickDivider::cycles_per_pixel(s.schlick)};
-    case SpecularUnitKind::kWpow:
-      return {WpowUnit::latency(s.wpow), WpowUnit::cycles_per_pixel(s.wpow)};
-    case SpecularUnitKind::kIdeal:
-    default:
-      return {0, 1};
-  }
-}
 
 int run_cycles(const CyclesOptions& o) {
   FrameOptions fo;
@@ -65,7 +47,7 @@ int run_cycles(const CyclesOptions& o) {
   stim.gap_pct = o.gap_pct;
   stim.max_gap = o.max_gap;
   stim.stall_pct = o.stall_pct;
-  const SlotTiming timing = slot_timing(frame.config.specular);
+  const SlotTiming timing = SlotTiming::of(frame.config.specular);
   const std::vector<uint64_t> words = frame.encoded.stream.encode();
   const auto t1 = std::chrono::steady_clock::now();
   const CycleRun run = CycleModel::run(words, stim, timing);
