@@ -201,11 +201,14 @@ void print_table(const std::vector<Job>& jobs) {
             << std::right << std::setw(9) << "pixels" << std::setw(11) << "cycles" << std::setw(8) << "cyc/px"
             << std::setw(10) << "result" << std::setw(9) << "wall s" << std::setw(11) << "Mcycles/s" << '\n';
   for (const auto& j : jobs) {
+    // Only a completed run has a cycle count; a mismatch stops the run where it is found.
+    const bool complete = j.status == "pass";
     std::cout << std::left << std::setw(18) << j.scene_name << std::setw(20) << j.config << std::setw(9) << j.backend
-              << std::right << std::setw(9) << j.pixels << std::setw(11) << j.cycles << std::setw(8)
-              << (j.pixels ? fmt(static_cast<double>(j.cycles) / static_cast<double>(j.pixels), 3) : "-")
+              << std::right << std::setw(9) << j.pixels << std::setw(11) << (complete ? std::to_string(j.cycles) : "-")
+              << std::setw(8)
+              << (complete && j.pixels ? fmt(static_cast<double>(j.cycles) / static_cast<double>(j.pixels), 3) : "-")
               << std::setw(10) << j.status << std::setw(9) << fmt(j.seconds, 2) << std::setw(11)
-              << fmt(j.cycles_per_second / 1e6, 2) << '\n';
+              << (complete ? fmt(j.cycles_per_second / 1e6, 2) : "-") << '\n';
   }
 }
 
