@@ -128,6 +128,7 @@ class CycleModel {
     bool eor = false;
   };
   enum class Payload { kSkip, kMaterial, kTriangle, kTable };
+  static constexpr unsigned kOpMaterial = 0x01, kOpTriangle = 0x02, kOpSpan = 0x03, kOpTable = 0x04;
 
   bool iterative() const { return timing_.interval > 1; }
   bool slot_empty() const;
@@ -154,11 +155,146 @@ class CycleModel {
   int busy_ = 0;
   // Output register
   Pix pix_;
-  // The command port's category on each of the last span_latency() cycles (ring), for bubbles.
+  // The command port's category on each of the last span_latency() cycles (ring), for bubbles;
+  // history_pos_ is the slot of the current cycle (cycle mod size, kept without a division).
   std::vector<Category> port_history_;
-  uint64_t cycle_ = 0;
+  size_t history_pos_ = 0;
 };
 
 std::string to_string(CycleModel::Category c);
+
+// clock() and what it calls are inline: in lockstep co-simulation they run once per simulated
+// cycle next to the RTL's eval, and inlining them into that loop removes the call and the
+// packing of Edge into registers.
+
+inline bool CycleModel::slot_empty() const {
+  if (iterative()) return !inflight_.valid;
+  for (const Pix& p : dl_) {
+    if (p.valid) return false;
+  }
+  return true;
+}
+
+inline CycleModel::Category CycleModel::port_category(bool cmd_valid, unsigned op) const {
+  if (!cmd_valid) return Category::kCommandGap;
+  if (in_payload_) {
+    switch (pay_op_) {
+      case Payload::kMaterial: return Category::kMaterial;
+      case Payload::kTable: return Category::kTable;
+      default: return Category::kCommandWords;
+    }
+  }
+  switch (op) {
+    case kOpMaterial: return Category::kMaterial;
+    case kOpTable: return Category::kTable;
+    case kOpSpan: return Category::kSetupLoad;
+    default: return Category::kCommandWords;
+  }
+}
+
+inline CycleModel::Edge CycleModel::clock(bool cmd_valid, uint64_t word, bool pix_ready) {
+  Edge e;
+  // ---- combinational, from the state before the edge (same equations as the RTL) ----
+  const bool adv = !pix_.valid || pix_ready;
+  const bool busy = busy_ > 0;
+  const bool emit = run_ && adv && !busy;
+  const bool last_pix = rem_ == 1;
+  const bool load_eng = s_[2].valid && (!run_ || (emit && last_pix));
+  const bool s3_free = !s_[2].valid || load_eng;
+  const bool s2_move = s_[1].valid && s3_free;
+  const bool s1_move = s_[0].valid && (!s_[1].valid || s2_move);
+  const bool s1_free = !s_[0].valid || s1_move;
+
+  const unsigned op = static_cast<unsigned>(word >> 56) & 0xFF;
+  const unsigned count = static_cast<unsigned>(word & 0xFFFF);
+  bool hdr_ready = true;
+  // Only MATERIAL and TABLE headers wait for the empty datapath; the check walks the delay line.
+  if (op == kOpMaterial || op == kOpTable) hdr_ready = datapath_empty();
+  if (op == kOpSpan) hdr_ready = s1_free;
+  e.cmd_ready = in_payload_ || hdr_ready;
+  e.cmd_fire = cmd_valid && e.cmd_ready;
+  const bool hdr_fire = e.cmd_fire && !in_payload_;
+  const bool pay_fire = e.cmd_fire && in_payload_;
+  const bool span_fire = hdr_fire && op == kOpSpan;
+
+  e.pix_fire = pix_.valid && pix_ready;
+  e.pix_eor = pix_.eor;
+  e.pix_x = pix_.x;
+  e.pix_y = pix_.y;
+
+  // ---- where this cycle went ----
+  const size_t slot = history_pos_;
+  if (e.pix_fire) {
+    e.category = Category::kPixel;
+  } else if (pix_.valid) {
+    e.category = Category::kBackPressure;
+  } else if (iterative() && inflight_.valid) {
+    e.category = Category::kUnitStall;
+  } else {
+    e.category = port_history_[slot];  // the port's category span_latency() cycles ago
+  }
+  port_history_[slot] = port_category(cmd_valid, op);
+  if (++history_pos_ == port_history_.size()) history_pos_ = 0;
+
+  // ---- the edge: engines -> slot -> pix register ----
+  const Pix from_engines{run_, x_, y_, last_ && last_pix};
+  if (iterative()) {
+    if (adv && !busy) {
+      pix_ = inflight_;
+      inflight_ = from_engines;  // valid == emit
+    } else if (adv) {
+      pix_.valid = false;
+    }
+    if (emit) busy_ = timing_.interval - 1;
+    else if (busy_ > 0) --busy_;
+  } else if (adv) {
+    if (dl_.empty()) {
+      pix_ = from_engines;
+    } else {
+      pix_ = dl_.back();
+      for (size_t i = dl_.size() - 1; i > 0; --i) dl_[i] = dl_[i - 1];
+      dl_[0] = from_engines;
+    }
+  }
+  if (load_eng) {
+    run_ = true;
+    rem_ = static_cast<unsigned>(s_[2].len);
+    x_ = s_[2].x0;
+    y_ = s_[2].y;
+    last_ = s_[2].last;
+  } else if (emit) {
+    if (last_pix) run_ = false;
+    --rem_;
+    ++x_;
+  }
+  if (s2_move) s_[2] = s_[1];
+  else if (load_eng) s_[2].valid = false;
+  if (s1_move) s_[1] = s_[0];
+  else if (s2_move) s_[1].valid = false;
+  if (span_fire) {
+    s_[0].valid = true;
+    s_[0].y = static_cast<int>((word >> 32) & 0xFFFF);
+    s_[0].x0 = static_cast<int>((word >> 16) & 0xFFFF);
+    s_[0].len = static_cast<int>(count);
+    s_[0].last = ((word >> 55) & 1) != 0;
+  } else if (s1_move) {
+    s_[0].valid = false;
+  }
+
+  if (hdr_fire) {
+    pay_idx_ = 0;
+    pay_last_ = (count - 1) & 0xFFFF;
+    switch (op) {
+      case kOpMaterial: pay_op_ = Payload::kMaterial; in_payload_ = count != 0; break;
+      case kOpTriangle: pay_op_ = Payload::kTriangle; in_payload_ = count != 0; break;
+      case kOpTable: pay_op_ = Payload::kTable; in_payload_ = count != 0; break;
+      default: pay_op_ = Payload::kSkip; in_payload_ = false; break;
+    }
+  } else if (pay_fire) {
+    if (pay_idx_ == pay_last_) in_payload_ = false;
+    pay_idx_ = (pay_idx_ + 1) & 0xFFFF;
+  }
+  return e;
+}
 
 }  // namespace shadesim

@@ -50,11 +50,11 @@ struct Stimulus {
 class CommandDriver {
  public:
   CommandDriver(const std::vector<uint64_t>& words, const Stimulus& stim)
-      : words_(&words), stim_(stim), wait_(stim.gap_before(0)) {}
+      : words_(&words), size_(words.size()), stim_(stim), wait_(stim.gap_before(0)) {}
 
-  bool valid() const { return index_ < words_->size() && wait_ == 0; }
-  uint64_t word() const { return index_ < words_->size() ? (*words_)[index_] : 0; }
-  bool done() const { return index_ >= words_->size(); }
+  bool valid() const { return index_ < size_ && wait_ == 0; }
+  uint64_t word() const { return index_ < size_ ? (*words_)[index_] : 0; }
+  bool done() const { return index_ >= size_; }
   size_t index() const { return index_; }
 
   // Call once per clock edge with whether the offered word was accepted on it.
@@ -68,7 +68,8 @@ class CommandDriver {
   }
 
  private:
-  const std::vector<uint64_t>* words_;
+  const std::vector<uint64_t>* words_;  // not resized while the driver lives
+  size_t size_;
   Stimulus stim_;
   size_t index_ = 0;
   int wait_ = 0;

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <memory>
 #include <stdexcept>
+#include <utility>
 
 #include "sim/harness/cosim.h"
 #include "verilated.h"
@@ -18,10 +19,10 @@ namespace shadesim {
 // dumps the window into an FST file; other builds throw std::invalid_argument.
 template <class V>
 CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nullptr) {
-  const Prepared prep = prepare(job);
+  Prepared prep = prepare(job);
   const auto t0 = std::chrono::steady_clock::now();  // simulation speed excludes preparation
   const UnitConfig& cfg = job.config.unit;
-  Scoreboard board(prep.expected, cfg.channels);
+  Scoreboard board(std::move(prep.expected), cfg.channels);  // not needed after this: no copy
 
   VerilatedContext context;
 #ifdef SHADESIM_COSIM_TRACE
@@ -74,7 +75,9 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
     const uint64_t t = (cycle + kResetCycles) * kWaveUnitsPerCycle;
     dump(cycle, t);
     const bool cmd_fire = valid && top.cmd_ready_o;
-    if (top.pix_valid_o && ready) {
+    if (top.pix_valid_o && ready &&
+        !board.rtl_pixel_if_expected(top.pix_x_o, top.pix_y_o, top.pix_colour_o, top.pix_eor_o,
+                                     cfg.out_bits, cycle)) {
       board.rtl_pixel(unpack_pixel(top.pix_x_o, top.pix_y_o, top.pix_colour_o, top.pix_eor_o,
                                    cfg.channels, cfg.out_bits),
                       cycle);

@@ -74,7 +74,9 @@ struct ScSink : sc_core::sc_module {
 
   void tick() {
     const int64_t cycle = sc_cycle_now();
-    if (cycle >= 0 && pix_valid.read() && stim_.pix_ready(static_cast<uint64_t>(cycle))) {
+    if (cycle >= 0 && pix_valid.read() && stim_.pix_ready(static_cast<uint64_t>(cycle)) &&
+        !board_.rtl_pixel_if_expected(pix_x.read(), pix_y.read(), pix_colour.read(), pix_eor.read(),
+                                      out_bits_, static_cast<uint64_t>(cycle))) {
       board_.rtl_pixel(unpack_pixel(pix_x.read(), pix_y.read(), pix_colour.read(), pix_eor.read(),
                                     channels_, out_bits_),
                        static_cast<uint64_t>(cycle));
@@ -133,9 +135,9 @@ CosimResult run_verilated_systemc(const CosimJob& job) {
   // Verilator picks bool / uint32_t / uint64_t per port width; follow it.
   using XT = typename std::remove_reference_t<decltype(std::declval<V&>().pix_x_o)>::data_type;
   using CT = typename std::remove_reference_t<decltype(std::declval<V&>().pix_colour_o)>::data_type;
-  const Prepared prep = prepare(job);
+  Prepared prep = prepare(job);
   const UnitConfig& cfg = job.config.unit;
-  Scoreboard board(prep.expected, cfg.channels);
+  Scoreboard board(std::move(prep.expected), cfg.channels);  // not needed after this: no copy
 
   sc_core::sc_clock clk("clk", kScPeriodNs, sc_core::SC_NS, 0.5, 0, sc_core::SC_NS, true);
   sc_core::sc_signal<bool> rst_n("rst_n"), cmd_valid("cmd_valid"), cmd_ready("cmd_ready");

@@ -32,7 +32,7 @@ void Scoreboard::fail(Mismatch m) {
   if (!failed()) first_ = std::move(m);
 }
 
-void Scoreboard::rtl_pixel(const PixelOut& got, uint64_t cycle) {
+void Scoreboard::rtl_pixel_checked(const PixelOut& got, uint64_t cycle) {
   if (failed()) return;
   if (next_ >= expected_.size()) {
     Mismatch m;
@@ -47,9 +47,7 @@ void Scoreboard::rtl_pixel(const PixelOut& got, uint64_t cycle) {
     return;
   }
   const PixelOut& want = expected_[next_];
-  bool same = want.x == got.x && want.y == got.y && want.end_of_row == got.end_of_row;
-  for (int c = 0; c < channels_; ++c) same = same && want.colour[c] == got.colour[c];
-  if (!same) {
+  if (!same_pixel(want, got)) {
     Mismatch m;
     m.kind = Mismatch::Kind::kPixel;
     m.scanline = scanline_;

@@ -29,8 +29,39 @@ class Scoreboard {
  public:
   Scoreboard(std::vector<PixelOut> expected, int channels);
 
-  // A pixel left the RTL on `cycle`.
-  void rtl_pixel(const PixelOut& got, uint64_t cycle);
+  // The common case of a pixel leaving the RTL on `cycle`, straight from the pix_* ports (channel
+  // c of `colour` in bits [c*out_bits +: out_bits], as unpack_pixel reads them): when it is the
+  // expected pixel and does not end a row, counts it and returns true. Otherwise changes nothing
+  // and returns false; the caller then passes the unpacked pixel to rtl_pixel(). Saves building
+  // a PixelOut on every cycle.
+  bool rtl_pixel_if_expected(uint64_t x, uint64_t y, uint64_t colour, bool eor, int out_bits,
+                             uint64_t cycle) {
+    if (failed() || next_ >= expected_.size()) return false;
+    const PixelOut& want = expected_[next_];
+    if (want.end_of_row || eor || want.x != static_cast<uint16_t>(x) || want.y != static_cast<uint16_t>(y)) {
+      return false;
+    }
+    const uint64_t mask = (uint64_t{1} << out_bits) - 1;
+    for (int c = 0; c < channels_; ++c) {
+      if (want.colour[c] != static_cast<uint16_t>((colour >> (c * out_bits)) & mask)) return false;
+    }
+    ++next_;
+    cycles_ = cycle + 1;
+    return true;
+  }
+  // A pixel left the RTL on `cycle`. Inline for the common case (the expected pixel, not the
+  // end of a row): it runs on nearly every simulated cycle.
+  void rtl_pixel(const PixelOut& got, uint64_t cycle) {
+    if (!failed() && next_ < expected_.size()) {
+      const PixelOut& want = expected_[next_];
+      if (!want.end_of_row && same_pixel(want, got)) {
+        ++next_;
+        cycles_ = cycle + 1;
+        return;
+      }
+    }
+    rtl_pixel_checked(got, cycle);
+  }
   // The cycle model's end-of-row pixel left on `cycle`.
   void model_scanline(const ScanlineDone& done);
   // The run stopped at `cycle` without finishing.
@@ -50,6 +81,16 @@ class Scoreboard {
   uint64_t cycles() const { return cycles_; }
 
  private:
+  // Every field the RTL drives: x, y, end of row and the configured channels.
+  bool same_pixel(const PixelOut& want, const PixelOut& got) const {
+    if (want.x != got.x || want.y != got.y || want.end_of_row != got.end_of_row) return false;
+    for (int c = 0; c < channels_; ++c) {
+      if (want.colour[c] != got.colour[c]) return false;
+    }
+    return true;
+  }
+  // Everything else: ends of rows, mismatches, pixels after a failure or past the end.
+  void rtl_pixel_checked(const PixelOut& got, uint64_t cycle);
   void fail(Mismatch m);
   void compare_rows();
   std::string describe(const PixelOut& p) const;
