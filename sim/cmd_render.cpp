@@ -53,13 +53,26 @@ std::string format_db(double db) {
   return os.str();
 }
 
-int run_render(const RenderOptions& o) {
+// The frame options and output directory both render modes share.
+FrameOptions frame_options(const RenderOptions& o) {
   FrameOptions fo;
   fo.base = o.widths.to_config();
   if (!std::isnan(o.budget_lsb)) fo.budget_lsb = o.budget_lsb;
   fo.max_depth = o.max_depth;
   if (!o.specular.empty()) fo.specular_override = parse_specular_unit(o.specular, "--specular");
+  return fo;
+}
 
+std::filesystem::path output_dir(const RenderOptions& o) {
+  const std::filesystem::path dir =
+      o.out_dir.empty() ? std::filesystem::path("out") / std::filesystem::path(o.scene).stem()
+                        : std::filesystem::path(o.out_dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+int run_render(const RenderOptions& o) {
+  const FrameOptions fo = frame_options(o);
   const PreparedFrame frame = prepare_frame(o.scene, fo);
   const Scene& scene = frame.scene;
   const UnitConfig& cfg = frame.config;
@@ -81,10 +94,7 @@ int run_render(const RenderOptions& o) {
                                             scene.height, cfg.channels, cfg.out_bits);
 
   // Images: model, reference, error heat map, and the three side by side.
-  const std::filesystem::path out_dir =
-      o.out_dir.empty() ? std::filesystem::path("out") / std::filesystem::path(o.scene).stem()
-                        : std::filesystem::path(o.out_dir);
-  std::filesystem::create_directories(out_dir);
+  const std::filesystem::path out_dir = output_dir(o);
   const Image model_png = model_image(pixels, scene.width, scene.height, cfg.channels, cfg.out_bits);
   Image ref_png(scene.width, scene.height, cfg.channels);
   ref_png.pixels = reference_codes(ref.values, cfg.out_bits);
@@ -171,14 +181,8 @@ int run_render(const RenderOptions& o) {
 // Every specular unit on the same scene: the highlights side by side with the reference, and
 // one line of error per unit, so a designer can look before reading.
 int run_all_units(const RenderOptions& o) {
-  FrameOptions fo;
-  fo.base = o.widths.to_config();
-  if (!std::isnan(o.budget_lsb)) fo.budget_lsb = o.budget_lsb;
-  fo.max_depth = o.max_depth;
-  const std::filesystem::path out_dir =
-      o.out_dir.empty() ? std::filesystem::path("out") / std::filesystem::path(o.scene).stem()
-                        : std::filesystem::path(o.out_dir);
-  std::filesystem::create_directories(out_dir);
+  FrameOptions fo = frame_options(o);  // --all-units excludes --specular
+  const std::filesystem::path out_dir = output_dir(o);
 
   std::vector<Image> images, heats;
   nlohmann::json units = nlohmann::json::array();
