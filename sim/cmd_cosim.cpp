@@ -161,6 +161,7 @@ int run_rtl_build(const RtlBuildCliOptions& o) {
   const int workers = std::max(1, o.jobs > 0 ? o.jobs : static_cast<int>(std::thread::hardware_concurrency()));
   std::atomic<size_t> next{0};
   std::mutex m;
+  size_t done = 0;
   auto work = [&]() {
     for (size_t i = next++; i < items.size(); i = next++) {
       RtlBuildOptions bo;
@@ -170,10 +171,12 @@ int run_rtl_build(const RtlBuildCliOptions& o) {
         const RtlBuildResult r = ensure_rtl_build(items[i].config, items[i].backend, bo);
         items[i].result = r.executable + (r.built ? "" : " (cached)");
       } catch (const std::exception& e) {
-        std::lock_guard<std::mutex> lock(m);
         items[i].failed = true;
         items[i].result = e.what();
       }
+      std::lock_guard<std::mutex> lock(m);
+      std::cerr << "rtl build: [" << ++done << "/" << items.size() << "] " << items[i].config.name << " ("
+                << to_string(items[i].backend) << ") " << (items[i].failed ? "FAILED" : "ready") << std::endl;
     }
   };
   std::vector<std::thread> pool;
