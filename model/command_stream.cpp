@@ -410,7 +410,10 @@ class ConfigJsonReader {
 
   void read(const nlohmann::json& j, UnitConfig& c) const {
     if (!j.is_object()) fail("", "expected a JSON object (a UnitConfig), got " + j.dump());
-    check_keys(j, "", {"channels", "lights", "xy_bits", "coef", "series", "spec_colour", "out_bits", "specular"});
+    // "derivation" is the annotation `shadesim config --json` writes beside the fields (how each
+    // was derived); it is for people and never read.
+    check_keys(j, "", {"channels", "lights", "xy_bits", "coef", "series", "spec_colour", "out_bits", "specular",
+                       "derivation"});
     read_int(j, "", "channels", 1, 3, require_top_, c.channels);
     read_int(j, "", "lights", 1, 8, require_top_, c.lights);
     read_int(j, "", "xy_bits", 1, 16, require_top_, c.xy_bits);

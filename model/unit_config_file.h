@@ -18,7 +18,8 @@ class UnitConfigFileError : public std::runtime_error {
 };
 
 // Reads a UnitConfig JSON file over `base`: fields the file omits keep base's values, unknown
-// keys are errors (typos), and the result passes UnitConfig::validate(). Throws
+// keys are errors (typos) except "derivation" (the reasons `shadesim config --json` writes,
+// ignored), and the result passes UnitConfig::validate(). Throws
 // UnitConfigFileError.
 UnitConfig load_unit_config(const std::string& path, const UnitConfig& base = {});
 
