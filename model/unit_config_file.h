@@ -10,7 +10,8 @@
 
 namespace shadesim {
 
-// A bad config file. what() names the file, then the line and column of a JSON syntax error or
+// A bad config file. what() names the file, then the line and column of a JSON syntax error (of
+// the last character the parser read: the end of the offending token) or
 // the field's JSON path (e.g. "specular.wpow.max_m") and what was expected.
 class UnitConfigFileError : public std::runtime_error {
  public:
