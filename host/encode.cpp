@@ -66,11 +66,12 @@ void check_scene_fits(const Scene& scene, const UnitConfig& config) {
   if (static_cast<int>(scene.lights.size()) > config.lights) {
     throw std::invalid_argument(scene.path + ": scene has " + std::to_string(scene.lights.size()) +
                                 " lights; the unit (" + config.to_string() + ") has series for " +
-                                std::to_string(config.lights));
+                                std::to_string(config.lights) + ": it needs lights >= " +
+                                std::to_string(scene.lights.size()));
   }
   if (!scene.is_grey() && config.channels < 3) {
     throw std::invalid_argument(scene.path + ": scene has colour; the unit (" + config.to_string() +
-                                ") has one channel");
+                                ") has one channel: it needs channels = 3");
   }
 }
 

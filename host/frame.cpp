@@ -1,5 +1,6 @@
 #include "host/frame.h"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -8,6 +9,13 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Fewest bits b with size <= 2^b.
+int bits_for(int size) {
+  int b = 0;
+  while ((1 << b) < size) ++b;
+  return b;
 }
 
 }  // namespace
@@ -40,7 +48,8 @@ PreparedFrame prepare_frame(const std::string& scene_path, const FrameOptions& o
   if (f.scene.width > (1 << f.config.xy_bits) || f.scene.height > (1 << f.config.xy_bits)) {
     throw std::invalid_argument(scene_path + ": image " + std::to_string(f.scene.width) + "x" +
                                 std::to_string(f.scene.height) + " does not fit xy_bits=" +
-                                std::to_string(f.config.xy_bits));
+                                std::to_string(f.config.xy_bits) + ": it needs xy_bits >= " +
+                                std::to_string(bits_for(std::max(f.scene.width, f.scene.height))));
   }
 
   t0 = std::chrono::steady_clock::now();

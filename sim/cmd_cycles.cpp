@@ -11,6 +11,7 @@
 #include "host/frame.h"
 #include "model/cycle_model.h"
 #include "sim/commands.h"
+#include "sim/config_option.h"
 #include "sim/width_options.h"
 
 namespace shadesim {
@@ -25,11 +26,16 @@ struct CyclesOptions {
   uint64_t seed = 1;
   int gap_pct = 0, max_gap = 1, stall_pct = 0;
   std::string json_path;
+  std::string config_path;  // --config: the unit is exactly this file's
 };
 
 int run_cycles(const CyclesOptions& o) {
   FrameOptions fo;
-  fo.base = o.widths.to_config();
+  if (!o.config_path.empty()) {
+    use_config_file(o.config_path, fo);
+  } else {
+    fo.base = o.widths.to_config();
+  }
   if (!o.specular.empty()) fo.specular_override = parse_specular_unit(o.specular, "--specular");
   if (o.channels > 0 || o.lights > 0) {
     // A fixed unit, as built: the scene must fit it.
@@ -39,7 +45,7 @@ int run_cycles(const CyclesOptions& o) {
     if (o.lights > 0) fo.base.lights = o.lights;
   }
   const auto t0 = std::chrono::steady_clock::now();
-  const PreparedFrame frame = prepare_frame(o.scene, fo);
+  const PreparedFrame frame = prepare_frame_on(o.scene, fo, o.config_path);
   const double host_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   Stimulus stim;
@@ -117,6 +123,7 @@ void register_cycles(CLI::App& app, int& exit_code) {
   sub->add_option("--stall-pct", o->stall_pct, "chance of output back-pressure per cycle")->check(CLI::Range(0, 99))->capture_default_str();
   sub->add_option("--json", o->json_path, "write the figures as JSON");
   add_width_options(*sub, o->widths);
+  add_config_option(*sub, o->config_path, {"--specular", "--channels", "--lights"});
   sub->callback([o, &exit_code]() { exit_code = run_cycles(*o); });
 }
 

@@ -15,6 +15,7 @@
 #include "host/reference.h"
 #include "model/shade_unit.h"
 #include "sim/commands.h"
+#include "sim/config_option.h"
 #include "sim/width_options.h"
 
 namespace shadesim {
@@ -25,6 +26,7 @@ struct RenderOptions {
   std::string out_dir;
   std::string json_path;
   std::string stream_path;
+  std::string config_path;  // --config: the unit is exactly this file's
   WidthOptions widths;
   double budget_lsb = std::nan("");
   int max_depth = 12;
@@ -56,7 +58,11 @@ std::string format_db(double db) {
 // The frame options and output directory both render modes share.
 FrameOptions frame_options(const RenderOptions& o) {
   FrameOptions fo;
-  fo.base = o.widths.to_config();
+  if (o.config_path.empty()) {
+    fo.base = o.widths.to_config();
+  } else {
+    use_config_file(o.config_path, fo);
+  }
   if (!std::isnan(o.budget_lsb)) fo.budget_lsb = o.budget_lsb;
   fo.max_depth = o.max_depth;
   if (!o.specular.empty()) fo.specular_override = parse_specular_unit(o.specular, "--specular");
@@ -73,7 +79,7 @@ std::filesystem::path output_dir(const RenderOptions& o) {
 
 int run_render(const RenderOptions& o) {
   const FrameOptions fo = frame_options(o);
-  const PreparedFrame frame = prepare_frame(o.scene, fo);
+  const PreparedFrame frame = prepare_frame_on(o.scene, fo, o.config_path);
   const Scene& scene = frame.scene;
   const UnitConfig& cfg = frame.config;
 
@@ -260,6 +266,7 @@ void register_render(CLI::App& app, int& exit_code) {
                 "the highlights side by side with the reference, and one error line per unit")
       ->excludes("--specular");
   add_width_options(*sub, opts->widths);
+  add_config_option(*sub, opts->config_path, {"--specular", "--all-units"});
   sub->callback([opts, &exit_code]() { exit_code = opts->all_units ? run_all_units(*opts) : run_render(*opts); });
 }
 

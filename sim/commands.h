@@ -12,6 +12,7 @@ void register_spec_error(CLI::App& app, int& exit_code);
 void register_regress(CLI::App& app, int& exit_code);
 void register_cycles(CLI::App& app, int& exit_code);
 void register_cosim(CLI::App& app, int& exit_code);
+void register_config(CLI::App& app, int& exit_code);
 
 inline void register_commands(CLI::App& app, int& exit_code) {
   register_render(app, exit_code);
@@ -19,6 +20,7 @@ inline void register_commands(CLI::App& app, int& exit_code) {
   register_regress(app, exit_code);
   register_cycles(app, exit_code);
   register_cosim(app, exit_code);
+  register_config(app, exit_code);
 }
 
 }  // namespace shadesim

@@ -57,15 +57,19 @@ struct WidthOptions {
   }
 };
 
+// The option groups add_width_options fills (--config excludes every option in them).
+constexpr const char* kWidthGroup = "Widths (s|u<integer bits incl. sign>.<fraction bits>[:trn|:rnd][:sat|:wrap])";
+constexpr const char* kUnitWidthGroup = "Specular unit widths (see shadesim spec-error for their error and cost)";
+
 inline void add_width_options(CLI::App& sub, WidthOptions& w) {
-  const char* group = "Widths (s|u<integer bits incl. sign>.<fraction bits>[:trn|:rnd][:sat|:wrap])";
+  const char* group = kWidthGroup;
   sub.add_option("--coef", w.coef, "triangle Taylor coefficient format")->capture_default_str()->group(group);
   sub.add_option("--series", w.series, "forward-difference accumulator format")->capture_default_str()->group(group);
   sub.add_option("--spec-colour", w.spec_colour, "specular colour format")->capture_default_str()->group(group);
   sub.add_option("--spec-out", w.spec_out, "specular unit output format")->capture_default_str()->group(group);
   sub.add_option("--out-bits", w.out_bits, "output bits per channel")->capture_default_str()->group(group);
   sub.add_option("--xy-bits", w.xy_bits, "screen coordinate bits")->capture_default_str()->group(group);
-  const char* unit = "Specular unit widths (see shadesim spec-error for their error and cost)";
+  const char* unit = kUnitWidthGroup;
   sub.add_option("--lut-addr-bits", w.lut_addr_bits, "LUT: address bits A (2^A entries)")->capture_default_str()->group(unit);
   sub.add_option("--lut-entry-bits", w.lut_entry_bits, "LUT: entry bits B")->capture_default_str()->group(unit);
   sub.add_option("--lut-interp-bits", w.lut_interp_bits, "LUT: interpolation fraction bits (0 = off)")->capture_default_str()->group(unit);

@@ -143,6 +143,88 @@ TEST(Cli, BadInputGivesClearErrors) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Cli, ConfigDerivesAUnitThatRenderAndCyclesUseWithConfig) {
+  const auto dir = temp_dir("config");
+  const std::string cfg = (dir / "sphere_unit.json").string();
+  const Result r = run("config " + kScenes + "sphere.json --json " + cfg);
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* field : {"channels = 1", "lights = 1", "xy_bits = 8", "series = ", "coef = ", "specular = wpow"}) {
+    EXPECT_NE(r.output.find(field), std::string::npos) << field << "\n" << r.output;
+  }
+  EXPECT_NE(r.output.find("scenes/sphere.json: max 1 LSB"), std::string::npos) << r.output;
+  std::ifstream js(cfg);
+  const auto j = nlohmann::json::parse(js);
+  EXPECT_EQ(j["xy_bits"], 8);
+  EXPECT_EQ(j["specular"]["kind"], "wpow");
+  EXPECT_EQ(j["derivation"]["error"][0]["max_code_lsb"], 1);
+  // The file is the unit: render and cycles shade on exactly it.
+  const auto rendered = run_json("render " + kScenes + "sphere.json -q --out " + (dir / "r").string() +
+                                     " --config " + cfg,
+                                 dir / "r.json");
+  EXPECT_EQ(rendered["config"]["series"], j["series"]);
+  EXPECT_EQ(rendered["config"]["coef"], j["coef"]);
+  EXPECT_EQ(rendered["config"]["specular"]["kind"], "wpow");
+  EXPECT_EQ(rendered["error"]["max_code_lsb"], j["derivation"]["error"][0]["max_code_lsb"]);
+  const auto cycles = run_json("cycles " + kScenes + "sphere.json --config " + cfg, dir / "c.json");
+  EXPECT_EQ(cycles["config"]["xy_bits"], 8);
+  EXPECT_EQ(cycles["slot"]["latency"], 5);  // W_16 pipelined: the README's timing table
+  // Without --config the defaults stay what the README's figures use.
+  const auto plain = run_json("render " + kScenes + "sphere.json -q --out " + (dir / "p").string(), dir / "p.json");
+  EXPECT_EQ(plain["config"]["series"], "s4.28:wrap");
+  EXPECT_EQ(plain["config"]["specular"]["kind"], "ideal");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, ConfigAndConfigFileErrorsNameTheProblem) {
+  const auto dir = temp_dir("config_bad");
+  const std::string grey = (dir / "grey.json").string();
+  std::ofstream(grey) << R"({"channels": 1, "lights": 2, "xy_bits": 9})";
+  // A scene that needs more than the file gives: the field and the file are named.
+  expect_error("render " + kScenes + "multi.json --out " + (dir / "o").string() + " --config " + grey, "channels = 3");
+  expect_error("render " + kScenes + "multi.json --out " + (dir / "o").string() + " --config " + grey, grey);
+  const std::string small = (dir / "small.json").string();
+  std::ofstream(small) << R"({"xy_bits": 8})";
+  expect_error("cycles " + kScenes + "torus.json --config " + small, "xy_bits >= 9");
+  const std::string one_light = (dir / "one.json").string();
+  std::ofstream(one_light) << R"({"channels": 3})";
+  expect_error("cycles " + kScenes + "multi.json --config " + one_light, "lights >= 2");
+  // Bad files: typo, wrong type, syntax error with line and column.
+  const std::string typo = (dir / "typo.json").string();
+  std::ofstream(typo) << R"({"seris": "s4.30"})";
+  expect_error("render " + kScenes + "sphere.json --out " + (dir / "o").string() + " --config " + typo, "seris: unknown field");
+  const std::string type = (dir / "type.json").string();
+  std::ofstream(type) << R"({"specular": {"wpow": {"max_m": "16"}}})";
+  expect_error("cycles " + kScenes + "sphere.json --config " + type, "specular.wpow.max_m: expected an integer");
+  const std::string syntax = (dir / "syntax.json").string();
+  std::ofstream(syntax) << "{\n  \"lights\": 1\n  \"channels\": 1\n}\n";
+  // The missing comma is found on line 3 when the string "channels" (columns 3-12) ends.
+  expect_error("cycles " + kScenes + "sphere.json --config " + syntax, "syntax.json:3:12:");
+  // --config fixes the unit: width options and structure overrides are refused beside it.
+  expect_error("render " + kScenes + "sphere.json --config " + grey + " --series s4.30", "excludes");
+  expect_error("cycles " + kScenes + "sphere.json --config " + grey + " --lights 2", "excludes");
+  expect_error("render " + kScenes + "sphere.json --config " + (dir / "absent.json").string(), "absent.json");
+  // config itself: scenes naming different units, a bad budget, a missing scene.
+  auto sphere = nlohmann::json::parse(std::ifstream(kScenes + "sphere.json"));
+  sphere["materials"][0]["unit"] = "lut";
+  const std::string lut_scene = (dir / "sphere_lut.json").string();
+  std::ofstream(lut_scene) << sphere.dump();
+  expect_error("config " + kScenes + "sphere.json " + lut_scene, "sphere_lut.json");
+  expect_error("config " + kScenes + "sphere.json " + lut_scene, "names lut");
+  expect_error("config " + kScenes + "sphere.json --budget 0", "--budget");
+  expect_error("config /nonexistent/scene.json", "scene.json");
+  expect_error("config", "scenes");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, ConfigHelpStatesEachRule) {
+  const Result r = run("config --help");
+  EXPECT_EQ(r.status, 0);
+  for (const char* rule : {"channels", "lights", "xy_bits", "1 + L(L-1)/2", "modulo 2^iwl", "dx^2", "out_bits",
+                           "ideal", "W_16 B=16 pipelined"}) {
+    EXPECT_NE(r.output.find(rule), std::string::npos) << rule << "\n" << r.output;
+  }
+}
+
 TEST(Cli, HelpListsSubcommandAndWidthDefaults) {
   const Result r = run("render --help");
   EXPECT_EQ(r.status, 0);

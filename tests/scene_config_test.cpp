@@ -1,0 +1,232 @@
+// derive_config on shipped scenes: every field follows its stated rule, checked against numbers
+// computed here independently (image sizes and lights read from the scene JSON, the longest span
+// and pixel offsets walked from the host's own visibility and stream, the drift bound's closed
+// form), and the derived unit shades the scenes within the budget.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "host/frame.h"
+#include "host/metrics.h"
+#include "host/reference.h"
+#include "host/scene_config.h"
+#include "model/shade_unit.h"
+
+namespace shadesim {
+namespace {
+
+std::string scene(const std::string& name) { return std::string(SHADESIM_SOURCE_DIR) + "/scenes/" + name; }
+
+nlohmann::json scene_json(const std::string& path) {
+  std::ifstream is(path);
+  return nlohmann::json::parse(is);
+}
+
+// Unsigned bits for coordinates 0..size-1 (size <= 2^b), at least 4: by doubling.
+int xy_bits_for(int size) {
+  int b = 4;
+  while ((int64_t{1} << b) < size) ++b;
+  return b;
+}
+
+// The closed-form F: F >= log2(G (1 + L(L-1)/2) 2^out / share), share in output LSBs.
+int closed_form_series_frac(int L, double gain, double share_lsb, int out_bits) {
+  const double steps = 1.0 + 0.5 * L * (L - 1.0);
+  return std::max(out_bits, static_cast<int>(std::ceil(std::log2(gain * steps * std::ldexp(1.0, out_bits) / share_lsb))));
+}
+
+// Longest span, from the host's visibility (not from the stream derive_config walks).
+int longest_span(const std::string& path) {
+  const PreparedFrame f = prepare_frame(path, FrameOptions{});
+  int longest = 0;
+  for (const Span& s : f.visibility.spans) longest = std::max(longest, s.length);
+  return longest;
+}
+
+// Largest 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 of a pixel from its triangle's origin, with the origin
+// recomputed here from the set-up triangle's centroid (the encoder's documented rule).
+double max_monomial_sum(const std::string& path) {
+  const PreparedFrame f = prepare_frame(path, FrameOptions{});
+  double worst = 0;
+  for (const Span& s : f.visibility.spans) {
+    const ScreenTriangle& t = f.setup.triangles[s.triangle];
+    const double xo = std::floor((t.v[0].x + t.v[1].x + t.v[2].x) / 3.0);
+    const double yo = std::floor((t.v[0].y + t.v[1].y + t.v[2].y) / 3.0);
+    const double dy = std::fabs(s.y - yo);
+    for (int x = s.x0; x < s.x0 + s.length; ++x) {
+      const double dx = std::fabs(x - xo);
+      worst = std::max(worst, 1 + dx + dy + dx * dx + dx * dy + dy * dy);
+    }
+  }
+  return worst;
+}
+
+ErrorStats error_on(const std::string& path, const UnitConfig& config) {
+  FrameOptions fo;
+  fo.base = config;
+  fo.fixed_unit = true;
+  const PreparedFrame f = prepare_frame(path, fo);
+  const auto pixels = ShadeUnit(f.config).run(f.encoded.stream);
+  const ReferenceImage ref = render_reference(f.setup.triangles, f.visibility, f.scene, f.config.channels);
+  return compare_to_reference(pixels, ref.values, f.visibility.owner, f.scene.width, f.scene.height,
+                              f.config.channels, f.config.out_bits)
+      .stats;
+}
+
+const FieldReason& reason_of(const DerivedConfig& d, const std::string& field) {
+  for (const auto& r : d.reasons)
+    if (r.field == field) return r;
+  throw std::logic_error("no reason for " + field);
+}
+
+TEST(SceneConfig, StructureAndXyBitsFollowTheSceneJson) {
+  for (const char* name : {"sphere.json", "torus.json", "multi.json", "specular.json", "suzanne.json",
+                           "hard/long_span.json"}) {
+    const std::string path = scene(name);
+    const auto j = scene_json(path);
+    const DerivedConfig d = derive_config({path}, DeriveOptions{});
+    const int w = j["image"]["width"], h = j["image"]["height"];
+    EXPECT_EQ(d.config.xy_bits, xy_bits_for(std::max(w, h))) << name;
+    EXPECT_EQ(d.config.lights, static_cast<int>(j["lights"].size())) << name;
+    EXPECT_EQ(d.config.out_bits, 8) << name;
+    // Every reason is there and says something.
+    for (const char* field : {"budget", "channels", "lights", "xy_bits", "coef", "series", "spec_colour",
+                              "out_bits", "specular"}) {
+      EXPECT_FALSE(reason_of(d, field).reason.empty()) << name << " " << field;
+    }
+  }
+  // multi.json has a red material; the others are grey.
+  EXPECT_EQ(derive_config({scene("multi.json")}, {}).config.channels, 3);
+  EXPECT_EQ(derive_config({scene("sphere.json")}, {}).config.channels, 1);
+  // Several scenes: the union of their needs (multi: RGB, 2 lights, 480 wide).
+  const DerivedConfig both = derive_config({scene("sphere.json"), scene("multi.json")}, {});
+  EXPECT_EQ(both.config.channels, 3);
+  EXPECT_EQ(both.config.lights, 2);
+  EXPECT_EQ(both.config.xy_bits, 9);
+  DeriveOptions out10;
+  out10.out_bits = 10;
+  EXPECT_EQ(derive_config({scene("sphere.json")}, out10).config.out_bits, 10);
+}
+
+TEST(SceneConfig, IdealBecomesTheStatedHardwareUnit) {
+  const DerivedConfig d = derive_config({scene("specular.json")}, {});
+  EXPECT_EQ(d.config.specular.kind, SpecularUnitKind::kWpow);
+  EXPECT_EQ(d.config.specular.wpow.max_m, 16);
+  EXPECT_EQ(d.config.specular.wpow.base_bits, 16);
+  EXPECT_EQ(d.config.specular.wpow.timing, UnitTiming::kPipelined);
+  const std::string why = reason_of(d, "specular").reason;
+  EXPECT_NE(why.find("ideal"), std::string::npos) << why;
+  EXPECT_NE(why.find("not hardware"), std::string::npos) << why;
+  DeriveOptions lut;
+  lut.ideal_substitute.kind = SpecularUnitKind::kLut;
+  EXPECT_EQ(derive_config({scene("specular.json")}, lut).config.specular.kind, SpecularUnitKind::kLut);
+}
+
+class SceneConfigFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() / ("shadesim_scene_config_" + std::to_string(getpid()));
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  // sphere.json with every material naming `unit`, written next to its mesh-free original.
+  std::string sphere_with_unit(const std::string& unit) const {
+    auto j = scene_json(scene("sphere.json"));
+    for (auto& m : j["materials"]) m["unit"] = unit;
+    const std::string path = (dir_ / ("sphere_" + unit + ".json")).string();
+    std::ofstream(path) << j.dump(1);
+    return path;
+  }
+  std::filesystem::path dir_;
+};
+
+TEST_F(SceneConfigFiles, AHardwareUnitIsKeptAndDifferentUnitsAreAnError) {
+  const std::string lut = sphere_with_unit("lut");
+  EXPECT_EQ(derive_config({lut}, {}).config.specular.kind, SpecularUnitKind::kLut);
+  const std::string schlick = sphere_with_unit("schlick");
+  try {
+    (void)derive_config({lut, schlick}, {});
+    FAIL() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    const std::string msg = e.what();
+    for (const std::string& needle : {lut, schlick, std::string("lut"), std::string("schlick")}) {
+      EXPECT_NE(msg.find(needle), std::string::npos) << needle << " in " << msg;
+    }
+  }
+}
+
+TEST(SceneConfig, SeriesAndCoefficientBitsFollowTheClosedFormsOnADiffuseScene) {
+  // sphere.json: specular 0, so the gain is 1 per light (one light); budget 1 LSB.
+  const std::string path = scene("sphere.json");
+  const DerivedConfig d = derive_config({path}, {});
+  const int L = longest_span(path);
+  EXPECT_EQ(d.measured.longest_span, L);
+  EXPECT_DOUBLE_EQ(d.measured.gain, 1.0);
+  EXPECT_EQ(d.config.series.frac_bits(), closed_form_series_frac(L, 1.0, 0.25, 8)) << "L = " << L;
+  // Coefficients round (:rnd): 2^-(F+1) S <= 0.25 * 2^-8.
+  const double S = max_monomial_sum(path);
+  EXPECT_DOUBLE_EQ(d.measured.max_monomial_sum, S);
+  EXPECT_EQ(d.config.coef.frac_bits(), static_cast<int>(std::ceil(std::log2(S * 256 / 0.25))) - 1) << "S = " << S;
+  // Wrapping coefficients need exactly the series' integer bits.
+  EXPECT_EQ(d.config.coef.overflow, Overflow::kWrap);
+  EXPECT_EQ(d.config.coef.iwl, d.config.series.iwl);
+  // Diffuse N.L/|N| and the specular base stay within (-2, 2): two integer bits (sign + 1).
+  EXPECT_EQ(d.config.series.iwl, 2);
+}
+
+TEST(SceneConfig, LongSpanIsWithinOneLsbOnItsOwnConfiguration) {
+  // 2048-pixel spans: at the default s4.28 series the drift reaches 5 LSB.
+  const std::string path = scene("hard/long_span.json");
+  const auto j = scene_json(path);
+  const DerivedConfig d = derive_config({path}, {});
+  const int L = longest_span(path);
+  EXPECT_EQ(L, 2048);
+  // Gain: 1 (diffuse) + ks 0.3 x W_8 slope. n = 8 on W_16: m = 8, zeta = n/m = 1; setup pre-shifts
+  // the base (reach 1.25 at t = +-1.25) by s bits until it fits 2^(iwl-2): the slope is m 2^s.
+  const double ks = j["materials"][0]["specular"];
+  const int iwl = d.config.series.iwl;
+  int shift = 0;
+  while (1.25 > std::ldexp(1.0, iwl - 2 + shift)) ++shift;
+  const double gain = 1.0 + ks * 8 * std::ldexp(1.0, shift);
+  EXPECT_NEAR(d.measured.gain, gain, 1e-9);
+  const double budget = j["error_budget_lsb"];
+  EXPECT_EQ(d.config.series.frac_bits(), closed_form_series_frac(L, gain, budget / 4, 8));
+  EXPECT_GE(d.config.series.frac_bits(), 30) << "the design brief: F >= 30 for L = 2048";
+  const ErrorStats e = error_on(path, d.config);
+  EXPECT_LE(e.max_code_lsb, 1) << d.config.to_string();
+  EXPECT_EQ(e.pixels_over_1lsb, 0u);
+}
+
+TEST(SceneConfig, ShippedScenesShadeOnTheirConfigurationAsWellAsOnTheDefaults) {
+  // The derived widths add no error beyond the default widths': same unit, compare max codes.
+  for (const char* name : {"sphere.json", "torus.json", "multi.json", "specular.json", "suzanne.json"}) {
+    const std::string path = scene(name);
+    const DerivedConfig d = derive_config({path}, {});
+    UnitConfig defaults;
+    defaults.channels = d.config.channels;
+    defaults.lights = d.config.lights;
+    defaults.specular = d.config.specular;
+    const ErrorStats on_derived = error_on(path, d.config);
+    const ErrorStats on_defaults = error_on(path, defaults);
+    EXPECT_LE(on_derived.max_code_lsb, on_defaults.max_code_lsb) << name << ": " << d.config.to_string();
+    // And with the exact-pow yardstick on the same widths, within one code of the reference.
+    UnitConfig ideal = d.config;
+    ideal.specular.kind = SpecularUnitKind::kIdeal;
+    EXPECT_LE(error_on(path, ideal).max_code_lsb, 1) << name;
+  }
+}
+
+TEST(SceneConfig, BadBudgetIsAnError) {
+  DeriveOptions o;
+  o.budget_lsb = 0;
+  EXPECT_THROW(derive_config({scene("sphere.json")}, o), std::invalid_argument);
+  EXPECT_THROW(derive_config({}, {}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace shadesim
