@@ -566,6 +566,21 @@ UnitConfig config_from_json(const std::string& text, const std::string& source) 
   return c;
 }
 
+UnitConfig overlay_unit_config(const std::string& json_object, const UnitConfig& base,
+                               const std::string& source) {
+  UnitConfig c = base;
+  try {
+    ConfigJsonReader("", false, true).read(nlohmann::json::parse(json_object), c);
+    c.specular.validate();
+    c.validate();
+  } catch (const nlohmann::json::exception& e) {
+    throw UnitConfigFileError(source + ": " + e.what());
+  } catch (const std::invalid_argument& e) {
+    throw UnitConfigFileError(source + ": " + e.what());
+  }
+  return c;
+}
+
 UnitConfig load_unit_config(const std::string& path, const UnitConfig& base) {
   std::ifstream is(path, std::ios::binary);
   if (!is || std::filesystem::is_directory(path)) {

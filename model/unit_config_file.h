@@ -24,4 +24,9 @@ class UnitConfigFileError : public std::runtime_error {
 // UnitConfigFileError.
 UnitConfig load_unit_config(const std::string& path, const UnitConfig& base = {});
 
+// The same for a UnitConfig JSON object held in memory (e.g. one entry of
+// sim/harness/builds.json); `source` names it in errors.
+UnitConfig overlay_unit_config(const std::string& json_object, const UnitConfig& base,
+                               const std::string& source);
+
 }  // namespace shadesim

@@ -22,6 +22,7 @@
 #include <cstdlib>
 
 #include "host/frame.h"
+#include "host/scene_config.h"
 #include "sim/commands.h"
 #include "sim/junit.h"
 #include "sim/process.h"
@@ -188,18 +189,12 @@ void print_table(const std::vector<Job>& jobs) {
   }
 }
 
-// The scene's own configuration: the smallest unit that shades it, with real specular hardware.
+// The scene's own configuration: the smallest unit that shades it within its error budget, with
+// real specular hardware (host/scene_config.h states each rule).
 RtlConfig own_config(const std::string& scene) {
-  FrameOptions fo;
-  const PreparedFrame f = prepare_frame(scene, fo);
   RtlConfig c;
   c.name = "own:" + fs::path(scene).stem().string();
-  c.unit = f.config;
-  if (c.unit.specular.kind == SpecularUnitKind::kIdeal) {
-    // `ideal` is a yardstick with no hardware (its RTL slot outputs 0): the scene's RTL gets the
-    // hardware unit closest to it (README: W_16, B = 16, within 2 LSB on scenes/specular.json).
-    c.unit.specular.kind = SpecularUnitKind::kWpow;
-  }
+  c.unit = derive_config({scene}, DeriveOptions{}).config;
   return c;
 }
 
@@ -491,7 +486,8 @@ void register_regress(CLI::App& app, int& exit_code) {
       "RTL regression, the main job: every scene x configuration x backend (Verilator C++ and\n"
       "Verilator-in-SystemC). By default each scene runs on its own configuration - the smallest\n"
       "unit that shades it (channels and lights as it needs; a scene naming the `ideal` unit, which\n"
-      "has no hardware, gets the W_16 unit). --configs runs named builds (sim/harness/builds.json,\n"
+      "has no hardware, gets the W_16 unit; `shadesim config --help` states each rule). --configs runs\n"
+      "named builds (sim/harness/builds.json,\n"
       "see --list), --config any UnitConfig FILE.json. The RTL of each configuration is Verilated on\n"
       "demand into the build cache. Each run compares every pixel bit for bit with the bit-accurate\n"
       "model and every scanline's completion cycle with the cycle model, under seeded input gaps and\n"

@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "model/unit_config_file.h"
 #include "sim/process.h"
 
 namespace shadesim {
@@ -280,13 +281,13 @@ std::string rtl_build_key(const RtlConfig& build, CosimBackend backend) {
 RtlConfig resolve_rtl_config(const std::string& name_or_file, const std::string& what) {
   try {
     if (fs::path(name_or_file).extension() == ".json") {
-      std::ifstream is(name_or_file);
-      if (!is) throw std::invalid_argument(name_or_file + ": cannot open the unit configuration");
-      std::stringstream text;
-      text << is.rdbuf();
       RtlConfig c;
       c.name = name_or_file;
-      c.unit = unit_config_overlay(UnitConfig{}, text.str(), name_or_file);
+      try {
+        c.unit = load_unit_config(name_or_file);
+      } catch (const UnitConfigFileError& e) {
+        throw std::invalid_argument(e.what());
+      }
       c.backends = {"cpp", "systemc"};
       return c;
     }

@@ -33,6 +33,7 @@
 #include "Vshade_unit.h"
 #include "cosim_build.h"
 #include "model/rtl_parameters.h"
+#include "model/unit_config_file.h"
 #include "sim/harness/cosim.h"
 #include "sim/harness/random_stream.h"
 
@@ -236,12 +237,10 @@ RtlConfig resolve_build(const Options& o) {
     if (!o.unit_path.empty()) {
       std::ifstream is(o.unit_path);
       if (!is) throw InputError("--unit " + o.unit_path + ": cannot open");
-      std::stringstream text;
-      text << is.rdbuf();
       try {
-        b.unit = unit_config_overlay(UnitConfig{}, text.str(), "--unit " + o.unit_path);
-      } catch (const std::invalid_argument& e) {
-        throw InputError(e.what());
+        b.unit = load_unit_config(o.unit_path);
+      } catch (const UnitConfigFileError& e) {
+        throw InputError(std::string("--unit ") + e.what());
       }
     } else if (!o.stream_path.empty()) {
       b.unit = CommandStream::load(o.stream_path).config;

@@ -5,26 +5,9 @@
 #include <stdexcept>
 
 #include "model/command_stream.h"
+#include "model/unit_config_file.h"
 
 namespace shadesim {
-
-UnitConfig unit_config_overlay(const UnitConfig& base, const std::string& text,
-                               const std::string& what) {
-  nlohmann::json patch;
-  try {
-    patch = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    throw std::invalid_argument(what + ": " + e.what());
-  }
-  if (!patch.is_object()) throw std::invalid_argument(what + ": expected a JSON object");
-  nlohmann::json full = nlohmann::json::parse(config_to_json(base));
-  full.merge_patch(patch);
-  try {
-    return config_from_json(full.dump(), what + ": ");
-  } catch (const CommandStreamError& e) {
-    throw std::invalid_argument(e.what());
-  }
-}
 
 std::vector<RtlConfig> load_named_builds(const std::string& path) {
   std::ifstream is(path);
@@ -45,7 +28,11 @@ std::vector<RtlConfig> load_named_builds(const std::string& path) {
     }
     RtlConfig c;
     c.name = name;
-    c.unit = unit_config_overlay(UnitConfig{}, b.at("unit").dump(), where + ".unit");
+    try {
+      c.unit = overlay_unit_config(b.at("unit").dump(), UnitConfig{}, where + ".unit");
+    } catch (const UnitConfigFileError& e) {
+      throw std::invalid_argument(e.what());
+    }
     if (b.contains("faults")) {
       const auto& f = b.at("faults");
       auto row = [&](const char* key) {

@@ -19,11 +19,6 @@ struct RtlConfig {
   std::vector<std::string> backends;  // named builds: the backends the tests use
 };
 
-// A UnitConfig JSON object whose absent fields keep `base`'s values (JSON merge patch over
-// config_to_json(base)); `what` names the source in errors.
-UnitConfig unit_config_overlay(const UnitConfig& base, const std::string& json_object_text,
-                               const std::string& what);
-
 // The named builds of `path` (sim/harness/builds.json). Throws std::invalid_argument naming the
 // file, the build and the field on malformed input.
 std::vector<RtlConfig> load_named_builds(const std::string& path);
