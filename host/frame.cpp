@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <stdexcept>
 
 namespace shadesim {
@@ -11,14 +12,14 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Fewest bits b with size <= 2^b.
-int bits_for(int size) {
+}  // namespace
+
+int xy_bits_for_image(int width, int height) {
+  const int64_t size = std::max(width, height);
   int b = 0;
-  while ((1 << b) < size) ++b;
+  while ((int64_t{1} << b) < size) ++b;
   return b;
 }
-
-}  // namespace
 
 PreparedFrame prepare_frame(const std::string& scene_path, const FrameOptions& options) {
   PreparedFrame f;
@@ -45,11 +46,11 @@ PreparedFrame prepare_frame(const std::string& scene_path, const FrameOptions& o
   }
   f.config = options.fixed_unit ? base : config_for_scene(f.scene, base);
   check_scene_fits(f.scene, f.config);
-  if (f.scene.width > (1 << f.config.xy_bits) || f.scene.height > (1 << f.config.xy_bits)) {
+  if (xy_bits_for_image(f.scene.width, f.scene.height) > f.config.xy_bits) {
     throw std::invalid_argument(scene_path + ": image " + std::to_string(f.scene.width) + "x" +
                                 std::to_string(f.scene.height) + " does not fit xy_bits=" +
                                 std::to_string(f.config.xy_bits) + ": it needs xy_bits >= " +
-                                std::to_string(bits_for(std::max(f.scene.width, f.scene.height))));
+                                std::to_string(xy_bits_for_image(f.scene.width, f.scene.height)));
   }
 
   t0 = std::chrono::steady_clock::now();

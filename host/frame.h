@@ -37,6 +37,10 @@ struct PreparedFrame {
   FrameTimings timings;
 };
 
+// The fewest xy_bits whose unit holds a width x height image (every coordinate 0..size-1, so
+// size <= 2^xy_bits); prepare_frame refuses a unit with fewer. Not clamped to UnitConfig's range.
+int xy_bits_for_image(int width, int height);
+
 // Throws SceneError for bad scene/mesh input and std::invalid_argument for impossible options.
 PreparedFrame prepare_frame(const std::string& scene_path, const FrameOptions& options);
 

@@ -211,8 +211,7 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const D
     ms.max_height = std::max(ms.max_height, s.scene.height);
   }
   const int size = std::max(ms.max_width, ms.max_height);
-  int xy = 0;
-  while ((1 << xy) < size) ++xy;
+  const int xy = xy_bits_for_image(ms.max_width, ms.max_height);
   cfg.xy_bits = std::max(4, xy);
 
   // Measure on a trial unit of that structure whose formats lose nothing.

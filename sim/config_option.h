@@ -19,8 +19,9 @@ inline void add_config_option(CLI::App& sub, std::string& path, const std::vecto
   CLI::Option* config = sub.add_option(
       "--config", path,
       "shade on exactly this unit: a UnitConfig JSON file (as `shadesim config --json` writes or a\n"
-      "stream header carries; omitted fields take the defaults listed here). Excludes the width\n"
-      "options. Without it the widths come from the options and the structure from the scene.");
+      "stream header carries; omitted fields take UnitConfig's defaults: the width defaults listed\n"
+      "here, 1 channel, 1 light, specular ideal). Excludes the width options. Without it the widths\n"
+      "come from the options and the structure and specular unit from the scene.");
   config->check(CLI::ExistingFile);
   for (CLI::Option* o : sub.get_options()) {
     if (o != config && (o->get_group() == kWidthGroup || o->get_group() == kUnitWidthGroup)) config->excludes(o);
