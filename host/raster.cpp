@@ -121,6 +121,14 @@ ViewBasis view_basis(const Camera& camera) {
   return b;
 }
 
+// A mesh vertex (or a near-plane clip point) before projection: view-space coordinates and the
+// attributes the screen vertex carries.
+struct ViewPoint {
+  double right = 0, up = 0, depth = 0;  // view coordinates; depth along the view direction
+  Vec3 world;                           // for the to-eye vector
+  Vec3 normal;
+};
+
 struct ProjectedVertex {
   ScreenVertex screen;
   bool behind_near = false;
@@ -130,6 +138,23 @@ struct ProjectedVertex {
 double snap(double v) {
   constexpr double kGrid = double(1 << kSubpixelBits);
   return std::nearbyint(v * kGrid) / kGrid;
+}
+
+// Where the edge from `inside` (depth >= near) to `outside` (depth < near) meets the near plane.
+// Always called with the inside end first, so the two triangles sharing an edge get bit-identical
+// points and the clipped surface stays watertight. Attributes are interpolated along the 3D edge:
+// the normal, renormalised like every mesh vertex normal; the to-eye vector follows from the
+// interpolated position (normalising the interpolated unnormalised eye vectors gives the same).
+ViewPoint near_plane_point(const ViewPoint& inside, const ViewPoint& outside, double near) {
+  const double t = (inside.depth - near) / (inside.depth - outside.depth);
+  auto lerp = [t](double a, double b) { return a + t * (b - a); };
+  ViewPoint p;
+  p.right = lerp(inside.right, outside.right);
+  p.up = lerp(inside.up, outside.up);
+  p.depth = near;  // exactly on the plane, whatever the rounding of t
+  p.world = inside.world + (outside.world - inside.world) * t;
+  p.normal = normalize(inside.normal + (outside.normal - inside.normal) * t);
+  return p;
 }
 
 }  // namespace
@@ -154,57 +179,97 @@ std::vector<ScreenTriangle> project_scene(const Scene& scene, ProjectStats* stat
                                      : scene.height / camera.ortho_height;
   const double near = camera.near_plane, far = camera.far_plane;
 
+  auto project = [&](const ViewPoint& p) {
+    ProjectedVertex pv;
+    pv.behind_near = !(p.depth >= near);
+    if (pv.behind_near) return pv;
+    const double scale = perspective ? pixels_per_unit / p.depth : pixels_per_unit;
+    pv.screen.x = snap(scene.width / 2.0 + p.right * scale);
+    pv.screen.y = snap(scene.height / 2.0 - p.up * scale);
+    pv.screen.z = perspective ? far * (p.depth - near) / (p.depth * (far - near)) : p.depth;
+    pv.screen.normal = p.normal;
+    pv.screen.to_eye = normalize(camera.position - p.world);
+    pv.out_of_range = !(std::fabs(pv.screen.x) <= kMaxScreenCoordinate &&
+                        std::fabs(pv.screen.y) <= kMaxScreenCoordinate);
+    return pv;
+  };
+
   std::vector<ScreenTriangle> out;
+  // One triangle wholly in front of the near plane: range check, back-face cull, emit.
+  auto emit = [&](const ProjectedVertex& a, const ProjectedVertex& b, const ProjectedVertex& c,
+                  int material, int object) {
+    if (a.out_of_range || b.out_of_range || c.out_of_range) {
+      ++s.dropped_out_of_range;
+      return;
+    }
+    // Exact sign of the snapped area: counter-clockwise from outside is negative on a y-down screen.
+    constexpr double kGrid = double(1 << kSubpixelBits);
+    const int64_t ax = static_cast<int64_t>(a.screen.x * kGrid), ay = static_cast<int64_t>(a.screen.y * kGrid);
+    const int64_t bx = static_cast<int64_t>(b.screen.x * kGrid), by = static_cast<int64_t>(b.screen.y * kGrid);
+    const int64_t cx = static_cast<int64_t>(c.screen.x * kGrid), cy = static_cast<int64_t>(c.screen.y * kGrid);
+    const Int128 area = Int128(bx - ax) * (cy - ay) - Int128(by - ay) * (cx - ax);
+    if (area >= 0) {
+      ++s.culled_back_face;
+      return;
+    }
+    ScreenTriangle st;
+    st.v = {a.screen, b.screen, c.screen};
+    st.material = material;
+    st.object = object;
+    st.parent = -1;
+    out.push_back(st);
+    ++s.emitted;
+  };
+
+  std::vector<ViewPoint> view;
   std::vector<ProjectedVertex> projected;
   for (size_t object_index = 0; object_index < scene.objects.size(); ++object_index) {
     const Object& object = scene.objects[object_index];
+    const int object_id = static_cast<int>(object_index);
     const Mesh& mesh = object.mesh;
+    view.assign(mesh.positions.size(), ViewPoint{});
     projected.assign(mesh.positions.size(), ProjectedVertex{});
     for (size_t i = 0; i < mesh.positions.size(); ++i) {
       const Vec3 rel = mesh.positions[i] - camera.position;
-      const double xv = dot(rel, basis.right), yv = dot(rel, basis.up), d = dot(rel, basis.forward);
-      ProjectedVertex& pv = projected[i];
-      pv.behind_near = !(d >= near);
-      if (pv.behind_near) continue;
-      const double scale = perspective ? pixels_per_unit / d : pixels_per_unit;
-      pv.screen.x = snap(scene.width / 2.0 + xv * scale);
-      pv.screen.y = snap(scene.height / 2.0 - yv * scale);
-      pv.screen.z = perspective ? far * (d - near) / (d * (far - near)) : d;
-      pv.screen.normal = mesh.normals[i];
-      pv.screen.to_eye = normalize(camera.position - mesh.positions[i]);
-      pv.out_of_range = !(std::fabs(pv.screen.x) <= kMaxScreenCoordinate &&
-                          std::fabs(pv.screen.y) <= kMaxScreenCoordinate);
+      ViewPoint& p = view[i];
+      p.right = dot(rel, basis.right);
+      p.up = dot(rel, basis.up);
+      p.depth = dot(rel, basis.forward);
+      p.world = mesh.positions[i];
+      p.normal = mesh.normals[i];
+      projected[i] = project(p);
     }
     for (const auto& t : mesh.triangles) {
       ++s.triangles_in;
-      const ProjectedVertex& a = projected[t[0]];
-      const ProjectedVertex& b = projected[t[1]];
-      const ProjectedVertex& c = projected[t[2]];
-      if (a.behind_near || b.behind_near || c.behind_near) {
-        ++s.dropped_near;
+      const int behind = int(projected[t[0]].behind_near) + int(projected[t[1]].behind_near) +
+                         int(projected[t[2]].behind_near);
+      if (behind == 0) {
+        emit(projected[t[0]], projected[t[1]], projected[t[2]], object.material, object_id);
         continue;
       }
-      if (a.out_of_range || b.out_of_range || c.out_of_range) {
-        ++s.dropped_out_of_range;
+      if (behind == 3) {
+        ++s.culled_near;
         continue;
       }
-      // Exact sign of the snapped area: counter-clockwise from outside is negative on a y-down screen.
-      constexpr double kGrid = double(1 << kSubpixelBits);
-      const int64_t ax = static_cast<int64_t>(a.screen.x * kGrid), ay = static_cast<int64_t>(a.screen.y * kGrid);
-      const int64_t bx = static_cast<int64_t>(b.screen.x * kGrid), by = static_cast<int64_t>(b.screen.y * kGrid);
-      const int64_t cx = static_cast<int64_t>(c.screen.x * kGrid), cy = static_cast<int64_t>(c.screen.y * kGrid);
-      const Int128 area = Int128(bx - ax) * (cy - ay) - Int128(by - ay) * (cx - ax);
-      if (area >= 0) {
-        ++s.culled_back_face;
-        continue;
+      // Crosses the near plane (or a NaN depth, which counts as behind): clip the polygon to
+      // depth >= near, keeping the vertex order (so the winding), then fan it into triangles.
+      ++s.clipped_near;
+      ProjectedVertex polygon[4];
+      int corners = 0;
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t cur = t[k], next = t[(k + 1) % 3];
+        const bool cur_in = !projected[cur].behind_near, next_in = !projected[next].behind_near;
+        if (cur_in) polygon[corners++] = projected[cur];
+        if (cur_in != next_in) {
+          const ViewPoint p = cur_in ? near_plane_point(view[cur], view[next], near)
+                                     : near_plane_point(view[next], view[cur], near);
+          polygon[corners++] = project(p);
+        }
       }
-      ScreenTriangle st;
-      st.v = {a.screen, b.screen, c.screen};
-      st.material = object.material;
-      st.object = static_cast<int>(object_index);
-      st.parent = -1;
-      out.push_back(st);
-      ++s.emitted;
+      for (int k = 1; k + 1 < corners; ++k) {
+        ++s.clipped_pieces;
+        emit(polygon[0], polygon[k], polygon[k + 1], object.material, object_id);
+      }
     }
   }
   return out;

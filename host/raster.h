@@ -9,10 +9,17 @@
 
 namespace shadesim {
 
+// What became of the mesh triangles. A triangle wholly in front of the near plane, and each piece
+// of a clipped one, is a candidate that ends as exactly one of culled_back_face,
+// dropped_out_of_range or emitted:
+//   triangles_in - culled_near - clipped_near + clipped_pieces
+//     == culled_back_face + dropped_out_of_range + emitted.
 struct ProjectStats {
-  int64_t triangles_in = 0;       // mesh triangles of all objects
-  int64_t culled_back_face = 0;   // clockwise-from-outside on screen, or zero screen area
-  int64_t dropped_near = 0;       // a vertex nearer than the near plane (no clipping is done)
+  int64_t triangles_in = 0;          // mesh triangles of all objects
+  int64_t culled_near = 0;           // every vertex nearer than the near plane: nothing to draw
+  int64_t clipped_near = 0;          // crossing the near plane: clipped to it in view space
+  int64_t clipped_pieces = 0;        // triangles the clipping made (1 or 2 per clipped triangle)
+  int64_t culled_back_face = 0;      // clockwise-from-outside on screen, or zero screen area
   int64_t dropped_out_of_range = 0;  // a vertex beyond kMaxScreenCoordinate
   int64_t emitted = 0;
 };
@@ -23,7 +30,10 @@ constexpr double kMaxScreenCoordinate = double(1 << 28);
 // snapped vertices plus up to 16 halvings by subdivision midpoints.
 constexpr int kRasterFractionBits = 24;
 
-// World -> camera -> screen (y down, pixel centres at +0.5). Perspective: z = far(d - near) /
+// World -> camera -> screen (y down, pixel centres at +0.5). A triangle crossing the near plane
+// is clipped to it in view space (one or two triangles; at the new vertices the normal is
+// interpolated along the edge and renormalised, the to-eye vector taken at the interpolated
+// point); one wholly nearer than it is culled. Perspective: z = far(d - near) /
 // (d (far - near)), affine in screen space, 0 at the near plane; orthographic: z = view depth d.
 // x and y are rounded to the 2^-kSubpixelBits grid before back-face culling, so the cull decision
 // is the exact sign of the snapped triangle's area. Emitted triangles keep the mesh winding
