@@ -135,23 +135,37 @@ struct ProjectedVertex {
   bool out_of_range = false;
 };
 
+constexpr int kClipPlanes = 5;  // the near plane and the four sides of the guard band
+
 double snap(double v) {
   constexpr double kGrid = double(1 << kSubpixelBits);
   return std::nearbyint(v * kGrid) / kGrid;
 }
 
-// Where the edge from `inside` (depth >= near) to `outside` (depth < near) meets the near plane.
-// Always called with the inside end first, so the two triangles sharing an edge get bit-identical
-// points and the clipped surface stays watertight. Attributes are interpolated along the 3D edge:
-// the normal, renormalised like every mesh vertex normal; the to-eye vector follows from the
-// interpolated position (normalising the interpolated unnormalised eye vectors gives the same).
-ViewPoint near_plane_point(const ViewPoint& inside, const ViewPoint& outside, double near) {
-  const double t = (inside.depth - near) / (inside.depth - outside.depth);
+// A clipping plane in view space: a point is inside where r right + u up + d depth + c >= 0 (a
+// NaN is outside). The near plane is depth - near >= 0; the guard-band planes pass through the
+// eye (perspective) or are parallel to the view direction (orthographic).
+struct ClipPlane {
+  double r = 0, u = 0, d = 0, c = 0;
+  bool is_near = false;
+  double distance(const ViewPoint& p) const { return r * p.right + u * p.up + d * p.depth + c; }
+  bool inside(const ViewPoint& p) const { return distance(p) >= 0; }
+};
+
+// Where the edge from `inside` to `outside` meets the plane. Always called with the inside end
+// first, so the two triangles sharing an edge get bit-identical points and the clipped surface
+// stays watertight. Attributes are interpolated along the 3D edge: the normal, renormalised like
+// every mesh vertex normal; the to-eye vector follows from the interpolated position (normalising
+// the interpolated unnormalised eye vectors gives the same).
+ViewPoint plane_point(const ViewPoint& inside, const ViewPoint& outside, const ClipPlane& plane,
+                      double near) {
+  const double s_in = plane.distance(inside), s_out = plane.distance(outside);
+  const double t = s_in / (s_in - s_out);
   auto lerp = [t](double a, double b) { return a + t * (b - a); };
   ViewPoint p;
   p.right = lerp(inside.right, outside.right);
   p.up = lerp(inside.up, outside.up);
-  p.depth = near;  // exactly on the plane, whatever the rounding of t
+  p.depth = plane.is_near ? near : lerp(inside.depth, outside.depth);  // exactly on the near plane
   p.world = inside.world + (outside.world - inside.world) * t;
   p.normal = normalize(inside.normal + (outside.normal - inside.normal) * t);
   return p;
@@ -179,6 +193,18 @@ std::vector<ScreenTriangle> project_scene(const Scene& scene, ProjectStats* stat
                                      : scene.height / camera.ortho_height;
   const double near = camera.near_plane, far = camera.far_plane;
 
+  // For triangles crossing the near plane: the near plane, then the guard band,
+  // kGuardBandPixels beyond each image edge.
+  const double gx = (scene.width / 2.0 + kGuardBandPixels) / pixels_per_unit;
+  const double gy = (scene.height / 2.0 + kGuardBandPixels) / pixels_per_unit;
+  const double gd = perspective ? 1.0 : 0.0, gc = perspective ? 0.0 : 1.0;
+  const ClipPlane planes[kClipPlanes] = {
+      {0, 0, 1, -near, true},
+      {1, 0, gx * gd, gx * gc, false},   // right >= -gx (depth)
+      {-1, 0, gx * gd, gx * gc, false},  // right <= gx (depth)
+      {0, 1, gy * gd, gy * gc, false},   // up >= -gy (depth)
+      {0, -1, gy * gd, gy * gc, false},  // up <= gy (depth)
+  };
   auto project = [&](const ViewPoint& p) {
     ProjectedVertex pv;
     pv.behind_near = !(p.depth >= near);
@@ -251,24 +277,35 @@ std::vector<ScreenTriangle> project_scene(const Scene& scene, ProjectStats* stat
         ++s.culled_near;
         continue;
       }
-      // Crosses the near plane (or a NaN depth, which counts as behind): clip the polygon to
-      // depth >= near, keeping the vertex order (so the winding), then fan it into triangles.
+      // Crosses the near plane (or has a NaN depth, which counts as behind). Its clip points land
+      // up to (extent / near) pixels off-screen, so it is clipped to the guard band as well: the
+      // polygon is clipped to each plane in turn (Sutherland-Hodgman), keeping the vertex order
+      // (so the winding), then fanned into triangles.
       ++s.clipped_near;
-      ProjectedVertex polygon[4];
-      int corners = 0;
-      for (int k = 0; k < 3; ++k) {
-        const uint32_t cur = t[k], next = t[(k + 1) % 3];
-        const bool cur_in = !projected[cur].behind_near, next_in = !projected[next].behind_near;
-        if (cur_in) polygon[corners++] = projected[cur];
-        if (cur_in != next_in) {
-          const ViewPoint p = cur_in ? near_plane_point(view[cur], view[next], near)
-                                     : near_plane_point(view[next], view[cur], near);
-          polygon[corners++] = project(p);
+      ViewPoint polygon[3 + kClipPlanes], next_polygon[3 + kClipPlanes];
+      int corners = 3;
+      for (int k = 0; k < 3; ++k) polygon[k] = view[t[k]];
+      for (int q = 0; q < kClipPlanes && corners > 0; ++q) {
+        const ClipPlane& plane = planes[q];
+        int kept = 0;
+        for (int k = 0; k < corners; ++k) {
+          const ViewPoint& cur = polygon[k];
+          const ViewPoint& nxt = polygon[(k + 1) % corners];
+          const bool cur_in = plane.inside(cur), nxt_in = plane.inside(nxt);
+          if (cur_in) next_polygon[kept++] = cur;
+          if (cur_in != nxt_in) {
+            next_polygon[kept++] = cur_in ? plane_point(cur, nxt, plane, near)
+                                          : plane_point(nxt, cur, plane, near);
+          }
         }
+        corners = kept;
+        std::copy(next_polygon, next_polygon + kept, polygon);
       }
+      ProjectedVertex corner[3 + kClipPlanes];
+      for (int k = 0; k < corners; ++k) corner[k] = project(polygon[k]);
       for (int k = 1; k + 1 < corners; ++k) {
         ++s.clipped_pieces;
-        emit(polygon[0], polygon[k], polygon[k + 1], object.material, object_id);
+        emit(corner[0], corner[k], corner[k + 1], object.material, object_id);
       }
     }
   }

@@ -330,7 +330,8 @@ TEST(HardScenes, PhongSpecularSceneIsWithinOneLsbAndFeedsRDotV) {
 
 TEST(HardScenes, FloorTheCameraStandsOnCoversTheLowerHalfWithinOneLsb) {
   // Camera 0.2 above the centre of a 20-unit plane (tessellation 4), looking along it: most of
-  // the plane's triangles cross the near plane or lie behind the camera.
+  // the plane's triangles cross the near plane or lie behind the camera. The light is low and
+  // ahead, so the highlight sits near the horizon, on the clipped triangles.
   const Rendered r = render(hard_scene("floor.json"));
   const PreparedFrame& f = r.frame;
   const ProjectStats& p = f.project;

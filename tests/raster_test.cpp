@@ -443,12 +443,37 @@ TEST(Projection, FloorAroundTheCameraIsClippedCulledAndCounted) {
   const std::vector<ScreenTriangle> tris = project_scene(s, &stats);
   EXPECT_GT(stats.culled_near, 0);
   EXPECT_GT(stats.clipped_near, 0);
-  EXPECT_GE(stats.clipped_pieces, stats.clipped_near);
-  EXPECT_LE(stats.clipped_pieces, 2 * stats.clipped_near);
+  EXPECT_LE(stats.clipped_pieces, 6 * stats.clipped_near);  // near plane + 4 guard-band sides
   EXPECT_GT(stats.emitted, 0);
   expect_projection_accounted(stats);
   for (const ScreenTriangle& tr : tris)
     for (const ScreenVertex& v : tr.v) EXPECT_GE(v.z, 0.0);
+  // Without the guard band the clip points at depth 0.1 would land up to 10 / 0.1 * 88 pixels
+  // (focal length 32 / tan 20 deg) off-centre. Every emitted vertex that is not a projected mesh
+  // vertex is a clip point, and lies within kGuardBandPixels of the image, plus the snapping.
+  const double focal = 32 / std::tan(20 * 3.14159265358979323846 / 180);
+  auto is_mesh_vertex = [&](const ScreenVertex& v) {
+    for (const Vec3& p : s.objects[0].mesh.positions) {
+      const double d = -p.z;
+      if (d < 0.1) continue;
+      if (std::fabs(v.x - (32 + focal * p.x / d)) < 1.0 / 256 &&
+          std::fabs(v.y - (32 - focal * p.y / d)) < 1.0 / 256)
+        return true;
+    }
+    return false;
+  };
+  double worst_outside = 0;
+  int clip_points = 0;
+  for (const ScreenTriangle& tr : tris) {
+    for (const ScreenVertex& v : tr.v) {
+      if (is_mesh_vertex(v)) continue;
+      ++clip_points;
+      worst_outside = std::max({worst_outside, -v.x, v.x - 64, -v.y, v.y - 64});
+    }
+  }
+  EXPECT_GT(clip_points, 0);
+  EXPECT_GT(worst_outside, kGuardBandPixels - 1);  // the band is reached: it did cut
+  EXPECT_LE(worst_outside, kGuardBandPixels + 1.0 / 256);
 }
 
 // Camera at the origin looking down -z, 90 degree field of view on 120 x 100: a point (x, y, z)
