@@ -228,11 +228,13 @@ std::vector<ScreenTriangle> project_scene(const Scene& scene, ProjectStats* stat
       ++s.dropped_out_of_range;
       return;
     }
-    // Exact sign of the snapped area: counter-clockwise from outside is negative on a y-down screen.
+    // Exact sign of the snapped area: counter-clockwise from outside is negative on a y-down
+    // screen.
     constexpr double kGrid = double(1 << kSubpixelBits);
-    const int64_t ax = static_cast<int64_t>(a.screen.x * kGrid), ay = static_cast<int64_t>(a.screen.y * kGrid);
-    const int64_t bx = static_cast<int64_t>(b.screen.x * kGrid), by = static_cast<int64_t>(b.screen.y * kGrid);
-    const int64_t cx = static_cast<int64_t>(c.screen.x * kGrid), cy = static_cast<int64_t>(c.screen.y * kGrid);
+    auto grid = [](double v) { return static_cast<int64_t>(v * kGrid); };
+    const int64_t ax = grid(a.screen.x), ay = grid(a.screen.y);
+    const int64_t bx = grid(b.screen.x), by = grid(b.screen.y);
+    const int64_t cx = grid(c.screen.x), cy = grid(c.screen.y);
     const Int128 area = Int128(bx - ax) * (cy - ay) - Int128(by - ay) * (cx - ax);
     if (area >= 0) {
       ++s.culled_back_face;

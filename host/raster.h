@@ -39,8 +39,9 @@ constexpr int kRasterFractionBits = 24;
 // World -> camera -> screen (y down, pixel centres at +0.5). A triangle crossing the near plane
 // is clipped in view space to it and to the guard band (up to 6 triangles; at the new vertices
 // the normal is interpolated along the edge and renormalised, the to-eye vector taken at the
-// interpolated point); one wholly nearer than the near plane is culled. Perspective: z = far(d - near) /
-// (d (far - near)), affine in screen space, 0 at the near plane; orthographic: z = view depth d.
+// interpolated point); one wholly nearer than the near plane is culled.
+// Perspective: z = far(d - near) / (d (far - near)), affine in screen space, 0 at the near plane;
+// orthographic: z = view depth d.
 // x and y are rounded to the 2^-kSubpixelBits grid before back-face culling, so the cull decision
 // is the exact sign of the snapped triangle's area. Emitted triangles keep the mesh winding
 // (counter-clockwise from outside, which is clockwise on the y-down screen). `stats` may be null.

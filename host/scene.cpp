@@ -293,7 +293,8 @@ SpecularModel read_specular_model(const Reader& r, const json& j, const std::str
   const json* value = r.find(j, "specular_model");
   if (value == nullptr) return fallback;
   const std::string where = join(path, "specular_model");
-  const std::string accepted = "\"phong\" or \"blinn\" (the specular cosine: Phong's R.V or Blinn's N.H)";
+  const std::string accepted =
+      "\"phong\" or \"blinn\" (the specular cosine: Phong's R.V or Blinn's N.H)";
   if (!value->is_string()) r.fail_expected(where, accepted, *value);
   const std::string name = value->get<std::string>();
   if (name == "phong") return SpecularModel::kPhong;

@@ -39,7 +39,9 @@ struct DirectionalLight {
 // light direction reflected about the normal. Both are smooth in screen space, so both reach the
 // unit as one Taylor series; the hardware does not know which it gets.
 enum class SpecularModel { kBlinn, kPhong };
-inline const char* to_string(SpecularModel m) { return m == SpecularModel::kPhong ? "phong" : "blinn"; }
+inline const char* to_string(SpecularModel m) {
+  return m == SpecularModel::kPhong ? "phong" : "blinn";
+}
 
 struct Material {
   std::string name;

@@ -138,8 +138,9 @@ int run_render(const RenderOptions& o) {
               << "culled       " << frame.project.culled_back_face << " back-facing, "
               << frame.project.culled_near << " wholly nearer than the near plane, "
               << frame.project.dropped_out_of_range << " beyond the screen coordinate range\n"
-              << "clipped      " << frame.project.clipped_near << " crossing the near plane, clipped into "
-              << frame.project.clipped_pieces << " triangle(s) before culling\n"
+              << "clipped      " << frame.project.clipped_near
+              << " crossing the near plane, clipped into " << frame.project.clipped_pieces
+              << " triangle(s) before culling\n"
               << "cosine       " << specular_models(scene) << "\n"
               << "stream       " << frame.encoded.stats.triangles << " tri, " << frame.encoded.stats.spans
               << " spans, " << frame.encoded.stats.materials << " material loads, "

@@ -350,7 +350,8 @@ TEST(HardScenes, FloorTheCameraStandsOnCoversTheLowerHalfWithinOneLsb) {
   // corners (x = +-10) are 10 / 10 * focal off-centre, beyond the image sides. Every row whose
   // centre is below the far edge is covered from side to side, every row above it is empty.
   const int w = f.scene.width, h = f.scene.height;
-  const double focal = (h / 2.0) / std::tan(f.scene.camera.fov_y_deg * 3.14159265358979323846 / 360);
+  const double half_fov = f.scene.camera.fov_y_deg * 3.14159265358979323846 / 360;
+  const double focal = (h / 2.0) / std::tan(half_fov);
   const double far_edge_y = h / 2.0 + 0.2 / 10 * focal;
   ASSERT_GT(focal, w / 2.0);
   size_t owned = 0;

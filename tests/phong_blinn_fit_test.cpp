@@ -6,8 +6,8 @@
 // Small-angle expectation the assertions use: with N at angle a from H, R.V = cos 2a exactly when
 // N tilts in the plane of L and V, and R.V = 1 - 2 cos^2 b sin^2 a when it tilts across it, while
 // N.H = cos a. So (R.V)^n ~ exp(-2 n a^2) in the plane, exp(-2 n cos^2 b a^2) across it, and
-// (N.H)^m ~ exp(-m a^2 / 2): m = 4 n for L = V (b = 0), and m between 4 n cos^2 b and 4 n otherwise,
-// each up to O(1/n) from the fourth-order terms.
+// (N.H)^m ~ exp(-m a^2 / 2): m = 4 n for L = V (b = 0), and m between 4 n cos^2 b and 4 n
+// otherwise, each up to O(1/n) from the fourth-order terms.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -34,7 +34,7 @@ Lobes sample(double n, double half_angle) {
   const Vec3 L{std::sin(half_angle), 0, std::cos(half_angle)};
   const Vec3 V{-std::sin(half_angle), 0, std::cos(half_angle)};
   const double a_max = std::min(kPi / 2, 12 / std::sqrt(n));
-  constexpr int kA = 800, kP = 128;
+  constexpr int kA = 400, kP = 64;
   Lobes s;
   for (int i = 0; i < kA; ++i) {
     const double a = (i + 0.5) * a_max / kA;
@@ -93,9 +93,10 @@ double fit_blinn_exponent(const Lobes& s, double n) {
 TEST(PhongBlinnExponent, MeasuredRatioIsFourForLEqualsVAndBetweenFourCos2bAndFourOtherwise) {
   const double exponents[] = {2, 5, 10, 20, 60, 250};
   const double angles_deg[] = {0, 30, 60, 90, 120};  // between L and V: 2b
-  std::printf("Blinn exponent m best matching a Phong lobe of exponent n (least squares over the\n"
-              "normals around H, solid-angle weight); m/n, and the largest lobe difference at that\n"
-              "m in 8-bit LSBs of a full-scale highlight\n");
+  std::printf(
+      "Blinn exponent m best matching a Phong lobe of exponent n (least squares over the\n"
+      "normals around H, solid-angle weight); m/n, and the largest lobe difference at that\n"
+      "m in 8-bit LSBs of a full-scale highlight\n");
   std::printf("%8s", "n \\ L.V");
   for (double a : angles_deg) std::printf("  %9.0f deg       ", a);
   std::printf("\n");

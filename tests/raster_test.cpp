@@ -257,7 +257,8 @@ TEST(ClosedMesh, SphereFrontFacesCoverSilhouetteExactlyOnce) {
     }
     EXPECT_GT(covered_rows_count, 40);
     EXPECT_EQ(stats.clipped_near, 0);
-    EXPECT_EQ(stats.triangles_in, stats.culled_back_face + stats.culled_near + stats.dropped_out_of_range + stats.emitted);
+    EXPECT_EQ(stats.triangles_in, stats.culled_back_face + stats.culled_near +
+                                      stats.dropped_out_of_range + stats.emitted);
   }
 }
 
