@@ -549,6 +549,32 @@ TEST(Projection, OneVertexBehindTheNearPlaneBecomesTwoTriangles) {
   EXPECT_EQ(pieces, quad);
 }
 
+TEST(Projection, OrthographicCameraClipsAtTheNearPlaneToo) {
+  // Orthographic, 2 units tall on 100 rows: (x, y, z) lands on (60 + 50 x, 50 - 50 y), depth
+  // d = -z. A (d = 2) and C (d = 2) in front, B (d = 0) behind the near plane at 0.5; the
+  // crossing edges meet it at t = 0.75 from their front ends: A-B at (0.75, 0.5, -0.5), C-B at
+  // (0.5, 0.5, -0.5).
+  Camera camera = clip_camera();
+  camera.kind = Camera::Kind::kOrthographic;
+  camera.ortho_height = 2;
+  Mesh mesh;
+  mesh.positions = {{0, -1, -2}, {1, 1, 0}, {-1, -1, -2}};
+  mesh.normals = {{0, -0.7071, 0.7071}, {0, -0.7071, 0.7071}, {0, -0.7071, 0.7071}};
+  mesh.triangles = {{0, 1, 2}};
+  const Scene s = one_object_scene(mesh, camera, 120, 100);
+  ProjectStats stats;
+  const std::vector<ScreenTriangle> tris = project_scene(s, &stats);
+  ASSERT_EQ(tris.size(), 2u);
+  EXPECT_EQ(stats.clipped_near, 1);
+  expect_projection_accounted(stats);
+  // The polygon A, P_AB, P_CB, C, fanned from A; orthographic depth is the view depth.
+  expect_screen(tris[0].v[0], 60, 100, 2);
+  expect_screen(tris[0].v[1], 97.5, 25, 0.5);
+  expect_screen(tris[0].v[2], 85, 25, 0.5);
+  expect_screen(tris[1].v[2], 10, 100, 2);
+  expect_vec(tris[0].v[1].to_eye, normalize(Vec3{-0.75, -0.5, 0.5}));
+}
+
 TEST(Projection, TwoVerticesBehindTheNearPlaneLeaveOneTriangle) {
   Mesh mesh;
   mesh.positions = {{0, -1, -2}, {-1, -1, 0}, {1, -1, 0}};
