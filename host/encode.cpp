@@ -2,6 +2,7 @@
 
 #include "host/specular_setup.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -117,13 +118,16 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
       ++stats.materials;
     }
 
-    // Origin: the pixel holding the centroid. Integer offsets from it keep span setup's
-    // products exact; the quadratic is re-expanded about that pixel's centre.
+    // Origin: the pixel holding the centroid, clamped into the image. Integer offsets from it
+    // keep span setup's products exact; the quadratic is re-expanded about that pixel's centre.
+    // The clamp bounds the offsets (and so the coefficient error they multiply) by the image
+    // size, however far off-screen a triangle reaches: a piece clipped at the near plane can
+    // have its centroid thousands of pixels away, beyond the 16-bit origin field.
     const double xc = (tri.v[0].x + tri.v[1].x + tri.v[2].x) / 3.0;
     const double yc = (tri.v[0].y + tri.v[1].y + tri.v[2].y) / 3.0;
     TriangleCmd t;
-    t.xo = static_cast<int32_t>(std::floor(xc));
-    t.yo = static_cast<int32_t>(std::floor(yc));
+    t.xo = static_cast<int32_t>(std::clamp(std::floor(xc), 0.0, scene.width - 1.0));
+    t.yo = static_cast<int32_t>(std::clamp(std::floor(yc), 0.0, scene.height - 1.0));
     const double ox = t.xo + 0.5, oy = t.yo + 0.5;
     for (int l = 0; l < config.lights; ++l) {
       const bool present = l < scene_lights;

@@ -121,15 +121,54 @@ ViewBasis view_basis(const Camera& camera) {
   return b;
 }
 
+// A mesh vertex (or a near-plane clip point) before projection: view-space coordinates and the
+// attributes the screen vertex carries.
+struct ViewPoint {
+  double right = 0, up = 0, depth = 0;  // view coordinates; depth along the view direction
+  Vec3 world;                           // for the to-eye vector
+  Vec3 normal;
+};
+
 struct ProjectedVertex {
   ScreenVertex screen;
   bool behind_near = false;
   bool out_of_range = false;
 };
 
+constexpr int kClipPlanes = 5;  // the near plane and the four sides of the guard band
+
 double snap(double v) {
   constexpr double kGrid = double(1 << kSubpixelBits);
   return std::nearbyint(v * kGrid) / kGrid;
+}
+
+// A clipping plane in view space: a point is inside where r right + u up + d depth + c >= 0 (a
+// NaN is outside). The near plane is depth - near >= 0; the guard-band planes pass through the
+// eye (perspective) or are parallel to the view direction (orthographic).
+struct ClipPlane {
+  double r = 0, u = 0, d = 0, c = 0;
+  bool is_near = false;
+  double distance(const ViewPoint& p) const { return r * p.right + u * p.up + d * p.depth + c; }
+  bool inside(const ViewPoint& p) const { return distance(p) >= 0; }
+};
+
+// Where the edge from `inside` to `outside` meets the plane. Always called with the inside end
+// first, so the two triangles sharing an edge get bit-identical points and the clipped surface
+// stays watertight. Attributes are interpolated along the 3D edge: the normal, renormalised like
+// every mesh vertex normal; the to-eye vector follows from the interpolated position (normalising
+// the interpolated unnormalised eye vectors gives the same).
+ViewPoint plane_point(const ViewPoint& inside, const ViewPoint& outside, const ClipPlane& plane,
+                      double near) {
+  const double s_in = plane.distance(inside), s_out = plane.distance(outside);
+  const double t = s_in / (s_in - s_out);
+  auto lerp = [t](double a, double b) { return a + t * (b - a); };
+  ViewPoint p;
+  p.right = lerp(inside.right, outside.right);
+  p.up = lerp(inside.up, outside.up);
+  p.depth = plane.is_near ? near : lerp(inside.depth, outside.depth);  // exactly on the near plane
+  p.world = inside.world + (outside.world - inside.world) * t;
+  p.normal = normalize(inside.normal + (outside.normal - inside.normal) * t);
+  return p;
 }
 
 }  // namespace
@@ -154,57 +193,122 @@ std::vector<ScreenTriangle> project_scene(const Scene& scene, ProjectStats* stat
                                      : scene.height / camera.ortho_height;
   const double near = camera.near_plane, far = camera.far_plane;
 
+  // For triangles crossing the near plane: the near plane, then the guard band,
+  // kGuardBandPixels beyond each image edge.
+  const double gx = (scene.width / 2.0 + kGuardBandPixels) / pixels_per_unit;
+  const double gy = (scene.height / 2.0 + kGuardBandPixels) / pixels_per_unit;
+  const double gd = perspective ? 1.0 : 0.0, gc = perspective ? 0.0 : 1.0;
+  const ClipPlane planes[kClipPlanes] = {
+      {0, 0, 1, -near, true},
+      {1, 0, gx * gd, gx * gc, false},   // right >= -gx (depth)
+      {-1, 0, gx * gd, gx * gc, false},  // right <= gx (depth)
+      {0, 1, gy * gd, gy * gc, false},   // up >= -gy (depth)
+      {0, -1, gy * gd, gy * gc, false},  // up <= gy (depth)
+  };
+  auto project = [&](const ViewPoint& p) {
+    ProjectedVertex pv;
+    pv.behind_near = !(p.depth >= near);
+    if (pv.behind_near) return pv;
+    const double scale = perspective ? pixels_per_unit / p.depth : pixels_per_unit;
+    pv.screen.x = snap(scene.width / 2.0 + p.right * scale);
+    pv.screen.y = snap(scene.height / 2.0 - p.up * scale);
+    pv.screen.z = perspective ? far * (p.depth - near) / (p.depth * (far - near)) : p.depth;
+    pv.screen.normal = p.normal;
+    pv.screen.to_eye = normalize(camera.position - p.world);
+    pv.out_of_range = !(std::fabs(pv.screen.x) <= kMaxScreenCoordinate &&
+                        std::fabs(pv.screen.y) <= kMaxScreenCoordinate);
+    return pv;
+  };
+
   std::vector<ScreenTriangle> out;
+  // One triangle wholly in front of the near plane: range check, back-face cull, emit.
+  auto emit = [&](const ProjectedVertex& a, const ProjectedVertex& b, const ProjectedVertex& c,
+                  int material, int object) {
+    if (a.out_of_range || b.out_of_range || c.out_of_range) {
+      ++s.dropped_out_of_range;
+      return;
+    }
+    // Exact sign of the snapped area: counter-clockwise from outside is negative on a y-down
+    // screen.
+    constexpr double kGrid = double(1 << kSubpixelBits);
+    auto grid = [](double v) { return static_cast<int64_t>(v * kGrid); };
+    const int64_t ax = grid(a.screen.x), ay = grid(a.screen.y);
+    const int64_t bx = grid(b.screen.x), by = grid(b.screen.y);
+    const int64_t cx = grid(c.screen.x), cy = grid(c.screen.y);
+    const Int128 area = Int128(bx - ax) * (cy - ay) - Int128(by - ay) * (cx - ax);
+    if (area >= 0) {
+      ++s.culled_back_face;
+      return;
+    }
+    ScreenTriangle st;
+    st.v = {a.screen, b.screen, c.screen};
+    st.material = material;
+    st.object = object;
+    st.parent = -1;
+    out.push_back(st);
+    ++s.emitted;
+  };
+
+  std::vector<ViewPoint> view;
   std::vector<ProjectedVertex> projected;
   for (size_t object_index = 0; object_index < scene.objects.size(); ++object_index) {
     const Object& object = scene.objects[object_index];
+    const int object_id = static_cast<int>(object_index);
     const Mesh& mesh = object.mesh;
+    view.assign(mesh.positions.size(), ViewPoint{});
     projected.assign(mesh.positions.size(), ProjectedVertex{});
     for (size_t i = 0; i < mesh.positions.size(); ++i) {
       const Vec3 rel = mesh.positions[i] - camera.position;
-      const double xv = dot(rel, basis.right), yv = dot(rel, basis.up), d = dot(rel, basis.forward);
-      ProjectedVertex& pv = projected[i];
-      pv.behind_near = !(d >= near);
-      if (pv.behind_near) continue;
-      const double scale = perspective ? pixels_per_unit / d : pixels_per_unit;
-      pv.screen.x = snap(scene.width / 2.0 + xv * scale);
-      pv.screen.y = snap(scene.height / 2.0 - yv * scale);
-      pv.screen.z = perspective ? far * (d - near) / (d * (far - near)) : d;
-      pv.screen.normal = mesh.normals[i];
-      pv.screen.to_eye = normalize(camera.position - mesh.positions[i]);
-      pv.out_of_range = !(std::fabs(pv.screen.x) <= kMaxScreenCoordinate &&
-                          std::fabs(pv.screen.y) <= kMaxScreenCoordinate);
+      ViewPoint& p = view[i];
+      p.right = dot(rel, basis.right);
+      p.up = dot(rel, basis.up);
+      p.depth = dot(rel, basis.forward);
+      p.world = mesh.positions[i];
+      p.normal = mesh.normals[i];
+      projected[i] = project(p);
     }
     for (const auto& t : mesh.triangles) {
       ++s.triangles_in;
-      const ProjectedVertex& a = projected[t[0]];
-      const ProjectedVertex& b = projected[t[1]];
-      const ProjectedVertex& c = projected[t[2]];
-      if (a.behind_near || b.behind_near || c.behind_near) {
-        ++s.dropped_near;
+      const int behind = int(projected[t[0]].behind_near) + int(projected[t[1]].behind_near) +
+                         int(projected[t[2]].behind_near);
+      if (behind == 0) {
+        emit(projected[t[0]], projected[t[1]], projected[t[2]], object.material, object_id);
         continue;
       }
-      if (a.out_of_range || b.out_of_range || c.out_of_range) {
-        ++s.dropped_out_of_range;
+      if (behind == 3) {
+        ++s.culled_near;
         continue;
       }
-      // Exact sign of the snapped area: counter-clockwise from outside is negative on a y-down screen.
-      constexpr double kGrid = double(1 << kSubpixelBits);
-      const int64_t ax = static_cast<int64_t>(a.screen.x * kGrid), ay = static_cast<int64_t>(a.screen.y * kGrid);
-      const int64_t bx = static_cast<int64_t>(b.screen.x * kGrid), by = static_cast<int64_t>(b.screen.y * kGrid);
-      const int64_t cx = static_cast<int64_t>(c.screen.x * kGrid), cy = static_cast<int64_t>(c.screen.y * kGrid);
-      const Int128 area = Int128(bx - ax) * (cy - ay) - Int128(by - ay) * (cx - ax);
-      if (area >= 0) {
-        ++s.culled_back_face;
-        continue;
+      // Crosses the near plane (or has a NaN depth, which counts as behind). Its clip points land
+      // up to (extent / near) pixels off-screen, so it is clipped to the guard band as well: the
+      // polygon is clipped to each plane in turn (Sutherland-Hodgman), keeping the vertex order
+      // (so the winding), then fanned into triangles.
+      ++s.clipped_near;
+      ViewPoint polygon[3 + kClipPlanes], next_polygon[3 + kClipPlanes];
+      int corners = 3;
+      for (int k = 0; k < 3; ++k) polygon[k] = view[t[k]];
+      for (int q = 0; q < kClipPlanes && corners > 0; ++q) {
+        const ClipPlane& plane = planes[q];
+        int kept = 0;
+        for (int k = 0; k < corners; ++k) {
+          const ViewPoint& cur = polygon[k];
+          const ViewPoint& nxt = polygon[(k + 1) % corners];
+          const bool cur_in = plane.inside(cur), nxt_in = plane.inside(nxt);
+          if (cur_in) next_polygon[kept++] = cur;
+          if (cur_in != nxt_in) {
+            next_polygon[kept++] = cur_in ? plane_point(cur, nxt, plane, near)
+                                          : plane_point(nxt, cur, plane, near);
+          }
+        }
+        corners = kept;
+        std::copy(next_polygon, next_polygon + kept, polygon);
       }
-      ScreenTriangle st;
-      st.v = {a.screen, b.screen, c.screen};
-      st.material = object.material;
-      st.object = static_cast<int>(object_index);
-      st.parent = -1;
-      out.push_back(st);
-      ++s.emitted;
+      ProjectedVertex corner[3 + kClipPlanes];
+      for (int k = 0; k < corners; ++k) corner[k] = project(polygon[k]);
+      for (int k = 1; k + 1 < corners; ++k) {
+        ++s.clipped_pieces;
+        emit(corner[0], corner[k], corner[k + 1], object.material, object_id);
+      }
     }
   }
   return out;

@@ -80,10 +80,22 @@ ReferenceImage render_reference(const std::vector<ScreenTriangle>& triangles,
       const double n_len = length(n);
       Vec3 colour{mat.ambient.x * scene.ambient_light.x, mat.ambient.y * scene.ambient_light.y,
                   mat.ambient.z * scene.ambient_light.z};
+      const bool phong = mat.specular_model == SpecularModel::kPhong;
+      // Phong's V: unit toward the eye; the interpolated to-eye vector is not unit.
+      const double e_len = length(e);
+      const Vec3 V_phong = scene.eye_at_infinity ? V : (e_len > 0 ? e / e_len : Vec3{});
       for (std::size_t l = 0; l < L.size(); ++l) {
-        const Vec3 H = scene.eye_at_infinity ? H_inf[l] : normalize(e + L[l]);
         const double t_d = n_len > 0 ? dot(n, L[l]) / n_len : 0.0;
-        const double t_s = n_len > 0 ? dot(n, H) / n_len : 0.0;
+        double t_s = 0.0;
+        if (n_len > 0 && phong) {
+          // R = L reflected about the unit normal.
+          const Vec3 n_unit = n / n_len;
+          const Vec3 R = n_unit * (2.0 * dot(n_unit, L[l])) - L[l];
+          t_s = dot(R, V_phong);
+        } else if (n_len > 0) {
+          const Vec3 H = scene.eye_at_infinity ? H_inf[l] : normalize(e + L[l]);
+          t_s = dot(n, H) / n_len;
+        }
         const double diffuse = std::max(0.0, t_d);
         const double specular = std::pow(std::max(0.0, t_s), mat.exponent);
         const Vec3& lc = scene.lights[l].colour;

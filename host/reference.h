@@ -25,7 +25,9 @@ struct ReferenceImage {
 //   colour = clamp01(ambient_mat * ambient_light
 //                    + sum_l kd * Lc * max(0, N.L / |N|) + ks * Lc * max(0, N.H / |N|)^n)
 // with L = normalize(light.direction), H = normalize(L + V) (eye at infinity, V toward the eye
-// from the camera) or normalize(E + L) (finite eye). Specular is deliberately NOT gated by
+// from the camera) or normalize(E + L) (finite eye). A material whose specular_model is phong
+// uses R.V in place of N.H: R = 2 (N^.L) N^ - L with N^ = N / |N|, and V as above (eye at
+// infinity) or E / |E| (finite eye). Specular is deliberately NOT gated by
 // N.L > 0: the hardware model computes it the same way. A zero |N| or |H| gives a zero term.
 // Pixels with owner -1 are 0. channels 1 uses the first (x, red) component of every colour.
 // Throws std::invalid_argument when channels is not 1 or 3, owner.size() != width * height, an

@@ -288,8 +288,24 @@ Camera read_camera(const Reader& r, const json& j, const std::string& path) {
   return camera;
 }
 
-Material read_material(const Reader& r, const json& j, const std::string& path) {
-  r.check_keys(j, path, {"name", "ambient", "diffuse", "specular", "exponent", "unit"});
+SpecularModel read_specular_model(const Reader& r, const json& j, const std::string& path,
+                                  SpecularModel fallback) {
+  const json* value = r.find(j, "specular_model");
+  if (value == nullptr) return fallback;
+  const std::string where = join(path, "specular_model");
+  const std::string accepted =
+      "\"phong\" or \"blinn\" (the specular cosine: Phong's R.V or Blinn's N.H)";
+  if (!value->is_string()) r.fail_expected(where, accepted, *value);
+  const std::string name = value->get<std::string>();
+  if (name == "phong") return SpecularModel::kPhong;
+  if (name == "blinn") return SpecularModel::kBlinn;
+  r.fail_expected(where, accepted, *value);
+}
+
+Material read_material(const Reader& r, const json& j, const std::string& path,
+                       SpecularModel scene_model) {
+  r.check_keys(j, path,
+               {"name", "ambient", "diffuse", "specular", "exponent", "unit", "specular_model"});
   Material m;
   m.name = r.string(j, path, "name", std::nullopt);
   if (m.name.empty()) r.fail(join(path, "name"), "expected a non-empty material name");
@@ -304,6 +320,7 @@ Material read_material(const Reader& r, const json& j, const std::string& path) 
     // The message already names the field (passed as `what`); add only the file.
     r.fail_raw(e.what());
   }
+  m.specular_model = read_specular_model(r, j, path, scene_model);
   return m;
 }
 
@@ -403,7 +420,7 @@ Scene load_scene(const std::string& path) {
   const json root = parse_file(path);
   const Reader r(path);
   r.check_keys(root, "", {"image", "camera", "lights", "ambient_light", "eye", "error_budget_lsb",
-                          "materials", "objects"});
+                          "specular_model", "materials", "objects"});
   Scene scene;
   scene.path = path;
 
@@ -432,9 +449,10 @@ Scene load_scene(const std::string& path) {
   scene.eye_at_infinity = eye == "infinite";
   scene.error_budget_lsb = r.positive(root, "", "error_budget_lsb", 1.0);
 
+  const SpecularModel scene_model = read_specular_model(r, root, "", SpecularModel::kBlinn);
   const json& materials = r.array(root, "", "materials", "materials");
   for (size_t i = 0; i < materials.size(); ++i) {
-    Material m = read_material(r, materials[i], index("materials", i));
+    Material m = read_material(r, materials[i], index("materials", i), scene_model);
     for (const Material& earlier : scene.materials) {
       if (earlier.name == m.name) {
         r.fail(index("materials", i) + ".name", "expected a unique name, \"" + m.name + "\" is used twice");

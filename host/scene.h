@@ -35,6 +35,14 @@ struct DirectionalLight {
   Vec3 colour{1, 1, 1};
 };
 
+// Which specular cosine t the lobe t^n raises: Blinn's N.H (the default) or Phong's R.V, R the
+// light direction reflected about the normal. Both are smooth in screen space, so both reach the
+// unit as one Taylor series; the hardware does not know which it gets.
+enum class SpecularModel { kBlinn, kPhong };
+inline const char* to_string(SpecularModel m) {
+  return m == SpecularModel::kPhong ? "phong" : "blinn";
+}
+
 struct Material {
   std::string name;
   Vec3 ambient{0.1, 0.1, 0.1};   // multiplied by the scene's ambient light
@@ -42,6 +50,8 @@ struct Material {
   Vec3 specular{0.3, 0.3, 0.3};
   double exponent = 32.0;        // n, 1..1000, need not be an integer
   SpecularUnitKind unit = SpecularUnitKind::kIdeal;
+  // JSON "specular_model" of the material, else of the scene, else blinn.
+  SpecularModel specular_model = SpecularModel::kBlinn;
 };
 
 // Triangle mesh in world space. normals[i] is the unit vertex normal of positions[i].

@@ -44,6 +44,22 @@ double specular_exact_finite(const AffineField& N, const AffineField& E, Vec3 L,
   return len > 0.0 ? dot(n, h) / len : 0.0;
 }
 
+double phong_cosine(Vec3 n, Vec3 L, Vec3 v) {
+  const double n_len = length(n), v_len = length(v);
+  if (!(n_len > 0.0) || !(v_len > 0.0)) return 0.0;
+  const Vec3 n_unit = n / n_len;
+  const Vec3 reflected = n_unit * (2.0 * dot(n_unit, L)) - L;
+  return dot(reflected, v) / v_len;
+}
+
+double phong_exact_infinite(const AffineField& N, Vec3 L, Vec3 V, double x, double y) {
+  return phong_cosine(N.at(x, y), L, V);
+}
+
+double phong_exact_finite(const AffineField& N, const AffineField& E, Vec3 L, double x, double y) {
+  return phong_cosine(N.at(x, y), L, E.at(x, y));
+}
+
 Vec3 eye_direction_at_infinity(const Camera& camera) {
   return normalize(camera.position - camera.target);
 }

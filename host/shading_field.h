@@ -40,6 +40,16 @@ double specular_exact_infinite(const AffineField& N, Vec3 H, double x, double y)
 double specular_exact_finite(const AffineField& N, const AffineField& E, Vec3 L, double x,
                              double y);
 
+// Phong specular: R.V with R = 2 (N^.L) N^ - L the unit light direction reflected about the unit
+// normal N^ = N / |N|, and V the unit vector toward the eye. Computed through R itself (the
+// closed form 2 (N.L)(N.V) / |N|^2 - L.V is what the tests check it against).
+// At a point: n the normal (any length), v toward the eye (any length). 0 where |n| or |v| is 0.
+double phong_cosine(Vec3 n, Vec3 L, Vec3 v);
+// Eye at infinity: V unit and constant.
+double phong_exact_infinite(const AffineField& N, Vec3 L, Vec3 V, double x, double y);
+// Finite eye: V = E / |E|, E the affine to-eye field.
+double phong_exact_finite(const AffineField& N, const AffineField& E, Vec3 L, double x, double y);
+
 // Unit vector toward an eye at infinity: minus the view direction (orthographic, or the usual
 // infinite-viewer approximation for perspective).
 Vec3 eye_direction_at_infinity(const Camera& camera);

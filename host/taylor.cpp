@@ -46,4 +46,19 @@ Quadratic taylor_specular_finite(const AffineField& N, const AffineField& E, Vec
   return quadratic_from_jet(dot(n, h) / sqrt(dot(n, n) * dot(h, h)), xc, yc);
 }
 
+Quadratic taylor_phong_infinite(const AffineField& N, Vec3 L, Vec3 V, double xc, double yc) {
+  const JetVec3 n = jet_of(N, xc, yc);
+  const Jet2 r_dot_v = 2.0 * (dot(n, L) * dot(n, V)) / dot(n, n) + (-dot(L, V));
+  return quadratic_from_jet(r_dot_v, xc, yc);
+}
+
+Quadratic taylor_phong_finite(const AffineField& N, const AffineField& E, Vec3 L, double xc,
+                              double yc) {
+  const JetVec3 n = jet_of(N, xc, yc);
+  const JetVec3 e = jet_of(E, xc, yc);
+  const Jet2 inv_e_len = reciprocal(sqrt(dot(e, e)));
+  const Jet2 r_dot_v = (2.0 * (dot(n, L) * dot(n, e)) / dot(n, n) - dot(e, L)) * inv_e_len;
+  return quadratic_from_jet(r_dot_v, xc, yc);
+}
+
 }  // namespace shadesim

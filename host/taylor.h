@@ -98,5 +98,11 @@ Quadratic taylor_diffuse(const AffineField& N, Vec3 L, double xc, double yc);
 Quadratic taylor_specular_infinite(const AffineField& N, Vec3 H, double xc, double yc);
 Quadratic taylor_specular_finite(const AffineField& N, const AffineField& E, Vec3 L, double xc,
                                  double yc);
+// Phong's R.V, the functions of phong_exact_infinite and phong_exact_finite, differentiated in
+// the form 2 (N.L)(N.V) / (N.N) - L.V (V = E / sqrt(E.E) for the finite eye): R never needs to be
+// formed, and the only non-polynomial parts are one reciprocal (and one square root).
+Quadratic taylor_phong_infinite(const AffineField& N, Vec3 L, Vec3 V, double xc, double yc);
+Quadratic taylor_phong_finite(const AffineField& N, const AffineField& E, Vec3 L, double xc,
+                              double yc);
 
 }  // namespace shadesim

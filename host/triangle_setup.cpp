@@ -15,6 +15,7 @@ double clamp01(double v) { return std::min(1.0, std::max(0.0, v)); }
 // Light directions as the shading functions take them (unit), and the infinite-eye half vectors.
 struct Lighting {
   std::vector<Vec3> L, colour, H;
+  Vec3 V;  // toward the eye at infinity (Phong's R.V with the eye at infinity)
   bool finite_eye = false;
 };
 
@@ -22,6 +23,7 @@ Lighting lighting_of(const Scene& scene) {
   Lighting li;
   li.finite_eye = !scene.eye_at_infinity;
   const Vec3 V = eye_direction_at_infinity(scene.camera);
+  li.V = V;
   for (const DirectionalLight& light : scene.lights) {
     const Vec3 L = normalize(light.direction);
     li.L.push_back(L);
@@ -42,7 +44,7 @@ const Material& material_of(const ScreenTriangle& tri, const Scene& scene,
   return scene.materials[static_cast<std::size_t>(tri.material)];
 }
 
-TriangleSeries setup_with(const ScreenTriangle& tri, const Lighting& li) {
+TriangleSeries setup_with(const ScreenTriangle& tri, const Lighting& li, SpecularModel model) {
   TriangleSeries s;
   const double xc = (tri.v[0].x + tri.v[1].x + tri.v[2].x) / 3.0;
   const double yc = (tri.v[0].y + tri.v[1].y + tri.v[2].y) / 3.0;
@@ -60,8 +62,13 @@ TriangleSeries setup_with(const ScreenTriangle& tri, const Lighting& li) {
   }
   for (std::size_t l = 0; l < lights; ++l) {
     s.diffuse.push_back(taylor_diffuse(*N, li.L[l], xc, yc));
-    s.specular.push_back(li.finite_eye ? taylor_specular_finite(*N, *E, li.L[l], xc, yc)
-                                       : taylor_specular_infinite(*N, li.H[l], xc, yc));
+    if (model == SpecularModel::kPhong) {
+      s.specular.push_back(li.finite_eye ? taylor_phong_finite(*N, *E, li.L[l], xc, yc)
+                                         : taylor_phong_infinite(*N, li.L[l], li.V, xc, yc));
+    } else {
+      s.specular.push_back(li.finite_eye ? taylor_specular_finite(*N, *E, li.L[l], xc, yc)
+                                         : taylor_specular_infinite(*N, li.H[l], xc, yc));
+    }
   }
   return s;
 }
@@ -140,7 +147,9 @@ double measure_with(const ScreenTriangle& tri, const TriangleSeries& series, con
       double s_exact = 0.0, s_approx = 0.0;
       if (has_specular) {
         double ts;
-        if (li.finite_eye) {
+        if (mat.specular_model == SpecularModel::kPhong) {
+          ts = phong_cosine(n, L, li.finite_eye ? e : li.V);
+        } else if (li.finite_eye) {
           const Vec3 h = e + L;
           const double len = n_len * length(h);
           ts = len > 0 ? dot(n, h) / len : 0.0;
@@ -198,7 +207,7 @@ struct Subdivider {
   SetupResult& out;
 
   void run(const ScreenTriangle& tri, int depth) {
-    TriangleSeries series = setup_with(tri, li);
+    TriangleSeries series = setup_with(tri, li, mat->specular_model);
     const bool may_split = depth < opt.max_depth;
     double err = measure_with(tri, series, scene, *mat, li, opt,
                               may_split ? budget : std::numeric_limits<double>::infinity());
@@ -234,8 +243,7 @@ struct Subdivider {
 }  // namespace
 
 TriangleSeries setup_triangle(const ScreenTriangle& tri, const Scene& scene) {
-  (void)material_of(tri, scene, "triangle");
-  return setup_with(tri, lighting_of(scene));
+  return setup_with(tri, lighting_of(scene), material_of(tri, scene, "triangle").specular_model);
 }
 
 double measure_error_lsb(const ScreenTriangle& tri, const TriangleSeries& series,

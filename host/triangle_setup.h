@@ -17,7 +17,9 @@ namespace shadesim {
 // centroid. Channel-independent cosines: colour scaling (and ambient) is left to the encoder.
 struct TriangleSeries {
   std::vector<Quadratic> diffuse;   // N.L / |N|
-  std::vector<Quadratic> specular;  // N.H / |N| (eye at infinity) or N.H / (|N||H|) (finite eye)
+  // Blinn: N.H / |N| (eye at infinity) or N.H / (|N||H|) (finite eye). Phong (the material's
+  // specular_model): R.V, V constant (eye at infinity) or E / |E| (finite eye).
+  std::vector<Quadratic> specular;
   // Collinear vertices: no field exists. Quadratics are all zero and the error is 0 (such a
   // triangle covers no pixel centre).
   bool degenerate = false;
@@ -63,7 +65,8 @@ TriangleSeries setup_triangle(const ScreenTriangle& tri, const Scene& scene);
 // image (a superset of what a half-open rasterizer gives it, so an upper bound), over channels,
 // of |colour(quadratics) - colour(exact cosines)| * 2^output_bits, where
 //   colour = clamp01(ambient_mat * ambient_light
-//                    + sum_l kd * Lc * max(0, t_d) + ks * Lc * clamp01(t_s)^n).
+//                    + sum_l kd * Lc * max(0, t_d) + ks * Lc * clamp01(t_s)^n),
+// t_s the material's specular cosine (Blinn's N.H or Phong's R.V).
 // Returns 0 when no centre is covered, +inf when a value is not finite. Stops early, returning a
 // value above stop_above, as soon as one pixel exceeds it.
 double measure_error_lsb(const ScreenTriangle& tri, const TriangleSeries& series,

@@ -1,5 +1,6 @@
 // shadesim render SCENE: shade a scene through the bit-accurate model, beside the float
 // reference, and report the error with the cost.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -53,6 +54,22 @@ std::string format_db(double db) {
   std::ostringstream os;
   os << std::fixed << std::setprecision(2) << db << " dB";
   return os.str();
+}
+
+// "blinn (N.H)", "phong (R.V)", or per material when they differ.
+std::string specular_models(const Scene& scene) {
+  auto describe = [](SpecularModel m) {
+    return std::string(to_string(m)) + (m == SpecularModel::kPhong ? " (R.V)" : " (N.H)");
+  };
+  const SpecularModel first = scene.materials.front().specular_model;
+  const bool same = std::all_of(scene.materials.begin(), scene.materials.end(),
+                                [&](const Material& m) { return m.specular_model == first; });
+  if (same) return describe(first);
+  std::string text;
+  for (const Material& m : scene.materials) {
+    text += (text.empty() ? "" : ", ") + m.name + ": " + describe(m.specular_model);
+  }
+  return text;
 }
 
 // The frame options and output directory both render modes share.
@@ -124,6 +141,13 @@ int run_render(const RenderOptions& o) {
               << " after culling; " << st.triangles_out << " after setup (" << st.inputs_split
               << " split, " << st.splits << " splits, " << st.over_budget << " over budget at depth "
               << fo.max_depth << ")\n"
+              << "culled       " << frame.project.culled_back_face << " back-facing, "
+              << frame.project.culled_near << " wholly nearer than the near plane, "
+              << frame.project.dropped_out_of_range << " beyond the screen coordinate range\n"
+              << "clipped      " << frame.project.clipped_near
+              << " crossing the near plane, clipped into " << frame.project.clipped_pieces
+              << " triangle(s) before culling\n"
+              << "cosine       " << specular_models(scene) << "\n"
               << "stream       " << frame.encoded.stats.triangles << " tri, " << frame.encoded.stats.spans
               << " spans, " << frame.encoded.stats.materials << " material loads, "
               << frame.encoded.stats.words << " words\n"
@@ -162,7 +186,15 @@ int run_render(const RenderOptions& o) {
     j["triangles"] = {{"mesh", frame.project.triangles_in}, {"projected", frame.project.emitted},
                       {"after_setup", st.triangles_out}, {"inputs_split", st.inputs_split},
                       {"splits", st.splits}, {"over_budget", st.over_budget},
-                      {"worst_setup_error_lsb", st.worst_error_lsb}};
+                      {"worst_setup_error_lsb", st.worst_error_lsb},
+                      {"culled_back_face", frame.project.culled_back_face},
+                      {"culled_near", frame.project.culled_near},
+                      {"dropped_out_of_range", frame.project.dropped_out_of_range},
+                      {"clipped_near", frame.project.clipped_near},
+                      {"clipped_pieces", frame.project.clipped_pieces}};
+    nlohmann::json models = nlohmann::json::object();
+    for (const Material& m : scene.materials) models[m.name] = to_string(m.specular_model);
+    j["specular_model"] = models;
     j["stream"] = {{"triangles", frame.encoded.stats.triangles}, {"spans", frame.encoded.stats.spans},
                    {"materials", frame.encoded.stats.materials}, {"words", frame.encoded.stats.words},
                    {"coefficients_out_of_range", frame.encoded.stats.coefficients_out_of_range}};

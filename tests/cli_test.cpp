@@ -59,6 +59,37 @@ TEST(Cli, RenderWritesImagesAndJsonFigures) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Cli, RenderReportsNearPlaneClippingAndTheSpecularModel) {
+  // scenes/hard/floor.json: a 4 x 4 grid of quads (2 triangles each) on a 20-unit plane, the
+  // camera over its centre looking toward -z. The far row of quads (z in [-10, -5]) lies in
+  // front of the near plane (0.1), the next row (z in [-5, 0]) has vertices at depth 0 and
+  // crosses it, the two rows behind the camera are wholly nearer: 8 clipped, 16 culled.
+  const auto dir = temp_dir("floor");
+  const Result r = run("render " + kScenes + "hard/floor.json --out " + dir.string() + " --json " +
+                       (dir / "r.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("16 wholly nearer than the near plane"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("8 crossing the near plane"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("cosine       blinn (N.H)"), std::string::npos) << r.output;
+  std::ifstream js(dir / "r.json");
+  const auto j = nlohmann::json::parse(js);
+  EXPECT_EQ(j["triangles"]["mesh"].get<int>(), 32);
+  EXPECT_EQ(j["triangles"]["culled_near"].get<int>(), 16);
+  EXPECT_EQ(j["triangles"]["clipped_near"].get<int>(), 8);
+  EXPECT_EQ(j["triangles"]["culled_back_face"].get<int>(), 0);  // the floor faces the camera
+  EXPECT_GE(j["triangles"]["clipped_pieces"].get<int>(), 8);
+  EXPECT_EQ(j["specular_model"]["tiles"], "blinn");
+  EXPECT_LE(j["error"]["max_code_lsb"].get<int>(), 1);
+
+  const Result p = run("render " + kScenes + "hard/phong.json --out " + dir.string() + " --json " +
+                       (dir / "p.json").string());
+  ASSERT_EQ(p.status, 0) << p.output;
+  EXPECT_NE(p.output.find("cosine       phong (R.V)"), std::string::npos) << p.output;
+  std::ifstream pjs(dir / "p.json");
+  EXPECT_EQ(nlohmann::json::parse(pjs)["specular_model"]["gloss"], "phong");
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Cli, AllUnitsWritesTheHighlightStripAndOneLinePerUnit) {
   const auto dir = temp_dir("units");
   const Result r = run("render " + kScenes + "specular.json --all-units --out " + dir.string() + " --json " +

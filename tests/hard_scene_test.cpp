@@ -23,6 +23,7 @@
 #include "host/frame.h"
 #include "host/metrics.h"
 #include "host/reference.h"
+#include "host/shading_field.h"
 #include "model/shade_unit.h"
 
 namespace shadesim {
@@ -293,6 +294,85 @@ TEST(HardScenes, FiniteEyeSpecularVariesAcrossAFlatPlane) {
   const Rendered inf = render(infinite_path);
   for (int64_t v : specular_slopes(inf.frame)) EXPECT_EQ(v, 0);
   EXPECT_EQ(inf.frame.setup.stats.splits, 0u);
+}
+
+TEST(HardScenes, PhongSpecularSceneIsWithinOneLsbAndFeedsRDotV) {
+  // scenes/specular.json with "specular_model": "phong" and the exponent 60 / 4.
+  const Rendered r = render(hard_scene("phong.json"));
+  ASSERT_EQ(r.frame.scene.materials[0].specular_model, SpecularModel::kPhong);
+  ASSERT_FALSE(r.frame.scene.eye_at_infinity);
+  const double bound = total_bound_lsb(r.frame);
+  report("phong", r, bound);
+  EXPECT_LE(r.error.max_code_lsb, code_bound(bound)) << "bound " << bound << " LSB";
+  EXPECT_LE(r.error.max_code_lsb, 1);
+  EXPECT_GT(r.error.pixels, 10000u);
+
+  // What reaches the unit is R.V: at each triangle's centre the specular series equals the closed
+  // form 2 (N.L)(N.V) / |N|^2 - L.V of the triangle's own fields, V = E / |E|.
+  const Vec3 L = normalize(r.frame.scene.lights[0].direction);
+  size_t checked = 0;
+  double highest = -1;
+  for (size_t i = 0; i < r.frame.setup.triangles.size(); ++i) {
+    const ScreenTriangle& t = r.frame.setup.triangles[i];
+    const auto N = normal_field(t);
+    const auto E = eye_field(t);
+    if (!N || !E) continue;
+    const Quadratic& q = r.frame.setup.series[i].specular[0];
+    const Vec3 n = N->at(q.xc, q.yc), v = normalize(E->at(q.xc, q.yc));
+    const double closed = 2 * dot(n, L) * dot(n, v) / dot(n, n) - dot(L, v);
+    ASSERT_NEAR(q.t[0], closed, 1e-12) << "triangle " << i;
+    highest = std::max(highest, closed);
+    ++checked;
+  }
+  EXPECT_GT(checked, 1000u);
+  EXPECT_GT(highest, 0.99) << "the highlight is in view";
+}
+
+TEST(HardScenes, FloorTheCameraStandsOnCoversTheLowerHalfWithinOneLsb) {
+  // Camera 0.2 above the centre of a 20-unit plane (tessellation 4), looking along it: most of
+  // the plane's triangles cross the near plane or lie behind the camera. The light is low and
+  // ahead, so the highlight sits near the horizon, on the clipped triangles.
+  const Rendered r = render(hard_scene("floor.json"));
+  const PreparedFrame& f = r.frame;
+  const ProjectStats& p = f.project;
+  std::cout << "floor: " << p.triangles_in << " triangles in, " << p.culled_near
+            << " wholly nearer than the near plane, " << p.clipped_near << " clipped into "
+            << p.clipped_pieces << ", " << p.culled_back_face << " back-facing, " << p.emitted
+            << " emitted\n";
+  EXPECT_EQ(p.triangles_in, 32);
+  EXPECT_GT(p.clipped_near, 0);
+  EXPECT_GT(p.culled_near, 0);
+  EXPECT_EQ(p.triangles_in - p.culled_near - p.clipped_near + p.clipped_pieces,
+            p.culled_back_face + p.dropped_out_of_range + p.emitted);
+
+  // Closed form of what the floor covers: the far edge (depth 10, 0.2 below the eye) lies
+  // 0.2 / 10 * focal pixels below the image centre, focal = (height / 2) / tan(fov / 2); its
+  // corners (x = +-10) are 10 / 10 * focal off-centre, beyond the image sides. Every row whose
+  // centre is below the far edge is covered from side to side, every row above it is empty.
+  const int w = f.scene.width, h = f.scene.height;
+  const double half_fov = f.scene.camera.fov_y_deg * 3.14159265358979323846 / 360;
+  const double focal = (h / 2.0) / std::tan(half_fov);
+  const double far_edge_y = h / 2.0 + 0.2 / 10 * focal;
+  ASSERT_GT(focal, w / 2.0);
+  size_t owned = 0;
+  for (int py = 0; py < h; ++py) {
+    for (int px = 0; px < w; ++px) {
+      const bool is_owned = f.visibility.owner[static_cast<size_t>(py) * w + px] >= 0;
+      owned += is_owned;
+      if (py + 0.5 > far_edge_y + 0.5) {
+        ASSERT_TRUE(is_owned) << "hole in the floor at " << px << "," << py;
+      } else if (py + 0.5 < far_edge_y - 0.5) {
+        ASSERT_FALSE(is_owned) << "floor above its far edge at " << px << "," << py;
+      }
+    }
+  }
+  EXPECT_GT(owned, static_cast<size_t>(w) * (h / 2 - 8));
+  EXPECT_EQ(r.error.pixels, owned);
+
+  const double bound = total_bound_lsb(f);
+  report("floor", r, bound);
+  ASSERT_LT(bound, 1.0);
+  EXPECT_LE(r.error.max_code_lsb, 1);
 }
 
 }  // namespace

@@ -256,7 +256,9 @@ TEST(ClosedMesh, SphereFrontFacesCoverSilhouetteExactlyOnce) {
       for (int x = first; x <= last; ++x) ASSERT_EQ(c[y * s.width + x], 1) << "hole at " << x << "," << y;
     }
     EXPECT_GT(covered_rows_count, 40);
-    EXPECT_EQ(stats.triangles_in, stats.culled_back_face + stats.dropped_near + stats.dropped_out_of_range + stats.emitted);
+    EXPECT_EQ(stats.clipped_near, 0);
+    EXPECT_EQ(stats.triangles_in, stats.culled_back_face + stats.culled_near +
+                                      stats.dropped_out_of_range + stats.emitted);
   }
 }
 
@@ -423,22 +425,219 @@ TEST(Projection, PerspectiveMatchesClosedForm) {
   EXPECT_EQ(stats.culled_back_face, 1);
 }
 
-TEST(Projection, TrianglesCrossingTheNearPlaneAreDroppedAndCounted) {
+// Every candidate (an unclipped triangle or a clipping piece) ends culled, dropped or emitted.
+void expect_projection_accounted(const ProjectStats& st) {
+  EXPECT_EQ(st.triangles_in - st.culled_near - st.clipped_near + st.clipped_pieces,
+            st.culled_back_face + st.dropped_out_of_range + st.emitted);
+}
+
+TEST(Projection, FloorAroundTheCameraIsClippedCulledAndCounted) {
   Camera camera;
   camera.position = {0, 0, 0};
   camera.target = {0, 0, -1};
   camera.near_plane = 0.1;
-  // A floor plane around the camera: some triangles lie behind it.
+  // A floor plane around the camera: some triangles lie wholly behind it, some cross it.
   Transform t;
   t.translate = {0, -1, 0};
   const Scene s = one_object_scene(transform_mesh(make_plane(20, 10), t), camera, 64, 64);
   ProjectStats stats;
   const std::vector<ScreenTriangle> tris = project_scene(s, &stats);
-  EXPECT_GT(stats.dropped_near, 0);
+  EXPECT_GT(stats.culled_near, 0);
+  EXPECT_GT(stats.clipped_near, 0);
+  EXPECT_LE(stats.clipped_pieces, 6 * stats.clipped_near);  // near plane + 4 guard-band sides
   EXPECT_GT(stats.emitted, 0);
-  EXPECT_EQ(stats.triangles_in, stats.culled_back_face + stats.dropped_near + stats.dropped_out_of_range + stats.emitted);
+  expect_projection_accounted(stats);
   for (const ScreenTriangle& tr : tris)
     for (const ScreenVertex& v : tr.v) EXPECT_GE(v.z, 0.0);
+  // Without the guard band the clip points at depth 0.1 would land up to 10 / 0.1 * 88 pixels
+  // (focal length 32 / tan 20 deg) off-centre. Every emitted vertex that is not a projected mesh
+  // vertex is a clip point, and lies within kGuardBandPixels of the image, plus the snapping.
+  const double focal = 32 / std::tan(20 * 3.14159265358979323846 / 180);
+  auto is_mesh_vertex = [&](const ScreenVertex& v) {
+    for (const Vec3& p : s.objects[0].mesh.positions) {
+      const double d = -p.z;
+      if (d < 0.1) continue;
+      if (std::fabs(v.x - (32 + focal * p.x / d)) < 1.0 / 256 &&
+          std::fabs(v.y - (32 - focal * p.y / d)) < 1.0 / 256)
+        return true;
+    }
+    return false;
+  };
+  double worst_outside = 0;
+  int clip_points = 0;
+  for (const ScreenTriangle& tr : tris) {
+    for (const ScreenVertex& v : tr.v) {
+      if (is_mesh_vertex(v)) continue;
+      ++clip_points;
+      worst_outside = std::max({worst_outside, -v.x, v.x - 64, -v.y, v.y - 64});
+    }
+  }
+  EXPECT_GT(clip_points, 0);
+  EXPECT_GT(worst_outside, kGuardBandPixels - 1);  // the band is reached: it did cut
+  EXPECT_LE(worst_outside, kGuardBandPixels + 1.0 / 256);
+}
+
+// Camera at the origin looking down -z, 90 degree field of view on 120 x 100: a point (x, y, z)
+// at depth d = -z lands on (60 + 50 x / d, 50 - 50 y / d). The floor y = -1 faces the camera.
+Camera clip_camera() {
+  Camera camera;
+  camera.position = {0, 0, 0};
+  camera.target = {0, 0, -1};
+  camera.fov_y_deg = 90;
+  camera.near_plane = 0.5;
+  camera.far_plane = 50;
+  return camera;
+}
+
+void expect_screen(const ScreenVertex& v, double x, double y, double z) {
+  EXPECT_NEAR(v.x, x, 1.0 / 512);
+  EXPECT_NEAR(v.y, y, 1.0 / 512);
+  EXPECT_NEAR(v.z, z, 1e-12);
+}
+
+void expect_vec(Vec3 got, Vec3 want) {
+  EXPECT_NEAR(got.x, want.x, 1e-14);
+  EXPECT_NEAR(got.y, want.y, 1e-14);
+  EXPECT_NEAR(got.z, want.z, 1e-14);
+}
+
+TEST(Projection, OneVertexBehindTheNearPlaneBecomesTwoTriangles) {
+  // A (d = 2) and C (d = 2) in front, B (d = 0) behind. Both crossing edges meet d = 0.5 at
+  // t = (2 - 0.5) / (2 - 0) = 0.75 from their front end: on C-B at (0.5, -1, -0.5), on A-B at
+  // (0.75, -1, -0.5), which land on (110, 150) and (135, 150) with screen depth 0.
+  Mesh mesh;
+  const Vec3 nA{0, 1, 0}, nC = normalize(Vec3{-1, 1, 0}), nB = normalize(Vec3{1, 1, 0});
+  mesh.positions = {{0, -1, -2}, {-1, -1, -2}, {1, -1, 0}};
+  mesh.normals = {nA, nC, nB};
+  mesh.triangles = {{0, 1, 2}};
+  const Scene s = one_object_scene(mesh, clip_camera(), 120, 100);
+  ProjectStats stats;
+  const std::vector<ScreenTriangle> tris = project_scene(s, &stats);
+  ASSERT_EQ(tris.size(), 2u);
+  EXPECT_EQ(stats.clipped_near, 1);
+  EXPECT_EQ(stats.clipped_pieces, 2);
+  expect_projection_accounted(stats);
+  // The polygon A, C, P_CB, P_AB in mesh order, fanned from A.
+  const double z_front = 50 * (2 - 0.5) / (2 * 49.5);
+  expect_screen(tris[0].v[0], 60, 75, z_front);
+  expect_screen(tris[0].v[1], 35, 75, z_front);
+  expect_screen(tris[0].v[2], 110, 150, 0);
+  expect_screen(tris[1].v[0], 60, 75, z_front);
+  expect_screen(tris[1].v[1], 110, 150, 0);
+  expect_screen(tris[1].v[2], 135, 150, 0);
+  // Normals interpolated along the edge and renormalised; to-eye vectors at the clip points.
+  expect_vec(tris[0].v[2].normal, normalize(nC * 0.25 + nB * 0.75));
+  expect_vec(tris[1].v[2].normal, normalize(nA * 0.25 + nB * 0.75));
+  expect_vec(tris[0].v[2].to_eye, normalize(Vec3{-0.5, 1, 0.5}));
+  expect_vec(tris[1].v[2].to_eye, normalize(Vec3{-0.75, 1, 0.5}));
+  expect_vec(tris[0].v[0].to_eye, normalize(Vec3{0, 1, 2}));
+  // The two pieces do not overlap, and together they cover the pixels of the clipped quad.
+  const std::vector<int> c = coverage(tris, 120, 100);
+  for (int n : c) ASSERT_LE(n, 1);
+  int pieces = 0;
+  for (int n : c) pieces += n;
+  // The quad (60,75) (35,75) (110,150) (135,150) is a parallelogram: rows 75 < y < 150, and
+  // 35 + (y - 75) <= x < 60 + (y - 75). Centres fall exactly on both slanted sides; by the
+  // top-left rule the left one is in and the right one out.
+  int quad = 0;
+  for (int py = 0; py < 100; ++py)
+    for (int px = 0; px < 120; ++px) {
+      const double x = px + 0.5, y = py + 0.5;
+      if (y > 75 && y < 150 && x >= 35 + (y - 75) && x < 60 + (y - 75)) ++quad;
+    }
+  EXPECT_GT(quad, 0);
+  EXPECT_EQ(pieces, quad);
+}
+
+TEST(Projection, OrthographicCameraClipsAtTheNearPlaneToo) {
+  // Orthographic, 2 units tall on 100 rows: (x, y, z) lands on (60 + 50 x, 50 - 50 y), depth
+  // d = -z. A (d = 2) and C (d = 2) in front, B (d = 0) behind the near plane at 0.5; the
+  // crossing edges meet it at t = 0.75 from their front ends: A-B at (0.75, 0.5, -0.5), C-B at
+  // (0.5, 0.5, -0.5).
+  Camera camera = clip_camera();
+  camera.kind = Camera::Kind::kOrthographic;
+  camera.ortho_height = 2;
+  Mesh mesh;
+  mesh.positions = {{0, -1, -2}, {1, 1, 0}, {-1, -1, -2}};
+  mesh.normals = {{0, -0.7071, 0.7071}, {0, -0.7071, 0.7071}, {0, -0.7071, 0.7071}};
+  mesh.triangles = {{0, 1, 2}};
+  const Scene s = one_object_scene(mesh, camera, 120, 100);
+  ProjectStats stats;
+  const std::vector<ScreenTriangle> tris = project_scene(s, &stats);
+  ASSERT_EQ(tris.size(), 2u);
+  EXPECT_EQ(stats.clipped_near, 1);
+  expect_projection_accounted(stats);
+  // The polygon A, P_AB, P_CB, C, fanned from A; orthographic depth is the view depth.
+  expect_screen(tris[0].v[0], 60, 100, 2);
+  expect_screen(tris[0].v[1], 97.5, 25, 0.5);
+  expect_screen(tris[0].v[2], 85, 25, 0.5);
+  expect_screen(tris[1].v[2], 10, 100, 2);
+  expect_vec(tris[0].v[1].to_eye, normalize(Vec3{-0.75, -0.5, 0.5}));
+}
+
+TEST(Projection, TwoVerticesBehindTheNearPlaneLeaveOneTriangle) {
+  Mesh mesh;
+  mesh.positions = {{0, -1, -2}, {-1, -1, 0}, {1, -1, 0}};
+  mesh.normals = {{0, 1, 0}, {0, 1, 0}, {0, 1, 0}};
+  mesh.triangles = {{0, 1, 2}};
+  const Scene s = one_object_scene(mesh, clip_camera(), 120, 100);
+  ProjectStats stats;
+  const std::vector<ScreenTriangle> tris = project_scene(s, &stats);
+  ASSERT_EQ(tris.size(), 1u);
+  EXPECT_EQ(stats.clipped_pieces, 1);
+  expect_projection_accounted(stats);
+  // A, then the clip points on A-C at (-0.75, -1, -0.5) and on B-A at (0.75, -1, -0.5).
+  expect_screen(tris[0].v[0], 60, 75, 50 * 1.5 / (2 * 49.5));
+  expect_screen(tris[0].v[1], -15, 150, 0);
+  expect_screen(tris[0].v[2], 135, 150, 0);
+
+  // Wholly behind: culled, not clipped.
+  Scene behind = s;
+  for (Vec3& p : behind.objects[0].mesh.positions) p.z += 2;
+  ProjectStats behind_stats;
+  EXPECT_TRUE(project_scene(behind, &behind_stats).empty());
+  EXPECT_EQ(behind_stats.culled_near, 1);
+  EXPECT_EQ(behind_stats.clipped_near, 0);
+  expect_projection_accounted(behind_stats);
+}
+
+TEST(Projection, TrianglesSharingAClippedEdgeShareItsClipPoint) {
+  // Two triangles of a quad whose diagonal crosses the near plane, listed so that they traverse
+  // the shared edge in opposite directions: the clip point on it must be bit-identical.
+  Mesh mesh;
+  mesh.positions = {{-1, -1, -3}, {-1, -1, 1}, {1, -1, 1}, {1, -1, -3}};
+  mesh.normals = {{0, 1, 0}, {0.3, 1, 0}, {0, 1, 0.2}, {0.1, 1, 0}};
+  for (Vec3& n : mesh.normals) n = normalize(n);
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  const Scene s = one_object_scene(mesh, clip_camera(), 120, 100);
+  const std::vector<ScreenTriangle> tris = project_scene(s, nullptr);
+  // Diagonal 0-2 meets d = 0.5 at one point; count the screen vertices that sit at depth 0 with
+  // that point's x (it is the only clip point with 0 < x < 1 in world space: x = -1 + 2 * 0.625).
+  const double x_expect = 60 + 50 * 0.25 / 0.5;
+  std::vector<ScreenVertex> on_diagonal;
+  for (const ScreenTriangle& t : tris)
+    for (const ScreenVertex& v : t.v)
+      if (v.z == 0 && std::fabs(v.x - x_expect) < 1.0 / 256) on_diagonal.push_back(v);
+  ASSERT_GE(on_diagonal.size(), 2u);
+  for (const ScreenVertex& v : on_diagonal) {
+    EXPECT_EQ(v.x, on_diagonal[0].x);
+    EXPECT_EQ(v.y, on_diagonal[0].y);
+    EXPECT_EQ(v.normal, on_diagonal[0].normal);
+    EXPECT_EQ(v.to_eye, on_diagonal[0].to_eye);
+  }
+  // And the two clipped triangles leave no hole along it: the clipped quad's rows are one run.
+  const std::vector<int> c = coverage(tris, 120, 100);
+  for (int y = 0; y < 100; ++y) {
+    int first = -1, last = -1;
+    for (int x = 0; x < 120; ++x) {
+      ASSERT_LE(c[y * 120 + x], 1);
+      if (c[y * 120 + x] == 1) {
+        if (first < 0) first = x;
+        last = x;
+      }
+    }
+    for (int x = first; first >= 0 && x <= last; ++x) EXPECT_EQ(c[y * 120 + x], 1) << x << "," << y;
+  }
 }
 
 TEST(Projection, ObjectAndMaterialIndicesCarryThrough) {

@@ -120,6 +120,48 @@ TEST(Reference, KnownNormalGivesBlinnValue) {
   EXPECT_NEAR(img.at(11, 9, 0), std::pow(dot(normalize(t.v[0].normal), H), 50), 1e-13);
 }
 
+TEST(Reference, PhongUsesRDotVWithTheEyeAtInfinityAndFinite) {
+  Material m;
+  m.ambient = {0, 0, 0};
+  m.diffuse = {0, 0, 0};
+  m.specular = {1, 1, 1};
+  m.exponent = 12;
+  m.specular_model = SpecularModel::kPhong;
+  const Vec3 L = normalize(Vec3{0.3, 0.2, 1});
+  Scene s = one_light_scene(L, {1, 1, 1}, m);
+  const Vec3 mean{0.1, 0.05, 0.9}, e_mean{0.2, -0.1, 0.95};
+  const ScreenTriangle t =
+      centred_triangle(mean, {0.1, 0, 0}, {0, -0.1, 0}, e_mean, {0.05, 0.02, 0}, {-0.03, 0.04, 0});
+  std::vector<int32_t> own(40 * 30, -1);
+  own[15 * 40 + 20] = 0;
+  // Closed form: R.V = 2 (N.L)(N.V) / |N|^2 - L.V, V unit.
+  auto r_dot_v = [&](Vec3 n, Vec3 v) { return 2 * dot(n, L) * dot(n, v) / dot(n, n) - dot(L, v); };
+  const Vec3 V_inf{0, 0, 1};  // the default camera looks from (0, 0, 5) at the origin
+  ASSERT_GT(r_dot_v(mean, V_inf), 0.5);
+  EXPECT_NEAR(render_reference({t}, own, 40, 30, s, 1).at(20, 15, 0),
+              std::pow(r_dot_v(mean, V_inf), 12), 1e-13);
+  s.eye_at_infinity = false;
+  const Vec3 V_fin = normalize(e_mean);
+  ASSERT_GT(r_dot_v(mean, V_fin), 0.5);
+  EXPECT_NEAR(render_reference({t}, own, 40, 30, s, 1).at(20, 15, 0),
+              std::pow(r_dot_v(mean, V_fin), 12), 1e-13);
+  // Not Blinn's value: the two models really differ at this normal.
+  EXPECT_GT(std::fabs(std::pow(r_dot_v(mean, V_fin), 12) -
+                      std::pow(dot(normalize(mean), normalize(e_mean + L)), 12)),
+            0.01);
+  // Where R points away from the eye the term is clamped to 0, not raised: N = z, light from
+  // -x, so R leans to +x (R = (0.9, 0, 0.2) / |.|), eye toward -x (V = (-1, 0, 0.3) / |.|).
+  Scene away = s;
+  away.lights[0].direction = normalize(Vec3{-0.9, 0, 0.2});
+  const Vec3 z{0, 0, 1}, toward_minus_x = normalize(Vec3{-1, 0, 0.3});
+  const Vec3 La = away.lights[0].direction;
+  ASSERT_LT(2 * dot(z, La) * dot(z, toward_minus_x) - dot(La, toward_minus_x), 0.0);
+  ScreenTriangle flat;
+  flat.v = {vert(2, 3, z, toward_minus_x), vert(37, 5, z, toward_minus_x),
+            vert(15, 28, z, toward_minus_x)};
+  EXPECT_EQ(render_reference({flat}, owners(flat, 40, 30), 40, 30, away, 1).at(15, 12, 0), 0.0);
+}
+
 TEST(Reference, FiniteEyeUsesInterpolatedEyeVector) {
   Material m;
   m.ambient = {0, 0, 0};

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -380,6 +381,27 @@ TEST(SceneErrors, ValidBaseSceneLoads) {
   EXPECT_LT(max_abs_diff(s.lights[0].direction, {0, 0, 1}), 1e-15);
 }
 
+TEST(SceneFiles, SpecularModelDefaultsToBlinnAndMaterialOverridesScene) {
+  TempDir dir;
+  json j = valid_scene();
+  EXPECT_EQ(load_scene(dir.write("default.json", j.dump())).materials[0].specular_model,
+            SpecularModel::kBlinn);
+  j["specular_model"] = "phong";
+  j["materials"][1]["specular_model"] = "blinn";
+  const Scene s = load_scene(dir.write("mixed.json", j.dump()));
+  EXPECT_EQ(s.materials[0].specular_model, SpecularModel::kPhong);  // the scene's
+  EXPECT_EQ(s.materials[1].specular_model, SpecularModel::kBlinn);  // its own
+  EXPECT_EQ(load_scene(kScenes + "hard/phong.json").materials[0].specular_model,
+            SpecularModel::kPhong);
+  for (const char* shipped : {"sphere", "torus", "multi", "specular", "suzanne"}) {
+    const std::string text = [&] {
+      std::ifstream in(kScenes + shipped + ".json");
+      return std::string(std::istreambuf_iterator<char>(in), {});
+    }();
+    EXPECT_EQ(text.find("specular_model"), std::string::npos) << shipped << " stays Blinn";
+  }
+}
+
 struct BadField {
   const char* what;
   std::function<void(json&)> mutate;
@@ -442,6 +464,12 @@ TEST(SceneErrors, EveryBadFieldNamesFileFieldAndExpectation) {
        "objects[1].file", "cannot open"},
       {"objects not array", [](json& j) { j["objects"] = {{"type", "sphere"}}; }, "objects", "array"},
       {"root not object", [](json& j) { j = json::array(); }, "(top level)", "expected an object"},
+      {"specular model", [](json& j) { j["specular_model"] = "cook-torrance"; }, "specular_model",
+       "\"phong\" or \"blinn\""},
+      {"material specular model", [](json& j) { j["materials"][1]["specular_model"] = "Phong"; },
+       "materials[1].specular_model", "expected \"phong\" or \"blinn\""},
+      {"specular model not a string", [](json& j) { j["materials"][0]["specular_model"] = 1; },
+       "materials[0].specular_model", "got number 1"},
   };
   TempDir dir;
   for (const BadField& c : cases) {

@@ -244,6 +244,108 @@ TEST(TaylorFiniteDifferences, SpecularFinite) {
   }
 }
 
+// Phong's R.V. Closed form at a point: with V unit, R.V = 2 (N.L)(N.V) / |N|^2 - L.V, which the
+// exact functions (computed through the reflected vector R) must give at every sample point.
+double phong_closed_form(Vec3 n, Vec3 L, Vec3 V) {
+  return 2 * dot(n, L) * dot(n, V) / dot(n, n) - dot(L, V);
+}
+
+TEST(PhongClosedForm, ExactFunctionsMatchTwoNlNvOverNnMinusLvAtSamplePoints) {
+  Rng rng;
+  for (int trial = 0; trial < 200; ++trial) {
+    const FieldCase fc = random_field(rng, normalize(rng.vec(1)) * rng.uniform(0.5, 2.0),
+                                      rng.uniform(0.002, 0.2));
+    const Vec3 L = normalize(rng.vec(1)), V = normalize(rng.vec(1));
+    const AffineField E{rng.vec(0.01), rng.vec(0.01), rng.vec(2) + Vec3{0, 0, 3}};
+    for (int k = 0; k < 10; ++k) {
+      const double x = fc.xc + rng.uniform(-5, 5), y = fc.yc + rng.uniform(-5, 5);
+      const Vec3 n = fc.abs.at(x, y), e = E.at(x, y);
+      EXPECT_NEAR(phong_exact_infinite(fc.abs, L, V, x, y), phong_closed_form(n, L, V), 1e-14);
+      EXPECT_NEAR(phong_exact_finite(fc.abs, E, L, x, y), phong_closed_form(n, L, e / length(e)),
+                  1e-14);
+    }
+  }
+  // Known directions: the mirror direction gives 1; looking back along a light 45 degrees off the
+  // normal, R is perpendicular to V; light along the normal and eye opposite it give -1.
+  const Vec3 n{0, 0, 2}, L = normalize(Vec3{1, 0, 1});
+  EXPECT_NEAR(phong_cosine(n, L, normalize(Vec3{-1, 0, 1})), 1.0, 1e-15);
+  EXPECT_NEAR(phong_cosine(n, L, -L), 0.0, 1e-15);
+  EXPECT_NEAR(phong_cosine(n, Vec3{0, 0, 1}, Vec3{0, 0, -3}), -1.0, 1e-15);
+  EXPECT_EQ(phong_cosine(Vec3{}, L, L), 0.0);
+  EXPECT_EQ(phong_cosine(n, L, Vec3{}), 0.0);
+}
+
+// Independent closed form of the infinite-eye Phong quadratic: with N = A x' + B y' + C about the
+// centre, P = (N.L)(N.V) and Q = N.N are quadratics with coefficients read off by hand, and the
+// second-order series of P / Q is the power-series quotient r = (p - r q) / q0 term by term.
+std::array<double, 6> closed_phong_infinite(Vec3 A, Vec3 B, Vec3 C, Vec3 L, Vec3 V) {
+  const double a = dot(A, L), b = dot(B, L), c = dot(C, L);     // N.L = a x + b y + c
+  const double a2 = dot(A, V), b2 = dot(B, V), c2 = dot(C, V);  // N.V
+  const double p0 = c * c2, px = a * c2 + a2 * c, py = b * c2 + b2 * c;
+  const double pxx = a * a2, pxy = a * b2 + a2 * b, pyy = b * b2;
+  const double q0 = dot(C, C), qx = 2 * dot(A, C), qy = 2 * dot(B, C);
+  const double qxx = dot(A, A), qxy = 2 * dot(A, B), qyy = dot(B, B);
+  const double r0 = p0 / q0;
+  const double rx = (px - r0 * qx) / q0, ry = (py - r0 * qy) / q0;
+  const double rxx = (pxx - r0 * qxx - rx * qx) / q0;
+  const double rxy = (pxy - r0 * qxy - rx * qy - ry * qx) / q0;
+  const double ryy = (pyy - r0 * qyy - ry * qy) / q0;
+  // Bishop order: T0, y, x, y^2, xy, x^2.
+  return {2 * r0 - dot(L, V), 2 * ry, 2 * rx, 2 * ryy, 2 * rxy, 2 * rxx};
+}
+
+TEST(PhongClosedForm, InfiniteEyeQuadraticMatchesPowerSeriesQuotient) {
+  Rng rng;
+  for (int trial = 0; trial < 300; ++trial) {
+    const double rate = rng.uniform(0.002, 0.3);
+    const FieldCase fc = random_field(rng, normalize(rng.vec(1)) * rng.uniform(0.5, 2.0), rate);
+    const Vec3 L = normalize(rng.vec(1)), V = normalize(rng.vec(1));
+    const Quadratic q = taylor_phong_infinite(fc.abs, L, V, fc.xc, fc.yc);
+    EXPECT_EQ(q.xc, fc.xc);
+    EXPECT_EQ(q.yc, fc.yc);
+    expect_matches_closed(q, closed_phong_infinite(fc.A, fc.B, fc.C, L, V), fc.rate);
+  }
+}
+
+TEST(PhongClosedForm, ConstantNormalAndEyeGiveAConstantSeries) {
+  // A flat face seen from infinity: R.V is the same at every pixel, and equals the closed form.
+  const AffineField N{{0, 0, 0}, {0, 0, 0}, {0.2, 0.1, 1.3}};
+  const Vec3 L = normalize(Vec3{0.4, 0.5, 1}), V{0, 0, 1};
+  const Quadratic q = taylor_phong_infinite(N, L, V, 40, 70);
+  EXPECT_NEAR(q.t[0], phong_closed_form(N.c, L, V), 1e-15);
+  for (int k = 1; k < 6; ++k) EXPECT_EQ(q.t[k], 0.0) << "T" << k;
+}
+
+TEST(PhongFiniteDifferences, EyeAtInfinity) {
+  Rng rng;
+  for (int trial = 0; trial < 200; ++trial) {
+    const FieldCase fc = random_field(rng, normalize(rng.vec(1)), rng.uniform(0.002, 0.2));
+    const Vec3 L = normalize(rng.vec(1)), V = normalize(rng.vec(1));
+    const Quadratic q = taylor_phong_infinite(fc.abs, L, V, fc.xc, fc.yc);
+    // R.V = 2 (N^.L)(N^.V) - L.V has the same singularities as N^.L, with |f| <= 2 * 2 * 2 + 1
+    // where the diffuse bound has 2: the same bound with the rate doubled multiplies every
+    // truncation term by at least 2^3, which covers it.
+    expect_matches_finite_differences(
+        q, [&](double x, double y) { return phong_exact_infinite(fc.abs, L, V, x, y); },
+        2 * fc.rate);
+  }
+}
+
+TEST(PhongFiniteDifferences, FiniteEye) {
+  Rng rng;
+  for (int trial = 0; trial < 200; ++trial) {
+    const double rate = rng.uniform(0.002, 0.1);
+    const FieldCase fc = random_field(rng, normalize(rng.vec(1)), rate);
+    const Vec3 L = normalize(rng.vec(1));
+    const Vec3 D = normalize(rng.vec(1)) * (rate / 4), Ey = normalize(rng.vec(1)) * (rate / 4);
+    const AffineField E{D, Ey, normalize(rng.vec(1)) - D * fc.xc - Ey * fc.yc};
+    const Quadratic q = taylor_phong_finite(fc.abs, E, L, fc.xc, fc.yc);
+    expect_matches_finite_differences(
+        q, [&](double x, double y) { return phong_exact_finite(fc.abs, E, L, x, y); },
+        2 * (fc.rate + rate));
+  }
+}
+
 TEST(Quadratic, RecentredIsTheSamePolynomial) {
   Rng rng;
   for (int trial = 0; trial < 100; ++trial) {
