@@ -325,8 +325,11 @@ RtlBuildResult ensure_rtl_build(const RtlConfig& build, CosimBackend backend,
               << fault_text(build.faults) << "] for the " << to_string(backend)
               << " backend into " << final_dir.string() << " (about a minute)..." << std::endl;
   }
+  // Folders of builds that were killed: nobody else works on this key while we hold the lock.
+  for (const auto& e : fs::directory_iterator(cache)) {
+    if (e.path().filename().string().rfind(stem + ".tmp.", 0) == 0) fs::remove_all(e.path());
+  }
   const fs::path work = cache / (stem + ".tmp." + std::to_string(getpid()));
-  fs::remove_all(work);
   fs::create_directories(work);
   const fs::path log = work / "build.log";
   try {
