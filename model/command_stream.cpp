@@ -1,9 +1,15 @@
 #include "model/command_stream.h"
 
+#include <initializer_list>
+#include <utility>
+
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+
+#include "model/unit_config_file.h"
 
 namespace shadesim {
 namespace {
@@ -391,27 +397,156 @@ std::string config_to_json(const UnitConfig& c) {
 
 namespace {
 
-// An integer field of the config JSON: must be a JSON integer (not 12.9, not true) within [lo, hi].
-int json_int(const nlohmann::json& j, const char* key, int lo, int hi) {
-  if (!j.contains(key)) throw std::invalid_argument(std::string("config.") + key + ": missing");
-  const auto& v = j.at(key);
-  if (!v.is_number_integer()) {
-    throw std::invalid_argument(std::string("config.") + key + ": expected an integer, got " + v.dump());
-  }
-  const auto x = v.get<int64_t>();
-  if (x < lo || x > hi) {
-    throw std::invalid_argument(std::string("config.") + key + ": expected " + std::to_string(lo) + ".." +
-                                std::to_string(hi) + ", got " + v.dump());
-  }
-  return static_cast<int>(x);
-}
+// The one reader of UnitConfig JSON, shared by the command stream's header (config_from_json)
+// and by config files (load_unit_config). It reads the fields present in a JSON object over a
+// base config. Messages name the field by its JSON path behind `prefix` ("config." in a stream
+// header, nothing in a file).
+class ConfigJsonReader {
+ public:
+  // require_top: every top-level field must be present (a stream header is complete);
+  // reject_unknown: a key that is no field is an error (a typo in a hand-written file).
+  ConfigJsonReader(std::string prefix, bool require_top, bool reject_unknown)
+      : prefix_(std::move(prefix)), require_top_(require_top), reject_unknown_(reject_unknown) {}
 
-std::string json_string(const nlohmann::json& j, const char* key, const std::string& path) {
-  if (!j.contains(key) || !j.at(key).is_string()) {
-    throw std::invalid_argument(path + key + ": expected a string" +
-                                (j.contains(key) ? ", got " + j.at(key).dump() : " (missing)"));
+  void read(const nlohmann::json& j, UnitConfig& c) const {
+    if (!j.is_object()) fail("", "expected a JSON object (a UnitConfig), got " + j.dump());
+    // "derivation" is the annotation `shadesim config --json` writes beside the fields (how each
+    // was derived); it is for people and never read.
+    check_keys(j, "", {"channels", "lights", "xy_bits", "coef", "series", "spec_colour", "out_bits", "specular",
+                       "derivation"});
+    read_int(j, "", "channels", 1, 3, require_top_, c.channels);
+    read_int(j, "", "lights", 1, 8, require_top_, c.lights);
+    read_int(j, "", "xy_bits", 1, 16, require_top_, c.xy_bits);
+    read_format(j, "", "coef", require_top_, c.coef);
+    read_format(j, "", "series", require_top_, c.series);
+    read_format(j, "", "spec_colour", require_top_, c.spec_colour);
+    read_int(j, "", "out_bits", 1, 16, require_top_, c.out_bits);
+    if (!j.contains("specular")) {
+      if (require_top_) fail("specular", "expected an object (missing)");
+      return;
+    }
+    const auto& s = j.at("specular");
+    if (!s.is_object()) fail("specular", "expected an object, got " + s.dump());
+    check_keys(s, "specular.", {"kind", "out", "lut", "schlick", "wpow"});
+    SpecularConfig& sp = c.specular;
+    read_enum(s, "specular.", "kind", require_top_, parse_specular_unit, sp.kind);
+    read_format(s, "specular.", "out", require_top_, sp.out);
+    // Unit widths: absent keys keep their base values (streams written before the units
+    // existed); present ones must be integers / strings (validate() then checks their ranges).
+    constexpr int kLo = -1000000, kHi = 1000000;
+    if (const auto* o = unit_object(s, "lut", {"addr_bits", "entry_bits", "interp_bits", "index",
+                                               "addressing", "shared_range_log2", "fit"})) {
+      const std::string at = "specular.lut.";
+      read_int(*o, at, "addr_bits", kLo, kHi, false, sp.lut.addr_bits);
+      read_int(*o, at, "entry_bits", kLo, kHi, false, sp.lut.entry_bits);
+      read_int(*o, at, "interp_bits", kLo, kHi, false, sp.lut.interp_bits);
+      read_int(*o, at, "shared_range_log2", kLo, kHi, false, sp.lut.shared_range_log2);
+      read_enum(*o, at, "index", false, parse_lut_index, sp.lut.index);
+      read_enum(*o, at, "addressing", false, parse_lut_addressing, sp.lut.addressing);
+      read_enum(*o, at, "fit", false, parse_fit_objective, sp.lut.fit);
+    }
+    if (const auto* o = unit_object(s, "schlick", {"quotient_bits", "operand_bits", "timing", "fit"})) {
+      const std::string at = "specular.schlick.";
+      read_int(*o, at, "quotient_bits", kLo, kHi, false, sp.schlick.quotient_bits);
+      read_int(*o, at, "operand_bits", kLo, kHi, false, sp.schlick.operand_bits);
+      read_enum(*o, at, "timing", false, parse_unit_timing, sp.schlick.timing);
+      read_enum(*o, at, "fit", false, parse_fit_objective, sp.schlick.fit);
+    }
+    if (const auto* o = unit_object(s, "wpow", {"max_m", "base_bits", "timing", "fit"})) {
+      const std::string at = "specular.wpow.";
+      read_int(*o, at, "max_m", kLo, kHi, false, sp.wpow.max_m);
+      read_int(*o, at, "base_bits", kLo, kHi, false, sp.wpow.base_bits);
+      read_enum(*o, at, "timing", false, parse_unit_timing, sp.wpow.timing);
+      read_enum(*o, at, "fit", false, parse_fit_objective, sp.wpow.fit);
+    }
   }
-  return j.at(key).get<std::string>();
+
+ private:
+  [[noreturn]] void fail(const std::string& path, const std::string& msg) const {
+    std::string name = prefix_ + path;
+    if (path.empty() && !name.empty() && name.back() == '.') name.pop_back();  // the whole object
+    throw std::invalid_argument(name.empty() ? msg : name + ": " + msg);
+  }
+
+  void check_keys(const nlohmann::json& o, const std::string& at,
+                  std::initializer_list<const char*> known) const {
+    if (!reject_unknown_) return;
+    for (const auto& item : o.items()) {
+      bool found = false;
+      std::string names;
+      for (const char* k : known) {
+        found = found || item.key() == k;
+        names += (names.empty() ? "" : ", ") + std::string(k);
+      }
+      if (!found) fail(at + item.key(), "unknown field; expected one of " + names);
+    }
+  }
+
+  // An integer field: must be a JSON integer (not 12.9, not true) within [lo, hi].
+  void read_int(const nlohmann::json& o, const std::string& at, const char* key, int lo, int hi,
+                bool required, int& v) const {
+    if (!o.contains(key)) {
+      if (required) fail(at + key, "missing");
+      return;
+    }
+    const auto& x = o.at(key);
+    if (!x.is_number_integer()) fail(at + key, "expected an integer, got " + x.dump());
+    const auto n = x.get<int64_t>();
+    if (n < lo || n > hi) {
+      fail(at + key, "expected " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " + x.dump());
+    }
+    v = static_cast<int>(n);
+  }
+
+  // A string field; nullptr when absent and not required.
+  const std::string* read_string(const nlohmann::json& o, const std::string& at, const char* key,
+                                 bool required) const {
+    if (!o.contains(key)) {
+      if (required) fail(at + key, "expected a string (missing)");
+      return nullptr;
+    }
+    const auto& x = o.at(key);
+    if (!x.is_string()) fail(at + key, "expected a string, got " + x.dump());
+    return x.get_ptr<const std::string*>();
+  }
+
+  void read_format(const nlohmann::json& o, const std::string& at, const char* key, bool required,
+                   FixedFormat& v) const {
+    if (const auto* text = read_string(o, at, key, required)) v = parse_fixed_format(*text, prefix_ + at + key);
+  }
+
+  template <typename E>
+  void read_enum(const nlohmann::json& o, const std::string& at, const char* key, bool required,
+                 E (*parse)(const std::string&, const std::string&), E& v) const {
+    if (const auto* text = read_string(o, at, key, required)) v = parse(*text, prefix_ + at + key);
+  }
+
+  const nlohmann::json* unit_object(const nlohmann::json& s, const char* unit,
+                                    std::initializer_list<const char*> known) const {
+    if (!s.contains(unit)) return nullptr;
+    const auto& o = s.at(unit);
+    if (!o.is_object()) fail(std::string("specular.") + unit, "expected an object, got " + o.dump());
+    check_keys(o, std::string("specular.") + unit + ".", known);
+    return &o;
+  }
+
+  std::string prefix_;
+  bool require_top_;
+  bool reject_unknown_;
+};
+
+// Line and column (1-based) of byte offset `byte` in `text`.
+std::pair<size_t, size_t> line_and_column(const std::string& text, size_t byte) {
+  size_t line = 1, column = 1;
+  for (size_t i = 0; i < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return {line, column};
 }
 
 }  // namespace
@@ -419,67 +554,44 @@ std::string json_string(const nlohmann::json& j, const char* key, const std::str
 UnitConfig config_from_json(const std::string& text, const std::string& source) {
   UnitConfig c;
   try {
-    const auto j = nlohmann::json::parse(text);
-    if (!j.is_object()) throw std::invalid_argument("config: expected a JSON object");
-    c.channels = json_int(j, "channels", 1, 3);
-    c.lights = json_int(j, "lights", 1, 8);
-    c.xy_bits = json_int(j, "xy_bits", 1, 16);
-    c.coef = parse_fixed_format(json_string(j, "coef", "config."), "config.coef");
-    c.series = parse_fixed_format(json_string(j, "series", "config."), "config.series");
-    c.spec_colour = parse_fixed_format(json_string(j, "spec_colour", "config."), "config.spec_colour");
-    c.out_bits = json_int(j, "out_bits", 1, 16);
-    if (!j.contains("specular") || !j.at("specular").is_object()) {
-      throw std::invalid_argument("config.specular: expected an object");
-    }
-    const auto& s = j.at("specular");
-    c.specular.kind = parse_specular_unit(json_string(s, "kind", "config.specular."), "config.specular.kind");
-    c.specular.out = parse_fixed_format(json_string(s, "out", "config.specular."), "config.specular.out");
-    // Unit widths: absent keys keep their defaults (streams written before the units existed);
-    // present ones must be integers / strings (validate() then checks their ranges).
-    auto get_int = [](const nlohmann::json& o, const char* key, int& v) {
-      if (o.contains(key)) v = json_int(o, key, -1000000, 1000000);
-    };
-    auto get_str = [](const nlohmann::json& o, const char* key, const std::string& what,
-                      auto parse, auto& v) {
-      if (o.contains(key)) v = parse(json_string(o, key, what.substr(0, what.size() - std::string(key).size())), what);
-    };
-    for (const char* unit : {"lut", "schlick", "wpow"}) {
-      if (s.contains(unit) && !s.at(unit).is_object()) {
-        throw std::invalid_argument(std::string("config.specular.") + unit + ": expected an object");
-      }
-    }
-    if (s.contains("lut")) {
-      const auto& o = s.at("lut");
-      get_int(o, "addr_bits", c.specular.lut.addr_bits);
-      get_int(o, "entry_bits", c.specular.lut.entry_bits);
-      get_int(o, "interp_bits", c.specular.lut.interp_bits);
-      get_int(o, "shared_range_log2", c.specular.lut.shared_range_log2);
-      get_str(o, "index", "config.specular.lut.index", parse_lut_index, c.specular.lut.index);
-      get_str(o, "addressing", "config.specular.lut.addressing", parse_lut_addressing,
-              c.specular.lut.addressing);
-      get_str(o, "fit", "config.specular.lut.fit", parse_fit_objective, c.specular.lut.fit);
-    }
-    if (s.contains("schlick")) {
-      const auto& o = s.at("schlick");
-      get_int(o, "quotient_bits", c.specular.schlick.quotient_bits);
-      get_int(o, "operand_bits", c.specular.schlick.operand_bits);
-      get_str(o, "timing", "config.specular.schlick.timing", parse_unit_timing,
-              c.specular.schlick.timing);
-      get_str(o, "fit", "config.specular.schlick.fit", parse_fit_objective, c.specular.schlick.fit);
-    }
-    if (s.contains("wpow")) {
-      const auto& o = s.at("wpow");
-      get_int(o, "max_m", c.specular.wpow.max_m);
-      get_int(o, "base_bits", c.specular.wpow.base_bits);
-      get_str(o, "timing", "config.specular.wpow.timing", parse_unit_timing, c.specular.wpow.timing);
-      get_str(o, "fit", "config.specular.wpow.fit", parse_fit_objective, c.specular.wpow.fit);
-    }
+    // A stream header is complete; keys it does not know are ignored (newer writers).
+    ConfigJsonReader("config.", true, false).read(nlohmann::json::parse(text), c);
     c.specular.validate();
     c.validate();
   } catch (const nlohmann::json::exception& e) {
     throw CommandStreamError(source + "config: " + e.what());
   } catch (const std::invalid_argument& e) {
     throw CommandStreamError(source + e.what());
+  }
+  return c;
+}
+
+UnitConfig load_unit_config(const std::string& path, const UnitConfig& base) {
+  std::ifstream is(path, std::ios::binary);
+  if (!is || std::filesystem::is_directory(path)) {
+    throw UnitConfigFileError(path + ": cannot open config file");
+  }
+  std::ostringstream buf;
+  buf << is.rdbuf();
+  const std::string text = buf.str();
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // e.byte is the 1-based offset of the character where parsing failed.
+    const auto [line, column] = line_and_column(text, e.byte > 0 ? e.byte - 1 : 0);
+    std::string why = e.what();
+    if (const auto colon = why.find(": "); colon != std::string::npos) why = why.substr(colon + 2);
+    throw UnitConfigFileError(path + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                              ": JSON syntax error: " + why);
+  }
+  UnitConfig c = base;
+  try {
+    ConfigJsonReader("", false, true).read(j, c);
+    c.specular.validate();
+    c.validate();
+  } catch (const std::invalid_argument& e) {
+    throw UnitConfigFileError(path + ": " + e.what());
   }
   return c;
 }

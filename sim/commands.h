@@ -11,6 +11,7 @@ void register_render(CLI::App& app, int& exit_code);
 void register_spec_error(CLI::App& app, int& exit_code);
 void register_regress(CLI::App& app, int& exit_code);
 void register_cycles(CLI::App& app, int& exit_code);
+void register_config(CLI::App& app, int& exit_code);
 void register_explore(CLI::App& app, int& exit_code);
 
 inline void register_commands(CLI::App& app, int& exit_code) {
@@ -18,6 +19,7 @@ inline void register_commands(CLI::App& app, int& exit_code) {
   register_spec_error(app, exit_code);
   register_regress(app, exit_code);
   register_cycles(app, exit_code);
+  register_config(app, exit_code);
   register_explore(app, exit_code);
 }
 

@@ -1,0 +1,342 @@
+#include "host/scene_config.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "host/frame.h"
+#include "host/specular_setup.h"
+#include "model/command_stream.h"
+
+namespace shadesim {
+namespace {
+
+// Shares of the budget (output LSBs) the fixed-point error may add to the Taylor error.
+constexpr double kDriftShare = 0.25;
+constexpr double kCoefShare = 0.25;
+
+// A trial unit for measuring: formats so wide that nothing wraps, saturates or is pre-shifted.
+constexpr int kTrialSeriesIwl = 12, kTrialSeriesFrac = 40;
+constexpr int kTrialCoefIwl = 24, kTrialCoefFrac = 36;
+
+double channel(const Vec3& v, int c) { return c == 0 ? v.x : (c == 1 ? v.y : v.z); }
+
+std::string fmt(double x, int precision = 4) {
+  std::ostringstream os;
+  os.precision(precision);
+  os << x;
+  return os.str();
+}
+
+// Fewest integer bits (sign included) of a signed format holding every value in [lo, hi].
+int signed_integer_bits(double lo, double hi) {
+  int iwl = 1;
+  while (iwl < 62 && (lo < -std::ldexp(1.0, iwl - 1) || hi >= std::ldexp(1.0, iwl - 1))) ++iwl;
+  return iwl;
+}
+
+// The largest slope of the specular unit's output with respect to one of its series values,
+// summed over the series it reads: t^n has slope <= n on [0, 1], and the series carries an
+// affine image of t (scale from plan_specular, which includes any pre-shift).
+double unit_slope(const UnitConfig& config, double n) {
+  const SpecularSeriesPlan plan = plan_specular(config, n);
+  const double scale = std::fabs(plan.affine.front().first);
+  switch (config.specular.kind) {
+    case SpecularUnitKind::kIdeal:
+      return n / scale;
+    case SpecularUnitKind::kLut:
+      // per-exponent: table of t^n; shared: exp(-k (1 - t)) has slope <= k.
+      return (config.specular.lut.addressing == LutAddressing::kShared ? plan.parameter : n) / scale;
+    case SpecularUnitKind::kWpow:
+      // (zeta (t - 1) + 1)^m with the base clamped to [0, 1]: slope <= m zeta in t.
+      return plan.effective_m * plan.parameter / scale;
+    case SpecularUnitKind::kSchlick: {
+      // S = num / den with num = t / n', den = (n' - (n' - 1) t) / n' on t in [0, 1]:
+      // |dS/dnum| = 1/den <= n' and |dS/dden| = num/den^2 <= n'.
+      const double np = std::max(1.0, plan.parameter);
+      return 2.0 * np;
+    }
+  }
+  return n;
+}
+
+struct SceneInfo {
+  std::string path;
+  Scene scene;
+};
+
+// Numbers measured on one scene's trial frame, merged over scenes.
+struct Walk {
+  int longest_span = 0, max_offset = 0;
+  double monomial_sum = 0, v_min = 0, v_max = 0, diff_max = 0, coef_max = 0;
+};
+
+void walk_stream(const CommandStream& stream, Walk& w) {
+  const UnitConfig& c = stream.config;
+  const double coef_lsb = std::ldexp(1.0, -c.coef.frac_bits());
+  const int series_count = c.series_per_triangle();
+  const TriangleCmd* tri = nullptr;
+  for (const Command& cmd : stream.commands) {
+    if (const auto* m = std::get_if<MaterialCmd>(&cmd)) {
+      for (const int64_t a : m->ambient) {
+        const double v = c.series.to_double(a);
+        w.v_min = std::min(w.v_min, v);
+        w.v_max = std::max(w.v_max, v);
+      }
+    } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
+      tri = t;
+      for (const int64_t k : t->coef) w.coef_max = std::max(w.coef_max, std::fabs(static_cast<double>(k)) * coef_lsb);
+    } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
+      if (!tri) throw std::logic_error("derive_config: span before any triangle");
+      w.longest_span = std::max(w.longest_span, s->length);
+      const Int128 dy = s->y - tri->yo;
+      for (int x = s->x0; x < s->x0 + s->length; ++x) {
+        const Int128 dx = x - tri->xo;
+        const double adx = std::fabs(static_cast<double>(dx)), ady = std::fabs(static_cast<double>(dy));
+        w.max_offset = std::max(w.max_offset, static_cast<int>(std::max(adx, ady)));
+        w.monomial_sum = std::max(w.monomial_sum, 1 + adx + ady + adx * adx + adx * ady + ady * ady);
+        for (int i = 0; i < series_count; ++i) {
+          const int64_t* k = &tri->coef[static_cast<size_t>(i) * kTermsPerSeries];
+          // The exact quantized quadratic and its differences at this pixel (span setup's sums).
+          const Int128 v = Int128{k[0]} + k[1] * dy + k[2] * dx + k[3] * dy * dy + k[4] * dx * dy + k[5] * dx * dx;
+          const Int128 d = Int128{k[2]} + k[4] * dy + k[5] * (2 * dx + 1);
+          const double vd = static_cast<double>(v) * coef_lsb;
+          w.v_min = std::min(w.v_min, vd);
+          w.v_max = std::max(w.v_max, vd);
+          w.diff_max = std::max({w.diff_max, std::fabs(static_cast<double>(d)) * coef_lsb,
+                                 std::fabs(2.0 * static_cast<double>(k[5])) * coef_lsb});
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
+int drift_fraction_bits(int longest_span, double gain, double share_lsb, int out_bits, bool rounding) {
+  const double L = std::max(1, longest_span);
+  const double steps = 1.0 + L * (L - 1.0) / 2.0;
+  const double allowed = share_lsb * std::ldexp(1.0, -out_bits);
+  for (int f = 0; f <= 60; ++f) {
+    const double drift = std::ldexp(steps, -f) * (rounding ? 0.5 : 1.0);
+    if (gain * drift <= allowed) return f;
+  }
+  return 61;
+}
+
+DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const DeriveOptions& options) {
+  if (scene_paths.empty()) throw std::invalid_argument("derive_config: no scenes given");
+  std::vector<SceneInfo> scenes;
+  for (const auto& p : scene_paths) scenes.push_back({p, load_scene(p)});
+
+  DerivedConfig out;
+  ConfigMeasurements& ms = out.measured;
+  UnitConfig cfg;  // quantization and overflow rules and unit widths: the defaults
+  cfg.out_bits = options.out_bits;
+  std::vector<FieldReason> reasons;
+  auto reason = [&reasons](const std::string& field, const std::string& value, const std::string& why) {
+    reasons.push_back({field, value, why});
+  };
+
+  // Budget: the strictest scene's unless given.
+  double budget = 0;
+  std::string budget_from;
+  if (options.budget_lsb) {
+    budget = *options.budget_lsb;
+    budget_from = "--budget";
+  } else {
+    budget = scenes.front().scene.error_budget_lsb;
+    budget_from = scenes.front().path;
+    for (const auto& s : scenes) {
+      if (s.scene.error_budget_lsb < budget) {
+        budget = s.scene.error_budget_lsb;
+        budget_from = s.path;
+      }
+    }
+  }
+  if (!(budget > 0) || !std::isfinite(budget)) {
+    throw std::invalid_argument("derive_config: budget must be a positive number of LSBs, got " + fmt(budget));
+  }
+  ms.budget_lsb = budget;
+  ms.drift_share_lsb = kDriftShare * budget;
+  ms.coef_share_lsb = kCoefShare * budget;
+
+  // Structure.
+  std::string colour_scene;
+  int lights = 0;
+  std::string lights_scene;
+  for (const auto& s : scenes) {
+    if (!s.scene.is_grey() && colour_scene.empty()) colour_scene = s.path;
+    if (static_cast<int>(s.scene.lights.size()) > lights) {
+      lights = static_cast<int>(s.scene.lights.size());
+      lights_scene = s.path;
+    }
+  }
+  cfg.channels = colour_scene.empty() ? 1 : 3;
+  cfg.lights = lights;
+
+  // Specular unit: one for all scenes.
+  const SceneInfo* unit_scene = &scenes.front();
+  const Material* unit_material = &scenes.front().scene.materials.front();
+  for (const auto& s : scenes) {
+    for (const auto& m : s.scene.materials) {
+      if (m.unit != unit_material->unit) {
+        throw std::invalid_argument(
+            "derive_config: one unit serves every scene, but " + unit_scene->path + " (material '" +
+            unit_material->name + "') names the specular unit " + to_string(unit_material->unit) + " and " +
+            s.path + " (material '" + m.name + "') names " + to_string(m.unit) +
+            "; derive them separately or make the materials agree");
+      }
+    }
+  }
+  const SpecularUnitKind named = unit_material->unit;
+  std::string specular_why;
+  if (named == SpecularUnitKind::kIdeal) {
+    cfg.specular = options.ideal_substitute;
+    specular_why = cfg.specular.kind == SpecularUnitKind::kIdeal
+                       ? "the scenes name ideal, kept as asked: exact pow, not hardware (its RTL slot outputs 0)"
+                       : "the scenes name ideal, which is not hardware (its RTL slot outputs 0); substituted by " +
+                             cfg.specular.describe() + ", the closest hardware unit to ideal in the README table";
+  } else {
+    cfg.specular.kind = named;
+    specular_why = "the unit the scenes' materials name, default widths";
+  }
+  cfg.specular.validate();
+
+  // xy_bits: every coordinate 0..size-1 in unsigned bits; prepare_frame needs size <= 2^xy_bits.
+  for (const auto& s : scenes) {
+    ms.max_width = std::max(ms.max_width, s.scene.width);
+    ms.max_height = std::max(ms.max_height, s.scene.height);
+  }
+  const int size = std::max(ms.max_width, ms.max_height);
+  int xy = 0;
+  while ((1 << xy) < size) ++xy;
+  cfg.xy_bits = std::max(4, xy);
+
+  // Measure on a trial unit of that structure whose formats lose nothing.
+  UnitConfig trial = cfg;
+  trial.series = FixedFormat{kTrialSeriesIwl + kTrialSeriesFrac, kTrialSeriesIwl, true, cfg.series.quant, cfg.series.overflow};
+  trial.coef = FixedFormat{kTrialCoefIwl + kTrialCoefFrac, kTrialCoefIwl, true, Quantization::kRoundNearest,
+                           Overflow::kSaturate};
+  trial.validate();
+  Walk w;
+  for (const auto& s : scenes) {
+    FrameOptions fo;
+    fo.base = trial;
+    fo.fixed_unit = true;
+    fo.budget_lsb = options.budget_lsb;
+    fo.max_depth = options.max_depth;
+    const PreparedFrame frame = prepare_frame(s.path, fo);
+    if (frame.encoded.stats.coefficients_out_of_range > 0) {
+      throw std::invalid_argument(s.path + ": " + std::to_string(frame.encoded.stats.coefficients_out_of_range) +
+                                  " Taylor coefficient(s) exceed the trial format " + trial.coef.to_string() +
+                                  "; cannot measure their range");
+    }
+    walk_stream(frame.encoded.stream, w);
+  }
+  ms.longest_span = w.longest_span;
+  ms.max_offset = w.max_offset;
+  ms.max_monomial_sum = w.monomial_sum;
+  ms.series_min = w.v_min;
+  ms.series_max = w.v_max;
+  ms.difference_max = w.diff_max;
+  ms.coef_max = w.coef_max;
+
+  // Series integer bits.
+  const bool series_wraps = cfg.series.overflow == Overflow::kWrap;
+  const double need_lo = series_wraps ? w.v_min : std::min(w.v_min, -w.diff_max);
+  const double need_hi = series_wraps ? w.v_max : std::max(w.v_max, w.diff_max);
+  const int series_iwl = std::max(2, signed_integer_bits(need_lo, need_hi));
+  cfg.series.iwl = series_iwl;
+  cfg.series.wl = series_iwl + cfg.out_bits;  // fraction bits set below; only iwl matters for the plan
+
+  // Gain of the series into one output channel.
+  double gain = 0;
+  std::string gain_detail;
+  for (int l = 0; l < cfg.lights; ++l) {
+    double spec = 0;
+    for (const auto& s : scenes) {
+      if (l >= static_cast<int>(s.scene.lights.size())) continue;
+      for (const auto& m : s.scene.materials) {
+        double colour = 0;
+        for (int c = 0; c < 3; ++c) {
+          colour = std::max(colour, channel(m.specular, c) * channel(s.scene.lights[static_cast<size_t>(l)].colour, c));
+        }
+        if (colour > 0) spec = std::max(spec, colour * unit_slope(cfg, m.exponent));
+      }
+    }
+    gain += 1.0 + spec;
+    gain_detail += (gain_detail.empty() ? "" : " + ") + std::string("(1 + ") + fmt(spec) + ")";
+  }
+  ms.gain = gain;
+
+  // Series fraction bits.
+  const bool series_rounds = cfg.series.quant == Quantization::kRoundNearest;
+  const int series_frac = std::max(cfg.out_bits, drift_fraction_bits(ms.longest_span, gain, ms.drift_share_lsb,
+                                                                    cfg.out_bits, series_rounds));
+  cfg.series.wl = series_iwl + series_frac;
+
+  // Coefficient bits.
+  int coef_iwl = 0;
+  std::string coef_int_why;
+  if (cfg.coef.overflow == Overflow::kWrap) {
+    coef_iwl = series_iwl;
+    coef_int_why = "coefficients reach |T| = " + fmt(w.coef_max) + " (" + std::to_string(signed_integer_bits(-w.coef_max, w.coef_max)) +
+                   " integer bits unwrapped); the format wraps, exact modulo 2^iwl because span setup multiplies "
+                   "coefficients only by integers, so the series' " + std::to_string(series_iwl) +
+                   " integer bits suffice (UnitConfig needs coef.iwl >= series.iwl when wrapping)";
+  } else {
+    coef_iwl = signed_integer_bits(-w.coef_max, w.coef_max);
+    coef_int_why = "coefficients reach |T| = " + fmt(w.coef_max) + ", which " + std::to_string(coef_iwl) +
+                   " saturating integer bits hold";
+  }
+  const double coef_allowed = ms.coef_share_lsb * std::ldexp(1.0, -cfg.out_bits);
+  const bool coef_rounds = cfg.coef.quant == Quantization::kRoundNearest;
+  int coef_frac = 0;
+  while (coef_frac < 60 &&
+         gain * std::ldexp(coef_rounds ? 0.5 : 1.0, -coef_frac) * w.monomial_sum > coef_allowed) {
+    ++coef_frac;
+  }
+  cfg.coef.iwl = coef_iwl;
+  cfg.coef.wl = coef_iwl + coef_frac;
+  cfg.validate();
+
+  // One reason per field, in config_to_json's order.
+  const auto json = nlohmann::json::parse(config_to_json(cfg));
+  auto value = [&json](const char* key) { return json.at(key).is_string() ? json.at(key).get<std::string>() : json.at(key).dump(); };
+  reason("channels", value("channels"),
+         colour_scene.empty() ? "every scene is grey: one channel carries the image"
+                              : colour_scene + " has colour: three channels");
+  reason("lights", value("lights"), "the most directional lights of any scene (" + lights_scene + ")");
+  reason("xy_bits", value("xy_bits"),
+         "largest image " + std::to_string(ms.max_width) + "x" + std::to_string(ms.max_height) + ": " +
+             std::to_string(size) + " <= 2^" + std::to_string(cfg.xy_bits) + (xy < 4 ? " (at least 4)" : ""));
+  const double steps = 1.0 + ms.longest_span * (ms.longest_span - 1.0) / 2.0;
+  reason("coef", value("coef"),
+         "integer: " + coef_int_why + "; fraction " + std::to_string(coef_frac) + ": pixels lie up to " +
+             std::to_string(ms.max_offset) + " px from their triangle's origin, max 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 = " +
+             fmt(w.monomial_sum, 6) + ", so coefficient rounding " + (coef_rounds ? "2^-(F+1)" : "2^-F") + " x " +
+             fmt(w.monomial_sum, 6) + " x gain " + fmt(gain) + " <= " + fmt(ms.coef_share_lsb) + " LSB (budget/4)");
+  reason("series", value("series"),
+         "integer " + std::to_string(series_iwl) + ": series values at the pixels span [" + fmt(w.v_min) + ", " +
+             fmt(w.v_max) + "]" + (series_wraps ? "" : " and differences reach " + fmt(w.diff_max)) +
+             "; fraction " + std::to_string(series_frac) + ": longest span L = " + std::to_string(ms.longest_span) +
+             ", drift bound 2^-F (1 + L(L-1)/2) = 2^-F x " + fmt(steps, 8) + (series_rounds ? " / 2 (rounding)" : "") +
+             " x gain " + fmt(gain) + " = " + gain_detail + " (lights x (1 + spec colour x unit slope)) <= " +
+             fmt(ms.drift_share_lsb) + " LSB (budget/4)" +
+             (series_frac == cfg.out_bits ? " (at least out_bits)" : ""));
+  reason("spec_colour", value("spec_colour"), "default (not derived)");
+  reason("out_bits", value("out_bits"), "as requested");
+  reason("specular", cfg.specular.describe() + " out=" + cfg.specular.out.to_string(), specular_why);
+  reasons.insert(reasons.begin(), FieldReason{"budget", fmt(budget) + " LSB",
+                                              "from " + budget_from + "; Taylor error keeps it in setup, the "
+                                              "fixed-point error gets budget/4 for drift and budget/4 for "
+                                              "coefficient rounding on top"});
+  out.config = cfg;
+  out.reasons = std::move(reasons);
+  return out;
+}
+
+}  // namespace shadesim

@@ -1,0 +1,91 @@
+// A scene's own configuration: the smallest UnitConfig that shades the given scenes within an
+// error budget, derived from what the scenes need and from numbers measured on their host setup,
+// with one human-readable reason per field.
+//
+// The rules (shadesim config --help states the same):
+//   channels, lights   1 channel if every scene is grey, else 3; lights = the most any scene has.
+//   specular           the unit the scenes' materials name; `ideal` is not hardware (its RTL slot
+//                      outputs 0), so a scene naming it gets DeriveOptions::ideal_substitute.
+//   xy_bits            enough unsigned bits for the widest / tallest image (at least 4).
+//   series integer     the fewest (>= 2) that hold every series value at every pixel (and every
+//                      ambient word), measured on a trial unit wide enough that setup pre-shifts
+//                      nothing; with :sat also every difference d and d2.
+//   series fraction    the drift bound of the forward differences over the longest span L,
+//                      2^-F (1 + L(L-1)/2) with truncation (half with rounding), times the gain G
+//                      of the series into one output channel, within a quarter of the budget.
+//   coef integer       wrapping: the series' integer bits (span setup multiplies coefficients
+//                      only by integers, so the sums are exact modulo 2^iwl, and UnitConfig needs
+//                      coef.iwl >= series.iwl); saturating: the measured coefficient range.
+//   coef fraction      coefficient rounding error (2^-(F+1), 2^-F truncating) times the largest
+//                      sum of |monomials| 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 at any pixel from its
+//                      triangle's origin, times G, within another quarter of the budget.
+//   out_bits           as requested.
+// G = sum over lights of (1 + max spec colour x the specular unit's slope with respect to its
+// series): a diffuse series enters the output with gain 1 (colour is rolled in), a specular one
+// through the unit (t^n has slope <= n on [0, 1]; see unit_slope in scene_config.cpp).
+// The Taylor error keeps the whole budget in setup (subdivision); the fixed-point error gets
+// half of it on top, so the real error stays below 1.5 budget + output rounding.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/unit_config.h"
+
+namespace shadesim {
+
+struct DeriveOptions {
+  std::optional<double> budget_lsb;  // unset: the smallest error_budget_lsb of the scenes
+  int out_bits = 8;
+  // The hardware unit for scenes whose materials name `ideal`: W_16, B = 16, pipelined, the
+  // closest hardware unit to ideal in the README's table.
+  SpecularConfig ideal_substitute = [] {
+    SpecularConfig s;
+    s.kind = SpecularUnitKind::kWpow;
+    s.wpow.max_m = 16;
+    s.wpow.base_bits = 16;
+    s.wpow.timing = UnitTiming::kPipelined;
+    return s;
+  }();
+  int max_depth = 12;  // setup's subdivision depth limit, as FrameOptions
+};
+
+struct FieldReason {
+  std::string field;   // UnitConfig JSON path: "channels", "series", "specular", ...
+  std::string value;   // as config_to_json writes it
+  std::string reason;  // how it was derived, with the measured numbers
+};
+
+// What derive_config measured over all scenes (on the trial unit).
+struct ConfigMeasurements {
+  double budget_lsb = 0;
+  int max_width = 0, max_height = 0;
+  int longest_span = 0;           // pixels
+  int max_offset = 0;             // max |dx|, |dy| of a pixel from its triangle's origin
+  double max_monomial_sum = 0;    // max of 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 over pixels
+  double series_min = 0, series_max = 0;  // every series value at a pixel, and ambient words
+  double difference_max = 0;      // max |d|, |d2|
+  double coef_max = 0;            // max |T_k| over all triangles and series
+  double gain = 0;                // G (see above)
+  double drift_share_lsb = 0;     // output LSBs allowed for drift (budget / 4)
+  double coef_share_lsb = 0;      // output LSBs allowed for coefficient rounding (budget / 4)
+};
+
+struct DerivedConfig {
+  UnitConfig config;
+  // "budget" first (where it came from, how it is shared), then one per top-level UnitConfig
+  // field in config_to_json's order.
+  std::vector<FieldReason> reasons;
+  ConfigMeasurements measured;
+};
+
+// Throws SceneError for bad scenes and std::invalid_argument for scenes no one unit can shade
+// (different specular units: the message names the scenes and units) or impossible budgets.
+DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const DeriveOptions& options);
+
+// The fraction bits F the drift bound asks for: the smallest F with
+// gain * 2^-F (1 + L(L-1)/2) [/ 2 when rounding] <= share_lsb * 2^-out_bits.
+int drift_fraction_bits(int longest_span, double gain, double share_lsb, int out_bits, bool rounding);
+
+}  // namespace shadesim
