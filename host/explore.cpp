@@ -20,37 +20,6 @@ namespace shadesim {
 
 // ---------------------------------------------------------------- scenes and host setup
 
-UnitConfig start_config_for_scenes(const std::vector<std::string>& paths, const UnitConfig& base,
-                                   std::optional<SpecularUnitKind> specular) {
-  if (paths.empty()) throw std::invalid_argument("explore: no scene given");
-  UnitConfig start = base;
-  start.channels = 1;
-  start.lights = 1;
-  std::optional<SpecularUnitKind> kind = specular;
-  std::string kind_source = specular ? "--specular" : "";
-  for (const auto& path : paths) {
-    const Scene scene = load_scene(path);
-    const UnitConfig own = config_for_scene(scene, base);
-    start.channels = std::max(start.channels, own.channels);
-    start.lights = std::max(start.lights, own.lights);
-    if (specular) continue;
-    // One specular unit per build: every material of every scene must name the same one.
-    for (const auto& m : scene.materials) {
-      if (!kind) {
-        kind = m.unit;
-        kind_source = path + " material '" + m.name + "'";
-      } else if (*kind != m.unit) {
-        throw std::invalid_argument(path + ": material '" + m.name + "' asks for specular unit " +
-                                    to_string(m.unit) + ", " + kind_source + " for " + to_string(*kind) +
-                                    "; one unit serves every scene - pick one with --specular");
-      }
-    }
-  }
-  if (kind) start.specular.kind = *kind;
-  start.validate();
-  return start;
-}
-
 ExploreScenes::ExploreScenes(std::vector<std::string> paths, const UnitConfig& start,
                              std::optional<double> setup_budget_lsb, int max_depth)
     : paths_(std::move(paths)), start_(start), setup_budget_lsb_(setup_budget_lsb), max_depth_(max_depth) {

@@ -58,11 +58,6 @@ class ExploreScenes {
   std::map<int, std::vector<std::shared_ptr<const HostSetup>>> by_out_bits_;
 };
 
-// The smallest unit that fits every scene (channels, lights) with `base`'s widths; the scenes'
-// materials must agree on one specular unit unless `specular` names one.
-UnitConfig start_config_for_scenes(const std::vector<std::string>& paths, const UnitConfig& base,
-                                   std::optional<SpecularUnitKind> specular);
-
 // The figures of one configuration over all scenes.
 struct PointFigures {
   // Over all scenes: max of the maxima, pixel-weighted means, PSNR of the pooled squared error.

@@ -14,9 +14,10 @@
 #include <sstream>
 
 #include "host/explore.h"
+#include "host/scene_config.h"
 #include "model/command_stream.h"
+#include "model/unit_config_file.h"
 #include "sim/commands.h"
-#include "sim/width_options.h"
 
 namespace shadesim {
 namespace {
@@ -29,9 +30,10 @@ struct ExploreCliOptions {
   std::string specular;
   int jobs = 2;
   std::string json_path, csv_path, out_dir;
+  std::string config_path;
+  int out_bits = 8;
   bool verify = false;
   bool quiet = false;
-  WidthOptions widths;
 };
 
 // ---------------------------------------------------------------- area
@@ -244,11 +246,25 @@ int run_explore(const ExploreCliOptions& o) {
     verify_in_rtl({}, o.scenes);
   }
   const auto t0 = std::chrono::steady_clock::now();
-  std::optional<SpecularUnitKind> specular;
-  if (!o.specular.empty()) specular = parse_specular_unit(o.specular, "--specular");
-  // TODO(config): the scenes' own smallest configuration (host/scene_config.h derive_config)
-  // replaces this once merged; until then the start is what prepare_frame would shade on.
-  const UnitConfig start = start_config_for_scenes(o.scenes, o.widths.to_config(), specular);
+  // The start: a given config file, else the scenes' own smallest configuration.
+  UnitConfig start;
+  std::string start_source;
+  if (!o.config_path.empty()) {
+    start = load_unit_config(o.config_path);
+    start_source = o.config_path;
+  } else {
+    DeriveOptions d;
+    d.budget_lsb = o.budget_lsb > 0 ? std::optional<double>(o.budget_lsb) : std::nullopt;
+    d.out_bits = o.out_bits;
+    d.max_depth = o.max_depth;
+    start = derive_config(o.scenes, d).config;
+    start_source = "the scenes' own configuration (shadesim config)";
+  }
+  if (!o.specular.empty()) {
+    start.specular.kind = parse_specular_unit(o.specular, "--specular");
+    start_source += ", specular unit " + o.specular + " (--specular)";
+  }
+  start.validate();
   std::optional<double> setup_budget;
   if (!std::isnan(o.setup_budget_lsb)) setup_budget = o.setup_budget_lsb;
   ExploreScenes scenes(o.scenes, start, setup_budget, o.max_depth);
@@ -290,7 +306,8 @@ int run_explore(const ExploreCliOptions& o) {
   if (!o.quiet) {
     std::cout << "scenes       ";
     for (const auto& s : o.scenes) std::cout << s << ' ';
-    std::cout << "\nstart        " << start.to_string() << "\nbudget       max " << o.budget_lsb
+    std::cout << "\nstart        " << start.to_string() << "\n             from " << start_source
+              << "\nbudget       max " << o.budget_lsb
               << " LSB (output codes vs the reference rounded by the same rule, every pixel and channel)\n"
               << "area         " << area_metric << "\n\n";
     std::vector<const ExplorePoint*> rows;
@@ -339,6 +356,7 @@ int run_explore(const ExploreCliOptions& o) {
                         {"budget_lsb", o.budget_lsb},
                         {"area_metric", area_metric},
                         {"start", nlohmann::json::parse(config_to_json(start))},
+                        {"start_source", start_source},
                         {"start_index", r.start_index},
                         {"chosen_index", r.chosen ? nlohmann::json(*r.chosen) : nlohmann::json(nullptr)},
                         {"points", points},
@@ -392,14 +410,19 @@ void register_explore(CLI::App& app, int& exit_code) {
       ->check(CLI::PositiveNumber);
   sub->add_option("--max-depth", o->max_depth, "subdivision depth limit per triangle")
       ->check(CLI::Range(0, 16))->capture_default_str();
-  sub->add_option("--specular", o->specular, "specular unit: ideal|lut|schlick|wpow (default: the scenes')");
+  sub->add_option("--config", o->config_path,
+                  "start from this UnitConfig JSON file (default: the scenes' own configuration, as\n"
+                  "shadesim config derives it)");
+  sub->add_option("--out-bits", o->out_bits, "output bits per channel for the derived start")
+      ->check(CLI::Range(1, 16))->capture_default_str()->excludes("--config");
+  sub->add_option("--specular", o->specular,
+                  "specular unit: ideal|lut|schlick|wpow, replacing the start's (its widths stay)");
   sub->add_option("-j,--jobs", o->jobs, "threads evaluating points")->check(CLI::Range(1, 64))->capture_default_str();
   sub->add_option("--json", o->json_path, "write every point, the search and the error split as JSON (scripts/plot draws it)");
   sub->add_option("--csv", o->csv_path, "write every point as CSV");
   sub->add_option("-o,--out", o->out_dir, "folder for the start and chosen config files (default out/explore/<scene>)");
   sub->add_flag("--verify", o->verify, "co-simulate the chosen point in RTL (needs on-demand Verilated builds)");
   sub->add_flag("-q,--quiet", o->quiet, "print nothing (use with --json / --csv)");
-  add_width_options(*sub, o->widths);
   sub->callback([o, &exit_code]() { exit_code = run_explore(*o); });
 }
 
