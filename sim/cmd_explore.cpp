@@ -171,6 +171,13 @@ nlohmann::json budget_json(const ErrorBudget& b) {
           {"quantization", part_json(b.quantization)}, {"total", part_json(b.total)}};
 }
 
+// A CSV field in double quotes, inner quotes doubled (RFC 4180).
+std::string csv_quote(const std::string& s) {
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
 void write_csv(const std::string& path, const ExploreResult& r, int channels) {
   std::ofstream os(path);
   if (!os) throw std::runtime_error(path + ": cannot open for writing");
@@ -182,10 +189,11 @@ void write_csv(const std::string& path, const ExploreResult& r, int channels) {
   for (std::size_t i = 0; i < r.points.size(); ++i) {
     const ExplorePoint& p = r.points[i];
     const ErrorStats& e = p.figures.error;
-    os << i << ',' << p.phase << ',' << p.stage << ',' << p.knob << ',' << p.value << ',' << (p.valid ? 1 : 0)
-       << ",\"" << (p.valid ? p.config.to_string() : p.invalid_reason) << "\"";
+    os << i << ',' << csv_quote(p.phase) << ',' << csv_quote(p.stage) << ',' << csv_quote(p.knob) << ','
+       << csv_quote(p.value) << ',' << (p.valid ? 1 : 0) << ','
+       << csv_quote(p.valid ? p.config.to_string() : p.invalid_reason);
     if (!p.valid) {
-      os << std::string(static_cast<size_t>(2 * channels + 9), ',') << (r.chosen == i ? 1 : 0) << '\n';
+      os << std::string(static_cast<size_t>(2 * channels + 10), ',') << (r.chosen == i ? 1 : 0) << '\n';
       continue;
     }
     os << ',' << e.max_code_lsb;
@@ -335,7 +343,18 @@ int run_explore(const ExploreCliOptions& o) {
                 << ")\n\n";
       for (const auto& b : chosen_budget) print_budget(std::cout, b, "chosen point");
     } else {
-      std::cout << "chosen       none: no evaluated point meets max " << o.budget_lsb << " LSB\n\n";
+      std::cout << "chosen       none: no evaluated point meets max " << o.budget_lsb << " LSB\n";
+      for (const auto& b : start_budget) {
+        // Widths move only the quantization part; the rest is there at any width.
+        const double fixed = b.function.max_lsb + b.taylor.max_lsb;
+        if (fixed > o.budget_lsb) {
+          std::cout << "             " << b.scene << ": the shading function (" << std::setprecision(3)
+                    << b.function.max_lsb << " LSB) and the Taylor truncation (" << b.taylor.max_lsb
+                    << " LSB) are there at any width - no width can fix them; change the specular unit or\n"
+                    << "             its fit (function), or lower --setup-budget (Taylor)\n";
+        }
+      }
+      std::cout << '\n';
     }
     for (const auto& b : start_budget) print_budget(std::cout, b, "start point");
     std::cout << "\nconfigs      " << (out_dir / "start.json").string()
