@@ -3,21 +3,26 @@
 # equal the bit-accurate model's bit for bit; scripts/bench-cosim times it against the Verilator
 # backends. Included after cmake/rtl.cmake (it uses RTL_SOURCES and the RTL_CONFIG_* variables).
 #
+# The testbench of a named build is compiled with the build's parameters, which shadesim prints
+# from the one mapping (shadesim rtl-params --tool iverilog); iverilog -P sets parameters of the
+# root module only, so each must be one the testbench declares and passes on (an unknown -P is
+# only a warning, and the RTL would silently get its default): the check fails otherwise.
+#
 # The same file, run as a script (cmake -DICARUS_CHECK=ON ... -P cmake/icarus.cmake), is one
-# check: random stream -> hex words + model pixels -> vvp -> compare (and, given the Verilator
-# executable, the cycle count against it).
+# check: testbench -> random stream -> hex words + model pixels -> vvp -> compare (and, given
+# shadesim, the cycle count against the Verilator C++ backend's). With -DCOMPILE_ONLY=ON it
+# only compiles the testbench (scripts/bench-cosim).
 
 if(CMAKE_SCRIPT_MODE_FILE)
   if(NOT ICARUS_CHECK)
     message(FATAL_ERROR "icarus.cmake: run as a script only with -DICARUS_CHECK=ON")
   endif()
-  foreach(var TOOL VVP TB SPEC WORK SCENARIO SEED)
+  foreach(var SHADESIM IVERILOG TB_SRC RTL TB CONFIG WORK)
     if(NOT DEFINED ${var})
       message(FATAL_ERROR "icarus check: -D${var}=... is required")
     endif()
   endforeach()
   file(MAKE_DIRECTORY ${WORK})
-  set(stem ${WORK}/${SCENARIO}_${SEED})
   function(_icarus_step what)
     execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
     if(NOT rc EQUAL 0)
@@ -25,7 +30,30 @@ if(CMAKE_SCRIPT_MODE_FILE)
     endif()
     set(step_out "${out}" PARENT_SCOPE)
   endfunction()
-  _icarus_step("random stream" ${TOOL} random --rtl-config ${SPEC} --scenario ${SCENARIO} --seed ${SEED} --save ${stem}.cmds)
+  # The testbench, compiled with the build's parameters.
+  _icarus_step("rtl-params" ${SHADESIM} rtl-params --config ${CONFIG} --tool iverilog)
+  string(REPLACE "\n" ";" params "${step_out}")
+  list(FILTER params EXCLUDE REGEX "^$")
+  file(READ ${TB_SRC} tb_text)
+  foreach(p ${params})
+    string(REGEX REPLACE "^-Ptb_shade_unit\\.([A-Za-z0-9_]+)=.*$" "\\1" pname "${p}")
+    if(NOT tb_text MATCHES "parameter int ${pname} ")
+      message(FATAL_ERROR "icarus check: ${CONFIG} sets shade_unit parameter ${pname}, which "
+                          "sim/icarus/tb_shade_unit.sv does not declare and pass on; add it there")
+    endif()
+  endforeach()
+  string(REPLACE "," ";" rtl_sources "${RTL}")
+  _icarus_step("iverilog" ${IVERILOG} -g2012 -s tb_shade_unit ${params} -o ${TB} ${rtl_sources} ${TB_SRC})
+  if(COMPILE_ONLY)
+    return()
+  endif()
+  foreach(var TOOL VVP BUILDS SCENARIO SEED)
+    if(NOT DEFINED ${var})
+      message(FATAL_ERROR "icarus check: -D${var}=... is required")
+    endif()
+  endforeach()
+  set(stem ${WORK}/${SCENARIO}_${SEED})
+  _icarus_step("random stream" ${TOOL} random --builds ${BUILDS} --config ${CONFIG} --scenario ${SCENARIO} --seed ${SEED} --save ${stem}.cmds)
   _icarus_step("export" ${TOOL} export ${stem}.cmds --hex ${stem}.hex --pixels ${stem}.expected.txt)
   _icarus_step("vvp" ${VVP} -n ${TB} +words=${stem}.hex +pixels=${stem}.icarus.txt)
   message(STATUS "${step_out}")
@@ -50,13 +78,14 @@ if(CMAKE_SCRIPT_MODE_FILE)
     message(FATAL_ERROR "icarus check: Icarus pixels differ from the bit-accurate model's (stream ${stem}.cmds):\n${err}")
   endif()
   message(STATUS "${out}")
-  if(COSIM)
-    _icarus_step("${COSIM}" ${COSIM} --config ${CONFIG} --stream ${stem}.cmds --gap-pct 0 --stall-pct 0)
+  if(CACHE)
+    _icarus_step("shadesim cosim" ${SHADESIM} cosim --backend cpp --cache ${CACHE} --config ${CONFIG}
+                 --stream ${stem}.cmds --gap-pct 0 --stall-pct 0)
     if(NOT step_out MATCHES "cycles=([0-9]+)")
-      message(FATAL_ERROR "icarus check: ${COSIM} printed no cycle count:\n${step_out}")
+      message(FATAL_ERROR "icarus check: shadesim cosim printed no cycle count:\n${step_out}")
     endif()
     if(NOT CMAKE_MATCH_1 EQUAL icarus_cycles)
-      message(FATAL_ERROR "icarus check: Icarus took ${icarus_cycles} cycles, ${COSIM} ${CMAKE_MATCH_1} (stream ${stem}.cmds)")
+      message(FATAL_ERROR "icarus check: Icarus took ${icarus_cycles} cycles, Verilator ${CMAKE_MATCH_1} (stream ${stem}.cmds)")
     endif()
     message(STATUS "cycles identical: ${icarus_cycles} (Icarus = Verilator)")
   endif()
@@ -69,76 +98,43 @@ if(NOT IVERILOG OR NOT VVP)
   message(WARNING "Icarus Verilog (iverilog, vvp) not found: Icarus checks and benchmark are skipped")
   return()
 endif()
-if(NOT TARGET shadesim_harness OR NOT RTL_CONFIG_NAMES)
-  message(WARNING "cmake/rtl.cmake defined no RTL configurations: Icarus checks are skipped")
+if(NOT SHADESIM_HAVE_RTL)
+  message(WARNING "cmake/rtl.cmake found no Verilator: Icarus checks are skipped")
   return()
 endif()
 
 add_executable(icarus_stream_tool ${CMAKE_SOURCE_DIR}/sim/icarus/stream_tool.cpp)
 target_link_libraries(icarus_stream_tool PRIVATE shadesim_harness CLI11::CLI11)
 
-# Per configuration: the testbench compiled with its parameters (icarus/tb_NAME.vvp) and its
-# fields as one comma-separated line (icarus/NAME.rtl-config) for icarus_stream_tool and
-# scripts/bench-cosim.
 set(ICARUS_DIR ${CMAKE_BINARY_DIR}/icarus)
 set(ICARUS_TB ${CMAKE_SOURCE_DIR}/sim/icarus/tb_shade_unit.sv)
-file(READ ${ICARUS_TB} _icarus_tb_text)
-foreach(name ${RTL_CONFIG_NAMES})
-  set(params "")
-  foreach(p ${RTL_CONFIG_${name}_PARAMS})
-    # iverilog -P sets parameters of the root module only: the testbench must mirror each of
-    # shade_unit's (an unknown -P is only a warning, and the RTL would silently get its default).
-    string(REGEX REPLACE "^-G([A-Za-z0-9_]+)=.*$" "\\1" pname "${p}")
-    if(NOT _icarus_tb_text MATCHES "parameter int ${pname} ")
-      message(FATAL_ERROR "cmake/icarus.cmake: configuration ${name} sets shade_unit parameter ${pname}, "
-                          "which sim/icarus/tb_shade_unit.sv does not declare and pass on; add it there")
-    endif()
-    string(REGEX REPLACE "^-G" "-Ptb_shade_unit." p "${p}")
-    list(APPEND params ${p})
-  endforeach()
-  string(REGEX REPLACE "^X\\((.*)\\)$" "\\1" spec "${RTL_CONFIG_${name}_ENTRY}")
-  string(REPLACE "\"" "" spec "${spec}")
-  string(REPLACE " " "" spec "${spec}")
-  file(WRITE ${ICARUS_DIR}/${name}.rtl-config.new "${spec}\n")
-  configure_file(${ICARUS_DIR}/${name}.rtl-config.new ${ICARUS_DIR}/${name}.rtl-config COPYONLY)
-  set(RTL_CONFIG_${name}_SPEC "${spec}")
-  add_custom_command(
-    OUTPUT ${ICARUS_DIR}/tb_${name}.vvp
-    COMMAND ${IVERILOG} -g2012 -s tb_shade_unit ${params} -o ${ICARUS_DIR}/tb_${name}.vvp
-            ${RTL_SOURCES} ${ICARUS_TB}
-    DEPENDS ${RTL_SOURCES} ${ICARUS_TB}
-    COMMENT "Icarus: tb_shade_unit for ${name}"
-    VERBATIM)
-  add_custom_target(icarus_tb_${name} ALL DEPENDS ${ICARUS_DIR}/tb_${name}.vvp)
-endforeach()
-
+string(REPLACE ";" "," _rtl_list "${RTL_SOURCES}")
 # Icarus pixels = model pixels, bit for bit, on random streams (and cycles = the Verilator C++
 # backend's); the check must catch the deliberate LSB fault on its scanline.
 # The RGB/two-light build is ~5x slower under Icarus: fewer scenarios there (CI budget).
-set(_icarus_check ${CMAKE_COMMAND} -DICARUS_CHECK=ON -DTOOL=$<TARGET_FILE:icarus_stream_tool> -DVVP=${VVP})
+set(_icarus_check ${CMAKE_COMMAND} -DICARUS_CHECK=ON -DSHADESIM=${SHADESIM_CLI} -DIVERILOG=${IVERILOG}
+    -DTB_SRC=${ICARUS_TB} -DRTL=${_rtl_list} -DTOOL=$<TARGET_FILE:icarus_stream_tool> -DVVP=${VVP}
+    -DBUILDS=${CMAKE_SOURCE_DIR}/sim/harness/builds.json)
 set(_icarus_scenarios_grey_s428w mixed short long switch)
 set(_icarus_scenarios_rgb2_s320s mixed long)
 foreach(name grey_s428w rgb2_s320s)
-  if(NOT DEFINED RTL_CONFIG_${name}_SPEC)
-    continue()
-  endif()
   foreach(scenario ${_icarus_scenarios_${name}})
     add_test(NAME icarus_model_${name}_${scenario}
-      COMMAND ${_icarus_check} -DTB=${ICARUS_DIR}/tb_${name}.vvp "-DSPEC=${RTL_CONFIG_${name}_SPEC}"
+      COMMAND ${_icarus_check} -DTB=${ICARUS_DIR}/check/${name}/tb_${scenario}.vvp -DCONFIG=${name}
               -DWORK=${ICARUS_DIR}/check/${name} -DSCENARIO=${scenario} -DSEED=11
-              -DCOSIM=$<TARGET_FILE:rtl_cosim_cpp> -DCONFIG=${name} -P ${CMAKE_SOURCE_DIR}/cmake/icarus.cmake)
+              -DCACHE=${RTL_CACHE} -P ${CMAKE_SOURCE_DIR}/cmake/icarus.cmake)
   endforeach()
 endforeach()
-if(DEFINED RTL_CONFIG_fault_lsb_SPEC)
-  add_test(NAME icarus_catches_lsb_fault
-    COMMAND ${_icarus_check} -DTB=${ICARUS_DIR}/tb_fault_lsb.vvp "-DSPEC=${RTL_CONFIG_fault_lsb_SPEC}"
-            -DWORK=${ICARUS_DIR}/check/fault_lsb -DSCENARIO=mixed -DSEED=3 -DEXPECT_MISMATCH_Y=17
-            -P ${CMAKE_SOURCE_DIR}/cmake/icarus.cmake)
-endif()
+add_test(NAME icarus_catches_lsb_fault
+  COMMAND ${_icarus_check} -DTB=${ICARUS_DIR}/check/fault_lsb/tb.vvp -DCONFIG=fault_lsb
+          -DWORK=${ICARUS_DIR}/check/fault_lsb -DSCENARIO=mixed -DSEED=3 -DEXPECT_MISMATCH_Y=17
+          -P ${CMAKE_SOURCE_DIR}/cmake/icarus.cmake)
 # $readmemh of a missing file only warns: the testbench must stop instead.
-if(DEFINED RTL_CONFIG_grey_s428w_SPEC)
-  add_test(NAME icarus_tb_missing_words
-    COMMAND ${VVP} -n ${ICARUS_DIR}/tb_grey_s428w.vvp +words=${ICARUS_DIR}/no-such-file.hex)
-  set_tests_properties(icarus_tb_missing_words PROPERTIES
-    PASS_REGULAR_EXPRESSION "no-such-file.hex: cannot open the file")
-endif()
+add_test(NAME icarus_tb_compile_grey_s428w
+  COMMAND ${_icarus_check} -DTB=${ICARUS_DIR}/tb_grey_s428w.vvp -DCONFIG=grey_s428w -DWORK=${ICARUS_DIR}
+          -DCOMPILE_ONLY=ON -P ${CMAKE_SOURCE_DIR}/cmake/icarus.cmake)
+set_tests_properties(icarus_tb_compile_grey_s428w PROPERTIES FIXTURES_SETUP icarus_tb_grey)
+add_test(NAME icarus_tb_missing_words
+  COMMAND ${VVP} -n ${ICARUS_DIR}/tb_grey_s428w.vvp +words=${ICARUS_DIR}/no-such-file.hex)
+set_tests_properties(icarus_tb_missing_words PROPERTIES
+  PASS_REGULAR_EXPRESSION "no-such-file.hex: cannot open the file" FIXTURES_REQUIRED icarus_tb_grey)

@@ -1,237 +1,82 @@
-# RTL (rtl/*.sv) checks and the Verilator co-simulation harness (sim/harness/).
+# RTL (rtl/*.sv) checks and co-simulation tests.
 #
-# Each RTL configuration is Verilated once per backend, straight into the one executable that
-# uses it (rtl_cosim_cpp: Verilator C++; rtl_cosim_sc: Verilator SystemC); every co-simulation
-# test and the benchmark run those two executables with different arguments.
+# The RTL builds themselves are not CMake targets: shadesim Verilates each unit configuration on
+# demand into <build>/rtl-cache (sim/rtl_build.h), with its Verilog parameters from the one
+# mapping in model/rtl_parameters.cpp. The named builds the tests share are listed in
+# sim/harness/builds.json; the `rtl_builds` target below builds them (and the traced builds the
+# waveform tests use) once, in parallel, so every test finds them in the cache.
 find_package(verilator 5 HINTS $ENV{VERILATOR_ROOT})
 if(NOT verilator_FOUND)
   message(WARNING "Verilator not found: RTL co-simulation targets and tests are skipped")
   return()
 endif()
+find_program(VERILATOR_BIN verilator REQUIRED)
 find_program(IVERILOG iverilog)
 find_program(YOSYS yosys)
+set(SHADESIM_HAVE_RTL ON)
 
 set(RTL_DIR ${CMAKE_SOURCE_DIR}/rtl)
-# Dependency order (leaves first) for tools that want it.
+# Dependency order (leaves first) for tools that want it (sim/rtl_build.cpp lists the same).
 set(RTL_SOURCES
   ${RTL_DIR}/fixed_round.sv ${RTL_DIR}/fixed_sat.sv ${RTL_DIR}/span_setup.sv
   ${RTL_DIR}/series_engine.sv ${RTL_DIR}/pixel_combine.sv
   ${RTL_DIR}/exponent_lut.sv ${RTL_DIR}/schlick_divider.sv ${RTL_DIR}/wpow_unit.sv
   ${RTL_DIR}/specular_slot.sv ${RTL_DIR}/shade_unit.sv)
 
-# Fixed-point format text ("s4.28:rnd:wrap", as FixedFormat::to_string writes it) -> parameters.
-function(_rtl_format_params prefix text out)
-  if(NOT text MATCHES "^([su])(-?[0-9]+)\\.([0-9]+)(.*)$")
-    message(FATAL_ERROR "rtl config: cannot read fixed-point format '${text}' for ${prefix}")
+# The named builds (and what the tests iterate over), read from the same file shadesim reads.
+file(READ ${CMAKE_SOURCE_DIR}/sim/harness/builds.json _builds_json)
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/sim/harness/builds.json)
+string(JSON _n LENGTH "${_builds_json}")
+math(EXPR _last "${_n} - 1")
+set(RTL_BUILD_NAMES "")
+set(RTL_SPECULAR_BUILD_NAMES "")
+foreach(i RANGE ${_last})
+  string(JSON name MEMBER "${_builds_json}" ${i})
+  if(name MATCHES "^_")
+    continue()
   endif()
-  math(EXPR wl "${CMAKE_MATCH_2} + ${CMAKE_MATCH_3}")
-  set(params -G${prefix}_WL=${wl} -G${prefix}_IWL=${CMAKE_MATCH_2})
-  set(suffix "${CMAKE_MATCH_4}")
-  if(prefix STREQUAL "SERIES")
-    set(quant 0)
-    set(overflow 0)
-    if(suffix MATCHES ":rnd")
-      set(quant 1)
-    endif()
-    if(suffix MATCHES ":wrap")
-      set(overflow 1)
-    endif()
-    list(APPEND params -GSERIES_QUANT=${quant} -GSERIES_OVERFLOW=${overflow})
-  endif()
-  set(${out} ${params} PARENT_SCOPE)
-endfunction()
-
-# A specular unit's fields ("addr_bits=10 index=nearest", the JSON names of its config) ->
-# parameters with the unit's prefix (LUT_ADDR_BITS=10 LUT_INDEX=1). Host-only fields (LUT
-# addressing and shared range, fit objectives) shape the stream, not the hardware: no parameter.
-function(_rtl_unit_params name kind text out)
-  set(params "")
-  string(TOUPPER "${kind}" prefix)
-  separate_arguments(pairs UNIX_COMMAND "${text}")
-  foreach(pair ${pairs})
-    if(NOT pair MATCHES "^([a-z_0-9]+)=(.+)$")
-      message(FATAL_ERROR "rtl config ${name}: UNIT entry '${pair}': expected key=value")
-    endif()
-    set(key ${CMAKE_MATCH_1})
-    set(value ${CMAKE_MATCH_2})
-    if(key STREQUAL "addressing" OR key STREQUAL "shared_range_log2" OR key STREQUAL "fit")
-      continue()
-    endif()
-    if(key STREQUAL "index")
-      set(map_truncate 0)
-      set(map_nearest 1)
-    elseif(key STREQUAL "timing")
-      set(map_pipelined 0)
-      set(map_iterative 1)
-    endif()
-    if(key STREQUAL "index" OR key STREQUAL "timing")
-      if(NOT DEFINED map_${value})
-        message(FATAL_ERROR "rtl config ${name}: UNIT ${key}=${value} is not a known value")
-      endif()
-      set(value ${map_${value}})
-    elseif(NOT value MATCHES "^[0-9]+$")
-      message(FATAL_ERROR "rtl config ${name}: UNIT ${key}=${value}: expected a non-negative integer")
-    endif()
-    string(TOUPPER "${key}" ukey)
-    list(APPEND params -G${prefix}_${ukey}=${value})
+  list(APPEND RTL_BUILD_NAMES ${name})
+  string(JSON kind ERROR_VARIABLE no_kind GET "${_builds_json}" ${name} unit specular kind)
+  string(JSON _nb LENGTH "${_builds_json}" ${name} backends)
+  set(RTL_BUILD_${name}_BACKENDS "")
+  math(EXPR _nb_last "${_nb} - 1")
+  foreach(k RANGE ${_nb_last})
+    string(JSON b GET "${_builds_json}" ${name} backends ${k})
+    list(APPEND RTL_BUILD_${name}_BACKENDS ${b})
   endforeach()
-  set(${out} ${params} PARENT_SCOPE)
-endfunction()
-
-# One configuration: the UnitConfig fields as text (the harness parses the same strings into a
-# UnitConfig, so CMake and C++ cannot disagree), plus the deliberate-fault rows (-1 = none).
-# Ideal-unit configurations go to RTL_CONFIG_NAMES; configurations with a hardware specular unit
-# (UNIT = its fields) to RTL_SPECULAR_CONFIG_NAMES, kept apart because their extra parameters are
-# not (yet) mirrored by the Icarus testbench (cmake/icarus.cmake iterates RTL_CONFIG_NAMES).
-# RTL_CONFIG_<name>_ENTRY keeps its 12 fields (read by cmake/icarus.cmake); the co-simulation
-# executables use RTL_CONFIG_<name>_COSIM_ENTRY, which adds UNIT.
-set(RTL_CONFIG_NAMES "")
-set(RTL_SPECULAR_CONFIG_NAMES "")
-function(rtl_config name)
-  cmake_parse_arguments(C "" "CHANNELS;LIGHTS;XY_BITS;COEF;SERIES;SPEC_COLOUR;OUT_BITS;SPECULAR;SPECULAR_OUT;UNIT;FAULT_LSB_ROW;FAULT_STALL_ROW" "BACKENDS" ${ARGN})
-  foreach(field FAULT_LSB_ROW FAULT_STALL_ROW)
-    if(NOT DEFINED C_${field})
-      set(C_${field} -1)
-    endif()
-  endforeach()
-  set(kinds ideal lut schlick wpow)
-  list(FIND kinds ${C_SPECULAR} kind)
-  if(kind LESS 0)
-    message(FATAL_ERROR "rtl config ${name}: SPECULAR must be one of ${kinds}, got '${C_SPECULAR}'")
-  endif()
-  _rtl_format_params(COEF ${C_COEF} coef)
-  _rtl_format_params(SERIES ${C_SERIES} series)
-  _rtl_format_params(SPEC_COLOUR ${C_SPEC_COLOUR} spec_colour)
-  _rtl_format_params(SPECULAR_OUT ${C_SPECULAR_OUT} spec_out)
-  set(params -GCHANNELS=${C_CHANNELS} -GLIGHTS=${C_LIGHTS} -GXY_BITS=${C_XY_BITS}
-      ${coef} ${series} ${spec_colour} -GOUT_BITS=${C_OUT_BITS} -GSPECULAR_KIND=${kind}
-      ${spec_out} -GFAULT_LSB_ROW=${C_FAULT_LSB_ROW} -GFAULT_STALL_ROW=${C_FAULT_STALL_ROW})
-  if(kind GREATER 0)
-    set(quant 0)
-    set(overflow 0)
-    if(C_SPECULAR_OUT MATCHES ":rnd")
-      set(quant 1)
-    endif()
-    if(C_SPECULAR_OUT MATCHES ":wrap")
-      set(overflow 1)
-    endif()
-    _rtl_unit_params(${name} ${C_SPECULAR} "${C_UNIT}" unit)
-    list(APPEND params -GSPECULAR_OUT_QUANT=${quant} -GSPECULAR_OUT_OVERFLOW=${overflow} ${unit})
-  elseif(C_UNIT)
-    message(FATAL_ERROR "rtl config ${name}: UNIT given for the ideal unit, which has no parameters")
-  endif()
-  set(RTL_CONFIG_${name}_PARAMS ${params} PARENT_SCOPE)
-  set(RTL_CONFIG_${name}_BACKENDS ${C_BACKENDS} PARENT_SCOPE)
-  set(head "${name}, ${C_CHANNELS}, ${C_LIGHTS}, ${C_XY_BITS}, \"${C_COEF}\", \"${C_SERIES}\", \"${C_SPEC_COLOUR}\", ${C_OUT_BITS}, \"${C_SPECULAR}\", \"${C_SPECULAR_OUT}\", ${C_FAULT_LSB_ROW}, ${C_FAULT_STALL_ROW}")
-  set(RTL_CONFIG_${name}_ENTRY "X(${head})" PARENT_SCOPE)
-  set(RTL_CONFIG_${name}_COSIM_ENTRY "X(${head}, \"${C_UNIT}\")" PARENT_SCOPE)
-  if(kind GREATER 0)
-    set(RTL_SPECULAR_CONFIG_NAMES ${RTL_SPECULAR_CONFIG_NAMES} ${name} PARENT_SCOPE)
-  else()
-    set(RTL_CONFIG_NAMES ${RTL_CONFIG_NAMES} ${name} PARENT_SCOPE)
-  endif()
-endfunction()
-
-# The default configurations: two width sets (wrap vs saturate, truncate vs round, grey vs RGB
-# with two lights), and the deliberately broken builds the harness must catch.
-rtl_config(grey_s428w CHANNELS 1 LIGHTS 1 XY_BITS 12 COEF s4.32:rnd SERIES s4.28:wrap
-           SPEC_COLOUR u1.12:rnd OUT_BITS 8 SPECULAR ideal SPECULAR_OUT u1.16 BACKENDS "cpp;sc")
-rtl_config(rgb2_s320s CHANNELS 3 LIGHTS 2 XY_BITS 11 COEF s3.30:rnd SERIES s3.20:rnd
-           SPEC_COLOUR u1.12:rnd OUT_BITS 10 SPECULAR ideal SPECULAR_OUT u1.16 BACKENDS "cpp;sc")
-rtl_config(fault_lsb CHANNELS 1 LIGHTS 1 XY_BITS 12 COEF s4.32:rnd SERIES s4.28:wrap
-           SPEC_COLOUR u1.12:rnd OUT_BITS 8 SPECULAR ideal SPECULAR_OUT u1.16
-           FAULT_LSB_ROW 17 BACKENDS "cpp")
-rtl_config(fault_stall CHANNELS 1 LIGHTS 1 XY_BITS 12 COEF s4.32:rnd SERIES s4.28:wrap
-           SPEC_COLOUR u1.12:rnd OUT_BITS 8 SPECULAR ideal SPECULAR_OUT u1.16
-           FAULT_STALL_ROW 23 BACKENDS "cpp")
-
-# The specular-unit regression (milestone 2): RGB with 2 lights (every shipped scene fits: the
-# encoder pads lights and repeats grey channels) x {per-exponent LUT, Schlick iterative, Schlick
-# pipelined, W_m m=16} x two width sets: "d" = UnitConfig's defaults (coef s4.32:rnd:wrap,
-# series s4.28 truncate+wrap, spec colour u1.12:rnd, out 8, xy 12, specular out u1.16, unit
-# defaults) and "n" = narrower (coef s3.30:rnd, series s3.20 round+saturate, spec colour
-# u1.10:rnd, out 8, xy 11, specular out u1.12, smaller units).
-set(_rtl_d CHANNELS 3 LIGHTS 2 XY_BITS 12 COEF s4.32:rnd:wrap SERIES s4.28:wrap SPEC_COLOUR u1.12:rnd
-           OUT_BITS 8 SPECULAR_OUT u1.16)
-set(_rtl_n CHANNELS 3 LIGHTS 2 XY_BITS 11 COEF s3.30:rnd:wrap SERIES s3.20:rnd SPEC_COLOUR u1.10:rnd
-           OUT_BITS 8 SPECULAR_OUT u1.12)
-rtl_config(lut_d ${_rtl_d} SPECULAR lut UNIT "addr_bits=10 entry_bits=8" BACKENDS "cpp;sc")
-rtl_config(schlick_iter_d ${_rtl_d} SPECULAR schlick UNIT "quotient_bits=16 operand_bits=24 timing=iterative" BACKENDS "cpp;sc")
-rtl_config(schlick_pipe_d ${_rtl_d} SPECULAR schlick UNIT "quotient_bits=16 operand_bits=24 timing=pipelined" BACKENDS "cpp;sc")
-rtl_config(wpow16_d ${_rtl_d} SPECULAR wpow UNIT "max_m=16 base_bits=16 timing=pipelined" BACKENDS "cpp;sc")
-rtl_config(lut_n ${_rtl_n} SPECULAR lut UNIT "addr_bits=8 entry_bits=8 interp_bits=4 index=nearest" BACKENDS "cpp;sc")
-rtl_config(schlick_iter_n ${_rtl_n} SPECULAR schlick UNIT "quotient_bits=12 operand_bits=16 timing=iterative" BACKENDS "cpp;sc")
-rtl_config(schlick_pipe_n ${_rtl_n} SPECULAR schlick UNIT "quotient_bits=12 operand_bits=16 timing=pipelined" BACKENDS "cpp;sc")
-rtl_config(wpow16_n ${_rtl_n} SPECULAR wpow UNIT "max_m=16 base_bits=12 timing=iterative" BACKENDS "cpp;sc")
-
-# ---- plain C++ harness: scoreboard, random streams (stimulus and cycle model are in model/) ----
-add_library(shadesim_harness STATIC
-  ${CMAKE_SOURCE_DIR}/sim/harness/scoreboard.cpp
-  ${CMAKE_SOURCE_DIR}/sim/harness/random_stream.cpp
-  ${CMAKE_SOURCE_DIR}/sim/harness/rtl_config.cpp)
-target_link_libraries(shadesim_harness PUBLIC shadesim_model)
-
-# ---- Verilated executables --------------------------------------------------------------------
-# SystemC as Debian packages it (pkg-config), for verilator_link_systemc.
-if(NOT TARGET Verilator::systemc)
-  add_library(Verilator::systemc INTERFACE IMPORTED)
-  target_link_libraries(Verilator::systemc INTERFACE PkgConfig::SYSTEMC)
-endif()
-
-# rtl_cosim_cpp_trace: the C++ backend with FST tracing compiled in (--waves); a separate build
-# because tracing support slows every Verilated model, traced or not.
-foreach(backend cpp sc cpp_trace)
-  set(exe rtl_cosim_${backend})
-  set(entries "")
-  set(includes "")
-  add_executable(${exe} ${CMAKE_SOURCE_DIR}/sim/harness/cosim_main.cpp)
-  foreach(name ${RTL_CONFIG_NAMES} ${RTL_SPECULAR_CONFIG_NAMES})
-    set(want ${backend})
-    if(backend STREQUAL "cpp_trace")
-      set(want cpp)
-    endif()
-    if(NOT want IN_LIST RTL_CONFIG_${name}_BACKENDS)
-      continue()
-    endif()
-    set(extra "")
-    if(backend STREQUAL "sc")
-      set(extra SYSTEMC)
-    elseif(backend STREQUAL "cpp_trace")
-      set(extra TRACE_FST)
-    endif()
-    verilate(${exe} ${extra}
-      SOURCES ${RTL_SOURCES}
-      TOP_MODULE shade_unit
-      PREFIX V${name}
-      DIRECTORY ${CMAKE_BINARY_DIR}/verilated/${backend}/${name}
-      VERILATOR_ARGS ${RTL_CONFIG_${name}_PARAMS} --x-assign fast --x-initial fast -O3)
-    string(APPEND entries "${RTL_CONFIG_${name}_COSIM_ENTRY}\n")
-    string(APPEND includes "#include \"V${name}.h\"\n")
-  endforeach()
-  file(WRITE ${CMAKE_BINARY_DIR}/verilated/${backend}/rtl_configs.inc.new
-       "// Generated by cmake/rtl.cmake: the configurations Verilated into ${exe}.\n${includes}#define SHADESIM_RTL_CONFIGS(X) \\\n")
-  string(REPLACE "\n" " \\\n" entries_cont "${entries}")
-  file(APPEND ${CMAKE_BINARY_DIR}/verilated/${backend}/rtl_configs.inc.new "${entries_cont}\n")
-  configure_file(${CMAKE_BINARY_DIR}/verilated/${backend}/rtl_configs.inc.new
-                 ${CMAKE_BINARY_DIR}/verilated/${backend}/rtl_configs.inc COPYONLY)
-  target_include_directories(${exe} PRIVATE ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR}/verilated/${backend})
-  target_link_libraries(${exe} PRIVATE shadesim_harness CLI11::CLI11)
-  if(backend STREQUAL "sc")
-    target_compile_definitions(${exe} PRIVATE SHADESIM_COSIM_SYSTEMC=1)
-    verilator_link_systemc(${exe})
-  elseif(backend STREQUAL "cpp_trace")
-    target_compile_definitions(${exe} PRIVATE SHADESIM_COSIM_TRACE=1)
-    # Only ever re-runs one failing job: build time matters more than speed here.
-    target_compile_options(${exe} PRIVATE -O1)
+  if(NOT no_kind AND NOT kind STREQUAL "ideal")
+    list(APPEND RTL_SPECULAR_BUILD_NAMES ${name})
   endif()
 endforeach()
 
+set(SHADESIM_CLI $<TARGET_FILE:shadesim>)
+set(RTL_CACHE ${CMAKE_BINARY_DIR}/rtl-cache)
+# Every named build on its own backends, plus the traced builds of the waveform tests. Always
+# run: a build whose inputs have not changed is a cache hit (hashing the inputs takes < 1 s).
+add_custom_target(rtl_builds ALL
+  COMMAND shadesim rtl-build --all --cache ${RTL_CACHE}
+  COMMAND shadesim rtl-build --config grey_s428w,fault_lsb --backends cpp_trace --cache ${RTL_CACHE}
+  DEPENDS shadesim shadesim_harness shadesim_model
+  COMMENT "Verilating the named RTL builds into ${RTL_CACHE} (cache hits are instant)"
+  USES_TERMINAL)
+
+# `shadesim cosim --backend B --config NAME ...` as a test command.
+macro(_cosim out backend)
+  set(${out} ${SHADESIM_CLI} cosim --backend ${backend} --cache ${RTL_CACHE})
+endmacro()
+_cosim(COSIM_CPP cpp)
+_cosim(COSIM_SC systemc)
+
 # ---- tests --------------------------------------------------------------------------------------
-# Static checks on the RTL: lint, Icarus, Yosys (no latches).
-add_test(NAME rtl_lint_grey_s428w
-  COMMAND verilator --lint-only -Wall ${RTL_CONFIG_grey_s428w_PARAMS} --top-module shade_unit ${RTL_SOURCES})
-add_test(NAME rtl_lint_rgb2_s320s
-  COMMAND verilator --lint-only -Wall ${RTL_CONFIG_rgb2_s320s_PARAMS} --top-module shade_unit ${RTL_SOURCES})
+# Static checks on the RTL: lint (every named build's parameters), Icarus, Yosys (no latches).
+foreach(name ${RTL_BUILD_NAMES})
+  if(name MATCHES "^fault_")
+    continue()
+  endif()
+  add_test(NAME rtl_lint_${name}
+    COMMAND sh -c "exec ${VERILATOR_BIN} --lint-only -Wall $(\"$0\" rtl-params --config ${name}) --top-module shade_unit \"$@\""
+            ${SHADESIM_CLI} ${RTL_SOURCES})
+endforeach()
 if(IVERILOG)
   add_test(NAME rtl_iverilog
     COMMAND ${IVERILOG} -g2012 -Wall -s shade_unit -o ${CMAKE_BINARY_DIR}/rtl_iverilog.vvp ${RTL_SOURCES})
@@ -252,39 +97,37 @@ endif()
 # Co-simulation: every scenario, several seeds, both backends, both width sets.
 foreach(name grey_s428w rgb2_s320s)
   add_test(NAME rtl_cosim_cpp_${name}
-    COMMAND rtl_cosim_cpp --config ${name} --scenario all --seed 1 --runs 3
+    COMMAND ${COSIM_CPP} --config ${name} --scenario all --seed 1 --runs 3
             --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
   foreach(scenario mixed long short slow maxbp switch tiny)
     add_test(NAME rtl_cosim_sc_${name}_${scenario}
-      COMMAND rtl_cosim_sc --config ${name} --scenario ${scenario} --seed 7
+      COMMAND ${COSIM_SC} --config ${name} --scenario ${scenario} --seed 7
               --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
   endforeach()
 endforeach()
-# The specular-unit configurations: every scenario (non-zero specular colours, unit parameters,
-# LUT tables), one seed each in CI; the SystemC backend on one scenario where it is built.
-foreach(name ${RTL_SPECULAR_CONFIG_NAMES})
-  add_test(NAME rtl_lint_${name}
-    COMMAND verilator --lint-only -Wall ${RTL_CONFIG_${name}_PARAMS} --top-module shade_unit ${RTL_SOURCES})
+# The specular-unit builds: every scenario (non-zero specular colours, unit parameters, LUT
+# tables), one seed each in CI; the SystemC backend on one scenario where it is built.
+foreach(name ${RTL_SPECULAR_BUILD_NAMES})
   add_test(NAME rtl_cosim_cpp_${name}
-    COMMAND rtl_cosim_cpp --config ${name} --scenario all --seed 21 --runs 1 --min-spec-pct 25
+    COMMAND ${COSIM_CPP} --config ${name} --scenario all --seed 21 --runs 1 --min-spec-pct 25
             --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
-  if("sc" IN_LIST RTL_CONFIG_${name}_BACKENDS)
+  if("systemc" IN_LIST RTL_BUILD_${name}_BACKENDS)
     add_test(NAME rtl_cosim_sc_${name}_mixed
-      COMMAND rtl_cosim_sc --config ${name} --scenario mixed --seed 23 --min-spec-pct 25
+      COMMAND ${COSIM_SC} --config ${name} --scenario mixed --seed 23 --min-spec-pct 25
               --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
   endif()
 endforeach()
 add_test(NAME rtl_cosim_backends_agree_schlick_iter_d
-  COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/same_results.sh ${CMAKE_BINARY_DIR} schlick_iter_d switch 5)
+  COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/same_results.sh ${SHADESIM_CLI} ${RTL_CACHE} schlick_iter_d switch 5)
 # Both backends give the same pixels, scanlines and cycles on the same run.
 add_test(NAME rtl_cosim_backends_agree
-  COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/same_results.sh ${CMAKE_BINARY_DIR} rgb2_s320s mixed 11)
+  COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/same_results.sh ${SHADESIM_CLI} ${RTL_CACHE} rgb2_s320s mixed 11)
 # The harness must catch deliberate faults at the right scanline.
 add_test(NAME rtl_cosim_catches_lsb_fault
-  COMMAND rtl_cosim_cpp --config fault_lsb --scenario mixed --seed 3 --stall-pct 0
+  COMMAND ${COSIM_CPP} --config fault_lsb --scenario mixed --seed 3 --stall-pct 0
           --expect-mismatch pixel:17 --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
 add_test(NAME rtl_cosim_catches_stall_fault
-  COMMAND rtl_cosim_cpp --config fault_stall --scenario mixed --seed 3 --stall-pct 0
+  COMMAND ${COSIM_CPP} --config fault_stall --scenario mixed --seed 3 --stall-pct 0
           --expect-mismatch cycle:23 --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
 set_tests_properties(rtl_cosim_catches_lsb_fault rtl_cosim_catches_stall_fault PROPERTIES
   LABELS rtl)
@@ -294,10 +137,15 @@ add_executable(rtl_cycle_model_test ${CMAKE_SOURCE_DIR}/tests/rtl/cycle_model_te
 target_link_libraries(rtl_cycle_model_test PRIVATE shadesim_harness GTest::gtest_main)
 add_test(NAME rtl_cycle_model_test COMMAND rtl_cycle_model_test)
 
-# The executables' machine interface: --json, exit codes, replay, --list --json; --waves.
+# The co-simulation's machine interface: --json, exit codes, replay, --list --json; --waves.
 add_test(NAME rtl_cosim_cli
-  COMMAND ${CMAKE_COMMAND} -DMODE=json -DCOSIM=$<TARGET_FILE:rtl_cosim_cpp> -DWORK=${CMAKE_BINARY_DIR}/rtl_cli
-          -P ${CMAKE_SOURCE_DIR}/sim/harness/cosim_cli_check.cmake)
+  COMMAND ${CMAKE_COMMAND} -DMODE=json -DSHADESIM=${SHADESIM_CLI} -DCACHE=${RTL_CACHE}
+          -DWORK=${CMAKE_BINARY_DIR}/rtl_cli -P ${CMAKE_SOURCE_DIR}/sim/harness/cosim_cli_check.cmake)
 add_test(NAME rtl_cosim_waves
-  COMMAND ${CMAKE_COMMAND} -DMODE=waves -DCOSIM=$<TARGET_FILE:rtl_cosim_cpp_trace> -DWORK=${CMAKE_BINARY_DIR}/rtl_waves
-          -P ${CMAKE_SOURCE_DIR}/sim/harness/cosim_cli_check.cmake)
+  COMMAND ${CMAKE_COMMAND} -DMODE=waves -DSHADESIM=${SHADESIM_CLI} -DCACHE=${RTL_CACHE}
+          -DWORK=${CMAKE_BINARY_DIR}/rtl_waves -P ${CMAKE_SOURCE_DIR}/sim/harness/cosim_cli_check.cmake)
+# On-demand builds: the cache rebuilds when a parameter or an RTL source changes, reuses the
+# build otherwise, and two concurrent builds of one key both succeed.
+add_test(NAME rtl_build_cache
+  COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/build_cache_check.sh ${SHADESIM_CLI} ${CMAKE_BINARY_DIR}/rtl_cache_check)
+set_tests_properties(rtl_build_cache PROPERTIES TIMEOUT 1200)

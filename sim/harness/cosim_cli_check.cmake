@@ -1,15 +1,16 @@
-# Checks of the co-simulation executables' machine interface (cmake -P, no other tools):
+# Checks of `shadesim cosim`'s machine interface (cmake -P, no other tools):
 #   MODE=json : --json results (pass, mismatch, bad input), exit codes 0/1/2, the replay line
-#               reproducing the mismatch, --list --json, --waves refused by the untraced build
-#   MODE=waves: rtl_cosim_cpp_trace --waves writes a non-empty FST whose header covers exactly
+#               reproducing the mismatch, --list --list-json, --waves refused off the cpp backend
+#   MODE=waves: --waves (the traced build) writes a non-empty FST whose header covers exactly
 #               the window around the first mismatch, and the output names the file
-# usage: cmake -DMODE=json|waves -DCOSIM=<exe> -DWORK=<dir> -P cosim_cli_check.cmake
+# usage: cmake -DMODE=json|waves -DSHADESIM=<exe> -DCACHE=<dir> -DWORK=<dir> -P cosim_cli_check.cmake
 cmake_minimum_required(VERSION 3.25)
-foreach(v MODE COSIM WORK)
+foreach(v MODE SHADESIM CACHE WORK)
   if(NOT DEFINED ${v})
     message(FATAL_ERROR "cosim_cli_check: -D${v}=... is required")
   endif()
 endforeach()
+set(COSIM ${SHADESIM} cosim --backend cpp --cache ${CACHE})
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 
@@ -70,13 +71,13 @@ if(MODE STREQUAL "json")
     message(FATAL_ERROR "saved_stream '${saved}' does not exist")
   endif()
   string(JSON replay GET "${j}" replay)
-  if(NOT replay MATCHES "^rtl_cosim_cpp --config fault_lsb --stream ")
+  if(NOT replay MATCHES "^shadesim cosim --backend cpp --config fault_lsb --stream ")
     message(FATAL_ERROR "unexpected replay line: ${replay}")
   endif()
   # The replay line reproduces the same first mismatch.
   separate_arguments(replay_args UNIX_COMMAND "${replay}")
   list(POP_FRONT replay_args)
-  run(1 out ${COSIM} ${replay_args} --save-dir ${WORK}/replay --json ${WORK}/replay.json)
+  run(1 out ${SHADESIM} ${replay_args} --cache ${CACHE} --save-dir ${WORK}/replay --json ${WORK}/replay.json)
   read_json(${WORK}/replay.json r)
   string(JSON r_cycle GET "${r}" first_mismatch cycle)
   string(JSON r_y GET "${r}" first_mismatch y)
@@ -126,14 +127,22 @@ if(MODE STREQUAL "json")
   if(NOT out MATCHES "differs from --config rgb2_s320s")
     message(FATAL_ERROR "config/stream mismatch not reported:\n${out}")
   endif()
-  # Waveforms need the traced build.
-  run(2 out ${COSIM} ${fault_args} --waves ${WORK}/x.fst)
-  if(NOT out MATCHES "rtl_cosim_cpp_trace")
-    message(FATAL_ERROR "--waves on the untraced build does not point at rtl_cosim_cpp_trace:\n${out}")
+  # Only the C++ backend traces.
+  run(2 out ${SHADESIM} cosim --backend systemc --cache ${CACHE} ${fault_args} --waves ${WORK}/x.fst)
+  if(NOT out MATCHES "only the cpp backend traces")
+    message(FATAL_ERROR "--waves on the SystemC backend is not refused with a reason:\n${out}")
+  endif()
+  # A unit that maps to other parameters than the executable's is refused by the executable.
+  run(0 out ${SHADESIM} rtl-build --config grey_s428w --cache ${CACHE})
+  string(REGEX MATCH "/[^ \n]*/cosim" grey_exe "${out}")
+  file(WRITE ${WORK}/rgb.json "{\"channels\": 3, \"lights\": 2}")
+  run(2 out ${grey_exe} --unit ${WORK}/rgb.json --scenario short)
+  if(NOT out MATCHES "was Verilated with")
+    message(FATAL_ERROR "a unit of another build is not refused:\n${out}")
   endif()
 
-  # --list --json: every configuration with its UnitConfig and faults.
-  execute_process(COMMAND ${COSIM} --list --json RESULT_VARIABLE rc OUTPUT_VARIABLE list)
+  # --list --list-json: every named build with its UnitConfig and faults.
+  execute_process(COMMAND ${SHADESIM} cosim --list --list-json RESULT_VARIABLE rc OUTPUT_VARIABLE list)
   expect_eq("--list --json exit" "${rc}" "0")
   string(JSON n LENGTH "${list}")
   set(found_fault OFF)

@@ -1,15 +1,19 @@
-// rtl_cosim_cpp / rtl_cosim_sc / rtl_cosim_cpp_trace: co-simulate the Verilated shade_unit
-// against the bit-accurate model (every pixel) and the cycle model (every scanline's completion
-// cycle).
+// The co-simulation executable of one RTL build: the Verilated shade_unit (C++, SystemC, or C++
+// with FST tracing) against the bit-accurate model (every pixel) and the cycle model (every
+// scanline's completion cycle). shadesim builds one per parameter set into its cache
+// (sim/rtl_build.h) and runs it through `shadesim cosim`, which passes the unit as a file:
 //
-//   rtl_cosim_cpp --config grey_s428w --scenario all --seed 1 --runs 3
-//   rtl_cosim_cpp --config grey_s428w --stream failing.cmds --seed 5 --gap-pct 30 ...  (replay)
-//   rtl_cosim_cpp --config grey_s428w --stream s.cmds --json result.json
-//   rtl_cosim_cpp_trace --config fault_lsb --scenario mixed --waves fail.fst
-//   rtl_cosim_cpp --list [--json]
+//   <exe> --unit unit.json --config grey_s428w --scenario all --seed 1 --runs 3
+//   <exe> --stream failing.cmds --seed 5 --gap-pct 30 ...   (replay: the stream names its unit)
+//   <exe> --unit unit.json --stream s.cmds --json result.json
+//   <exe> --unit unit.json --config fault_lsb --scenario mixed --waves fail.fst   (traced build)
+//   <exe> --list [--json]
+//
+// The unit must map (model/rtl_parameters.h) to exactly the parameters this executable was
+// Verilated with; the deliberate faults are read from those parameters.
 //
 // Exit status: 0 every run passed (or the expected mismatch was found), 1 a mismatch, 2 bad
-// input (unknown configuration, unreadable or incompatible stream, bad option).
+// input (unit of another build, unreadable or incompatible stream, bad option).
 //
 // --json FILE: one object per run (an array when there is more than one run):
 //   {config, backend, traced, scenario, seed, stimulus: {gap_pct, max_gap, stall_pct}, passed,
@@ -26,21 +30,23 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "rtl_configs.inc"
+#include "Vshade_unit.h"
+#include "cosim_build.h"
+#include "model/rtl_parameters.h"
 #include "sim/harness/cosim.h"
 #include "sim/harness/random_stream.h"
 
 #ifdef SHADESIM_COSIM_SYSTEMC
 #include "sim/harness/sc_backend.h"
 #define SHADESIM_BACKEND "systemc"
-#define SHADESIM_EXE "rtl_cosim_sc"
+#define SHADESIM_EXE "shadesim cosim --backend systemc"
 #else
 #include "sim/harness/cpp_backend.h"
 #define SHADESIM_BACKEND "cpp"
 #ifdef SHADESIM_COSIM_TRACE
-#define SHADESIM_EXE "rtl_cosim_cpp_trace"
+#define SHADESIM_EXE "shadesim cosim --backend cpp --waves"
 #else
-#define SHADESIM_EXE "rtl_cosim_cpp"
+#define SHADESIM_EXE "shadesim cosim --backend cpp"
 #endif
 #endif
 
@@ -58,33 +64,36 @@ struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-struct Entry {
-  RtlConfig config;
-  std::function<CosimResult(const CosimJob&, const WaveWindow*)> run;
-};
+// The parameters this executable was Verilated with (cosim_build.h, written by sim/rtl_build.cpp).
+std::vector<VerilogParameter> built_parameters() { return SHADESIM_BUILD_PARAMETERS; }
 
-std::vector<Entry> registry() {
-  std::vector<Entry> entries;
+InjectedFaults built_faults() {
+  InjectedFaults f;
+  for (const auto& p : built_parameters()) {
+    if (p.name == "FAULT_LSB_ROW") f.lsb_row = static_cast<int>(p.value);
+    if (p.name == "FAULT_STALL_ROW") f.stall_row = static_cast<int>(p.value);
+  }
+  return f;
+}
+
+std::string parameter_text(const std::vector<VerilogParameter>& params) {
+  std::string s;
+  for (const auto& p : params) s += (s.empty() ? "" : " ") + p.name + "=" + std::to_string(p.value);
+  return s;
+}
+
+CosimResult run_build(const CosimJob& job, const WaveWindow* waves) {
 #ifdef SHADESIM_COSIM_SYSTEMC
-#define SHADESIM_RUN(V, job, waves)                                                                  \
-  (waves ? throw InputError("waveforms need the trace-enabled C++ build (rtl_cosim_cpp_trace)")    \
-         : run_verilated_systemc<V>(job))
+  if (waves) throw InputError("waveforms need the trace-enabled C++ build (shadesim cosim --waves)");
+  return run_verilated_systemc<Vshade_unit>(job);
 #else
-#define SHADESIM_RUN(V, job, waves) run_verilated_cpp<V>(job, waves)
+  return run_verilated_cpp<Vshade_unit>(job, waves);
 #endif
-#define X(name, channels, lights, xy_bits, coef, series, spec_colour, out_bits, specular, spec_out, \
-          fault_lsb, fault_stall, unit_params)                                                     \
-  entries.push_back({make_rtl_config(#name, channels, lights, xy_bits, coef, series, spec_colour,     \
-                                     out_bits, specular, spec_out, fault_lsb, fault_stall,            \
-                                     unit_params),                                                    \
-                     [](const CosimJob& job, const WaveWindow* waves) { return SHADESIM_RUN(V##name, job, waves); }});
-  SHADESIM_RTL_CONFIGS(X)
-#undef X
-  return entries;
 }
 
 struct Options {
-  std::string config;
+  std::string config = "custom";  // the build's name, for reports
+  std::string unit_path;
   std::string scenario = "mixed";
   std::string stream_path;
   uint64_t seed = 1;
@@ -100,25 +109,18 @@ struct Options {
   bool list = false;
 };
 
-std::string fault_text(const RtlConfig& c) {
-  std::string s;
-  if (c.fault_lsb_row >= 0) s += " fault=lsb@y" + std::to_string(c.fault_lsb_row);
-  if (c.fault_stall_row >= 0) s += " fault=stall@y" + std::to_string(c.fault_stall_row);
-  return s;
-}
-
-nlohmann::json faults_json(const RtlConfig& c) {
-  nlohmann::json f = nlohmann::json::object();
-  if (c.fault_lsb_row >= 0) f["lsb_row"] = c.fault_lsb_row;
-  if (c.fault_stall_row >= 0) f["stall_row"] = c.fault_stall_row;
-  return f;
+nlohmann::json faults_json(const InjectedFaults& f) {
+  nlohmann::json j = nlohmann::json::object();
+  if (f.lsb_row >= 0) j["lsb_row"] = f.lsb_row;
+  if (f.stall_row >= 0) j["stall_row"] = f.stall_row;
+  return j;
 }
 
 // One line naming everything needed to find the mismatch.
 std::string mismatch_message(const Mismatch& m, const RtlConfig& c) {
   std::ostringstream os;
   os << to_string(m.kind) << " mismatch in configuration " << c.name << " [" << c.unit.to_string()
-     << fault_text(c) << "]: scanline " << m.scanline << " (y=" << m.y << "), x=" << m.x << ", cycle "
+     << fault_text(c.faults) << "]: scanline " << m.scanline << " (y=" << m.y << "), x=" << m.x << ", cycle "
      << m.cycle << ": expected " << m.expected << ", got " << m.got;
   return os.str();
 }
@@ -173,7 +175,7 @@ nlohmann::json outcome_json(const Outcome& o) {
   return j;
 }
 
-std::vector<CosimJob> make_jobs(const Options& o, const Entry& entry) {
+std::vector<CosimJob> make_jobs(const Options& o, const RtlConfig& build) {
   std::vector<CosimJob> jobs;
   auto apply_overrides = [&o](Stimulus s, uint64_t seed) {
     s.seed = seed;
@@ -184,7 +186,7 @@ std::vector<CosimJob> make_jobs(const Options& o, const Entry& entry) {
   };
   if (!o.stream_path.empty()) {
     CosimJob job;
-    job.config = entry.config;
+    job.config = build;
     job.scenario = "replay";
     try {
       job.stream = CommandStream::load(o.stream_path);
@@ -192,9 +194,9 @@ std::vector<CosimJob> make_jobs(const Options& o, const Entry& entry) {
     } catch (const std::exception& e) {
       throw InputError(e.what());
     }
-    if (config_to_json(job.stream.config) != config_to_json(entry.config.unit)) {
+    if (config_to_json(job.stream.config) != config_to_json(build.unit)) {
       throw InputError(o.stream_path + ": stream configuration " + job.stream.config.to_string() +
-                       " differs from --config " + entry.config.name + " (" + entry.config.unit.to_string() + ")");
+                       " differs from --config " + build.name + " (" + build.unit.to_string() + ")");
     }
     job.stim = apply_overrides(Stimulus{}, o.seed);
     jobs.push_back(job);
@@ -212,10 +214,10 @@ std::vector<CosimJob> make_jobs(const Options& o, const Entry& entry) {
     if (o.rows > 0) sc.shape.rows = o.rows;
     for (int k = 0; k < o.runs; ++k) {
       CosimJob job;
-      job.config = entry.config;
+      job.config = build;
       job.scenario = name;
       const uint64_t seed = o.seed + static_cast<uint64_t>(k);
-      job.stream = random_stream(entry.config.unit, sc.shape, seed);
+      job.stream = random_stream(build.unit, sc.shape, seed);
       job.stim = apply_overrides(sc.stim, seed);
       jobs.push_back(job);
     }
@@ -223,15 +225,44 @@ std::vector<CosimJob> make_jobs(const Options& o, const Entry& entry) {
   return jobs;
 }
 
-int run_all(const Options& o) {
-  const std::vector<Entry> entries = registry();
-  const Entry* entry = nullptr;
-  for (const auto& e : entries) if (e.config.name == o.config) entry = &e;
-  if (!entry) {
-    std::string names;
-    for (const auto& e : entries) names += (names.empty() ? "" : ", ") + e.config.name;
-    throw InputError("--config '" + o.config + "' is not Verilated into this executable; expected one of " + names);
+// The unit this run simulates: --unit, else the replayed stream's header. It must map to the
+// parameters this executable was Verilated with, or its pixels would be compared against a
+// model of another unit.
+RtlConfig resolve_build(const Options& o) {
+  RtlConfig b;
+  b.name = o.config;
+  b.faults = built_faults();
+  try {
+    if (!o.unit_path.empty()) {
+      std::ifstream is(o.unit_path);
+      if (!is) throw InputError("--unit " + o.unit_path + ": cannot open");
+      std::stringstream text;
+      text << is.rdbuf();
+      try {
+        b.unit = unit_config_overlay(UnitConfig{}, text.str(), "--unit " + o.unit_path);
+      } catch (const std::invalid_argument& e) {
+        throw InputError(e.what());
+      }
+    } else if (!o.stream_path.empty()) {
+      b.unit = CommandStream::load(o.stream_path).config;
+    } else {
+      throw InputError("--unit FILE.json is required (or --stream, whose header names the unit)");
+    }
+  } catch (const CommandStreamError& e) {
+    throw InputError(e.what());
   }
+  const std::string want = parameter_text(built_parameters());
+  const std::string got = parameter_text(shade_unit_parameters(b.unit, b.faults));
+  if (want != got) {
+    throw InputError("the unit " + b.unit.to_string() + " maps to shade_unit parameters {" + got +
+                     "}, but this executable was Verilated with {" + want +
+                     "}: run it through `shadesim cosim`, which builds the right one");
+  }
+  return b;
+}
+
+int run_all(const Options& o) {
+  const RtlConfig build = resolve_build(o);
   std::string expect_kind;
   int expect_y = -1;
   if (!o.expect.empty()) {
@@ -248,10 +279,10 @@ int run_all(const Options& o) {
     }
   }
   if (!o.waves_path.empty() && !kTraced) {
-    throw InputError("--waves needs the trace-enabled build: run rtl_cosim_cpp_trace with the same arguments");
+    throw InputError("--waves needs the trace-enabled build, which `shadesim cosim --waves FILE` picks");
   }
 
-  const std::vector<CosimJob> jobs = make_jobs(o, *entry);
+  const std::vector<CosimJob> jobs = make_jobs(o, build);
 #ifdef SHADESIM_COSIM_SYSTEMC
   if (jobs.size() != 1) {
     throw InputError("the SystemC kernel elaborates once per process, so this backend runs one job; got " +
@@ -269,7 +300,7 @@ int run_all(const Options& o) {
   for (const auto& job : jobs) {
     Outcome out;
     out.job = job;
-    out.result = entry->run(job, nullptr);
+    out.result = run_build(job, nullptr);
     const CosimResult& r = out.result;
     char line[512];
     std::snprintf(line, sizeof line,
@@ -301,10 +332,13 @@ int run_all(const Options& o) {
       out.saved_stream = o.save_dir + "/" + job.config.name + "_" + job.scenario + "_" +
                          std::to_string(job.stim.seed) + ".cmds";
       job.stream.save(out.saved_stream);
-      out.replay = std::string(SHADESIM_EXE) + " --config " + job.config.name + " --stream " + out.saved_stream +
+      // shadesim cosim resolves --config (a named build or a UnitConfig file) again; a stream
+      // alone names its unit in its header.
+      const bool named = job.config.name != "custom" && job.config.name != "stream";
+      out.replay = std::string(SHADESIM_EXE) + (named ? " --config " + job.config.name : "") + " --stream " + out.saved_stream +
                    ' ' + job.stim.to_args();
       std::cout << "  first mismatch (" << to_string(m.kind) << "): configuration " << job.config.name
-                << " [" << job.config.unit.to_string() << fault_text(job.config) << "]\n"
+                << " [" << job.config.unit.to_string() << fault_text(job.config.faults) << "]\n"
                 << "    scanline " << m.scanline << " (y=" << m.y << "), x=" << m.x << ", cycle " << m.cycle << '\n'
                 << "    expected " << m.expected << '\n'
                 << "    got      " << m.got << '\n'
@@ -318,7 +352,7 @@ int run_all(const Options& o) {
         w.last = m.cycle + o.waves_after;
         const std::filesystem::path parent = std::filesystem::path(w.path).parent_path();
         if (!parent.empty()) std::filesystem::create_directories(parent);
-        const CosimResult again = entry->run(job, &w);
+        const CosimResult again = run_build(job, &w);
         if (again.first.kind != m.kind || again.first.cycle != m.cycle) {
           std::cout << "    WARNING: the traced re-run mismatched differently (" << to_string(again.first.kind)
                     << " at cycle " << again.first.cycle << ")\n";
@@ -358,18 +392,17 @@ int run_all(const Options& o) {
 }
 
 void print_list(bool json) {
-  const std::vector<Entry> entries = registry();
+  const std::vector<VerilogParameter> params = built_parameters();
   if (!json) {
-    for (const auto& e : entries) std::cout << e.config.name << "  " << e.config.unit.to_string() << fault_text(e.config) << '\n';
+    std::cout << SHADESIM_BACKEND << " build: " << parameter_text(params) << '\n';
     return;
   }
-  nlohmann::json all = nlohmann::json::array();
-  for (const auto& e : entries) {
-    all.push_back({{"name", e.config.name},
-                   {"unit", nlohmann::json::parse(config_to_json(e.config.unit))},
-                   {"faults", faults_json(e.config)}});
-  }
-  std::cout << all.dump(2) << '\n';
+  nlohmann::json p = nlohmann::json::object();
+  for (const auto& v : params) p[v.name] = v.value;
+  std::cout << nlohmann::json{{"backend", SHADESIM_BACKEND}, {"traced", kTraced}, {"parameters", p},
+                              {"faults", faults_json(built_faults())}}
+                   .dump(2)
+            << '\n';
 }
 
 int cosim_main(int argc, char** argv) {
@@ -377,8 +410,9 @@ int cosim_main(int argc, char** argv) {
                " backend) against the bit-accurate model and the cycle model"};
   Options o;
   bool list_json = false;
-  app.add_option("--config", o.config, "RTL configuration (see --list)");
-  app.add_flag("--list", o.list, "list the Verilated configurations (with --json: as JSON on stdout)");
+  app.add_option("--unit", o.unit_path, "the unit (UnitConfig JSON) this build simulates");
+  app.add_option("--config", o.config, "the build's name, for reports")->capture_default_str();
+  app.add_flag("--list", o.list, "print the parameters this executable was Verilated with (--json: as JSON)");
   app.add_option("--scenario", o.scenario, "mixed, long, short, slow, maxbp, switch, tiny, or all");
   app.add_option("--stream", o.stream_path, "replay a saved command stream (text form)");
   app.add_option("--seed", o.seed, "seed of the stream and of the stimulus (printed on every run)");

@@ -1,85 +1,92 @@
 #include "sim/harness/rtl_config.h"
 
-#include <sstream>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "model/command_stream.h"
+
 namespace shadesim {
-namespace {
 
-int to_int(const std::string& value, const std::string& what) {
-  size_t used = 0;
-  int v = 0;
+UnitConfig unit_config_overlay(const UnitConfig& base, const std::string& text,
+                               const std::string& what) {
+  nlohmann::json patch;
   try {
-    v = std::stoi(value, &used);
-  } catch (const std::logic_error&) {
-    used = 0;
+    patch = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(what + ": " + e.what());
   }
-  if (used == 0 || used != value.size()) throw std::invalid_argument(what + ": expected an integer, got '" + value + "'");
-  return v;
+  if (!patch.is_object()) throw std::invalid_argument(what + ": expected a JSON object");
+  nlohmann::json full = nlohmann::json::parse(config_to_json(base));
+  full.merge_patch(patch);
+  try {
+    return config_from_json(full.dump(), what + ": ");
+  } catch (const CommandStreamError& e) {
+    throw std::invalid_argument(e.what());
+  }
 }
 
-void apply_unit_param(SpecularConfig& s, const std::string& key, const std::string& value, const std::string& what) {
-  const std::string w = what + ": " + key;
-  switch (s.kind) {
-    case SpecularUnitKind::kLut:
-      if (key == "addr_bits") return void(s.lut.addr_bits = to_int(value, w));
-      if (key == "entry_bits") return void(s.lut.entry_bits = to_int(value, w));
-      if (key == "interp_bits") return void(s.lut.interp_bits = to_int(value, w));
-      if (key == "index") return void(s.lut.index = parse_lut_index(value, w));
-      if (key == "addressing") return void(s.lut.addressing = parse_lut_addressing(value, w));
-      if (key == "shared_range_log2") return void(s.lut.shared_range_log2 = to_int(value, w));
-      if (key == "fit") return void(s.lut.fit = parse_fit_objective(value, w));
-      break;
-    case SpecularUnitKind::kSchlick:
-      if (key == "quotient_bits") return void(s.schlick.quotient_bits = to_int(value, w));
-      if (key == "operand_bits") return void(s.schlick.operand_bits = to_int(value, w));
-      if (key == "timing") return void(s.schlick.timing = parse_unit_timing(value, w));
-      if (key == "fit") return void(s.schlick.fit = parse_fit_objective(value, w));
-      break;
-    case SpecularUnitKind::kWpow:
-      if (key == "max_m") return void(s.wpow.max_m = to_int(value, w));
-      if (key == "base_bits") return void(s.wpow.base_bits = to_int(value, w));
-      if (key == "timing") return void(s.wpow.timing = parse_unit_timing(value, w));
-      if (key == "fit") return void(s.wpow.fit = parse_fit_objective(value, w));
-      break;
-    case SpecularUnitKind::kIdeal:
-      break;
+std::vector<RtlConfig> load_named_builds(const std::string& path) {
+  std::ifstream is(path);
+  if (!is) throw std::invalid_argument(path + ": cannot open the named RTL builds");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(is);
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(path + ": " + e.what());
   }
-  throw std::invalid_argument(what + ": '" + key + "' is not a parameter of the " + to_string(s.kind) + " unit");
-}
-
-}  // namespace
-
-RtlConfig make_rtl_config(const std::string& name, int channels, int lights, int xy_bits,
-                          const std::string& coef, const std::string& series,
-                          const std::string& spec_colour, int out_bits,
-                          const std::string& specular, const std::string& specular_out,
-                          int fault_lsb_row, int fault_stall_row, const std::string& unit_params) {
-  RtlConfig r;
-  r.name = name;
-  const std::string what = "rtl config " + name;
-  r.unit.channels = channels;
-  r.unit.lights = lights;
-  r.unit.xy_bits = xy_bits;
-  r.unit.coef = parse_fixed_format(coef, what + ": coef");
-  r.unit.series = parse_fixed_format(series, what + ": series");
-  r.unit.spec_colour = parse_fixed_format(spec_colour, what + ": spec_colour");
-  r.unit.out_bits = out_bits;
-  r.unit.specular.kind = parse_specular_unit(specular, what + ": specular");
-  r.unit.specular.out = parse_fixed_format(specular_out, what + ": specular.out");
-  std::istringstream is(unit_params);
-  std::string pair;
-  while (is >> pair) {
-    const auto eq = pair.find('=');
-    if (eq == std::string::npos || eq == 0) {
-      throw std::invalid_argument(what + ": unit parameter '" + pair + "': expected key=value");
+  if (!j.is_object()) throw std::invalid_argument(path + ": expected an object of named builds");
+  std::vector<RtlConfig> builds;
+  for (const auto& [name, b] : j.items()) {
+    if (name.rfind('_', 0) == 0) continue;  // "_comment"
+    const std::string where = path + ": " + name;
+    if (!b.is_object() || !b.contains("unit")) {
+      throw std::invalid_argument(where + ": expected {\"unit\": {...}, \"backends\": [...]}");
     }
-    apply_unit_param(r.unit.specular, pair.substr(0, eq), pair.substr(eq + 1), what);
+    RtlConfig c;
+    c.name = name;
+    c.unit = unit_config_overlay(UnitConfig{}, b.at("unit").dump(), where + ".unit");
+    if (b.contains("faults")) {
+      const auto& f = b.at("faults");
+      auto row = [&](const char* key) {
+        if (!f.contains(key)) return -1;
+        if (!f.at(key).is_number_integer() || f.at(key).get<int>() < 0) {
+          throw std::invalid_argument(where + ".faults." + key + ": expected a row >= 0");
+        }
+        return f.at(key).get<int>();
+      };
+      c.faults.lsb_row = row("lsb_row");
+      c.faults.stall_row = row("stall_row");
+    }
+    if (b.contains("backends")) {
+      for (const auto& be : b.at("backends")) {
+        if (!be.is_string() || (be != "cpp" && be != "systemc")) {
+          throw std::invalid_argument(where + ".backends: expected \"cpp\" or \"systemc\", got " +
+                                      be.dump());
+        }
+        c.backends.push_back(be.get<std::string>());
+      }
+    }
+    builds.push_back(c);
   }
-  r.unit.validate();
-  r.fault_lsb_row = fault_lsb_row;
-  r.fault_stall_row = fault_stall_row;
-  return r;
+  return builds;
+}
+
+RtlConfig named_build(const std::string& path, const std::string& name) {
+  std::string names;
+  for (const RtlConfig& c : load_named_builds(path)) {
+    if (c.name == name) return c;
+    names += (names.empty() ? "" : ", ") + c.name;
+  }
+  throw std::invalid_argument("'" + name + "' is not a named RTL build in " + path +
+                              "; expected one of " + names + ", or a UnitConfig FILE.json");
+}
+
+std::string fault_text(const InjectedFaults& f) {
+  std::string s;
+  if (f.lsb_row >= 0) s += " fault=lsb@y" + std::to_string(f.lsb_row);
+  if (f.stall_row >= 0) s += " fault=stall@y" + std::to_string(f.stall_row);
+  return s;
 }
 
 }  // namespace shadesim

@@ -1,9 +1,13 @@
-// An RTL configuration as Verilated: its UnitConfig (parsed from the same text CMake turned into
-// Verilog parameters, cmake/rtl.cmake) and its deliberate-fault rows.
+// An RTL build as the harness sees it: a unit configuration, the deliberate faults compiled into
+// it, and a name for reports. The named builds the tests share live in sim/harness/builds.json;
+// any other UnitConfig is built on demand (sim/rtl_build.h). Verilog parameters come from the
+// one mapping in model/rtl_parameters.h.
 #pragma once
 
 #include <string>
+#include <vector>
 
+#include "model/rtl_parameters.h"
 #include "model/unit_config.h"
 
 namespace shadesim {
@@ -11,20 +15,22 @@ namespace shadesim {
 struct RtlConfig {
   std::string name;
   UnitConfig unit;
-  int fault_lsb_row = -1;
-  int fault_stall_row = -1;
+  InjectedFaults faults;
+  std::vector<std::string> backends;  // named builds: the backends the tests use
 };
 
-// unit_params: the selected specular unit's fields as space-separated key=value pairs, with the
-// names of its JSON object (model/command_stream.h config_to_json), e.g.
-// "addr_bits=10 entry_bits=8 index=nearest" (lut), "quotient_bits=16 timing=pipelined"
-// (schlick), "max_m=16 base_bits=16 timing=iterative" (wpow). Throws std::invalid_argument
-// naming the configuration and the key for an unknown key or a bad value.
-RtlConfig make_rtl_config(const std::string& name, int channels, int lights, int xy_bits,
-                          const std::string& coef, const std::string& series,
-                          const std::string& spec_colour, int out_bits,
-                          const std::string& specular, const std::string& specular_out,
-                          int fault_lsb_row, int fault_stall_row,
-                          const std::string& unit_params = "");
+// A UnitConfig JSON object whose absent fields keep `base`'s values (JSON merge patch over
+// config_to_json(base)); `what` names the source in errors.
+UnitConfig unit_config_overlay(const UnitConfig& base, const std::string& json_object_text,
+                               const std::string& what);
+
+// The named builds of `path` (sim/harness/builds.json). Throws std::invalid_argument naming the
+// file, the build and the field on malformed input.
+std::vector<RtlConfig> load_named_builds(const std::string& path);
+
+// The build called `name` in `path`, or an error listing the names there are.
+RtlConfig named_build(const std::string& path, const std::string& name);
+
+std::string fault_text(const InjectedFaults& faults);  // " fault=lsb@y17", or ""
 
 }  // namespace shadesim

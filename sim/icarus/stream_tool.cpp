@@ -5,7 +5,7 @@
 //       the stream's binary words for $readmemh (a first line "// shadesim-words N ...", then
 //       one 16-digit hex word per line) and the
 //       bit-accurate model's pixels (ShadeUnit), one "x y c0 [c1 c2] eor" line each, decimal;
-//   icarus_stream_tool random --rtl-config SPEC --scenario mixed --seed 1 --save OUT.cmds
+//   icarus_stream_tool random --builds sim/harness/builds.json --config NAME --scenario mixed --seed 1 --save OUT.cmds
 //       a co-simulation random stream (sim/harness/random_stream.h) for an RTL configuration
 //       given as cmake/rtl.cmake's entry fields, comma-separated;
 //   icarus_stream_tool compare EXPECTED.txt GOT.txt
@@ -66,42 +66,14 @@ void export_stream(const std::string& stream_path, const std::string& hex_path,
   }
 }
 
-// SPEC: name,channels,lights,xy_bits,coef,series,spec_colour,out_bits,specular,spec_out
-//       [,fault_lsb_row,fault_stall_row] - the fields of rtl_config() in cmake/rtl.cmake.
-RtlConfig parse_rtl_config(const std::string& spec) {
-  std::vector<std::string> f;
-  std::stringstream ss(spec);
-  for (std::string item; std::getline(ss, item, ',');) {
-    const auto b = item.find_first_not_of(" \"");
-    const auto e = item.find_last_not_of(" \"");
-    f.push_back(b == std::string::npos ? "" : item.substr(b, e - b + 1));
-  }
-  if (f.size() != 10 && f.size() != 12) {
-    throw ToolError("--rtl-config '" + spec + "': expected 10 or 12 comma-separated fields "
-                    "(name,channels,lights,xy_bits,coef,series,spec_colour,out_bits,specular,"
-                    "spec_out[,fault_lsb_row,fault_stall_row]), got " + std::to_string(f.size()));
-  }
-  auto integer = [&](size_t i, const char* field) {
-    try {
-      size_t used = 0;
-      const int v = std::stoi(f[i], &used);
-      if (used == f[i].size()) return v;
-    } catch (const std::logic_error&) {
-    }
-    throw ToolError("--rtl-config field " + std::to_string(i + 1) + " (" + field + "): expected an integer, got '" + f[i] + "'");
-  };
+void random_to_file(const std::string& builds, const std::string& name, const std::string& scenario,
+                    uint64_t seed, const std::string& out) {
+  RtlConfig rtl;
   try {
-    return make_rtl_config(f[0], integer(1, "channels"), integer(2, "lights"), integer(3, "xy_bits"), f[4], f[5],
-                           f[6], integer(7, "out_bits"), f[8], f[9], f.size() == 12 ? integer(10, "fault_lsb_row") : -1,
-                           f.size() == 12 ? integer(11, "fault_stall_row") : -1);
+    rtl = named_build(builds, name);
   } catch (const std::invalid_argument& e) {
-    throw ToolError(std::string("--rtl-config: ") + e.what());
+    throw ToolError(std::string("--config: ") + e.what());
   }
-}
-
-void random_to_file(const std::string& spec, const std::string& scenario, uint64_t seed,
-                    const std::string& out) {
-  const RtlConfig rtl = parse_rtl_config(spec);
   const Scenario sc = scenario_by_name(scenario);
   random_stream(rtl.unit, sc.shape, seed).save(out);
 }
@@ -145,10 +117,11 @@ int tool_main(int argc, char** argv) {
   exp->add_option("--hex", hex_path, "write the binary words for $readmemh");
   exp->add_option("--pixels", pixels_path, "write the bit-accurate model's pixels");
 
-  std::string spec, scenario = "mixed", save_path;
+  std::string builds, name, scenario = "mixed", save_path;
   uint64_t seed = 1;
   CLI::App* rnd = app.add_subcommand("random", "save a co-simulation random stream");
-  rnd->add_option("--rtl-config", spec, "name,channels,lights,xy_bits,coef,series,spec_colour,out_bits,specular,spec_out")->required();
+  rnd->add_option("--builds", builds, "the named builds file (sim/harness/builds.json)")->required();
+  rnd->add_option("--config", name, "a named build")->required();
   rnd->add_option("--scenario", scenario, "mixed, long, short, slow, maxbp, switch")->capture_default_str();
   rnd->add_option("--seed", seed, "stream seed")->capture_default_str();
   rnd->add_option("--save", save_path, "output stream (text form)")->required();
@@ -169,7 +142,7 @@ int tool_main(int argc, char** argv) {
     return 0;
   }
   if (*rnd) {
-    random_to_file(spec, scenario, seed, save_path);
+    random_to_file(builds, name, scenario, seed, save_path);
     return 0;
   }
   return compare_pixels(expected_path, got_path);

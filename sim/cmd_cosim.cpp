@@ -1,0 +1,267 @@
+// shadesim cosim / rtl-build / rtl-params: co-simulation of any unit configuration, with the RTL
+// Verilated on demand into the build cache (sim/rtl_build.h).
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "model/command_stream.h"
+#include "sim/commands.h"
+#include "sim/rtl_build.h"
+
+namespace shadesim {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CosimOptions {
+  std::string backend = "cpp";
+  std::string config;  // a named build or a UnitConfig FILE.json
+  std::string stream;
+  std::string waves;
+  std::string cache;
+  bool list = false;
+  bool list_json = false;
+};
+
+// The unit file the executable reads (--unit): content-addressed, written atomically.
+std::string write_unit_file(const fs::path& cache, const UnitConfig& unit) {
+  const std::string text = config_to_json(unit);
+  const std::string name = "unit-" + std::to_string(std::hash<std::string>{}(text)) + ".json";
+  const fs::path dir = cache / "units";
+  fs::create_directories(dir);
+  const fs::path path = dir / name;
+  if (!fs::exists(path)) {
+    const fs::path tmp = dir / (name + ".tmp." + std::to_string(getpid()));
+    {
+      std::ofstream os(tmp);
+      os << text << '\n';
+      if (!os) throw std::runtime_error("cosim: cannot write " + tmp.string());
+    }
+    fs::rename(tmp, path);
+  }
+  return path.string();
+}
+
+void list_named(bool json) {
+  const std::vector<RtlConfig> builds = load_named_builds(named_builds_path());
+  if (json) {
+    nlohmann::json all = nlohmann::json::array();
+    for (const auto& b : builds) {
+      nlohmann::json faults = nlohmann::json::object();
+      if (b.faults.lsb_row >= 0) faults["lsb_row"] = b.faults.lsb_row;
+      if (b.faults.stall_row >= 0) faults["stall_row"] = b.faults.stall_row;
+      all.push_back({{"name", b.name}, {"unit", nlohmann::json::parse(config_to_json(b.unit))},
+                     {"faults", faults}, {"backends", b.backends}});
+    }
+    std::cout << all.dump(2) << '\n';
+    return;
+  }
+  for (const auto& b : builds) {
+    std::string backends;
+    for (const auto& s : b.backends) backends += (backends.empty() ? "" : ",") + s;
+    std::cout << std::left << std::setw(18) << b.name << std::setw(13) << backends << b.unit.to_string()
+              << fault_text(b.faults) << '\n';
+  }
+}
+
+int run_cosim(const CosimOptions& o, std::vector<std::string> passthrough) {
+  if (o.list) {
+    list_named(o.list_json);
+    return 0;
+  }
+  CosimBackend backend = parse_cosim_backend(o.backend);
+  RtlConfig build;
+  if (!o.config.empty()) {
+    build = resolve_rtl_config(o.config, "--config");
+  } else if (!o.stream.empty()) {
+    build.name = "stream";
+    build.unit = CommandStream::load(o.stream).config;  // CommandStreamError names the file
+  } else {
+    throw std::invalid_argument("cosim: name the unit with --config NAME|FILE.json (see --list), or "
+                                "replay a --stream, whose header names it");
+  }
+  if (!o.waves.empty()) {
+    if (backend != CosimBackend::kCpp) throw std::invalid_argument("--waves: only the cpp backend traces");
+    backend = CosimBackend::kCppTrace;
+  }
+  RtlBuildOptions bo;
+  bo.cache_dir = o.cache;
+  bo.make_jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const RtlBuildResult r = ensure_rtl_build(build, backend, bo);
+  const fs::path cache(o.cache.empty() ? default_rtl_cache_dir() : o.cache);
+  std::vector<std::string> args = {r.executable, "--unit", write_unit_file(cache, build.unit),
+                                   "--config", build.name};
+  if (!o.stream.empty()) args.insert(args.end(), {"--stream", o.stream});
+  if (!o.waves.empty()) args.insert(args.end(), {"--waves", o.waves});
+  args.insert(args.end(), passthrough.begin(), passthrough.end());
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::cout.flush();
+  execv(argv[0], argv.data());
+  throw std::runtime_error("cosim: cannot run " + r.executable + ": " + std::strerror(errno));
+}
+
+struct RtlBuildCliOptions {
+  std::vector<std::string> configs;
+  bool all = false;
+  std::vector<std::string> backends;
+  std::string cache;
+  int jobs = 0;
+  bool print_key = false;
+  bool print_source_dir = false;
+  bool print_rtl_sources = false;
+};
+
+int run_rtl_build(const RtlBuildCliOptions& o) {
+  if (o.print_source_dir) {
+    std::cout << source_dir() << '\n';
+    return 0;
+  }
+  if (o.print_rtl_sources) {
+    for (const auto& p : rtl_source_files()) std::cout << p << '\n';
+    return 0;
+  }
+  struct Item {
+    RtlConfig config;
+    CosimBackend backend;
+    std::string result;
+    bool failed = false;
+  };
+  std::vector<Item> items;
+  std::vector<RtlConfig> configs;
+  if (o.all) configs = load_named_builds(named_builds_path());
+  for (const auto& c : o.configs) configs.push_back(resolve_rtl_config(c, "--config"));
+  if (configs.empty()) {
+    throw std::invalid_argument("rtl-build: name builds with --config, or --all");
+  }
+  for (const auto& c : configs) {
+    // --backends given: those; otherwise each named build's own (cpp for a file).
+    std::vector<std::string> names = o.backends;
+    if (names.empty()) names = c.backends.empty() ? std::vector<std::string>{"cpp"} : c.backends;
+    for (const auto& b : names) {
+      const CosimBackend be = b == "cpp_trace" ? CosimBackend::kCppTrace : parse_cosim_backend(b);
+      items.push_back({c, be, "", false});
+    }
+  }
+  if (o.print_key) {
+    for (const auto& it : items) std::cout << rtl_build_key(it.config, it.backend) << '\n';
+    return 0;
+  }
+  const int workers = std::max(1, o.jobs > 0 ? o.jobs : static_cast<int>(std::thread::hardware_concurrency()));
+  std::atomic<size_t> next{0};
+  std::mutex m;
+  auto work = [&]() {
+    for (size_t i = next++; i < items.size(); i = next++) {
+      RtlBuildOptions bo;
+      bo.cache_dir = o.cache;
+      bo.make_jobs = 1;  // parallelism across builds
+      try {
+        const RtlBuildResult r = ensure_rtl_build(items[i].config, items[i].backend, bo);
+        items[i].result = r.executable + (r.built ? "" : " (cached)");
+      } catch (const std::exception& e) {
+        std::lock_guard<std::mutex> lock(m);
+        items[i].failed = true;
+        items[i].result = e.what();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int w = 0; w < workers; ++w) pool.emplace_back(work);
+  for (auto& t : pool) t.join();
+  int failed = 0;
+  for (const auto& it : items) {
+    std::cout << std::left << std::setw(18) << it.config.name << std::setw(10) << to_string(it.backend)
+              << (it.failed ? "FAILED: " : "") << it.result << '\n';
+    failed += it.failed ? 1 : 0;
+  }
+  return failed == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+void register_cosim(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<CosimOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "cosim",
+      "Co-simulate one unit configuration: the Verilated RTL against the bit-accurate model (every\n"
+      "pixel) and the cycle model (every scanline's cycle). The RTL is Verilated on demand into the\n"
+      "build cache the first time a configuration is needed, and reused after that. Options not\n"
+      "listed here go to the co-simulation itself: --scenario mixed|long|short|slow|maxbp|switch|\n"
+      "tiny|all, --seed, --runs, --gap-pct, --max-gap, --stall-pct, --expect-mismatch KIND:Y,\n"
+      "--save-dir, --json FILE, --min-spec-pct, --rows (run with any unit and --help to see them).");
+  sub->add_option("--backend", o->backend, "cpp (Verilator C++) or systemc (Verilator in SystemC)")
+      ->capture_default_str();
+  sub->add_option("--config", o->config, "a named build (see --list) or a UnitConfig FILE.json");
+  sub->add_option("--stream", o->stream, "replay a saved command stream (text form; its header names the unit)");
+  sub->add_option("--waves", o->waves, "on a mismatch, write an FST of the cycles around it (cpp backend)");
+  sub->add_option("--cache", o->cache, "build cache folder (default: <build>/rtl-cache)");
+  sub->add_flag("--list", o->list, "list the named builds (sim/harness/builds.json)");
+  sub->add_flag("--list-json", o->list_json, "with --list: as JSON");
+  sub->allow_extras();
+  sub->callback([o, sub, &exit_code]() {
+    const std::vector<std::string> rest = sub->remaining();
+    try {
+      exit_code = run_cosim(*o, rest);
+    } catch (const std::exception& e) {
+      // Failed before the co-simulation started: its --json file still says why.
+      for (size_t i = 0; i + 1 < rest.size(); ++i) {
+        if (rest[i] == "--json") {
+          std::ofstream os(rest[i + 1]);
+          if (os) os << nlohmann::json{{"passed", false}, {"error", e.what()}}.dump(2) << '\n';
+        }
+      }
+      throw;
+    }
+  });
+
+  auto b = std::make_shared<RtlBuildCliOptions>();
+  CLI::App* build = app.add_subcommand(
+      "rtl-build",
+      "Verilate and compile co-simulation executables into the build cache ahead of time (the\n"
+      "commands that need one build it on demand anyway). Prints each executable's path.");
+  build->add_option("--config", b->configs, "named builds or UnitConfig FILE.json files")->delimiter(',');
+  build->add_flag("--all", b->all, "every named build in sim/harness/builds.json, on its own backends");
+  build->add_option("--backends", b->backends, "cpp, systemc, cpp_trace (default: each build's own)")->delimiter(',');
+  build->add_option("--cache", b->cache, "build cache folder (default: <build>/rtl-cache)");
+  build->add_option("-j,--jobs", b->jobs, "builds at once (default: hardware threads)")->check(CLI::NonNegativeNumber);
+  build->add_flag("--print-key", b->print_key, "print each build's cache key and build nothing");
+  build->add_flag("--print-source-dir", b->print_source_dir, "print the checkout the builds read");
+  build->add_flag("--print-rtl-sources", b->print_rtl_sources, "print shade_unit's sources, leaves first");
+  build->callback([b, &exit_code]() { exit_code = run_rtl_build(*b); });
+
+  auto p = std::make_shared<std::pair<std::string, std::string>>("", "verilator");
+  CLI::App* params = app.add_subcommand(
+      "rtl-params",
+      "Print shade_unit's Verilog parameters for a configuration (model/rtl_parameters.h, the one\n"
+      "mapping), one argument per line: verilator (-GNAME=V), iverilog (-Ptb_shade_unit.NAME=V)\n"
+      "or yosys (chparam's -set NAME V list).");
+  params->add_option("--config", p->first, "a named build or a UnitConfig FILE.json")->required();
+  params->add_option("--tool", p->second, "verilator, iverilog or yosys")->capture_default_str();
+  params->callback([p, &exit_code]() {
+    const RtlConfig c = resolve_rtl_config(p->first, "--config");
+    const auto list = shade_unit_parameters(c.unit, c.faults);
+    if (p->second == "verilator") {
+      for (const auto& a : verilator_parameter_args(list)) std::cout << a << '\n';
+    } else if (p->second == "iverilog") {
+      for (const auto& a : iverilog_parameter_args(list, "tb_shade_unit")) std::cout << a << '\n';
+    } else if (p->second == "yosys") {
+      std::cout << yosys_chparam_args(list) << '\n';
+    } else {
+      throw std::invalid_argument("--tool '" + p->second + "': expected verilator, iverilog or yosys");
+    }
+    exit_code = 0;
+  });
+}
+
+}  // namespace shadesim

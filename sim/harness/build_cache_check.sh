@@ -1,0 +1,56 @@
+#!/bin/sh
+# The on-demand RTL build cache (sim/rtl_build.h), on a small private cache:
+#   1. two concurrent builds of one key both succeed and name the same executable;
+#   2. the next run reuses it (cached, no Verilator);
+#   3. a changed parameter is a new key (a build);
+#   4. a changed RTL source is a new key: a copy of rtl/ (SHADESIM_RTL_DIR) gives the same key
+#      as the checkout, and the copy with one line added gives another (the checkout is never
+#      edited).
+# usage: build_cache_check.sh SHADESIM WORKDIR
+set -eu
+shadesim="$1"; work="$2"
+rm -rf "$work"; mkdir -p "$work"
+cache="$work/cache"
+cat >"$work/small.json" <<'JSON'
+{"channels": 1, "lights": 1, "xy_bits": 8, "coef": "s3.20:rnd", "series": "s3.16:wrap",
+ "spec_colour": "u1.8:rnd", "out_bits": 8, "specular": {"kind": "ideal", "out": "u1.10"}}
+JSON
+sed 's/"xy_bits": 8/"xy_bits": 9/' "$work/small.json" >"$work/small9.json"
+
+# 1. Two processes, one key, at once.
+"$shadesim" rtl-build --config "$work/small.json" --cache "$cache" >"$work/a.out" 2>"$work/a.err" &
+a=$!
+"$shadesim" rtl-build --config "$work/small.json" --cache "$cache" >"$work/b.out" 2>"$work/b.err" &
+b=$!
+wait $a || { echo "first concurrent build failed:"; cat "$work/a.err"; exit 1; }
+wait $b || { echo "second concurrent build failed:"; cat "$work/b.err"; exit 1; }
+exe_a=$(awk '{print $3}' "$work/a.out"); exe_b=$(awk '{print $3}' "$work/b.out")
+[ "$exe_a" = "$exe_b" ] || { echo "concurrent builds name different executables: $exe_a vs $exe_b"; exit 1; }
+[ -x "$exe_a" ] || { echo "no executable at $exe_a"; exit 1; }
+builds=$(cat "$work/a.err" "$work/b.err" | grep -c 'built in' || true)
+[ "$builds" -eq 1 ] || { echo "expected exactly one of the two to build, got $builds"; cat "$work"/*.err; exit 1; }
+[ "$(ls -d "$cache"/cpp-* | grep -vc '\.lock$')" -eq 1 ] || { echo "cache holds more than one build"; ls "$cache"; exit 1; }
+ls "$cache" | grep -q '\.tmp\.' && { echo "a temporary build folder was left behind"; ls "$cache"; exit 1; }
+"$exe_a" --unit "$work/small.json" --scenario short --seed 1 | grep -q PASS ||
+  { echo "the built executable does not pass"; exit 1; }
+
+# 2. Reuse.
+"$shadesim" rtl-build --config "$work/small.json" --cache "$cache" >"$work/c.out" 2>"$work/c.err"
+grep -q '(cached)' "$work/c.out" || { echo "second run did not reuse the build:"; cat "$work/c.out" "$work/c.err"; exit 1; }
+grep -q 'Verilating' "$work/c.err" && { echo "second run Verilated again"; exit 1; }
+
+# 3. A changed parameter.
+"$shadesim" rtl-build --config "$work/small9.json" --cache "$cache" >"$work/d.out" 2>"$work/d.err"
+grep -q '(cached)' "$work/d.out" && { echo "a changed parameter reused the old build"; exit 1; }
+[ "$(awk '{print $3}' "$work/d.out")" != "$exe_a" ] || { echo "a changed parameter gave the same executable"; exit 1; }
+
+# 4. A changed RTL source: a copy of the checkout with one comment added to an RTL file.
+src=$("$shadesim" rtl-build --print-source-dir)
+cp -r "$src/rtl" "$work/rtl-copy"
+key1=$(SHADESIM_RTL_DIR="$work/rtl-copy" "$shadesim" rtl-build --config "$work/small.json" --cache "$cache" --print-key)
+echo "// changed" >>"$work/rtl-copy/series_engine.sv"
+key2=$(SHADESIM_RTL_DIR="$work/rtl-copy" "$shadesim" rtl-build --config "$work/small.json" --cache "$cache" --print-key)
+key0=$("$shadesim" rtl-build --config "$work/small.json" --cache "$cache" --print-key)
+[ "$key1" = "$key0" ] || { echo "an identical copy of the RTL gave another key"; exit 1; }
+[ "$key1" != "$key2" ] || { echo "a changed RTL source kept the key"; exit 1; }
+echo "build cache: concurrent builds agree, reuse, parameter and source changes rebuild"
