@@ -90,6 +90,9 @@ class ProgressBar {
       phase_ = phase;
       phase_start_ = now;
     }
+    // Redraw at most ten times a second: a point can take a millisecond.
+    if (done != total && now - last_draw_ < std::chrono::milliseconds(100)) return;
+    last_draw_ = now;
     const double elapsed = std::chrono::duration<double>(now - phase_start_).count();
     const double eta = done ? elapsed / static_cast<double>(done) * static_cast<double>(total - done) : 0.0;
     constexpr int kWidth = 30;
@@ -103,7 +106,7 @@ class ProgressBar {
  private:
   bool tty_;
   std::string phase_;
-  std::chrono::steady_clock::time_point phase_start_;
+  std::chrono::steady_clock::time_point phase_start_, last_draw_;
 };
 
 // ---------------------------------------------------------------- output
