@@ -69,12 +69,14 @@ struct PointToVerify {
 // Where `--verify` plugs in: co-simulate each point on every scene through the on-demand
 // Verilated builds (issue 7 section 2) and mark it verified (0 pixel and 0 cycle mismatches) or
 // not. Not wired in yet; fails loudly rather than pretending.
-void verify_in_rtl(const std::vector<PointToVerify>& points, const std::vector<std::string>& scenes) {
+void verify_in_rtl(const std::vector<PointToVerify>& points, const std::vector<std::string>& scenes,
+                   const std::string& out_dir) {
   (void)points;
-  (void)scenes;
+  std::string scene_list;
+  for (const auto& s : scenes) scene_list += s + " ";
   throw std::runtime_error(
-      "--verify: RTL co-simulation of explore's points needs the on-demand Verilated builds, which this "
-      "build does not have yet; the points' config files are in the --out folder");
+      "--verify is not wired into explore yet; run explore without it, then co-simulate the chosen point "
+      "with: shadesim regress " + scene_list + "--config " + out_dir + "/chosen.json");
 }
 
 // ---------------------------------------------------------------- progress
@@ -252,9 +254,12 @@ void print_budget(std::ostream& os, const ErrorBudget& b, const std::string& wha
 }
 
 int run_explore(const ExploreCliOptions& o) {
+  const std::filesystem::path out_dir =
+      o.out_dir.empty() ? std::filesystem::path("out") / "explore" / std::filesystem::path(o.scenes.front()).stem()
+                        : std::filesystem::path(o.out_dir);
   if (o.verify) {
     // Fail before the sweep, not after a minute of it.
-    verify_in_rtl({}, o.scenes);
+    verify_in_rtl({}, o.scenes, out_dir.string());
   }
   const auto t0 = std::chrono::steady_clock::now();
   // The start: a given config file, else the scenes' own smallest configuration.
@@ -297,9 +302,6 @@ int run_explore(const ExploreCliOptions& o) {
   }
 
   // Config files of the points to verify, into --out.
-  const std::filesystem::path out_dir =
-      o.out_dir.empty() ? std::filesystem::path("out") / "explore" / std::filesystem::path(o.scenes.front()).stem()
-                        : std::filesystem::path(o.out_dir);
   std::filesystem::create_directories(out_dir);
   std::vector<PointToVerify> to_verify;
   auto write_config = [&](const std::string& name, const UnitConfig& c) {
