@@ -173,6 +173,7 @@ Knob choice(std::string stage, std::string name, std::vector<std::string> labels
   k.labels = std::move(labels);
   k.apply = std::move(apply);
   k.read = std::move(read);
+  k.choice = true;
   return k;
 }
 
@@ -433,8 +434,7 @@ ExploreResult explore(ExploreScenes& scenes, const UnitConfig& start, const Area
       const int v = k.read(cur);
       const auto it = std::find(k.values.begin(), k.values.end(), v);
       std::optional<int> wider;
-      const bool is_choice = k.labels.size() == 2 && (k.labels[0] == "trn" || k.labels[0] == "wrap");
-      if (is_choice) {
+      if (k.choice) {
         if (v != k.read(start)) wider = k.read(start);
       } else if (it != k.values.end() && it + 1 != k.values.end()) {
         wider = *(it + 1);

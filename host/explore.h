@@ -23,7 +23,8 @@
 
 namespace shadesim {
 
-// Area of one configuration, as the area model (sim/area.h) reports it.
+// Area of one configuration, as the area model (sim/area.h) reports it. An AreaFunction is
+// called from the worker threads at once: it must be safe to call concurrently.
 struct AreaFigure {
   double cells = 0;    // the figure the search minimises
   std::string metric;  // what `cells` counts, e.g. "generic cells (Yosys)"
@@ -81,6 +82,7 @@ struct Knob {
   std::function<void(UnitConfig&, int)> apply;
   std::function<int(const UnitConfig&)> read;
   bool searched = true;  // false: swept for the table only (output bits are what was asked for)
+  bool choice = false;   // a choice (trn/rnd, wrap/sat), not a width: "wider" means the start's
 };
 
 // The knobs for `start`: coefficient integer and fraction bits; series fraction and integer
