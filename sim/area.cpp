@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,7 @@
 #include <regex>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include "sim/process.h"
 
@@ -485,36 +487,61 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   struct rusage before {};
   ::getrusage(RUSAGE_CHILDREN, &before);
-  // The syntheses are independent: run them side by side; the progress line follows the flat one.
+  // The syntheses are independent: run them side by side.
   auto run_yosys = [&](const std::string& name, const char* flow, const std::string& label, std::ostream* progress) {
     const fs::path script = work / (name + ".ys");
     write_atomically(script, yosys_script(files, chparam, flow, work));
     run_tool({yosys, "-q", "-l", (work / (name + ".log")).string(), script.string()}, work / (name + ".out"),
              label, progress);
   };
-  std::vector<std::future<void>> side;
-  side.push_back(std::async(std::launch::async, [&] { run_yosys("ice40", kIce40Script, "synth_ice40", nullptr); }));
+  // One progress line for all of them: which are still running and for how long.
+  struct Job {
+    std::string label;
+    std::future<void> done;
+    bool finished = false;
+  };
+  std::vector<Job> jobs;
+  jobs.push_back({"flat synthesis", std::async(std::launch::async, [&] {
+                    run_yosys("flat", kFlatScript, "yosys flat synthesis", nullptr);
+                  })});
+  jobs.push_back({"synth_ice40", std::async(std::launch::async, [&] {
+                    run_yosys("ice40", kIce40Script, "yosys synth_ice40", nullptr);
+                  })});
   if (o.breakdown) {
-    side.push_back(std::async(std::launch::async,
-                              [&] { run_yosys("breakdown", kBreakdownScript, "per-module synthesis", nullptr); }));
+    jobs.push_back({"per-module synthesis", std::async(std::launch::async, [&] {
+                      run_yosys("breakdown", kBreakdownScript, "yosys per-module synthesis", nullptr);
+                    })});
+  }
+  const bool terminal = o.progress == &std::cerr && ::isatty(STDERR_FILENO);
+  for (int ticks = 0;; ++ticks) {
+    std::string running;
+    for (auto& j : jobs) {
+      if (!j.finished && j.done.wait_for(std::chrono::seconds(0)) == std::future_status::ready) j.finished = true;
+      if (!j.finished) running += (running.empty() ? "" : ", ") + j.label;
+    }
+    if (running.empty()) break;
+    if (o.progress && ticks > 0 && (terminal || ticks % 30 == 0)) {
+      const auto el = std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now() - t0);
+      *o.progress << (terminal ? "\r" : "") << "[area] yosys: " << running << " ... " << el.count() << " s"
+                  << (terminal ? "   " : "\n") << std::flush;
+    }
+    std::this_thread::sleep_for(std::chrono::seconds(1));
   }
   std::exception_ptr error;
-  try {
-    run_yosys("flat", kFlatScript,
-              std::string("yosys: flat synthesis, synth_ice40") + (o.breakdown ? ", per-module synthesis" : ""),
-              o.progress);
-  } catch (...) {
-    error = std::current_exception();
-  }
-  for (auto& f : side) {
+  for (auto& j : jobs) {
     try {
-      f.get();
+      j.done.get();
     } catch (...) {
       if (!error) error = std::current_exception();
     }
   }
+  if (o.progress) {
+    const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    *o.progress << (terminal ? "\r" : "") << "[area] yosys: " << (error ? "failed" : "done") << " after " << std::fixed
+                << std::setprecision(1) << el << " s" << (terminal ? "                                        " : "")
+                << "\n";
+  }
   if (error) std::rethrow_exception(error);
-  if (o.progress && !side.empty()) *o.progress << "[area] all syntheses done\n";
 
   {
     const fs::path p = work / "flat_stat.txt";
@@ -571,6 +598,145 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
     fs::remove_all(work, ec);
   }
   return r;
+}
+
+}  // namespace shadesim
+
+// ---- estimate ------------------------------------------------------------------------------
+
+namespace shadesim {
+namespace {
+
+using ParamMap = std::map<std::string, int64_t>;
+
+ParamMap param_map(const std::vector<VerilogParameter>& ps) {
+  ParamMap m;
+  for (const auto& p : ps) m[p.name] = p.value;
+  return m;
+}
+
+int64_t get(const ParamMap& p, const char* name) {
+  const auto it = p.find(name);
+  if (it == p.end()) throw std::runtime_error(std::string("area estimate: parameter ") + name + " missing");
+  return it->second;
+}
+
+int64_t ceil_log2(int64_t v) {
+  int64_t k = 0;
+  while ((int64_t{1} << k) < v) ++k;
+  return k;
+}
+
+// Instances of each module (shade_unit.sv: NSer series, one slot per light, one combine).
+int64_t instances_of(const std::string& module, const ParamMap& p) {
+  const int64_t ch = get(p, "CHANNELS"), l = get(p, "LIGHTS");
+  const int64_t per_light = get(p, "SPECULAR_KIND") == 2 ? 2 : 1;
+  if (module == "span_setup" || module == "series_engine") return ch * l + l * per_light;
+  if (module == "specular_slot") return l;
+  return 1;  // pixel_combine, shade_unit glue
+}
+
+// Structural size of one instance: what its cells grow with (the RTL's widths, see area.h).
+double size_of(const std::string& module, const ParamMap& p) {
+  const double c = static_cast<double>(get(p, "COEF_WL")), ci = static_cast<double>(get(p, "COEF_IWL"));
+  const double s = static_cast<double>(get(p, "SERIES_WL")), si = static_cast<double>(get(p, "SERIES_IWL"));
+  const double ch = static_cast<double>(get(p, "CHANNELS")), l = static_cast<double>(get(p, "LIGHTS"));
+  const double so = static_cast<double>(get(p, "SPECULAR_OUT_WL")), sc = static_cast<double>(get(p, "SPEC_COLOUR_WL"));
+  if (module == "span_setup") {
+    // Seven coefficient x offset products and three offset squares, each exact at its full
+    // width with sign-extended operands; with a wrapping series only the low w bits (up to the
+    // series' top) reach the output, and a product truncated to w bits of w-bit operands has
+    // w(w+1)/2 partial-product bits. Plus the three register stages.
+    const double sum_w = c + 37;
+    const double drop = (c - ci) - (s - si);
+    const double w = get(p, "SERIES_OVERFLOW") == 1 ? std::min(sum_w, drop + s + 1) : sum_w;
+    const double w2 = std::min(w, 34.0);
+    return 7 * w * (w + 1) / 2 + 3 * w2 * (w2 + 1) / 2 + 13 * w;
+  }
+  if (module == "series_engine") return s;
+  if (module == "pixel_combine") return ch * (l * so * sc + (l + 1) * (s + 4));
+  if (module == "specular_slot") {
+    switch (get(p, "SPECULAR_KIND")) {
+      case 1:
+        return std::ldexp(static_cast<double>(get(p, "LUT_ENTRY_BITS")), static_cast<int>(get(p, "LUT_ADDR_BITS"))) +
+               static_cast<double>(get(p, "LUT_ENTRY_BITS") * (get(p, "LUT_INTERP_BITS") + 1)) * s;
+      case 2:
+        return static_cast<double>(get(p, "SCHLICK_QUOTIENT_BITS") * get(p, "SCHLICK_OPERAND_BITS")) *
+               (get(p, "SCHLICK_TIMING") == 1 ? 1.0 : static_cast<double>(get(p, "SCHLICK_QUOTIENT_BITS")));
+      case 3: {
+        const double b = static_cast<double>(get(p, "WPOW_BASE_BITS"));
+        const double k = static_cast<double>(ceil_log2(get(p, "WPOW_MAX_M")));
+        return b * b * (get(p, "WPOW_TIMING") == 1 ? 1.0 : k) + b * s;
+      }
+      default:
+        return 0;  // ideal: no hardware
+    }
+  }
+  // shade_unit glue: coefficient, ambient and specular-colour registers, the metadata line,
+  // decoder and span pipeline (a fixed part).
+  const double nser = static_cast<double>(instances_of("span_setup", p));
+  const double xy = static_cast<double>(get(p, "XY_BITS"));
+  return 6 * nser * c + ch * s + ch * l * sc + 2 * (2 * xy + ch * l * s) + 400;
+}
+
+}  // namespace
+
+std::string AreaEstimate::label() const {
+  return "estimate (scaled from Yosys run " + anchor_key + ", " + std::to_string(differing_parameters) +
+         " parameter(s) differ)";
+}
+
+AreaEstimate estimate_area(const UnitConfig& unit, const std::vector<AreaReport>& anchors) {
+  const ParamMap target = param_map(shade_unit_parameters(unit));
+  const AreaReport* best = nullptr;
+  int best_diff = 0;
+  for (const auto& a : anchors) {
+    if (a.modules.empty() || a.cells == 0 || a.breakdown_cells == 0) continue;
+    const ParamMap ap = param_map(a.parameters);
+    if (get(ap, "SPECULAR_KIND") != get(target, "SPECULAR_KIND")) continue;
+    int diff = 0;
+    for (const auto& [name, value] : target) {
+      const auto it = ap.find(name);
+      if (it == ap.end() || it->second != value) ++diff;
+    }
+    if (!best || diff < best_diff) {
+      best = &a;
+      best_diff = diff;
+    }
+  }
+  if (!best) {
+    throw std::runtime_error("area estimate: no measured anchor with this specular unit (" +
+                             std::string(to_string(unit.specular.kind)) +
+                             ") and a per-module breakdown; run `shadesim area --config` on one first");
+  }
+  const ParamMap ap = param_map(best->parameters);
+  double kept = 0;
+  for (const auto& m : best->modules) {
+    const double anchor_size = size_of(m.module, ap);
+    const double ratio = anchor_size > 0 ? size_of(m.module, target) / anchor_size : 0.0;
+    kept += static_cast<double>(m.cells_each) * ratio * static_cast<double>(instances_of(m.module, target));
+  }
+  const double flat = kept * static_cast<double>(best->cells) / static_cast<double>(best->breakdown_cells);
+  AreaEstimate e;
+  e.cells = static_cast<int64_t>(std::llround(flat));
+  e.lut4 = static_cast<int64_t>(std::llround(flat * static_cast<double>(best->ice40.lut4) / static_cast<double>(best->cells)));
+  e.anchor_key = best->key;
+  e.differing_parameters = best_diff;
+  return e;
+}
+
+std::vector<AreaReport> load_area_reports(const std::string& cache_dir) {
+  std::vector<AreaReport> out;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(cache_dir, ec)) {
+    if (!e.is_regular_file() || e.path().extension() != ".json") continue;
+    try {
+      out.push_back(area_report_from_json(read_text(e.path()), e.path().string()));
+    } catch (const std::exception&) {
+      // not an area report (or an older format): not an anchor
+    }
+  }
+  return out;
 }
 
 }  // namespace shadesim

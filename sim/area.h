@@ -3,7 +3,8 @@
 //
 // The parameters come only from shade_unit_parameters() (model/rtl_parameters.h), passed to
 // Yosys with yosys_chparam_args(). Three flows run on the same parameters:
-//   flat      read all rtl/*.sv; chparam; synth -flatten; abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX;
+//   flat      read all rtl/*.sv (sorted by name: ABC's result depends on the netlist's order, by
+//             about 0.5 % in cells, so the order is fixed); chparam; synth -flatten; abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX;
 //             stat -tech cmos: the unit's generic cells, transistor estimate, flip-flops.
 //   breakdown the same with the datapath modules kept (keep_hierarchy): per-module cells.
 //   ice40     synth_ice40 (flattened): SB_LUT4, SB_DFF*, SB_CARRY, SB_RAM40_4K counts.
@@ -15,10 +16,13 @@
 // and the script text, so any of them changing gives a fresh run. Entries are written to a
 // temporary file and renamed into place: a concurrent run sees a whole entry or none.
 //
-// Cost (measured on the 2-core development machine, see the report's `seconds`): a cold
-// generic + ice40 synthesis of the default grey one-light unit takes minutes, far too slow for
-// one run per point of a width sweep. `shadesim explore` therefore uses estimate_area() (below),
-// labelled as an estimate wherever it is shown; unit_area() is the measurement.
+// Cost: a cold run takes minutes (the report's `seconds` and `cpu_seconds`; README figures), far
+// too slow for one run per point of a width sweep. So a sweep measures ONE configuration with
+// unit_area() (its anchor: cached after the first run) and gets every other point from
+// estimate_area() below, which scales the anchor's measured per-module cells by each module's
+// size from its parameters. It is an estimate and must be labelled so wherever it is shown;
+// `shadesim area` prints the estimate of each measured unit from the other cached anchors beside
+// the measurement, i.e. the estimate's error against held-out Yosys runs.
 #pragma once
 
 #include <cstdint>
@@ -94,6 +98,27 @@ struct AreaReport {
 // Synthesises `unit` (throws std::invalid_argument for an invalid config, MissingToolError,
 // std::runtime_error naming the log when a tool fails).
 AreaReport unit_area(const UnitConfig& unit, const AreaOptions& options);
+
+// A fast area figure for a unit that has not been synthesised: an anchor (a measured report with
+// the per-module breakdown and the same specular unit kind) scaled module by module:
+//   cells(m) = anchor cells_each(m) * size_m(unit) / size_m(anchor) * instances_m(unit)
+// with size_m a structural count from the parameters (span_setup: product bits that reach the
+// series register; series_engine: series width; pixel_combine: multiplier and adder bits;
+// specular_slot: table bits / divider or squarer array; glue: register bits), summed and scaled
+// by the anchor's flat/kept-hierarchy ratio. The anchor is the one with the fewest parameters
+// that differ. LUT4s scale with the cells. Throws std::runtime_error when no anchor has the
+// unit's specular kind (run unit_area on one such configuration first).
+struct AreaEstimate {
+  int64_t cells = 0;         // estimated flat generic cells
+  int64_t lut4 = 0;          // estimated iCE40 LUT4s
+  std::string anchor_key;    // the measured report it was scaled from
+  int differing_parameters = 0;
+  std::string label() const;  // "estimate (scaled from Yosys run KEY, N parameters differ)"
+};
+AreaEstimate estimate_area(const UnitConfig& unit, const std::vector<AreaReport>& anchors);
+
+// Every report in a cache folder (unreadable entries are skipped).
+std::vector<AreaReport> load_area_reports(const std::string& cache_dir);
 
 // The report as JSON (the `shadesim area --json` format and the cache entry).
 std::string area_report_to_json(const AreaReport& report);

@@ -7,6 +7,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
 
 #include "host/frame.h"
 #include "model/command_stream.h"
@@ -34,7 +35,7 @@ UnitConfig unit_to_measure(const AreaCliOptions& o, std::string* source) {
     std::stringstream ss;
     ss << is.rdbuf();
     *source = o.config_path;
-    return config_from_json(ss.str(), o.config_path);
+    return config_from_json(ss.str(), o.config_path + ": ");
   }
   *source = o.scene;
   return prepare_frame(o.scene, FrameOptions{}).config;
@@ -50,16 +51,23 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
   os << "unit         " << unit.to_string() << "  (from " << source << ")\n"
      << "yosys        " << r.yosys_version << (r.from_cache ? "  [cached " + r.key + "]" : "  [key " + r.key + "]")
      << "\n\n"
-     << "generic synthesis (synth; abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX; stat -tech cmos)\n"
+     << "generic synthesis (synth -flatten; abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX; stat -tech cmos)\n"
      << "  cells        " << std::setw(10) << grouped(r.cells) << "   2-input gates, MUXes and flip-flops\n"
-     << "  transistors  " << std::setw(10) << grouped(r.transistors) << "   CMOS estimate (stat -tech cmos)\n"
-     << "  flip-flops   " << std::setw(10) << grouped(r.flip_flops) << "\n\n"
-     << "where the area goes (hierarchical; each row includes its submodules)\n"
-     << "  " << std::left << std::setw(16) << "module" << std::right << std::setw(5) << "inst" << std::setw(11)
-     << "cells each" << std::setw(11) << "cells" << std::setw(8) << "%" << std::setw(13) << "transistors"
-     << std::setw(8) << "FFs" << '\n';
+     << "  transistors  " << std::setw(10) << grouped(r.transistors) << "   CMOS estimate (stat -tech cmos)"
+     << (r.transistors_partial ? "; flip-flops not included (Yosys has no CMOS cost for them)" : "") << "\n"
+     << "  flip-flops   " << std::setw(10) << grouped(r.flip_flops) << "\n\n";
+  if (!r.modules.empty()) {
+    os << "where the area goes (same flow, datapath modules kept: " << grouped(r.breakdown_cells)
+       << " cells; more than flat, as\n"
+       << "Yosys cannot drop logic across a kept boundary; each row includes its submodules)\n"
+       << "  " << std::left << std::setw(16) << "module" << std::right << std::setw(5) << "inst" << std::setw(11)
+       << "cells each" << std::setw(11) << "cells" << std::setw(8) << "share" << std::setw(13) << "transistors"
+       << std::setw(8) << "FFs" << '\n';
+  }
   for (const auto& m : r.modules) {
-    const double pct = r.cells ? 100.0 * static_cast<double>(m.cells()) / static_cast<double>(r.cells) : 0.0;
+    const double pct = r.breakdown_cells
+                           ? 100.0 * static_cast<double>(m.cells()) / static_cast<double>(r.breakdown_cells)
+                           : 0.0;
     const std::string name = m.module == "shade_unit" ? "shade_unit glue" : m.module;
     os << "  " << std::left << std::setw(16) << name << std::right << std::setw(5) << m.instances << std::setw(11)
        << grouped(m.cells_each) << std::setw(11) << grouped(m.cells()) << std::setw(7) << std::fixed
@@ -78,8 +86,33 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
   } else {
     os << "- (" << r.ice40.pnr_note << ")\n";
   }
-  os << "\ntime         " << std::setprecision(1) << r.seconds << " s of tool time"
-     << (r.from_cache ? " when measured (this run: cache hit)" : "") << '\n';
+  os << "\ntime         " << std::setprecision(1) << r.seconds << " s wall, " << r.cpu_seconds
+     << " s CPU of Yosys and nextpnr" << (r.from_cache ? " when measured (this run: a cache hit)" : "") << '\n';
+}
+
+// The fast estimate (sim/area.h) of this unit from the OTHER measured units in the cache,
+// beside the measurement: its error against a held-out Yosys run.
+void print_estimate_check(std::ostream& os, const UnitConfig& unit, const AreaReport& measured,
+                          const std::string& cache_dir) {
+  std::vector<AreaReport> others;
+  for (auto& a : load_area_reports(cache_dir)) {
+    bool same = a.parameters.size() == measured.parameters.size();
+    for (size_t i = 0; same && i < a.parameters.size(); ++i) {
+      same = a.parameters[i].name == measured.parameters[i].name && a.parameters[i].value == measured.parameters[i].value;
+    }
+    if (!same) others.push_back(std::move(a));
+  }
+  os << "estimate     ";
+  try {
+    const AreaEstimate e = estimate_area(unit, others);
+    const double err = measured.cells ? 100.0 * static_cast<double>(e.cells - measured.cells) /
+                                            static_cast<double>(measured.cells)
+                                      : 0.0;
+    os << grouped(e.cells) << " cells, " << grouped(e.lut4) << " LUT4: " << e.label() << "; "
+       << std::showpos << std::setprecision(1) << err << std::noshowpos << " % against this measurement\n";
+  } catch (const std::exception& ex) {
+    os << "- (" << ex.what() << ")\n";
+  }
 }
 
 int run_area(const AreaCliOptions& o) {
@@ -91,6 +124,7 @@ int run_area(const AreaCliOptions& o) {
   ao.progress = &std::cerr;
   const AreaReport r = unit_area(unit, ao);
   print_report(std::cout, source, unit, r);
+  print_estimate_check(std::cout, unit, r, o.cache_dir);
   if (!o.json_path.empty()) {
     nlohmann::json j = nlohmann::json::parse(area_report_to_json(r));
     j["source"] = source;
@@ -131,7 +165,7 @@ void register_area(CLI::App& app, int& exit_code) {
   sub->add_flag("--no-pnr", o->no_pnr, "skip nextpnr-ice40 place and route (no Fmax; much quicker)");
   sub->callback([o, &exit_code]() {
     if (o->config_path.empty() && o->scene.empty()) {
-      throw CLI::RequiredError("shadesim area: give --config FILE.json or a SCENE");
+      throw std::invalid_argument("area: give --config FILE.json or a SCENE (see shadesim area --help)");
     }
     exit_code = run_area(*o);
   });
