@@ -26,6 +26,7 @@ ErrorMap compare_to_reference(const std::vector<PixelOut>& pixels, const std::ve
   map.per_pixel_lsb.assign(n, std::numeric_limits<double>::quiet_NaN());
   std::vector<uint8_t> seen(n, 0);
   double sum_abs = 0, sum_sq = 0;
+  std::array<double, kMaxChannels> sum_abs_channel{};
   const double scale = std::ldexp(1.0, out_bits);
   for (const auto& p : pixels) {
     if (p.x >= width || p.y >= height) throw std::runtime_error("model emitted a pixel outside the image");
@@ -38,6 +39,9 @@ ErrorMap compare_to_reference(const std::vector<PixelOut>& pixels, const std::ve
       const double r = reference[idx * static_cast<size_t>(channels) + static_cast<size_t>(c)];
       const int diff = std::abs(static_cast<int>(p.colour[static_cast<size_t>(c)]) - static_cast<int>(code_of(r, out_bits)));
       worst_code = std::max(worst_code, diff);
+      map.stats.max_code_lsb_channel[static_cast<size_t>(c)] =
+          std::max(map.stats.max_code_lsb_channel[static_cast<size_t>(c)], diff);
+      sum_abs_channel[static_cast<size_t>(c)] += diff;
       worst_real = std::max(worst_real, std::fabs(p.colour[static_cast<size_t>(c)] - std::min(r * scale, scale - 1.0)));
       sum_abs += diff;
       sum_sq += static_cast<double>(diff) * diff;
@@ -57,6 +61,10 @@ ErrorMap compare_to_reference(const std::vector<PixelOut>& pixels, const std::ve
   const double samples = static_cast<double>(map.stats.pixels) * channels;
   if (samples > 0) {
     map.stats.mean_code_lsb = sum_abs / samples;
+    for (int c = 0; c < channels; ++c) {
+      map.stats.mean_code_lsb_channel[static_cast<size_t>(c)] =
+          sum_abs_channel[static_cast<size_t>(c)] / static_cast<double>(map.stats.pixels);
+    }
     const double mse = sum_sq / samples;
     const double peak = scale - 1.0;
     map.stats.psnr_db = mse > 0 ? 10.0 * std::log10(peak * peak / mse) : std::numeric_limits<double>::infinity();

@@ -1,6 +1,7 @@
 // Error of the model's output codes against the double-precision reference, in output LSBs.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -18,6 +19,9 @@ struct ErrorStats {
   // |model code - r * 2^bits| before rounding the reference: includes the output rounding.
   double max_real_lsb = 0;
   std::size_t pixels_over_1lsb = 0;  // pixels whose code differs by more than 1 in any channel
+  // The code figures per channel (entries past the unit's channels stay 0).
+  std::array<int, kMaxChannels> max_code_lsb_channel{};
+  std::array<double, kMaxChannels> mean_code_lsb_channel{};
 };
 
 struct ErrorMap {

@@ -28,9 +28,10 @@ std::array<double, 3> barycentric(const ScreenTriangle& t, double x, double y) {
 
 }  // namespace
 
-ReferenceImage render_reference(const std::vector<ScreenTriangle>& triangles,
-                                const std::vector<int32_t>& owner, int width, int height,
-                                const Scene& scene, int channels) {
+// One body for the reference and its variants, so they differ only in what the variant swaps.
+static ReferenceImage render_shading(const std::vector<ScreenTriangle>& triangles,
+                              const std::vector<int32_t>& owner, int width, int height,
+                              const Scene& scene, int channels, const ShadingVariant& variant) {
   if (channels != 1 && channels != 3) {
     throw std::invalid_argument("render_reference: channels " + std::to_string(channels) +
                                 ", expected 1 or 3");
@@ -48,6 +49,15 @@ ReferenceImage render_reference(const std::vector<ScreenTriangle>& triangles,
                                   " has material index " + std::to_string(m) + ", expected 0.." +
                                   std::to_string(scene.materials.size()) + " - 1");
     }
+  }
+  if (variant.quadratics && variant.quadratics->size() != triangles.size()) {
+    throw std::invalid_argument("render_variant: " + std::to_string(variant.quadratics->size()) +
+                                " quadratic sets for " + std::to_string(triangles.size()) + " triangles");
+  }
+  if (!variant.specular.empty() && variant.specular.size() != scene.materials.size()) {
+    throw std::invalid_argument("render_variant: " + std::to_string(variant.specular.size()) +
+                                " specular functions for " + std::to_string(scene.materials.size()) +
+                                " materials");
   }
   std::vector<Vec3> L, H_inf;
   const Vec3 V = normalize(scene.camera.position - scene.camera.target);
@@ -84,20 +94,29 @@ ReferenceImage render_reference(const std::vector<ScreenTriangle>& triangles,
       // Phong's V: unit toward the eye; the interpolated to-eye vector is not unit.
       const double e_len = length(e);
       const Vec3 V_phong = scene.eye_at_infinity ? V : (e_len > 0 ? e / e_len : Vec3{});
+      const TriangleSeries* q = variant.quadratics ? &(*variant.quadratics)[static_cast<std::size_t>(o)] : nullptr;
+      const double x = px + 0.5, y = py + 0.5;
       for (std::size_t l = 0; l < L.size(); ++l) {
-        const double t_d = n_len > 0 ? dot(n, L[l]) / n_len : 0.0;
-        double t_s = 0.0;
-        if (n_len > 0 && phong) {
-          // R = L reflected about the unit normal.
-          const Vec3 n_unit = n / n_len;
-          const Vec3 R = n_unit * (2.0 * dot(n_unit, L[l])) - L[l];
-          t_s = dot(R, V_phong);
+        double t_d = 0.0, t_s = 0.0;
+        if (q) {
+          t_d = q->degenerate ? 0.0 : q->diffuse[l].eval(x, y);
+          t_s = q->degenerate ? 0.0 : q->specular[l].eval(x, y);
         } else if (n_len > 0) {
-          const Vec3 H = scene.eye_at_infinity ? H_inf[l] : normalize(e + L[l]);
-          t_s = dot(n, H) / n_len;
+          t_d = dot(n, L[l]) / n_len;
+          if (phong) {
+            // R = L reflected about the unit normal.
+            const Vec3 n_unit = n / n_len;
+            const Vec3 R = n_unit * (2.0 * dot(n_unit, L[l])) - L[l];
+            t_s = dot(R, V_phong);
+          } else {
+            const Vec3 H = scene.eye_at_infinity ? H_inf[l] : normalize(e + L[l]);
+            t_s = dot(n, H) / n_len;
+          }
         }
         const double diffuse = std::max(0.0, t_d);
-        const double specular = std::pow(std::max(0.0, t_s), mat.exponent);
+        const double specular = variant.specular.empty()
+                                    ? std::pow(q ? clamp01(t_s) : std::max(0.0, t_s), mat.exponent)
+                                    : variant.specular[static_cast<std::size_t>(t.material)](t_s);
         const Vec3& lc = scene.lights[l].colour;
         colour.x += lc.x * (mat.diffuse.x * diffuse + mat.specular.x * specular);
         colour.y += lc.y * (mat.diffuse.y * diffuse + mat.specular.y * specular);
@@ -112,6 +131,17 @@ ReferenceImage render_reference(const std::vector<ScreenTriangle>& triangles,
     }
   }
   return img;
+}
+
+ReferenceImage render_reference(const std::vector<ScreenTriangle>& triangles,
+                                const std::vector<int32_t>& owner, int width, int height,
+                                const Scene& scene, int channels) {
+  return render_shading(triangles, owner, width, height, scene, channels, ShadingVariant{});
+}
+
+ReferenceImage render_variant(const std::vector<ScreenTriangle>& triangles, const Visibility& vis,
+                              const Scene& scene, int channels, const ShadingVariant& variant) {
+  return render_shading(triangles, vis.owner, vis.width, vis.height, scene, channels, variant);
 }
 
 }  // namespace shadesim

@@ -4,10 +4,12 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "host/scene.h"
 #include "host/screen.h"
+#include "host/triangle_setup.h"
 
 namespace shadesim {
 
@@ -40,5 +42,22 @@ inline ReferenceImage render_reference(const std::vector<ScreenTriangle>& triang
                                        const Visibility& vis, const Scene& scene, int channels) {
   return render_reference(triangles, vis.owner, vis.width, vis.height, scene, channels);
 }
+
+// The same double-precision shading with one or both of its ingredients swapped, so an error can
+// be split by source (explore's error budget): the cosines from the owner's Taylor quadratics
+// instead of the exact per-pixel ones, and the specular function of a hardware unit instead of pow.
+struct ShadingVariant {
+  // Parallel to the triangles: their quadratics (host/triangle_setup.h). nullptr: exact cosines.
+  // With quadratics, diffuse is max(0, q_d) per light and the specular argument is q_s, unclamped.
+  const std::vector<TriangleSeries>* quadratics = nullptr;
+  // Per material index, f(t) replacing max(0, t)^n (it must clamp t itself). Empty: pow.
+  std::vector<std::function<double(double)>> specular;
+};
+
+// render_reference with `variant`; the default variant gives render_reference's image exactly.
+// Throws std::invalid_argument as render_reference does, and when variant.quadratics or
+// variant.specular do not match the triangles or the materials in size.
+ReferenceImage render_variant(const std::vector<ScreenTriangle>& triangles, const Visibility& vis,
+                              const Scene& scene, int channels, const ShadingVariant& variant);
 
 }  // namespace shadesim

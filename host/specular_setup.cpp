@@ -215,6 +215,28 @@ SpecularSeriesPlan plan_specular(const UnitConfig& config, double n) {
   return p;
 }
 
+std::function<double(double)> unit_float_function(const UnitConfig& config, double n) {
+  const SpecularSeriesPlan plan = plan_specular(config, n);
+  const SpecularConfig& s = config.specular;
+  const double parameter = plan.parameter;
+  switch (s.kind) {
+    case SpecularUnitKind::kLut:
+      if (s.lut.addressing == LutAddressing::kShared) {
+        return [parameter](double t) { return exp_float(t, parameter); };
+      }
+      break;
+    case SpecularUnitKind::kSchlick:
+      return [parameter](double t) { return schlick_float(t, parameter); };
+    case SpecularUnitKind::kWpow: {
+      const int m = plan.effective_m;
+      return [parameter, m](double t) { return wpow_float(t, parameter, m); };
+    }
+    case SpecularUnitKind::kIdeal:
+      break;
+  }
+  return [n](double t) { return std::pow(std::clamp(t, 0.0, 1.0), n); };
+}
+
 std::vector<TableCmd> shared_lut_tables(const UnitConfig& config) {
   const SpecularConfig& s = config.specular;
   if (s.kind != SpecularUnitKind::kLut || s.lut.addressing != LutAddressing::kShared) return {};

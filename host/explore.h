@@ -1,0 +1,153 @@
+// Design-space exploration: width sweeps of the bit-accurate model against error, cycles per
+// pixel and area, the cheapest widths that meet an error budget, and the error split by source.
+//
+// Host setup (projection, Taylor setup, visibility, the double reference) depends only on the
+// scene and the output width, so it is done once per (scene, out_bits); a width point only
+// re-encodes the command stream (quantizes the coefficients) and re-runs the model and the
+// cycle model.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "host/frame.h"
+#include "host/metrics.h"
+#include "host/reference.h"
+#include "model/unit_config.h"
+
+namespace shadesim {
+
+// Area of one configuration, as the area model (sim/area.h) reports it. An AreaFunction is
+// called from the worker threads at once: it must be safe to call concurrently.
+struct AreaFigure {
+  double cells = 0;    // the figure the search minimises
+  std::string metric;  // what `cells` counts, e.g. "generic cells (Yosys)"
+};
+using AreaFunction = std::function<AreaFigure(const UnitConfig&)>;
+
+// One scene's host setup at one output width, shared read-only by every point using it.
+struct HostSetup {
+  PreparedFrame frame;
+  ReferenceImage reference;
+};
+
+// The scenes of an exploration and their host setups, keyed by output width.
+class ExploreScenes {
+ public:
+  // Prepares every scene on `start` (a unit that fits all of them: fixed structure). Throws
+  // SceneError / std::invalid_argument naming the scene for bad input.
+  ExploreScenes(std::vector<std::string> paths, const UnitConfig& start, std::optional<double> setup_budget_lsb,
+                int max_depth);
+
+  const std::vector<std::string>& paths() const { return paths_; }
+  // Sets up every scene for out_bits unless done already. Not thread-safe: call before a batch.
+  void prepare(int out_bits);
+  // Requires prepare(out_bits) first.
+  const HostSetup& setup(std::size_t scene, int out_bits) const;
+
+ private:
+  std::vector<std::string> paths_;
+  UnitConfig start_;
+  std::optional<double> setup_budget_lsb_;
+  int max_depth_;
+  std::map<int, std::vector<std::shared_ptr<const HostSetup>>> by_out_bits_;
+};
+
+// The figures of one configuration over all scenes.
+struct PointFigures {
+  // Over all scenes: max of the maxima, pixel-weighted means, PSNR of the pooled squared error.
+  ErrorStats error;
+  uint64_t pixels = 0, cycles = 0;
+  double cycles_per_pixel = 0;
+  AreaFigure area;
+  std::size_t coefficients_out_of_range = 0;
+};
+
+// Evaluates `config` on every scene (prepare(config.out_bits) first). Thread-safe.
+PointFigures evaluate_point(const ExploreScenes& scenes, const UnitConfig& config, const AreaFunction& area);
+
+// One width the sweep varies: its stage, its candidate values (narrowest / cheapest first) and
+// how a value is written into a configuration.
+struct Knob {
+  std::string stage;  // coefficients | series | specular | specular colour | output
+  std::string name;   // e.g. "series.frac"
+  std::vector<int> values;
+  std::vector<std::string> labels;  // parallel to values: how a value prints
+  std::function<void(UnitConfig&, int)> apply;
+  std::function<int(const UnitConfig&)> read;
+  bool searched = true;  // false: swept for the table only (output bits are what was asked for)
+  bool choice = false;   // a choice (trn/rnd, wrap/sat), not a width: "wider" means the start's
+};
+
+// The knobs for `start`: coefficient integer and fraction bits; series fraction and integer
+// bits, truncate/round, wrap/saturate; the selected specular unit's widths and its output
+// fraction bits; specular colour fraction bits; output bits (not searched).
+std::vector<Knob> knobs_for(const UnitConfig& start);
+
+struct ExplorePoint {
+  UnitConfig config;
+  std::string phase;    // start | stage | joint
+  std::string stage, knob, value;  // what this point changed from the start ("" for start/joint)
+  PointFigures figures;
+  bool valid = true;    // false: the configuration does not validate (figures empty)
+  std::string invalid_reason;
+  bool meets_budget = false;
+  bool pareto = false;  // on the front of (max LSB, mean LSB) against area and cycles per pixel
+};
+
+struct ExploreOptions {
+  double budget_lsb = 1.0;  // max |code - reference code| over all pixels and channels
+  int jobs = 2;             // worker threads for the points
+};
+
+// Called from worker threads (serialised) after each point: phase, points done, points in the
+// phase so far known.
+using ExploreProgress = std::function<void(const std::string& phase, std::size_t done, std::size_t total)>;
+
+struct ExploreResult {
+  UnitConfig start;
+  std::vector<ExplorePoint> points;  // every point evaluated, start first
+  std::size_t start_index = 0;
+  std::optional<std::size_t> chosen;  // the joint refinement's result, when it meets the budget
+  std::vector<std::string> log;       // the search's steps, one line each
+};
+
+// The search, as `explore --help` states it:
+//  1. every knob's values alone, the other knobs at the start configuration (per-stage sweep);
+//     each searched knob's minimum is its cheapest value meeting the budget (else its start);
+//  2. joint refinement: all per-stage minima combined; while that breaks the budget, try each
+//     knob one step wider (numeric knobs the next value, choices back to the start's) and keep
+//     the step that buys the most error reduction (max real LSB, then mean) per area added;
+//  3. the Pareto front over every evaluated point.
+ExploreResult explore(ExploreScenes& scenes, const UnitConfig& start, const AreaFunction& area,
+                      const ExploreOptions& options, const ExploreProgress& progress = {});
+
+// Marks `pareto` on the points not dominated in (max code LSB, mean code LSB, area, cycles per
+// pixel): a point is dominated when another is no worse in all four and better in one. Only
+// points with `out_bits` output bits take part: an LSB of another output width is another unit.
+void mark_pareto(std::vector<ExplorePoint>& points, int out_bits);
+
+// The error of one configuration on one scene split by source, in output LSBs before rounding:
+//   function     exact cosines through the unit's double function vs the reference (exact pow)
+//   taylor       the setup's quadratics through that function vs exact cosines through it
+//   quantization the bit-accurate model vs the quadratics through the function in double
+//                (includes the output rounding, up to 0.5 LSB)
+//   total        the model vs the reference; per pixel total <= function + taylor + quantization
+// Only `quantization` responds to the widths explore sweeps; `function` is the choice of unit
+// (and its fitted parameter), `taylor` the setup budget (subdivision).
+struct ErrorPart {
+  double max_lsb = 0, mean_lsb = 0;
+};
+struct ErrorBudget {
+  std::string scene;
+  ErrorPart function, taylor, quantization, total;
+};
+ErrorBudget error_budget(const ExploreScenes& scenes, std::size_t scene, const UnitConfig& config);
+
+}  // namespace shadesim

@@ -1,0 +1,742 @@
+#include "sim/area.h"
+
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <future>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include "sim/process.h"
+
+#ifndef SHADESIM_SOURCE_DIR
+#define SHADESIM_SOURCE_DIR "."
+#endif
+
+namespace shadesim {
+namespace fs = std::filesystem;
+namespace {
+
+using Json = nlohmann::json;
+
+// The Yosys scripts, minus the file list and the chparam arguments (both part of the key);
+// @WORK@ stands for the run's work folder.
+// Flat: the unit as it would be built; flattening lets Yosys drop what a module's neighbour
+// never reads (e.g. the product bits above a wrapping series), so this is the headline figure.
+constexpr const char* kFlatScript =
+    "synth -flatten -top shade_unit\n"
+    "abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX\n"
+    "opt_clean\n"
+    "tee -q -o @WORK@/flat_stat.txt stat -tech cmos\n";
+// Breakdown: the same flow with the datapath modules kept as modules (their fixed_round /
+// fixed_sat helpers are flattened into them), so stat says where the area goes. Across a kept
+// boundary Yosys cannot drop unread logic, so this total is at least the flat one.
+constexpr const char* kBreakdownScript =
+    "hierarchy -top shade_unit\n"
+    "setattr -mod -set keep_hierarchy 1 *span_setup *series_engine *specular_slot *pixel_combine\n"
+    "synth -flatten -top shade_unit\n"
+    "abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX\n"
+    "opt_clean\n"
+    "tee -q -o @WORK@/breakdown_stat.txt stat -tech cmos -top shade_unit\n";
+constexpr const char* kIce40Script =
+    "synth_ice40 -top shade_unit -json @WORK@/ice40.json\n"
+    "tee -q -o @WORK@/ice40_stat.txt stat\n";
+// HX8K in its largest package (206 I/O); 12 MHz is only the target the report compares with.
+constexpr const char* kPnrArgs = "--hx8k --package ct256 --freq 12 --timing-allow-fail";
+
+std::string read_text(const fs::path& p) {
+  std::ifstream is(p, std::ios::binary);
+  if (!is) throw std::runtime_error(p.string() + ": cannot read");
+  std::stringstream ss;
+  ss << is.rdbuf();
+  return ss.str();
+}
+
+void write_atomically(const fs::path& p, const std::string& text) {
+  // A unique temporary name in the same folder, then rename(2): readers see all or nothing.
+  const fs::path tmp = p.string() + ".tmp." + std::to_string(::getpid()) + "." +
+                       std::to_string(std::chrono::steady_clock::now().time_since_epoch().count());
+  {
+    std::ofstream os(tmp, std::ios::binary);
+    if (!os) throw std::runtime_error(tmp.string() + ": cannot open for writing");
+    os << text;
+    if (!os.flush()) throw std::runtime_error(tmp.string() + ": write failed");
+  }
+  std::error_code ec;
+  fs::rename(tmp, p, ec);
+  if (ec) {
+    fs::remove(tmp);
+    throw std::runtime_error(p.string() + ": cannot rename into place: " + ec.message());
+  }
+}
+
+// FNV-1a, 64 bit: a stable content hash for cache keys (not for security).
+struct Fnv1a {
+  uint64_t h = 1469598103934665603ULL;
+  void add(const std::string& s) {
+    for (const unsigned char c : s) {
+      h ^= c;
+      h *= 1099511628211ULL;
+    }
+    h ^= 0xff;  // field separator: ("ab","c") and ("a","bc") differ
+    h *= 1099511628211ULL;
+  }
+  std::string hex() const {
+    std::ostringstream os;
+    os << std::hex << std::setw(16) << std::setfill('0') << h;
+    return os.str();
+  }
+};
+
+std::string find_program(const std::string& name, const std::string& package) {
+  auto executable = [](const fs::path& p) { return ::access(p.c_str(), X_OK) == 0 && fs::is_regular_file(p); };
+  if (name.find('/') != std::string::npos) {
+    if (executable(name)) return name;
+  } else if (const char* path = std::getenv("PATH")) {
+    std::stringstream ss(path);
+    std::string dir;
+    while (std::getline(ss, dir, ':')) {
+      if (dir.empty()) continue;
+      const fs::path p = fs::path(dir) / name;
+      if (executable(p)) return p.string();
+    }
+  }
+  throw MissingToolError("'" + name + "' not found" +
+                         (name.find('/') != std::string::npos ? "" : " on PATH") +
+                         ": shadesim area needs it (Debian package " + package +
+                         "; scripts/setup installs it)");
+}
+
+std::string first_line(const std::string& s) {
+  const auto nl = s.find('\n');
+  return s.substr(0, nl);
+}
+
+std::vector<fs::path> rtl_sources(const std::string& dir) {
+  std::vector<fs::path> files;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    if (e.is_regular_file() && e.path().extension() == ".sv") files.push_back(e.path());
+  }
+  if (ec) throw std::runtime_error(dir + ": cannot list the RTL sources: " + ec.message());
+  if (files.empty()) throw std::runtime_error(dir + ": no *.sv RTL sources");
+  // Yosys resolves the hierarchy after reading every file, so the order only has to be fixed
+  // (for the cache key), not dependency order.
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// Runs a tool, updating one progress line once a second while it works.
+void run_tool(const std::vector<std::string>& argv, const fs::path& log, const std::string& label,
+              std::ostream* progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto job = std::async(std::launch::async, [&] { return run_process(argv, log.string()); });
+  // On a terminal one line updated in place every second; in a log a line every 30 s.
+  const bool terminal = progress == &std::cerr && ::isatty(STDERR_FILENO);
+  int ticks = 0;
+  while (job.wait_for(std::chrono::seconds(1)) != std::future_status::ready) {
+    ++ticks;
+    if (progress && (terminal || ticks % 30 == 0)) {
+      const auto s = std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now() - t0);
+      *progress << (terminal ? "\r" : "") << "[area] " << label << " ... " << s.count() << " s"
+                << (terminal ? " " : "\n") << std::flush;
+    }
+  }
+  const ProcessResult r = job.get();
+  if (progress) {
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    *progress << (terminal ? "\r" : "") << "[area] " << label << " done in " << std::fixed << std::setprecision(1) << s << " s\n"
+              << std::flush;
+  }
+  if (r.exit_code != 0) {
+    std::string tail;
+    try {
+      const std::string text = read_text(log);
+      const auto from = text.size() > 800 ? text.size() - 800 : 0;
+      tail = text.substr(from);
+    } catch (const std::exception&) {
+    }
+    throw std::runtime_error(label + " failed (exit " + std::to_string(r.exit_code) + "); log " + log.string() +
+                             (tail.empty() ? "" : ":\n..." + tail));
+  }
+}
+
+std::string yosys_script(const std::vector<fs::path>& files, const std::string& chparam, const char* flow,
+                         const fs::path& work) {
+  std::string body = flow;
+  for (size_t at; (at = body.find("@WORK@")) != std::string::npos;) body.replace(at, 6, work.string());
+  std::string s = "read_verilog -sv";
+  for (const auto& f : files) s += " " + f.string();
+  s += "\n";
+  if (!chparam.empty()) s += "chparam " + chparam + " shade_unit\n";
+  return s + body;
+}
+
+// "$paramod$0f50...\span_setup" -> "span_setup"; "\shade_unit" -> "shade_unit".
+std::string base_module_name(const std::string& yosys_name) {
+  const auto bs = yosys_name.rfind('\\');
+  return bs == std::string::npos ? yosys_name : yosys_name.substr(bs + 1);
+}
+
+bool is_flip_flop(const std::string& cell_type) {
+  return (cell_type.rfind("$_", 0) == 0 && cell_type.find("DFF") != std::string::npos) ||
+         cell_type.rfind("SB_DFF", 0) == 0;
+}
+
+// One "=== name ===" section of Yosys's text `stat` (the JSON form of Yosys 0.23 is not valid
+// JSON once a hierarchy is printed).
+struct StatSection {
+  int64_t cells = 0;
+  int64_t transistors = 0;
+  bool transistors_partial = false;  // "N+": some cells (flip-flops) have no CMOS cost
+  std::map<std::string, int64_t> by_type;
+};
+
+std::map<std::string, StatSection> read_stat_text(const fs::path& p) {
+  std::istringstream is(read_text(p));
+  std::map<std::string, StatSection> out;
+  StatSection* cur = nullptr;
+  bool in_types = false;
+  static const std::regex header(R"(^=== (.+) ===\s*$)");
+  static const std::regex cells(R"(^\s+Number of cells:\s+([0-9]+)\s*$)");
+  static const std::regex type_line(R"(^\s+(\S+)\s+([0-9]+)\s*$)");
+  static const std::regex transistors(R"(^\s+Estimated number of transistors:\s+([0-9]+)(\+?)\s*$)");
+  std::smatch m;
+  for (std::string line; std::getline(is, line);) {
+    if (std::regex_match(line, m, header)) {
+      cur = &out[m[1].str()];
+      in_types = false;
+    } else if (!cur) {
+      continue;
+    } else if (std::regex_match(line, m, cells)) {
+      cur->cells = std::stoll(m[1].str());
+      in_types = true;
+    } else if (std::regex_match(line, m, transistors)) {
+      cur->transistors = std::stoll(m[1].str());
+      cur->transistors_partial = m[2].length() > 0;
+      in_types = false;
+    } else if (in_types && std::regex_match(line, m, type_line)) {
+      cur->by_type[m[1].str()] += std::stoll(m[2].str());
+    } else {
+      in_types = false;
+    }
+  }
+  if (out.empty()) throw std::runtime_error(p.string() + ": no statistics from Yosys");
+  return out;
+}
+
+const std::string& top_name(const std::map<std::string, StatSection>& stat, const fs::path& p) {
+  for (const auto& [name, sec] : stat) {
+    if (base_module_name(name) == "shade_unit") return name;
+  }
+  throw std::runtime_error(p.string() + ": Yosys statistics have no shade_unit module");
+}
+
+int64_t flip_flops_of(const StatSection& s) {
+  int64_t n = 0;
+  for (const auto& [type, count] : s.by_type) {
+    if (is_flip_flop(type)) n += count;
+  }
+  return n;
+}
+
+// Per-module rows from the kept-hierarchy stat: each module with its submodules folded in,
+// instance counts from the top down, then the top's own glue.
+void read_breakdown(const std::map<std::string, StatSection>& stat, const fs::path& p, AreaReport& r) {
+  struct Totals {
+    int64_t cells = 0, transistors = 0, ffs = 0;
+  };
+  std::map<std::string, Totals> memo;
+  auto is_module = [&](const std::string& type) { return type != "design hierarchy" && stat.count(type) > 0; };
+  std::function<Totals(const std::string&)> total = [&](const std::string& name) -> Totals {
+    if (auto f = memo.find(name); f != memo.end()) return f->second;
+    const StatSection& sec = stat.at(name);
+    Totals t{sec.cells, sec.transistors, flip_flops_of(sec)};
+    for (const auto& [type, n] : sec.by_type) {
+      if (!is_module(type)) continue;
+      const Totals sub = total(type);
+      t.cells += n * (sub.cells - 1);  // each instance counts as one cell in sec.cells
+      t.transistors += n * sub.transistors;
+      t.ffs += n * sub.ffs;
+    }
+    return memo[name] = t;
+  };
+  const StatSection& top = stat.at(top_name(stat, p));
+  r.modules.clear();
+  int64_t glue_cells = top.cells;
+  for (const auto& [type, n] : top.by_type) {
+    if (!is_module(type)) continue;
+    const Totals sub = total(type);
+    glue_cells -= n;
+    r.modules.push_back({base_module_name(type), static_cast<int>(n), sub.cells, sub.transistors, sub.ffs});
+  }
+  r.modules.push_back({"shade_unit", 1, glue_cells, top.transistors, flip_flops_of(top)});
+  r.breakdown_cells = 0;
+  for (const auto& m : r.modules) r.breakdown_cells += m.cells();
+  if (auto h = stat.find("design hierarchy"); h != stat.end() && h->second.cells != r.breakdown_cells) {
+    throw std::runtime_error(p.string() + ": per-module cells sum to " + std::to_string(r.breakdown_cells) +
+                             ", Yosys's design total is " + std::to_string(h->second.cells));
+  }
+}
+
+void read_ice40_stat(const StatSection& s, Ice40Area& a) {
+  for (const auto& [type, n] : s.by_type) {
+    if (type == "SB_LUT4") a.lut4 += n;
+    else if (type.rfind("SB_DFF", 0) == 0) a.dff += n;
+    else if (type == "SB_CARRY") a.carry += n;
+    else if (type.rfind("SB_RAM40_4K", 0) == 0) a.ram4k += n;
+  }
+}
+
+std::string thousands(int64_t v) {
+  std::string s = std::to_string(v < 0 ? -v : v);
+  for (int i = static_cast<int>(s.size()) - 3; i > 0; i -= 3) s.insert(static_cast<size_t>(i), ",");
+  return (v < 0 ? "-" : "") + s;
+}
+
+// Whether the synth_ice40 counts alone rule out an HX8K (each logic cell holds one LUT4 and one
+// DFF). Passing this check is necessary, not sufficient: nextpnr has the last word.
+void check_fit(Ice40Area& a) {
+  const int64_t need = std::max(a.lut4, a.dff);
+  std::ostringstream os;
+  if (need > Ice40Area::kHx8kLogicCells) {
+    a.fits_hx8k = false;
+    os << "does not fit an iCE40 HX8K: needs at least " << thousands(need) << " logic cells ("
+       << (a.lut4 >= a.dff ? "LUT4s" : "DFFs") << "), the HX8K has " << thousands(Ice40Area::kHx8kLogicCells)
+       << " (" << thousands(need - Ice40Area::kHx8kLogicCells) << " over, " << std::fixed << std::setprecision(2)
+       << static_cast<double>(need) / Ice40Area::kHx8kLogicCells << "x)";
+  } else if (a.ram4k > Ice40Area::kHx8kRam4k) {
+    a.fits_hx8k = false;
+    os << "does not fit an iCE40 HX8K: needs " << a.ram4k << " RAM40_4K blocks, the HX8K has "
+       << Ice40Area::kHx8kRam4k;
+  } else {
+    a.fits_hx8k = true;
+    os << "fits an iCE40 HX8K by LUT4/DFF count (" << thousands(need) << " of "
+       << thousands(Ice40Area::kHx8kLogicCells) << " logic cells)";
+  }
+  a.fit_note = os.str();
+}
+
+// nextpnr's last "Max frequency for clock ..." line (the post-route one).
+std::optional<double> read_fmax(const std::string& log) {
+  static const std::regex re(R"(Max frequency for clock[^:]*:\s*([0-9.]+)\s*MHz)");
+  std::optional<double> f;
+  for (auto it = std::sregex_iterator(log.begin(), log.end(), re); it != std::sregex_iterator(); ++it) {
+    f = std::stod((*it)[1].str());
+  }
+  return f;
+}
+
+Json params_json(const std::vector<VerilogParameter>& ps) {
+  Json j = Json::array();
+  for (const auto& p : ps) j.push_back({{"name", p.name}, {"value", p.value}});
+  return j;
+}
+
+}  // namespace
+
+std::string area_report_to_json(const AreaReport& r) {
+  Json modules = Json::array();
+  for (const auto& m : r.modules) {
+    modules.push_back({{"module", m.module},
+                       {"instances", m.instances},
+                       {"cells_each", m.cells_each},
+                       {"transistors_each", m.transistors_each},
+                       {"flip_flops_each", m.flip_flops_each},
+                       {"cells", m.cells()},
+                       {"transistors", m.transistors()}});
+  }
+  Json ice40 = {{"lut4", r.ice40.lut4},          {"dff", r.ice40.dff},
+                {"carry", r.ice40.carry},        {"ram4k", r.ice40.ram4k},
+                {"fits_hx8k", r.ice40.fits_hx8k}, {"fit_note", r.ice40.fit_note},
+                {"pnr_note", r.ice40.pnr_note}};
+  ice40["fmax_mhz"] = r.ice40.fmax_mhz ? Json(*r.ice40.fmax_mhz) : Json(nullptr);
+  const Json j = {{"parameters", params_json(r.parameters)},
+                  {"key", r.key},
+                  {"from_cache", r.from_cache},
+                  {"yosys_version", r.yosys_version},
+                  {"nextpnr_version", r.nextpnr_version},
+                  {"cells", r.cells},
+                  {"transistors", r.transistors},
+                  {"transistors_exclude_flip_flops", r.transistors_partial},
+                  {"flip_flops", r.flip_flops},
+                  {"breakdown_cells", r.breakdown_cells},
+                  {"modules", modules},
+                  {"ice40", ice40},
+                  {"seconds", r.seconds},
+                  {"cpu_seconds", r.cpu_seconds}};
+  return j.dump(2) + "\n";
+}
+
+AreaReport area_report_from_json(const std::string& text, const std::string& source) {
+  try {
+    const Json j = Json::parse(text);
+    AreaReport r;
+    for (const auto& p : j.at("parameters")) r.parameters.push_back({p.at("name"), p.at("value")});
+    r.key = j.at("key");
+    r.from_cache = j.at("from_cache");
+    r.yosys_version = j.at("yosys_version");
+    r.nextpnr_version = j.at("nextpnr_version");
+    r.cells = j.at("cells");
+    r.transistors = j.at("transistors");
+    r.transistors_partial = j.at("transistors_exclude_flip_flops");
+    r.flip_flops = j.at("flip_flops");
+    r.breakdown_cells = j.at("breakdown_cells");
+    for (const auto& m : j.at("modules")) {
+      r.modules.push_back({m.at("module"), m.at("instances"), m.at("cells_each"), m.at("transistors_each"),
+                           m.at("flip_flops_each")});
+    }
+    const Json& a = j.at("ice40");
+    r.ice40.lut4 = a.at("lut4");
+    r.ice40.dff = a.at("dff");
+    r.ice40.carry = a.at("carry");
+    r.ice40.ram4k = a.at("ram4k");
+    r.ice40.fits_hx8k = a.at("fits_hx8k");
+    r.ice40.fit_note = a.at("fit_note");
+    r.ice40.pnr_note = a.at("pnr_note");
+    if (!a.at("fmax_mhz").is_null()) r.ice40.fmax_mhz = a.at("fmax_mhz").get<double>();
+    r.seconds = j.at("seconds");
+    r.cpu_seconds = j.at("cpu_seconds");
+    return r;
+  } catch (const Json::exception& e) {
+    throw std::runtime_error(source + ": not an area report: " + e.what());
+  }
+}
+
+AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
+  AreaReport r;
+  r.parameters = shade_unit_parameters(unit);  // validates `unit`
+  const std::string chparam = yosys_chparam_args(r.parameters);
+  const std::string yosys = find_program(o.yosys, "yosys");
+  const std::string nextpnr = o.place_and_route ? find_program(o.nextpnr, "nextpnr-ice40") : "";
+  const std::vector<fs::path> files = rtl_sources(o.rtl_dir.empty() ? SHADESIM_SOURCE_DIR "/rtl" : o.rtl_dir);
+
+  r.yosys_version = first_line(run_process({yosys, "-V"}, "").output);
+  if (o.place_and_route) r.nextpnr_version = first_line(run_process({nextpnr, "--version"}, "").output);
+
+  // Cache key: everything the figures depend on. The file names are in the script text.
+  auto key_for = [&](bool breakdown, bool pnr, const std::string& nextpnr_version) {
+    Fnv1a h;
+    h.add("shadesim-area-v1");
+    h.add(chparam);
+    for (const auto& f : files) {
+      h.add(f.filename().string());
+      h.add(read_text(f));
+    }
+    h.add(r.yosys_version);
+    h.add(kFlatScript);
+    h.add(kIce40Script);
+    if (breakdown) h.add(kBreakdownScript);
+    if (pnr) {
+      h.add(nextpnr_version);
+      h.add(kPnrArgs);
+    }
+    return h.hex();
+  };
+  r.key = key_for(o.breakdown, o.place_and_route, r.nextpnr_version);
+
+  fs::path entry;
+  if (!o.cache_dir.empty()) {
+    fs::create_directories(o.cache_dir);
+    entry = fs::path(o.cache_dir) / (r.key + ".json");
+    // An entry that ran more (breakdown, place and route) also answers a request for less.
+    std::vector<fs::path> candidates = {entry};
+    std::string np_version = r.nextpnr_version;
+    if (!o.place_and_route) {
+      try {
+        np_version = first_line(run_process({find_program(o.nextpnr, "nextpnr-ice40"), "--version"}, "").output);
+      } catch (const MissingToolError&) {
+        // no nextpnr: only entries without place and route can be wanted
+      }
+    }
+    for (const bool b : {o.breakdown, true}) {
+      for (const bool pnr : {o.place_and_route, true}) {
+        if (pnr && np_version.empty()) continue;
+        candidates.push_back(fs::path(o.cache_dir) / (key_for(b, pnr, np_version) + ".json"));
+      }
+    }
+    for (const auto& c : candidates) {
+      if (!fs::exists(c)) continue;
+      AreaReport cached = area_report_from_json(read_text(c), c.string());
+      cached.from_cache = true;
+      if (o.progress) *o.progress << "[area] cache hit " << c.string() << "\n";
+      return cached;
+    }
+  }
+
+  // A fresh work folder; kept when a tool fails (its logs say why), removed on success.
+  const fs::path work_root = o.cache_dir.empty() ? fs::temp_directory_path() : fs::path(o.cache_dir);
+  std::string tmpl = (work_root / ("work-" + r.key + "-XXXXXX")).string();
+  if (!::mkdtemp(tmpl.data())) throw std::runtime_error(tmpl + ": cannot create a work folder");
+  const fs::path work = tmpl;
+
+  const auto t0 = std::chrono::steady_clock::now();
+  struct rusage before {};
+  ::getrusage(RUSAGE_CHILDREN, &before);
+  // The syntheses are independent: run them side by side.
+  auto run_yosys = [&](const std::string& name, const char* flow, const std::string& label, std::ostream* progress) {
+    const fs::path script = work / (name + ".ys");
+    write_atomically(script, yosys_script(files, chparam, flow, work));
+    run_tool({yosys, "-q", "-l", (work / (name + ".log")).string(), script.string()}, work / (name + ".out"),
+             label, progress);
+  };
+  // One progress line for all of them: which are still running and for how long.
+  struct Job {
+    std::string label;
+    std::future<void> done;
+    bool finished = false;
+  };
+  std::vector<Job> jobs;
+  jobs.push_back({"flat synthesis", std::async(std::launch::async, [&] {
+                    run_yosys("flat", kFlatScript, "yosys flat synthesis", nullptr);
+                  })});
+  jobs.push_back({"synth_ice40", std::async(std::launch::async, [&] {
+                    run_yosys("ice40", kIce40Script, "yosys synth_ice40", nullptr);
+                  })});
+  if (o.breakdown) {
+    jobs.push_back({"per-module synthesis", std::async(std::launch::async, [&] {
+                      run_yosys("breakdown", kBreakdownScript, "yosys per-module synthesis", nullptr);
+                    })});
+  }
+  const bool terminal = o.progress == &std::cerr && ::isatty(STDERR_FILENO);
+  for (int ticks = 0;; ++ticks) {
+    std::string running;
+    for (auto& j : jobs) {
+      if (!j.finished && j.done.wait_for(std::chrono::seconds(0)) == std::future_status::ready) j.finished = true;
+      if (!j.finished) running += (running.empty() ? "" : ", ") + j.label;
+    }
+    if (running.empty()) break;
+    if (o.progress && ticks > 0 && (terminal || ticks % 30 == 0)) {
+      const auto el = std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now() - t0);
+      *o.progress << (terminal ? "\r" : "") << "[area] yosys: " << running << " ... " << el.count() << " s"
+                  << (terminal ? "   " : "\n") << std::flush;
+    }
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+  }
+  std::exception_ptr error;
+  for (auto& j : jobs) {
+    try {
+      j.done.get();
+    } catch (...) {
+      if (!error) error = std::current_exception();
+    }
+  }
+  if (o.progress) {
+    const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    *o.progress << (terminal ? "\r" : "") << "[area] yosys: " << (error ? "failed" : "done") << " after " << std::fixed
+                << std::setprecision(1) << el << " s" << (terminal ? "                                        " : "")
+                << "\n";
+  }
+  if (error) std::rethrow_exception(error);
+
+  {
+    const fs::path p = work / "flat_stat.txt";
+    const auto stat = read_stat_text(p);
+    const StatSection& top = stat.at(top_name(stat, p));
+    r.cells = top.cells;
+    r.transistors = top.transistors;
+    r.transistors_partial = top.transistors_partial;
+    r.flip_flops = flip_flops_of(top);
+  }
+  if (o.breakdown) read_breakdown(read_stat_text(work / "breakdown_stat.txt"), work / "breakdown_stat.txt", r);
+  {
+    const fs::path p = work / "ice40_stat.txt";
+    const auto stat = read_stat_text(p);
+    read_ice40_stat(stat.at(top_name(stat, p)), r.ice40);
+  }
+  check_fit(r.ice40);
+
+  bool keep_work = false;
+  if (!o.place_and_route) {
+    r.ice40.pnr_note = "place and route not run (--no-pnr)";
+  } else if (!r.ice40.fits_hx8k) {
+    r.ice40.pnr_note = "no Fmax: the design does not fit an HX8K";
+  } else {
+    std::vector<std::string> argv = {nextpnr};
+    std::istringstream args(kPnrArgs);
+    for (std::string a; args >> a;) argv.push_back(a);
+    argv.insert(argv.end(), {"--json", (work / "ice40.json").string(), "--asc", (work / "ice40.asc").string(),
+                             "-l", (work / "pnr.log").string()});
+    try {
+      run_tool(argv, work / "pnr.out", "nextpnr-ice40 place and route (HX8K)", o.progress);
+      r.ice40.fmax_mhz = read_fmax(read_text(work / "pnr.log"));
+      if (!r.ice40.fmax_mhz) r.ice40.pnr_note = "nextpnr-ice40 reported no Fmax";
+    } catch (const std::runtime_error& e) {
+      // A failed placement (no room once packed, too many I/O) is a finding about the design.
+      keep_work = true;
+      r.ice40.fits_hx8k = false;
+      r.ice40.fit_note = "does not fit an iCE40 HX8K: nextpnr-ice40 failed (log " + (work / "pnr.log").string() + ")";
+      r.ice40.pnr_note = "no Fmax: " + first_line(e.what());
+    }
+  }
+  struct rusage after {};
+  ::getrusage(RUSAGE_CHILDREN, &after);
+  auto cpu = [](const struct rusage& u) {
+    return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+           1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+  };
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.cpu_seconds = cpu(after) - cpu(before);
+
+  if (!entry.empty()) write_atomically(entry, area_report_to_json(r));
+  if (!keep_work) {
+    std::error_code ec;
+    fs::remove_all(work, ec);
+  }
+  return r;
+}
+
+}  // namespace shadesim
+
+// ---- estimate ------------------------------------------------------------------------------
+
+namespace shadesim {
+namespace {
+
+using ParamMap = std::map<std::string, int64_t>;
+
+ParamMap param_map(const std::vector<VerilogParameter>& ps) {
+  ParamMap m;
+  for (const auto& p : ps) m[p.name] = p.value;
+  return m;
+}
+
+int64_t get(const ParamMap& p, const char* name) {
+  const auto it = p.find(name);
+  if (it == p.end()) throw std::runtime_error(std::string("area estimate: parameter ") + name + " missing");
+  return it->second;
+}
+
+int64_t ceil_log2(int64_t v) {
+  int64_t k = 0;
+  while ((int64_t{1} << k) < v) ++k;
+  return k;
+}
+
+// Instances of each module (shade_unit.sv: NSer series, one slot per light, one combine).
+int64_t instances_of(const std::string& module, const ParamMap& p) {
+  const int64_t ch = get(p, "CHANNELS"), l = get(p, "LIGHTS");
+  const int64_t per_light = get(p, "SPECULAR_KIND") == 2 ? 2 : 1;
+  if (module == "span_setup" || module == "series_engine") return ch * l + l * per_light;
+  if (module == "specular_slot") return l;
+  return 1;  // pixel_combine, shade_unit glue
+}
+
+// Structural size of one instance: what its cells grow with (the RTL's widths, see area.h).
+double size_of(const std::string& module, const ParamMap& p) {
+  const double c = static_cast<double>(get(p, "COEF_WL")), ci = static_cast<double>(get(p, "COEF_IWL"));
+  const double s = static_cast<double>(get(p, "SERIES_WL")), si = static_cast<double>(get(p, "SERIES_IWL"));
+  const double ch = static_cast<double>(get(p, "CHANNELS")), l = static_cast<double>(get(p, "LIGHTS"));
+  const double so = static_cast<double>(get(p, "SPECULAR_OUT_WL")), sc = static_cast<double>(get(p, "SPEC_COLOUR_WL"));
+  if (module == "span_setup") {
+    // Seven coefficient x offset products and three offset squares, each exact at its full
+    // width with sign-extended operands; with a wrapping series only the low w bits (up to the
+    // series' top) reach the output, and a product truncated to w bits of w-bit operands has
+    // w(w+1)/2 partial-product bits. Plus the three register stages.
+    const double sum_w = c + 37;
+    const double drop = (c - ci) - (s - si);
+    const double w = get(p, "SERIES_OVERFLOW") == 1 ? std::min(sum_w, drop + s + 1) : sum_w;
+    const double w2 = std::min(w, 34.0);
+    return 7 * w * (w + 1) / 2 + 3 * w2 * (w2 + 1) / 2 + 13 * w;
+  }
+  if (module == "series_engine") return s;
+  if (module == "pixel_combine") return ch * (l * so * sc + (l + 1) * (s + 4));
+  if (module == "specular_slot") {
+    switch (get(p, "SPECULAR_KIND")) {
+      case 1:
+        return std::ldexp(static_cast<double>(get(p, "LUT_ENTRY_BITS")), static_cast<int>(get(p, "LUT_ADDR_BITS"))) +
+               static_cast<double>(get(p, "LUT_ENTRY_BITS") * (get(p, "LUT_INTERP_BITS") + 1)) * s;
+      case 2:
+        return static_cast<double>(get(p, "SCHLICK_QUOTIENT_BITS") * get(p, "SCHLICK_OPERAND_BITS")) *
+               (get(p, "SCHLICK_TIMING") == 1 ? 1.0 : static_cast<double>(get(p, "SCHLICK_QUOTIENT_BITS")));
+      case 3: {
+        const double b = static_cast<double>(get(p, "WPOW_BASE_BITS"));
+        const double k = static_cast<double>(ceil_log2(get(p, "WPOW_MAX_M")));
+        return b * b * (get(p, "WPOW_TIMING") == 1 ? 1.0 : k) + b * s;
+      }
+      default:
+        return 0;  // ideal: no hardware
+    }
+  }
+  // shade_unit glue: coefficient, ambient and specular-colour registers, the metadata line,
+  // decoder and span pipeline (a fixed part).
+  const double nser = static_cast<double>(instances_of("span_setup", p));
+  const double xy = static_cast<double>(get(p, "XY_BITS"));
+  return 6 * nser * c + ch * s + ch * l * sc + 2 * (2 * xy + ch * l * s) + 400;
+}
+
+}  // namespace
+
+std::string AreaEstimate::label() const {
+  return "estimate (scaled from Yosys run " + anchor_key + ", " + std::to_string(differing_parameters) +
+         " parameter(s) differ)";
+}
+
+AreaEstimate estimate_area(const UnitConfig& unit, const std::vector<AreaReport>& anchors) {
+  const ParamMap target = param_map(shade_unit_parameters(unit));
+  const AreaReport* best = nullptr;
+  int best_diff = 0;
+  for (const auto& a : anchors) {
+    if (a.modules.empty() || a.cells == 0 || a.breakdown_cells == 0) continue;
+    const ParamMap ap = param_map(a.parameters);
+    if (get(ap, "SPECULAR_KIND") != get(target, "SPECULAR_KIND")) continue;
+    int diff = 0;
+    for (const auto& [name, value] : target) {
+      const auto it = ap.find(name);
+      if (it == ap.end() || it->second != value) ++diff;
+    }
+    if (!best || diff < best_diff) {
+      best = &a;
+      best_diff = diff;
+    }
+  }
+  if (!best) {
+    throw std::runtime_error("area estimate: no measured anchor with this specular unit (" +
+                             std::string(to_string(unit.specular.kind)) +
+                             ") and a per-module breakdown; run `shadesim area --config` on one first");
+  }
+  const ParamMap ap = param_map(best->parameters);
+  double kept = 0;
+  for (const auto& m : best->modules) {
+    const double anchor_size = size_of(m.module, ap);
+    const double ratio = anchor_size > 0 ? size_of(m.module, target) / anchor_size : 0.0;
+    kept += static_cast<double>(m.cells_each) * ratio * static_cast<double>(instances_of(m.module, target));
+  }
+  const double flat = kept * static_cast<double>(best->cells) / static_cast<double>(best->breakdown_cells);
+  AreaEstimate e;
+  e.cells = static_cast<int64_t>(std::llround(flat));
+  e.lut4 = static_cast<int64_t>(std::llround(flat * static_cast<double>(best->ice40.lut4) / static_cast<double>(best->cells)));
+  e.anchor_key = best->key;
+  e.differing_parameters = best_diff;
+  return e;
+}
+
+std::vector<AreaReport> load_area_reports(const std::string& cache_dir) {
+  std::vector<AreaReport> out;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(cache_dir, ec)) {
+    if (!e.is_regular_file() || e.path().extension() != ".json") continue;
+    try {
+      out.push_back(area_report_from_json(read_text(e.path()), e.path().string()));
+    } catch (const std::exception&) {
+      // not an area report (or an older format): not an anchor
+    }
+  }
+  return out;
+}
+
+}  // namespace shadesim

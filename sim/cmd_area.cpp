@@ -1,0 +1,174 @@
+// shadesim area (--config FILE.json | SCENE): area and timing of one unit configuration from
+// Yosys (generic cells, CMOS transistor estimate, iCE40 LUT4/DFF/CARRY) and nextpnr-ice40 (Fmax
+// on an HX8K where it fits), with the per-module breakdown. sim/area.h has the flow.
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "host/frame.h"
+#include "model/command_stream.h"
+#include "sim/area.h"
+#include "sim/commands.h"
+
+namespace shadesim {
+namespace {
+
+struct AreaCliOptions {
+  std::string config_path;
+  std::string scene;
+  std::string cache_dir = SHADESIM_BINARY_DIR "/area-cache";
+  std::string json_path;
+  bool no_pnr = false;
+};
+
+// The one place that turns the command line into a UnitConfig. For now: a config file is read
+// as the command stream header's JSON, a scene gets prepare_frame's configuration; the common
+// loader / scene-derived configuration replaces both.
+UnitConfig unit_to_measure(const AreaCliOptions& o, std::string* source) {
+  if (!o.config_path.empty()) {
+    std::ifstream is(o.config_path);
+    if (!is) throw std::runtime_error(o.config_path + ": cannot open the config file");
+    std::stringstream ss;
+    ss << is.rdbuf();
+    *source = o.config_path;
+    return config_from_json(ss.str(), o.config_path + ": ");
+  }
+  *source = o.scene;
+  return prepare_frame(o.scene, FrameOptions{}).config;
+}
+
+std::string grouped(int64_t v) {
+  std::string s = std::to_string(v < 0 ? -v : v);
+  for (int i = static_cast<int>(s.size()) - 3; i > 0; i -= 3) s.insert(static_cast<size_t>(i), ",");
+  return (v < 0 ? "-" : "") + s;
+}
+
+void print_report(std::ostream& os, const std::string& source, const UnitConfig& unit, const AreaReport& r) {
+  os << "unit         " << unit.to_string() << "  (from " << source << ")\n"
+     << "yosys        " << r.yosys_version << (r.from_cache ? "  [cached " + r.key + "]" : "  [key " + r.key + "]")
+     << "\n\n"
+     << "generic synthesis (synth -flatten; abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX; stat -tech cmos)\n"
+     << "  cells        " << std::setw(10) << grouped(r.cells) << "   2-input gates, MUXes and flip-flops\n"
+     << "  transistors  " << std::setw(10) << grouped(r.transistors) << "   CMOS estimate (stat -tech cmos)"
+     << (r.transistors_partial ? "; flip-flops not included (Yosys has no CMOS cost for them)" : "") << "\n"
+     << "  flip-flops   " << std::setw(10) << grouped(r.flip_flops) << "\n\n";
+  if (!r.modules.empty()) {
+    os << "where the area goes (same flow, datapath modules kept: " << grouped(r.breakdown_cells)
+       << " cells; more than flat, as\n"
+       << "Yosys cannot drop logic across a kept boundary; each row includes its submodules)\n"
+       << "  " << std::left << std::setw(16) << "module" << std::right << std::setw(5) << "inst" << std::setw(11)
+       << "cells each" << std::setw(11) << "cells" << std::setw(8) << "share" << std::setw(13) << "transistors"
+       << std::setw(8) << "FFs" << '\n';
+  }
+  for (const auto& m : r.modules) {
+    const double pct = r.breakdown_cells
+                           ? 100.0 * static_cast<double>(m.cells()) / static_cast<double>(r.breakdown_cells)
+                           : 0.0;
+    const std::string name = m.module == "shade_unit" ? "shade_unit glue" : m.module;
+    os << "  " << std::left << std::setw(16) << name << std::right << std::setw(5) << m.instances << std::setw(11)
+       << grouped(m.cells_each) << std::setw(11) << grouped(m.cells()) << std::setw(7) << std::fixed
+       << std::setprecision(1) << pct << "%" << std::setw(13) << grouped(m.transistors()) << std::setw(8)
+       << grouped(m.flip_flops_each * m.instances) << '\n';
+  }
+  os << "\niCE40 (synth_ice40)\n"
+     << "  LUT4         " << std::setw(10) << grouped(r.ice40.lut4) << '\n'
+     << "  DFF          " << std::setw(10) << grouped(r.ice40.dff) << '\n'
+     << "  CARRY        " << std::setw(10) << grouped(r.ice40.carry) << '\n'
+     << "  RAM40_4K     " << std::setw(10) << grouped(r.ice40.ram4k) << '\n'
+     << "  HX8K         " << r.ice40.fit_note << '\n'
+     << "  Fmax         ";
+  if (r.ice40.fmax_mhz) {
+    os << std::setprecision(1) << *r.ice40.fmax_mhz << " MHz (nextpnr-ice40, HX8K ct256, clk_i)\n";
+  } else {
+    os << "- (" << r.ice40.pnr_note << ")\n";
+  }
+  os << "\ntime         " << std::setprecision(1) << r.seconds << " s wall, " << r.cpu_seconds
+     << " s CPU of Yosys and nextpnr" << (r.from_cache ? " when measured (this run: a cache hit)" : "") << '\n';
+}
+
+// The fast estimate (sim/area.h) of this unit from the OTHER measured units in the cache,
+// beside the measurement: its error against a held-out Yosys run.
+void print_estimate_check(std::ostream& os, const UnitConfig& unit, const AreaReport& measured,
+                          const std::string& cache_dir) {
+  std::vector<AreaReport> others;
+  for (auto& a : load_area_reports(cache_dir)) {
+    bool same = a.parameters.size() == measured.parameters.size();
+    for (size_t i = 0; same && i < a.parameters.size(); ++i) {
+      same = a.parameters[i].name == measured.parameters[i].name && a.parameters[i].value == measured.parameters[i].value;
+    }
+    if (!same) others.push_back(std::move(a));
+  }
+  os << "estimate     ";
+  try {
+    const AreaEstimate e = estimate_area(unit, others);
+    const double err = measured.cells ? 100.0 * static_cast<double>(e.cells - measured.cells) /
+                                            static_cast<double>(measured.cells)
+                                      : 0.0;
+    os << grouped(e.cells) << " cells, " << grouped(e.lut4) << " LUT4: " << e.label() << "; "
+       << std::showpos << std::setprecision(1) << err << std::noshowpos << " % against this measurement\n";
+  } catch (const std::exception& ex) {
+    os << "- (" << ex.what() << ")\n";
+  }
+}
+
+int run_area(const AreaCliOptions& o) {
+  std::string source;
+  const UnitConfig unit = unit_to_measure(o, &source);
+  AreaOptions ao;
+  ao.cache_dir = o.cache_dir;
+  ao.place_and_route = !o.no_pnr;
+  ao.progress = &std::cerr;
+  const AreaReport r = unit_area(unit, ao);
+  print_report(std::cout, source, unit, r);
+  print_estimate_check(std::cout, unit, r, o.cache_dir);
+  if (!o.json_path.empty()) {
+    nlohmann::json j = nlohmann::json::parse(area_report_to_json(r));
+    j["source"] = source;
+    j["config"] = nlohmann::json::parse(config_to_json(unit));
+    std::ofstream os(o.json_path);
+    if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
+    os << j.dump(2) << '\n';
+  }
+  return 0;
+}
+
+}  // namespace
+
+void register_area(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<AreaCliOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "area",
+      "Area and timing of one unit configuration, synthesised from rtl/*.sv with Yosys:\n"
+      "  cells        generic cells after synth and abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX (2-input\n"
+      "               gates, MUXes, flip-flops), summed over the hierarchy\n"
+      "  transistors  Yosys's CMOS estimate of those cells (stat -tech cmos)\n"
+      "  flip-flops   the flip-flops among them\n"
+      "  per module   the same figures per instance of span_setup, series_engine, specular_slot,\n"
+      "               pixel_combine and shade_unit's own glue (decoder, registers, control)\n"
+      "  iCE40        SB_LUT4 / SB_DFF* / SB_CARRY / SB_RAM40_4K counts from synth_ice40, whether\n"
+      "               that fits an HX8K (7,680 logic cells), and where it does, Fmax of clk_i from\n"
+      "               nextpnr-ice40 place and route\n"
+      "Results are cached per configuration (key: parameters, RTL sources, tool versions, scripts).\n"
+      "A cold run takes minutes; a cache hit is instant.");
+  auto* config = sub->add_option("--config", o->config_path,
+                                 "unit configuration JSON (the command stream header's format)");
+  auto* scene = sub->add_option("scene", o->scene, "scene JSON file: measure the unit it is shaded on")
+                    ->check(CLI::ExistingFile);
+  config->excludes(scene);
+  scene->excludes(config);
+  sub->add_option("--cache", o->cache_dir, "cache folder for results")->capture_default_str();
+  sub->add_option("--json", o->json_path, "also write the report as JSON");
+  sub->add_flag("--no-pnr", o->no_pnr, "skip nextpnr-ice40 place and route (no Fmax; much quicker)");
+  sub->callback([o, &exit_code]() {
+    if (o->config_path.empty() && o->scene.empty()) {
+      throw std::invalid_argument("area: give --config FILE.json or a SCENE (see shadesim area --help)");
+    }
+    exit_code = run_area(*o);
+  });
+}
+
+}  // namespace shadesim

@@ -1,0 +1,453 @@
+// shadesim explore SCENE...: width sweeps of the bit-accurate model against error, cycles per
+// pixel and area; the cheapest widths meeting an error budget; the Pareto front; the error of
+// the chosen point split by source.
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "host/explore.h"
+#include "host/scene_config.h"
+#include "model/command_stream.h"
+#include "model/unit_config_file.h"
+#include "sim/commands.h"
+
+namespace shadesim {
+namespace {
+
+struct ExploreCliOptions {
+  std::vector<std::string> scenes;
+  double budget_lsb = 1.0;
+  double setup_budget_lsb = std::nan("");
+  int max_depth = 12;
+  std::string specular;
+  int jobs = 2;
+  std::string json_path, csv_path, out_dir;
+  std::string config_path;
+  int out_bits = 8;
+  bool verify = false;
+  bool quiet = false;
+};
+
+// ---------------------------------------------------------------- area
+
+// The area every point shows. TODO(area): sim/area.h (issue 7 section 4) replaces this; until
+// it is merged the figure is a stand-in - the sum of the swept widths - labelled as such in
+// every output, so the search has an order to minimise and nobody mistakes it for an area.
+AreaFunction area_model() {
+  return [](const UnitConfig& c) {
+    double bits = c.coef.wl + c.series.wl + c.spec_colour.wl + c.specular.out.wl + c.out_bits +
+                  (c.series.quant == Quantization::kRoundNearest ? 1 : 0) +
+                  (c.series.overflow == Overflow::kSaturate ? 1 : 0);
+    switch (c.specular.kind) {
+      case SpecularUnitKind::kLut: bits += c.specular.lut.addr_bits + c.specular.lut.entry_bits + c.specular.lut.interp_bits; break;
+      case SpecularUnitKind::kSchlick: bits += c.specular.schlick.quotient_bits + c.specular.schlick.operand_bits; break;
+      case SpecularUnitKind::kWpow: bits += c.specular.wpow.base_bits; break;
+      case SpecularUnitKind::kIdeal: break;
+    }
+    return AreaFigure{bits, "stand-in: sum of swept widths in bits (not an area; sim/area.h not merged yet)"};
+  };
+}
+
+// ---------------------------------------------------------------- RTL verification
+
+// One point to co-simulate in RTL: its configuration as a value and as the config file written
+// into --out (config_to_json), so an on-demand build can take either.
+struct PointToVerify {
+  std::string name;  // "chosen", "start", "pareto_3"
+  UnitConfig config;
+  std::string config_file;
+};
+
+// Where `--verify` plugs in: co-simulate each point on every scene through the on-demand
+// Verilated builds (issue 7 section 2) and mark it verified (0 pixel and 0 cycle mismatches) or
+// not. Not wired in yet; fails loudly rather than pretending.
+void verify_in_rtl(const std::vector<PointToVerify>& points, const std::vector<std::string>& scenes,
+                   const std::string& out_dir) {
+  (void)points;
+  std::string scene_list;
+  for (const auto& s : scenes) scene_list += s + " ";
+  throw std::runtime_error(
+      "--verify is not wired into explore yet; run explore without it, then co-simulate the chosen point "
+      "with: shadesim regress " + scene_list + "--config " + out_dir + "/chosen.json");
+}
+
+// ---------------------------------------------------------------- progress
+
+// A progress bar with an ETA on stderr, only when stderr is a terminal.
+class ProgressBar {
+ public:
+  ProgressBar() : tty_(isatty(STDERR_FILENO) != 0) {}
+  void operator()(const std::string& phase, std::size_t done, std::size_t total) {
+    if (!tty_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (phase != phase_) {
+      phase_ = phase;
+      phase_start_ = now;
+    }
+    // Redraw at most ten times a second: a point can take a millisecond.
+    if (done != total && now - last_draw_ < std::chrono::milliseconds(100)) return;
+    last_draw_ = now;
+    const double elapsed = std::chrono::duration<double>(now - phase_start_).count();
+    const double eta = done ? elapsed / static_cast<double>(done) * static_cast<double>(total - done) : 0.0;
+    constexpr int kWidth = 30;
+    const int filled = total ? static_cast<int>(kWidth * done / total) : kWidth;
+    std::cerr << "\r" << std::left << std::setw(14) << phase << " [" << std::string(static_cast<size_t>(filled), '#')
+              << std::string(static_cast<size_t>(kWidth - filled), '.') << "] " << done << "/" << total << "  ETA "
+              << std::fixed << std::setprecision(1) << eta << " s   " << std::flush;
+    if (done == total) std::cerr << "\r" << std::string(80, ' ') << "\r" << std::flush;
+  }
+
+ private:
+  bool tty_;
+  std::string phase_;
+  std::chrono::steady_clock::time_point phase_start_, last_draw_;
+};
+
+// ---------------------------------------------------------------- output
+
+std::string per_channel_max(const ErrorStats& e, int channels) {
+  std::string s;
+  for (int c = 0; c < channels; ++c) {
+    if (c) s += "/";
+    s += std::to_string(e.max_code_lsb_channel[static_cast<size_t>(c)]);
+  }
+  return s;
+}
+
+std::string per_channel_mean(const ErrorStats& e, int channels) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(4);
+  for (int c = 0; c < channels; ++c) {
+    if (c) os << "/";
+    os << e.mean_code_lsb_channel[static_cast<size_t>(c)];
+  }
+  return os.str();
+}
+
+double over_1lsb_pct(const ErrorStats& e) {
+  return e.pixels ? 100.0 * static_cast<double>(e.pixels_over_1lsb) / static_cast<double>(e.pixels) : 0.0;
+}
+
+nlohmann::json psnr_json(double db) { return std::isinf(db) ? nlohmann::json(nullptr) : nlohmann::json(db); }
+
+nlohmann::json point_json(const ExplorePoint& p, std::size_t index, int channels) {
+  nlohmann::json j = {{"index", index}, {"phase", p.phase}, {"stage", p.stage}, {"knob", p.knob},
+                      {"value", p.value}, {"valid", p.valid}};
+  if (!p.valid) {
+    j["invalid_reason"] = p.invalid_reason;
+    return j;
+  }
+  const ErrorStats& e = p.figures.error;
+  std::vector<int> max_ch;
+  std::vector<double> mean_ch;
+  for (int c = 0; c < channels; ++c) {
+    max_ch.push_back(e.max_code_lsb_channel[static_cast<size_t>(c)]);
+    mean_ch.push_back(e.mean_code_lsb_channel[static_cast<size_t>(c)]);
+  }
+  j["config"] = nlohmann::json::parse(config_to_json(p.config));
+  j["config_text"] = p.config.to_string();
+  j["error"] = {{"max_code_lsb", e.max_code_lsb}, {"max_code_lsb_per_channel", max_ch},
+                {"mean_code_lsb", e.mean_code_lsb}, {"mean_code_lsb_per_channel", mean_ch},
+                {"psnr_db", psnr_json(e.psnr_db)}, {"max_real_lsb", e.max_real_lsb},
+                {"pixels", e.pixels}, {"pixels_over_1lsb", e.pixels_over_1lsb},
+                {"pct_over_1lsb", over_1lsb_pct(e)}};
+  j["cycles"] = p.figures.cycles;
+  j["pixels"] = p.figures.pixels;
+  j["cycles_per_pixel"] = p.figures.cycles_per_pixel;
+  j["area"] = p.figures.area.cells;
+  j["coefficients_out_of_range"] = p.figures.coefficients_out_of_range;
+  j["meets_budget"] = p.meets_budget;
+  j["pareto"] = p.pareto;
+  return j;
+}
+
+nlohmann::json part_json(const ErrorPart& p) { return {{"max_lsb", p.max_lsb}, {"mean_lsb", p.mean_lsb}}; }
+
+nlohmann::json budget_json(const ErrorBudget& b) {
+  return {{"scene", b.scene}, {"function", part_json(b.function)}, {"taylor", part_json(b.taylor)},
+          {"quantization", part_json(b.quantization)}, {"total", part_json(b.total)}};
+}
+
+// A CSV field in double quotes, inner quotes doubled (RFC 4180).
+std::string csv_quote(const std::string& s) {
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+void write_csv(const std::string& path, const ExploreResult& r, int channels) {
+  std::ofstream os(path);
+  if (!os) throw std::runtime_error(path + ": cannot open for writing");
+  os << "index,phase,stage,knob,value,valid,config,max_code_lsb";
+  for (int c = 0; c < channels; ++c) os << ",max_code_lsb_ch" << c;
+  os << ",mean_code_lsb";
+  for (int c = 0; c < channels; ++c) os << ",mean_code_lsb_ch" << c;
+  os << ",psnr_db,max_real_lsb,pct_over_1lsb,cycles_per_pixel,area,meets_budget,pareto,chosen\n";
+  for (std::size_t i = 0; i < r.points.size(); ++i) {
+    const ExplorePoint& p = r.points[i];
+    const ErrorStats& e = p.figures.error;
+    os << i << ',' << csv_quote(p.phase) << ',' << csv_quote(p.stage) << ',' << csv_quote(p.knob) << ','
+       << csv_quote(p.value) << ',' << (p.valid ? 1 : 0) << ','
+       << csv_quote(p.valid ? p.config.to_string() : p.invalid_reason);
+    if (!p.valid) {
+      os << std::string(static_cast<size_t>(2 * channels + 10), ',') << (r.chosen == i ? 1 : 0) << '\n';
+      continue;
+    }
+    os << ',' << e.max_code_lsb;
+    for (int c = 0; c < channels; ++c) os << ',' << e.max_code_lsb_channel[static_cast<size_t>(c)];
+    os << ',' << e.mean_code_lsb;
+    for (int c = 0; c < channels; ++c) os << ',' << e.mean_code_lsb_channel[static_cast<size_t>(c)];
+    os << ',' << (std::isinf(e.psnr_db) ? std::string("inf") : std::to_string(e.psnr_db)) << ',' << e.max_real_lsb
+       << ',' << over_1lsb_pct(e) << ',' << p.figures.cycles_per_pixel << ',' << p.figures.area.cells << ','
+       << (p.meets_budget ? 1 : 0) << ',' << (p.pareto ? 1 : 0) << ',' << (r.chosen == i ? 1 : 0) << '\n';
+  }
+}
+
+void print_table(std::ostream& os, const std::vector<const ExplorePoint*>& rows, int channels,
+                 const std::optional<std::size_t>& chosen, const std::vector<ExplorePoint>& all) {
+  os << std::left << std::setw(12) << "phase" << std::setw(22) << "knob" << std::setw(8) << "value" << std::right
+     << std::setw(10) << "max LSB" << std::setw(channels == 1 ? 9 : 23) << "mean LSB" << std::setw(9) << "PSNR dB"
+     << std::setw(8) << ">1LSB%" << std::setw(8) << "cyc/px" << std::setw(9) << "area" << "  budget\n";
+  for (const ExplorePoint* p : rows) {
+    const bool is_chosen = chosen && &all[*chosen] == p;
+    os << std::left << std::setw(12) << p->phase << std::setw(22) << (p->knob.empty() ? "-" : p->knob) << std::setw(8)
+       << (p->value.empty() ? "-" : p->value);
+    if (!p->valid) {
+      os << "invalid: " << p->invalid_reason << '\n';
+      continue;
+    }
+    const ErrorStats& e = p->figures.error;
+    std::ostringstream psnr;
+    if (std::isinf(e.psnr_db)) psnr << "inf";
+    else psnr << std::fixed << std::setprecision(1) << e.psnr_db;
+    os << std::right << std::setw(10) << per_channel_max(e, channels) << std::setw(channels == 1 ? 9 : 23)
+       << per_channel_mean(e, channels) << std::setw(9) << psnr.str() << std::setw(8) << std::fixed
+       << std::setprecision(2) << over_1lsb_pct(e) << std::setw(8) << std::setprecision(3)
+       << p->figures.cycles_per_pixel << std::setw(9) << std::setprecision(0) << p->figures.area.cells << "  "
+       << (p->meets_budget ? "ok" : "over") << (p->pareto ? " pareto" : "") << (is_chosen ? " CHOSEN" : "") << '\n';
+  }
+}
+
+void print_budget(std::ostream& os, const ErrorBudget& b, const std::string& what) {
+  os << std::fixed << std::setprecision(3);
+  os << "error by source, " << what << ", " << b.scene << " (output LSBs before rounding; max / mean)\n"
+     << "  (1) shading function  " << std::setw(8) << b.function.max_lsb << " / " << std::setprecision(4)
+     << b.function.mean_lsb << std::setprecision(3)
+     << "   unit's function in double vs exact pow: change the unit or its fit, not a width\n"
+     << "  (2) Taylor truncation " << std::setw(8) << b.taylor.max_lsb << " / " << std::setprecision(4)
+     << b.taylor.mean_lsb << std::setprecision(3)
+     << "   quadratics vs exact cosines: the setup budget (--setup-budget) subdivides, widths cannot\n"
+     << "  (3) quantization      " << std::setw(8) << b.quantization.max_lsb << " / " << std::setprecision(4)
+     << b.quantization.mean_lsb << std::setprecision(3)
+     << "   bit-accurate model vs the same quadratics and function in double: the widths, incl.\n"
+     << "                                             output rounding (<= 0.5 LSB unless out_bits grows)\n"
+     << "  total                 " << std::setw(8) << b.total.max_lsb << " / " << std::setprecision(4)
+     << b.total.mean_lsb << std::setprecision(3) << "   model vs reference; per pixel <= (1) + (2) + (3)\n";
+}
+
+int run_explore(const ExploreCliOptions& o) {
+  const std::filesystem::path out_dir =
+      o.out_dir.empty() ? std::filesystem::path("out") / "explore" / std::filesystem::path(o.scenes.front()).stem()
+                        : std::filesystem::path(o.out_dir);
+  if (o.verify) {
+    // Fail before the sweep, not after a minute of it.
+    verify_in_rtl({}, o.scenes, out_dir.string());
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  // The start: a given config file, else the scenes' own smallest configuration.
+  UnitConfig start;
+  std::string start_source;
+  if (!o.config_path.empty()) {
+    start = load_unit_config(o.config_path);
+    start_source = o.config_path;
+  } else {
+    DeriveOptions d;
+    d.budget_lsb = o.budget_lsb > 0 ? std::optional<double>(o.budget_lsb) : std::nullopt;
+    d.out_bits = o.out_bits;
+    d.max_depth = o.max_depth;
+    start = derive_config(o.scenes, d).config;
+    start_source = "the scenes' own configuration (shadesim config)";
+  }
+  if (!o.specular.empty()) {
+    start.specular.kind = parse_specular_unit(o.specular, "--specular");
+    start_source += ", specular unit " + o.specular + " (--specular)";
+  }
+  start.validate();
+  std::optional<double> setup_budget;
+  if (!std::isnan(o.setup_budget_lsb)) setup_budget = o.setup_budget_lsb;
+  ExploreScenes scenes(o.scenes, start, setup_budget, o.max_depth);
+  const double host_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  ExploreOptions eo;
+  eo.budget_lsb = o.budget_lsb;
+  eo.jobs = o.jobs;
+  ProgressBar bar;
+  const AreaFunction area = area_model();
+  const auto t1 = std::chrono::steady_clock::now();
+  const ExploreResult r = explore(scenes, start, area, eo, std::ref(bar));
+  const double sweep_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+
+  std::vector<ErrorBudget> chosen_budget, start_budget;
+  for (std::size_t s = 0; s < o.scenes.size(); ++s) {
+    start_budget.push_back(error_budget(scenes, s, start));
+    if (r.chosen) chosen_budget.push_back(error_budget(scenes, s, r.points[*r.chosen].config));
+  }
+
+  // Config files of the points to verify, into --out.
+  std::filesystem::create_directories(out_dir);
+  std::vector<PointToVerify> to_verify;
+  auto write_config = [&](const std::string& name, const UnitConfig& c) {
+    const std::filesystem::path file = out_dir / (name + ".json");
+    std::ofstream os(file);
+    if (!os) throw std::runtime_error(file.string() + ": cannot open for writing");
+    os << config_to_json(c) << '\n';
+    to_verify.push_back({name, c, file.string()});
+  };
+  write_config("start", start);
+  if (r.chosen) write_config("chosen", r.points[*r.chosen].config);
+  const int channels = start.channels;
+  const std::string area_metric = r.points[r.start_index].figures.area.metric;
+
+  if (!o.quiet) {
+    std::cout << "scenes       ";
+    for (const auto& s : o.scenes) std::cout << s << ' ';
+    std::cout << "\nstart        " << start.to_string() << "\n             from " << start_source
+              << "\nbudget       max " << o.budget_lsb
+              << " LSB (output codes vs the reference rounded by the same rule, every pixel and channel)\n"
+              << "area         " << area_metric << "\n\n";
+    std::vector<const ExplorePoint*> rows;
+    for (const auto& p : r.points) rows.push_back(&p);
+    print_table(std::cout, rows, channels, r.chosen, r.points);
+    std::cout << "\nsearch\n";
+    for (const auto& line : r.log) std::cout << "  " << line << '\n';
+    std::vector<const ExplorePoint*> front;
+    for (const auto& p : r.points) {
+      if (p.pareto) front.push_back(&p);
+    }
+    std::sort(front.begin(), front.end(), [](const ExplorePoint* a, const ExplorePoint* b) {
+      return a->figures.area.cells < b->figures.area.cells;
+    });
+    std::cout << "\nPareto front (max LSB, mean LSB vs area and cycles/pixel), by area\n";
+    print_table(std::cout, front, channels, r.chosen, r.points);
+    std::cout << '\n';
+    if (r.chosen) {
+      const ExplorePoint& c = r.points[*r.chosen];
+      std::cout << "chosen       " << c.config.to_string() << "\n             " << c.config.specular.describe()
+                << ", spec_colour " << c.config.spec_colour.to_string() << "\n             max "
+                << c.figures.error.max_code_lsb << " LSB, mean " << std::setprecision(4) << c.figures.error.mean_code_lsb
+                << ", " << std::setprecision(3) << c.figures.cycles_per_pixel << " cycles/pixel, area "
+                << std::setprecision(0) << c.figures.area.cells << " (start " << r.points[r.start_index].figures.area.cells
+                << ")\n\n";
+      for (const auto& b : chosen_budget) print_budget(std::cout, b, "chosen point");
+    } else {
+      std::cout << "chosen       none: no evaluated point meets max " << o.budget_lsb << " LSB\n";
+      for (const auto& b : start_budget) {
+        // Widths move only the quantization part; the rest is there at any width.
+        const double fixed = b.function.max_lsb + b.taylor.max_lsb;
+        if (fixed > o.budget_lsb) {
+          std::cout << "             " << b.scene << ": the shading function (" << std::setprecision(3)
+                    << b.function.max_lsb << " LSB) and the Taylor truncation (" << b.taylor.max_lsb
+                    << " LSB) are there at any width - no width can fix them; change the specular unit or\n"
+                    << "             its fit (function), or lower --setup-budget (Taylor)\n";
+        }
+      }
+      std::cout << '\n';
+    }
+    for (const auto& b : start_budget) print_budget(std::cout, b, "start point");
+    std::cout << "\nconfigs      " << (out_dir / "start.json").string()
+              << (r.chosen ? ", " + (out_dir / "chosen.json").string() : std::string()) << "\n"
+              << "time         host setup " << std::setprecision(2) << host_s << " s, " << r.points.size()
+              << " points in " << sweep_s << " s on " << o.jobs << " thread(s)\n";
+    if (!o.json_path.empty()) std::cout << "plot         scripts/plot " << o.json_path << "\n";
+  }
+
+  if (!o.json_path.empty()) {
+    nlohmann::json points = nlohmann::json::array();
+    for (std::size_t i = 0; i < r.points.size(); ++i) points.push_back(point_json(r.points[i], i, channels));
+    nlohmann::json cb = nlohmann::json::array(), sb = nlohmann::json::array();
+    for (const auto& b : chosen_budget) cb.push_back(budget_json(b));
+    for (const auto& b : start_budget) sb.push_back(budget_json(b));
+    nlohmann::json j = {{"kind", "explore"},
+                        {"scenes", o.scenes},
+                        {"budget_lsb", o.budget_lsb},
+                        {"area_metric", area_metric},
+                        {"start", nlohmann::json::parse(config_to_json(start))},
+                        {"start_source", start_source},
+                        {"start_index", r.start_index},
+                        {"chosen_index", r.chosen ? nlohmann::json(*r.chosen) : nlohmann::json(nullptr)},
+                        {"points", points},
+                        {"search_log", r.log},
+                        {"error_budget", {{"chosen", cb}, {"start", sb}}},
+                        {"config_files", nlohmann::json::array()},
+                        {"seconds", {{"host_setup", host_s}, {"sweep", sweep_s}}},
+                        {"jobs", o.jobs}};
+    for (const auto& v : to_verify) j["config_files"].push_back({{"name", v.name}, {"file", v.config_file}});
+    std::ofstream os(o.json_path);
+    if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
+    os << j.dump(2) << '\n';
+  }
+  if (!o.csv_path.empty()) write_csv(o.csv_path, r, channels);
+  return r.chosen ? 0 : 1;
+}
+
+}  // namespace
+
+void register_explore(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<ExploreCliOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "explore",
+      "Sweep the unit's widths with the bit-accurate model and find the cheapest that meet an\n"
+      "error budget. Every point: error against the double reference (max and mean LSB per\n"
+      "channel, PSNR, % of pixels more than 1 LSB off), cycles per pixel (cycle model) and area.\n"
+      "Host setup (projection, Taylor setup, visibility, reference) is done once per scene and\n"
+      "output width; a point only re-quantizes the stream and re-runs the model.\n"
+      "\n"
+      "Search:\n"
+      "  1. per stage: each knob swept alone, the others at the start widths - coefficient\n"
+      "     integer/fraction bits; series fraction/integer bits, trn/rnd, wrap/sat; the specular\n"
+      "     unit's widths and output fraction bits; specular colour fraction bits; output bits\n"
+      "     (swept for the table, never narrowed: they are what you asked for). A knob's minimum\n"
+      "     is its cheapest value (area, then narrowest) meeting the budget, else its start.\n"
+      "  2. joint: combine the minima; while that breaks the budget, try every knob one step\n"
+      "     wider (choices back to the start's) and take the cheapest step that meets the\n"
+      "     budget, else the one buying the most error (max real LSB + mean LSB) per area added.\n"
+      "  3. Pareto front of every evaluated point: (max LSB, mean LSB) against area and\n"
+      "     cycles per pixel (points at the requested output bits; error is in LSBs of a\n"
+      "     point's own output, so other output widths are shown but not compared).\n"
+      "Then the chosen point's error is split by source: (1) the unit's shading function vs\n"
+      "exact pow, (2) Taylor truncation, (3) fixed-point quantization; widths fix only (3).\n"
+      "Exit status 0 when a point meets the budget, 1 when none does, 2 on bad input.");
+  sub->add_option("scenes", o->scenes, "scene JSON file(s); one unit must serve them all")
+      ->required()->check(CLI::ExistingFile);
+  sub->add_option("--budget", o->budget_lsb, "error budget: max LSB off, every pixel and channel")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
+  sub->add_option("--setup-budget", o->setup_budget_lsb,
+                  "Taylor error budget per triangle in output LSBs (default: the scene's, else 1)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--max-depth", o->max_depth, "subdivision depth limit per triangle")
+      ->check(CLI::Range(0, 16))->capture_default_str();
+  sub->add_option("--config", o->config_path,
+                  "start from this UnitConfig JSON file (default: the scenes' own configuration, as\n"
+                  "shadesim config derives it)");
+  sub->add_option("--out-bits", o->out_bits, "output bits per channel for the derived start")
+      ->check(CLI::Range(1, 16))->capture_default_str()->excludes("--config");
+  sub->add_option("--specular", o->specular,
+                  "specular unit: ideal|lut|schlick|wpow, replacing the start's (its widths stay)");
+  sub->add_option("-j,--jobs", o->jobs, "threads evaluating points")->check(CLI::Range(1, 64))->capture_default_str();
+  sub->add_option("--json", o->json_path, "write every point, the search and the error split as JSON (scripts/plot draws it)");
+  sub->add_option("--csv", o->csv_path, "write every point as CSV");
+  sub->add_option("-o,--out", o->out_dir, "folder for the start and chosen config files (default out/explore/<scene>)");
+  sub->add_flag("--verify", o->verify, "co-simulate the chosen point in RTL (needs on-demand Verilated builds)");
+  sub->add_flag("-q,--quiet", o->quiet, "print nothing (use with --json / --csv)");
+  sub->callback([o, &exit_code]() { exit_code = run_explore(*o); });
+}
+
+}  // namespace shadesim
