@@ -184,8 +184,8 @@ int run_rtl_build(const RtlBuildCliOptions& o) {
   for (auto& t : pool) t.join();
   int failed = 0;
   for (const auto& it : items) {
-    std::cout << std::left << std::setw(18) << it.config.name << std::setw(10) << to_string(it.backend)
-              << (it.failed ? "FAILED: " : "") << it.result << '\n';
+    std::cout << std::left << std::setw(17) << it.config.name << ' ' << std::setw(9) << to_string(it.backend)
+              << ' ' << (it.failed ? "FAILED: " : "") << it.result << '\n';
     failed += it.failed ? 1 : 0;
   }
   return failed == 0 ? 0 : 1;

@@ -18,9 +18,9 @@ JSON
 sed 's/"xy_bits": 8/"xy_bits": 9/' "$work/small.json" >"$work/small9.json"
 
 # 1. Two processes, one key, at once.
-"$shadesim" rtl-build --config "$work/small.json" --cache "$cache" >"$work/a.out" 2>"$work/a.err" &
+"$shadesim" rtl-build --config "$work/small.json" --backends cpp --cache "$cache" >"$work/a.out" 2>"$work/a.err" &
 a=$!
-"$shadesim" rtl-build --config "$work/small.json" --cache "$cache" >"$work/b.out" 2>"$work/b.err" &
+"$shadesim" rtl-build --config "$work/small.json" --backends cpp --cache "$cache" >"$work/b.out" 2>"$work/b.err" &
 b=$!
 wait $a || { echo "first concurrent build failed:"; cat "$work/a.err"; exit 1; }
 wait $b || { echo "second concurrent build failed:"; cat "$work/b.err"; exit 1; }
@@ -35,22 +35,22 @@ ls "$cache" | grep -q '\.tmp\.' && { echo "a temporary build folder was left beh
   { echo "the built executable does not pass"; exit 1; }
 
 # 2. Reuse.
-"$shadesim" rtl-build --config "$work/small.json" --cache "$cache" >"$work/c.out" 2>"$work/c.err"
+"$shadesim" rtl-build --config "$work/small.json" --backends cpp --cache "$cache" >"$work/c.out" 2>"$work/c.err"
 grep -q '(cached)' "$work/c.out" || { echo "second run did not reuse the build:"; cat "$work/c.out" "$work/c.err"; exit 1; }
 grep -q 'Verilating' "$work/c.err" && { echo "second run Verilated again"; exit 1; }
 
 # 3. A changed parameter.
-"$shadesim" rtl-build --config "$work/small9.json" --cache "$cache" >"$work/d.out" 2>"$work/d.err"
+"$shadesim" rtl-build --config "$work/small9.json" --backends cpp --cache "$cache" >"$work/d.out" 2>"$work/d.err"
 grep -q '(cached)' "$work/d.out" && { echo "a changed parameter reused the old build"; exit 1; }
 [ "$(awk '{print $3}' "$work/d.out")" != "$exe_a" ] || { echo "a changed parameter gave the same executable"; exit 1; }
 
 # 4. A changed RTL source: a copy of the checkout with one comment added to an RTL file.
 src=$("$shadesim" rtl-build --print-source-dir)
 cp -r "$src/rtl" "$work/rtl-copy"
-key1=$(SHADESIM_RTL_DIR="$work/rtl-copy" "$shadesim" rtl-build --config "$work/small.json" --cache "$cache" --print-key)
+key1=$(SHADESIM_RTL_DIR="$work/rtl-copy" "$shadesim" rtl-build --config "$work/small.json" --backends cpp --cache "$cache" --print-key)
 echo "// changed" >>"$work/rtl-copy/series_engine.sv"
-key2=$(SHADESIM_RTL_DIR="$work/rtl-copy" "$shadesim" rtl-build --config "$work/small.json" --cache "$cache" --print-key)
-key0=$("$shadesim" rtl-build --config "$work/small.json" --cache "$cache" --print-key)
+key2=$(SHADESIM_RTL_DIR="$work/rtl-copy" "$shadesim" rtl-build --config "$work/small.json" --backends cpp --cache "$cache" --print-key)
+key0=$("$shadesim" rtl-build --config "$work/small.json" --backends cpp --cache "$cache" --print-key)
 [ "$key1" = "$key0" ] || { echo "an identical copy of the RTL gave another key"; exit 1; }
 [ "$key1" != "$key2" ] || { echo "a changed RTL source kept the key"; exit 1; }
 echo "build cache: concurrent builds agree, reuse, parameter and source changes rebuild"
