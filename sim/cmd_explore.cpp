@@ -332,6 +332,10 @@ int run_explore(const ExploreCliOptions& o) {
   };
   write_config("start", start);
   if (r.chosen) write_config("chosen", r.points[*r.chosen].config);
+  // The front too, so any of its points can be co-simulated or synthesised by file.
+  for (std::size_t i = 0; i < r.points.size(); ++i) {
+    if (r.points[i].pareto) write_config("pareto_" + std::to_string(i), r.points[i].config);
+  }
   const int channels = start.channels;
   const std::string area_metric = r.points[r.start_index].figures.area.metric;
 
@@ -382,7 +386,8 @@ int run_explore(const ExploreCliOptions& o) {
     }
     for (const auto& b : start_budget) print_budget(std::cout, b, "start point");
     std::cout << "\nconfigs      " << (out_dir / "start.json").string()
-              << (r.chosen ? ", " + (out_dir / "chosen.json").string() : std::string()) << "\n"
+              << (r.chosen ? ", " + (out_dir / "chosen.json").string() : std::string())
+              << ", pareto_<point>.json for the front (in " << out_dir.string() << ")\n"
               << "time         host setup " << std::setprecision(2) << host_s << " s, " << r.points.size()
               << " points in " << sweep_s << " s on " << o.jobs << " thread(s)\n";
     if (!o.json_path.empty()) std::cout << "plot         scripts/plot " << o.json_path << "\n";
@@ -465,7 +470,9 @@ void register_explore(CLI::App& app, int& exit_code) {
   sub->add_option("-j,--jobs", o->jobs, "threads evaluating points")->check(CLI::Range(1, 64))->capture_default_str();
   sub->add_option("--json", o->json_path, "write every point, the search and the error split as JSON (scripts/plot draws it)");
   sub->add_option("--csv", o->csv_path, "write every point as CSV");
-  sub->add_option("-o,--out", o->out_dir, "folder for the start and chosen config files (default out/explore/<scene>)");
+  sub->add_option("-o,--out", o->out_dir,
+                  "folder for the config files: start.json, chosen.json, pareto_<point>.json\n"
+                  "(default out/explore/<first scene>)");
   sub->add_option("--area-cache", o->area_cache,
                   "shadesim area's cache: the measured units the area estimate scales from (the start\n"
                   "is synthesised into it once when no unit with its specular kind is there)")

@@ -278,6 +278,13 @@ TEST(ExploreCli, JsonAndCsvAreWellFormedAndAgree) {
   const UnitConfig from_file = load_unit_config((dir / "chosen.json").string());
   EXPECT_EQ(config_to_json(from_file), points[chosen]["config"].dump());
   ASSERT_EQ(j["error_budget"]["chosen"].size(), 1u);
+  // Every front point has its config file, and it reads back as that point.
+  for (const auto& p : points) {
+    if (!p["valid"].get<bool>() || !p["pareto"].get<bool>()) continue;
+    const auto file = dir / ("pareto_" + std::to_string(p["index"].get<size_t>()) + ".json");
+    ASSERT_TRUE(std::filesystem::exists(file)) << file;
+    EXPECT_EQ(config_to_json(load_unit_config(file.string())), p["config"].dump());
+  }
 
   std::ifstream cs(dir / "e.csv");
   std::string line;
