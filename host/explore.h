@@ -27,7 +27,8 @@ namespace shadesim {
 // called from the worker threads at once: it must be safe to call concurrently.
 struct AreaFigure {
   double cells = 0;    // the figure the search minimises
-  std::string metric;  // what `cells` counts, e.g. "generic cells (Yosys)"
+  double lut4 = 0;     // iCE40 LUT4s, where the area model gives them (else 0)
+  std::string metric;  // what `cells` counts and how it was obtained (measured or estimated)
 };
 using AreaFunction = std::function<AreaFigure(const UnitConfig&)>;
 

@@ -3,6 +3,7 @@
 // the chosen point split by source.
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -17,6 +18,7 @@
 #include "host/scene_config.h"
 #include "model/command_stream.h"
 #include "model/unit_config_file.h"
+#include "sim/area.h"
 #include "sim/commands.h"
 
 namespace shadesim {
@@ -31,6 +33,7 @@ struct ExploreCliOptions {
   int jobs = 2;
   std::string json_path, csv_path, out_dir;
   std::string config_path;
+  std::string area_cache = SHADESIM_BINARY_DIR "/area-cache";
   int out_bits = 8;
   bool verify = false;
   bool quiet = false;
@@ -38,21 +41,35 @@ struct ExploreCliOptions {
 
 // ---------------------------------------------------------------- area
 
-// The area every point shows. TODO(area): sim/area.h (issue 7 section 4) replaces this; until
-// it is merged the figure is a stand-in - the sum of the swept widths - labelled as such in
-// every output, so the search has an order to minimise and nobody mistakes it for an area.
-AreaFunction area_model() {
-  return [](const UnitConfig& c) {
-    double bits = c.coef.wl + c.series.wl + c.spec_colour.wl + c.specular.out.wl + c.out_bits +
-                  (c.series.quant == Quantization::kRoundNearest ? 1 : 0) +
-                  (c.series.overflow == Overflow::kSaturate ? 1 : 0);
-    switch (c.specular.kind) {
-      case SpecularUnitKind::kLut: bits += c.specular.lut.addr_bits + c.specular.lut.entry_bits + c.specular.lut.interp_bits; break;
-      case SpecularUnitKind::kSchlick: bits += c.specular.schlick.quotient_bits + c.specular.schlick.operand_bits; break;
-      case SpecularUnitKind::kWpow: bits += c.specular.wpow.base_bits; break;
-      case SpecularUnitKind::kIdeal: break;
+// The area every point shows: sim/area.h's estimate_area(), which scales a Yosys-measured
+// anchor of the same specular unit module by module. The anchors are the measured units in the
+// area cache; when none has the start's specular unit, the start is synthesised once (minutes,
+// cached for every later run).
+AreaFunction area_model(const UnitConfig& start, const std::string& cache_dir) {
+  std::vector<AreaReport> anchors = load_area_reports(cache_dir);
+  const bool have_anchor = std::any_of(anchors.begin(), anchors.end(), [&](const AreaReport& r) {
+    try {
+      (void)estimate_area(start, {r});
+      return true;
+    } catch (const std::runtime_error&) {
+      return false;
     }
-    return AreaFigure{bits, "stand-in: sum of swept widths in bits (not an area; sim/area.h not merged yet)"};
+  });
+  if (!have_anchor) {
+    std::cerr << "explore: no measured " << to_string(start.specular.kind) << " unit in " << cache_dir
+              << " to scale areas from: synthesising the start with Yosys once (minutes; cached)\n";
+    AreaOptions ao;
+    ao.cache_dir = cache_dir;
+    ao.place_and_route = false;
+    ao.breakdown = true;  // estimate_area scales the per-module cells
+    ao.progress = &std::cerr;
+    anchors.push_back(unit_area(start, ao));
+  }
+  auto shared = std::make_shared<const std::vector<AreaReport>>(std::move(anchors));
+  return [shared](const UnitConfig& c) {
+    const AreaEstimate e = estimate_area(c, *shared);
+    return AreaFigure{static_cast<double>(e.cells), static_cast<double>(e.lut4),
+                      "generic cells, " + e.label()};
   };
 }
 
@@ -163,6 +180,8 @@ nlohmann::json point_json(const ExplorePoint& p, std::size_t index, int channels
   j["pixels"] = p.figures.pixels;
   j["cycles_per_pixel"] = p.figures.cycles_per_pixel;
   j["area"] = p.figures.area.cells;
+  j["area_lut4"] = p.figures.area.lut4;
+  j["area_metric"] = p.figures.area.metric;
   j["coefficients_out_of_range"] = p.figures.coefficients_out_of_range;
   j["meets_budget"] = p.meets_budget;
   j["pareto"] = p.pareto;
@@ -290,7 +309,7 @@ int run_explore(const ExploreCliOptions& o) {
   eo.budget_lsb = o.budget_lsb;
   eo.jobs = o.jobs;
   ProgressBar bar;
-  const AreaFunction area = area_model();
+  const AreaFunction area = area_model(start, o.area_cache);
   const auto t1 = std::chrono::steady_clock::now();
   const ExploreResult r = explore(scenes, start, area, eo, std::ref(bar));
   const double sweep_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
@@ -313,6 +332,10 @@ int run_explore(const ExploreCliOptions& o) {
   };
   write_config("start", start);
   if (r.chosen) write_config("chosen", r.points[*r.chosen].config);
+  // The front too, so any of its points can be co-simulated or synthesised by file.
+  for (std::size_t i = 0; i < r.points.size(); ++i) {
+    if (r.points[i].pareto) write_config("pareto_" + std::to_string(i), r.points[i].config);
+  }
   const int channels = start.channels;
   const std::string area_metric = r.points[r.start_index].figures.area.metric;
 
@@ -363,7 +386,8 @@ int run_explore(const ExploreCliOptions& o) {
     }
     for (const auto& b : start_budget) print_budget(std::cout, b, "start point");
     std::cout << "\nconfigs      " << (out_dir / "start.json").string()
-              << (r.chosen ? ", " + (out_dir / "chosen.json").string() : std::string()) << "\n"
+              << (r.chosen ? ", " + (out_dir / "chosen.json").string() : std::string())
+              << ", pareto_<point>.json for the front (in " << out_dir.string() << ")\n"
               << "time         host setup " << std::setprecision(2) << host_s << " s, " << r.points.size()
               << " points in " << sweep_s << " s on " << o.jobs << " thread(s)\n";
     if (!o.json_path.empty()) std::cout << "plot         scripts/plot " << o.json_path << "\n";
@@ -406,7 +430,9 @@ void register_explore(CLI::App& app, int& exit_code) {
       "explore",
       "Sweep the unit's widths with the bit-accurate model and find the cheapest that meet an\n"
       "error budget. Every point: error against the double reference (max and mean LSB per\n"
-      "channel, PSNR, % of pixels more than 1 LSB off), cycles per pixel (cycle model) and area.\n"
+      "channel, PSNR, % of pixels more than 1 LSB off), cycles per pixel (cycle model) and area\n"
+      "(generic cells: shadesim area's estimate, a Yosys-measured unit of the same specular kind\n"
+      "scaled module by module; with none in --area-cache the start is synthesised once, minutes).\n"
       "Host setup (projection, Taylor setup, visibility, reference) is done once per scene and\n"
       "output width; a point only re-quantizes the stream and re-runs the model.\n"
       "\n"
@@ -444,7 +470,13 @@ void register_explore(CLI::App& app, int& exit_code) {
   sub->add_option("-j,--jobs", o->jobs, "threads evaluating points")->check(CLI::Range(1, 64))->capture_default_str();
   sub->add_option("--json", o->json_path, "write every point, the search and the error split as JSON (scripts/plot draws it)");
   sub->add_option("--csv", o->csv_path, "write every point as CSV");
-  sub->add_option("-o,--out", o->out_dir, "folder for the start and chosen config files (default out/explore/<scene>)");
+  sub->add_option("-o,--out", o->out_dir,
+                  "folder for the config files: start.json, chosen.json, pareto_<point>.json\n"
+                  "(default out/explore/<first scene>)");
+  sub->add_option("--area-cache", o->area_cache,
+                  "shadesim area's cache: the measured units the area estimate scales from (the start\n"
+                  "is synthesised into it once when no unit with its specular kind is there)")
+      ->capture_default_str();
   sub->add_flag("--verify", o->verify, "co-simulate the chosen point in RTL (needs on-demand Verilated builds)");
   sub->add_flag("-q,--quiet", o->quiet, "print nothing (use with --json / --csv)");
   sub->callback([o, &exit_code]() { exit_code = run_explore(*o); });
