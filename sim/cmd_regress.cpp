@@ -82,6 +82,17 @@ T field(const nlohmann::json& j, const char* key, T fallback) {
   }
 }
 
+// A configuration's name as part of a file name: a config file's path ("out/x/chosen.json") has
+// folders in it.
+std::string file_label(const std::string& config) {
+  std::string s = config;
+  if (fs::path(s).extension() == ".json") s = fs::path(s).stem().string();
+  for (char& c : s) {
+    if (c == '/' || c == ':' || c == ' ') c = '_';
+  }
+  return s;
+}
+
 RtlBuildOptions build_options(const RegressOptions& o) {
   RtlBuildOptions b;
   b.cache_dir = o.cache;
@@ -91,7 +102,7 @@ RtlBuildOptions build_options(const RegressOptions& o) {
 
 // Runs one job's co-simulation as a child process; fills status and figures from its JSON.
 void run_job(Job& job, const RegressOptions& o, const fs::path& out) {
-  const std::string base = job.scene_name + "__" + job.config + "__" + job.backend;
+  const std::string base = job.scene_name + "__" + file_label(job.config) + "__" + job.backend;
   const fs::path result_path = out / "results" / (base + ".json");
   job.log_path = (out / "logs" / (base + ".log")).string();
   std::vector<std::string> args = {job.executable,
@@ -251,7 +262,7 @@ void plan_jobs(const RegressOptions& o, const std::vector<std::string>& scenes, 
       proto.scene_name = fs::path(scene).stem().string();
       proto.config = c.name;
       proto.build = c;
-      const std::string safe = fs::path(c.name).stem().string();
+      const std::string safe = file_label(c.name);
       auto skip = [&](const std::string& why) {
         proto.status = "skipped";
         proto.message = why;
@@ -335,7 +346,7 @@ void build_all(std::vector<Job>& jobs, const RegressOptions& o, const fs::path& 
       continue;
     }
     j.executable = it->executable;
-    j.unit_path = (out / "units" / (fs::path(j.config).stem().string() + ".json")).string();
+    j.unit_path = (out / "units" / (file_label(j.config) + ".json")).string();
     std::ofstream(j.unit_path) << config_to_json(j.build.unit) << '\n';
   }
 }
