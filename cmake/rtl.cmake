@@ -14,7 +14,7 @@ find_program(YOSYS yosys)
 set(RTL_DIR ${CMAKE_SOURCE_DIR}/rtl)
 # Dependency order (leaves first) for tools that want it.
 set(RTL_SOURCES
-  ${RTL_DIR}/fixed_round.sv ${RTL_DIR}/fixed_sat.sv ${RTL_DIR}/span_setup.sv
+  ${RTL_DIR}/shade_pkg.sv ${RTL_DIR}/fixed_round.sv ${RTL_DIR}/fixed_sat.sv ${RTL_DIR}/span_setup.sv
   ${RTL_DIR}/series_engine.sv ${RTL_DIR}/pixel_combine.sv
   ${RTL_DIR}/exponent_lut.sv ${RTL_DIR}/schlick_divider.sv ${RTL_DIR}/wpow_unit.sv
   ${RTL_DIR}/specular_slot.sv ${RTL_DIR}/shade_unit.sv)
@@ -88,10 +88,16 @@ endfunction()
 set(RTL_CONFIG_NAMES "")
 set(RTL_SPECULAR_CONFIG_NAMES "")
 function(rtl_config name)
-  cmake_parse_arguments(C "" "CHANNELS;LIGHTS;XY_BITS;COEF;SERIES;SPEC_COLOUR;OUT_BITS;SPECULAR;SPECULAR_OUT;UNIT;FAULT_LSB_ROW;FAULT_STALL_ROW" "BACKENDS" ${ARGN})
+  cmake_parse_arguments(C "" "CHANNELS;LIGHTS;XY_BITS;COEF;SERIES;SPEC_COLOUR;OUT_BITS;SPECULAR;SPECULAR_OUT;UNIT;FAULT_LSB_ROW;FAULT_STALL_ROW;PORT_WORDS" "BACKENDS" ${ARGN})
   foreach(field FAULT_LSB_ROW FAULT_STALL_ROW)
     if(NOT DEFINED C_${field})
       set(C_${field} -1)
+    endif()
+  endforeach()
+  # Throughput structure (UnitConfig::port_words ...): 1 unless given.
+  foreach(field PORT_WORDS)
+    if(NOT DEFINED C_${field})
+      set(C_${field} 1)
     endif()
   endforeach()
   set(kinds ideal lut schlick wpow)
@@ -105,7 +111,8 @@ function(rtl_config name)
   _rtl_format_params(SPECULAR_OUT ${C_SPECULAR_OUT} spec_out)
   set(params -GCHANNELS=${C_CHANNELS} -GLIGHTS=${C_LIGHTS} -GXY_BITS=${C_XY_BITS}
       ${coef} ${series} ${spec_colour} -GOUT_BITS=${C_OUT_BITS} -GSPECULAR_KIND=${kind}
-      ${spec_out} -GFAULT_LSB_ROW=${C_FAULT_LSB_ROW} -GFAULT_STALL_ROW=${C_FAULT_STALL_ROW})
+      ${spec_out} -GPORT_WORDS=${C_PORT_WORDS}
+      -GFAULT_LSB_ROW=${C_FAULT_LSB_ROW} -GFAULT_STALL_ROW=${C_FAULT_STALL_ROW})
   if(kind GREATER 0)
     set(quant 0)
     set(overflow 0)
@@ -123,6 +130,7 @@ function(rtl_config name)
   set(RTL_CONFIG_${name}_PARAMS ${params} PARENT_SCOPE)
   set(RTL_CONFIG_${name}_BACKENDS ${C_BACKENDS} PARENT_SCOPE)
   set(head "${name}, ${C_CHANNELS}, ${C_LIGHTS}, ${C_XY_BITS}, \"${C_COEF}\", \"${C_SERIES}\", \"${C_SPEC_COLOUR}\", ${C_OUT_BITS}, \"${C_SPECULAR}\", \"${C_SPECULAR_OUT}\", ${C_FAULT_LSB_ROW}, ${C_FAULT_STALL_ROW}")
+  set(head "${head}, ${C_PORT_WORDS}")
   set(RTL_CONFIG_${name}_ENTRY "X(${head})" PARENT_SCOPE)
   set(RTL_CONFIG_${name}_COSIM_ENTRY "X(${head}, \"${C_UNIT}\")" PARENT_SCOPE)
   if(kind GREATER 0)
@@ -143,6 +151,19 @@ rtl_config(fault_lsb CHANNELS 1 LIGHTS 1 XY_BITS 12 COEF s4.32:rnd SERIES s4.28:
            FAULT_LSB_ROW 17 BACKENDS "cpp")
 rtl_config(fault_stall CHANNELS 1 LIGHTS 1 XY_BITS 12 COEF s4.32:rnd SERIES s4.28:wrap
            SPEC_COLOUR u1.12:rnd OUT_BITS 8 SPECULAR ideal SPECULAR_OUT u1.16
+           FAULT_STALL_ROW 23 BACKENDS "cpp")
+# Throughput (issue 8): wider command ports, on both width sets; the faults on a wide port.
+rtl_config(grey_p2 CHANNELS 1 LIGHTS 1 XY_BITS 12 COEF s4.32:rnd SERIES s4.28:wrap
+           SPEC_COLOUR u1.12:rnd OUT_BITS 8 SPECULAR ideal SPECULAR_OUT u1.16 PORT_WORDS 2 BACKENDS "cpp")
+rtl_config(grey_p4 CHANNELS 1 LIGHTS 1 XY_BITS 12 COEF s4.32:rnd SERIES s4.28:wrap
+           SPEC_COLOUR u1.12:rnd OUT_BITS 8 SPECULAR ideal SPECULAR_OUT u1.16 PORT_WORDS 4 BACKENDS "cpp;sc")
+rtl_config(rgb2_p8 CHANNELS 3 LIGHTS 2 XY_BITS 11 COEF s3.30:rnd SERIES s3.20:rnd
+           SPEC_COLOUR u1.12:rnd OUT_BITS 10 SPECULAR ideal SPECULAR_OUT u1.16 PORT_WORDS 8 BACKENDS "cpp")
+rtl_config(fault_lsb_p4 CHANNELS 1 LIGHTS 1 XY_BITS 12 COEF s4.32:rnd SERIES s4.28:wrap
+           SPEC_COLOUR u1.12:rnd OUT_BITS 8 SPECULAR ideal SPECULAR_OUT u1.16 PORT_WORDS 4
+           FAULT_LSB_ROW 17 BACKENDS "cpp")
+rtl_config(fault_stall_p4 CHANNELS 1 LIGHTS 1 XY_BITS 12 COEF s4.32:rnd SERIES s4.28:wrap
+           SPEC_COLOUR u1.12:rnd OUT_BITS 8 SPECULAR ideal SPECULAR_OUT u1.16 PORT_WORDS 4
            FAULT_STALL_ROW 23 BACKENDS "cpp")
 
 # The specular-unit regression (milestone 2): RGB with 2 lights (every shipped scene fits: the
@@ -186,6 +207,11 @@ foreach(backend cpp sc cpp_trace)
   set(includes "")
   add_executable(${exe} ${CMAKE_SOURCE_DIR}/sim/harness/cosim_main.cpp)
   foreach(name ${RTL_CONFIG_NAMES} ${RTL_SPECULAR_CONFIG_NAMES})
+    # SHADESIM_RTL_ONLY (a list of names, empty by default): Verilate only these, to save build
+    # time on a development machine; the tests of the others then fail to find their build.
+    if(SHADESIM_RTL_ONLY AND NOT name IN_LIST SHADESIM_RTL_ONLY)
+      continue()
+    endif()
     set(want ${backend})
     if(backend STREQUAL "cpp_trace")
       set(want cpp)
@@ -260,6 +286,28 @@ foreach(name grey_s428w rgb2_s320s)
               --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
   endforeach()
 endforeach()
+# Wider command ports (issue 8): every scenario, three seeds; SystemC on the four-word port; the
+# deliberate faults caught at the right scanline through a four-word port.
+foreach(name grey_p2 grey_p4 rgb2_p8)
+  add_test(NAME rtl_cosim_cpp_${name}
+    COMMAND rtl_cosim_cpp --config ${name} --scenario all --seed 1 --runs 3
+            --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
+endforeach()
+foreach(scenario mixed tiny)
+  add_test(NAME rtl_cosim_sc_grey_p4_${scenario}
+    COMMAND rtl_cosim_sc --config grey_p4 --scenario ${scenario} --seed 7
+            --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
+endforeach()
+add_test(NAME rtl_cosim_catches_lsb_fault_p4
+  COMMAND rtl_cosim_cpp --config fault_lsb_p4 --scenario mixed --seed 3 --stall-pct 0
+          --expect-mismatch pixel:17 --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
+add_test(NAME rtl_cosim_catches_stall_fault_p4
+  COMMAND rtl_cosim_cpp --config fault_stall_p4 --scenario mixed --seed 3 --stall-pct 0
+          --expect-mismatch cycle:23 --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
+add_test(NAME rtl_lint_grey_p4
+  COMMAND verilator --lint-only -Wall ${RTL_CONFIG_grey_p4_PARAMS} --top-module shade_unit ${RTL_SOURCES})
+add_test(NAME rtl_lint_rgb2_p8
+  COMMAND verilator --lint-only -Wall ${RTL_CONFIG_rgb2_p8_PARAMS} --top-module shade_unit ${RTL_SOURCES})
 # The specular-unit configurations: every scenario (non-zero specular colours, unit parameters,
 # LUT tables), one seed each in CI; the SystemC backend on one scenario where it is built.
 foreach(name ${RTL_SPECULAR_CONFIG_NAMES})

@@ -10,12 +10,15 @@
 // register with advance = !valid || ready.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "model/command_word.h"
 #include "model/specular_config.h"
 #include "model/stimulus.h"
+#include "model/unit_config.h"
 
 namespace shadesim {
 
@@ -27,6 +30,19 @@ struct SlotTiming {
   // The selected unit's timing (ExponentLut / SchlickDivider / WpowUnit latency and
   // cycles_per_pixel; ideal: 0 and 1), as rtl/specular_slot.sv builds it.
   static SlotTiming of(const SpecularConfig& config);
+};
+
+// Everything the cycle model needs of a unit: its slot timing and its throughput structure
+// (the control the RTL builds from UnitConfig; the datapath widths do not matter here).
+struct CycleConfig {
+  SlotTiming slot;
+  int port_words = 1;  // UnitConfig::port_words
+
+  CycleConfig() = default;
+  // A unit with the default structure around this slot.
+  CycleConfig(SlotTiming s) : slot(s) {}  // NOLINT(google-explicit-constructor): a slot is a unit
+  CycleConfig(SlotTiming s, int words) : slot(s), port_words(words) {}
+  static CycleConfig of(const UnitConfig& config);
 };
 
 // Where a scanline ends: the cycle on which its end-of-row pixel leaves the unit.
@@ -75,9 +91,10 @@ struct CycleBreakdown {
 };
 
 struct CycleRun {
-  uint64_t cycles = 0;  // cycles until every word is accepted and every pixel has left
+  uint64_t cycles = 0;  // cycles until every beat is accepted and every pixel has left
   uint64_t pixels = 0;
   uint64_t words = 0;
+  uint64_t beats = 0;
   CycleBreakdown breakdown;  // partitions `cycles`
   std::vector<ScanlineDone> scanlines;
 };
@@ -92,29 +109,32 @@ class CycleModel {
   // What happened on one clock edge.
   struct Edge {
     bool cmd_ready = false;  // combinational, before the edge
-    bool cmd_fire = false;
+    bool cmd_fire = false;   // the beat on the port was accepted on this edge
     bool pix_fire = false;   // a pixel left on this edge
     bool pix_eor = false;
     int pix_x = 0, pix_y = 0;
     Category category = Category::kSetupLoad;
   };
 
-  // Throws std::invalid_argument for a negative latency, an interval < 1, or an iterative
-  // interval that differs from the latency.
-  explicit CycleModel(SlotTiming timing = SlotTiming{});
+  // Throws std::invalid_argument for a negative latency, an interval < 1, an iterative
+  // interval that differs from the latency, or a port width other than 1, 2, 4, 8.
+  explicit CycleModel(CycleConfig timing = CycleConfig{});
 
-  // Inputs as seen just before the edge; advances the state by one clock.
-  Edge clock(bool cmd_valid, uint64_t cmd_word, bool pix_ready);
+  // Inputs as seen just before the edge (`beat`: the port_words words on the port); advances
+  // the state by one clock.
+  Edge clock(bool cmd_valid, const uint64_t* beat, bool pix_ready);
+  // A one-word port.
+  Edge clock(bool cmd_valid, uint64_t cmd_word, bool pix_ready) { return clock(cmd_valid, &cmd_word, pix_ready); }
 
-  // Nothing in flight and no pixel waiting.
-  bool idle() const { return !in_payload_ && datapath_empty() && !pix_.valid; }
+  // Nothing in flight, no pixel waiting, and no beat half taken apart.
+  bool idle() const { return !in_payload_ && pos_ == 0 && datapath_empty() && !pix_.valid; }
 
   // Cycles from a SPAN header's acceptance to its first pixel leaving, with nothing stalled.
   int span_latency() const { return 5 + timing_.latency; }
 
   // Runs a whole stream with the stimulus's gaps and back-pressure.
   static CycleRun run(const std::vector<uint64_t>& words, const Stimulus& stim,
-                      SlotTiming timing = SlotTiming{});
+                      CycleConfig timing = CycleConfig{});
 
  private:
   struct Span {
@@ -128,16 +148,17 @@ class CycleModel {
     bool eor = false;
   };
   enum class Payload { kSkip, kMaterial, kTriangle, kTable };
-  static constexpr unsigned kOpMaterial = 0x01, kOpTriangle = 0x02, kOpSpan = 0x03, kOpTable = 0x04;
 
   bool iterative() const { return timing_.interval > 1; }
   bool slot_empty() const;
   bool datapath_empty() const { return !s_[0].valid && !s_[1].valid && !s_[2].valid && !run_ && slot_empty(); }
   // What the command port does this cycle, as a bubble category (kSetupLoad for SPAN headers).
-  Category port_category(bool cmd_valid, unsigned op) const;
+  Category port_category(bool cmd_valid, CommandWord word) const;
 
   SlotTiming timing_;
-  // Decoder
+  unsigned port_words_ = 1;
+  // Decoder: pos_ is the next word of the beat on the port still to be taken.
+  unsigned pos_ = 0;
   bool in_payload_ = false;
   Payload pay_op_ = Payload::kSkip;
   unsigned pay_idx_ = 0, pay_last_ = 0;
@@ -175,7 +196,7 @@ inline bool CycleModel::slot_empty() const {
   return true;
 }
 
-inline CycleModel::Category CycleModel::port_category(bool cmd_valid, unsigned op) const {
+inline CycleModel::Category CycleModel::port_category(bool cmd_valid, CommandWord word) const {
   if (!cmd_valid) return Category::kCommandGap;
   if (in_payload_) {
     switch (pay_op_) {
@@ -184,15 +205,15 @@ inline CycleModel::Category CycleModel::port_category(bool cmd_valid, unsigned o
       default: return Category::kCommandWords;
     }
   }
-  switch (op) {
-    case kOpMaterial: return Category::kMaterial;
-    case kOpTable: return Category::kTable;
-    case kOpSpan: return Category::kSetupLoad;
+  switch (static_cast<Opcode>(word.opcode())) {
+    case Opcode::kMaterial: return Category::kMaterial;
+    case Opcode::kTable: return Category::kTable;
+    case Opcode::kSpan: return Category::kSetupLoad;
     default: return Category::kCommandWords;
   }
 }
 
-inline CycleModel::Edge CycleModel::clock(bool cmd_valid, uint64_t word, bool pix_ready) {
+inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, bool pix_ready) {
   Edge e;
   // ---- combinational, from the state before the edge (same equations as the RTL) ----
   const bool adv = !pix_.valid || pix_ready;
@@ -205,17 +226,31 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, uint64_t word, bool pi
   const bool s1_move = s_[0].valid && (!s_[1].valid || s2_move);
   const bool s1_free = !s_[0].valid || s1_move;
 
-  const unsigned op = static_cast<unsigned>(word >> 56) & 0xFF;
-  const unsigned count = static_cast<unsigned>(word & 0xFFFF);
+  // The item taken from the beat this cycle (model/command_stream.h): `n` words from pos_.
+  const CommandWord word{beat[pos_]};
+  const Opcode op = static_cast<Opcode>(word.opcode());
+  const unsigned count = word.count();
+  const unsigned beat_left = port_words_ - pos_;
+  unsigned n = 1;
+  if (in_payload_) {
+    if (pay_op_ == Payload::kTriangle) n = std::min((pay_last_ - pay_idx_ + 1) & unsigned{CommandWord::kFieldMask}, beat_left);
+  } else if (op == Opcode::kNop) {
+    n = beat_left;
+  } else if (op == Opcode::kTriangle) {
+    n = 1 + std::min(count, beat_left - 1);
+  }
   bool hdr_ready = true;
   // Only MATERIAL and TABLE headers wait for the empty datapath; the check walks the delay line.
-  if (op == kOpMaterial || op == kOpTable) hdr_ready = datapath_empty();
-  if (op == kOpSpan) hdr_ready = s1_free;
-  e.cmd_ready = in_payload_ || hdr_ready;
-  e.cmd_fire = cmd_valid && e.cmd_ready;
-  const bool hdr_fire = e.cmd_fire && !in_payload_;
-  const bool pay_fire = e.cmd_fire && in_payload_;
-  const bool span_fire = hdr_fire && op == kOpSpan;
+  if (op == Opcode::kMaterial || op == Opcode::kTable) hdr_ready = datapath_empty();
+  if (op == Opcode::kSpan) hdr_ready = s1_free;
+  const bool item_ready = in_payload_ || hdr_ready;
+  const bool item_fire = cmd_valid && item_ready;
+  const bool beat_done = n == beat_left;
+  e.cmd_ready = item_ready && beat_done;
+  e.cmd_fire = item_fire && beat_done;
+  const bool hdr_fire = item_fire && !in_payload_;
+  const bool pay_fire = item_fire && in_payload_;
+  const bool span_fire = hdr_fire && op == Opcode::kSpan;
 
   e.pix_fire = pix_.valid && pix_ready;
   e.pix_eor = pix_.eor;
@@ -233,7 +268,7 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, uint64_t word, bool pi
   } else {
     e.category = port_history_[slot];  // the port's category span_latency() cycles ago
   }
-  port_history_[slot] = port_category(cmd_valid, op);
+  port_history_[slot] = port_category(cmd_valid, word);
   if (++history_pos_ == port_history_.size()) history_pos_ = 0;
 
   // ---- the edge: engines -> slot -> pix register ----
@@ -273,26 +308,32 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, uint64_t word, bool pi
   else if (s2_move) s_[1].valid = false;
   if (span_fire) {
     s_[0].valid = true;
-    s_[0].y = static_cast<int>((word >> 32) & 0xFFFF);
-    s_[0].x0 = static_cast<int>((word >> 16) & 0xFFFF);
-    s_[0].len = static_cast<int>(count);
-    s_[0].last = ((word >> 55) & 1) != 0;
+    s_[0].y = word.span_y();
+    s_[0].x0 = word.span_x0();
+    s_[0].len = word.span_length();
+    s_[0].last = word.span_last();
   } else if (s1_move) {
     s_[0].valid = false;
   }
 
+  if (item_fire) pos_ = beat_done ? 0 : pos_ + n;
   if (hdr_fire) {
     pay_idx_ = 0;
-    pay_last_ = (count - 1) & 0xFFFF;
+    pay_last_ = (count - 1) & CommandWord::kFieldMask;
     switch (op) {
-      case kOpMaterial: pay_op_ = Payload::kMaterial; in_payload_ = count != 0; break;
-      case kOpTriangle: pay_op_ = Payload::kTriangle; in_payload_ = count != 0; break;
-      case kOpTable: pay_op_ = Payload::kTable; in_payload_ = count != 0; break;
+      case Opcode::kMaterial: pay_op_ = Payload::kMaterial; in_payload_ = count != 0; break;
+      case Opcode::kTriangle:
+        // The coefficient words that came with the header are already taken.
+        pay_op_ = Payload::kTriangle;
+        pay_idx_ = n - 1;
+        in_payload_ = count > n - 1;
+        break;
+      case Opcode::kTable: pay_op_ = Payload::kTable; in_payload_ = count != 0; break;
       default: pay_op_ = Payload::kSkip; in_payload_ = false; break;
     }
   } else if (pay_fire) {
-    if (pay_idx_ == pay_last_) in_payload_ = false;
-    pay_idx_ = (pay_idx_ + 1) & 0xFFFF;
+    if (((pay_idx_ + n - 1) & CommandWord::kFieldMask) == pay_last_) in_payload_ = false;
+    pay_idx_ = (pay_idx_ + n) & CommandWord::kFieldMask;
   }
   return e;
 }

@@ -33,6 +33,11 @@ struct UnitConfig {
 
   SpecularConfig specular;
 
+  // Throughput structure (the RTL's timing, not its numbers: pixels do not depend on these).
+  // Command port width: 64-bit words per handshake (a beat), 1, 2, 4 or 8. How the stream's words
+  // fill beats and how many the decoder takes per cycle: model/command_stream.h.
+  int port_words = 1;
+
   int diffuse_series() const { return lights * channels; }
   int specular_series() const { return lights * specular.series_per_light(); }
   int series_per_triangle() const { return diffuse_series() + specular_series(); }

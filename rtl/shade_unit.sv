@@ -1,6 +1,10 @@
 // shade_unit: the whole shading unit (model/shade_unit.h, class ShadeUnit).
 //
-// cmd port: the command stream's binary words (model/command_stream.h), one per handshake.
+// cmd port: the command stream's binary words (model/command_stream.h; layout in rtl/shade_pkg.sv),
+// PORT_WORDS per handshake (a beat; word k in cmd_data_i[64k +: 64]). The decoder takes a beat
+// apart one item per cycle - a TRIANGLE header with the coefficient words after it in the beat,
+// or the rest of a triangle's coefficient words in the beat, or one other header or payload
+// word, or a NOP (0x00: the rest of the beat is padding) - and accepts the beat with its last.
 // pix port: one pixel per span pixel, in stream order; pix_eor_o marks the last pixel of a
 // span flagged last_in_row. Both ports are valid/ready; cmd_ready_o and the pipeline's
 // advance depend combinationally on pix_ready_i (no skid buffers).
@@ -35,6 +39,7 @@ module shade_unit #(
   parameter int SPECULAR_KIND    = 0,  // SpecularUnitKind: 0 ideal, 1 lut, 2 schlick, 3 wpow
   parameter int SPECULAR_OUT_WL  = 17,
   parameter int SPECULAR_OUT_IWL = 1,
+  parameter int PORT_WORDS       = 1,  // 64-bit words per cmd handshake: 1, 2, 4 or 8
   // The specular unit's own parameters (specular_slot; model/specular_config.h field names
   // with the unit's prefix). Unused unless SPECULAR_KIND selects that unit.
   // verilator lint_off UNUSEDPARAM
@@ -59,7 +64,7 @@ module shade_unit #(
 ) (
   input  logic                         clk_i,
   input  logic                         rst_ni,
-  input  logic [63:0]                  cmd_data_i,
+  input  logic [PORT_WORDS*shade_pkg::WordW-1:0] cmd_data_i,
   input  logic                         cmd_valid_i,
   output logic                         cmd_ready_o,
   output logic [XY_BITS-1:0]           pix_x_o,
@@ -69,27 +74,19 @@ module shade_unit #(
   output logic                         pix_valid_o,
   input  logic                         pix_ready_i
 );
-  localparam int SeriesPerLight = SPECULAR_KIND == 2 ? 2 : 1;
+  localparam int SeriesPerLight = SPECULAR_KIND == shade_pkg::SpecSchlick ? 2 : 1;
   localparam int NDiff          = LIGHTS * CHANNELS;
   localparam int NSer           = NDiff + LIGHTS * SeriesPerLight;
   localparam int NCoef          = 6 * NSer;
   localparam int NMatFixed      = CHANNELS + LIGHTS * CHANNELS;  // ambient + spec_colour words
   localparam int OfsW           = 17;  // x0 - xo with x0 < 2^15 and xo a signed 16-bit value
-  // The slot's timing (specular_slot's LATENCY / INTERVAL; notes/spec_rtl.md).
-  localparam int WpowK          = $clog2(WPOW_MAX_M);
-  localparam int SpecLatency    =
-      SPECULAR_KIND == 1 ? (LUT_INTERP_BITS > 0 ? 3 : 2) :
-      SPECULAR_KIND == 2 ? SCHLICK_QUOTIENT_BITS :
-      SPECULAR_KIND == 3 ? WpowK + 1 : 0;
-  localparam int SpecInterval   =
-      SPECULAR_KIND == 2 && SCHLICK_TIMING == 1 ? SCHLICK_QUOTIENT_BITS :
-      SPECULAR_KIND == 3 && WPOW_TIMING == 1 ? WpowK + 1 : 1;
+  // The slot's timing (shade_pkg, the one definition; specular_slot's contract).
+  localparam int SpecLatency    = shade_pkg::spec_latency(SPECULAR_KIND, LUT_INTERP_BITS,
+                                                          SCHLICK_QUOTIENT_BITS, WPOW_MAX_M);
+  localparam int SpecInterval   = shade_pkg::spec_interval(SPECULAR_KIND, LUT_INTERP_BITS,
+                                                           SCHLICK_QUOTIENT_BITS, SCHLICK_TIMING,
+                                                           WPOW_MAX_M, WPOW_TIMING);
   localparam bit Iterative      = SpecInterval > 1;
-
-  localparam logic [7:0] OpMaterial = 8'h01;
-  localparam logic [7:0] OpTriangle = 8'h02;
-  localparam logic [7:0] OpSpan     = 8'h03;
-  localparam logic [7:0] OpTable    = 8'h04;
 
   typedef enum logic [1:0] {PaySkip, PayMaterial, PayTriangle, PayTable} pay_e;
 
@@ -104,7 +101,7 @@ module shade_unit #(
   logic datapath_empty, slot_empty;
   logic spec_busy;  // an iterative specular unit cannot start (all lights run in lockstep)
   logic out_adv;    // the pix register takes the slot's output pixel
-  logic cmd_fire, hdr_fire, pay_fire, span_fire;
+  logic item_ready, item_fire, beat_done, hdr_fire, pay_fire, span_fire;
 
   // ---- decoder state ----------------------------------------------------------------------
   logic        in_payload_q;
@@ -114,8 +111,31 @@ module shade_unit #(
   logic [15:0] hdr_count;
   logic        hdr_ready;
 
-  assign hdr_op    = cmd_data_i[63:56];
-  assign hdr_count = cmd_data_i[15:0];
+  // The beat on the port and the word of it the decoder looks at.
+  localparam int WordW = shade_pkg::WordW;
+  localparam int PosW  = PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1;
+  logic [PosW-1:0]  pos_q;      // next word of the beat still to be taken
+  logic [WordW-1:0] cmd_word;
+  logic [15:0]      beat_left;  // words of the beat from pos_q on
+  logic [15:0]      pay_rem;    // payload words still to come
+  logic [15:0]      item_n;     // words the item of this cycle takes
+  assign cmd_word  = cmd_data_i[pos_q * WordW +: WordW];
+  assign beat_left = 16'(PORT_WORDS) - 16'(pos_q);
+  assign pay_rem   = pay_last_q - pay_idx_q + 16'd1;
+
+  assign hdr_op    = cmd_word[shade_pkg::OpcodeLsb +: 8];
+  assign hdr_count = cmd_word[shade_pkg::CountLsb +: shade_pkg::FieldW];
+
+  always_comb begin
+    item_n = 16'd1;
+    if (in_payload_q) begin
+      if (pay_op_q == PayTriangle) item_n = pay_rem < beat_left ? pay_rem : beat_left;
+    end else if (hdr_op == shade_pkg::OpNop) begin
+      item_n = beat_left;
+    end else if (hdr_op == shade_pkg::OpTriangle) begin
+      item_n = 16'd1 + (hdr_count < beat_left - 16'd1 ? hdr_count : beat_left - 16'd1);
+    end
+  end
 
   assign datapath_empty = !s1_v_q && !s2_v_q && !s3_v_q && !run_q && slot_empty;
 
@@ -124,39 +144,52 @@ module shade_unit #(
   // applies them in stream order.
   always_comb begin
     case (hdr_op)
-      OpMaterial: hdr_ready = datapath_empty;
-      OpTable:    hdr_ready = datapath_empty;
-      OpSpan:     hdr_ready = s1_free;
+      shade_pkg::OpMaterial: hdr_ready = datapath_empty;
+      shade_pkg::OpTable:    hdr_ready = datapath_empty;
+      shade_pkg::OpSpan:     hdr_ready = s1_free;
       default:    hdr_ready = 1'b1;
     endcase
   end
 
-  assign cmd_ready_o = in_payload_q ? 1'b1 : hdr_ready;
-  assign cmd_fire    = cmd_valid_i && cmd_ready_o;
-  assign hdr_fire    = cmd_fire && !in_payload_q;
-  assign pay_fire    = cmd_fire && in_payload_q;
-  assign span_fire   = hdr_fire && hdr_op == OpSpan;
+  assign item_ready  = in_payload_q || hdr_ready;
+  assign item_fire   = cmd_valid_i && item_ready;
+  assign beat_done   = item_n == beat_left;
+  assign cmd_ready_o = item_ready && beat_done;
+  assign hdr_fire    = item_fire && !in_payload_q;
+  assign pay_fire    = item_fire && in_payload_q;
+  assign span_fire   = hdr_fire && hdr_op == shade_pkg::OpSpan;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      pos_q        <= '0;
       in_payload_q <= 1'b0;
       pay_op_q     <= PaySkip;
       pay_idx_q    <= 16'd0;
       pay_last_q   <= 16'd0;
       tbl_base_q   <= 16'd0;
-    end else if (hdr_fire) begin
-      pay_idx_q  <= 16'd0;
-      pay_last_q <= hdr_count - 16'd1;
-      tbl_base_q <= cmd_data_i[31:16];
-      case (hdr_op)
-        OpMaterial: begin pay_op_q <= PayMaterial; in_payload_q <= hdr_count != 16'd0; end
-        OpTriangle: begin pay_op_q <= PayTriangle; in_payload_q <= hdr_count != 16'd0; end
-        OpTable:    begin pay_op_q <= PayTable;    in_payload_q <= hdr_count != 16'd0; end
-        default:    begin pay_op_q <= PaySkip;     in_payload_q <= 1'b0; end
-      endcase
-    end else if (pay_fire) begin
-      pay_idx_q <= pay_idx_q + 16'd1;
-      if (pay_idx_q == pay_last_q) in_payload_q <= 1'b0;
+    end else begin
+      if (item_fire) pos_q <= beat_done ? '0 : PosW'(16'(pos_q) + item_n);
+      if (hdr_fire) begin
+        pay_idx_q  <= 16'd0;
+        pay_last_q <= hdr_count - 16'd1;
+        tbl_base_q <= cmd_word[shade_pkg::MidLsb +: shade_pkg::FieldW];
+        case (hdr_op)
+          shade_pkg::OpMaterial: begin pay_op_q <= PayMaterial; in_payload_q <= hdr_count != 16'd0; end
+          // The coefficient words that came with the header are already taken.
+          shade_pkg::OpTriangle: begin
+            pay_op_q     <= PayTriangle;
+            pay_idx_q    <= item_n - 16'd1;
+            in_payload_q <= hdr_count > item_n - 16'd1;
+          end
+          shade_pkg::OpTable:    begin pay_op_q <= PayTable;    in_payload_q <= hdr_count != 16'd0; end
+          // END_FRAME and unknown opcodes carry no payload.
+          shade_pkg::OpEndFrame: begin pay_op_q <= PaySkip; in_payload_q <= 1'b0; end
+          default:               begin pay_op_q <= PaySkip; in_payload_q <= 1'b0; end
+        endcase
+      end else if (pay_fire) begin
+        pay_idx_q <= pay_idx_q + item_n;
+        if (pay_idx_q + item_n - 16'd1 == pay_last_q) in_payload_q <= 1'b0;
+      end
     end
   end
 
@@ -169,21 +202,40 @@ module shade_unit #(
   logic [CHANNELS*SERIES_WL-1:0]  ambient_q;
   logic [NDiff*SPEC_COLOUR_WL-1:0] spec_colour_q;
 
-  always_ff @(posedge clk_i) begin
-    if (hdr_fire && hdr_op == OpTriangle) begin
-      xo_q <= cmd_data_i[47:32];
-      yo_q <= cmd_data_i[31:16];
+  // Coefficient words of this cycle's item: beat words tri_first .. pos_q + item_n - 1, word k
+  // to coefficient coef_base + k.
+  logic                  tri_take;
+  logic [15:0]           tri_first, tri_end, coef_base;
+  logic [15:0]           coef_idx [PORT_WORDS];
+  logic [PORT_WORDS-1:0] coef_we;
+  assign tri_take  = item_fire && (in_payload_q ? pay_op_q == PayTriangle
+                                                : hdr_op == shade_pkg::OpTriangle);
+  assign tri_first = 16'(pos_q) + (in_payload_q ? 16'd0 : 16'd1);
+  assign tri_end   = 16'(pos_q) + item_n;
+  assign coef_base = (in_payload_q ? pay_idx_q : 16'd0) - tri_first;
+  always_comb begin
+    for (int k = 0; k < PORT_WORDS; k++) begin
+      coef_idx[k] = coef_base + 16'(k);
+      coef_we[k]  = tri_take && 16'(k) >= tri_first && 16'(k) < tri_end &&
+                    coef_idx[k] < 16'(NCoef);
     end
-    if (pay_fire && pay_op_q == PayTriangle && pay_idx_q < 16'(NCoef)) begin
-      coef_q[pay_idx_q[CoefIdxW-1:0]] <= cmd_data_i[COEF_WL-1:0];
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (hdr_fire && hdr_op == shade_pkg::OpTriangle) begin
+      xo_q <= cmd_word[shade_pkg::HighLsb +: shade_pkg::FieldW];
+      yo_q <= cmd_word[shade_pkg::MidLsb +: shade_pkg::FieldW];
+    end
+    for (int k = 0; k < PORT_WORDS; k++) begin
+      if (coef_we[k]) coef_q[coef_idx[k][CoefIdxW-1:0]] <= cmd_data_i[k*WordW +: COEF_WL];
     end
     if (pay_fire && pay_op_q == PayMaterial) begin
       for (int i = 0; i < CHANNELS; i++) begin
-        if (pay_idx_q == 16'(i)) ambient_q[i*SERIES_WL +: SERIES_WL] <= cmd_data_i[SERIES_WL-1:0];
+        if (pay_idx_q == 16'(i)) ambient_q[i*SERIES_WL +: SERIES_WL] <= cmd_word[SERIES_WL-1:0];
       end
       for (int i = 0; i < NDiff; i++) begin
         if (pay_idx_q == 16'(CHANNELS + i)) begin
-          spec_colour_q[i*SPEC_COLOUR_WL +: SPEC_COLOUR_WL] <= cmd_data_i[SPEC_COLOUR_WL-1:0];
+          spec_colour_q[i*SPEC_COLOUR_WL +: SPEC_COLOUR_WL] <= cmd_word[SPEC_COLOUR_WL-1:0];
         end
       end
     end
@@ -207,10 +259,10 @@ module shade_unit #(
   } span_t;
 
   span_t span_in, s1_q, s2_q, s3_q;
-  assign span_in.y    = cmd_data_i[32 +: XY_BITS];
-  assign span_in.x0   = cmd_data_i[16 +: XY_BITS];
-  assign span_in.len  = cmd_data_i[15:0];
-  assign span_in.last = cmd_data_i[55];
+  assign span_in.y    = cmd_word[shade_pkg::HighLsb +: XY_BITS];
+  assign span_in.x0   = cmd_word[shade_pkg::MidLsb +: XY_BITS];
+  assign span_in.len  = cmd_word[shade_pkg::CountLsb +: shade_pkg::FieldW];
+  assign span_in.last = cmd_word[shade_pkg::SpanLastBit];
 
   logic signed [OfsW-1:0] dx, dy;
   assign dx = $signed(OfsW'(span_in.x0)) - OfsW'(xo_q);
@@ -339,7 +391,7 @@ module shade_unit #(
       .clk_i, .rst_ni, .en_i(slot_en),
       .series_i(eng_v[(NDiff + l*SeriesPerLight)*SERIES_WL +: SeriesPerLight*SERIES_WL]),
       .cfg_valid_i(cfg_valid), .cfg_table_i(cfg_table), .cfg_addr_i(cfg_addr),
-      .cfg_data_i(cmd_data_i), .spec_o(spec[l*SPECULAR_OUT_WL +: SPECULAR_OUT_WL]),
+      .cfg_data_i(cmd_word), .spec_o(spec[l*SPECULAR_OUT_WL +: SPECULAR_OUT_WL]),
       .busy_o(busy[l])
     );
   end

@@ -22,6 +22,7 @@ struct CyclesOptions {
   std::string specular;
   int channels = 0;  // 0: what the scene needs
   int lights = 0;
+  int port_words = 1;
   uint64_t seed = 1;
   int gap_pct = 0, max_gap = 1, stall_pct = 0;
   std::string json_path;
@@ -30,6 +31,7 @@ struct CyclesOptions {
 int run_cycles(const CyclesOptions& o) {
   FrameOptions fo;
   fo.base = o.widths.to_config();
+  fo.base.port_words = o.port_words;
   if (!o.specular.empty()) fo.specular_override = parse_specular_unit(o.specular, "--specular");
   if (o.channels > 0 || o.lights > 0) {
     // A fixed unit, as built: the scene must fit it.
@@ -47,10 +49,11 @@ int run_cycles(const CyclesOptions& o) {
   stim.gap_pct = o.gap_pct;
   stim.max_gap = o.max_gap;
   stim.stall_pct = o.stall_pct;
-  const SlotTiming timing = SlotTiming::of(frame.config.specular);
+  const CycleConfig unit_timing = CycleConfig::of(frame.config);
+  const SlotTiming& timing = unit_timing.slot;
   const std::vector<uint64_t> words = frame.encoded.stream.encode();
   const auto t1 = std::chrono::steady_clock::now();
-  const CycleRun run = CycleModel::run(words, stim, timing);
+  const CycleRun run = CycleModel::run(words, stim, unit_timing);
   const double model_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
 
   const double cpp = run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;
@@ -58,6 +61,7 @@ int run_cycles(const CyclesOptions& o) {
             << "unit         " << frame.config.to_string() << "\n"
             << "specular     " << frame.config.specular.describe() << ": latency " << timing.latency
             << ", " << timing.interval << " cycle(s) per pixel\n"
+            << "command port " << unit_timing.port_words << " word(s) per beat\n"
             << "stimulus     seed " << o.seed << ", input gaps " << o.gap_pct << "% (max " << o.max_gap
             << "), back-pressure " << o.stall_pct << "%\n"
             << "stream       " << words.size() << " words: " << frame.encoded.stats.triangles << " tri, "
@@ -83,6 +87,7 @@ int run_cycles(const CyclesOptions& o) {
                         {"slot", {{"latency", timing.latency}, {"interval", timing.interval}}},
                         {"stimulus", {{"seed", o.seed}, {"gap_pct", o.gap_pct}, {"max_gap", o.max_gap}, {"stall_pct", o.stall_pct}}},
                         {"words", words.size()},
+                        {"beats", run.beats},
                         {"pixels", run.pixels},
                         {"cycles", run.cycles},
                         {"cycles_per_pixel", cpp},
@@ -111,6 +116,8 @@ void register_cycles(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({1, 3}));
   sub->add_option("--lights", o->lights, "build with series for this many lights (default: the scene's)")
       ->check(CLI::Range(1, 8));
+  sub->add_option("--port-words", o->port_words, "command port width: 64-bit words per handshake")
+      ->check(CLI::IsMember({1, 2, 4, 8}))->capture_default_str();
   sub->add_option("--seed", o->seed, "stimulus seed")->capture_default_str();
   sub->add_option("--gap-pct", o->gap_pct, "chance of idle cycles before a command word")->check(CLI::Range(0, 100))->capture_default_str();
   sub->add_option("--max-gap", o->max_gap, "longest idle gap in cycles")->check(CLI::Range(1, 100000))->capture_default_str();

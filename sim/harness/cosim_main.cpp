@@ -73,10 +73,10 @@ std::vector<Entry> registry() {
 #define SHADESIM_RUN(V, job, waves) run_verilated_cpp<V>(job, waves)
 #endif
 #define X(name, channels, lights, xy_bits, coef, series, spec_colour, out_bits, specular, spec_out, \
-          fault_lsb, fault_stall, unit_params)                                                     \
+          fault_lsb, fault_stall, port_words, unit_params)                                         \
   entries.push_back({make_rtl_config(#name, channels, lights, xy_bits, coef, series, spec_colour,     \
                                      out_bits, specular, spec_out, fault_lsb, fault_stall,            \
-                                     unit_params),                                                    \
+                                     unit_params, port_words),                                        \
                      [](const CosimJob& job, const WaveWindow* waves) { return SHADESIM_RUN(V##name, job, waves); }});
   SHADESIM_RTL_CONFIGS(X)
 #undef X

@@ -54,7 +54,8 @@ RtlConfig make_rtl_config(const std::string& name, int channels, int lights, int
                           const std::string& coef, const std::string& series,
                           const std::string& spec_colour, int out_bits,
                           const std::string& specular, const std::string& specular_out,
-                          int fault_lsb_row, int fault_stall_row, const std::string& unit_params) {
+                          int fault_lsb_row, int fault_stall_row, const std::string& unit_params,
+                          int port_words) {
   RtlConfig r;
   r.name = name;
   const std::string what = "rtl config " + name;
@@ -76,6 +77,7 @@ RtlConfig make_rtl_config(const std::string& name, int channels, int lights, int
     }
     apply_unit_param(r.unit.specular, pair.substr(0, eq), pair.substr(eq + 1), what);
   }
+  r.unit.port_words = port_words;
   r.unit.validate();
   r.fault_lsb_row = fault_lsb_row;
   r.fault_stall_row = fault_stall_row;
