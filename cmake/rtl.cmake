@@ -88,14 +88,14 @@ endfunction()
 set(RTL_CONFIG_NAMES "")
 set(RTL_SPECULAR_CONFIG_NAMES "")
 function(rtl_config name)
-  cmake_parse_arguments(C "" "CHANNELS;LIGHTS;XY_BITS;COEF;SERIES;SPEC_COLOUR;OUT_BITS;SPECULAR;SPECULAR_OUT;UNIT;FAULT_LSB_ROW;FAULT_STALL_ROW;PORT_WORDS" "BACKENDS" ${ARGN})
+  cmake_parse_arguments(C "" "CHANNELS;LIGHTS;XY_BITS;COEF;SERIES;SPEC_COLOUR;OUT_BITS;SPECULAR;SPECULAR_OUT;UNIT;FAULT_LSB_ROW;FAULT_STALL_ROW;PORT_WORDS;TRI_QUEUE" "BACKENDS" ${ARGN})
   foreach(field FAULT_LSB_ROW FAULT_STALL_ROW)
     if(NOT DEFINED C_${field})
       set(C_${field} -1)
     endif()
   endforeach()
   # Throughput structure (UnitConfig::port_words ...): 1 unless given.
-  foreach(field PORT_WORDS)
+  foreach(field PORT_WORDS TRI_QUEUE)
     if(NOT DEFINED C_${field})
       set(C_${field} 1)
     endif()
@@ -111,7 +111,7 @@ function(rtl_config name)
   _rtl_format_params(SPECULAR_OUT ${C_SPECULAR_OUT} spec_out)
   set(params -GCHANNELS=${C_CHANNELS} -GLIGHTS=${C_LIGHTS} -GXY_BITS=${C_XY_BITS}
       ${coef} ${series} ${spec_colour} -GOUT_BITS=${C_OUT_BITS} -GSPECULAR_KIND=${kind}
-      ${spec_out} -GPORT_WORDS=${C_PORT_WORDS}
+      ${spec_out} -GPORT_WORDS=${C_PORT_WORDS} -GTRI_QUEUE=${C_TRI_QUEUE}
       -GFAULT_LSB_ROW=${C_FAULT_LSB_ROW} -GFAULT_STALL_ROW=${C_FAULT_STALL_ROW})
   if(kind GREATER 0)
     set(quant 0)
@@ -130,7 +130,7 @@ function(rtl_config name)
   set(RTL_CONFIG_${name}_PARAMS ${params} PARENT_SCOPE)
   set(RTL_CONFIG_${name}_BACKENDS ${C_BACKENDS} PARENT_SCOPE)
   set(head "${name}, ${C_CHANNELS}, ${C_LIGHTS}, ${C_XY_BITS}, \"${C_COEF}\", \"${C_SERIES}\", \"${C_SPEC_COLOUR}\", ${C_OUT_BITS}, \"${C_SPECULAR}\", \"${C_SPECULAR_OUT}\", ${C_FAULT_LSB_ROW}, ${C_FAULT_STALL_ROW}")
-  set(head "${head}, ${C_PORT_WORDS}")
+  set(head "${head}, ${C_PORT_WORDS}, ${C_TRI_QUEUE}")
   set(RTL_CONFIG_${name}_ENTRY "X(${head})" PARENT_SCOPE)
   set(RTL_CONFIG_${name}_COSIM_ENTRY "X(${head}, \"${C_UNIT}\")" PARENT_SCOPE)
   if(kind GREATER 0)
@@ -159,6 +159,14 @@ rtl_config(grey_p4 CHANNELS 1 LIGHTS 1 XY_BITS 12 COEF s4.32:rnd SERIES s4.28:wr
            SPEC_COLOUR u1.12:rnd OUT_BITS 8 SPECULAR ideal SPECULAR_OUT u1.16 PORT_WORDS 4 BACKENDS "cpp;sc")
 rtl_config(rgb2_p8 CHANNELS 3 LIGHTS 2 XY_BITS 11 COEF s3.30:rnd SERIES s3.20:rnd
            SPEC_COLOUR u1.12:rnd OUT_BITS 10 SPECULAR ideal SPECULAR_OUT u1.16 PORT_WORDS 8 BACKENDS "cpp")
+rtl_config(grey_p4_q2 CHANNELS 1 LIGHTS 1 XY_BITS 12 COEF s4.32:rnd SERIES s4.28:wrap
+           SPEC_COLOUR u1.12:rnd OUT_BITS 8 SPECULAR ideal SPECULAR_OUT u1.16 PORT_WORDS 4 TRI_QUEUE 2
+           BACKENDS "cpp;sc")
+rtl_config(rgb2_p8_q3 CHANNELS 3 LIGHTS 2 XY_BITS 11 COEF s3.30:rnd SERIES s3.20:rnd
+           SPEC_COLOUR u1.12:rnd OUT_BITS 10 SPECULAR ideal SPECULAR_OUT u1.16 PORT_WORDS 8 TRI_QUEUE 3
+           BACKENDS "cpp")
+rtl_config(grey_p1_q2 CHANNELS 1 LIGHTS 1 XY_BITS 12 COEF s4.32:rnd SERIES s4.28:wrap
+           SPEC_COLOUR u1.12:rnd OUT_BITS 8 SPECULAR ideal SPECULAR_OUT u1.16 TRI_QUEUE 2 BACKENDS "cpp")
 rtl_config(fault_lsb_p4 CHANNELS 1 LIGHTS 1 XY_BITS 12 COEF s4.32:rnd SERIES s4.28:wrap
            SPEC_COLOUR u1.12:rnd OUT_BITS 8 SPECULAR ideal SPECULAR_OUT u1.16 PORT_WORDS 4
            FAULT_LSB_ROW 17 BACKENDS "cpp")
@@ -273,6 +281,11 @@ if(YOSYS)
     set_tests_properties(rtl_yosys_no_latch_wpow_timing${timing} PROPERTIES
       ENVIRONMENT "YOSYS_CHPARAM=-set SPECULAR_KIND 3 -set WPOW_MAX_M 4 -set WPOW_BASE_BITS 8 -set WPOW_TIMING ${timing}")
   endforeach()
+  # The wide port's beat decoder and the triangle queue's banks and span queue.
+  add_test(NAME rtl_yosys_no_latch_port4_queue3
+    COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_check.sh ${YOSYS} ${CMAKE_BINARY_DIR}/rtl_yosys_p4q3.log ${RTL_SOURCES})
+  set_tests_properties(rtl_yosys_no_latch_port4_queue3 PROPERTIES
+    ENVIRONMENT "YOSYS_CHPARAM=-set PORT_WORDS 4 -set TRI_QUEUE 3")
 endif()
 
 # Co-simulation: every scenario, several seeds, both backends, both width sets.
@@ -288,7 +301,7 @@ foreach(name grey_s428w rgb2_s320s)
 endforeach()
 # Wider command ports (issue 8): every scenario, three seeds; SystemC on the four-word port; the
 # deliberate faults caught at the right scanline through a four-word port.
-foreach(name grey_p2 grey_p4 rgb2_p8)
+foreach(name grey_p2 grey_p4 rgb2_p8 grey_p4_q2 rgb2_p8_q3 grey_p1_q2)
   add_test(NAME rtl_cosim_cpp_${name}
     COMMAND rtl_cosim_cpp --config ${name} --scenario all --seed 1 --runs 3
             --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
@@ -308,6 +321,8 @@ add_test(NAME rtl_lint_grey_p4
   COMMAND verilator --lint-only -Wall ${RTL_CONFIG_grey_p4_PARAMS} --top-module shade_unit ${RTL_SOURCES})
 add_test(NAME rtl_lint_rgb2_p8
   COMMAND verilator --lint-only -Wall ${RTL_CONFIG_rgb2_p8_PARAMS} --top-module shade_unit ${RTL_SOURCES})
+add_test(NAME rtl_lint_rgb2_p8_q3
+  COMMAND verilator --lint-only -Wall ${RTL_CONFIG_rgb2_p8_q3_PARAMS} --top-module shade_unit ${RTL_SOURCES})
 # The specular-unit configurations: every scenario (non-zero specular colours, unit parameters,
 # LUT tables), one seed each in CI; the SystemC backend on one scenario where it is built.
 foreach(name ${RTL_SPECULAR_CONFIG_NAMES})

@@ -360,6 +360,7 @@ std::string config_to_json(const UnitConfig& c) {
   j["spec_colour"] = c.spec_colour.to_string();
   j["out_bits"] = c.out_bits;
   j["port_words"] = c.port_words;
+  j["tri_queue"] = c.tri_queue;
   const SpecularConfig& sp = c.specular;
   j["specular"] = {{"kind", to_string(sp.kind)}, {"out", sp.out.to_string()}};
   j["specular"]["lut"] = {{"addr_bits", sp.lut.addr_bits},
@@ -421,6 +422,7 @@ UnitConfig config_from_json(const std::string& text, const std::string& source) 
     c.out_bits = json_int(j, "out_bits", 1, 16);
     // Throughput structure: absent keys keep their defaults (streams written before it existed).
     if (j.contains("port_words")) c.port_words = json_int(j, "port_words", 1, 8);
+    if (j.contains("tri_queue")) c.tri_queue = json_int(j, "tri_queue", 1, 8);
     if (!j.contains("specular") || !j.at("specular").is_object()) {
       throw std::invalid_argument("config.specular: expected an object");
     }

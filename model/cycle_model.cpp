@@ -23,7 +23,7 @@ SlotTiming SlotTiming::of(const SpecularConfig& config) {
 }
 
 CycleConfig CycleConfig::of(const UnitConfig& config) {
-  return CycleConfig(SlotTiming::of(config.specular), config.port_words);
+  return CycleConfig(SlotTiming::of(config.specular), config.port_words, config.tri_queue);
 }
 
 std::string to_string(CycleModel::Category c) {
@@ -59,7 +59,13 @@ uint64_t CycleBreakdown::total() const {
   return t;
 }
 
-CycleModel::CycleModel(CycleConfig unit) : timing_(unit.slot), port_words_(static_cast<unsigned>(unit.port_words)) {
+CycleModel::CycleModel(CycleConfig unit)
+    : timing_(unit.slot), port_words_(static_cast<unsigned>(unit.port_words)), tri_queue_(unit.tri_queue) {
+  if (unit.tri_queue < 1 || unit.tri_queue > 8) {
+    throw std::invalid_argument("CycleModel: tri_queue must be 1..8, got " + std::to_string(unit.tri_queue));
+  }
+  sq_.resize(static_cast<size_t>(unit.span_queue()));
+  bank_spans_.assign(static_cast<size_t>(unit.tri_queue), 0);
   const SlotTiming& timing = unit.slot;
   if (unit.port_words != 1 && unit.port_words != 2 && unit.port_words != 4 && unit.port_words != 8) {
     throw std::invalid_argument("CycleModel: port_words must be 1, 2, 4 or 8, got " + std::to_string(unit.port_words));

@@ -3,8 +3,11 @@
 // breakdown of where the cycles went: run()) or in lockstep with the RTL (clock()), where every
 // scanline's completion cycle must match exactly.
 //
-// Mirrored structure (names as in the RTL): a command decoder (headers, payload counting;
-// MATERIAL and TABLE wait for an empty datapath), three span-setup stages s1..s3 with valid bits, the
+// Mirrored structure (names as in the RTL): a command decoder (a beat of port_words words taken
+// apart one item per cycle, model/command_stream.h; headers, payload counting; MATERIAL and TABLE
+// wait for an empty datapath), with tri_queue > 1 a span queue whose spans carry their
+// triangle's coefficient bank (a TRIANGLE waits until no queued span reads the bank it
+// loads), three span-setup stages s1..s3 with valid bits, the
 // engines' run state (run, rem), the specular slot's timing (a LATENCY-deep delay line for a
 // pipelined unit, one in-flight pixel and a busy count for an iterative one), and the pix output
 // register with advance = !valid || ready.
@@ -37,11 +40,15 @@ struct SlotTiming {
 struct CycleConfig {
   SlotTiming slot;
   int port_words = 1;  // UnitConfig::port_words
+  int tri_queue = 1;   // UnitConfig::tri_queue
 
   CycleConfig() = default;
   // A unit with the default structure around this slot.
   CycleConfig(SlotTiming s) : slot(s) {}  // NOLINT(google-explicit-constructor): a slot is a unit
-  CycleConfig(SlotTiming s, int words) : slot(s), port_words(words) {}
+  CycleConfig(SlotTiming s, int words, int queue = 1) : slot(s), port_words(words), tri_queue(queue) {}
+  // Spans the span queue holds with tri_queue > 1 (none with 1).
+  int span_queue() const { return tri_queue > 1 ? kSpansPerQueuedTriangle * tri_queue : 0; }
+  static constexpr int kSpansPerQueuedTriangle = 4;
   static CycleConfig of(const UnitConfig& config);
 };
 
@@ -129,8 +136,9 @@ class CycleModel {
   // Nothing in flight, no pixel waiting, and no beat half taken apart.
   bool idle() const { return !in_payload_ && pos_ == 0 && datapath_empty() && !pix_.valid; }
 
-  // Cycles from a SPAN header's acceptance to its first pixel leaving, with nothing stalled.
-  int span_latency() const { return 5 + timing_.latency; }
+  // Cycles from a SPAN header's acceptance to its first pixel leaving, with nothing stalled
+  // (a span queue adds its register).
+  int span_latency() const { return 5 + (queued() ? 1 : 0) + timing_.latency; }
 
   // Runs a whole stream with the stimulus's gaps and back-pressure.
   static CycleRun run(const std::vector<uint64_t>& words, const Stimulus& stim,
@@ -150,13 +158,28 @@ class CycleModel {
   enum class Payload { kSkip, kMaterial, kTriangle, kTable };
 
   bool iterative() const { return timing_.interval > 1; }
+  bool queued() const { return tri_queue_ > 1; }
   bool slot_empty() const;
-  bool datapath_empty() const { return !s_[0].valid && !s_[1].valid && !s_[2].valid && !run_ && slot_empty(); }
+  bool datapath_empty() const {
+    return sq_count_ == 0 && !s_[0].valid && !s_[1].valid && !s_[2].valid && !run_ && slot_empty();
+  }
   // What the command port does this cycle, as a bubble category (kSetupLoad for SPAN headers).
   Category port_category(bool cmd_valid, CommandWord word) const;
 
   SlotTiming timing_;
   unsigned port_words_ = 1;
+  int tri_queue_ = 1;
+  // Triangle queue (tri_queue > 1): the span queue (a ring of sq_.size(), sq_count_ entries from
+  // sq_head_), each span with the coefficient bank of its triangle; spans queued per bank; the
+  // bank the latest TRIANGLE loads.
+  struct QueuedSpan {
+    Span span;
+    int bank = 0;
+  };
+  std::vector<QueuedSpan> sq_;
+  size_t sq_head_ = 0, sq_count_ = 0;
+  std::vector<int> bank_spans_;
+  int wr_bank_ = 0;
   // Decoder: pos_ is the next word of the beat on the port still to be taken.
   unsigned pos_ = 0;
   bool in_payload_ = false;
@@ -225,6 +248,9 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   const bool s2_move = s_[1].valid && s3_free;
   const bool s1_move = s_[0].valid && (!s_[1].valid || s2_move);
   const bool s1_free = !s_[0].valid || s1_move;
+  // With a triangle queue, span setup takes its spans from the span queue.
+  const bool sq_pop = queued() && sq_count_ > 0 && s1_free;
+  const int next_bank = queued() ? (wr_bank_ + 1) % tri_queue_ : 0;
 
   // The item taken from the beat this cycle (model/command_stream.h): `n` words from pos_.
   const CommandWord word{beat[pos_]};
@@ -242,7 +268,9 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   bool hdr_ready = true;
   // Only MATERIAL and TABLE headers wait for the empty datapath; the check walks the delay line.
   if (op == Opcode::kMaterial || op == Opcode::kTable) hdr_ready = datapath_empty();
-  if (op == Opcode::kSpan) hdr_ready = s1_free;
+  if (op == Opcode::kSpan) hdr_ready = queued() ? sq_count_ < sq_.size() : s1_free;
+  // A TRIANGLE loads the next bank once no queued span needs that bank's coefficients.
+  if (op == Opcode::kTriangle && queued()) hdr_ready = bank_spans_[static_cast<size_t>(next_bank)] == 0;
   const bool item_ready = in_payload_ || hdr_ready;
   const bool item_fire = cmd_valid && item_ready;
   const bool beat_done = n == beat_left;
@@ -306,14 +334,32 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   else if (load_eng) s_[2].valid = false;
   if (s1_move) s_[1] = s_[0];
   else if (s2_move) s_[1].valid = false;
-  if (span_fire) {
-    s_[0].valid = true;
-    s_[0].y = word.span_y();
-    s_[0].x0 = word.span_x0();
-    s_[0].len = word.span_length();
-    s_[0].last = word.span_last();
-  } else if (s1_move) {
-    s_[0].valid = false;
+  Span header_span;
+  header_span.valid = true;
+  header_span.y = word.span_y();
+  header_span.x0 = word.span_x0();
+  header_span.len = word.span_length();
+  header_span.last = word.span_last();
+  if (!queued()) {
+    if (span_fire) s_[0] = header_span;
+    else if (s1_move) s_[0].valid = false;
+  } else {
+    if (sq_pop) {
+      const QueuedSpan& head = sq_[sq_head_];
+      s_[0] = head.span;
+      --bank_spans_[static_cast<size_t>(head.bank)];
+      if (++sq_head_ == sq_.size()) sq_head_ = 0;
+      --sq_count_;
+    } else if (s1_move) {
+      s_[0].valid = false;
+    }
+    if (span_fire) {
+      size_t tail = sq_head_ + sq_count_;
+      if (tail >= sq_.size()) tail -= sq_.size();
+      sq_[tail] = {header_span, wr_bank_};
+      ++bank_spans_[static_cast<size_t>(wr_bank_)];
+      ++sq_count_;
+    }
   }
 
   if (item_fire) pos_ = beat_done ? 0 : pos_ + n;
@@ -324,6 +370,7 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
       case Opcode::kMaterial: pay_op_ = Payload::kMaterial; in_payload_ = count != 0; break;
       case Opcode::kTriangle:
         // The coefficient words that came with the header are already taken.
+        wr_bank_ = next_bank;
         pay_op_ = Payload::kTriangle;
         pay_idx_ = n - 1;
         in_payload_ = count > n - 1;

@@ -13,6 +13,7 @@ void UnitConfig::validate() const {
   if (out_bits < 1 || out_bits > 16) fail("out_bits must be 1..16, got " + std::to_string(out_bits));
   if (port_words != 1 && port_words != 2 && port_words != 4 && port_words != 8)
     fail("port_words must be 1, 2, 4 or 8, got " + std::to_string(port_words));
+  if (tri_queue < 1 || tri_queue > 8) fail("tri_queue must be 1..8, got " + std::to_string(tri_queue));
   coef.validate("unit config: coef");
   series.validate("unit config: series");
   spec_colour.validate("unit config: spec_colour");
@@ -39,6 +40,7 @@ std::string UnitConfig::to_string() const {
      << " series=" << series.to_string() << " out=" << out_bits
      << " spec=" << shadesim::to_string(specular.kind) << ':' << specular.out.to_string();
   if (port_words != 1) os << " port=" << port_words << 'w';
+  if (tri_queue != 1) os << " triq=" << tri_queue;
   return os.str();
 }
 

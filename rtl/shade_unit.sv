@@ -40,6 +40,10 @@ module shade_unit #(
   parameter int SPECULAR_OUT_WL  = 17,
   parameter int SPECULAR_OUT_IWL = 1,
   parameter int PORT_WORDS       = 1,  // 64-bit words per cmd handshake: 1, 2, 4 or 8
+  // Triangle queue: coefficient banks. With more than one, SPAN headers go into a span queue
+  // of 4 * TRI_QUEUE entries (each with its triangle's bank) and span setup takes them from
+  // there, so the port runs ahead of the pixels by up to TRI_QUEUE triangles.
+  parameter int TRI_QUEUE        = 1,
   // The specular unit's own parameters (specular_slot; model/specular_config.h field names
   // with the unit's prefix). Unused unless SPECULAR_KIND selects that unit.
   // verilator lint_off UNUSEDPARAM
@@ -103,6 +107,16 @@ module shade_unit #(
   logic out_adv;    // the pix register takes the slot's output pixel
   logic item_ready, item_fire, beat_done, hdr_fire, pay_fire, span_fire;
 
+  // ---- triangle queue: banks, and the span queue between the decoder and span setup ----------
+  localparam bit Queued = TRI_QUEUE > 1;
+  localparam int SpanQ  = Queued ? 4 * TRI_QUEUE : 1;  // = CycleConfig::span_queue()
+  localparam int BankW  = TRI_QUEUE > 1 ? $clog2(TRI_QUEUE) : 1;
+  logic [BankW-1:0] wr_bank_q;      // bank of the latest TRIANGLE
+  logic [BankW-1:0] next_bank;      // bank the next TRIANGLE loads
+  logic [BankW-1:0] rd_bank;        // bank of the span entering setup stage 1
+  logic             tri_bank_free;  // no queued span reads next_bank
+  logic             sq_full, sq_empty, s1_load;
+
   // ---- decoder state ----------------------------------------------------------------------
   logic        in_payload_q;
   pay_e        pay_op_q;
@@ -137,7 +151,7 @@ module shade_unit #(
     end
   end
 
-  assign datapath_empty = !s1_v_q && !s2_v_q && !s3_v_q && !run_q && slot_empty;
+  assign datapath_empty = sq_empty && !s1_v_q && !s2_v_q && !s3_v_q && !run_q && slot_empty;
 
   // MATERIAL (ambient, spec_colour, exponent and unit parameters) and TABLE (LUT entries) must
   // not change what in-flight pixels read: both wait for an empty datapath, as the model
@@ -146,7 +160,8 @@ module shade_unit #(
     case (hdr_op)
       shade_pkg::OpMaterial: hdr_ready = datapath_empty;
       shade_pkg::OpTable:    hdr_ready = datapath_empty;
-      shade_pkg::OpSpan:     hdr_ready = s1_free;
+      shade_pkg::OpSpan:     hdr_ready = Queued ? !sq_full : s1_free;
+      shade_pkg::OpTriangle: hdr_ready = tri_bank_free;
       default:    hdr_ready = 1'b1;
     endcase
   end
@@ -174,14 +189,20 @@ module shade_unit #(
         pay_last_q <= hdr_count - 16'd1;
         tbl_base_q <= cmd_word[shade_pkg::MidLsb +: shade_pkg::FieldW];
         case (hdr_op)
-          shade_pkg::OpMaterial: begin pay_op_q <= PayMaterial; in_payload_q <= hdr_count != 16'd0; end
+          shade_pkg::OpMaterial: begin
+            pay_op_q     <= PayMaterial;
+            in_payload_q <= hdr_count != 16'd0;
+          end
           // The coefficient words that came with the header are already taken.
           shade_pkg::OpTriangle: begin
             pay_op_q     <= PayTriangle;
             pay_idx_q    <= item_n - 16'd1;
             in_payload_q <= hdr_count > item_n - 16'd1;
           end
-          shade_pkg::OpTable:    begin pay_op_q <= PayTable;    in_payload_q <= hdr_count != 16'd0; end
+          shade_pkg::OpTable: begin
+            pay_op_q     <= PayTable;
+            in_payload_q <= hdr_count != 16'd0;
+          end
           // END_FRAME and unknown opcodes carry no payload.
           shade_pkg::OpEndFrame: begin pay_op_q <= PaySkip; in_payload_q <= 1'b0; end
           default:               begin pay_op_q <= PaySkip; in_payload_q <= 1'b0; end
@@ -194,17 +215,21 @@ module shade_unit #(
   end
 
   // Triangle origin and coefficients; material registers.
-  logic signed [15:0]             xo_q, yo_q;
+  logic signed [15:0]             xo_q [TRI_QUEUE];
+  logic signed [15:0]             yo_q [TRI_QUEUE];
   // An array, not one packed vector: a partial write of a 1000+-bit vector costs the Verilated
   // model a full copy every clock.
-  localparam int CoefIdxW = $clog2(NCoef);
-  logic [COEF_WL-1:0]             coef_q [NCoef];
+  logic [COEF_WL-1:0]             coef_q [TRI_QUEUE*NCoef];  // bank b at b * NCoef
   logic [CHANNELS*SERIES_WL-1:0]  ambient_q;
   logic [NDiff*SPEC_COLOUR_WL-1:0] spec_colour_q;
 
   // Coefficient words of this cycle's item: beat words tri_first .. pos_q + item_n - 1, word k
   // to coefficient coef_base + k.
   logic                  tri_take;
+  logic [BankW-1:0]      tri_bank;  // the bank this cycle's coefficient words go to
+  localparam int CoefAW = $clog2(TRI_QUEUE * NCoef);
+  logic [CoefAW-1:0]     coef_addr [PORT_WORDS];
+  logic [CoefAW-1:0]     rd_base;   // bank rd_bank's first coefficient
   logic [15:0]           tri_first, tri_end, coef_base;
   logic [15:0]           coef_idx [PORT_WORDS];
   logic [PORT_WORDS-1:0] coef_we;
@@ -213,6 +238,13 @@ module shade_unit #(
   assign tri_first = 16'(pos_q) + (in_payload_q ? 16'd0 : 16'd1);
   assign tri_end   = 16'(pos_q) + item_n;
   assign coef_base = (in_payload_q ? pay_idx_q : 16'd0) - tri_first;
+  assign tri_bank  = in_payload_q ? wr_bank_q : next_bank;
+  assign rd_base   = CoefAW'(rd_bank * NCoef);
+  always_comb begin
+    for (int k = 0; k < PORT_WORDS; k++) begin
+      coef_addr[k] = CoefAW'(tri_bank * NCoef + 32'(coef_idx[k]));
+    end
+  end
   always_comb begin
     for (int k = 0; k < PORT_WORDS; k++) begin
       coef_idx[k] = coef_base + 16'(k);
@@ -223,11 +255,11 @@ module shade_unit #(
 
   always_ff @(posedge clk_i) begin
     if (hdr_fire && hdr_op == shade_pkg::OpTriangle) begin
-      xo_q <= cmd_word[shade_pkg::HighLsb +: shade_pkg::FieldW];
-      yo_q <= cmd_word[shade_pkg::MidLsb +: shade_pkg::FieldW];
+      xo_q[next_bank] <= cmd_word[shade_pkg::HighLsb +: shade_pkg::FieldW];
+      yo_q[next_bank] <= cmd_word[shade_pkg::MidLsb +: shade_pkg::FieldW];
     end
     for (int k = 0; k < PORT_WORDS; k++) begin
-      if (coef_we[k]) coef_q[coef_idx[k][CoefIdxW-1:0]] <= cmd_data_i[k*WordW +: COEF_WL];
+      if (coef_we[k]) coef_q[coef_addr[k]] <= cmd_data_i[k*WordW +: COEF_WL];
     end
     if (pay_fire && pay_op_q == PayMaterial) begin
       for (int i = 0; i < CHANNELS; i++) begin
@@ -258,15 +290,68 @@ module shade_unit #(
     logic               last;
   } span_t;
 
-  span_t span_in, s1_q, s2_q, s3_q;
+  span_t span_in, s1_src, s1_q, s2_q, s3_q;
   assign span_in.y    = cmd_word[shade_pkg::HighLsb +: XY_BITS];
   assign span_in.x0   = cmd_word[shade_pkg::MidLsb +: XY_BITS];
   assign span_in.len  = cmd_word[shade_pkg::CountLsb +: shade_pkg::FieldW];
   assign span_in.last = cmd_word[shade_pkg::SpanLastBit];
 
+  if (Queued) begin : g_span_queue
+    localparam int PtrW = $clog2(SpanQ);
+    localparam int CntW = $clog2(SpanQ + 1);
+    span_t            sq_span_q [SpanQ];  // each queued span and its triangle's bank
+    logic [BankW-1:0] sq_bank_q [SpanQ];
+    logic [PtrW-1:0] head_q, tail_q;
+    logic [CntW-1:0] count_q;
+    logic [CntW-1:0] bank_spans_q [TRI_QUEUE];  // queued spans per bank
+    logic            sq_pop;
+    assign sq_full       = count_q == CntW'(SpanQ);
+    assign sq_empty      = count_q == '0;
+    assign sq_pop        = !sq_empty && s1_free;
+    assign s1_load       = sq_pop;
+    assign s1_src        = sq_span_q[head_q];
+    assign rd_bank       = sq_bank_q[head_q];
+    assign next_bank     = wr_bank_q == BankW'(TRI_QUEUE - 1) ? '0 : wr_bank_q + BankW'(1);
+    assign tri_bank_free = bank_spans_q[next_bank] == '0;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        head_q    <= '0;
+        tail_q    <= '0;
+        count_q   <= '0;
+        wr_bank_q <= '0;
+        for (int b = 0; b < TRI_QUEUE; b++) bank_spans_q[b] <= '0;
+      end else begin
+        if (span_fire) tail_q <= tail_q == PtrW'(SpanQ - 1) ? '0 : tail_q + PtrW'(1);
+        if (sq_pop)    head_q <= head_q == PtrW'(SpanQ - 1) ? '0 : head_q + PtrW'(1);
+        count_q <= count_q + CntW'(span_fire) - CntW'(sq_pop);
+        for (int b = 0; b < TRI_QUEUE; b++) begin
+          bank_spans_q[b] <= bank_spans_q[b] + CntW'(span_fire && wr_bank_q == BankW'(b))
+                                             - CntW'(sq_pop && rd_bank == BankW'(b));
+        end
+        if (hdr_fire && hdr_op == shade_pkg::OpTriangle) wr_bank_q <= next_bank;
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      if (span_fire) begin
+        sq_span_q[tail_q] <= span_in;
+        sq_bank_q[tail_q] <= wr_bank_q;
+      end
+    end
+  end else begin : g_no_span_queue
+    // One bank, and SPAN headers go straight into setup stage 1.
+    assign sq_full       = 1'b0;
+    assign sq_empty      = 1'b1;
+    assign s1_load       = span_fire;
+    assign s1_src        = span_in;
+    assign rd_bank       = '0;
+    assign next_bank     = '0;
+    assign wr_bank_q     = '0;
+    assign tri_bank_free = 1'b1;
+  end
+
   logic signed [OfsW-1:0] dx, dy;
-  assign dx = $signed(OfsW'(span_in.x0)) - OfsW'(xo_q);
-  assign dy = $signed(OfsW'(span_in.y)) - OfsW'(yo_q);
+  assign dx = $signed(OfsW'(s1_src.x0)) - OfsW'(xo_q[rd_bank]);
+  assign dy = $signed(OfsW'(s1_src.y)) - OfsW'(yo_q[rd_bank]);
 
   assign s3_free = !s3_v_q || load_eng;
   assign s2_move = s2_v_q && s3_free;
@@ -279,7 +364,7 @@ module shade_unit #(
       s2_v_q <= 1'b0;
       s3_v_q <= 1'b0;
     end else begin
-      if (span_fire)    s1_v_q <= 1'b1;
+      if (s1_load)      s1_v_q <= 1'b1;
       else if (s1_move) s1_v_q <= 1'b0;
       if (s1_move)      s2_v_q <= 1'b1;
       else if (s2_move) s2_v_q <= 1'b0;
@@ -289,7 +374,7 @@ module shade_unit #(
   end
 
   always_ff @(posedge clk_i) begin
-    if (span_fire) s1_q <= span_in;
+    if (s1_load)   s1_q <= s1_src;
     if (s1_move)   s2_q <= s1_q;
     if (s2_move)   s3_q <= s2_q;
   end
@@ -301,8 +386,10 @@ module shade_unit #(
       .COEF_WL(COEF_WL), .COEF_IWL(COEF_IWL), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
       .SERIES_QUANT(SERIES_QUANT), .SERIES_OVERFLOW(SERIES_OVERFLOW), .OFS_W(OfsW)
     ) u_setup (
-      .clk_i, .s1_en_i(span_fire), .s2_en_i(s1_move), .s3_en_i(s2_move),
-      .coef_i({coef_q[6*i+5], coef_q[6*i+4], coef_q[6*i+3], coef_q[6*i+2], coef_q[6*i+1], coef_q[6*i]}),
+      .clk_i, .s1_en_i(s1_load), .s2_en_i(s1_move), .s3_en_i(s2_move),
+      .coef_i({coef_q[rd_base + CoefAW'(6*i+5)], coef_q[rd_base + CoefAW'(6*i+4)],
+               coef_q[rd_base + CoefAW'(6*i+3)], coef_q[rd_base + CoefAW'(6*i+2)],
+               coef_q[rd_base + CoefAW'(6*i+1)], coef_q[rd_base + CoefAW'(6*i)]}),
       .dx_i(dx), .dy_i(dy),
       .v_o(start_v[i*SERIES_WL +: SERIES_WL]), .d_o(start_d[i*SERIES_WL +: SERIES_WL]),
       .d2_o(start_d2[i*SERIES_WL +: SERIES_WL])
@@ -456,7 +543,9 @@ module shade_unit #(
   if (FAULT_LSB_ROW >= 0) begin : g_lsb_fault
     always_comb begin
       colour_out = colour;
-      if (meta_out.y == XY_BITS'(FAULT_LSB_ROW)) colour_out[OUT_BITS-1:0] = colour[OUT_BITS-1:0] + OUT_BITS'(1);
+      if (meta_out.y == XY_BITS'(FAULT_LSB_ROW)) begin
+        colour_out[OUT_BITS-1:0] = colour[OUT_BITS-1:0] + OUT_BITS'(1);
+      end
     end
   end else begin : g_no_lsb_fault
     assign colour_out = colour;

@@ -23,6 +23,7 @@ struct CyclesOptions {
   int channels = 0;  // 0: what the scene needs
   int lights = 0;
   int port_words = 1;
+  int tri_queue = 1;
   uint64_t seed = 1;
   int gap_pct = 0, max_gap = 1, stall_pct = 0;
   std::string json_path;
@@ -32,6 +33,7 @@ int run_cycles(const CyclesOptions& o) {
   FrameOptions fo;
   fo.base = o.widths.to_config();
   fo.base.port_words = o.port_words;
+  fo.base.tri_queue = o.tri_queue;
   if (!o.specular.empty()) fo.specular_override = parse_specular_unit(o.specular, "--specular");
   if (o.channels > 0 || o.lights > 0) {
     // A fixed unit, as built: the scene must fit it.
@@ -61,7 +63,8 @@ int run_cycles(const CyclesOptions& o) {
             << "unit         " << frame.config.to_string() << "\n"
             << "specular     " << frame.config.specular.describe() << ": latency " << timing.latency
             << ", " << timing.interval << " cycle(s) per pixel\n"
-            << "command port " << unit_timing.port_words << " word(s) per beat\n"
+            << "command port " << unit_timing.port_words << " word(s) per beat, triangle queue "
+            << unit_timing.tri_queue << " (span queue " << unit_timing.span_queue() << ")\n"
             << "stimulus     seed " << o.seed << ", input gaps " << o.gap_pct << "% (max " << o.max_gap
             << "), back-pressure " << o.stall_pct << "%\n"
             << "stream       " << words.size() << " words: " << frame.encoded.stats.triangles << " tri, "
@@ -118,6 +121,8 @@ void register_cycles(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1, 8));
   sub->add_option("--port-words", o->port_words, "command port width: 64-bit words per handshake")
       ->check(CLI::IsMember({1, 2, 4, 8}))->capture_default_str();
+  sub->add_option("--tri-queue", o->tri_queue, "triangle queue depth (coefficient banks; > 1 adds a span queue)")
+      ->check(CLI::Range(1, 8))->capture_default_str();
   sub->add_option("--seed", o->seed, "stimulus seed")->capture_default_str();
   sub->add_option("--gap-pct", o->gap_pct, "chance of idle cycles before a command word")->check(CLI::Range(0, 100))->capture_default_str();
   sub->add_option("--max-gap", o->max_gap, "longest idle gap in cycles")->check(CLI::Range(1, 100000))->capture_default_str();

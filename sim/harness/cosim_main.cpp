@@ -73,10 +73,10 @@ std::vector<Entry> registry() {
 #define SHADESIM_RUN(V, job, waves) run_verilated_cpp<V>(job, waves)
 #endif
 #define X(name, channels, lights, xy_bits, coef, series, spec_colour, out_bits, specular, spec_out, \
-          fault_lsb, fault_stall, port_words, unit_params)                                         \
+          fault_lsb, fault_stall, port_words, tri_queue, unit_params)                              \
   entries.push_back({make_rtl_config(#name, channels, lights, xy_bits, coef, series, spec_colour,     \
                                      out_bits, specular, spec_out, fault_lsb, fault_stall,            \
-                                     unit_params, port_words),                                        \
+                                     unit_params, port_words, tri_queue),                             \
                      [](const CosimJob& job, const WaveWindow* waves) { return SHADESIM_RUN(V##name, job, waves); }});
   SHADESIM_RTL_CONFIGS(X)
 #undef X

@@ -55,7 +55,7 @@ RtlConfig make_rtl_config(const std::string& name, int channels, int lights, int
                           const std::string& spec_colour, int out_bits,
                           const std::string& specular, const std::string& specular_out,
                           int fault_lsb_row, int fault_stall_row, const std::string& unit_params,
-                          int port_words) {
+                          int port_words, int tri_queue) {
   RtlConfig r;
   r.name = name;
   const std::string what = "rtl config " + name;
@@ -78,6 +78,7 @@ RtlConfig make_rtl_config(const std::string& name, int channels, int lights, int
     apply_unit_param(r.unit.specular, pair.substr(0, eq), pair.substr(eq + 1), what);
   }
   r.unit.port_words = port_words;
+  r.unit.tri_queue = tri_queue;
   r.unit.validate();
   r.fault_lsb_row = fault_lsb_row;
   r.fault_stall_row = fault_stall_row;

@@ -25,6 +25,7 @@ RtlConfig make_rtl_config(const std::string& name, int channels, int lights, int
                           const std::string& spec_colour, int out_bits,
                           const std::string& specular, const std::string& specular_out,
                           int fault_lsb_row, int fault_stall_row,
-                          const std::string& unit_params = "", int port_words = 1);
+                          const std::string& unit_params = "", int port_words = 1,
+                          int tri_queue = 1);
 
 }  // namespace shadesim

@@ -67,7 +67,7 @@ void export_stream(const std::string& stream_path, const std::string& hex_path,
 }
 
 // SPEC: name,channels,lights,xy_bits,coef,series,spec_colour,out_bits,specular,spec_out
-//       [,fault_lsb_row,fault_stall_row[,port_words]] - the fields of rtl_config() in cmake/rtl.cmake.
+//       [,fault_lsb_row,fault_stall_row[,port_words,tri_queue]] - the fields of rtl_config() in cmake/rtl.cmake.
 RtlConfig parse_rtl_config(const std::string& spec) {
   std::vector<std::string> f;
   std::stringstream ss(spec);
@@ -76,10 +76,10 @@ RtlConfig parse_rtl_config(const std::string& spec) {
     const auto e = item.find_last_not_of(" \"");
     f.push_back(b == std::string::npos ? "" : item.substr(b, e - b + 1));
   }
-  if (f.size() != 10 && f.size() != 12 && f.size() != 13) {
-    throw ToolError("--rtl-config '" + spec + "': expected 10, 12 or 13 comma-separated fields "
+  if (f.size() != 10 && f.size() != 12 && f.size() != 14) {
+    throw ToolError("--rtl-config '" + spec + "': expected 10, 12 or 14 comma-separated fields "
                     "(name,channels,lights,xy_bits,coef,series,spec_colour,out_bits,specular,"
-                    "spec_out[,fault_lsb_row,fault_stall_row[,port_words]]), got " + std::to_string(f.size()));
+                    "spec_out[,fault_lsb_row,fault_stall_row[,port_words,tri_queue]]), got " + std::to_string(f.size()));
   }
   auto integer = [&](size_t i, const char* field) {
     try {
@@ -94,7 +94,8 @@ RtlConfig parse_rtl_config(const std::string& spec) {
     return make_rtl_config(f[0], integer(1, "channels"), integer(2, "lights"), integer(3, "xy_bits"), f[4], f[5],
                            f[6], integer(7, "out_bits"), f[8], f[9], f.size() >= 12 ? integer(10, "fault_lsb_row") : -1,
                            f.size() >= 12 ? integer(11, "fault_stall_row") : -1, "",
-                           f.size() == 13 ? integer(12, "port_words") : 1);
+                           f.size() == 14 ? integer(12, "port_words") : 1,
+                           f.size() == 14 ? integer(13, "tri_queue") : 1);
   } catch (const std::invalid_argument& e) {
     throw ToolError(std::string("--rtl-config: ") + e.what());
   }

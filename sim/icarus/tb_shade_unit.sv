@@ -29,6 +29,7 @@ module tb_shade_unit #(
   parameter int SPECULAR_OUT_WL  = 17,
   parameter int SPECULAR_OUT_IWL = 1,
   parameter int PORT_WORDS       = 1,
+  parameter int TRI_QUEUE        = 1,
   parameter int FAULT_LSB_ROW    = -1,
   parameter int FAULT_STALL_ROW  = -1,
   // Capacity of the word memory (Icarus allocates it all: ~45 bytes a word); a longer stream
@@ -61,7 +62,7 @@ module tb_shade_unit #(
     .SPEC_COLOUR_WL(SPEC_COLOUR_WL), .SPEC_COLOUR_IWL(SPEC_COLOUR_IWL), .OUT_BITS(OUT_BITS),
     .SPECULAR_KIND(SPECULAR_KIND),
     .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL),
-    .PORT_WORDS(PORT_WORDS),
+    .PORT_WORDS(PORT_WORDS), .TRI_QUEUE(TRI_QUEUE),
     .FAULT_LSB_ROW(FAULT_LSB_ROW), .FAULT_STALL_ROW(FAULT_STALL_ROW)
   ) dut (
     .clk_i(clk), .rst_ni(rst_n),

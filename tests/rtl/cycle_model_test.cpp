@@ -257,6 +257,48 @@ TEST(CommandPort, GapsComeBeforeBeats) {
   EXPECT_EQ(r.scanlines[2].cycle, 4u + 5u);
 }
 
+// ---- triangle queue ------------------------------------------------------------------------
+
+TEST(TriangleQueue, SpanQueueAddsOneRegister) {
+  // tri_queue 2: a SPAN accepted on t enters setup stage 1 from the queue on t + 1, so a span
+  // of len ends on t + 5 + len (one more than without a queue).
+  for (int len : {1, 5}) {
+    const CycleRun r = CycleModel::run(words({span(0, 0, len, true)}), Stimulus{}, CycleConfig(SlotTiming{}, 1, 2));
+    ASSERT_EQ(r.scanlines.size(), 1u);
+    EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(5 + len)) << len;
+  }
+}
+
+TEST(TriangleQueue, PortRunsAheadOfTheEngines) {
+  // A 40-pixel span, then ten one-pixel spans, then END_FRAME. Without a queue, four spans fit
+  // past the decoder (three setup stages and the engines), so the fifth header waits for the
+  // 40 pixels; with tri_queue 2 the span queue (8 entries) takes the other seven, and END_FRAME
+  // goes on cycle 11, one word per cycle.
+  std::vector<Command> cmds = {span(0, 0, 40, true)};
+  for (int y = 1; y <= 10; ++y) cmds.push_back(span(y, 0, 1, true));
+  cmds.push_back(EndFrameCmd{});
+  const std::vector<uint64_t> w = words(cmds);
+  for (int queue : {1, 2}) {
+    CycleModel m(CycleConfig(SlotTiming{}, 1, queue));
+    CommandDriver d(w, Stimulus{});
+    uint64_t end_frame_taken = 0;
+    for (uint64_t c = 0; c < 200 && !d.done(); ++c) {
+      const auto e = m.clock(d.valid(), d.word(), true);
+      if (e.cmd_fire && d.index() == w.size() - 1) end_frame_taken = c;
+      d.clock(e.cmd_fire);
+    }
+    if (queue == 1) {
+      EXPECT_GT(end_frame_taken, 40u);  // behind the 40-pixel span
+    } else {
+      EXPECT_EQ(end_frame_taken, 11u);
+    }
+  }
+}
+
+TEST(TriangleQueue, RejectsOtherDepths) {
+  for (int q : {0, 9}) EXPECT_THROW(CycleModel(CycleConfig(SlotTiming{}, 1, q)), std::invalid_argument) << q;
+}
+
 TEST(CommandPort, RejectsOtherWidths) {
   for (int w : {0, 3, 5, 16}) EXPECT_THROW(CycleModel(port(w)), std::invalid_argument) << w;
 }
@@ -417,7 +459,8 @@ TEST(CycleBreakdown, PartitionsRandomRuns) {
     const int q = static_cast<int>(rng() % 4);
     const SlotTiming timing = q >= 2 ? SlotTiming{q, q} : SlotTiming{static_cast<int>(rng() % 5), 1};
     const int port_words = 1 << (rng() % 4);
-    const CycleRun r = CycleModel::run(words(cmds), s, CycleConfig(timing, port_words));
+    const int tri_queue = 1 + static_cast<int>(rng() % 3);
+    const CycleRun r = CycleModel::run(words(cmds), s, CycleConfig(timing, port_words, tri_queue));
     EXPECT_EQ(r.breakdown.total(), r.cycles) << "trial " << trial;
     EXPECT_EQ(r.breakdown.pixel, r.pixels) << "trial " << trial;
     if (timing.interval == 1) {
