@@ -164,7 +164,8 @@ class CycleModel {
     return sq_count_ == 0 && !s_[0].valid && !s_[1].valid && !s_[2].valid && !run_ && slot_empty();
   }
   // What the command port does this cycle, as a bubble category (kSetupLoad for SPAN headers).
-  Category port_category(bool cmd_valid, CommandWord word) const;
+  // header: the cycle is about a header (taken, or waited for), not payload words.
+  Category port_category(bool cmd_valid, bool header, CommandWord word) const;
 
   SlotTiming timing_;
   unsigned port_words_ = 1;
@@ -219,9 +220,9 @@ inline bool CycleModel::slot_empty() const {
   return true;
 }
 
-inline CycleModel::Category CycleModel::port_category(bool cmd_valid, CommandWord word) const {
+inline CycleModel::Category CycleModel::port_category(bool cmd_valid, bool header, CommandWord word) const {
   if (!cmd_valid) return Category::kCommandGap;
-  if (in_payload_) {
+  if (!header) {
     switch (pay_op_) {
       case Payload::kMaterial: return Category::kMaterial;
       case Payload::kTable: return Category::kTable;
@@ -252,32 +253,40 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   const bool sq_pop = queued() && sq_count_ > 0 && s1_free;
   const int next_bank = queued() ? (wr_bank_ + 1) % tri_queue_ : 0;
 
-  // The item taken from the beat this cycle (model/command_stream.h): `n` words from pos_.
-  const CommandWord word{beat[pos_]};
+  // The item taken from the beat this cycle (model/command_stream.h): the triangle coefficient
+  // words due in the beat (tail), then at most one header (a TRIANGLE's with its coefficient
+  // words after it in the beat), or one MATERIAL / TABLE payload word; n words from pos_.
+  const unsigned beat_left = port_words_ - pos_;
+  const unsigned pay_rem = (pay_last_ - pay_idx_ + 1) & unsigned{CommandWord::kFieldMask};
+  const bool tri_payload = in_payload_ && pay_op_ == Payload::kTriangle;
+  const unsigned tail = tri_payload ? std::min(pay_rem, beat_left) : 0;
+  const unsigned hdr_pos = pos_ + tail;
+  const bool hdr_here = (!in_payload_ || (tri_payload && pay_rem <= beat_left)) && hdr_pos < port_words_;
+  const CommandWord word{beat[hdr_here ? hdr_pos : pos_]};
   const Opcode op = static_cast<Opcode>(word.opcode());
   const unsigned count = word.count();
-  const unsigned beat_left = port_words_ - pos_;
-  unsigned n = 1;
-  if (in_payload_) {
-    if (pay_op_ == Payload::kTriangle) n = std::min((pay_last_ - pay_idx_ + 1) & unsigned{CommandWord::kFieldMask}, beat_left);
-  } else if (op == Opcode::kNop) {
-    n = beat_left;
+  unsigned hdr_n = 1;
+  if (op == Opcode::kNop) {
+    hdr_n = port_words_ - hdr_pos;
   } else if (op == Opcode::kTriangle) {
-    n = 1 + std::min(count, beat_left - 1);
+    hdr_n = 1 + std::min(count, port_words_ - hdr_pos - 1);
   }
   bool hdr_ready = true;
   // Only MATERIAL and TABLE headers wait for the empty datapath; the check walks the delay line.
   if (op == Opcode::kMaterial || op == Opcode::kTable) hdr_ready = datapath_empty();
-  if (op == Opcode::kSpan) hdr_ready = queued() ? sq_count_ < sq_.size() : s1_free;
+  // Without a span queue a SPAN's setup reads the coefficients as it is taken: not on the edge
+  // that writes its triangle's last words.
+  if (op == Opcode::kSpan) hdr_ready = queued() ? sq_count_ < sq_.size() : s1_free && tail == 0;
   // A TRIANGLE loads the next bank once no queued span needs that bank's coefficients.
   if (op == Opcode::kTriangle && queued()) hdr_ready = bank_spans_[static_cast<size_t>(next_bank)] == 0;
-  const bool item_ready = in_payload_ || hdr_ready;
-  const bool item_fire = cmd_valid && item_ready;
+  const bool take_hdr = hdr_here && hdr_ready;
+  const unsigned n = tail + (take_hdr ? hdr_n : 0) + (in_payload_ && !tri_payload ? 1 : 0);
+  const bool item_fire = cmd_valid && n > 0;
   const bool beat_done = n == beat_left;
-  e.cmd_ready = item_ready && beat_done;
-  e.cmd_fire = item_fire && beat_done;
-  const bool hdr_fire = item_fire && !in_payload_;
-  const bool pay_fire = item_fire && in_payload_;
+  e.cmd_ready = n > 0 && beat_done;
+  e.cmd_fire = cmd_valid && e.cmd_ready;
+  const bool hdr_fire = cmd_valid && take_hdr;
+  const bool pay_fire = cmd_valid && in_payload_;
   const bool span_fire = hdr_fire && op == Opcode::kSpan;
 
   e.pix_fire = pix_.valid && pix_ready;
@@ -296,7 +305,7 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   } else {
     e.category = port_history_[slot];  // the port's category span_latency() cycles ago
   }
-  port_history_[slot] = port_category(cmd_valid, word);
+  port_history_[slot] = port_category(cmd_valid, take_hdr || !in_payload_, word);
   if (++history_pos_ == port_history_.size()) history_pos_ = 0;
 
   // ---- the edge: engines -> slot -> pix register ----
@@ -372,15 +381,16 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
         // The coefficient words that came with the header are already taken.
         wr_bank_ = next_bank;
         pay_op_ = Payload::kTriangle;
-        pay_idx_ = n - 1;
-        in_payload_ = count > n - 1;
+        pay_idx_ = hdr_n - 1;
+        in_payload_ = count > hdr_n - 1;
         break;
       case Opcode::kTable: pay_op_ = Payload::kTable; in_payload_ = count != 0; break;
       default: pay_op_ = Payload::kSkip; in_payload_ = false; break;
     }
   } else if (pay_fire) {
-    if (((pay_idx_ + n - 1) & CommandWord::kFieldMask) == pay_last_) in_payload_ = false;
-    pay_idx_ = (pay_idx_ + n) & CommandWord::kFieldMask;
+    const unsigned taken = tri_payload ? tail : 1;
+    if (((pay_idx_ + taken - 1) & CommandWord::kFieldMask) == pay_last_) in_payload_ = false;
+    pay_idx_ = (pay_idx_ + taken) & CommandWord::kFieldMask;
   }
   return e;
 }

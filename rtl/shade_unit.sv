@@ -105,7 +105,7 @@ module shade_unit #(
   logic datapath_empty, slot_empty;
   logic spec_busy;  // an iterative specular unit cannot start (all lights run in lockstep)
   logic out_adv;    // the pix register takes the slot's output pixel
-  logic item_ready, item_fire, beat_done, hdr_fire, pay_fire, span_fire;
+  logic item_fire, beat_done, hdr_fire, pay_fire, span_fire;
 
   // ---- triangle queue: banks, and the span queue between the decoder and span setup ----------
   localparam bit Queued = TRI_QUEUE > 1;
@@ -125,29 +125,43 @@ module shade_unit #(
   logic [15:0] hdr_count;
   logic        hdr_ready;
 
-  // The beat on the port and the word of it the decoder looks at.
+  // The beat on the port and the item the decoder takes from it this cycle: the triangle
+  // coefficient words due in the beat (tail), then at most one header (with a TRIANGLE's
+  // coefficient words after it in the beat), or one MATERIAL / TABLE payload word.
   localparam int WordW = shade_pkg::WordW;
   localparam int PosW  = PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1;
-  logic [PosW-1:0]  pos_q;      // next word of the beat still to be taken
-  logic [WordW-1:0] cmd_word;
-  logic [15:0]      beat_left;  // words of the beat from pos_q on
-  logic [15:0]      pay_rem;    // payload words still to come
-  logic [15:0]      item_n;     // words the item of this cycle takes
-  assign cmd_word  = cmd_data_i[pos_q * WordW +: WordW];
-  assign beat_left = 16'(PORT_WORDS) - 16'(pos_q);
-  assign pay_rem   = pay_last_q - pay_idx_q + 16'd1;
+  logic [PosW-1:0]  pos_q;        // next word of the beat still to be taken
+  logic [WordW-1:0] cmd_word;     // the header looked at, else the payload word at pos_q
+  logic [15:0]      beat_left;    // words of the beat from pos_q on
+  logic [15:0]      pay_rem;      // payload words still to come
+  logic             tri_payload;  // TRIANGLE coefficient words are due
+  logic [15:0]      tail_n;       // ... this many of them in this beat
+  logic [15:0]      hdr_pos;      // where a header would be
+  logic             hdr_here;     // a header is looked at this cycle
+  logic [15:0]      hdr_n;        // words the header takes (with its coefficient words)
+  logic             take_hdr;
+  logic [15:0]      item_n;       // words the item of this cycle takes (0: none)
+  assign beat_left   = 16'(PORT_WORDS) - 16'(pos_q);
+  assign pay_rem     = pay_last_q - pay_idx_q + 16'd1;
+  assign tri_payload = in_payload_q && pay_op_q == PayTriangle;
+  assign tail_n      = !tri_payload ? 16'd0 : pay_rem < beat_left ? pay_rem : beat_left;
+  assign hdr_pos     = 16'(pos_q) + tail_n;
+  assign hdr_here    = (!in_payload_q || (tri_payload && pay_rem <= beat_left)) &&
+                       hdr_pos < 16'(PORT_WORDS);
+  logic [PosW-1:0]  word_sel;
+  assign word_sel    = hdr_here ? PosW'(hdr_pos) : pos_q;
+  assign cmd_word    = cmd_data_i[word_sel * WordW +: WordW];
 
   assign hdr_op    = cmd_word[shade_pkg::OpcodeLsb +: 8];
   assign hdr_count = cmd_word[shade_pkg::CountLsb +: shade_pkg::FieldW];
 
   always_comb begin
-    item_n = 16'd1;
-    if (in_payload_q) begin
-      if (pay_op_q == PayTriangle) item_n = pay_rem < beat_left ? pay_rem : beat_left;
-    end else if (hdr_op == shade_pkg::OpNop) begin
-      item_n = beat_left;
+    hdr_n = 16'd1;
+    if (hdr_op == shade_pkg::OpNop) begin
+      hdr_n = 16'(PORT_WORDS) - hdr_pos;
     end else if (hdr_op == shade_pkg::OpTriangle) begin
-      item_n = 16'd1 + (hdr_count < beat_left - 16'd1 ? hdr_count : beat_left - 16'd1);
+      hdr_n = 16'd1 + (hdr_count < 16'(PORT_WORDS) - hdr_pos - 16'd1 ? hdr_count
+                                                                    : 16'(PORT_WORDS) - hdr_pos - 16'd1);
     end
   end
 
@@ -160,19 +174,26 @@ module shade_unit #(
     case (hdr_op)
       shade_pkg::OpMaterial: hdr_ready = datapath_empty;
       shade_pkg::OpTable:    hdr_ready = datapath_empty;
-      shade_pkg::OpSpan:     hdr_ready = Queued ? !sq_full : s1_free;
+      // Without a span queue a SPAN's setup reads the coefficient registers as it is taken:
+      // not on the edge that writes its triangle's last words.
+      shade_pkg::OpSpan:     hdr_ready = Queued ? !sq_full : s1_free && tail_n == 16'd0;
       shade_pkg::OpTriangle: hdr_ready = tri_bank_free;
       default:    hdr_ready = 1'b1;
     endcase
   end
 
-  assign item_ready  = in_payload_q || hdr_ready;
-  assign item_fire   = cmd_valid_i && item_ready;
+  assign take_hdr    = hdr_here && hdr_ready;
+  assign item_n      = tail_n + (take_hdr ? hdr_n : 16'd0) +
+                       (in_payload_q && !tri_payload ? 16'd1 : 16'd0);
+  assign item_fire   = cmd_valid_i && item_n != 16'd0;
   assign beat_done   = item_n == beat_left;
-  assign cmd_ready_o = item_ready && beat_done;
-  assign hdr_fire    = item_fire && !in_payload_q;
-  assign pay_fire    = item_fire && in_payload_q;
+  assign cmd_ready_o = item_n != 16'd0 && beat_done;
+  assign hdr_fire    = cmd_valid_i && take_hdr;
+  assign pay_fire    = cmd_valid_i && in_payload_q;
   assign span_fire   = hdr_fire && hdr_op == shade_pkg::OpSpan;
+
+  logic [15:0] pay_take;  // payload words taken: the tail, or one MATERIAL / TABLE word
+  assign pay_take = tri_payload ? tail_n : 16'd1;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -196,8 +217,8 @@ module shade_unit #(
           // The coefficient words that came with the header are already taken.
           shade_pkg::OpTriangle: begin
             pay_op_q     <= PayTriangle;
-            pay_idx_q    <= item_n - 16'd1;
-            in_payload_q <= hdr_count > item_n - 16'd1;
+            pay_idx_q    <= hdr_n - 16'd1;
+            in_payload_q <= hdr_count > hdr_n - 16'd1;
           end
           shade_pkg::OpTable: begin
             pay_op_q     <= PayTable;
@@ -208,8 +229,8 @@ module shade_unit #(
           default:               begin pay_op_q <= PaySkip; in_payload_q <= 1'b0; end
         endcase
       end else if (pay_fire) begin
-        pay_idx_q <= pay_idx_q + item_n;
-        if (pay_idx_q + item_n - 16'd1 == pay_last_q) in_payload_q <= 1'b0;
+        pay_idx_q <= pay_idx_q + pay_take;
+        if (pay_idx_q + pay_take - 16'd1 == pay_last_q) in_payload_q <= 1'b0;
       end
     end
   end
@@ -223,33 +244,27 @@ module shade_unit #(
   logic [CHANNELS*SERIES_WL-1:0]  ambient_q;
   logic [NDiff*SPEC_COLOUR_WL-1:0] spec_colour_q;
 
-  // Coefficient words of this cycle's item: beat words tri_first .. pos_q + item_n - 1, word k
-  // to coefficient coef_base + k.
-  logic                  tri_take;
-  logic [BankW-1:0]      tri_bank;  // the bank this cycle's coefficient words go to
+  // Coefficient words of this cycle's item, per beat word k: the tail (words pos_q ..
+  // pos_q + tail_n - 1, the current triangle's, bank wr_bank_q) or a new TRIANGLE's (the words
+  // after its header, bank next_bank).
   localparam int CoefAW = $clog2(TRI_QUEUE * NCoef);
+  logic                  head_take;  // a TRIANGLE header is taken with its words
   logic [CoefAW-1:0]     coef_addr [PORT_WORDS];
-  logic [CoefAW-1:0]     rd_base;   // bank rd_bank's first coefficient
-  logic [15:0]           tri_first, tri_end, coef_base;
+  logic [CoefAW-1:0]     rd_base;    // bank rd_bank's first coefficient
   logic [15:0]           coef_idx [PORT_WORDS];
-  logic [PORT_WORDS-1:0] coef_we;
-  assign tri_take  = item_fire && (in_payload_q ? pay_op_q == PayTriangle
-                                                : hdr_op == shade_pkg::OpTriangle);
-  assign tri_first = 16'(pos_q) + (in_payload_q ? 16'd0 : 16'd1);
-  assign tri_end   = 16'(pos_q) + item_n;
-  assign coef_base = (in_payload_q ? pay_idx_q : 16'd0) - tri_first;
-  assign tri_bank  = in_payload_q ? wr_bank_q : next_bank;
+  logic [PORT_WORDS-1:0] coef_we, coef_tail;
+  logic [BankW-1:0]      coef_bank [PORT_WORDS];
+  assign head_take = hdr_fire && hdr_op == shade_pkg::OpTriangle;
   assign rd_base   = CoefAW'(rd_bank * NCoef);
   always_comb begin
     for (int k = 0; k < PORT_WORDS; k++) begin
-      coef_addr[k] = CoefAW'(tri_bank * NCoef + 32'(coef_idx[k]));
-    end
-  end
-  always_comb begin
-    for (int k = 0; k < PORT_WORDS; k++) begin
-      coef_idx[k] = coef_base + 16'(k);
-      coef_we[k]  = tri_take && 16'(k) >= tri_first && 16'(k) < tri_end &&
-                    coef_idx[k] < 16'(NCoef);
+      coef_tail[k] = 16'(k) >= 16'(pos_q) && 16'(k) < hdr_pos;
+      coef_idx[k]  = coef_tail[k] ? pay_idx_q + 16'(k) - 16'(pos_q) : 16'(k) - hdr_pos - 16'd1;
+      coef_we[k]   = (cmd_valid_i && coef_tail[k] ||
+                      head_take && 16'(k) > hdr_pos && 16'(k) < hdr_pos + hdr_n) &&
+                     coef_idx[k] < 16'(NCoef);
+      coef_bank[k] = coef_tail[k] ? wr_bank_q : next_bank;
+      coef_addr[k] = CoefAW'(coef_bank[k] * NCoef + 32'(coef_idx[k]));
     end
   end
 

@@ -210,6 +210,22 @@ TEST(CommandPort, TriangleHeaderTakesTheCoefficientsInItsBeat) {
   EXPECT_EQ(r.beats, 2u);
 }
 
+TEST(CommandPort, ANextHeaderGoesWithTheTail) {
+  // P = 4, two 6-word triangles then a 3-pixel span: [T1 a b c | d e f T2 | g h i j | k l S 0].
+  // Cycle 0: T1 + a b c; 1: d e f + T2; 2: g h i j; 3: k l (the SPAN may not go with its
+  // triangle's tail without a span queue); 4: the SPAN; 5: the padding. The span ends on
+  // 4 + 4 + 3. With tri_queue 2 the SPAN goes on 3 into the queue: 3 + 5 + 3.
+  TriangleCmd t;
+  t.coef.assign(6, 0);
+  const std::vector<uint64_t> w = words({t, t, span(0, 0, 3, true)});
+  const CycleRun r = CycleModel::run(w, Stimulus{}, port(4));
+  ASSERT_EQ(r.scanlines.size(), 1u);
+  EXPECT_EQ(r.scanlines[0].cycle, 11u);
+  const CycleRun q = CycleModel::run(w, Stimulus{}, CycleConfig(SlotTiming{}, 4, 2));
+  ASSERT_EQ(q.scanlines.size(), 1u);
+  EXPECT_EQ(q.scanlines[0].cycle, 11u);
+}
+
 TEST(CommandPort, TwoWordPortTakesTwoCoefficientsPerCycle) {
   // P = 2: [TRI c0 | c1 c2 | ... | c9 c10 | c11 SPAN]: cycles 0..5 take the header and c0..c10,
   // cycle 6 c11, cycle 7 the SPAN.
