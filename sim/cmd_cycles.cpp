@@ -57,6 +57,15 @@ int run_cycles(const CyclesOptions& o) {
   const auto t1 = std::chrono::steady_clock::now();
   const CycleRun run = CycleModel::run(words, stim, unit_timing);
   const double model_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  // What the triangle queue hid: the same stream and stimulus on the same unit with one bank.
+  CycleConfig one_bank = unit_timing;
+  one_bank.tri_queue = 1;
+  const uint64_t cycles_one_bank =
+      unit_timing.tri_queue > 1 ? CycleModel::run(words, stim, one_bank).cycles : run.cycles;
+  const int64_t queue_hid = static_cast<int64_t>(cycles_one_bank) - static_cast<int64_t>(run.cycles);
+  // Words per triangle by series (model/command_stream.h: a header, then T0..T5 per series).
+  const int diffuse_words = kTermsPerSeries * frame.config.diffuse_series();
+  const int specular_words = kTermsPerSeries * frame.config.specular_series();
 
   const double cpp = run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;
   std::cout << "scene        " << o.scene << " (" << frame.scene.width << "x" << frame.scene.height << ")\n"
@@ -70,9 +79,14 @@ int run_cycles(const CyclesOptions& o) {
             << "stream       " << words.size() << " words: " << frame.encoded.stats.triangles << " tri, "
             << frame.encoded.stats.spans << " spans, " << frame.encoded.stats.materials << " material loads, "
             << frame.encoded.stats.table_words << " table words\n"
+            << "triangle     " << 1 + diffuse_words + specular_words << " words: 1 header, " << diffuse_words
+            << " diffuse (" << frame.config.diffuse_series() << " series), " << specular_words << " specular ("
+            << frame.config.specular_series() << " series)\n"
             << "pixels       " << run.pixels << "\n"
             << "cycles       " << run.cycles << "  (" << std::fixed << std::setprecision(3) << cpp
-            << " cycles per pixel)\n\n"
+            << " cycles per pixel)\n"
+            << "queue        " << queue_hid << " cycles hidden by the triangle queue (tri_queue 1: "
+            << cycles_one_bank << ")\n\n"
             << "breakdown    (every cycle charged to one reason; the rows sum to the total)\n";
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& r : run.breakdown.rows()) {
@@ -91,6 +105,10 @@ int run_cycles(const CyclesOptions& o) {
                         {"stimulus", {{"seed", o.seed}, {"gap_pct", o.gap_pct}, {"max_gap", o.max_gap}, {"stall_pct", o.stall_pct}}},
                         {"words", words.size()},
                         {"beats", run.beats},
+                        {"triangle_words", {{"header", 1}, {"diffuse", diffuse_words}, {"specular", specular_words},
+                                            {"total", 1 + diffuse_words + specular_words}}},
+                        {"queue_hidden_cycles", queue_hid},
+                        {"cycles_tri_queue_1", cycles_one_bank},
                         {"pixels", run.pixels},
                         {"cycles", run.cycles},
                         {"cycles_per_pixel", cpp},
