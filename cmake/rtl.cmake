@@ -299,17 +299,20 @@ foreach(name grey_s428w rgb2_s320s)
               --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
   endforeach()
 endforeach()
-# Wider command ports (issue 8): every scenario, three seeds; SystemC on the four-word port; the
-# deliberate faults caught at the right scanline through a four-word port.
+# Wider command ports and triangle queues (issue 8): every scenario, three seeds; SystemC on
+# the four-word port with and without a queue; the deliberate faults caught at the right
+# scanline through a four-word port.
 foreach(name grey_p2 grey_p4 rgb2_p8 grey_p4_q2 rgb2_p8_q3 grey_p1_q2)
   add_test(NAME rtl_cosim_cpp_${name}
     COMMAND rtl_cosim_cpp --config ${name} --scenario all --seed 1 --runs 3
             --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
 endforeach()
-foreach(scenario mixed tiny)
-  add_test(NAME rtl_cosim_sc_grey_p4_${scenario}
-    COMMAND rtl_cosim_sc --config grey_p4 --scenario ${scenario} --seed 7
-            --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
+foreach(name grey_p4 grey_p4_q2)
+  foreach(scenario mixed tiny)
+    add_test(NAME rtl_cosim_sc_${name}_${scenario}
+      COMMAND rtl_cosim_sc --config ${name} --scenario ${scenario} --seed 7
+              --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
+  endforeach()
 endforeach()
 add_test(NAME rtl_cosim_catches_lsb_fault_p4
   COMMAND rtl_cosim_cpp --config fault_lsb_p4 --scenario mixed --seed 3 --stall-pct 0
