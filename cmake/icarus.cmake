@@ -117,7 +117,9 @@ set(_icarus_check ${CMAKE_COMMAND} -DICARUS_CHECK=ON -DSHADESIM=${SHADESIM_CLI} 
     -DBUILDS=${CMAKE_SOURCE_DIR}/sim/harness/builds.json)
 set(_icarus_scenarios_grey_s428w mixed short long switch)
 set(_icarus_scenarios_rgb2_s320s mixed long)
-foreach(name grey_s428w rgb2_s320s)
+set(_icarus_scenarios_grey_p4 mixed short)
+set(_icarus_scenarios_grey_p4_q2 mixed short)
+foreach(name grey_s428w rgb2_s320s grey_p4 grey_p4_q2)
   foreach(scenario ${_icarus_scenarios_${name}})
     add_test(NAME icarus_model_${name}_${scenario}
       COMMAND ${_icarus_check} -DTB=${ICARUS_DIR}/check/${name}/tb_${scenario}.vvp -DCONFIG=${name}

@@ -18,7 +18,7 @@ set(SHADESIM_HAVE_RTL ON)
 set(RTL_DIR ${CMAKE_SOURCE_DIR}/rtl)
 # Dependency order (leaves first) for tools that want it (sim/rtl_build.cpp lists the same).
 set(RTL_SOURCES
-  ${RTL_DIR}/fixed_round.sv ${RTL_DIR}/fixed_sat.sv ${RTL_DIR}/span_setup.sv
+  ${RTL_DIR}/shade_pkg.sv ${RTL_DIR}/fixed_round.sv ${RTL_DIR}/fixed_sat.sv ${RTL_DIR}/span_setup.sv
   ${RTL_DIR}/series_engine.sv ${RTL_DIR}/pixel_combine.sv
   ${RTL_DIR}/exponent_lut.sv ${RTL_DIR}/schlick_divider.sv ${RTL_DIR}/wpow_unit.sv
   ${RTL_DIR}/specular_slot.sv ${RTL_DIR}/shade_unit.sv)
@@ -92,6 +92,11 @@ if(YOSYS)
     set_tests_properties(rtl_yosys_no_latch_wpow_timing${timing} PROPERTIES
       ENVIRONMENT "YOSYS_CHPARAM=-set SPECULAR_KIND 3 -set WPOW_MAX_M 4 -set WPOW_BASE_BITS 8 -set WPOW_TIMING ${timing}")
   endforeach()
+  # The wide port's beat decoder and the triangle queue's banks and span queue.
+  add_test(NAME rtl_yosys_no_latch_port4_queue3
+    COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_check.sh ${YOSYS} ${CMAKE_BINARY_DIR}/rtl_yosys_p4q3.log ${RTL_SOURCES})
+  set_tests_properties(rtl_yosys_no_latch_port4_queue3 PROPERTIES
+    ENVIRONMENT "YOSYS_CHPARAM=-set PORT_WORDS 4 -set TRI_QUEUE 3")
 endif()
 
 # Co-simulation: every scenario, several seeds, both backends, both width sets.
@@ -105,6 +110,27 @@ foreach(name grey_s428w rgb2_s320s)
               --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
   endforeach()
 endforeach()
+# Wider command ports and triangle queues (issue 8): every scenario, three seeds; SystemC on
+# the four-word port with and without a queue; the deliberate faults caught at the right
+# scanline through a four-word port.
+foreach(name grey_p2 grey_p4 rgb2_p8 grey_p4_q2 rgb2_p8_q3 grey_p1_q2)
+  add_test(NAME rtl_cosim_cpp_${name}
+    COMMAND ${COSIM_CPP} --config ${name} --scenario all --seed 1 --runs 3
+            --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
+endforeach()
+foreach(name grey_p4 grey_p4_q2)
+  foreach(scenario mixed tiny)
+    add_test(NAME rtl_cosim_sc_${name}_${scenario}
+      COMMAND ${COSIM_SC} --config ${name} --scenario ${scenario} --seed 7
+              --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
+  endforeach()
+endforeach()
+add_test(NAME rtl_cosim_catches_lsb_fault_p4
+  COMMAND ${COSIM_CPP} --config fault_lsb_p4 --scenario mixed --seed 3 --stall-pct 0
+          --expect-mismatch pixel:17 --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
+add_test(NAME rtl_cosim_catches_stall_fault_p4
+  COMMAND ${COSIM_CPP} --config fault_stall_p4 --scenario mixed --seed 3 --stall-pct 0
+          --expect-mismatch cycle:23 --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
 # The specular-unit builds: every scenario (non-zero specular colours, unit parameters, LUT
 # tables), one seed each in CI; the SystemC backend on one scenario where it is built.
 foreach(name ${RTL_SPECULAR_BUILD_NAMES})

@@ -14,7 +14,7 @@ find_program(YOSYS yosys)
 
 set(RTL_UNITS_DIR ${CMAKE_SOURCE_DIR}/rtl)
 set(RTL_UNITS_GEN ${CMAKE_BINARY_DIR}/verilated/units)
-set(RTL_UNITS_COMMON ${RTL_UNITS_DIR}/fixed_round.sv ${RTL_UNITS_DIR}/fixed_sat.sv)
+set(RTL_UNITS_COMMON ${RTL_UNITS_DIR}/shade_pkg.sv ${RTL_UNITS_DIR}/fixed_round.sv ${RTL_UNITS_DIR}/fixed_sat.sv)
 set(RTL_UNITS_SLOT ${RTL_UNITS_DIR}/specular_slot.sv)
 set(RTL_UNITS_SOURCES ${RTL_UNITS_COMMON} ${RTL_UNITS_DIR}/exponent_lut.sv
     ${RTL_UNITS_DIR}/schlick_divider.sv ${RTL_UNITS_DIR}/wpow_unit.sv ${RTL_UNITS_SLOT})

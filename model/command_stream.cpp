@@ -14,13 +14,7 @@
 namespace shadesim {
 namespace {
 
-constexpr int kOpcodeShift = 56;
-constexpr uint64_t kMask16 = 0xFFFF;
-constexpr uint64_t kLastInRowBit = uint64_t{1} << 55;
-
-uint64_t header(Opcode op) { return static_cast<uint64_t>(op) << kOpcodeShift; }
-
-int32_t sign_extend16(uint64_t v) { return static_cast<int16_t>(static_cast<uint16_t>(v & kMask16)); }
+constexpr uint64_t kMask16 = CommandWord::kFieldMask;
 
 std::string where(const std::string& source, size_t index, const char* unit) {
   return source + ":" + unit + " " + std::to_string(index) + ": ";
@@ -96,25 +90,21 @@ std::vector<uint64_t> CommandStream::encode() const {
   for (const auto& cmd : commands) {
     if (const auto* m = std::get_if<MaterialCmd>(&cmd)) {
       const size_t n = m->ambient.size() + m->spec_colour.size() + 1 + m->unit_params.size();
-      words.push_back(header(Opcode::kMaterial) | n);
+      words.push_back(CommandWord::material(n).bits);
       for (auto v : m->ambient) words.push_back(static_cast<uint64_t>(v));
       for (auto v : m->spec_colour) words.push_back(static_cast<uint64_t>(v));
       words.push_back(static_cast<uint64_t>(m->exponent));
       for (auto v : m->unit_params) words.push_back(static_cast<uint64_t>(v));
     } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
-      words.push_back(header(Opcode::kTriangle) | ((static_cast<uint64_t>(t->xo) & kMask16) << 32) |
-                      ((static_cast<uint64_t>(t->yo) & kMask16) << 16) | t->coef.size());
+      words.push_back(CommandWord::triangle(t->xo, t->yo, t->coef.size()).bits);
       for (auto v : t->coef) words.push_back(static_cast<uint64_t>(v));
     } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
-      words.push_back(header(Opcode::kSpan) | (s->last_in_row ? kLastInRowBit : 0) |
-                      (static_cast<uint64_t>(s->y) << 32) | (static_cast<uint64_t>(s->x0) << 16) |
-                      static_cast<uint64_t>(s->length));
+      words.push_back(CommandWord::span(s->y, s->x0, s->length, s->last_in_row).bits);
     } else if (const auto* tb = std::get_if<TableCmd>(&cmd)) {
-      words.push_back(header(Opcode::kTable) | (static_cast<uint64_t>(tb->base) << 16) |
-                      tb->entries.size());
+      words.push_back(CommandWord::table(tb->base, tb->entries.size()).bits);
       for (auto v : tb->entries) words.push_back(static_cast<uint64_t>(v));
     } else {
-      words.push_back(header(Opcode::kEndFrame));
+      words.push_back(CommandWord::end_frame().bits);
     }
   }
   return words;
@@ -138,9 +128,9 @@ CommandStream CommandStream::decode(const std::vector<uint64_t>& words, const Un
   };
   while (i < words.size()) {
     const size_t at = i;
-    const uint64_t h = words[i++];
-    const auto op = static_cast<uint8_t>(h >> kOpcodeShift);
-    const size_t count = h & kMask16;
+    const CommandWord h{words[i++]};
+    const auto op = static_cast<uint8_t>(h.opcode());
+    const size_t count = h.count();
     switch (static_cast<Opcode>(op)) {
       case Opcode::kMaterial: {
         const size_t fixed = static_cast<size_t>(config.channels + config.lights * config.channels + 1);
@@ -160,24 +150,24 @@ CommandStream CommandStream::decode(const std::vector<uint64_t>& words, const Un
       }
       case Opcode::kTriangle: {
         TriangleCmd t;
-        t.xo = sign_extend16(h >> 32);
-        t.yo = sign_extend16(h >> 16);
+        t.xo = h.tri_xo();
+        t.yo = h.tri_yo();
         t.coef = take(count, at);
         cs.commands.emplace_back(std::move(t));
         break;
       }
       case Opcode::kSpan: {
         SpanCmd s;
-        s.last_in_row = (h & kLastInRowBit) != 0;
-        s.y = static_cast<int32_t>((h >> 32) & kMask16);
-        s.x0 = static_cast<int32_t>((h >> 16) & kMask16);
-        s.length = static_cast<int32_t>(count);
+        s.last_in_row = h.span_last();
+        s.y = h.span_y();
+        s.x0 = h.span_x0();
+        s.length = h.span_length();
         cs.commands.emplace_back(s);
         break;
       }
       case Opcode::kTable: {
         TableCmd tb;
-        tb.base = static_cast<uint32_t>((h >> 16) & kMask16);
+        tb.base = h.table_base();
         tb.entries = take(count, at);
         cs.commands.emplace_back(std::move(tb));
         break;
@@ -375,6 +365,8 @@ std::string config_to_json(const UnitConfig& c) {
   j["series"] = c.series.to_string();
   j["spec_colour"] = c.spec_colour.to_string();
   j["out_bits"] = c.out_bits;
+  j["port_words"] = c.port_words;
+  j["tri_queue"] = c.tri_queue;
   const SpecularConfig& sp = c.specular;
   j["specular"] = {{"kind", to_string(sp.kind)}, {"out", sp.out.to_string()}};
   j["specular"]["lut"] = {{"addr_bits", sp.lut.addr_bits},
@@ -412,8 +404,8 @@ class ConfigJsonReader {
     if (!j.is_object()) fail("", "expected a JSON object (a UnitConfig), got " + j.dump());
     // "derivation" is the annotation `shadesim config --json` writes beside the fields (how each
     // was derived); it is for people and never read.
-    check_keys(j, "", {"channels", "lights", "xy_bits", "coef", "series", "spec_colour", "out_bits", "specular",
-                       "derivation"});
+    check_keys(j, "", {"channels", "lights", "xy_bits", "coef", "series", "spec_colour", "out_bits",
+                       "port_words", "tri_queue", "specular", "derivation"});
     read_int(j, "", "channels", 1, 3, require_top_, c.channels);
     read_int(j, "", "lights", 1, 8, require_top_, c.lights);
     read_int(j, "", "xy_bits", 1, 16, require_top_, c.xy_bits);
@@ -421,6 +413,9 @@ class ConfigJsonReader {
     read_format(j, "", "series", require_top_, c.series);
     read_format(j, "", "spec_colour", require_top_, c.spec_colour);
     read_int(j, "", "out_bits", 1, 16, require_top_, c.out_bits);
+    // Throughput structure: absent keys keep their defaults (streams written before it existed).
+    read_int(j, "", "port_words", 1, 8, false, c.port_words);
+    read_int(j, "", "tri_queue", 1, 8, false, c.tri_queue);
     if (!j.contains("specular")) {
       if (require_top_) fail("specular", "expected an object (missing)");
       return;

@@ -18,6 +18,25 @@
 //   TABLE     0x04 header[31:16] = base address, header[15:0] = entries; payload one entry/word.
 //   END_FRAME 0x0F no payload.
 //
+// Command port of P = UnitConfig::port_words words (1, 2, 4 or 8) per handshake: the driver cuts
+// the word sequence above into beats of P consecutive words, stream word i*P + k in bits
+// [64k+63:64k] of beat i. Commands straddle beats freely (no alignment, no padding between
+// commands); only the last beat is padded, with zero words (opcode 0x00, NOP). The unit takes a
+// beat apart over one or more cycles, one item per cycle, and accepts it (cmd_ready) on the
+// cycle it takes the beat's last word. An item is
+//   - the TRIANGLE coefficient words still due, as many as the beat holds (the tail), then,
+//     if the beat has a word left after the triangle's last one,
+//   - at most one header: a TRIANGLE header with as many of its coefficient words as follow it
+//     in the beat; a SPAN, MATERIAL, TABLE or END_FRAME header; or a NOP header with the rest
+//     of the beat (padding);
+//   - or else one MATERIAL or TABLE payload word (the specular slots' configuration port is
+//     one word wide).
+// A header that cannot go yet stays for the next cycle (the tail still goes): a SPAN waits for
+// span setup (or for room in the span queue, UnitConfig::tri_queue > 1) and, without a span
+// queue, never goes with its triangle's tail (its setup reads the coefficients as it is
+// taken); a TRIANGLE waits for a free coefficient bank; MATERIAL and TABLE wait for an empty
+// datapath. With P = 1 a beat is one word and every item one word.
+//
 // Text form: one command per line, '#' starts a comment, a first line
 // "shadesim-commands 1 <config json>" carries the unit configuration so a saved stream replays
 // on its own.
@@ -35,17 +54,10 @@
 #include <variant>
 #include <vector>
 
+#include "model/command_word.h"
 #include "model/unit_config.h"
 
 namespace shadesim {
-
-enum class Opcode : uint8_t {
-  kMaterial = 0x01,
-  kTriangle = 0x02,
-  kSpan = 0x03,
-  kTable = 0x04,
-  kEndFrame = 0x0F,
-};
 
 struct MaterialCmd {
   std::vector<int64_t> ambient;      // [channels], series format

@@ -22,6 +22,10 @@ SlotTiming SlotTiming::of(const SpecularConfig& config) {
   }
 }
 
+CycleConfig CycleConfig::of(const UnitConfig& config) {
+  return CycleConfig(SlotTiming::of(config.specular), config.port_words, config.tri_queue);
+}
+
 std::string to_string(CycleModel::Category c) {
   switch (c) {
     case CycleModel::Category::kPixel: return "pixel";
@@ -55,7 +59,17 @@ uint64_t CycleBreakdown::total() const {
   return t;
 }
 
-CycleModel::CycleModel(SlotTiming timing) : timing_(timing) {
+CycleModel::CycleModel(CycleConfig unit)
+    : timing_(unit.slot), port_words_(static_cast<unsigned>(unit.port_words)), tri_queue_(unit.tri_queue) {
+  if (unit.tri_queue < 1 || unit.tri_queue > 8) {
+    throw std::invalid_argument("CycleModel: tri_queue must be 1..8, got " + std::to_string(unit.tri_queue));
+  }
+  sq_.resize(static_cast<size_t>(unit.span_queue()));
+  bank_spans_.assign(static_cast<size_t>(unit.tri_queue), 0);
+  const SlotTiming& timing = unit.slot;
+  if (unit.port_words != 1 && unit.port_words != 2 && unit.port_words != 4 && unit.port_words != 8) {
+    throw std::invalid_argument("CycleModel: port_words must be 1, 2, 4 or 8, got " + std::to_string(unit.port_words));
+  }
   if (timing.latency < 0 || timing.interval < 1) {
     throw std::invalid_argument("CycleModel: slot latency must be >= 0 and interval >= 1, got latency " +
                                 std::to_string(timing.latency) + ", interval " + std::to_string(timing.interval));
@@ -70,15 +84,16 @@ CycleModel::CycleModel(SlotTiming timing) : timing_(timing) {
   port_history_.assign(static_cast<size_t>(span_latency()), Category::kSetupLoad);
 }
 
-CycleRun CycleModel::run(const std::vector<uint64_t>& words, const Stimulus& stim, SlotTiming timing) {
+CycleRun CycleModel::run(const std::vector<uint64_t>& words, const Stimulus& stim, CycleConfig timing) {
   CycleModel m(timing);
-  CommandDriver driver(words, stim);
+  CommandDriver driver(words, stim, timing.port_words);
   CycleRun r;
   r.words = words.size();
+  r.beats = (words.size() + static_cast<size_t>(timing.port_words) - 1) / static_cast<size_t>(timing.port_words);
   uint64_t cycle = 0;
   CycleBreakdown& b = r.breakdown;
   while (!driver.done() || !m.idle()) {
-    const Edge e = m.clock(driver.valid(), driver.word(), stim.pix_ready(cycle));
+    const Edge e = m.clock(driver.valid(), driver.beat(), stim.pix_ready(cycle));
     driver.clock(e.cmd_fire);
     switch (e.category) {
       case Category::kPixel: ++b.pixel; break;

@@ -3,19 +3,25 @@
 // breakdown of where the cycles went: run()) or in lockstep with the RTL (clock()), where every
 // scanline's completion cycle must match exactly.
 //
-// Mirrored structure (names as in the RTL): a command decoder (headers, payload counting;
-// MATERIAL and TABLE wait for an empty datapath), three span-setup stages s1..s3 with valid bits, the
+// Mirrored structure (names as in the RTL): a command decoder (a beat of port_words words taken
+// apart one item per cycle, model/command_stream.h; headers, payload counting; MATERIAL and TABLE
+// wait for an empty datapath), with tri_queue > 1 a span queue whose spans carry their
+// triangle's coefficient bank (a TRIANGLE waits until no queued span reads the bank it
+// loads), three span-setup stages s1..s3 with valid bits, the
 // engines' run state (run, rem), the specular slot's timing (a LATENCY-deep delay line for a
 // pipelined unit, one in-flight pixel and a busy count for an iterative one), and the pix output
 // register with advance = !valid || ready.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "model/command_word.h"
 #include "model/specular_config.h"
 #include "model/stimulus.h"
+#include "model/unit_config.h"
 
 namespace shadesim {
 
@@ -27,6 +33,23 @@ struct SlotTiming {
   // The selected unit's timing (ExponentLut / SchlickDivider / WpowUnit latency and
   // cycles_per_pixel; ideal: 0 and 1), as rtl/specular_slot.sv builds it.
   static SlotTiming of(const SpecularConfig& config);
+};
+
+// Everything the cycle model needs of a unit: its slot timing and its throughput structure
+// (the control the RTL builds from UnitConfig; the datapath widths do not matter here).
+struct CycleConfig {
+  SlotTiming slot;
+  int port_words = 1;  // UnitConfig::port_words
+  int tri_queue = 1;   // UnitConfig::tri_queue
+
+  CycleConfig() = default;
+  // A unit with the default structure around this slot.
+  CycleConfig(SlotTiming s) : slot(s) {}  // NOLINT(google-explicit-constructor): a slot is a unit
+  CycleConfig(SlotTiming s, int words, int queue = 1) : slot(s), port_words(words), tri_queue(queue) {}
+  // Spans the span queue holds with tri_queue > 1 (none with 1).
+  int span_queue() const { return tri_queue > 1 ? kSpansPerQueuedTriangle * tri_queue : 0; }
+  static constexpr int kSpansPerQueuedTriangle = 4;
+  static CycleConfig of(const UnitConfig& config);
 };
 
 // Where a scanline ends: the cycle on which its end-of-row pixel leaves the unit.
@@ -75,9 +98,10 @@ struct CycleBreakdown {
 };
 
 struct CycleRun {
-  uint64_t cycles = 0;  // cycles until every word is accepted and every pixel has left
+  uint64_t cycles = 0;  // cycles until every beat is accepted and every pixel has left
   uint64_t pixels = 0;
   uint64_t words = 0;
+  uint64_t beats = 0;
   CycleBreakdown breakdown;  // partitions `cycles`
   std::vector<ScanlineDone> scanlines;
 };
@@ -92,29 +116,33 @@ class CycleModel {
   // What happened on one clock edge.
   struct Edge {
     bool cmd_ready = false;  // combinational, before the edge
-    bool cmd_fire = false;
+    bool cmd_fire = false;   // the beat on the port was accepted on this edge
     bool pix_fire = false;   // a pixel left on this edge
     bool pix_eor = false;
     int pix_x = 0, pix_y = 0;
     Category category = Category::kSetupLoad;
   };
 
-  // Throws std::invalid_argument for a negative latency, an interval < 1, or an iterative
-  // interval that differs from the latency.
-  explicit CycleModel(SlotTiming timing = SlotTiming{});
+  // Throws std::invalid_argument for a negative latency, an interval < 1, an iterative
+  // interval that differs from the latency, or a port width other than 1, 2, 4, 8.
+  explicit CycleModel(CycleConfig timing = CycleConfig{});
 
-  // Inputs as seen just before the edge; advances the state by one clock.
-  Edge clock(bool cmd_valid, uint64_t cmd_word, bool pix_ready);
+  // Inputs as seen just before the edge (`beat`: the port_words words on the port); advances
+  // the state by one clock.
+  Edge clock(bool cmd_valid, const uint64_t* beat, bool pix_ready);
+  // A one-word port.
+  Edge clock(bool cmd_valid, uint64_t cmd_word, bool pix_ready) { return clock(cmd_valid, &cmd_word, pix_ready); }
 
-  // Nothing in flight and no pixel waiting.
-  bool idle() const { return !in_payload_ && datapath_empty() && !pix_.valid; }
+  // Nothing in flight, no pixel waiting, and no beat half taken apart.
+  bool idle() const { return !in_payload_ && pos_ == 0 && datapath_empty() && !pix_.valid; }
 
-  // Cycles from a SPAN header's acceptance to its first pixel leaving, with nothing stalled.
-  int span_latency() const { return 5 + timing_.latency; }
+  // Cycles from a SPAN header's acceptance to its first pixel leaving, with nothing stalled
+  // (a span queue adds its register).
+  int span_latency() const { return 5 + (queued() ? 1 : 0) + timing_.latency; }
 
   // Runs a whole stream with the stimulus's gaps and back-pressure.
   static CycleRun run(const std::vector<uint64_t>& words, const Stimulus& stim,
-                      SlotTiming timing = SlotTiming{});
+                      CycleConfig timing = CycleConfig{});
 
  private:
   struct Span {
@@ -128,16 +156,33 @@ class CycleModel {
     bool eor = false;
   };
   enum class Payload { kSkip, kMaterial, kTriangle, kTable };
-  static constexpr unsigned kOpMaterial = 0x01, kOpTriangle = 0x02, kOpSpan = 0x03, kOpTable = 0x04;
 
   bool iterative() const { return timing_.interval > 1; }
+  bool queued() const { return tri_queue_ > 1; }
   bool slot_empty() const;
-  bool datapath_empty() const { return !s_[0].valid && !s_[1].valid && !s_[2].valid && !run_ && slot_empty(); }
+  bool datapath_empty() const {
+    return sq_count_ == 0 && !s_[0].valid && !s_[1].valid && !s_[2].valid && !run_ && slot_empty();
+  }
   // What the command port does this cycle, as a bubble category (kSetupLoad for SPAN headers).
-  Category port_category(bool cmd_valid, unsigned op) const;
+  // header: the cycle is about a header (taken, or waited for), not payload words.
+  Category port_category(bool cmd_valid, bool header, CommandWord word) const;
 
   SlotTiming timing_;
-  // Decoder
+  unsigned port_words_ = 1;
+  int tri_queue_ = 1;
+  // Triangle queue (tri_queue > 1): the span queue (a ring of sq_.size(), sq_count_ entries from
+  // sq_head_), each span with the coefficient bank of its triangle; spans queued per bank; the
+  // bank the latest TRIANGLE loads.
+  struct QueuedSpan {
+    Span span;
+    int bank = 0;
+  };
+  std::vector<QueuedSpan> sq_;
+  size_t sq_head_ = 0, sq_count_ = 0;
+  std::vector<int> bank_spans_;
+  int wr_bank_ = 0;
+  // Decoder: pos_ is the next word of the beat on the port still to be taken.
+  unsigned pos_ = 0;
   bool in_payload_ = false;
   Payload pay_op_ = Payload::kSkip;
   unsigned pay_idx_ = 0, pay_last_ = 0;
@@ -175,24 +220,24 @@ inline bool CycleModel::slot_empty() const {
   return true;
 }
 
-inline CycleModel::Category CycleModel::port_category(bool cmd_valid, unsigned op) const {
+inline CycleModel::Category CycleModel::port_category(bool cmd_valid, bool header, CommandWord word) const {
   if (!cmd_valid) return Category::kCommandGap;
-  if (in_payload_) {
+  if (!header) {
     switch (pay_op_) {
       case Payload::kMaterial: return Category::kMaterial;
       case Payload::kTable: return Category::kTable;
       default: return Category::kCommandWords;
     }
   }
-  switch (op) {
-    case kOpMaterial: return Category::kMaterial;
-    case kOpTable: return Category::kTable;
-    case kOpSpan: return Category::kSetupLoad;
+  switch (static_cast<Opcode>(word.opcode())) {
+    case Opcode::kMaterial: return Category::kMaterial;
+    case Opcode::kTable: return Category::kTable;
+    case Opcode::kSpan: return Category::kSetupLoad;
     default: return Category::kCommandWords;
   }
 }
 
-inline CycleModel::Edge CycleModel::clock(bool cmd_valid, uint64_t word, bool pix_ready) {
+inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, bool pix_ready) {
   Edge e;
   // ---- combinational, from the state before the edge (same equations as the RTL) ----
   const bool adv = !pix_.valid || pix_ready;
@@ -204,18 +249,45 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, uint64_t word, bool pi
   const bool s2_move = s_[1].valid && s3_free;
   const bool s1_move = s_[0].valid && (!s_[1].valid || s2_move);
   const bool s1_free = !s_[0].valid || s1_move;
+  // With a triangle queue, span setup takes its spans from the span queue.
+  const bool sq_pop = queued() && sq_count_ > 0 && s1_free;
+  const int next_bank = queued() ? (wr_bank_ + 1) % tri_queue_ : 0;
 
-  const unsigned op = static_cast<unsigned>(word >> 56) & 0xFF;
-  const unsigned count = static_cast<unsigned>(word & 0xFFFF);
+  // The item taken from the beat this cycle (model/command_stream.h): the triangle coefficient
+  // words due in the beat (tail), then at most one header (a TRIANGLE's with its coefficient
+  // words after it in the beat), or one MATERIAL / TABLE payload word; n words from pos_.
+  const unsigned beat_left = port_words_ - pos_;
+  const unsigned pay_rem = (pay_last_ - pay_idx_ + 1) & unsigned{CommandWord::kFieldMask};
+  const bool tri_payload = in_payload_ && pay_op_ == Payload::kTriangle;
+  const unsigned tail = tri_payload ? std::min(pay_rem, beat_left) : 0;
+  const unsigned hdr_pos = pos_ + tail;
+  const bool hdr_here = (!in_payload_ || (tri_payload && pay_rem <= beat_left)) && hdr_pos < port_words_;
+  const CommandWord word{beat[hdr_here ? hdr_pos : pos_]};
+  const Opcode op = static_cast<Opcode>(word.opcode());
+  const unsigned count = word.count();
+  unsigned hdr_n = 1;
+  if (op == Opcode::kNop) {
+    hdr_n = port_words_ - hdr_pos;
+  } else if (op == Opcode::kTriangle) {
+    hdr_n = 1 + std::min(count, port_words_ - hdr_pos - 1);
+  }
   bool hdr_ready = true;
   // Only MATERIAL and TABLE headers wait for the empty datapath; the check walks the delay line.
-  if (op == kOpMaterial || op == kOpTable) hdr_ready = datapath_empty();
-  if (op == kOpSpan) hdr_ready = s1_free;
-  e.cmd_ready = in_payload_ || hdr_ready;
+  if (op == Opcode::kMaterial || op == Opcode::kTable) hdr_ready = datapath_empty();
+  // Without a span queue a SPAN's setup reads the coefficients as it is taken: not on the edge
+  // that writes its triangle's last words.
+  if (op == Opcode::kSpan) hdr_ready = queued() ? sq_count_ < sq_.size() : s1_free && tail == 0;
+  // A TRIANGLE loads the next bank once no queued span needs that bank's coefficients.
+  if (op == Opcode::kTriangle && queued()) hdr_ready = bank_spans_[static_cast<size_t>(next_bank)] == 0;
+  const bool take_hdr = hdr_here && hdr_ready;
+  const unsigned n = tail + (take_hdr ? hdr_n : 0) + (in_payload_ && !tri_payload ? 1 : 0);
+  const bool item_fire = cmd_valid && n > 0;
+  const bool beat_done = n == beat_left;
+  e.cmd_ready = n > 0 && beat_done;
   e.cmd_fire = cmd_valid && e.cmd_ready;
-  const bool hdr_fire = e.cmd_fire && !in_payload_;
-  const bool pay_fire = e.cmd_fire && in_payload_;
-  const bool span_fire = hdr_fire && op == kOpSpan;
+  const bool hdr_fire = cmd_valid && take_hdr;
+  const bool pay_fire = cmd_valid && in_payload_;
+  const bool span_fire = hdr_fire && op == Opcode::kSpan;
 
   e.pix_fire = pix_.valid && pix_ready;
   e.pix_eor = pix_.eor;
@@ -233,7 +305,7 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, uint64_t word, bool pi
   } else {
     e.category = port_history_[slot];  // the port's category span_latency() cycles ago
   }
-  port_history_[slot] = port_category(cmd_valid, op);
+  port_history_[slot] = port_category(cmd_valid, take_hdr || !in_payload_, word);
   if (++history_pos_ == port_history_.size()) history_pos_ = 0;
 
   // ---- the edge: engines -> slot -> pix register ----
@@ -271,28 +343,54 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, uint64_t word, bool pi
   else if (load_eng) s_[2].valid = false;
   if (s1_move) s_[1] = s_[0];
   else if (s2_move) s_[1].valid = false;
-  if (span_fire) {
-    s_[0].valid = true;
-    s_[0].y = static_cast<int>((word >> 32) & 0xFFFF);
-    s_[0].x0 = static_cast<int>((word >> 16) & 0xFFFF);
-    s_[0].len = static_cast<int>(count);
-    s_[0].last = ((word >> 55) & 1) != 0;
-  } else if (s1_move) {
-    s_[0].valid = false;
+  Span header_span;
+  header_span.valid = true;
+  header_span.y = word.span_y();
+  header_span.x0 = word.span_x0();
+  header_span.len = word.span_length();
+  header_span.last = word.span_last();
+  if (!queued()) {
+    if (span_fire) s_[0] = header_span;
+    else if (s1_move) s_[0].valid = false;
+  } else {
+    if (sq_pop) {
+      const QueuedSpan& head = sq_[sq_head_];
+      s_[0] = head.span;
+      --bank_spans_[static_cast<size_t>(head.bank)];
+      if (++sq_head_ == sq_.size()) sq_head_ = 0;
+      --sq_count_;
+    } else if (s1_move) {
+      s_[0].valid = false;
+    }
+    if (span_fire) {
+      size_t tail = sq_head_ + sq_count_;
+      if (tail >= sq_.size()) tail -= sq_.size();
+      sq_[tail] = {header_span, wr_bank_};
+      ++bank_spans_[static_cast<size_t>(wr_bank_)];
+      ++sq_count_;
+    }
   }
 
+  if (item_fire) pos_ = beat_done ? 0 : pos_ + n;
   if (hdr_fire) {
     pay_idx_ = 0;
-    pay_last_ = (count - 1) & 0xFFFF;
+    pay_last_ = (count - 1) & CommandWord::kFieldMask;
     switch (op) {
-      case kOpMaterial: pay_op_ = Payload::kMaterial; in_payload_ = count != 0; break;
-      case kOpTriangle: pay_op_ = Payload::kTriangle; in_payload_ = count != 0; break;
-      case kOpTable: pay_op_ = Payload::kTable; in_payload_ = count != 0; break;
+      case Opcode::kMaterial: pay_op_ = Payload::kMaterial; in_payload_ = count != 0; break;
+      case Opcode::kTriangle:
+        // The coefficient words that came with the header are already taken.
+        wr_bank_ = next_bank;
+        pay_op_ = Payload::kTriangle;
+        pay_idx_ = hdr_n - 1;
+        in_payload_ = count > hdr_n - 1;
+        break;
+      case Opcode::kTable: pay_op_ = Payload::kTable; in_payload_ = count != 0; break;
       default: pay_op_ = Payload::kSkip; in_payload_ = false; break;
     }
   } else if (pay_fire) {
-    if (pay_idx_ == pay_last_) in_payload_ = false;
-    pay_idx_ = (pay_idx_ + 1) & 0xFFFF;
+    const unsigned taken = tri_payload ? tail : 1;
+    if (((pay_idx_ + taken - 1) & CommandWord::kFieldMask) == pay_last_) in_payload_ = false;
+    pay_idx_ = (pay_idx_ + taken) & CommandWord::kFieldMask;
   }
   return e;
 }

@@ -39,6 +39,8 @@ std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u, const I
       {"SPECULAR_KIND", code(s.kind)},
       {"SPECULAR_OUT_WL", s.out.wl},
       {"SPECULAR_OUT_IWL", s.out.iwl},
+      {"PORT_WORDS", u.port_words},
+      {"TRI_QUEUE", u.tri_queue},
   };
   // Only the selected unit's parameters: the others keep shade_unit's defaults, so two configs
   // that differ in an unused unit's widths map to the same build.

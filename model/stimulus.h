@@ -45,19 +45,36 @@ struct Stimulus {
   }
 };
 
-// Offers the command words one at a time with the stimulus's idle gaps; valid stays high until
-// the word is accepted (valid/ready rule: valid never depends on ready).
+// Offers the command words a beat at a time (port_words consecutive words, the last beat padded
+// with zero words: model/command_stream.h) with the stimulus's idle gaps before each beat; valid
+// stays high until the beat is accepted (valid/ready rule: valid never depends on ready).
 class CommandDriver {
  public:
-  CommandDriver(const std::vector<uint64_t>& words, const Stimulus& stim)
-      : words_(&words), size_(words.size()), stim_(stim), wait_(stim.gap_before(0)) {}
+  CommandDriver(const std::vector<uint64_t>& words, const Stimulus& stim, int port_words = 1)
+      : words_(&words),
+        port_words_(static_cast<size_t>(port_words)),
+        beats_((words.size() + port_words_ - 1) / port_words_),
+        stim_(stim),
+        wait_(stim.gap_before(0)) {
+    // The last beat, padded, kept apart so that beat() is always port_words readable words.
+    last_beat_.assign(port_words_, 0);
+    if (beats_ > 0) {
+      for (size_t i = (beats_ - 1) * port_words_; i < words.size(); ++i) last_beat_[i % port_words_] = words[i];
+    }
+  }
 
-  bool valid() const { return index_ < size_ && wait_ == 0; }
-  uint64_t word() const { return index_ < size_ ? (*words_)[index_] : 0; }
-  bool done() const { return index_ >= size_; }
-  size_t index() const { return index_; }
+  bool valid() const { return index_ < beats_ && wait_ == 0; }
+  // The beat on the port: port_words words (zeros after the end).
+  const uint64_t* beat() const {
+    if (index_ + 1 < beats_) return words_->data() + index_ * port_words_;
+    return index_ + 1 == beats_ ? last_beat_.data() : zero_beat();
+  }
+  uint64_t word() const { return beat()[0]; }  // a one-word port's beat
+  bool done() const { return index_ >= beats_; }
+  size_t index() const { return index_; }  // beats accepted so far
+  int port_words() const { return static_cast<int>(port_words_); }
 
-  // Call once per clock edge with whether the offered word was accepted on it.
+  // Call once per clock edge with whether the offered beat was accepted on it.
   void clock(bool accepted) {
     if (accepted) {
       ++index_;
@@ -68,9 +85,16 @@ class CommandDriver {
   }
 
  private:
+  static const uint64_t* zero_beat() {
+    static constexpr uint64_t kZeros[8] = {};
+    return kZeros;
+  }
+
   const std::vector<uint64_t>* words_;  // not resized while the driver lives
-  size_t size_;
+  size_t port_words_;
+  size_t beats_;
   Stimulus stim_;
+  std::vector<uint64_t> last_beat_;
   size_t index_ = 0;
   int wait_ = 0;
 };

@@ -11,6 +11,9 @@ void UnitConfig::validate() const {
   if (lights < 1 || lights > 8) fail("lights must be 1..8, got " + std::to_string(lights));
   if (xy_bits < 4 || xy_bits > 15) fail("xy_bits must be 4..15, got " + std::to_string(xy_bits));
   if (out_bits < 1 || out_bits > 16) fail("out_bits must be 1..16, got " + std::to_string(out_bits));
+  if (port_words != 1 && port_words != 2 && port_words != 4 && port_words != 8)
+    fail("port_words must be 1, 2, 4 or 8, got " + std::to_string(port_words));
+  if (tri_queue < 1 || tri_queue > 8) fail("tri_queue must be 1..8, got " + std::to_string(tri_queue));
   coef.validate("unit config: coef");
   series.validate("unit config: series");
   spec_colour.validate("unit config: spec_colour");
@@ -36,6 +39,8 @@ std::string UnitConfig::to_string() const {
   os << (channels == 1 ? "grey" : "rgb") << '/' << lights << "L coef=" << coef.to_string()
      << " series=" << series.to_string() << " out=" << out_bits
      << " spec=" << shadesim::to_string(specular.kind) << ':' << specular.out.to_string();
+  if (port_words != 1) os << " port=" << port_words << 'w';
+  if (tri_queue != 1) os << " triq=" << tri_queue;
   return os.str();
 }
 

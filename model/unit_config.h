@@ -33,6 +33,14 @@ struct UnitConfig {
 
   SpecularConfig specular;
 
+  // Throughput structure (the RTL's timing, not its numbers: pixels do not depend on these).
+  // Command port width: 64-bit words per handshake (a beat), 1, 2, 4 or 8. How the stream's words
+  // fill beats and how many the decoder takes per cycle: model/command_stream.h.
+  int port_words = 1;
+  // Triangle queue: coefficient banks (1..8). With more than one, SPAN headers wait in a span
+  // queue of 4 per bank, so the port loads the next triangles while earlier spans still run.
+  int tri_queue = 1;
+
   int diffuse_series() const { return lights * channels; }
   int specular_series() const { return lights * specular.series_per_light(); }
   int series_per_triangle() const { return diffuse_series() + specular_series(); }

@@ -49,9 +49,6 @@ module exponent_lut #(
   // verilator lint_on UNUSEDSIGNAL
   output logic [OUT_WL-1:0]     spec_o
 );
-  // verilator lint_off UNUSEDPARAM
-  localparam int LATENCY = INTERP_BITS > 0 ? 3 : 2;  // = ExponentLut::latency; see specular_slot
-  // verilator lint_on UNUSEDPARAM
   localparam int Fs      = SERIES_WL - SERIES_IWL;
   localparam int ShiftW  = $clog2(Fs + 1);
   localparam int AW      = ADDR_BITS + INTERP_BITS;

@@ -43,9 +43,6 @@ module schlick_divider #(
   output logic                 busy_o
 );
   localparam int Q       = QUOTIENT_BITS;
-  // verilator lint_off UNUSEDPARAM
-  localparam int LATENCY = Q;  // = SchlickDivider::latency; see specular_slot
-  // verilator lint_on UNUSEDPARAM
   localparam int Fs      = SERIES_WL - SERIES_IWL;
   localparam int OpW     = OPERAND_BITS + 2;      // unsigned 2.D
   localparam int OpDrop  = Fs - OPERAND_BITS;

@@ -1,6 +1,10 @@
 // shade_unit: the whole shading unit (model/shade_unit.h, class ShadeUnit).
 //
-// cmd port: the command stream's binary words (model/command_stream.h), one per handshake.
+// cmd port: the command stream's binary words (model/command_stream.h; layout in rtl/shade_pkg.sv),
+// PORT_WORDS per handshake (a beat; word k in cmd_data_i[64k +: 64]). The decoder takes a beat
+// apart one item per cycle - a TRIANGLE header with the coefficient words after it in the beat,
+// or the rest of a triangle's coefficient words in the beat, or one other header or payload
+// word, or a NOP (0x00: the rest of the beat is padding) - and accepts the beat with its last.
 // pix port: one pixel per span pixel, in stream order; pix_eor_o marks the last pixel of a
 // span flagged last_in_row. Both ports are valid/ready; cmd_ready_o and the pipeline's
 // advance depend combinationally on pix_ready_i (no skid buffers).
@@ -35,6 +39,11 @@ module shade_unit #(
   parameter int SPECULAR_KIND    = 0,  // SpecularUnitKind: 0 ideal, 1 lut, 2 schlick, 3 wpow
   parameter int SPECULAR_OUT_WL  = 17,
   parameter int SPECULAR_OUT_IWL = 1,
+  parameter int PORT_WORDS       = 1,  // 64-bit words per cmd handshake: 1, 2, 4 or 8
+  // Triangle queue: coefficient banks. With more than one, SPAN headers go into a span queue
+  // of 4 * TRI_QUEUE entries (each with its triangle's bank) and span setup takes them from
+  // there, so the port runs ahead of the pixels by up to TRI_QUEUE triangles.
+  parameter int TRI_QUEUE        = 1,
   // The specular unit's own parameters (specular_slot; model/specular_config.h field names
   // with the unit's prefix). Unused unless SPECULAR_KIND selects that unit.
   // verilator lint_off UNUSEDPARAM
@@ -59,7 +68,7 @@ module shade_unit #(
 ) (
   input  logic                         clk_i,
   input  logic                         rst_ni,
-  input  logic [63:0]                  cmd_data_i,
+  input  logic [PORT_WORDS*shade_pkg::WordW-1:0] cmd_data_i,
   input  logic                         cmd_valid_i,
   output logic                         cmd_ready_o,
   output logic [XY_BITS-1:0]           pix_x_o,
@@ -69,27 +78,19 @@ module shade_unit #(
   output logic                         pix_valid_o,
   input  logic                         pix_ready_i
 );
-  localparam int SeriesPerLight = SPECULAR_KIND == 2 ? 2 : 1;
+  localparam int SeriesPerLight = SPECULAR_KIND == shade_pkg::SpecSchlick ? 2 : 1;
   localparam int NDiff          = LIGHTS * CHANNELS;
   localparam int NSer           = NDiff + LIGHTS * SeriesPerLight;
   localparam int NCoef          = 6 * NSer;
   localparam int NMatFixed      = CHANNELS + LIGHTS * CHANNELS;  // ambient + spec_colour words
   localparam int OfsW           = 17;  // x0 - xo with x0 < 2^15 and xo a signed 16-bit value
-  // The slot's timing (specular_slot's LATENCY / INTERVAL; notes/spec_rtl.md).
-  localparam int WpowK          = $clog2(WPOW_MAX_M);
-  localparam int SpecLatency    =
-      SPECULAR_KIND == 1 ? (LUT_INTERP_BITS > 0 ? 3 : 2) :
-      SPECULAR_KIND == 2 ? SCHLICK_QUOTIENT_BITS :
-      SPECULAR_KIND == 3 ? WpowK + 1 : 0;
-  localparam int SpecInterval   =
-      SPECULAR_KIND == 2 && SCHLICK_TIMING == 1 ? SCHLICK_QUOTIENT_BITS :
-      SPECULAR_KIND == 3 && WPOW_TIMING == 1 ? WpowK + 1 : 1;
+  // The slot's timing (shade_pkg, the one definition; specular_slot's contract).
+  localparam int SpecLatency    = shade_pkg::spec_latency(SPECULAR_KIND, LUT_INTERP_BITS,
+                                                          SCHLICK_QUOTIENT_BITS, WPOW_MAX_M);
+  localparam int SpecInterval   = shade_pkg::spec_interval(SPECULAR_KIND, LUT_INTERP_BITS,
+                                                           SCHLICK_QUOTIENT_BITS, SCHLICK_TIMING,
+                                                           WPOW_MAX_M, WPOW_TIMING);
   localparam bit Iterative      = SpecInterval > 1;
-
-  localparam logic [7:0] OpMaterial = 8'h01;
-  localparam logic [7:0] OpTriangle = 8'h02;
-  localparam logic [7:0] OpSpan     = 8'h03;
-  localparam logic [7:0] OpTable    = 8'h04;
 
   typedef enum logic [1:0] {PaySkip, PayMaterial, PayTriangle, PayTable} pay_e;
 
@@ -104,7 +105,17 @@ module shade_unit #(
   logic datapath_empty, slot_empty;
   logic spec_busy;  // an iterative specular unit cannot start (all lights run in lockstep)
   logic out_adv;    // the pix register takes the slot's output pixel
-  logic cmd_fire, hdr_fire, pay_fire, span_fire;
+  logic item_fire, beat_done, hdr_fire, pay_fire, span_fire;
+
+  // ---- triangle queue: banks, and the span queue between the decoder and span setup ----------
+  localparam bit Queued = TRI_QUEUE > 1;
+  localparam int SpanQ  = Queued ? 4 * TRI_QUEUE : 1;  // = CycleConfig::span_queue()
+  localparam int BankW  = TRI_QUEUE > 1 ? $clog2(TRI_QUEUE) : 1;
+  logic [BankW-1:0] wr_bank_q;      // bank of the latest TRIANGLE
+  logic [BankW-1:0] next_bank;      // bank the next TRIANGLE loads
+  logic [BankW-1:0] rd_bank;        // bank of the span entering setup stage 1
+  logic             tri_bank_free;  // no queued span reads next_bank
+  logic             sq_full, sq_empty, s1_load;
 
   // ---- decoder state ----------------------------------------------------------------------
   logic        in_payload_q;
@@ -114,76 +125,164 @@ module shade_unit #(
   logic [15:0] hdr_count;
   logic        hdr_ready;
 
-  assign hdr_op    = cmd_data_i[63:56];
-  assign hdr_count = cmd_data_i[15:0];
+  // The beat on the port and the item the decoder takes from it this cycle: the triangle
+  // coefficient words due in the beat (tail), then at most one header (with a TRIANGLE's
+  // coefficient words after it in the beat), or one MATERIAL / TABLE payload word.
+  localparam int WordW = shade_pkg::WordW;
+  localparam int PosW  = PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1;
+  logic [PosW-1:0]  pos_q;        // next word of the beat still to be taken
+  logic [WordW-1:0] cmd_word;     // the header looked at, else the payload word at pos_q
+  logic [15:0]      beat_left;    // words of the beat from pos_q on
+  logic [15:0]      pay_rem;      // payload words still to come
+  logic             tri_payload;  // TRIANGLE coefficient words are due
+  logic [15:0]      tail_n;       // ... this many of them in this beat
+  logic [15:0]      hdr_pos;      // where a header would be
+  logic             hdr_here;     // a header is looked at this cycle
+  logic [15:0]      hdr_n;        // words the header takes (with its coefficient words)
+  logic             take_hdr;
+  logic [15:0]      item_n;       // words the item of this cycle takes (0: none)
+  assign beat_left   = 16'(PORT_WORDS) - 16'(pos_q);
+  assign pay_rem     = pay_last_q - pay_idx_q + 16'd1;
+  assign tri_payload = in_payload_q && pay_op_q == PayTriangle;
+  assign tail_n      = !tri_payload ? 16'd0 : pay_rem < beat_left ? pay_rem : beat_left;
+  assign hdr_pos     = 16'(pos_q) + tail_n;
+  assign hdr_here    = (!in_payload_q || (tri_payload && pay_rem <= beat_left)) &&
+                       hdr_pos < 16'(PORT_WORDS);
+  logic [PosW-1:0]  word_sel;
+  assign word_sel    = hdr_here ? PosW'(hdr_pos) : pos_q;
+  assign cmd_word    = cmd_data_i[word_sel * WordW +: WordW];
 
-  assign datapath_empty = !s1_v_q && !s2_v_q && !s3_v_q && !run_q && slot_empty;
+  assign hdr_op    = cmd_word[shade_pkg::OpcodeLsb +: 8];
+  assign hdr_count = cmd_word[shade_pkg::CountLsb +: shade_pkg::FieldW];
+
+  always_comb begin
+    hdr_n = 16'd1;
+    if (hdr_op == shade_pkg::OpNop) begin
+      hdr_n = 16'(PORT_WORDS) - hdr_pos;
+    end else if (hdr_op == shade_pkg::OpTriangle) begin
+      hdr_n = 16'd1 + (hdr_count < 16'(PORT_WORDS) - hdr_pos - 16'd1 ? hdr_count
+                                                                    : 16'(PORT_WORDS) - hdr_pos - 16'd1);
+    end
+  end
+
+  assign datapath_empty = sq_empty && !s1_v_q && !s2_v_q && !s3_v_q && !run_q && slot_empty;
 
   // MATERIAL (ambient, spec_colour, exponent and unit parameters) and TABLE (LUT entries) must
   // not change what in-flight pixels read: both wait for an empty datapath, as the model
   // applies them in stream order.
   always_comb begin
     case (hdr_op)
-      OpMaterial: hdr_ready = datapath_empty;
-      OpTable:    hdr_ready = datapath_empty;
-      OpSpan:     hdr_ready = s1_free;
+      shade_pkg::OpMaterial: hdr_ready = datapath_empty;
+      shade_pkg::OpTable:    hdr_ready = datapath_empty;
+      // Without a span queue a SPAN's setup reads the coefficient registers as it is taken:
+      // not on the edge that writes its triangle's last words.
+      shade_pkg::OpSpan:     hdr_ready = Queued ? !sq_full : s1_free && tail_n == 16'd0;
+      shade_pkg::OpTriangle: hdr_ready = tri_bank_free;
       default:    hdr_ready = 1'b1;
     endcase
   end
 
-  assign cmd_ready_o = in_payload_q ? 1'b1 : hdr_ready;
-  assign cmd_fire    = cmd_valid_i && cmd_ready_o;
-  assign hdr_fire    = cmd_fire && !in_payload_q;
-  assign pay_fire    = cmd_fire && in_payload_q;
-  assign span_fire   = hdr_fire && hdr_op == OpSpan;
+  assign take_hdr    = hdr_here && hdr_ready;
+  assign item_n      = tail_n + (take_hdr ? hdr_n : 16'd0) +
+                       (in_payload_q && !tri_payload ? 16'd1 : 16'd0);
+  assign item_fire   = cmd_valid_i && item_n != 16'd0;
+  assign beat_done   = item_n == beat_left;
+  assign cmd_ready_o = item_n != 16'd0 && beat_done;
+  assign hdr_fire    = cmd_valid_i && take_hdr;
+  assign pay_fire    = cmd_valid_i && in_payload_q;
+  assign span_fire   = hdr_fire && hdr_op == shade_pkg::OpSpan;
+
+  logic [15:0] pay_take;  // payload words taken: the tail, or one MATERIAL / TABLE word
+  assign pay_take = tri_payload ? tail_n : 16'd1;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      pos_q        <= '0;
       in_payload_q <= 1'b0;
       pay_op_q     <= PaySkip;
       pay_idx_q    <= 16'd0;
       pay_last_q   <= 16'd0;
       tbl_base_q   <= 16'd0;
-    end else if (hdr_fire) begin
-      pay_idx_q  <= 16'd0;
-      pay_last_q <= hdr_count - 16'd1;
-      tbl_base_q <= cmd_data_i[31:16];
-      case (hdr_op)
-        OpMaterial: begin pay_op_q <= PayMaterial; in_payload_q <= hdr_count != 16'd0; end
-        OpTriangle: begin pay_op_q <= PayTriangle; in_payload_q <= hdr_count != 16'd0; end
-        OpTable:    begin pay_op_q <= PayTable;    in_payload_q <= hdr_count != 16'd0; end
-        default:    begin pay_op_q <= PaySkip;     in_payload_q <= 1'b0; end
-      endcase
-    end else if (pay_fire) begin
-      pay_idx_q <= pay_idx_q + 16'd1;
-      if (pay_idx_q == pay_last_q) in_payload_q <= 1'b0;
+    end else begin
+      if (item_fire) pos_q <= beat_done ? '0 : PosW'(16'(pos_q) + item_n);
+      if (hdr_fire) begin
+        pay_idx_q  <= 16'd0;
+        pay_last_q <= hdr_count - 16'd1;
+        tbl_base_q <= cmd_word[shade_pkg::MidLsb +: shade_pkg::FieldW];
+        case (hdr_op)
+          shade_pkg::OpMaterial: begin
+            pay_op_q     <= PayMaterial;
+            in_payload_q <= hdr_count != 16'd0;
+          end
+          // The coefficient words that came with the header are already taken.
+          shade_pkg::OpTriangle: begin
+            pay_op_q     <= PayTriangle;
+            pay_idx_q    <= hdr_n - 16'd1;
+            in_payload_q <= hdr_count > hdr_n - 16'd1;
+          end
+          shade_pkg::OpTable: begin
+            pay_op_q     <= PayTable;
+            in_payload_q <= hdr_count != 16'd0;
+          end
+          // END_FRAME and unknown opcodes carry no payload.
+          shade_pkg::OpEndFrame: begin pay_op_q <= PaySkip; in_payload_q <= 1'b0; end
+          default:               begin pay_op_q <= PaySkip; in_payload_q <= 1'b0; end
+        endcase
+      end else if (pay_fire) begin
+        pay_idx_q <= pay_idx_q + pay_take;
+        if (pay_idx_q + pay_take - 16'd1 == pay_last_q) in_payload_q <= 1'b0;
+      end
     end
   end
 
   // Triangle origin and coefficients; material registers.
-  logic signed [15:0]             xo_q, yo_q;
+  logic signed [15:0]             xo_q [TRI_QUEUE];
+  logic signed [15:0]             yo_q [TRI_QUEUE];
   // An array, not one packed vector: a partial write of a 1000+-bit vector costs the Verilated
   // model a full copy every clock.
-  localparam int CoefIdxW = $clog2(NCoef);
-  logic [COEF_WL-1:0]             coef_q [NCoef];
+  logic [COEF_WL-1:0]             coef_q [TRI_QUEUE*NCoef];  // bank b at b * NCoef
   logic [CHANNELS*SERIES_WL-1:0]  ambient_q;
   logic [NDiff*SPEC_COLOUR_WL-1:0] spec_colour_q;
 
-  always_ff @(posedge clk_i) begin
-    if (hdr_fire && hdr_op == OpTriangle) begin
-      xo_q <= cmd_data_i[47:32];
-      yo_q <= cmd_data_i[31:16];
+  // Coefficient words of this cycle's item, per beat word k: the tail (words pos_q ..
+  // pos_q + tail_n - 1, the current triangle's, bank wr_bank_q) or a new TRIANGLE's (the words
+  // after its header, bank next_bank).
+  localparam int CoefAW = $clog2(TRI_QUEUE * NCoef);
+  logic                  head_take;  // a TRIANGLE header is taken with its words
+  logic [CoefAW-1:0]     coef_addr [PORT_WORDS];
+  logic [CoefAW-1:0]     rd_base;    // bank rd_bank's first coefficient
+  logic [15:0]           coef_idx [PORT_WORDS];
+  logic [PORT_WORDS-1:0] coef_we, coef_tail;
+  logic [BankW-1:0]      coef_bank [PORT_WORDS];
+  assign head_take = hdr_fire && hdr_op == shade_pkg::OpTriangle;
+  assign rd_base   = CoefAW'(rd_bank * NCoef);
+  always_comb begin
+    for (int k = 0; k < PORT_WORDS; k++) begin
+      coef_tail[k] = 16'(k) >= 16'(pos_q) && 16'(k) < hdr_pos;
+      coef_idx[k]  = coef_tail[k] ? pay_idx_q + 16'(k) - 16'(pos_q) : 16'(k) - hdr_pos - 16'd1;
+      coef_we[k]   = (cmd_valid_i && coef_tail[k] ||
+                      head_take && 16'(k) > hdr_pos && 16'(k) < hdr_pos + hdr_n) &&
+                     coef_idx[k] < 16'(NCoef);
+      coef_bank[k] = coef_tail[k] ? wr_bank_q : next_bank;
+      coef_addr[k] = CoefAW'(coef_bank[k] * NCoef + 32'(coef_idx[k]));
     end
-    if (pay_fire && pay_op_q == PayTriangle && pay_idx_q < 16'(NCoef)) begin
-      coef_q[pay_idx_q[CoefIdxW-1:0]] <= cmd_data_i[COEF_WL-1:0];
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (hdr_fire && hdr_op == shade_pkg::OpTriangle) begin
+      xo_q[next_bank] <= cmd_word[shade_pkg::HighLsb +: shade_pkg::FieldW];
+      yo_q[next_bank] <= cmd_word[shade_pkg::MidLsb +: shade_pkg::FieldW];
+    end
+    for (int k = 0; k < PORT_WORDS; k++) begin
+      if (coef_we[k]) coef_q[coef_addr[k]] <= cmd_data_i[k*WordW +: COEF_WL];
     end
     if (pay_fire && pay_op_q == PayMaterial) begin
       for (int i = 0; i < CHANNELS; i++) begin
-        if (pay_idx_q == 16'(i)) ambient_q[i*SERIES_WL +: SERIES_WL] <= cmd_data_i[SERIES_WL-1:0];
+        if (pay_idx_q == 16'(i)) ambient_q[i*SERIES_WL +: SERIES_WL] <= cmd_word[SERIES_WL-1:0];
       end
       for (int i = 0; i < NDiff; i++) begin
         if (pay_idx_q == 16'(CHANNELS + i)) begin
-          spec_colour_q[i*SPEC_COLOUR_WL +: SPEC_COLOUR_WL] <= cmd_data_i[SPEC_COLOUR_WL-1:0];
+          spec_colour_q[i*SPEC_COLOUR_WL +: SPEC_COLOUR_WL] <= cmd_word[SPEC_COLOUR_WL-1:0];
         end
       end
     end
@@ -206,15 +305,68 @@ module shade_unit #(
     logic               last;
   } span_t;
 
-  span_t span_in, s1_q, s2_q, s3_q;
-  assign span_in.y    = cmd_data_i[32 +: XY_BITS];
-  assign span_in.x0   = cmd_data_i[16 +: XY_BITS];
-  assign span_in.len  = cmd_data_i[15:0];
-  assign span_in.last = cmd_data_i[55];
+  span_t span_in, s1_src, s1_q, s2_q, s3_q;
+  assign span_in.y    = cmd_word[shade_pkg::HighLsb +: XY_BITS];
+  assign span_in.x0   = cmd_word[shade_pkg::MidLsb +: XY_BITS];
+  assign span_in.len  = cmd_word[shade_pkg::CountLsb +: shade_pkg::FieldW];
+  assign span_in.last = cmd_word[shade_pkg::SpanLastBit];
+
+  if (Queued) begin : g_span_queue
+    localparam int PtrW = $clog2(SpanQ);
+    localparam int CntW = $clog2(SpanQ + 1);
+    span_t            sq_span_q [SpanQ];  // each queued span and its triangle's bank
+    logic [BankW-1:0] sq_bank_q [SpanQ];
+    logic [PtrW-1:0] head_q, tail_q;
+    logic [CntW-1:0] count_q;
+    logic [CntW-1:0] bank_spans_q [TRI_QUEUE];  // queued spans per bank
+    logic            sq_pop;
+    assign sq_full       = count_q == CntW'(SpanQ);
+    assign sq_empty      = count_q == '0;
+    assign sq_pop        = !sq_empty && s1_free;
+    assign s1_load       = sq_pop;
+    assign s1_src        = sq_span_q[head_q];
+    assign rd_bank       = sq_bank_q[head_q];
+    assign next_bank     = wr_bank_q == BankW'(TRI_QUEUE - 1) ? '0 : wr_bank_q + BankW'(1);
+    assign tri_bank_free = bank_spans_q[next_bank] == '0;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        head_q    <= '0;
+        tail_q    <= '0;
+        count_q   <= '0;
+        wr_bank_q <= '0;
+        for (int b = 0; b < TRI_QUEUE; b++) bank_spans_q[b] <= '0;
+      end else begin
+        if (span_fire) tail_q <= tail_q == PtrW'(SpanQ - 1) ? '0 : tail_q + PtrW'(1);
+        if (sq_pop)    head_q <= head_q == PtrW'(SpanQ - 1) ? '0 : head_q + PtrW'(1);
+        count_q <= count_q + CntW'(span_fire) - CntW'(sq_pop);
+        for (int b = 0; b < TRI_QUEUE; b++) begin
+          bank_spans_q[b] <= bank_spans_q[b] + CntW'(span_fire && wr_bank_q == BankW'(b))
+                                             - CntW'(sq_pop && rd_bank == BankW'(b));
+        end
+        if (hdr_fire && hdr_op == shade_pkg::OpTriangle) wr_bank_q <= next_bank;
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      if (span_fire) begin
+        sq_span_q[tail_q] <= span_in;
+        sq_bank_q[tail_q] <= wr_bank_q;
+      end
+    end
+  end else begin : g_no_span_queue
+    // One bank, and SPAN headers go straight into setup stage 1.
+    assign sq_full       = 1'b0;
+    assign sq_empty      = 1'b1;
+    assign s1_load       = span_fire;
+    assign s1_src        = span_in;
+    assign rd_bank       = '0;
+    assign next_bank     = '0;
+    assign wr_bank_q     = '0;
+    assign tri_bank_free = 1'b1;
+  end
 
   logic signed [OfsW-1:0] dx, dy;
-  assign dx = $signed(OfsW'(span_in.x0)) - OfsW'(xo_q);
-  assign dy = $signed(OfsW'(span_in.y)) - OfsW'(yo_q);
+  assign dx = $signed(OfsW'(s1_src.x0)) - OfsW'(xo_q[rd_bank]);
+  assign dy = $signed(OfsW'(s1_src.y)) - OfsW'(yo_q[rd_bank]);
 
   assign s3_free = !s3_v_q || load_eng;
   assign s2_move = s2_v_q && s3_free;
@@ -227,7 +379,7 @@ module shade_unit #(
       s2_v_q <= 1'b0;
       s3_v_q <= 1'b0;
     end else begin
-      if (span_fire)    s1_v_q <= 1'b1;
+      if (s1_load)      s1_v_q <= 1'b1;
       else if (s1_move) s1_v_q <= 1'b0;
       if (s1_move)      s2_v_q <= 1'b1;
       else if (s2_move) s2_v_q <= 1'b0;
@@ -237,7 +389,7 @@ module shade_unit #(
   end
 
   always_ff @(posedge clk_i) begin
-    if (span_fire) s1_q <= span_in;
+    if (s1_load)   s1_q <= s1_src;
     if (s1_move)   s2_q <= s1_q;
     if (s2_move)   s3_q <= s2_q;
   end
@@ -249,8 +401,10 @@ module shade_unit #(
       .COEF_WL(COEF_WL), .COEF_IWL(COEF_IWL), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
       .SERIES_QUANT(SERIES_QUANT), .SERIES_OVERFLOW(SERIES_OVERFLOW), .OFS_W(OfsW)
     ) u_setup (
-      .clk_i, .s1_en_i(span_fire), .s2_en_i(s1_move), .s3_en_i(s2_move),
-      .coef_i({coef_q[6*i+5], coef_q[6*i+4], coef_q[6*i+3], coef_q[6*i+2], coef_q[6*i+1], coef_q[6*i]}),
+      .clk_i, .s1_en_i(s1_load), .s2_en_i(s1_move), .s3_en_i(s2_move),
+      .coef_i({coef_q[rd_base + CoefAW'(6*i+5)], coef_q[rd_base + CoefAW'(6*i+4)],
+               coef_q[rd_base + CoefAW'(6*i+3)], coef_q[rd_base + CoefAW'(6*i+2)],
+               coef_q[rd_base + CoefAW'(6*i+1)], coef_q[rd_base + CoefAW'(6*i)]}),
       .dx_i(dx), .dy_i(dy),
       .v_o(start_v[i*SERIES_WL +: SERIES_WL]), .d_o(start_d[i*SERIES_WL +: SERIES_WL]),
       .d2_o(start_d2[i*SERIES_WL +: SERIES_WL])
@@ -339,7 +493,7 @@ module shade_unit #(
       .clk_i, .rst_ni, .en_i(slot_en),
       .series_i(eng_v[(NDiff + l*SeriesPerLight)*SERIES_WL +: SeriesPerLight*SERIES_WL]),
       .cfg_valid_i(cfg_valid), .cfg_table_i(cfg_table), .cfg_addr_i(cfg_addr),
-      .cfg_data_i(cmd_data_i), .spec_o(spec[l*SPECULAR_OUT_WL +: SPECULAR_OUT_WL]),
+      .cfg_data_i(cmd_word), .spec_o(spec[l*SPECULAR_OUT_WL +: SPECULAR_OUT_WL]),
       .busy_o(busy[l])
     );
   end
@@ -404,7 +558,9 @@ module shade_unit #(
   if (FAULT_LSB_ROW >= 0) begin : g_lsb_fault
     always_comb begin
       colour_out = colour;
-      if (meta_out.y == XY_BITS'(FAULT_LSB_ROW)) colour_out[OUT_BITS-1:0] = colour[OUT_BITS-1:0] + OUT_BITS'(1);
+      if (meta_out.y == XY_BITS'(FAULT_LSB_ROW)) begin
+        colour_out[OUT_BITS-1:0] = colour[OUT_BITS-1:0] + OUT_BITS'(1);
+      end
     end
   end else begin : g_no_lsb_fault
     assign colour_out = colour;

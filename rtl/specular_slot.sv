@@ -7,11 +7,8 @@
 // the out format is SPECULAR_OUT_WL/IWL/QUANT/OVERFLOW (unsigned), the series format SERIES_WL/IWL.
 //
 // Timing contract (notes/spec_rtl.md has the integration recipe):
-//   LATENCY  (localparam) registers between series_i and spec_o:
-//              ideal 0; lut 2 (+1 with LUT_INTERP_BITS > 0); schlick SCHLICK_QUOTIENT_BITS;
-//              wpow log2(WPOW_MAX_M) + 1.
-//   INTERVAL (localparam) cycles per pixel: 1, except schlick with SCHLICK_TIMING = 1 (iterative):
-//              SCHLICK_QUOTIENT_BITS, and wpow with WPOW_TIMING = 1: log2(WPOW_MAX_M) + 1.
+//   LATENCY  = shade_pkg::spec_latency(...): registers between series_i and spec_o.
+//   INTERVAL = shade_pkg::spec_interval(...): cycles per pixel (1 unless the unit is iterative).
 //   INTERVAL == 1: en_i is the pipeline's advance (clock enable of every stage); spec_o is the
 //              result for the series_i sampled at the LATENCY-th most recent en_i edge.
 //   INTERVAL > 1 (iterative, LATENCY == INTERVAL): en_i starts a computation on series_i when
@@ -59,18 +56,7 @@ module specular_slot #(
   output logic [SPECULAR_OUT_WL-1:0]            spec_o,
   output logic                                  busy_o
 );
-  localparam int WpowK = $clog2(WPOW_MAX_M);
-  // verilator lint_off UNUSEDPARAM
-  localparam int LATENCY =
-      SPECULAR_KIND == 1 ? (LUT_INTERP_BITS > 0 ? 3 : 2) :
-      SPECULAR_KIND == 2 ? SCHLICK_QUOTIENT_BITS :
-      SPECULAR_KIND == 3 ? WpowK + 1 : 0;
-  localparam int INTERVAL =
-      SPECULAR_KIND == 2 && SCHLICK_TIMING == 1 ? SCHLICK_QUOTIENT_BITS :
-      SPECULAR_KIND == 3 && WPOW_TIMING == 1 ? WpowK + 1 : 1;
-  // verilator lint_on UNUSEDPARAM
-
-  if (SPECULAR_KIND == 1) begin : g_lut
+  if (SPECULAR_KIND == shade_pkg::SpecLut) begin : g_lut
     exponent_lut #(
       .ADDR_BITS(LUT_ADDR_BITS), .ENTRY_BITS(LUT_ENTRY_BITS), .INTERP_BITS(LUT_INTERP_BITS),
       .INDEX(LUT_INDEX), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
@@ -87,7 +73,7 @@ module specular_slot #(
       assign unused_series = ^series_i[SERIES_PER_LIGHT*SERIES_WL-1:SERIES_WL];
       // verilator lint_on UNUSEDSIGNAL
     end
-  end else if (SPECULAR_KIND == 2) begin : g_schlick
+  end else if (SPECULAR_KIND == shade_pkg::SpecSchlick) begin : g_schlick
     schlick_divider #(
       .QUOTIENT_BITS(SCHLICK_QUOTIENT_BITS), .OPERAND_BITS(SCHLICK_OPERAND_BITS),
       .TIMING(SCHLICK_TIMING), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
@@ -102,7 +88,7 @@ module specular_slot #(
     logic unused_cfg;
     assign unused_cfg = cfg_valid_i ^ cfg_table_i ^ (^cfg_addr_i) ^ (^cfg_data_i);
     // verilator lint_on UNUSEDSIGNAL
-  end else if (SPECULAR_KIND == 3) begin : g_wpow
+  end else if (SPECULAR_KIND == shade_pkg::SpecWpow) begin : g_wpow
     wpow_unit #(
       .MAX_M(WPOW_MAX_M), .BASE_BITS(WPOW_BASE_BITS), .TIMING(WPOW_TIMING),
       .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
@@ -130,9 +116,11 @@ module specular_slot #(
 
 `ifndef SYNTHESIS
   initial begin
-    if (SPECULAR_KIND == 2 && SERIES_PER_LIGHT != 2)
+    if (SPECULAR_KIND < shade_pkg::SpecIdeal || SPECULAR_KIND > shade_pkg::SpecWpow)
+      $fatal(1, "specular_slot: SPECULAR_KIND %0d is not a unit (0 ideal .. 3 wpow)", SPECULAR_KIND);
+    if (SPECULAR_KIND == shade_pkg::SpecSchlick && SERIES_PER_LIGHT != 2)
       $fatal(1, "specular_slot: schlick needs SERIES_PER_LIGHT = 2 (numerator, denominator)");
-    if (SPECULAR_KIND == 1 && LUT_ADDR_BITS > 16)
+    if (SPECULAR_KIND == shade_pkg::SpecLut && LUT_ADDR_BITS > 16)
       $fatal(1, "specular_slot: LUT_ADDR_BITS %0d > 16: cfg_addr_i cannot reach every entry", LUT_ADDR_BITS);
   end
 `endif

@@ -53,9 +53,6 @@ module wpow_unit #(
   output logic                  busy_o
 );
   localparam int K       = $clog2(MAX_M);
-  // verilator lint_off UNUSEDPARAM
-  localparam int LATENCY = K + 1;  // = WpowUnit::latency; see specular_slot
-  // verilator lint_on UNUSEDPARAM
   localparam int B       = BASE_BITS;
   localparam int BW      = B + 1;                    // unsigned 1.B
   localparam int Fs      = SERIES_WL - SERIES_IWL;

@@ -23,6 +23,8 @@ struct CyclesOptions {
   std::string specular;
   int channels = 0;  // 0: what the scene needs
   int lights = 0;
+  int port_words = 1;
+  int tri_queue = 1;
   uint64_t seed = 1;
   int gap_pct = 0, max_gap = 1, stall_pct = 0;
   std::string json_path;
@@ -32,9 +34,11 @@ struct CyclesOptions {
 int run_cycles(const CyclesOptions& o) {
   FrameOptions fo;
   if (!o.config_path.empty()) {
-    use_config_file(o.config_path, fo);
+    use_config_file(o.config_path, fo);  // the file's port_words and tri_queue, too
   } else {
     fo.base = o.widths.to_config();
+    fo.base.port_words = o.port_words;
+    fo.base.tri_queue = o.tri_queue;
   }
   if (!o.specular.empty()) fo.specular_override = parse_specular_unit(o.specular, "--specular");
   if (o.channels > 0 || o.lights > 0) {
@@ -53,25 +57,42 @@ int run_cycles(const CyclesOptions& o) {
   stim.gap_pct = o.gap_pct;
   stim.max_gap = o.max_gap;
   stim.stall_pct = o.stall_pct;
-  const SlotTiming timing = SlotTiming::of(frame.config.specular);
+  const CycleConfig unit_timing = CycleConfig::of(frame.config);
+  const SlotTiming& timing = unit_timing.slot;
   const std::vector<uint64_t> words = frame.encoded.stream.encode();
   const auto t1 = std::chrono::steady_clock::now();
-  const CycleRun run = CycleModel::run(words, stim, timing);
+  const CycleRun run = CycleModel::run(words, stim, unit_timing);
   const double model_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  // What the triangle queue hid: the same stream and stimulus on the same unit with one bank.
+  CycleConfig one_bank = unit_timing;
+  one_bank.tri_queue = 1;
+  const uint64_t cycles_one_bank =
+      unit_timing.tri_queue > 1 ? CycleModel::run(words, stim, one_bank).cycles : run.cycles;
+  const int64_t queue_hid = static_cast<int64_t>(cycles_one_bank) - static_cast<int64_t>(run.cycles);
+  // Words per triangle by series (model/command_stream.h: a header, then T0..T5 per series).
+  const int diffuse_words = kTermsPerSeries * frame.config.diffuse_series();
+  const int specular_words = kTermsPerSeries * frame.config.specular_series();
 
   const double cpp = run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;
   std::cout << "scene        " << o.scene << " (" << frame.scene.width << "x" << frame.scene.height << ")\n"
             << "unit         " << frame.config.to_string() << "\n"
             << "specular     " << frame.config.specular.describe() << ": latency " << timing.latency
             << ", " << timing.interval << " cycle(s) per pixel\n"
+            << "command port " << unit_timing.port_words << " word(s) per beat, triangle queue "
+            << unit_timing.tri_queue << " (span queue " << unit_timing.span_queue() << ")\n"
             << "stimulus     seed " << o.seed << ", input gaps " << o.gap_pct << "% (max " << o.max_gap
             << "), back-pressure " << o.stall_pct << "%\n"
             << "stream       " << words.size() << " words: " << frame.encoded.stats.triangles << " tri, "
             << frame.encoded.stats.spans << " spans, " << frame.encoded.stats.materials << " material loads, "
             << frame.encoded.stats.table_words << " table words\n"
+            << "triangle     " << 1 + diffuse_words + specular_words << " words: 1 header, " << diffuse_words
+            << " diffuse (" << frame.config.diffuse_series() << " series), " << specular_words << " specular ("
+            << frame.config.specular_series() << " series)\n"
             << "pixels       " << run.pixels << "\n"
             << "cycles       " << run.cycles << "  (" << std::fixed << std::setprecision(3) << cpp
-            << " cycles per pixel)\n\n"
+            << " cycles per pixel)\n"
+            << "queue        " << queue_hid << " cycles hidden by the triangle queue (tri_queue 1: "
+            << cycles_one_bank << ")\n\n"
             << "breakdown    (every cycle charged to one reason; the rows sum to the total)\n";
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& r : run.breakdown.rows()) {
@@ -89,6 +110,11 @@ int run_cycles(const CyclesOptions& o) {
                         {"slot", {{"latency", timing.latency}, {"interval", timing.interval}}},
                         {"stimulus", {{"seed", o.seed}, {"gap_pct", o.gap_pct}, {"max_gap", o.max_gap}, {"stall_pct", o.stall_pct}}},
                         {"words", words.size()},
+                        {"beats", run.beats},
+                        {"triangle_words", {{"header", 1}, {"diffuse", diffuse_words}, {"specular", specular_words},
+                                            {"total", 1 + diffuse_words + specular_words}}},
+                        {"queue_hidden_cycles", queue_hid},
+                        {"cycles_tri_queue_1", cycles_one_bank},
                         {"pixels", run.pixels},
                         {"cycles", run.cycles},
                         {"cycles_per_pixel", cpp},
@@ -117,6 +143,10 @@ void register_cycles(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({1, 3}));
   sub->add_option("--lights", o->lights, "build with series for this many lights (default: the scene's)")
       ->check(CLI::Range(1, 8));
+  sub->add_option("--port-words", o->port_words, "command port width: 64-bit words per handshake")
+      ->check(CLI::IsMember({1, 2, 4, 8}))->capture_default_str();
+  sub->add_option("--tri-queue", o->tri_queue, "triangle queue depth (coefficient banks; > 1 adds a span queue)")
+      ->check(CLI::Range(1, 8))->capture_default_str();
   sub->add_option("--seed", o->seed, "stimulus seed")->capture_default_str();
   sub->add_option("--gap-pct", o->gap_pct, "chance of idle cycles before a command word")->check(CLI::Range(0, 100))->capture_default_str();
   sub->add_option("--max-gap", o->max_gap, "longest idle gap in cycles")->check(CLI::Range(1, 100000))->capture_default_str();

@@ -136,3 +136,40 @@ TEST(CommandStream, BinaryErrorsNameWordIndex) {
 
 }  // namespace
 }  // namespace shadesim
+
+namespace shadesim {
+namespace {
+
+// The throughput structure travels with the stream; absent keys mean 1 (older streams), and a
+// value the hardware cannot have is an error naming the field.
+TEST(CommandStream, ThroughputStructureRoundTripsAndDefaults) {
+  UnitConfig c;
+  c.port_words = 4;
+  c.tri_queue = 3;
+  const UnitConfig back = config_from_json(config_to_json(c), "t: ");
+  EXPECT_EQ(back.port_words, 4);
+  EXPECT_EQ(back.tri_queue, 3);
+  const UnitConfig old = config_from_json(
+      R"({"channels":1,"lights":1,"xy_bits":12,"coef":"s4.32:rnd","series":"s4.28:wrap",)"
+      R"("spec_colour":"u1.12:rnd","out_bits":8,"specular":{"kind":"ideal","out":"u1.16"}})",
+      "old: ");
+  EXPECT_EQ(old.port_words, 1);
+  EXPECT_EQ(old.tri_queue, 1);
+  for (const char* bad : {R"("port_words":3)", R"("port_words":2.5)", R"("tri_queue":0)", R"("tri_queue":9)"}) {
+    std::string json = config_to_json(UnitConfig{});
+    const std::string key = std::string(bad).substr(0, std::string(bad).find(':'));
+    const size_t at = json.find(key);
+    ASSERT_NE(at, std::string::npos) << key;
+    const size_t end = json.find_first_of(",}", at);
+    json.replace(at, end - at, bad);
+    try {
+      config_from_json(json, "bad: ");
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const CommandStreamError& e) {
+      EXPECT_NE(std::string(e.what()).find(key.substr(1, key.size() - 2)), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace shadesim

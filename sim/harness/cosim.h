@@ -54,7 +54,7 @@ inline Prepared prepare(const CosimJob& job) {
   p.words = job.stream.encode();
   ShadeUnit unit(job.config.unit);
   p.expected = unit.run(job.stream);
-  p.cycle_limit = CycleModel::run(p.words, job.stim, SlotTiming::of(job.config.unit.specular)).cycles + 1000;
+  p.cycle_limit = CycleModel::run(p.words, job.stim, CycleConfig::of(job.config.unit)).cycles + 1000;
   return p;
 }
 

@@ -15,6 +15,21 @@
 
 namespace shadesim {
 
+// Puts a beat (port_words 64-bit words, model/command_stream.h) on the Verilated cmd_data_i:
+// a 64-bit port for one word, a VlWide of 32-bit words for more.
+inline void put_beat(QData& port, const uint64_t* beat, int /*port_words*/) { port = beat[0]; }
+template <std::size_t N>
+inline void put_beat(VlWide<N>& port, const uint64_t* beat, int port_words) {
+  for (int k = 0; k < port_words; ++k) {
+    port[2 * k] = static_cast<EData>(beat[k]);
+    port[2 * k + 1] = static_cast<EData>(beat[k] >> 32);
+  }
+}
+// The configuration's port width must be the Verilated one.
+inline bool port_fits(const QData&, int port_words) { return port_words == 1; }
+template <std::size_t N>
+inline bool port_fits(const VlWide<N>&, int port_words) { return N == 2 * static_cast<std::size_t>(port_words); }
+
 // With `waves`, only a trace-enabled build (SHADESIM_COSIM_TRACE, verilate(... TRACE_FST))
 // dumps the window into an FST file; other builds throw std::invalid_argument.
 template <class V>
@@ -34,6 +49,10 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
   }
 #endif
   V top(&context);
+  if (!port_fits(top.cmd_data_i, cfg.port_words)) {
+    throw std::invalid_argument("configuration " + job.config.name + ": port_words " + std::to_string(cfg.port_words) +
+                                " differs from the Verilated cmd_data_i width");
+  }
 #ifdef SHADESIM_COSIM_TRACE
   if (waves) {
     fst = std::make_unique<VerilatedFstC>();
@@ -61,15 +80,15 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
   }
   top.rst_ni = 1;
 
-  CommandDriver rtl_driver(prep.words, job.stim);
-  CommandDriver model_driver(prep.words, job.stim);
-  CycleModel model(SlotTiming::of(cfg.specular));
+  CommandDriver rtl_driver(prep.words, job.stim, cfg.port_words);
+  CommandDriver model_driver(prep.words, job.stim, cfg.port_words);
+  CycleModel model(CycleConfig::of(cfg));
   uint64_t cycle = 0;
   for (;; ++cycle) {
     const bool ready = job.stim.pix_ready(cycle);
     const bool valid = rtl_driver.valid();
     top.cmd_valid_i = valid;
-    top.cmd_data_i = rtl_driver.word();
+    put_beat(top.cmd_data_i, rtl_driver.beat(), cfg.port_words);
     top.pix_ready_i = ready;
     top.eval();
     const uint64_t t = (cycle + kResetCycles) * kWaveUnitsPerCycle;
@@ -82,7 +101,7 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
                                    cfg.channels, cfg.out_bits),
                       cycle);
     }
-    const CycleModel::Edge e = model.clock(model_driver.valid(), model_driver.word(), ready);
+    const CycleModel::Edge e = model.clock(model_driver.valid(), model_driver.beat(), ready);
     model_driver.clock(e.cmd_fire);
     if (e.pix_fire && e.pix_eor) board.model_scanline({e.pix_y, cycle, e.pix_x});
     top.clk_i = 1;

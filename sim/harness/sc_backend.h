@@ -8,6 +8,7 @@
 #pragma once
 
 #include <chrono>
+#include <stdexcept>
 #include <systemc>
 #include <type_traits>
 #include <utility>
@@ -24,16 +25,32 @@ inline int64_t sc_cycle_now() {
          kResetCycles;
 }
 
-SC_MODULE(ScDriver) {
+// A beat (port_words 64-bit words, model/command_stream.h) as the Verilated cmd_data_i's type:
+// uint64_t for one word, sc_bv<64 * port_words> for more.
+inline void to_port(uint64_t& port, const uint64_t* beat, int /*port_words*/) { port = beat[0]; }
+template <int W>
+inline void to_port(sc_dt::sc_bv<W>& port, const uint64_t* beat, int port_words) {
+  static_assert(W % 64 == 0, "cmd_data_i is a whole number of 64-bit words");
+  for (int k = 0; k < port_words && 64 * k < W; ++k) {
+    port.set_word(2 * k, static_cast<sc_dt::sc_digit>(beat[k]));
+    port.set_word(2 * k + 1, static_cast<sc_dt::sc_digit>(beat[k] >> 32));
+  }
+}
+inline bool port_fits(const uint64_t&, int port_words) { return port_words == 1; }
+template <int W>
+inline bool port_fits(const sc_dt::sc_bv<W>&, int port_words) { return W == 64 * port_words; }
+
+template <class DT>
+struct ScDriver : sc_core::sc_module {
   sc_core::sc_in<bool> clk;
   sc_core::sc_in<bool> cmd_ready;
   sc_core::sc_out<bool> rst_n;
   sc_core::sc_out<bool> cmd_valid;
-  sc_core::sc_out<uint64_t> cmd_data;
+  sc_core::sc_out<DT> cmd_data;
 
   SC_HAS_PROCESS(ScDriver);
-  ScDriver(sc_core::sc_module_name name, const std::vector<uint64_t>& words, const Stimulus& stim)
-      : sc_module(name), driver_(words, stim) {
+  ScDriver(sc_core::sc_module_name name, const std::vector<uint64_t>& words, const Stimulus& stim, int port_words)
+      : sc_module(name), driver_(words, stim, port_words) {
     SC_METHOD(tick);
     sensitive << clk.pos();
     dont_initialize();
@@ -48,7 +65,9 @@ SC_MODULE(ScDriver) {
     rst_n.write(cycle >= -1);
     const bool run = cycle >= -1;
     cmd_valid.write(run && driver_.valid());
-    cmd_data.write(driver_.word());
+    DT beat{};
+    to_port(beat, driver_.beat(), driver_.port_words());
+    cmd_data.write(beat);
   }
 
  private:
@@ -98,8 +117,9 @@ SC_MODULE(ScCycleModel) {
 
   SC_HAS_PROCESS(ScCycleModel);
   ScCycleModel(sc_core::sc_module_name name, const std::vector<uint64_t>& words, const Stimulus& stim,
-               SlotTiming timing, Scoreboard& board, uint64_t cycle_limit)
-      : sc_module(name), driver_(words, stim), stim_(stim), model_(timing), board_(board), limit_(cycle_limit) {
+               CycleConfig timing, Scoreboard& board, uint64_t cycle_limit)
+      : sc_module(name), driver_(words, stim, timing.port_words), stim_(stim), model_(timing), board_(board),
+        limit_(cycle_limit) {
     SC_METHOD(tick);
     sensitive << clk.pos();
     dont_initialize();
@@ -109,7 +129,7 @@ SC_MODULE(ScCycleModel) {
     const int64_t cycle = sc_cycle_now();
     if (cycle < 0) return;
     const auto c = static_cast<uint64_t>(cycle);
-    const CycleModel::Edge e = model_.clock(driver_.valid(), driver_.word(), stim_.pix_ready(c));
+    const CycleModel::Edge e = model_.clock(driver_.valid(), driver_.beat(), stim_.pix_ready(c));
     driver_.clock(e.cmd_fire);
     if (e.pix_fire && e.pix_eor) board_.model_scanline({e.pix_y, c, e.pix_x});
     // The sink may record this edge's pixel after this check: completion is seen one edge
@@ -135,13 +155,18 @@ CosimResult run_verilated_systemc(const CosimJob& job) {
   // Verilator picks bool / uint32_t / uint64_t per port width; follow it.
   using XT = typename std::remove_reference_t<decltype(std::declval<V&>().pix_x_o)>::data_type;
   using CT = typename std::remove_reference_t<decltype(std::declval<V&>().pix_colour_o)>::data_type;
+  using DT = typename std::remove_reference_t<decltype(std::declval<V&>().cmd_data_i)>::data_type;
   Prepared prep = prepare(job);
   const UnitConfig& cfg = job.config.unit;
   Scoreboard board(std::move(prep.expected), cfg.channels);  // not needed after this: no copy
 
   sc_core::sc_clock clk("clk", kScPeriodNs, sc_core::SC_NS, 0.5, 0, sc_core::SC_NS, true);
   sc_core::sc_signal<bool> rst_n("rst_n"), cmd_valid("cmd_valid"), cmd_ready("cmd_ready");
-  sc_core::sc_signal<uint64_t> cmd_data("cmd_data");
+  sc_core::sc_signal<DT> cmd_data("cmd_data");
+  if (!port_fits(DT{}, cfg.port_words)) {
+    throw std::invalid_argument("configuration " + job.config.name + ": port_words " + std::to_string(cfg.port_words) +
+                                " differs from the Verilated cmd_data_i width");
+  }
   sc_core::sc_signal<XT> pix_x("pix_x"), pix_y("pix_y");
   sc_core::sc_signal<CT> pix_colour("pix_colour");
   sc_core::sc_signal<bool> pix_eor("pix_eor"), pix_valid("pix_valid"), pix_ready("pix_ready");
@@ -159,7 +184,7 @@ CosimResult run_verilated_systemc(const CosimJob& job) {
   dut.pix_valid_o(pix_valid);
   dut.pix_ready_i(pix_ready);
 
-  ScDriver driver("driver", prep.words, job.stim);
+  ScDriver<DT> driver("driver", prep.words, job.stim, cfg.port_words);
   driver.clk(clk);
   driver.cmd_ready(cmd_ready);
   driver.rst_n(rst_n);
@@ -175,7 +200,7 @@ CosimResult run_verilated_systemc(const CosimJob& job) {
   sink.pix_eor(pix_eor);
   sink.pix_ready(pix_ready);
 
-  ScCycleModel model("cycle_model", prep.words, job.stim, SlotTiming::of(cfg.specular), board, prep.cycle_limit);
+  ScCycleModel model("cycle_model", prep.words, job.stim, CycleConfig::of(cfg), board, prep.cycle_limit);
   model.clk(clk);
 
   const auto t0 = std::chrono::steady_clock::now();

@@ -10,6 +10,7 @@
 // stream. Cycle 0 is the first clock edge after reset, as in the harness; the count is the last
 // pixel's cycle + 1.
 //
+// PORT_WORDS > 1: the words go out PORT_WORDS to a beat, the last beat padded with zero words.
 // Parameters are shade_unit's, set per configuration with iverilog -Ptb_shade_unit.NAME=VALUE.
 module tb_shade_unit #(
   parameter int CHANNELS         = 1,
@@ -27,6 +28,8 @@ module tb_shade_unit #(
   parameter int SPECULAR_KIND    = 0,
   parameter int SPECULAR_OUT_WL  = 17,
   parameter int SPECULAR_OUT_IWL = 1,
+  parameter int PORT_WORDS       = 1,
+  parameter int TRI_QUEUE        = 1,
   parameter int FAULT_LSB_ROW    = -1,
   parameter int FAULT_STALL_ROW  = -1,
   // Capacity of the word memory (Icarus allocates it all: ~45 bytes a word); a longer stream
@@ -43,7 +46,7 @@ module tb_shade_unit #(
   logic rst_n = 1'b0;
   always #5 clk = ~clk;
 
-  logic [63:0]                  cmd_data = '0;
+  logic [PORT_WORDS*64-1:0]     cmd_data = '0;
   logic                         cmd_valid = 1'b0;
   logic                         cmd_ready;
   logic [XY_BITS-1:0]           pix_x, pix_y;
@@ -59,6 +62,7 @@ module tb_shade_unit #(
     .SPEC_COLOUR_WL(SPEC_COLOUR_WL), .SPEC_COLOUR_IWL(SPEC_COLOUR_IWL), .OUT_BITS(OUT_BITS),
     .SPECULAR_KIND(SPECULAR_KIND),
     .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL),
+    .PORT_WORDS(PORT_WORDS), .TRI_QUEUE(TRI_QUEUE),
     .FAULT_LSB_ROW(FAULT_LSB_ROW), .FAULT_STALL_ROW(FAULT_STALL_ROW)
   ) dut (
     .clk_i(clk), .rst_ni(rst_n),
@@ -81,6 +85,16 @@ module tb_shade_unit #(
 
   function automatic bit loaded(int i);
     return (^words[i]) !== 1'bx;
+  endfunction
+
+  // The beat starting at stream word `first`: PORT_WORDS words, zero (NOP) past the end
+  // (model/command_stream.h).
+  function automatic logic [PORT_WORDS*64-1:0] beat_at(int first);
+    logic [PORT_WORDS*64-1:0] b = '0;
+    for (int k = 0; k < PORT_WORDS; k++) begin
+      if (first + k < n_words) b[k*64 +: 64] = words[first + k];
+    end
+    return b;
   endfunction
 
   initial begin
@@ -113,7 +127,7 @@ module tb_shade_unit #(
     repeat (ResetCycles) @(posedge clk);
     rst_n     <= 1'b1;
     cmd_valid <= 1'b1;
-    cmd_data  <= words[0];
+    cmd_data  <= beat_at(0);
     running   <= 1'b1;
   end
 
@@ -122,10 +136,10 @@ module tb_shade_unit #(
   always @(posedge clk) begin
     if (running) begin
       if (cmd_valid && cmd_ready) begin
-        next_word = next_word + 1;
+        next_word = next_word + PORT_WORDS;
         last_progress = cycle;
         cmd_valid <= next_word < n_words;
-        cmd_data  <= next_word < n_words ? words[next_word] : 64'd0;
+        cmd_data  <= beat_at(next_word);
       end
       if (pix_valid && pix_ready) begin
         pixels = pixels + 1;

@@ -194,6 +194,131 @@ TEST(CycleModel, RejectsImpossibleSlotTimings) {
   EXPECT_THROW(CycleModel(SlotTiming{3, 4}), std::invalid_argument);
 }
 
+// ---- command port width (model/command_stream.h: how a beat is taken apart) -------------------
+// Expected cycles are counted by hand from the documented item rule, not from the model.
+
+CycleConfig port(int words) { return CycleConfig(SlotTiming{}, words); }
+
+TEST(CommandPort, TriangleHeaderTakesTheCoefficientsInItsBeat) {
+  // P = 4: [TRI c0 c1 c2 | c3 c4 c5 SPAN]: cycle 0 header + 3 words, cycle 1 three words,
+  // cycle 2 the SPAN (accepted on t = 2, so the span of 6 ends on 2 + 4 + 6).
+  TriangleCmd t;
+  t.coef.assign(6, 0);
+  const CycleRun r = CycleModel::run(words({t, span(0, 0, 6, true)}), Stimulus{}, port(4));
+  ASSERT_EQ(r.scanlines.size(), 1u);
+  EXPECT_EQ(r.scanlines[0].cycle, 12u);
+  EXPECT_EQ(r.beats, 2u);
+}
+
+TEST(CommandPort, ANextHeaderGoesWithTheTail) {
+  // P = 4, two 6-word triangles then a 3-pixel span: [T1 a b c | d e f T2 | g h i j | k l S 0].
+  // Cycle 0: T1 + a b c; 1: d e f + T2; 2: g h i j; 3: k l (the SPAN may not go with its
+  // triangle's tail without a span queue); 4: the SPAN; 5: the padding. The span ends on
+  // 4 + 4 + 3. With tri_queue 2 the SPAN goes on 3 into the queue: 3 + 5 + 3.
+  TriangleCmd t;
+  t.coef.assign(6, 0);
+  const std::vector<uint64_t> w = words({t, t, span(0, 0, 3, true)});
+  const CycleRun r = CycleModel::run(w, Stimulus{}, port(4));
+  ASSERT_EQ(r.scanlines.size(), 1u);
+  EXPECT_EQ(r.scanlines[0].cycle, 11u);
+  const CycleRun q = CycleModel::run(w, Stimulus{}, CycleConfig(SlotTiming{}, 4, 2));
+  ASSERT_EQ(q.scanlines.size(), 1u);
+  EXPECT_EQ(q.scanlines[0].cycle, 11u);
+}
+
+TEST(CommandPort, TwoWordPortTakesTwoCoefficientsPerCycle) {
+  // P = 2: [TRI c0 | c1 c2 | ... | c9 c10 | c11 SPAN]: cycles 0..5 take the header and c0..c10,
+  // cycle 6 c11, cycle 7 the SPAN.
+  TriangleCmd t;
+  t.coef.assign(12, 0);
+  const CycleRun r = CycleModel::run(words({t, span(0, 0, 3, true)}), Stimulus{}, port(2));
+  ASSERT_EQ(r.scanlines.size(), 1u);
+  EXPECT_EQ(r.scanlines[0].cycle, 7u + 4u + 3u);
+}
+
+TEST(CommandPort, OneSpanPerCycleAndPaddingInOneCycle) {
+  // P = 8: five one-pixel spans then three padding words: spans accepted on cycles 0..4, the
+  // NOP on 5 (the beat then), span k ends on k + 5.
+  std::vector<Command> cmds;
+  for (int y = 0; y < 5; ++y) cmds.push_back(span(y, 0, 1, true));
+  const CycleRun r = CycleModel::run(words(cmds), Stimulus{}, port(8));
+  ASSERT_EQ(r.scanlines.size(), 5u);
+  for (int y = 0; y < 5; ++y) EXPECT_EQ(r.scanlines[static_cast<size_t>(y)].cycle, static_cast<uint64_t>(y + 5));
+  EXPECT_EQ(r.beats, 1u);
+  EXPECT_EQ(r.cycles, 10u);
+}
+
+TEST(CommandPort, MaterialPayloadIsOneWordPerCycle) {
+  // P = 4: [MAT a s e | SPAN]: the header on 0, its three words on 1..3, the SPAN on 4.
+  MaterialCmd m;
+  m.ambient = {0};
+  m.spec_colour = {0};
+  m.exponent = 1;
+  const CycleRun r = CycleModel::run(words({m, span(0, 0, 2, true)}), Stimulus{}, port(4));
+  ASSERT_EQ(r.scanlines.size(), 1u);
+  EXPECT_EQ(r.scanlines[0].cycle, 4u + 4u + 2u);
+}
+
+TEST(CommandPort, GapsComeBeforeBeats) {
+  // One idle cycle before every beat: P = 2, [SPAN SPAN | SPAN pad]: beat 0 offered on cycle 1
+  // (spans on 1, 2), beat 1 on 4 (SPAN on 4, padding on 5).
+  Stimulus s;
+  s.gap_pct = 100;
+  s.max_gap = 1;
+  const CycleRun r =
+      CycleModel::run(words({span(0, 0, 1, true), span(1, 0, 1, true), span(2, 0, 1, true)}), s, port(2));
+  ASSERT_EQ(r.scanlines.size(), 3u);
+  EXPECT_EQ(r.scanlines[0].cycle, 1u + 5u);
+  EXPECT_EQ(r.scanlines[1].cycle, 2u + 5u);
+  EXPECT_EQ(r.scanlines[2].cycle, 4u + 5u);
+}
+
+// ---- triangle queue ------------------------------------------------------------------------
+
+TEST(TriangleQueue, SpanQueueAddsOneRegister) {
+  // tri_queue 2: a SPAN accepted on t enters setup stage 1 from the queue on t + 1, so a span
+  // of len ends on t + 5 + len (one more than without a queue).
+  for (int len : {1, 5}) {
+    const CycleRun r = CycleModel::run(words({span(0, 0, len, true)}), Stimulus{}, CycleConfig(SlotTiming{}, 1, 2));
+    ASSERT_EQ(r.scanlines.size(), 1u);
+    EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(5 + len)) << len;
+  }
+}
+
+TEST(TriangleQueue, PortRunsAheadOfTheEngines) {
+  // A 40-pixel span, then ten one-pixel spans, then END_FRAME. Without a queue, four spans fit
+  // past the decoder (three setup stages and the engines), so the fifth header waits for the
+  // 40 pixels; with tri_queue 2 the span queue (8 entries) takes the other seven, and END_FRAME
+  // goes on cycle 11, one word per cycle.
+  std::vector<Command> cmds = {span(0, 0, 40, true)};
+  for (int y = 1; y <= 10; ++y) cmds.push_back(span(y, 0, 1, true));
+  cmds.push_back(EndFrameCmd{});
+  const std::vector<uint64_t> w = words(cmds);
+  for (int queue : {1, 2}) {
+    CycleModel m(CycleConfig(SlotTiming{}, 1, queue));
+    CommandDriver d(w, Stimulus{});
+    uint64_t end_frame_taken = 0;
+    for (uint64_t c = 0; c < 200 && !d.done(); ++c) {
+      const auto e = m.clock(d.valid(), d.word(), true);
+      if (e.cmd_fire && d.index() == w.size() - 1) end_frame_taken = c;
+      d.clock(e.cmd_fire);
+    }
+    if (queue == 1) {
+      EXPECT_GT(end_frame_taken, 40u);  // behind the 40-pixel span
+    } else {
+      EXPECT_EQ(end_frame_taken, 11u);
+    }
+  }
+}
+
+TEST(TriangleQueue, RejectsOtherDepths) {
+  for (int q : {0, 9}) EXPECT_THROW(CycleModel(CycleConfig(SlotTiming{}, 1, q)), std::invalid_argument) << q;
+}
+
+TEST(CommandPort, RejectsOtherWidths) {
+  for (int w : {0, 3, 5, 16}) EXPECT_THROW(CycleModel(port(w)), std::invalid_argument) << w;
+}
+
 // ---- cycle breakdown -------------------------------------------------------------------------
 
 TEST(CycleBreakdown, SingleSpanIsFillThenPixels) {
@@ -349,7 +474,9 @@ TEST(CycleBreakdown, PartitionsRandomRuns) {
     s.stall_pct = static_cast<int>(rng() % 60);
     const int q = static_cast<int>(rng() % 4);
     const SlotTiming timing = q >= 2 ? SlotTiming{q, q} : SlotTiming{static_cast<int>(rng() % 5), 1};
-    const CycleRun r = CycleModel::run(words(cmds), s, timing);
+    const int port_words = 1 << (rng() % 4);
+    const int tri_queue = 1 + static_cast<int>(rng() % 3);
+    const CycleRun r = CycleModel::run(words(cmds), s, CycleConfig(timing, port_words, tri_queue));
     EXPECT_EQ(r.breakdown.total(), r.cycles) << "trial " << trial;
     EXPECT_EQ(r.breakdown.pixel, r.pixels) << "trial " << trial;
     if (timing.interval == 1) {
