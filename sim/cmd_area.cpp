@@ -86,6 +86,7 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
   } else {
     os << "- (" << r.ice40.pnr_note << ")\n";
   }
+  for (const auto& w : r.warnings) os << "\nWARNING      " << w << '\n';
   os << "\ntime         " << std::setprecision(1) << r.seconds << " s wall, " << r.cpu_seconds
      << " s CPU of Yosys and nextpnr" << (r.from_cache ? " when measured (this run: a cache hit)" : "") << '\n';
 }
