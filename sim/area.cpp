@@ -302,6 +302,27 @@ void read_ice40_stat(const StatSection& s, Ice40Area& a) {
   }
 }
 
+// Every series the unit uses must survive synthesis (the ideal slot outputs 0, so its specular
+// series legitimately go). Fewer means Yosys's netlist is not the unit the co-simulation checks
+// and its area is understated: say so.
+void check_series(AreaReport& r) {
+  if (r.modules.empty()) return;
+  std::map<std::string, int64_t> p;
+  for (const auto& v : r.parameters) p[v.name] = v.value;
+  const int64_t kind = p.at("SPECULAR_KIND");
+  const int64_t expected = p.at("CHANNELS") * p.at("LIGHTS") + (kind == 0 ? 0 : p.at("LIGHTS") * (kind == 2 ? 2 : 1));
+  int64_t kept = 0;
+  for (const auto& m : r.modules) {
+    if (m.module == "span_setup") kept += m.instances;
+  }
+  r.warnings.clear();
+  if (kept < expected) {
+    r.warnings.push_back("Yosys kept " + std::to_string(kept) + " of the " + std::to_string(expected) +
+                         " series (span_setup instances) this unit uses: the others did not reach an output "
+                         "in Yosys's elaboration, so these figures are understated");
+  }
+}
+
 std::string thousands(int64_t v) {
   std::string s = std::to_string(v < 0 ? -v : v);
   for (int i = static_cast<int>(s.size()) - 3; i > 0; i -= 3) s.insert(static_cast<size_t>(i), ",");
@@ -378,7 +399,8 @@ std::string area_report_to_json(const AreaReport& r) {
                   {"modules", modules},
                   {"ice40", ice40},
                   {"seconds", r.seconds},
-                  {"cpu_seconds", r.cpu_seconds}};
+                  {"cpu_seconds", r.cpu_seconds},
+                  {"warnings", r.warnings}};
   return j.dump(2) + "\n";
 }
 
@@ -411,6 +433,7 @@ AreaReport area_report_from_json(const std::string& text, const std::string& sou
     if (!a.at("fmax_mhz").is_null()) r.ice40.fmax_mhz = a.at("fmax_mhz").get<double>();
     r.seconds = j.at("seconds");
     r.cpu_seconds = j.at("cpu_seconds");
+    if (j.contains("warnings")) r.warnings = j.at("warnings").get<std::vector<std::string>>();
     return r;
   } catch (const Json::exception& e) {
     throw std::runtime_error(source + ": not an area report: " + e.what());
@@ -473,6 +496,7 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
       if (!fs::exists(c)) continue;
       AreaReport cached = area_report_from_json(read_text(c), c.string());
       cached.from_cache = true;
+      check_series(cached);
       if (o.progress) *o.progress << "[area] cache hit " << c.string() << "\n";
       return cached;
     }
@@ -552,7 +576,10 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
     r.transistors_partial = top.transistors_partial;
     r.flip_flops = flip_flops_of(top);
   }
-  if (o.breakdown) read_breakdown(read_stat_text(work / "breakdown_stat.txt"), work / "breakdown_stat.txt", r);
+  if (o.breakdown) {
+    read_breakdown(read_stat_text(work / "breakdown_stat.txt"), work / "breakdown_stat.txt", r);
+    check_series(r);
+  }
   {
     const fs::path p = work / "ice40_stat.txt";
     const auto stat = read_stat_text(p);
@@ -691,7 +718,8 @@ AreaEstimate estimate_area(const UnitConfig& unit, const std::vector<AreaReport>
   const AreaReport* best = nullptr;
   int best_diff = 0;
   for (const auto& a : anchors) {
-    if (a.modules.empty() || a.cells == 0 || a.breakdown_cells == 0) continue;
+    // Only complete measurements: a breakdown, and no series lost by Yosys (check_series).
+    if (a.modules.empty() || a.cells == 0 || a.breakdown_cells == 0 || !a.warnings.empty()) continue;
     const ParamMap ap = param_map(a.parameters);
     if (get(ap, "SPECULAR_KIND") != get(target, "SPECULAR_KIND")) continue;
     int diff = 0;
@@ -731,7 +759,9 @@ std::vector<AreaReport> load_area_reports(const std::string& cache_dir) {
   for (const auto& e : fs::directory_iterator(cache_dir, ec)) {
     if (!e.is_regular_file() || e.path().extension() != ".json") continue;
     try {
-      out.push_back(area_report_from_json(read_text(e.path()), e.path().string()));
+      AreaReport r = area_report_from_json(read_text(e.path()), e.path().string());
+      check_series(r);
+      out.push_back(std::move(r));
     } catch (const std::exception&) {
       // not an area report (or an older format): not an anchor
     }

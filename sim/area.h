@@ -93,6 +93,7 @@ struct AreaReport {
   Ice40Area ice40;
   double seconds = 0;      // wall time of the run that produced the figures (not of a cache hit)
   double cpu_seconds = 0;  // CPU time of its tools (all syntheses and nextpnr together)
+  std::vector<std::string> warnings;  // e.g. series that Yosys removed: figures understated
 };
 
 // Synthesises `unit` (throws std::invalid_argument for an invalid config, MissingToolError,
@@ -106,7 +107,8 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& options);
 // series register; series_engine: series width; pixel_combine: multiplier and adder bits;
 // specular_slot: table bits / divider or squarer array; glue: register bits), summed and scaled
 // by the anchor's flat/kept-hierarchy ratio. The anchor is the one with the fewest parameters
-// that differ. LUT4s scale with the cells. Throws std::runtime_error when no anchor has the
+// that differ; reports with warnings (series Yosys removed) are no anchors. LUT4s scale with
+// the cells. Throws std::runtime_error when no anchor has the
 // unit's specular kind (run unit_area on one such configuration first).
 struct AreaEstimate {
   int64_t cells = 0;         // estimated flat generic cells

@@ -86,6 +86,7 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
   } else {
     os << "- (" << r.ice40.pnr_note << ")\n";
   }
+  for (const auto& w : r.warnings) os << "\nWARNING      " << w << '\n';
   os << "\ntime         " << std::setprecision(1) << r.seconds << " s wall, " << r.cpu_seconds
      << " s CPU of Yosys and nextpnr" << (r.from_cache ? " when measured (this run: a cache hit)" : "") << '\n';
 }
@@ -143,17 +144,22 @@ void register_area(CLI::App& app, int& exit_code) {
   CLI::App* sub = app.add_subcommand(
       "area",
       "Area and timing of one unit configuration, synthesised from rtl/*.sv with Yosys:\n"
-      "  cells        generic cells after synth and abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX (2-input\n"
-      "               gates, MUXes, flip-flops), summed over the hierarchy\n"
-      "  transistors  Yosys's CMOS estimate of those cells (stat -tech cmos)\n"
+      "  cells        generic cells of the flattened unit after synth -flatten and\n"
+      "               abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX (2-input gates, MUXes, flip-flops)\n"
+      "  transistors  Yosys's CMOS estimate of those cells (stat -tech cmos; flip-flops have no\n"
+      "               CMOS cost in Yosys and are not included)\n"
       "  flip-flops   the flip-flops among them\n"
-      "  per module   the same figures per instance of span_setup, series_engine, specular_slot,\n"
-      "               pixel_combine and shade_unit's own glue (decoder, registers, control)\n"
+      "  per module   cells per instance of span_setup, series_engine, specular_slot, pixel_combine\n"
+      "               and shade_unit's own glue (decoder, registers, control), from the same flow\n"
+      "               with those modules kept: read the shares (the kept total exceeds the flat one)\n"
       "  iCE40        SB_LUT4 / SB_DFF* / SB_CARRY / SB_RAM40_4K counts from synth_ice40, whether\n"
       "               that fits an HX8K (7,680 logic cells), and where it does, Fmax of clk_i from\n"
       "               nextpnr-ice40 place and route\n"
+      "  estimate     the fast estimate (what explore shows for unsynthesised width points): this\n"
+      "               unit scaled from the nearest OTHER measured unit in the cache, and its error\n"
+      "               against this measurement\n"
       "Results are cached per configuration (key: parameters, RTL sources, tool versions, scripts).\n"
-      "A cold run takes minutes; a cache hit is instant.");
+      "A cold run takes minutes (several Yosys runs side by side); a cache hit is instant.");
   auto* config = sub->add_option("--config", o->config_path,
                                  "unit configuration JSON (the command stream header's format)");
   auto* scene = sub->add_option("scene", o->scene, "scene JSON file: measure the unit it is shaded on")

@@ -1,0 +1,60 @@
+// estimate_area (sim/area.h): the contract explore relies on, on reports built here (no Yosys):
+// an anchor's own configuration gets the anchor's measured cells back; a configuration that is
+// wider in one stage gets more; no anchor with the unit's specular kind is an error, not a guess.
+#include <gtest/gtest.h>
+
+#include "model/rtl_parameters.h"
+#include "sim/area.h"
+
+namespace shadesim {
+namespace {
+
+AreaReport anchor_for(const UnitConfig& u) {
+  AreaReport r;
+  r.parameters = shade_unit_parameters(u);
+  r.key = "anchor";
+  r.modules = {{"span_setup", 2, 10000, 0, 0},
+               {"series_engine", 2, 400, 0, 0},
+               {"specular_slot", 1, 0, 0, 0},
+               {"pixel_combine", 1, 1500, 0, 0},
+               {"shade_unit", 1, 1300, 0, 0}};
+  for (const auto& m : r.modules) r.breakdown_cells += m.cells();
+  r.cells = 15000;  // flat: less than the kept-hierarchy sum, as Yosys reports
+  r.ice40.lut4 = 6000;
+  return r;
+}
+
+TEST(AreaEstimate, AnAnchorsOwnConfigurationGetsItsMeasurement) {
+  const UnitConfig u;
+  const AreaEstimate e = estimate_area(u, {anchor_for(u)});
+  EXPECT_EQ(e.cells, 15000);
+  EXPECT_EQ(e.lut4, 6000);
+  EXPECT_EQ(e.differing_parameters, 0);
+  EXPECT_NE(e.label().find("estimate"), std::string::npos);
+}
+
+TEST(AreaEstimate, WiderStagesCostMoreAndNarrowerLess) {
+  const UnitConfig base;
+  const std::vector<AreaReport> anchors = {anchor_for(base)};
+  UnitConfig wide = base;
+  wide.series.wl += 4;
+  UnitConfig narrow = base;
+  narrow.coef.wl -= 6;
+  UnitConfig rgb = base;
+  rgb.channels = 3;
+  EXPECT_GT(estimate_area(wide, anchors).cells, 15000);
+  EXPECT_LT(estimate_area(narrow, anchors).cells, 15000);
+  EXPECT_GT(estimate_area(rgb, anchors).cells, 15000);
+  EXPECT_EQ(estimate_area(wide, anchors).differing_parameters, 1);
+}
+
+TEST(AreaEstimate, NoAnchorWithTheSpecularUnitIsAnError) {
+  const UnitConfig base;
+  UnitConfig wpow = base;
+  wpow.specular.kind = SpecularUnitKind::kWpow;
+  EXPECT_THROW(estimate_area(wpow, {anchor_for(base)}), std::runtime_error);
+  EXPECT_THROW(estimate_area(base, {}), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace shadesim
