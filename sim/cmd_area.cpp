@@ -11,6 +11,8 @@
 
 #include "host/frame.h"
 #include "model/command_stream.h"
+#include "host/scene_config.h"
+#include "model/unit_config_file.h"
 #include "sim/area.h"
 #include "sim/commands.h"
 
@@ -28,17 +30,15 @@ struct AreaCliOptions {
 // The one place that turns the command line into a UnitConfig. For now: a config file is read
 // as the command stream header's JSON, a scene gets prepare_frame's configuration; the common
 // loader / scene-derived configuration replaces both.
+// The unit a config file describes (load_unit_config: omitted fields keep UnitConfig's defaults),
+// or a scene's own configuration (derive_config, as regress and explore use it).
 UnitConfig unit_to_measure(const AreaCliOptions& o, std::string* source) {
   if (!o.config_path.empty()) {
-    std::ifstream is(o.config_path);
-    if (!is) throw std::runtime_error(o.config_path + ": cannot open the config file");
-    std::stringstream ss;
-    ss << is.rdbuf();
     *source = o.config_path;
-    return config_from_json(ss.str(), o.config_path + ": ");
+    return load_unit_config(o.config_path);
   }
-  *source = o.scene;
-  return prepare_frame(o.scene, FrameOptions{}).config;
+  *source = o.scene + " (its own configuration)";
+  return derive_config({o.scene}, DeriveOptions{}).config;
 }
 
 std::string grouped(int64_t v) {
