@@ -323,10 +323,6 @@ TEST(ExploreCli, BadInputIsAClearError) {
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("seriess"), std::string::npos) << r.output;
 
-  r = run("explore " + kScenes + "sphere.json --verify --out " + dir.string());
-  EXPECT_EQ(r.status, 2) << r.output;
-  EXPECT_NE(r.output.find("--verify"), std::string::npos) << r.output;
-
   // W_16's lobe (the derived unit) is ~2 LSB from t^n on this highlight: no width meets 1 LSB,
   // and the output says which part no width can fix.
   r = run("explore " + kScenes + "specular.json --out " + dir.string());
