@@ -17,38 +17,18 @@
 #include <regex>
 #include <sstream>
 
+#include "tests/support/cli_run.h"
+
 namespace shadesim {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status = 0;
-  std::string output;  // stdout and stderr
-};
-
-Result run_shell(const std::string& cmd) {
-  Result r;
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) return {-1, "popen failed"};
-  std::array<char, 4096> buf{};
-  size_t n = 0;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
-  const int raw = pclose(p);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
-}
-
 std::string shadesim(const std::string& env = "") {
   return env + (env.empty() ? "" : " ") + std::string(SHADESIM_BINARY_DIR) + "/shadesim ";
 }
 
-fs::path temp_dir(const std::string& name) {
-  auto d = fs::temp_directory_path() / ("shadesim_area_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir(const std::string& name) { return shadesim::temp_dir("area", name); }
 
 void write(const fs::path& p, const std::string& text) {
   std::ofstream os(p);
@@ -179,4 +159,5 @@ TEST(Area, BadInputGivesAClearError) {
 }
 
 }  // namespace
-}  // namespace shadesim
+}  // namespace shadesim#include "tests/support/cli_run.h"
+

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "tests/support/cli_run.h"
 #include "host/explore.h"
 #include "host/frame.h"
 #include "host/metrics.h"
@@ -203,30 +204,7 @@ TEST(Explore, BadOptionsAreErrors) {
 
 // ---------------------------------------------------------------- the CLI
 
-struct Result {
-  int status = 0;
-  std::string output;
-};
-
-Result run(const std::string& args) {
-  const std::string cmd = std::string(SHADESIM_BINARY_DIR) + "/shadesim " + args + " 2>&1";
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return {-1, "popen failed"};
-  std::array<char, 4096> buf{};
-  size_t n = 0;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
-  const int raw = pclose(p);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
-}
-
-std::filesystem::path temp_dir(const std::string& name) {
-  auto d = std::filesystem::temp_directory_path() / ("shadesim_explore_" + name + "_" + std::to_string(getpid()));
-  std::filesystem::remove_all(d);
-  std::filesystem::create_directories(d);
-  return d;
-}
+std::filesystem::path temp_dir(const std::string& name) { return shadesim::temp_dir("explore", name); }
 
 // RFC 4180 fields of one line (quoted fields may hold commas and doubled quotes).
 std::vector<std::string> csv_fields(const std::string& line) {
