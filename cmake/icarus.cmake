@@ -1,7 +1,7 @@
 # Icarus Verilog as an independent simulator of the same RTL (rtl/*.sv): the testbench
 # sim/icarus/tb_shade_unit.sv replays a command stream's words and writes its pixels, which must
 # equal the bit-accurate model's bit for bit; scripts/bench-cosim times it against the Verilator
-# backends. Included after cmake/rtl.cmake (it uses RTL_SOURCES and the RTL_CONFIG_* variables).
+# backends. Included after cmake/rtl.cmake (it uses RTL_SOURCES, RTL_CACHE and SHADESIM_CLI).
 #
 # The testbench of a named build is compiled with the build's parameters, which shadesim prints
 # from the one mapping (shadesim rtl-params --tool iverilog); iverilog -P sets parameters of the

@@ -426,7 +426,7 @@ int cosim_main(int argc, char** argv) {
   auto* json_opt = app.add_option("--json", o.json_path, "write each run's result as JSON to this file")
                        ->expected(0, 1);
   app.add_option("--waves", o.waves_path,
-                 "on a mismatch, re-run with tracing and write an FST of the cycles around it (rtl_cosim_cpp_trace)");
+                 "on a mismatch, re-run with tracing and write an FST of the cycles around it (traced build)");
   app.add_option("--min-spec-pct", o.min_spec_pct,
                  "fail a run where the specular term changes fewer than this percentage of the pixels")
       ->check(CLI::Range(0.0, 100.0));

@@ -45,7 +45,7 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
   if (waves) context.traceEverOn(true);
 #else
   if (waves) {
-    throw std::invalid_argument("waveforms need the trace-enabled build (rtl_cosim_cpp_trace); this one has no tracing");
+    throw std::invalid_argument("waveforms need the trace-enabled build (shadesim cosim --waves picks it); this one has no tracing");
   }
 #endif
   V top(&context);
