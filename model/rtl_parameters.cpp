@@ -43,28 +43,27 @@ std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u, const I
       {"TRI_QUEUE", u.tri_queue},
   };
   // Only the selected unit's parameters: the others keep shade_unit's defaults, so two configs
-  // that differ in an unused unit's widths map to the same build.
+  // that differ in an unused unit's widths map to the same build. The ideal unit has no output
+  // stage to round.
+  if (s.kind != SpecularUnitKind::kIdeal) {
+    p.push_back({"SPECULAR_OUT_QUANT", code(s.out.quant)});
+    p.push_back({"SPECULAR_OUT_OVERFLOW", code(s.out.overflow)});
+  }
   switch (s.kind) {
     case SpecularUnitKind::kIdeal:
       break;
     case SpecularUnitKind::kLut:
-      p.push_back({"SPECULAR_OUT_QUANT", code(s.out.quant)});
-      p.push_back({"SPECULAR_OUT_OVERFLOW", code(s.out.overflow)});
       p.push_back({"LUT_ADDR_BITS", s.lut.addr_bits});
       p.push_back({"LUT_ENTRY_BITS", s.lut.entry_bits});
       p.push_back({"LUT_INTERP_BITS", s.lut.interp_bits});
       p.push_back({"LUT_INDEX", code(s.lut.index)});
       break;
     case SpecularUnitKind::kSchlick:
-      p.push_back({"SPECULAR_OUT_QUANT", code(s.out.quant)});
-      p.push_back({"SPECULAR_OUT_OVERFLOW", code(s.out.overflow)});
       p.push_back({"SCHLICK_QUOTIENT_BITS", s.schlick.quotient_bits});
       p.push_back({"SCHLICK_OPERAND_BITS", s.schlick.operand_bits});
       p.push_back({"SCHLICK_TIMING", code(s.schlick.timing)});
       break;
     case SpecularUnitKind::kWpow:
-      p.push_back({"SPECULAR_OUT_QUANT", code(s.out.quant)});
-      p.push_back({"SPECULAR_OUT_OVERFLOW", code(s.out.overflow)});
       p.push_back({"WPOW_MAX_M", s.wpow.max_m});
       p.push_back({"WPOW_BASE_BITS", s.wpow.base_bits});
       p.push_back({"WPOW_TIMING", code(s.wpow.timing)});

@@ -9,7 +9,7 @@
 // span flagged last_in_row. Both ports are valid/ready; cmd_ready_o and the pipeline's
 // advance depend combinationally on pix_ready_i (no skid buffers).
 //
-// Pipeline (see notes/rtl.md for the latency / initiation-interval table):
+// Pipeline (the README's "RTL and co-simulation" has the latency / interval table):
 //   decoder      header + payload words; TRIANGLE payload -> coefficient registers,
 //                MATERIAL payload -> ambient / spec_colour registers and the specular slots,
 //                TABLE payload -> specular slots. MATERIAL waits until the datapath is empty.

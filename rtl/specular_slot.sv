@@ -6,7 +6,7 @@
 // Unit parameters carry the unit's prefix: LUT_ADDR_BITS = LutConfig::addr_bits, ...;
 // the out format is SPECULAR_OUT_WL/IWL/QUANT/OVERFLOW (unsigned), the series format SERIES_WL/IWL.
 //
-// Timing contract (notes/spec_rtl.md has the integration recipe):
+// Timing contract (the README's RTL timing table gives it per unit):
 //   LATENCY  = shade_pkg::spec_latency(...): registers between series_i and spec_o.
 //   INTERVAL = shade_pkg::spec_interval(...): cycles per pixel (1 unless the unit is iterative).
 //   INTERVAL == 1: en_i is the pipeline's advance (clock enable of every stage); spec_o is the

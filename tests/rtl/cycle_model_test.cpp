@@ -1,5 +1,5 @@
 // CycleModel on its own, against closed forms derived from the documented pipeline
-// (notes/rtl.md): a SPAN header accepted on cycle t has its pixel k leave on cycle t + 5 + k
+// (README, "RTL and co-simulation"): a SPAN header accepted on cycle t has its pixel k leave on cycle t + 5 + k
 // (so a span of length L ends on t + 4 + L)
 // when nothing stalls; back-to-back spans leave no bubble; MATERIAL waits for an empty
 // datapath; pixels leave only on cycles where pix_ready is high. A pipelined specular slot of
@@ -158,7 +158,7 @@ TEST(CycleModel, MaterialDrainIncludesTheSlot) {
   }
 }
 
-// The units' timing as notes/spec_rtl.md tabulates it for the RTL slot.
+// The units' timing as the README's RTL timing table gives it for the slot.
 TEST(CycleModel, SlotTimingPerUnit) {
   SpecularConfig c;
   EXPECT_EQ(SlotTiming::of(c).latency, 0);
