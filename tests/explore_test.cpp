@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "tests/support/render_at.h"
 #include "tests/support/cli_run.h"
 #include "host/explore.h"
 #include "host/frame.h"
@@ -34,20 +35,6 @@ AreaFunction width_sum() {
                       0.0,
                       "test: sum of word lengths"};
   };
-}
-
-// What `shadesim render` does at a configuration, end to end from the scene file: a fresh host
-// setup, the model, the reference, the comparison. Shares nothing with explore's cached setup.
-ErrorStats render_at(const std::string& scene, const UnitConfig& config) {
-  FrameOptions o;
-  o.base = config;
-  o.fixed_unit = true;
-  const PreparedFrame f = prepare_frame(scene, o);
-  const auto pixels = ShadeUnit(f.config).run(f.encoded.stream);
-  const auto ref = render_reference(f.setup.triangles, f.visibility, f.scene, f.config.channels);
-  return compare_to_reference(pixels, ref.values, f.visibility.owner, f.scene.width, f.scene.height,
-                              f.config.channels, f.config.out_bits)
-      .stats;
 }
 
 TEST(Explore, SphereFindsANarrowerPointWithinOneLsbCheckedByAnIndependentRender) {

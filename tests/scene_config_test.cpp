@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include "tests/support/render_at.h"
 #include "host/frame.h"
 #include "host/metrics.h"
 #include "host/reference.h"
@@ -64,18 +65,6 @@ double max_monomial_sum(const std::string& path) {
     }
   }
   return worst;
-}
-
-ErrorStats error_on(const std::string& path, const UnitConfig& config) {
-  FrameOptions fo;
-  fo.base = config;
-  fo.fixed_unit = true;
-  const PreparedFrame f = prepare_frame(path, fo);
-  const auto pixels = ShadeUnit(f.config).run(f.encoded.stream);
-  const ReferenceImage ref = render_reference(f.setup.triangles, f.visibility, f.scene, f.config.channels);
-  return compare_to_reference(pixels, ref.values, f.visibility.owner, f.scene.width, f.scene.height,
-                              f.config.channels, f.config.out_bits)
-      .stats;
 }
 
 const FieldReason& reason_of(const DerivedConfig& d, const std::string& field) {
@@ -197,7 +186,7 @@ TEST(SceneConfig, LongSpanIsWithinOneLsbOnItsOwnConfiguration) {
   const double budget = j["error_budget_lsb"];
   EXPECT_EQ(d.config.series.frac_bits(), closed_form_series_frac(L, gain, budget / 4, 8));
   EXPECT_GE(d.config.series.frac_bits(), 30) << "the design brief: F >= 30 for L = 2048";
-  const ErrorStats e = error_on(path, d.config);
+  const ErrorStats e = render_at(path, d.config);
   EXPECT_LE(e.max_code_lsb, 1) << d.config.to_string();
   EXPECT_EQ(e.pixels_over_1lsb, 0u);
 }
@@ -211,13 +200,13 @@ TEST(SceneConfig, ShippedScenesShadeOnTheirConfigurationAsWellAsOnTheDefaults) {
     defaults.channels = d.config.channels;
     defaults.lights = d.config.lights;
     defaults.specular = d.config.specular;
-    const ErrorStats on_derived = error_on(path, d.config);
-    const ErrorStats on_defaults = error_on(path, defaults);
+    const ErrorStats on_derived = render_at(path, d.config);
+    const ErrorStats on_defaults = render_at(path, defaults);
     EXPECT_LE(on_derived.max_code_lsb, on_defaults.max_code_lsb) << name << ": " << d.config.to_string();
     // And with the exact-pow yardstick on the same widths, within one code of the reference.
     UnitConfig ideal = d.config;
     ideal.specular.kind = SpecularUnitKind::kIdeal;
-    EXPECT_LE(error_on(path, ideal).max_code_lsb, 1) << name;
+    EXPECT_LE(render_at(path, ideal).max_code_lsb, 1) << name;
   }
 }
 
