@@ -3,6 +3,7 @@
 #include "host/specular_setup.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -15,23 +16,29 @@ double channel(const Vec3& v, int c) { return c == 0 ? v.x : (c == 1 ? v.y : v.z
 
 class CoefficientWriter {
  public:
-  CoefficientWriter(const FixedFormat& coef, EncodeStats& stats) : coef_(coef), stats_(stats) {}
+  CoefficientWriter(const UnitConfig& config, EncodeStats& stats)
+      : coef_wl_(config.coef.wl), stats_(stats) {
+    for (int k = 0; k < kTermsPerSeries; ++k) terms_[static_cast<size_t>(k)] = config.coef_term(k);
+  }
 
-  // Appends a*q + b (q about the origin pixel's centre) as T0..T5.
+  // Appends a*q + b (q about the origin pixel's centre) as T0..T5, each in its term's format.
   void append(const Quadratic& q, double a, double b, std::vector<int64_t>& out) const {
     for (int k = 0; k < kTermsPerSeries; ++k) {
+      const FixedFormat& term = terms_[static_cast<size_t>(k)];
       const double value = a * q.t[k] + (k == 0 ? b : 0.0);
       if (!std::isfinite(value)) throw std::runtime_error("encoder: non-finite Taylor coefficient");
-      const double lsb = std::ldexp(1.0, -coef_.frac_bits());
-      if (value >= (coef_.raw_max() + 0.5) * lsb || value < (coef_.raw_min() - 0.5) * lsb) {
-        ++stats_.coefficients_out_of_range;
+      const double lsb = std::ldexp(1.0, -term.frac_bits());
+      if (value >= (term.raw_max() + 0.5) * lsb || value < (term.raw_min() - 0.5) * lsb) {
+        // A term narrower than coef saturates; one in coef's own format follows coef's rule.
+        ++(term.wl < coef_wl_ ? stats_.narrow_terms_saturated : stats_.coefficients_out_of_range);
       }
-      out.push_back(coef_.from_double(value));
+      out.push_back(term.from_double(value));
     }
   }
 
  private:
-  FixedFormat coef_;
+  std::array<FixedFormat, kTermsPerSeries> terms_;
+  int coef_wl_;
   EncodeStats& stats_;
 };
 
@@ -85,7 +92,7 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
   frame.stream.config = config;
   auto& cmds = frame.stream.commands;
   EncodeStats& stats = frame.stats;
-  const CoefficientWriter writer(config.coef, stats);
+  const CoefficientWriter writer(config, stats);
   int current_material = -1;
 
   // The unit's specular series plan per material: affine pre-scaling of t, unit parameters, and

@@ -29,6 +29,8 @@ struct EncodeStats {
   // Coefficients outside the coef format's range. With :wrap they are exact modulo 2^iwl and
   // harmless while pixel values stay in range; with :sat they were clipped and pixels are wrong.
   std::size_t coefficients_out_of_range = 0;
+  // Coefficients that did not fit their term's narrowed format (UnitConfig::coef_term_iwl).
+  std::size_t narrow_terms_saturated = 0;
 };
 
 struct EncodedFrame {

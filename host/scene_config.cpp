@@ -1,6 +1,9 @@
 #include "host/scene_config.h"
 
+#include "model/coef_packing.h"
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -71,6 +74,7 @@ struct SceneInfo {
 struct Walk {
   int longest_span = 0, max_offset = 0;
   double monomial_sum = 0, v_min = 0, v_max = 0, diff_max = 0, coef_max = 0;
+  std::array<double, kTermsPerSeries> term_max{};  // largest |T_t| of any series
 };
 
 void walk_stream(const CommandStream& stream, Walk& w) {
@@ -87,7 +91,12 @@ void walk_stream(const CommandStream& stream, Walk& w) {
       }
     } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
       tri = t;
-      for (const int64_t k : t->coef) w.coef_max = std::max(w.coef_max, std::fabs(static_cast<double>(k)) * coef_lsb);
+      for (size_t i = 0; i < t->coef.size(); ++i) {
+        const double a = std::fabs(static_cast<double>(t->coef[i])) * coef_lsb;
+        w.coef_max = std::max(w.coef_max, a);
+        double& term = w.term_max[i % kTermsPerSeries];
+        term = std::max(term, a);
+      }
     } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
       if (!tri) throw std::logic_error("derive_config: span before any triangle");
       w.longest_span = std::max(w.longest_span, s->length);
@@ -300,6 +309,21 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const D
   }
   cfg.coef.iwl = coef_iwl;
   cfg.coef.wl = coef_iwl + coef_frac;
+  cfg.port_words = options.port_words;
+  cfg.tri_queue = options.tri_queue;
+  // Coefficient packing: T0 keeps coef's integer bits (it wraps); T1..T5 get the fewest
+  // saturating integer bits that hold every measured |T_t| plus one final LSB (the trial's
+  // finer coefficients may round up into it).
+  cfg.coef_term_iwl.assign(kTermsPerSeries, coef_iwl);
+  std::string terms_why = "T0 keeps coef's " + std::to_string(coef_iwl) + " integer bits (it wraps)";
+  const double final_lsb = std::ldexp(1.0, -coef_frac);
+  for (int t = 1; t < kTermsPerSeries; ++t) {
+    const double reach = w.term_max[static_cast<size_t>(t)] + final_lsb;
+    const int iwl = std::clamp(signed_integer_bits(-reach, reach), 2 - coef_frac, coef_iwl);
+    cfg.coef_term_iwl[static_cast<size_t>(t)] = iwl;
+    terms_why += "; T" + std::to_string(t) + " reaches |T| = " + fmt(w.term_max[static_cast<size_t>(t)]) + ": " +
+                 std::to_string(iwl) + " integer bits (saturating)";
+  }
   cfg.validate();
 
   // One reason per field, in config_to_json's order.
@@ -318,6 +342,16 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const D
              std::to_string(ms.max_offset) + " px from their triangle's origin, max 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 = " +
              fmt(w.monomial_sum, 6) + ", so coefficient rounding " + (coef_rounds ? "2^-(F+1)" : "2^-F") + " x " +
              fmt(w.monomial_sum, 6) + " x gain " + fmt(gain) + " <= " + fmt(ms.coef_share_lsb) + " LSB (budget/4)");
+  {
+    const CoefLayout layout = CoefLayout::of(cfg);
+    int bits = 0;
+    for (int t = 0; t < kTermsPerSeries; ++t) bits += cfg.coef_term_bits(t);
+    reason("coef_term_iwl", value("coef_term_iwl"),
+           terms_why + "; " + std::to_string(bits) + " bits per series, a triangle's " +
+               std::to_string(cfg.series_per_triangle()) + " series in " + std::to_string(layout.words) +
+               " payload words (" + std::to_string(cfg.series_per_triangle() * kTermsPerSeries) +
+               " unpacked)");
+  }
   reason("series", value("series"),
          "integer " + std::to_string(series_iwl) + ": series values at the pixels span [" + fmt(w.v_min) + ", " +
              fmt(w.v_max) + "]" + (series_wraps ? "" : " and differences reach " + fmt(w.diff_max)) +
@@ -328,6 +362,10 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const D
              (series_frac == cfg.out_bits ? " (at least out_bits)" : ""));
   reason("spec_colour", value("spec_colour"), "default (not derived)");
   reason("out_bits", value("out_bits"), "as requested");
+  reason("port_words", value("port_words"),
+         "as requested (throughput only: pixels do not depend on it); 4 with tri_queue 2 brings every "
+         "shipped scene to <= 1.1 cycles per pixel");
+  reason("tri_queue", value("tri_queue"), "as requested (throughput only)");
   reason("specular", cfg.specular.describe() + " out=" + cfg.specular.out.to_string(), specular_why);
   reasons.insert(reasons.begin(), FieldReason{"budget", fmt(budget) + " LSB",
                                               "from " + budget_from + "; Taylor error keeps it in setup, the "

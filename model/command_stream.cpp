@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "model/coef_packing.h"
 #include "model/unit_config_file.h"
 
 namespace shadesim {
@@ -54,8 +55,19 @@ void validate_command(const Command& cmd, const UnitConfig& cfg, const std::stri
       throw CommandStreamError(loc + "material: too many payload words");
     }
   } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
-    check_payload(loc, "tri.coef", t->coef,
-                  static_cast<size_t>(cfg.series_per_triangle() * kTermsPerSeries), cfg.coef);
+    const size_t expected = static_cast<size_t>(cfg.series_per_triangle() * kTermsPerSeries);
+    check_payload(loc, "tri.coef", t->coef, expected, cfg.coef);
+    if (!cfg.coef_term_iwl.empty()) {
+      for (size_t i = 0; i < t->coef.size(); ++i) {
+        const FixedFormat term = cfg.coef_term(static_cast<int>(i % kTermsPerSeries));
+        if (!fits(t->coef[i], term)) {
+          throw CommandStreamError(loc + "tri.coef[" + std::to_string(i) + "] = " +
+                                   std::to_string(t->coef[i]) + " does not fit term T" +
+                                   std::to_string(i % kTermsPerSeries) + "'s format " +
+                                   term.to_string() + " (coef_term_iwl)");
+        }
+      }
+    }
     if (t->xo < -32768 || t->xo > 32767 || t->yo < -32768 || t->yo > 32767) {
       throw CommandStreamError(loc + "tri: origin outside the signed 16-bit range");
     }
@@ -87,6 +99,7 @@ void CommandStream::validate(const std::string& source) const {
 
 std::vector<uint64_t> CommandStream::encode() const {
   std::vector<uint64_t> words;
+  const CoefLayout layout = CoefLayout::of(config);
   for (const auto& cmd : commands) {
     if (const auto* m = std::get_if<MaterialCmd>(&cmd)) {
       const size_t n = m->ambient.size() + m->spec_colour.size() + 1 + m->unit_params.size();
@@ -96,8 +109,8 @@ std::vector<uint64_t> CommandStream::encode() const {
       words.push_back(static_cast<uint64_t>(m->exponent));
       for (auto v : m->unit_params) words.push_back(static_cast<uint64_t>(v));
     } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
-      words.push_back(CommandWord::triangle(t->xo, t->yo, t->coef.size()).bits);
-      for (auto v : t->coef) words.push_back(static_cast<uint64_t>(v));
+      words.push_back(CommandWord::triangle(t->xo, t->yo, static_cast<uint64_t>(layout.words)).bits);
+      for (auto w : layout.pack(t->coef)) words.push_back(w);
     } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
       words.push_back(CommandWord::span(s->y, s->x0, s->length, s->last_in_row).bits);
     } else if (const auto* tb = std::get_if<TableCmd>(&cmd)) {
@@ -114,6 +127,7 @@ CommandStream CommandStream::decode(const std::vector<uint64_t>& words, const Un
                                     const std::string& source) {
   CommandStream cs;
   cs.config = config;
+  const CoefLayout layout = CoefLayout::of(config);
   size_t i = 0;
   auto take = [&](size_t count, size_t at) {
     if (i + count > words.size()) {
@@ -152,7 +166,15 @@ CommandStream CommandStream::decode(const std::vector<uint64_t>& words, const Un
         TriangleCmd t;
         t.xo = h.tri_xo();
         t.yo = h.tri_yo();
-        t.coef = take(count, at);
+        if (count != static_cast<size_t>(layout.words)) {
+          throw CommandStreamError(where(source, at, "word") + "tri: expected " +
+                                   std::to_string(layout.words) +
+                                   " payload words (the unit's coefficient layout), header says " +
+                                   std::to_string(count));
+        }
+        const auto payload = take(count, at);
+        std::vector<uint64_t> packed(payload.begin(), payload.end());
+        t.coef = layout.unpack(packed.data());
         cs.commands.emplace_back(std::move(t));
         break;
       }
@@ -365,6 +387,7 @@ std::string config_to_json(const UnitConfig& c) {
   j["series"] = c.series.to_string();
   j["spec_colour"] = c.spec_colour.to_string();
   j["out_bits"] = c.out_bits;
+  if (!c.coef_term_iwl.empty()) j["coef_term_iwl"] = c.coef_term_iwl;
   j["port_words"] = c.port_words;
   j["tri_queue"] = c.tri_queue;
   const SpecularConfig& sp = c.specular;
@@ -405,7 +428,7 @@ class ConfigJsonReader {
     // "derivation" is the annotation `shadesim config --json` writes beside the fields (how each
     // was derived); it is for people and never read.
     check_keys(j, "", {"channels", "lights", "xy_bits", "coef", "series", "spec_colour", "out_bits",
-                       "port_words", "tri_queue", "specular", "derivation"});
+                       "coef_term_iwl", "port_words", "tri_queue", "specular", "derivation"});
     read_int(j, "", "channels", 1, 3, require_top_, c.channels);
     read_int(j, "", "lights", 1, 8, require_top_, c.lights);
     read_int(j, "", "xy_bits", 1, 16, require_top_, c.xy_bits);
@@ -414,6 +437,7 @@ class ConfigJsonReader {
     read_format(j, "", "spec_colour", require_top_, c.spec_colour);
     read_int(j, "", "out_bits", 1, 16, require_top_, c.out_bits);
     // Throughput structure: absent keys keep their defaults (streams written before it existed).
+    read_int_list(j, "", "coef_term_iwl", -64, 64, c.coef_term_iwl);
     read_int(j, "", "port_words", 1, 8, false, c.port_words);
     read_int(j, "", "tri_queue", 1, 8, false, c.tri_queue);
     if (!j.contains("specular")) {
@@ -478,6 +502,26 @@ class ConfigJsonReader {
   }
 
   // An integer field: must be a JSON integer (not 12.9, not true) within [lo, hi].
+  // An optional array of integers (absent keeps the base value).
+  void read_int_list(const nlohmann::json& o, const std::string& at, const char* key, int lo, int hi,
+                     std::vector<int>& v) const {
+    if (!o.contains(key)) return;
+    const auto& x = o.at(key);
+    if (!x.is_array()) fail(at + key, "expected an array of integers, got " + x.dump());
+    std::vector<int> out;
+    for (size_t i = 0; i < x.size(); ++i) {
+      const auto& e = x[i];
+      const std::string name = at + key + "[" + std::to_string(i) + "]";
+      if (!e.is_number_integer()) fail(name, "expected an integer, got " + e.dump());
+      const auto n = e.get<int64_t>();
+      if (n < lo || n > hi) {
+        fail(name, "expected " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " + e.dump());
+      }
+      out.push_back(static_cast<int>(n));
+    }
+    v = out;
+  }
+
   void read_int(const nlohmann::json& o, const std::string& at, const char* key, int lo, int hi,
                 bool required, int& v) const {
     if (!o.contains(key)) {

@@ -8,9 +8,11 @@
 //                  spec_colour[lights*channels] (spec_colour format, light-major),
 //                  exponent (u10.16), then unit parameters (SpecularUnit-defined, may be empty).
 //   TRIANGLE  0x02 header[47:32] = xo, header[31:16] = yo (signed 16-bit origin pixel),
-//                  header[15:0] = payload words = 6 * series_per_triangle. Payload: for each
-//                  series (diffuse l-major/c-minor, then specular per light), T0 T1 T2 T3 T4 T5
-//                  in coef format, sign-extended to 64 bits. The quadratic in integer pixel
+//                  header[15:0] = payload words (model/coef_packing.h). Payload: for each
+//                  series (diffuse l-major/c-minor, then specular per light), T0 T1 T2 T3 T4 T5,
+//                  each in its term's format (UnitConfig::coef_term), packed into 64-bit words
+//                  as CoefLayout describes (one per word in a 33..62-bit format, several per
+//                  word when narrower; never straddling a word). The quadratic in integer pixel
 //                  offsets dx = x - xo, dy = y - yo is
 //                  T0 + T1*dy + T2*dx + T3*dy^2 + T4*dx*dy + T5*dx^2.
 //   SPAN      0x03 header[55] = last span of its scanline in this frame, header[47:32] = y,
@@ -28,7 +30,8 @@
 //     if the beat has a word left after the triangle's last one,
 //   - at most one header: a TRIANGLE header with as many of its coefficient words as follow it
 //     in the beat; a SPAN, MATERIAL, TABLE or END_FRAME header; or a NOP header with the rest
-//     of the beat (padding);
+//     of the beat (padding); with a span queue (tri_queue > 1) a SPAN header comes with the
+//     SPAN headers right behind it in the beat, as many as the queue has room for;
 //   - or else one MATERIAL or TABLE payload word (the specular slots' configuration port is
 //     one word wide).
 // A header that cannot go yet stays for the next cycle (the tail still goes): a SPAN waits for

@@ -270,6 +270,12 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
     hdr_n = port_words_ - hdr_pos;
   } else if (op == Opcode::kTriangle) {
     hdr_n = 1 + std::min(count, port_words_ - hdr_pos - 1);
+  } else if (op == Opcode::kSpan && queued() && hdr_here) {
+    // A run of SPAN headers goes into the span queue together, as many as it has room for.
+    const unsigned room = static_cast<unsigned>(sq_.size() - sq_count_);
+    unsigned run = 1;
+    while (hdr_pos + run < port_words_ && CommandWord{beat[hdr_pos + run]}.is(Opcode::kSpan)) ++run;
+    hdr_n = std::max(1u, std::min(run, room));
   }
   bool hdr_ready = true;
   // Only MATERIAL and TABLE headers wait for the empty datapath; the check walks the delay line.
@@ -363,11 +369,14 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
       s_[0].valid = false;
     }
     if (span_fire) {
-      size_t tail = sq_head_ + sq_count_;
-      if (tail >= sq_.size()) tail -= sq_.size();
-      sq_[tail] = {header_span, wr_bank_};
-      ++bank_spans_[static_cast<size_t>(wr_bank_)];
-      ++sq_count_;
+      for (unsigned k = 0; k < hdr_n; ++k) {
+        const CommandWord w{beat[hdr_pos + k]};
+        size_t tail = sq_head_ + sq_count_;
+        if (tail >= sq_.size()) tail -= sq_.size();
+        sq_[tail] = {Span{true, w.span_y(), w.span_x0(), w.span_length(), w.span_last()}, wr_bank_};
+        ++bank_spans_[static_cast<size_t>(wr_bank_)];
+        ++sq_count_;
+      }
     }
   }
 

@@ -25,6 +25,18 @@ void UnitConfig::validate() const {
   if (coef.overflow == Overflow::kWrap && coef.iwl < series.iwl)
     fail("a wrapping coef format needs at least the series' integer bits (" + coef.to_string() +
          " vs " + series.to_string() + "), or the modulo arithmetic loses the value");
+  if (!coef_term_iwl.empty()) {
+    if (coef_term_iwl.size() != 6)
+      fail("coef_term_iwl needs 6 entries (T0..T5), got " + std::to_string(coef_term_iwl.size()));
+    for (size_t t = 0; t < coef_term_iwl.size(); ++t) {
+      const int iwl = coef_term_iwl[t];
+      const std::string name = "coef_term_iwl[" + std::to_string(t) + "] = " + std::to_string(iwl);
+      if (iwl > coef.iwl) fail(name + ": more integer bits than coef " + coef.to_string());
+      if (iwl + coef.frac_bits() < 2)
+        fail(name + ": leaves fewer than 2 bits with coef's " + std::to_string(coef.frac_bits()) +
+             " fraction bits");
+    }
+  }
   if (series.iwl < 2) fail("series needs at least 2 integer bits (sign + 1) to hold 1.0");
   if (series.frac_bits() < out_bits) fail("series needs at least out_bits fraction bits");
   // Span setup multiplies coefficients by offsets up to 2^(xy_bits+1) squared; the exact
@@ -34,10 +46,22 @@ void UnitConfig::validate() const {
   if (spec_colour.iwl < 1) fail("spec_colour needs an integer bit to hold 1.0");
 }
 
+FixedFormat UnitConfig::coef_term(int t) const {
+  if (coef_term_iwl.empty()) return coef;
+  const int iwl = coef_term_iwl.at(static_cast<size_t>(t));
+  if (iwl == coef.iwl) return coef;
+  return {coef.frac_bits() + iwl, iwl, true, coef.quant, Overflow::kSaturate};
+}
+
 std::string UnitConfig::to_string() const {
   std::ostringstream os;
   os << (channels == 1 ? "grey" : "rgb") << '/' << lights << "L coef=" << coef.to_string()
-     << " series=" << series.to_string() << " out=" << out_bits
+     ;
+  if (!coef_term_iwl.empty()) {
+    os << " terms=";
+    for (size_t t = 0; t < coef_term_iwl.size(); ++t) os << (t ? "," : "") << coef_term_iwl[t];
+  }
+  os << " series=" << series.to_string() << " out=" << out_bits
      << " spec=" << shadesim::to_string(specular.kind) << ':' << specular.out.to_string();
   if (port_words != 1) os << " port=" << port_words << 'w';
   if (tri_queue != 1) os << " triq=" << tri_queue;

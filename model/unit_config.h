@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "model/fixed_point.h"
 #include "model/specular_config.h"
@@ -23,6 +24,12 @@ struct UnitConfig {
   // 2^iwl, and a pixel value that lies in range comes out right even when a coefficient of a
   // sliver triangle (huge gradient, origin outside it) does not fit.
   FixedFormat coef{36, 4, true, Quantization::kRoundNearest, Overflow::kWrap};
+  // Coefficient packing: the integer bits of each term T0..T5 (empty: every term in `coef`).
+  // A term keeps coef's fraction bits and needs only the integer bits its values reach - a
+  // second-order term of a small triangle far fewer than T0 - so it takes fewer bits of the
+  // command stream (model/coef_packing.h) and the triangle fewer words. A term narrower than
+  // coef saturates (its products are not exact modulo 2^iwl); the unit sign-extends it.
+  std::vector<int> coef_term_iwl;
   // Forward-difference accumulators v, d, d2. Span setup rounds its exact start values into
   // this format with its quantization rule; the per-pixel additions follow its overflow rule.
   FixedFormat series{32, 4, true, Quantization::kTruncate, Overflow::kWrap};
@@ -40,6 +47,10 @@ struct UnitConfig {
   // Triangle queue: coefficient banks (1..8). With more than one, SPAN headers wait in a span
   // queue of 4 per bank, so the port loads the next triangles while earlier spans still run.
   int tri_queue = 1;
+
+  // Term t's format (0..5): coef's, or coef narrowed to coef_term_iwl[t] integer bits.
+  FixedFormat coef_term(int t) const;
+  int coef_term_bits(int t) const { return coef_term(t).wl; }
 
   int diffuse_series() const { return lights * channels; }
   int specular_series() const { return lights * specular.series_per_light(); }

@@ -23,6 +23,45 @@ package shade_pkg;
   localparam int          HighLsb     = 32;     // [47:32] TRIANGLE xo, SPAN y
   localparam int          SpanLastBit = 55;     // SPAN: last span of its scanline
 
+  // ---- coefficient packing (model/coef_packing.h, CoefLayout: the C++ twin) ------------------
+  // A TRIANGLE's coefficients in stream order, coefficient j being term j % 6 of width w<term>;
+  // each starts at the lowest free bit of the current payload word, or at bit 0 of the next
+  // word when it does not fit in what is left; none straddles two words.
+  function automatic int coef_term_wl(input int j, input int w0, input int w1, input int w2,
+                                      input int w3, input int w4, input int w5);
+    coef_term_wl = j % 6 == 0 ? w0 : j % 6 == 1 ? w1 : j % 6 == 2 ? w2 :
+                   j % 6 == 3 ? w3 : j % 6 == 4 ? w4 : w5;
+  endfunction
+
+  // Payload word (0: the first after the header) and lowest bit of coefficient j.
+  function automatic int coef_word(input int j, input int w0, input int w1, input int w2,
+                                   input int w3, input int w4, input int w5);
+    integer i, word, lsb, bits;
+    word = 0;
+    lsb  = 0;
+    for (i = 0; i <= j; i = i + 1) begin
+      bits = coef_term_wl(i, w0, w1, w2, w3, w4, w5);
+      if (lsb + bits > WordW) begin
+        word = word + 1;
+        lsb  = 0;
+      end
+      if (i < j) lsb = lsb + bits;
+    end
+    coef_word = word;
+  endfunction
+
+  function automatic int coef_lsb(input int j, input int w0, input int w1, input int w2,
+                                  input int w3, input int w4, input int w5);
+    integer i, lsb, bits;
+    lsb = 0;
+    for (i = 0; i <= j; i = i + 1) begin
+      bits = coef_term_wl(i, w0, w1, w2, w3, w4, w5);
+      if (lsb + bits > WordW) lsb = 0;
+      if (i < j) lsb = lsb + bits;
+    end
+    coef_lsb = lsb;
+  endfunction
+
   // ---- specular units (SpecularUnitKind, UnitTiming codes of model/rtl_parameters.cpp) --------
   localparam int SpecIdeal       = 0;
   localparam int SpecLut         = 1;

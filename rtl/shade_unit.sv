@@ -29,6 +29,15 @@ module shade_unit #(
   parameter int XY_BITS          = 12,
   parameter int COEF_WL          = 36,
   parameter int COEF_IWL         = 4,
+  // Coefficient packing: the width of each term T0..T5 in the TRIANGLE payload (COEF_WL's
+  // fraction bits, fewer integer bits; sign-extended to COEF_WL on load). shade_pkg::coef_word
+  // and coef_lsb place them in the payload words.
+  parameter int COEF_T0_WL       = COEF_WL,
+  parameter int COEF_T1_WL       = COEF_WL,
+  parameter int COEF_T2_WL       = COEF_WL,
+  parameter int COEF_T3_WL       = COEF_WL,
+  parameter int COEF_T4_WL       = COEF_WL,
+  parameter int COEF_T5_WL       = COEF_WL,
   parameter int SERIES_WL        = 32,
   parameter int SERIES_IWL       = 4,
   parameter int SERIES_QUANT     = 0,  // Quantization: 0 truncate, 1 round to nearest
@@ -82,6 +91,9 @@ module shade_unit #(
   localparam int NDiff          = LIGHTS * CHANNELS;
   localparam int NSer           = NDiff + LIGHTS * SeriesPerLight;
   localparam int NCoef          = 6 * NSer;
+  localparam int NCoefWords     = shade_pkg::coef_word(NCoef - 1, COEF_T0_WL, COEF_T1_WL,
+                                                       COEF_T2_WL, COEF_T3_WL, COEF_T4_WL,
+                                                       COEF_T5_WL) + 1;  // TRIANGLE payload
   localparam int NMatFixed      = CHANNELS + LIGHTS * CHANNELS;  // ambient + spec_colour words
   localparam int OfsW           = 17;  // x0 - xo with x0 < 2^15 and xo a signed 16-bit value
   // The slot's timing (shade_pkg, the one definition; specular_slot's contract).
@@ -155,13 +167,33 @@ module shade_unit #(
   assign hdr_op    = cmd_word[shade_pkg::OpcodeLsb +: 8];
   assign hdr_count = cmd_word[shade_pkg::CountLsb +: shade_pkg::FieldW];
 
+  // With a span queue, a run of SPAN headers goes into it together, as many as it has room for.
+  logic [PORT_WORDS-1:0] word_is_span;
+  logic [15:0]           span_run;  // SPAN headers from hdr_pos on, back to back in the beat
+  logic [15:0]           sq_room;   // free span queue entries
+  always_comb begin
+    logic going;
+    going    = 1'b1;
+    span_run = 16'd0;
+    for (int k = 0; k < PORT_WORDS; k++) begin
+      word_is_span[k] = cmd_data_i[k*WordW + shade_pkg::OpcodeLsb +: 8] == shade_pkg::OpSpan;
+      if (16'(k) >= hdr_pos) begin
+        if (going && word_is_span[k]) span_run = span_run + 16'd1;
+        else going = 1'b0;
+      end
+    end
+  end
+
   always_comb begin
     hdr_n = 16'd1;
     if (hdr_op == shade_pkg::OpNop) begin
       hdr_n = 16'(PORT_WORDS) - hdr_pos;
     end else if (hdr_op == shade_pkg::OpTriangle) begin
-      hdr_n = 16'd1 + (hdr_count < 16'(PORT_WORDS) - hdr_pos - 16'd1 ? hdr_count
-                                                                    : 16'(PORT_WORDS) - hdr_pos - 16'd1);
+      hdr_n = 16'd1 + (hdr_count < 16'(PORT_WORDS) - hdr_pos - 16'd1
+                       ? hdr_count : 16'(PORT_WORDS) - hdr_pos - 16'd1);
+    end else if (Queued && hdr_op == shade_pkg::OpSpan && hdr_here) begin
+      hdr_n = span_run < sq_room ? span_run : sq_room;
+      if (hdr_n == 16'd0) hdr_n = 16'd1;  // a full queue: hdr_ready holds the header
     end
   end
 
@@ -244,27 +276,69 @@ module shade_unit #(
   logic [CHANNELS*SERIES_WL-1:0]  ambient_q;
   logic [NDiff*SPEC_COLOUR_WL-1:0] spec_colour_q;
 
-  // Coefficient words of this cycle's item, per beat word k: the tail (words pos_q ..
+  // Payload words of this cycle's item, per beat word k: the tail (words pos_q ..
   // pos_q + tail_n - 1, the current triangle's, bank wr_bank_q) or a new TRIANGLE's (the words
-  // after its header, bank next_bank).
+  // after its header, bank next_bank). coef_idx[k] is the payload word index; every
+  // coefficient that word holds loads from its field.
   localparam int CoefAW = $clog2(TRI_QUEUE * NCoef);
   logic                  head_take;  // a TRIANGLE header is taken with its words
-  logic [CoefAW-1:0]     coef_addr [PORT_WORDS];
+  logic [15:0]           coef_word_of [NCoef];  // payload word of coefficient j (constant)
   logic [CoefAW-1:0]     rd_base;    // bank rd_bank's first coefficient
   logic [15:0]           coef_idx [PORT_WORDS];
   logic [PORT_WORDS-1:0] coef_we, coef_tail;
   logic [BankW-1:0]      coef_bank [PORT_WORDS];
   assign head_take = hdr_fire && hdr_op == shade_pkg::OpTriangle;
   assign rd_base   = CoefAW'(rd_bank * NCoef);
+  for (genvar j = 0; j < NCoef; j++) begin : g_coef_word
+    localparam int Word = shade_pkg::coef_word(j, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL, COEF_T3_WL,
+                                               COEF_T4_WL, COEF_T5_WL);
+    assign coef_word_of[j] = 16'(Word);
+  end
   always_comb begin
     for (int k = 0; k < PORT_WORDS; k++) begin
       coef_tail[k] = 16'(k) >= 16'(pos_q) && 16'(k) < hdr_pos;
       coef_idx[k]  = coef_tail[k] ? pay_idx_q + 16'(k) - 16'(pos_q) : 16'(k) - hdr_pos - 16'd1;
       coef_we[k]   = (cmd_valid_i && coef_tail[k] ||
                       head_take && 16'(k) > hdr_pos && 16'(k) < hdr_pos + hdr_n) &&
-                     coef_idx[k] < 16'(NCoef);
+                     coef_idx[k] < 16'(NCoefWords);
       coef_bank[k] = coef_tail[k] ? wr_bank_q : next_bank;
-      coef_addr[k] = CoefAW'(coef_bank[k] * NCoef + 32'(coef_idx[k]));
+    end
+  end
+
+  // Coefficient j's field in beat word k, sign-extended.
+  logic [COEF_WL-1:0] coef_field [PORT_WORDS][NCoef];
+  for (genvar k = 0; k < PORT_WORDS; k++) begin : g_beat_word
+    for (genvar j = 0; j < NCoef; j++) begin : g_coef
+      localparam int Lsb = shade_pkg::coef_lsb(j, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL,
+                                                COEF_T3_WL, COEF_T4_WL, COEF_T5_WL);
+      localparam int W   = shade_pkg::coef_term_wl(j, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL,
+                                                    COEF_T3_WL, COEF_T4_WL, COEF_T5_WL);
+      logic [W-1:0] field;
+      assign field            = cmd_data_i[k*WordW + Lsb +: W];
+      assign coef_field[k][j] = COEF_WL'($signed(field));
+    end
+  end
+
+  // Coefficient j loads from the one beat word (if any) that carries its payload word. One
+  // process per coefficient: Verilator unrolls a loop of delayed array writes only up to 64.
+  for (genvar j = 0; j < NCoef; j++) begin : g_coef_load
+    logic               load;
+    logic [BankW-1:0]   bank;
+    logic [COEF_WL-1:0] value;
+    always_comb begin
+      load  = 1'b0;
+      bank  = '0;
+      value = '0;
+      for (int k = 0; k < PORT_WORDS; k++) begin
+        if (coef_we[k] && coef_idx[k] == coef_word_of[j]) begin
+          load  = 1'b1;
+          bank  = coef_bank[k];
+          value = coef_field[k][j];
+        end
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      if (load) coef_q[CoefAW'(bank * NCoef + j)] <= value;
     end
   end
 
@@ -272,9 +346,6 @@ module shade_unit #(
     if (hdr_fire && hdr_op == shade_pkg::OpTriangle) begin
       xo_q[next_bank] <= cmd_word[shade_pkg::HighLsb +: shade_pkg::FieldW];
       yo_q[next_bank] <= cmd_word[shade_pkg::MidLsb +: shade_pkg::FieldW];
-    end
-    for (int k = 0; k < PORT_WORDS; k++) begin
-      if (coef_we[k]) coef_q[coef_addr[k]] <= cmd_data_i[k*WordW +: COEF_WL];
     end
     if (pay_fire && pay_op_q == PayMaterial) begin
       for (int i = 0; i < CHANNELS; i++) begin
@@ -305,11 +376,16 @@ module shade_unit #(
     logic               last;
   } span_t;
 
-  span_t span_in, s1_src, s1_q, s2_q, s3_q;
-  assign span_in.y    = cmd_word[shade_pkg::HighLsb +: XY_BITS];
-  assign span_in.x0   = cmd_word[shade_pkg::MidLsb +: XY_BITS];
-  assign span_in.len  = cmd_word[shade_pkg::CountLsb +: shade_pkg::FieldW];
-  assign span_in.last = cmd_word[shade_pkg::SpanLastBit];
+  span_t s1_src, s1_q, s2_q, s3_q;
+  span_t beat_span [PORT_WORDS];  // each beat word read as a SPAN header
+  for (genvar k = 0; k < PORT_WORDS; k++) begin : g_beat_span
+    // {y, x0, len, last}: span_t's fields, MSB first (one assignment: Icarus 11 cannot elaborate
+    // a member select of an array element).
+    assign beat_span[k] = {cmd_data_i[k*WordW + shade_pkg::HighLsb +: XY_BITS],
+                           cmd_data_i[k*WordW + shade_pkg::MidLsb +: XY_BITS],
+                           cmd_data_i[k*WordW + shade_pkg::CountLsb +: shade_pkg::FieldW],
+                           cmd_data_i[k*WordW + shade_pkg::SpanLastBit]};
+  end
 
   if (Queued) begin : g_span_queue
     localparam int PtrW = $clog2(SpanQ);
@@ -321,6 +397,7 @@ module shade_unit #(
     logic [CntW-1:0] bank_spans_q [TRI_QUEUE];  // queued spans per bank
     logic            sq_pop;
     assign sq_full       = count_q == CntW'(SpanQ);
+    assign sq_room       = 16'(SpanQ) - 16'(count_q);
     assign sq_empty      = count_q == '0;
     assign sq_pop        = !sq_empty && s1_free;
     assign s1_load       = sq_pop;
@@ -336,28 +413,40 @@ module shade_unit #(
         wr_bank_q <= '0;
         for (int b = 0; b < TRI_QUEUE; b++) bank_spans_q[b] <= '0;
       end else begin
-        if (span_fire) tail_q <= tail_q == PtrW'(SpanQ - 1) ? '0 : tail_q + PtrW'(1);
+        if (span_fire) tail_q <= PtrW'(ring_add(tail_q, hdr_n));
         if (sq_pop)    head_q <= head_q == PtrW'(SpanQ - 1) ? '0 : head_q + PtrW'(1);
-        count_q <= count_q + CntW'(span_fire) - CntW'(sq_pop);
+        count_q <= count_q + (span_fire ? CntW'(hdr_n) : '0) - CntW'(sq_pop);
         for (int b = 0; b < TRI_QUEUE; b++) begin
-          bank_spans_q[b] <= bank_spans_q[b] + CntW'(span_fire && wr_bank_q == BankW'(b))
-                                             - CntW'(sq_pop && rd_bank == BankW'(b));
+          bank_spans_q[b] <= bank_spans_q[b]
+                           + (span_fire && wr_bank_q == BankW'(b) ? CntW'(hdr_n) : '0)
+                           - CntW'(sq_pop && rd_bank == BankW'(b));
         end
         if (hdr_fire && hdr_op == shade_pkg::OpTriangle) wr_bank_q <= next_bank;
       end
     end
+    // The ring's index n entries after i (n <= PORT_WORDS <= SpanQ).
+    function automatic logic [15:0] ring_add(input logic [PtrW-1:0] i, input logic [15:0] n);
+      logic [15:0] sum;
+      sum = 16'(i) + n;
+      ring_add = sum >= 16'(SpanQ) ? sum - 16'(SpanQ) : sum;
+    endfunction
     always_ff @(posedge clk_i) begin
       if (span_fire) begin
-        sq_span_q[tail_q] <= span_in;
-        sq_bank_q[tail_q] <= wr_bank_q;
+        for (int k = 0; k < PORT_WORDS; k++) begin
+          if (16'(k) >= hdr_pos && 16'(k) < hdr_pos + hdr_n) begin
+            sq_span_q[PtrW'(ring_add(tail_q, 16'(k) - hdr_pos))] <= beat_span[k];
+            sq_bank_q[PtrW'(ring_add(tail_q, 16'(k) - hdr_pos))] <= wr_bank_q;
+          end
+        end
       end
     end
   end else begin : g_no_span_queue
     // One bank, and SPAN headers go straight into setup stage 1.
     assign sq_full       = 1'b0;
+    assign sq_room       = 16'd1;  // unused: SPAN headers go one at a time
     assign sq_empty      = 1'b1;
     assign s1_load       = span_fire;
-    assign s1_src        = span_in;
+    assign s1_src        = beat_span[word_sel];
     assign rd_bank       = '0;
     assign next_bank     = '0;
     assign wr_bank_q     = '0;
@@ -583,4 +672,19 @@ module shade_unit #(
       pix_eor_o    <= meta_out.eor;
     end
   end
+`ifndef SYNTHESIS
+  initial begin
+    if (PORT_WORDS != 1 && PORT_WORDS != 2 && PORT_WORDS != 4 && PORT_WORDS != 8)
+      $fatal(1, "shade_unit: PORT_WORDS %0d is not 1, 2, 4 or 8", PORT_WORDS);
+    if (TRI_QUEUE < 1 || TRI_QUEUE > 8)
+      $fatal(1, "shade_unit: TRI_QUEUE %0d is not 1..8", TRI_QUEUE);
+    for (int t = 0; t < 6; t++) begin
+      if (shade_pkg::coef_term_wl(t, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL, COEF_T3_WL, COEF_T4_WL,
+                                  COEF_T5_WL) > COEF_WL ||
+          shade_pkg::coef_term_wl(t, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL, COEF_T3_WL, COEF_T4_WL,
+                                  COEF_T5_WL) < 2)
+        $fatal(1, "shade_unit: COEF_T%0d_WL must be 2..COEF_WL (%0d)", t, COEF_WL);
+    end
+  end
+`endif
 endmodule

@@ -23,6 +23,8 @@ struct ConfigOptions {
   std::vector<std::string> scenes;
   double budget_lsb = std::nan("");
   int out_bits = 8;
+  int port_words = 4;
+  int tri_queue = 2;
   std::string ideal_unit = "wpow";
   std::string json_path;
 };
@@ -51,6 +53,8 @@ int run_config(const ConfigOptions& o) {
   DeriveOptions d;
   if (!std::isnan(o.budget_lsb)) d.budget_lsb = o.budget_lsb;
   d.out_bits = o.out_bits;
+  d.port_words = o.port_words;
+  d.tri_queue = o.tri_queue;
   const SpecularUnitKind ideal_as = parse_specular_unit(o.ideal_unit, "--ideal-unit");
   if (ideal_as != d.ideal_substitute.kind) {
     d.ideal_substitute = SpecularConfig{};  // that unit's default widths
@@ -152,7 +156,10 @@ void register_config(CLI::App& app, int& exit_code) {
       "               coefficients only by integers); fraction bits: coefficient rounding 2^-(F+1)\n"
       "               times the largest 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 of a pixel from its triangle's\n"
       "               origin, times G, <= budget/4 LSB\n"
+      "  coef_term_iwl  coefficient packing: T0 keeps coef's integer bits (it wraps); T1..T5 the\n"
+      "               fewest saturating integer bits holding every measured |T_t| + 1 LSB\n"
       "  out_bits     as requested (--out-bits)\n"
+      "  port_words, tri_queue  as requested (--port-words 4, --tri-queue 2 by default)\n"
       "  spec_colour, specular widths: defaults\n"
       "  G = sum over lights of (1 + max specular colour x the unit's slope on its series), the\n"
       "  slope from t^n's <= n on [0, 1] through setup's pre-scaling. The Taylor error keeps the\n"
@@ -162,6 +169,11 @@ void register_config(CLI::App& app, int& exit_code) {
                   "error budget in output LSBs (default: the smallest error_budget_lsb of the scenes)")
       ->check(CLI::PositiveNumber);
   sub->add_option("--out-bits", o->out_bits, "output bits per channel")->check(CLI::Range(1, 16))->capture_default_str();
+  sub->add_option("--port-words", o->port_words,
+                  "command port width of the unit (64-bit words per handshake; throughput only)")
+      ->check(CLI::IsMember({1, 2, 4, 8}))->capture_default_str();
+  sub->add_option("--tri-queue", o->tri_queue, "triangle queue depth of the unit (throughput only)")
+      ->check(CLI::Range(1, 8))->capture_default_str();
   sub->add_option("--ideal-unit", o->ideal_unit,
                   "hardware unit for scenes that name ideal: wpow (W_16 B=16 pipelined), lut or schlick\n"
                   "(their default widths), or ideal to keep the yardstick (no RTL)")

@@ -11,6 +11,7 @@
 #include "host/frame.h"
 #include "model/cycle_model.h"
 #include "sim/commands.h"
+#include "model/coef_packing.h"
 #include "sim/config_option.h"
 #include "sim/width_options.h"
 
@@ -23,8 +24,8 @@ struct CyclesOptions {
   std::string specular;
   int channels = 0;  // 0: what the scene needs
   int lights = 0;
-  int port_words = 1;
-  int tri_queue = 1;
+  int port_words = 0;  // 0: not given (1, or the --config file's)
+  int tri_queue = 0;
   uint64_t seed = 1;
   int gap_pct = 0, max_gap = 1, stall_pct = 0;
   std::string json_path;
@@ -34,12 +35,14 @@ struct CyclesOptions {
 int run_cycles(const CyclesOptions& o) {
   FrameOptions fo;
   if (!o.config_path.empty()) {
-    use_config_file(o.config_path, fo);  // the file's port_words and tri_queue, too
+    use_config_file(o.config_path, fo);
   } else {
     fo.base = o.widths.to_config();
-    fo.base.port_words = o.port_words;
-    fo.base.tri_queue = o.tri_queue;
   }
+  // The throughput knobs given on the command line win over the file's: "this unit, with a
+  // wider port" is the question they answer.
+  if (o.port_words > 0) fo.base.port_words = o.port_words;
+  if (o.tri_queue > 0) fo.base.tri_queue = o.tri_queue;
   if (!o.specular.empty()) fo.specular_override = parse_specular_unit(o.specular, "--specular");
   if (o.channels > 0 || o.lights > 0) {
     // A fixed unit, as built: the scene must fit it.
@@ -70,8 +73,20 @@ int run_cycles(const CyclesOptions& o) {
       unit_timing.tri_queue > 1 ? CycleModel::run(words, stim, one_bank).cycles : run.cycles;
   const int64_t queue_hid = static_cast<int64_t>(cycles_one_bank) - static_cast<int64_t>(run.cycles);
   // Words per triangle by series (model/command_stream.h: a header, then T0..T5 per series).
-  const int diffuse_words = kTermsPerSeries * frame.config.diffuse_series();
-  const int specular_words = kTermsPerSeries * frame.config.specular_series();
+  // A triangle's words: the header and the packed coefficients (model/coef_packing.h), whose
+  // bits split by series.
+  const CoefLayout layout = CoefLayout::of(frame.config);
+  int series_bits = 0;
+  std::string term_bits;
+  nlohmann::json term_bits_json = nlohmann::json::array();
+  for (int t = 0; t < kTermsPerSeries; ++t) {
+    series_bits += frame.config.coef_term_bits(t);
+    term_bits += (t ? "," : "") + std::to_string(frame.config.coef_term_bits(t));
+    term_bits_json.push_back(frame.config.coef_term_bits(t));
+  }
+  const int diffuse_bits = series_bits * frame.config.diffuse_series();
+  const int specular_bits = series_bits * frame.config.specular_series();
+  const int unpacked_words = kTermsPerSeries * frame.config.series_per_triangle();
 
   const double cpp = run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;
   std::cout << "scene        " << o.scene << " (" << frame.scene.width << "x" << frame.scene.height << ")\n"
@@ -85,9 +100,11 @@ int run_cycles(const CyclesOptions& o) {
             << "stream       " << words.size() << " words: " << frame.encoded.stats.triangles << " tri, "
             << frame.encoded.stats.spans << " spans, " << frame.encoded.stats.materials << " material loads, "
             << frame.encoded.stats.table_words << " table words\n"
-            << "triangle     " << 1 + diffuse_words + specular_words << " words: 1 header, " << diffuse_words
-            << " diffuse (" << frame.config.diffuse_series() << " series), " << specular_words << " specular ("
-            << frame.config.specular_series() << " series)\n"
+            << "triangle     " << 1 + layout.words << " words: 1 header + " << layout.words
+            << " payload (one coefficient a word: " << unpacked_words << ") holding "
+            << diffuse_bits + specular_bits << " coefficient bits: diffuse " << diffuse_bits << " ("
+            << frame.config.diffuse_series() << " series), specular " << specular_bits << " ("
+            << frame.config.specular_series() << " series); T0..T5 " << term_bits << " bits\n"
             << "pixels       " << run.pixels << "\n"
             << "cycles       " << run.cycles << "  (" << std::fixed << std::setprecision(3) << cpp
             << " cycles per pixel)\n"
@@ -111,8 +128,11 @@ int run_cycles(const CyclesOptions& o) {
                         {"stimulus", {{"seed", o.seed}, {"gap_pct", o.gap_pct}, {"max_gap", o.max_gap}, {"stall_pct", o.stall_pct}}},
                         {"words", words.size()},
                         {"beats", run.beats},
-                        {"triangle_words", {{"header", 1}, {"diffuse", diffuse_words}, {"specular", specular_words},
-                                            {"total", 1 + diffuse_words + specular_words}}},
+                        {"triangle_words", {{"header", 1}, {"payload", layout.words},
+                                            {"unpacked_payload", unpacked_words},
+                                            {"total", 1 + layout.words},
+                                            {"diffuse_bits", diffuse_bits}, {"specular_bits", specular_bits},
+                                            {"term_bits", term_bits_json}}},
                         {"queue_hidden_cycles", queue_hid},
                         {"cycles_tri_queue_1", cycles_one_bank},
                         {"pixels", run.pixels},
@@ -143,10 +163,14 @@ void register_cycles(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({1, 3}));
   sub->add_option("--lights", o->lights, "build with series for this many lights (default: the scene's)")
       ->check(CLI::Range(1, 8));
-  sub->add_option("--port-words", o->port_words, "command port width: 64-bit words per handshake")
-      ->check(CLI::IsMember({1, 2, 4, 8}))->capture_default_str();
-  sub->add_option("--tri-queue", o->tri_queue, "triangle queue depth (coefficient banks; > 1 adds a span queue)")
-      ->check(CLI::Range(1, 8))->capture_default_str();
+  sub->add_option("--port-words", o->port_words,
+                  "command port width: 64-bit words per handshake (default 1, or the --config file's;\n"
+                  "given, it overrides the file's)")
+      ->check(CLI::IsMember({1, 2, 4, 8}));
+  sub->add_option("--tri-queue", o->tri_queue,
+                  "triangle queue depth: coefficient banks; > 1 adds a span queue (default 1, or the\n"
+                  "--config file's; given, it overrides the file's)")
+      ->check(CLI::Range(1, 8));
   sub->add_option("--seed", o->seed, "stimulus seed")->capture_default_str();
   sub->add_option("--gap-pct", o->gap_pct, "chance of idle cycles before a command word")->check(CLI::Range(0, 100))->capture_default_str();
   sub->add_option("--max-gap", o->max_gap, "longest idle gap in cycles")->check(CLI::Range(1, 100000))->capture_default_str();

@@ -164,6 +164,11 @@ int run_render(const RenderOptions& o) {
               << reference_s << " s\n"
               << "images       " << (out_dir / "compare.png").string() << " (model | reference | error, full scale "
               << o.heat_scale_lsb << " LSB)\n";
+    if (frame.encoded.stats.narrow_terms_saturated > 0) {
+      std::cout << "warning      " << frame.encoded.stats.narrow_terms_saturated
+                << " Taylor coefficient(s) saturated their term's narrowed format (coef_term_iwl);"
+                   " pixels of those triangles are wrong: give those terms more integer bits\n";
+    }
     if (frame.encoded.stats.coefficients_out_of_range > 0) {
       if (cfg.coef.overflow == Overflow::kSaturate) {
         std::cout << "warning      " << frame.encoded.stats.coefficients_out_of_range

@@ -4,6 +4,7 @@
 #include <random>
 #include <sstream>
 
+#include "model/coef_packing.h"
 #include "model/command_stream.h"
 
 namespace shadesim {
@@ -169,6 +170,85 @@ TEST(CommandStream, ThroughputStructureRoundTripsAndDefaults) {
       EXPECT_NE(std::string(e.what()).find(key.substr(1, key.size() - 2)), std::string::npos) << e.what();
     }
   }
+}
+
+UnitConfig packed_grey() {
+  UnitConfig c;
+  c.coef = parse_fixed_format("s2.15:rnd:wrap", "test");
+  c.series = parse_fixed_format("s2.14:wrap", "test");
+  c.coef_term_iwl = {2, 1, 1, 0, -1, -2};  // widths 17 16 16 15 14 13
+  return c;
+}
+
+TEST(CoefPacking, LayoutFillsWordsWithoutStraddling) {
+  // Worked by hand: series 0 T0..T3 fill word 0 exactly (17+16+16+15 = 64); T4, T5 start
+  // word 1 (lsb 0, 14), then series 1 T0, T1 (lsb 27, 44: 60 bits used); T2 (16) does not fit
+  // the 4 bits left, so word 2 takes T2..T5 at lsb 0, 16, 31, 45.
+  const CoefLayout l = CoefLayout::of(packed_grey());
+  ASSERT_EQ(l.slots.size(), 12u);
+  const std::vector<std::pair<int, int>> want = {{0, 0},  {0, 17}, {0, 33}, {0, 49}, {1, 0},  {1, 14},
+                                                 {1, 27}, {1, 44}, {2, 0},  {2, 16}, {2, 31}, {2, 45}};
+  for (size_t i = 0; i < want.size(); ++i) {
+    EXPECT_EQ(l.slots[i].word, want[i].first) << i;
+    EXPECT_EQ(l.slots[i].lsb, want[i].second) << i;
+  }
+  EXPECT_EQ(l.words, 3);
+  // The default 36-bit terms: one per word.
+  EXPECT_EQ(CoefLayout::of(UnitConfig{}).words, 12);
+}
+
+TEST(CoefPacking, PackedStreamRoundTripsAtEveryTermsLimits) {
+  const UnitConfig c = packed_grey();
+  CommandStream cs;
+  cs.config = c;
+  TriangleCmd t;
+  t.xo = 3;
+  t.yo = -4;
+  for (int i = 0; i < 12; ++i) {
+    const FixedFormat f = c.coef_term(i % kTermsPerSeries);
+    t.coef.push_back(i % 3 == 0 ? f.raw_min() : i % 3 == 1 ? f.raw_max() : -1);
+  }
+  cs.commands.emplace_back(t);
+  cs.validate("<test>");
+  const auto words = cs.encode();
+  ASSERT_EQ(words.size(), 4u);  // header + 3 payload words
+  EXPECT_EQ(CommandWord{words[0]}.count(), 3u);
+  const auto back = CommandStream::decode(words, c, "<test>");
+  EXPECT_EQ(std::get<TriangleCmd>(back.commands[0]).coef, t.coef);
+  // A value beyond its term's format is a validation error naming the term.
+  t.coef[3] = c.coef_term(3).raw_max() + 1;
+  cs.commands = {t};
+  try {
+    cs.validate("<test>");
+    ADD_FAILURE() << "accepted a T3 beyond its format";
+  } catch (const CommandStreamError& e) {
+    EXPECT_NE(std::string(e.what()).find("T3"), std::string::npos) << e.what();
+  }
+  // A header whose count is not the layout's is an error naming the expected count.
+  auto bad = words;
+  bad[0] = CommandWord::triangle(3, -4, 12).bits;
+  bad.resize(13, 0);
+  try {
+    CommandStream::decode(bad, c, "<test>");
+    ADD_FAILURE() << "accepted a 12-word triangle in a 3-word layout";
+  } catch (const CommandStreamError& e) {
+    EXPECT_NE(std::string(e.what()).find("expected 3 payload words"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CoefPacking, TermFormatsRoundTripThroughJsonAndAreChecked) {
+  const UnitConfig c = packed_grey();
+  EXPECT_EQ(config_from_json(config_to_json(c), "t: ").coef_term_iwl, c.coef_term_iwl);
+  UnitConfig wide = c;
+  wide.coef_term_iwl[1] = 3;  // more than coef's 2 integer bits
+  EXPECT_THROW(wide.validate(), std::invalid_argument);
+  UnitConfig few = c;
+  few.coef_term_iwl.pop_back();
+  EXPECT_THROW(few.validate(), std::invalid_argument);
+  // Narrowed terms saturate; a term with coef's integer bits keeps coef's wrap.
+  EXPECT_EQ(c.coef_term(0).overflow, Overflow::kWrap);
+  EXPECT_EQ(c.coef_term(3).overflow, Overflow::kSaturate);
+  EXPECT_EQ(c.coef_term(5).wl, 13);
 }
 
 }  // namespace

@@ -68,6 +68,24 @@ TEST(RtlParameters, EachUnitGetsOnlyItsOwnParameters) {
   EXPECT_EQ(m.count("SCHLICK_TIMING"), 0u);
 }
 
+TEST(RtlParameters, NarrowedCoefficientTermsMapToTheirWidths) {
+  UnitConfig u;
+  u.coef = parse_fixed_format("s2.15:rnd:wrap", "test");
+  u.series = parse_fixed_format("s2.14:wrap", "test");
+  EXPECT_EQ(as_map(shade_unit_parameters(u)).count("COEF_T0_WL"), 0u);  // RTL default: COEF_WL
+  u.coef_term_iwl = {2, 1, 0, -1, -2, -3};
+  const auto m = as_map(shade_unit_parameters(u));
+  // 15 fraction bits plus each term's integer bits.
+  EXPECT_EQ(m.at("COEF_T0_WL"), 17);
+  EXPECT_EQ(m.at("COEF_T1_WL"), 16);
+  EXPECT_EQ(m.at("COEF_T2_WL"), 15);
+  EXPECT_EQ(m.at("COEF_T3_WL"), 14);
+  EXPECT_EQ(m.at("COEF_T4_WL"), 13);
+  EXPECT_EQ(m.at("COEF_T5_WL"), 12);
+  u.coef_term_iwl = {3, 1, 0, -1, -2, -3};  // more integer bits than coef
+  EXPECT_THROW(shade_unit_parameters(u), std::invalid_argument);
+}
+
 TEST(RtlParameters, FaultsOnlyWhenInjectedAndToolSyntax) {
   EXPECT_EQ(as_map(shade_unit_parameters(UnitConfig{})).count("FAULT_LSB_ROW"), 0u);
   InjectedFaults f;

@@ -114,7 +114,8 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
       const double terms[kTermsPerSeries] = {
           uni(-0.3, 1.2) * base * k,    uni(-1, 1) / 256 * k,          uni(-1, 1) / 256 * k,
           uni(-1, 1) / 16384 * k,       uni(-1, 1) / 16384 * k,        uni(-1, 1) / 16384 * k};
-      for (double v : terms) t.coef.push_back(config.coef.from_double(v));
+      // A narrowed term (coef_term_iwl) saturates: wild values reach its limits.
+      for (int k = 0; k < kTermsPerSeries; ++k) t.coef.push_back(config.coef_term(k).from_double(terms[k]));
     }
     cs.commands.emplace_back(t);
   };

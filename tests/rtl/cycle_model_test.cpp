@@ -25,10 +25,22 @@ SpanCmd span(int y, int x0, int len, bool last) {
   return s;
 }
 
+// The words of `cmds`; a TRIANGLE takes one payload word per coefficient given, whatever the
+// unit's coefficient layout (the cycle model reads only its header's count).
 std::vector<uint64_t> words(std::vector<Command> cmds) {
-  CommandStream cs;
-  cs.commands = std::move(cmds);
-  return cs.encode();
+  std::vector<uint64_t> out;
+  for (Command& c : cmds) {
+    if (const auto* t = std::get_if<TriangleCmd>(&c)) {
+      out.push_back(CommandWord::triangle(t->xo, t->yo, t->coef.size()).bits);
+      out.insert(out.end(), t->coef.size(), 0);
+      continue;
+    }
+    CommandStream cs;
+    cs.commands = {std::move(c)};
+    const auto w = cs.encode();
+    out.insert(out.end(), w.begin(), w.end());
+  }
+  return out;
 }
 
 TEST(CycleModel, SingleSpanLatencyIsFiveCycles) {
@@ -246,6 +258,31 @@ TEST(CommandPort, OneSpanPerCycleAndPaddingInOneCycle) {
   for (int y = 0; y < 5; ++y) EXPECT_EQ(r.scanlines[static_cast<size_t>(y)].cycle, static_cast<uint64_t>(y + 5));
   EXPECT_EQ(r.beats, 1u);
   EXPECT_EQ(r.cycles, 10u);
+}
+
+TEST(CommandPort, ASpanQueueTakesARunOfSpansInOneCycle) {
+  // P = 8, five one-pixel spans and three padding words. Without a span queue the spans go one
+  // per cycle (0..4) and the padding on 5, so the beat is accepted on cycle 5. With tri_queue 2
+  // (8 queue entries) all five go on cycle 0 and the padding on 1.
+  std::vector<Command> cmds;
+  for (int y = 0; y < 5; ++y) cmds.push_back(span(y, 0, 1, true));
+  std::vector<uint64_t> beat = words(cmds);
+  beat.resize(8, 0);
+  for (const auto& [queue, accepted_on] : {std::pair{1, 5}, std::pair{2, 1}}) {
+    CycleModel m(CycleConfig(SlotTiming{}, 8, queue));
+    int fired = -1;
+    for (int c = 0; c < 10 && fired < 0; ++c) {
+      if (m.clock(true, beat.data(), true).cmd_fire) fired = c;
+    }
+    EXPECT_EQ(fired, accepted_on) << "tri_queue " << queue;
+  }
+  // A run longer than the queue's room: 8 spans of 100 pixels, P = 8, tri_queue 2. Cycle 0 takes
+  // all 8 (the queue is empty: 8 entries of room); nothing pops before the edge.
+  std::vector<Command> long_spans;
+  for (int y = 0; y < 8; ++y) long_spans.push_back(span(y, 0, 100, true));
+  const std::vector<uint64_t> full = words(long_spans);
+  CycleModel m(CycleConfig(SlotTiming{}, 8, 2));
+  EXPECT_TRUE(m.clock(true, full.data(), true).cmd_fire);
 }
 
 TEST(CommandPort, MaterialPayloadIsOneWordPerCycle) {
