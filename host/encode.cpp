@@ -55,8 +55,7 @@ MaterialCmd material_command(const Scene& scene, const UnitConfig& config, const
           present ? channel(m.specular, c) * channel(scene.lights[static_cast<size_t>(l)].colour, c) : 0.0));
     }
   }
-  const FixedFormat exponent{26, 10, false, Quantization::kRoundNearest, Overflow::kSaturate};
-  cmd.exponent = exponent.from_double(m.exponent);
+  cmd.exponent = kExponentFormat.from_double(m.exponent);
   cmd.unit_params = plan.unit_params;
   return cmd;
 }

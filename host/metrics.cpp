@@ -1,5 +1,7 @@
 #include "host/metrics.h"
 
+#include "model/pixel_combine.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,9 +10,9 @@
 namespace shadesim {
 namespace {
 
+// The reference's output code: the unit's own output rule (PixelCombine::output_format).
 double code_of(double r, int out_bits) {
-  const double top = std::ldexp(1.0, out_bits) - 1.0;
-  return std::clamp(std::floor(r * std::ldexp(1.0, out_bits) + 0.5), 0.0, top);
+  return static_cast<double>(PixelCombine::output_format(out_bits).from_double(r));
 }
 
 }  // namespace

@@ -247,7 +247,7 @@ SpecErrors measure_unit(const UnitConfig& config, double n, int points) {
   SpecularUnit unit(config);
   const SpecularSeriesPlan plan = plan_specular(config, n);
   MaterialCmd m;
-  m.exponent = static_cast<int64_t>(std::llround(std::ldexp(n, kExponentFracBits)));
+  m.exponent = kExponentFormat.from_double(n);
   m.unit_params = plan.unit_params;
   unit.load_material(m);
   for (const TableCmd& t : shared_lut_tables(config)) unit.load_table(t);

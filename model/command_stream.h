@@ -89,7 +89,10 @@ struct EndFrameCmd {
 
 using Command = std::variant<MaterialCmd, TriangleCmd, SpanCmd, TableCmd, EndFrameCmd>;
 
-constexpr int kExponentFracBits = 16;  // the MATERIAL exponent word is u10.16
+// The MATERIAL exponent word: u10.16, rounded, saturating - the one definition the encoder and
+// spec-error's unit measurements both quantize with.
+constexpr FixedFormat kExponentFormat{26, 10, false, Quantization::kRoundNearest, Overflow::kSaturate};
+constexpr int kExponentFracBits = kExponentFormat.frac_bits();
 constexpr int kTermsPerSeries = 6;
 
 // Error in a stream: names the source (file or "<binary>"), the line or word index, and what

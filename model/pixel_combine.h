@@ -25,7 +25,13 @@ class PixelCombine {
         lights_(c.lights),
         series_(c.series),
         product_frac_(c.specular.out.frac_bits() + c.spec_colour.frac_bits()),
-        out_{c.out_bits, 0, false, Quantization::kRoundNearest, Overflow::kSaturate} {}
+        out_(output_format(c.out_bits)) {}
+
+  // The output code's format: u0.out_bits, round to nearest, saturating. The reference's codes
+  // (host/metrics.cpp) use it too.
+  static constexpr FixedFormat output_format(int out_bits) {
+    return {out_bits, 0, false, Quantization::kRoundNearest, Overflow::kSaturate};
+  }
 
   // diffuse[l * channels + c], spec[l], ambient[c], spec_colour[l * channels + c].
   std::array<uint16_t, kMaxChannels> operator()(const int64_t* diffuse, const int64_t* spec,
