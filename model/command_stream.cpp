@@ -367,6 +367,7 @@ std::string config_to_json(const UnitConfig& c) {
   j["out_bits"] = c.out_bits;
   j["port_words"] = c.port_words;
   j["tri_queue"] = c.tri_queue;
+  j["lanes"] = c.lanes;
   const SpecularConfig& sp = c.specular;
   j["specular"] = {{"kind", to_string(sp.kind)}, {"out", sp.out.to_string()}};
   j["specular"]["lut"] = {{"addr_bits", sp.lut.addr_bits},
@@ -405,7 +406,7 @@ class ConfigJsonReader {
     // "derivation" is the annotation `shadesim config --json` writes beside the fields (how each
     // was derived); it is for people and never read.
     check_keys(j, "", {"channels", "lights", "xy_bits", "coef", "series", "spec_colour", "out_bits",
-                       "port_words", "tri_queue", "specular", "derivation"});
+                       "port_words", "tri_queue", "lanes", "specular", "derivation"});
     read_int(j, "", "channels", 1, 3, require_top_, c.channels);
     read_int(j, "", "lights", 1, 8, require_top_, c.lights);
     read_int(j, "", "xy_bits", 1, 16, require_top_, c.xy_bits);
@@ -416,6 +417,7 @@ class ConfigJsonReader {
     // Throughput structure: absent keys keep their defaults (streams written before it existed).
     read_int(j, "", "port_words", 1, 8, false, c.port_words);
     read_int(j, "", "tri_queue", 1, 8, false, c.tri_queue);
+    read_int(j, "", "lanes", 1, 4, false, c.lanes);
     if (!j.contains("specular")) {
       if (require_top_) fail("specular", "expected an object (missing)");
       return;

@@ -41,6 +41,7 @@ std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u, const I
       {"SPECULAR_OUT_IWL", s.out.iwl},
       {"PORT_WORDS", u.port_words},
       {"TRI_QUEUE", u.tri_queue},
+      {"LANES", u.lanes},
   };
   // Only the selected unit's parameters: the others keep shade_unit's defaults, so two configs
   // that differ in an unused unit's widths map to the same build. The ideal unit has no output

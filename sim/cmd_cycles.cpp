@@ -25,6 +25,7 @@ struct CyclesOptions {
   int lights = 0;
   int port_words = 1;
   int tri_queue = 1;
+  int lanes = 1;
   uint64_t seed = 1;
   int gap_pct = 0, max_gap = 1, stall_pct = 0;
   std::string json_path;
@@ -34,11 +35,12 @@ struct CyclesOptions {
 int run_cycles(const CyclesOptions& o) {
   FrameOptions fo;
   if (!o.config_path.empty()) {
-    use_config_file(o.config_path, fo);  // the file's port_words and tri_queue, too
+    use_config_file(o.config_path, fo);  // the file's port_words, tri_queue and lanes, too
   } else {
     fo.base = o.widths.to_config();
     fo.base.port_words = o.port_words;
     fo.base.tri_queue = o.tri_queue;
+    fo.base.lanes = o.lanes;
   }
   if (!o.specular.empty()) fo.specular_override = parse_specular_unit(o.specular, "--specular");
   if (o.channels > 0 || o.lights > 0) {
@@ -79,7 +81,8 @@ int run_cycles(const CyclesOptions& o) {
             << "specular     " << frame.config.specular.describe() << ": latency " << timing.latency
             << ", " << timing.interval << " cycle(s) per pixel\n"
             << "command port " << unit_timing.port_words << " word(s) per beat, triangle queue "
-            << unit_timing.tri_queue << " (span queue " << unit_timing.span_queue() << ")\n"
+            << unit_timing.tri_queue << " (span queue " << unit_timing.span_queue() << "), "
+            << unit_timing.lanes << " pixel lane(s)\n"
             << "stimulus     seed " << o.seed << ", input gaps " << o.gap_pct << "% (max " << o.max_gap
             << "), back-pressure " << o.stall_pct << "%\n"
             << "stream       " << words.size() << " words: " << frame.encoded.stats.triangles << " tri, "
@@ -88,7 +91,8 @@ int run_cycles(const CyclesOptions& o) {
             << "triangle     " << 1 + diffuse_words + specular_words << " words: 1 header, " << diffuse_words
             << " diffuse (" << frame.config.diffuse_series() << " series), " << specular_words << " specular ("
             << frame.config.specular_series() << " series)\n"
-            << "pixels       " << run.pixels << "\n"
+            << "pixels       " << run.pixels << " in " << run.breakdown.pixel << " beats of up to "
+            << unit_timing.lanes << "\n"
             << "cycles       " << run.cycles << "  (" << std::fixed << std::setprecision(3) << cpp
             << " cycles per pixel)\n"
             << "queue        " << queue_hid << " cycles hidden by the triangle queue (tri_queue 1: "
@@ -116,6 +120,7 @@ int run_cycles(const CyclesOptions& o) {
                         {"queue_hidden_cycles", queue_hid},
                         {"cycles_tri_queue_1", cycles_one_bank},
                         {"pixels", run.pixels},
+                        {"pixel_beats", run.breakdown.pixel},
                         {"cycles", run.cycles},
                         {"cycles_per_pixel", cpp},
                         {"breakdown", rows},
@@ -147,6 +152,9 @@ void register_cycles(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({1, 2, 4, 8}))->capture_default_str();
   sub->add_option("--tri-queue", o->tri_queue, "triangle queue depth (coefficient banks; > 1 adds a span queue)")
       ->check(CLI::Range(1, 8))->capture_default_str();
+  sub->add_option("--lanes", o->lanes,
+                  "pixel lanes: pixels of one span per clock (k-step forward differences, lane j at x0 + j)")
+      ->check(CLI::IsMember({1, 2, 4}))->capture_default_str();
   sub->add_option("--seed", o->seed, "stimulus seed")->capture_default_str();
   sub->add_option("--gap-pct", o->gap_pct, "chance of idle cycles before a command word")->check(CLI::Range(0, 100))->capture_default_str();
   sub->add_option("--max-gap", o->max_gap, "longest idle gap in cycles")->check(CLI::Range(1, 100000))->capture_default_str();
