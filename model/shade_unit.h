@@ -82,21 +82,29 @@ void ShadeUnit::consume(const Command& cmd, Sink&& sink) {
     const int per_light = config_.specular.series_per_light();
     PixelOut px;
     px.y = static_cast<uint16_t>(s->y);
-    for (int32_t first = 0; first < s->length; first += n_lanes) {
-      const int valid = std::min<int32_t>(n_lanes, s->length - first);
-      for (int j = 0; j < valid; ++j) {
-        const int64_t* values = lanes_[static_cast<size_t>(j)].values();
-        for (int l = 0; l < config_.lights; ++l) {
-          spec_[l] = specular_.evaluate(&values[diffuse + l * per_light]);
-        }
-        const int32_t k = first + j;
-        px.x = static_cast<uint16_t>(s->x0 + k);
-        px.lane = j;
-        px.colour = combine_(values, spec_.data(), ambient_.data(), spec_colour_.data());
-        px.end_of_row = s->last_in_row && k == s->length - 1;
-        sink(static_cast<const PixelOut&>(px));
+    // Pixel k of the span, on `lane` of its beat, from that lane's series values.
+    auto shade = [&](const int64_t* values, int32_t k, int lane) {
+      for (int l = 0; l < config_.lights; ++l) {
+        spec_[l] = specular_.evaluate(&values[diffuse + l * per_light]);
       }
-      for (SeriesBank& bank : lanes_) bank.step();
+      px.x = static_cast<uint16_t>(s->x0 + k);
+      px.lane = lane;
+      px.colour = combine_(values, spec_.data(), ambient_.data(), spec_colour_.data());
+      px.end_of_row = s->last_in_row && k == s->length - 1;
+      sink(static_cast<const PixelOut&>(px));
+    };
+    if (n_lanes == 1) {
+      SeriesBank& bank = lanes_.front();
+      for (int32_t k = 0; k < s->length; ++k) {
+        shade(bank.values(), k, 0);
+        bank.step();
+      }
+    } else {
+      for (int32_t first = 0; first < s->length; first += n_lanes) {
+        const int valid = std::min<int32_t>(n_lanes, s->length - first);
+        for (int j = 0; j < valid; ++j) shade(lanes_[static_cast<size_t>(j)].values(), first + j, j);
+        for (SeriesBank& bank : lanes_) bank.step();
+      }
     }
   } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
     triangle_ = *t;
