@@ -186,6 +186,10 @@ set_tests_properties(rtl_cosim_catches_lsb_fault rtl_cosim_catches_stall_fault P
 add_executable(rtl_cycle_model_test ${CMAKE_SOURCE_DIR}/tests/rtl/cycle_model_test.cpp)
 target_link_libraries(rtl_cycle_model_test PRIVATE shadesim_harness GTest::gtest_main)
 add_test(NAME rtl_cycle_model_test COMMAND rtl_cycle_model_test)
+# The scoreboard's lane checks (a beat the model did not expect is a mismatch).
+add_executable(rtl_scoreboard_lanes_test ${CMAKE_SOURCE_DIR}/tests/rtl/scoreboard_lanes_test.cpp)
+target_link_libraries(rtl_scoreboard_lanes_test PRIVATE shadesim_harness GTest::gtest_main)
+add_test(NAME rtl_scoreboard_lanes_test COMMAND rtl_scoreboard_lanes_test)
 
 # The co-simulation's machine interface: --json, exit codes, replay, --list --json; --waves.
 add_test(NAME rtl_cosim_cli
