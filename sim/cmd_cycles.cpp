@@ -91,8 +91,11 @@ int run_cycles(const CyclesOptions& o) {
             << "triangle     " << 1 + diffuse_words + specular_words << " words: 1 header, " << diffuse_words
             << " diffuse (" << frame.config.diffuse_series() << " series), " << specular_words << " specular ("
             << frame.config.specular_series() << " series)\n"
-            << "pixels       " << run.pixels << " in " << run.breakdown.pixel << " beats of up to "
-            << unit_timing.lanes << "\n"
+            << "pixels       " << run.pixels
+            << (unit_timing.lanes > 1 ? " in " + std::to_string(run.breakdown.pixel) + " beats of up to " +
+                                            std::to_string(unit_timing.lanes) + " (lanes within a span)"
+                                      : std::string())
+            << "\n"
             << "cycles       " << run.cycles << "  (" << std::fixed << std::setprecision(3) << cpp
             << " cycles per pixel)\n"
             << "queue        " << queue_hid << " cycles hidden by the triangle queue (tri_queue 1: "
