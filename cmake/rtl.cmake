@@ -19,7 +19,7 @@ set(RTL_DIR ${CMAKE_SOURCE_DIR}/rtl)
 # Dependency order (leaves first) for tools that want it (sim/rtl_build.cpp lists the same).
 set(RTL_SOURCES
   ${RTL_DIR}/shade_pkg.sv ${RTL_DIR}/fixed_round.sv ${RTL_DIR}/fixed_sat.sv ${RTL_DIR}/span_setup.sv
-  ${RTL_DIR}/series_engine.sv ${RTL_DIR}/pixel_combine.sv
+  ${RTL_DIR}/series_engine.sv ${RTL_DIR}/lane_fanout.sv ${RTL_DIR}/pixel_combine.sv
   ${RTL_DIR}/exponent_lut.sv ${RTL_DIR}/schlick_divider.sv ${RTL_DIR}/wpow_unit.sv
   ${RTL_DIR}/specular_slot.sv ${RTL_DIR}/shade_unit.sv)
 
@@ -97,6 +97,11 @@ if(YOSYS)
     COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_check.sh ${YOSYS} ${CMAKE_BINARY_DIR}/rtl_yosys_p4q3.log ${RTL_SOURCES})
   set_tests_properties(rtl_yosys_no_latch_port4_queue3 PROPERTIES
     ENVIRONMENT "YOSYS_CHPARAM=-set PORT_WORDS 4 -set TRI_QUEUE 3")
+  # Four pixel lanes: each lane's fan-out, engines and combine, the wider metadata line.
+  add_test(NAME rtl_yosys_no_latch_lanes4
+    COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_check.sh ${YOSYS} ${CMAKE_BINARY_DIR}/rtl_yosys_l4.log ${RTL_SOURCES})
+  set_tests_properties(rtl_yosys_no_latch_lanes4 PROPERTIES
+    ENVIRONMENT "YOSYS_CHPARAM=-set LANES 4 -set SPECULAR_KIND 3 -set WPOW_MAX_M 4 -set WPOW_BASE_BITS 8 -set WPOW_TIMING 1")
 endif()
 
 # Co-simulation: every scenario, several seeds, both backends, both width sets.
@@ -126,6 +131,25 @@ foreach(name grey_p4 grey_p4_q2)
               --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
   endforeach()
 endforeach()
+# Pixel lanes (issue 8): every scenario, three seeds, on wrapping and saturating series; the
+# SystemC backend on four lanes; the deliberate faults caught at the right scanline through a
+# four-word port with four lanes. The specular-unit lane builds run with the others below.
+foreach(name grey_p4_q2_l2 grey_p4_q2_l4 rgb2_p8_q3_l4)
+  add_test(NAME rtl_cosim_cpp_${name}
+    COMMAND ${COSIM_CPP} --config ${name} --scenario all --seed 1 --runs 3
+            --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
+endforeach()
+foreach(scenario mixed tiny long)
+  add_test(NAME rtl_cosim_sc_grey_p4_q2_l4_${scenario}
+    COMMAND ${COSIM_SC} --config grey_p4_q2_l4 --scenario ${scenario} --seed 7
+            --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
+endforeach()
+add_test(NAME rtl_cosim_catches_lsb_fault_p4_l4
+  COMMAND ${COSIM_CPP} --config fault_lsb_p4_l4 --scenario mixed --seed 3 --stall-pct 0
+          --expect-mismatch pixel:17 --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
+add_test(NAME rtl_cosim_catches_stall_fault_p4_l4
+  COMMAND ${COSIM_CPP} --config fault_stall_p4_l4 --scenario mixed --seed 3 --stall-pct 0
+          --expect-mismatch cycle:23 --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
 add_test(NAME rtl_cosim_catches_lsb_fault_p4
   COMMAND ${COSIM_CPP} --config fault_lsb_p4 --scenario mixed --seed 3 --stall-pct 0
           --expect-mismatch pixel:17 --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
@@ -163,6 +187,10 @@ set_tests_properties(rtl_cosim_catches_lsb_fault rtl_cosim_catches_stall_fault P
 add_executable(rtl_cycle_model_test ${CMAKE_SOURCE_DIR}/tests/rtl/cycle_model_test.cpp)
 target_link_libraries(rtl_cycle_model_test PRIVATE shadesim_harness GTest::gtest_main)
 add_test(NAME rtl_cycle_model_test COMMAND rtl_cycle_model_test)
+# The scoreboard's lane checks (a beat the model did not expect is a mismatch).
+add_executable(rtl_scoreboard_lanes_test ${CMAKE_SOURCE_DIR}/tests/rtl/scoreboard_lanes_test.cpp)
+target_link_libraries(rtl_scoreboard_lanes_test PRIVATE shadesim_harness GTest::gtest_main)
+add_test(NAME rtl_scoreboard_lanes_test COMMAND rtl_scoreboard_lanes_test)
 
 # The co-simulation's machine interface: --json, exit codes, replay, --list --json; --waves.
 add_test(NAME rtl_cosim_cli

@@ -76,7 +76,8 @@ PointFigures evaluate_point(const ExploreScenes& scenes, const UnitConfig& confi
     const ErrorStats e = compare_to_reference(pixels, h.reference.values, f.visibility.owner, f.scene.width,
                                               f.scene.height, config.channels, config.out_bits)
                              .stats;
-    const CycleRun run = CycleModel::run(enc.stream.encode(), Stimulus{}, SlotTiming::of(config.specular));
+    // The unit's whole timing: its slot, port width, triangle queue and pixel lanes.
+    const CycleRun run = CycleModel::run(enc.stream.encode(), Stimulus{}, CycleConfig::of(config));
     p.cycles += run.cycles;
     p.pixels += run.pixels;
 

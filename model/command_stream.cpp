@@ -390,6 +390,7 @@ std::string config_to_json(const UnitConfig& c) {
   if (!c.coef_term_iwl.empty()) j["coef_term_iwl"] = c.coef_term_iwl;
   j["port_words"] = c.port_words;
   j["tri_queue"] = c.tri_queue;
+  j["lanes"] = c.lanes;
   const SpecularConfig& sp = c.specular;
   j["specular"] = {{"kind", to_string(sp.kind)}, {"out", sp.out.to_string()}};
   j["specular"]["lut"] = {{"addr_bits", sp.lut.addr_bits},
@@ -428,7 +429,7 @@ class ConfigJsonReader {
     // "derivation" is the annotation `shadesim config --json` writes beside the fields (how each
     // was derived); it is for people and never read.
     check_keys(j, "", {"channels", "lights", "xy_bits", "coef", "series", "spec_colour", "out_bits",
-                       "coef_term_iwl", "port_words", "tri_queue", "specular", "derivation"});
+                       "coef_term_iwl", "port_words", "tri_queue", "lanes", "specular", "derivation"});
     read_int(j, "", "channels", 1, 3, require_top_, c.channels);
     read_int(j, "", "lights", 1, 8, require_top_, c.lights);
     read_int(j, "", "xy_bits", 1, 16, require_top_, c.xy_bits);
@@ -440,6 +441,7 @@ class ConfigJsonReader {
     read_int_list(j, "", "coef_term_iwl", -64, 64, c.coef_term_iwl);
     read_int(j, "", "port_words", 1, 8, false, c.port_words);
     read_int(j, "", "tri_queue", 1, 8, false, c.tri_queue);
+    read_int(j, "", "lanes", 1, 4, false, c.lanes);
     if (!j.contains("specular")) {
       if (require_top_) fail("specular", "expected an object (missing)");
       return;

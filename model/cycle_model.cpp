@@ -23,7 +23,7 @@ SlotTiming SlotTiming::of(const SpecularConfig& config) {
 }
 
 CycleConfig CycleConfig::of(const UnitConfig& config) {
-  return CycleConfig(SlotTiming::of(config.specular), config.port_words, config.tri_queue);
+  return CycleConfig(SlotTiming::of(config.specular), config.port_words, config.tri_queue, config.lanes);
 }
 
 std::string to_string(CycleModel::Category c) {
@@ -42,8 +42,8 @@ std::string to_string(CycleModel::Category c) {
 
 std::vector<CycleBreakdown::Row> CycleBreakdown::rows() const {
   return {
-      {"pixel", pixel, "a pixel left the unit"},
-      {"back_pressure", back_pressure, "a pixel waited for pix_ready"},
+      {"pixel", pixel, "a pixel beat (1..lanes pixels) left the unit"},
+      {"back_pressure", back_pressure, "a pixel beat waited for pix_ready"},
       {"unit_stall", unit_stall, "an iterative specular unit held the next pixel"},
       {"command_gap", command_gap, "bubble: no command word was offered in time"},
       {"material", material, "bubble: MATERIAL drain, words and refill"},
@@ -60,7 +60,13 @@ uint64_t CycleBreakdown::total() const {
 }
 
 CycleModel::CycleModel(CycleConfig unit)
-    : timing_(unit.slot), port_words_(static_cast<unsigned>(unit.port_words)), tri_queue_(unit.tri_queue) {
+    : timing_(unit.slot),
+      port_words_(static_cast<unsigned>(unit.port_words)),
+      tri_queue_(unit.tri_queue),
+      lanes_(static_cast<unsigned>(unit.lanes)) {
+  if (unit.lanes != 1 && unit.lanes != 2 && unit.lanes != 4) {
+    throw std::invalid_argument("CycleModel: lanes must be 1, 2 or 4, got " + std::to_string(unit.lanes));
+  }
   if (unit.tri_queue < 1 || unit.tri_queue > 8) {
     throw std::invalid_argument("CycleModel: tri_queue must be 1..8, got " + std::to_string(unit.tri_queue));
   }
@@ -106,8 +112,8 @@ CycleRun CycleModel::run(const std::vector<uint64_t>& words, const Stimulus& sti
       case Category::kSetupLoad: ++b.setup_load; break;
     }
     if (e.pix_fire) {
-      ++r.pixels;
-      if (e.pix_eor) r.scanlines.push_back({e.pix_y, cycle, e.pix_x});
+      r.pixels += static_cast<uint64_t>(e.pix_count);
+      if (e.pix_eor) r.scanlines.push_back({e.pix_y, cycle, e.pix_x + e.pix_count - 1});
     }
     ++cycle;
   }

@@ -8,9 +8,10 @@
 // wait for an empty datapath), with tri_queue > 1 a span queue whose spans carry their
 // triangle's coefficient bank (a TRIANGLE waits until no queued span reads the bank it
 // loads), three span-setup stages s1..s3 with valid bits, the
-// engines' run state (run, rem), the specular slot's timing (a LATENCY-deep delay line for a
+// engines' run state (run, rem: pixels left, `lanes` of them per beat), the specular slot's timing (a LATENCY-deep delay line for a
 // pipelined unit, one in-flight pixel and a busy count for an iterative one), and the pix output
-// register with advance = !valid || ready.
+// register with advance = !valid || ready. The pix register holds a beat: up to `lanes` pixels
+// of one span (lane j = pixel x + j), one beat per cycle at most.
 #pragma once
 
 #include <algorithm>
@@ -41,18 +42,21 @@ struct CycleConfig {
   SlotTiming slot;
   int port_words = 1;  // UnitConfig::port_words
   int tri_queue = 1;   // UnitConfig::tri_queue
+  int lanes = 1;       // UnitConfig::lanes: pixels per beat
 
   CycleConfig() = default;
   // A unit with the default structure around this slot.
   CycleConfig(SlotTiming s) : slot(s) {}  // NOLINT(google-explicit-constructor): a slot is a unit
-  CycleConfig(SlotTiming s, int words, int queue = 1) : slot(s), port_words(words), tri_queue(queue) {}
+  CycleConfig(SlotTiming s, int words, int queue = 1, int pixel_lanes = 1)
+      : slot(s), port_words(words), tri_queue(queue), lanes(pixel_lanes) {}
   // Spans the span queue holds with tri_queue > 1 (none with 1).
   int span_queue() const { return tri_queue > 1 ? kSpansPerQueuedTriangle * tri_queue : 0; }
   static constexpr int kSpansPerQueuedTriangle = 4;
   static CycleConfig of(const UnitConfig& config);
 };
 
-// Where a scanline ends: the cycle on which its end-of-row pixel leaves the unit.
+// Where a scanline ends: the cycle on which its end-of-row pixel (the beat holding it) leaves the
+// unit.
 struct ScanlineDone {
   int y = 0;
   uint64_t cycle = 0;
@@ -61,8 +65,8 @@ struct ScanlineDone {
 
 // Why a cycle passed. Every cycle is charged to exactly one category, so the counts partition
 // the run's cycles. In priority order:
-//   pixel          a pixel left the unit (pix_valid and pix_ready)
-//   back_pressure  a pixel waited in the pix register and pix_ready was low
+//   pixel          a pixel beat left the unit (pix_valid and pix_ready; 1..lanes pixels)
+//   back_pressure  a beat waited in the pix register and pix_ready was low
 //   unit_stall     the pix register was empty and an iterative specular unit held a pixel
 //                  (computing it, or finished on this very cycle): its interval and latency
 //   otherwise the unit had no pixel to give: a bubble. The engines starve only when a SPAN
@@ -99,7 +103,7 @@ struct CycleBreakdown {
 
 struct CycleRun {
   uint64_t cycles = 0;  // cycles until every beat is accepted and every pixel has left
-  uint64_t pixels = 0;
+  uint64_t pixels = 0;  // pixels, not beats (the breakdown's `pixel` row counts beats)
   uint64_t words = 0;
   uint64_t beats = 0;
   CycleBreakdown breakdown;  // partitions `cycles`
@@ -117,14 +121,16 @@ class CycleModel {
   struct Edge {
     bool cmd_ready = false;  // combinational, before the edge
     bool cmd_fire = false;   // the beat on the port was accepted on this edge
-    bool pix_fire = false;   // a pixel left on this edge
-    bool pix_eor = false;
-    int pix_x = 0, pix_y = 0;
+    bool pix_fire = false;   // a pixel beat left on this edge
+    bool pix_eor = false;    // ... holding its span's end-of-row pixel (its last)
+    int pix_x = 0, pix_y = 0;  // lane 0's pixel
+    int pix_count = 0;       // pixels in the beat: lanes 0 .. pix_count-1 valid
     Category category = Category::kSetupLoad;
   };
 
   // Throws std::invalid_argument for a negative latency, an interval < 1, an iterative
-  // interval that differs from the latency, or a port width other than 1, 2, 4, 8.
+  // interval that differs from the latency, a port width other than 1, 2, 4, 8, or lanes other
+  // than 1, 2, 4.
   explicit CycleModel(CycleConfig timing = CycleConfig{});
 
   // Inputs as seen just before the edge (`beat`: the port_words words on the port); advances
@@ -152,8 +158,9 @@ class CycleModel {
   };
   struct Pix {
     bool valid = false;
-    int x = 0, y = 0;
+    int x = 0, y = 0;  // lane 0's pixel
     bool eor = false;
+    int count = 0;  // valid lanes
   };
   enum class Payload { kSkip, kMaterial, kTriangle, kTable };
 
@@ -170,6 +177,7 @@ class CycleModel {
   SlotTiming timing_;
   unsigned port_words_ = 1;
   int tri_queue_ = 1;
+  unsigned lanes_ = 1;
   // Triangle queue (tri_queue > 1): the span queue (a ring of sq_.size(), sq_count_ entries from
   // sq_head_), each span with the coefficient bank of its triangle; spans queued per bank; the
   // bank the latest TRIANGLE loads.
@@ -188,7 +196,7 @@ class CycleModel {
   unsigned pay_idx_ = 0, pay_last_ = 0;
   // Span setup stages 1..3
   Span s_[3];
-  // Engines
+  // Engines: rem_ pixels of the span still to leave them, lanes_ per beat
   bool run_ = false;
   unsigned rem_ = 0;
   int x_ = 0, y_ = 0;
@@ -243,7 +251,8 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   const bool adv = !pix_.valid || pix_ready;
   const bool busy = busy_ > 0;
   const bool emit = run_ && adv && !busy;
-  const bool last_pix = rem_ == 1;
+  // The span's last beat: 1 <= rem <= lanes (rem - 1 < lanes, as the RTL compares it).
+  const bool last_pix = rem_ - 1 < lanes_;
   const bool load_eng = s_[2].valid && (!run_ || (emit && last_pix));
   const bool s3_free = !s_[2].valid || load_eng;
   const bool s2_move = s_[1].valid && s3_free;
@@ -299,6 +308,7 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   e.pix_eor = pix_.eor;
   e.pix_x = pix_.x;
   e.pix_y = pix_.y;
+  e.pix_count = pix_.count;
 
   // ---- where this cycle went ----
   const size_t slot = history_pos_;
@@ -315,7 +325,7 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   if (++history_pos_ == port_history_.size()) history_pos_ = 0;
 
   // ---- the edge: engines -> slot -> pix register ----
-  const Pix from_engines{run_, x_, y_, last_ && last_pix};
+  const Pix from_engines{run_, x_, y_, last_ && last_pix, static_cast<int>(std::min(rem_, lanes_))};
   if (iterative()) {
     if (adv && !busy) {
       pix_ = inflight_;
@@ -342,8 +352,8 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
     last_ = s_[2].last;
   } else if (emit) {
     if (last_pix) run_ = false;
-    --rem_;
-    ++x_;
+    rem_ -= lanes_;  // wraps after the last beat, as the RTL's rem_q; reloaded before use
+    x_ += static_cast<int>(lanes_);
   }
   if (s2_move) s_[2] = s_[1];
   else if (load_eng) s_[2].valid = false;

@@ -41,6 +41,7 @@ std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u, const I
       {"SPECULAR_OUT_IWL", s.out.iwl},
       {"PORT_WORDS", u.port_words},
       {"TRI_QUEUE", u.tri_queue},
+      {"LANES", u.lanes},
   };
   // Narrowed coefficient terms (coef packing); shade_unit's defaults are COEF_WL.
   if (!u.coef_term_iwl.empty()) {

@@ -1,18 +1,26 @@
 #include "model/shade_unit.h"
 
 namespace shadesim {
+namespace {
+
+// Validated before any member is sized from it (lanes_ has config.lanes banks).
+const UnitConfig& validated(const UnitConfig& config) {
+  config.validate();
+  return config;
+}
+
+}  // namespace
 
 ShadeUnit::ShadeUnit(const UnitConfig& config)
-    : config_(config),
+    : config_(validated(config)),
       span_setup_(config.coef, config.series),
       specular_(config),
       combine_(config),
-      series_(config.series, config.series_per_triangle()),
+      fanout_(config.series, config.lanes),
+      lanes_(static_cast<size_t>(config.lanes), SeriesBank(config.series, config.series_per_triangle())),
       ambient_(static_cast<size_t>(config.channels), 0),
       spec_colour_(static_cast<size_t>(config.lights * config.channels), 0),
-      spec_(static_cast<size_t>(config.lights), 0) {
-  config_.validate();
-}
+      spec_(static_cast<size_t>(config.lights), 0) {}
 
 void ShadeUnit::load_material(const MaterialCmd& m) {
   ambient_ = m.ambient;

@@ -1,15 +1,20 @@
 // ShadeUnit: the bit-accurate model of the whole shading unit (rtl/shade_unit.sv). It consumes
 // the command stream and emits one output pixel per span pixel, in stream order.
 //
-// Per SPAN: SpanSetup forms (v, d, d2) for every series of the current triangle; then per pixel
-// SpecularUnit and PixelCombine read the series values, and every SeriesEngine steps.
+// Per SPAN: SpanSetup forms (v, d, d2) for every series of the current triangle; LaneFanout
+// forms each lane's start from them (UnitConfig::lanes; one lane: unchanged); then per beat of
+// `lanes` pixels SpecularUnit and PixelCombine read each valid lane's series values, in lane
+// order, and every lane's SeriesEngines step. Every lane's specular slot holds the same
+// material and table, so one SpecularUnit serves them all.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
 
 #include "model/command_stream.h"
+#include "model/lane_fanout.h"
 #include "model/pixel_combine.h"
 #include "model/series_engine.h"
 #include "model/span_setup.h"
@@ -22,6 +27,7 @@ struct PixelOut {
   uint16_t x = 0, y = 0;
   std::array<uint16_t, kMaxChannels> colour{};
   bool end_of_row = false;  // last pixel of a span marked last_in_row
+  int lane = 0;             // the lane of its beat (its index in the span mod UnitConfig::lanes)
 };
 
 class ShadeUnit {
@@ -44,7 +50,8 @@ class ShadeUnit {
   SpanSetup span_setup_;
   SpecularUnit specular_;
   PixelCombine combine_;
-  SeriesBank series_;  // diffuse (l-major, c-minor) then specular per light
+  LaneFanout fanout_;
+  std::vector<SeriesBank> lanes_;  // per lane: diffuse (l-major, c-minor) then specular per light
   std::vector<int64_t> ambient_;
   std::vector<int64_t> spec_colour_;
   TriangleCmd triangle_;
@@ -61,23 +68,43 @@ void ShadeUnit::consume(const Command& cmd, Sink&& sink) {
     }
     const int32_t dx = s->x0 - triangle_.xo;
     const int32_t dy = s->y - triangle_.yo;
-    for (int i = 0; i < series_.size(); ++i) {
-      series_.load(i, span_setup_(&triangle_.coef[static_cast<size_t>(i) * kTermsPerSeries], dx, dy));
+    const int n_lanes = fanout_.lanes();
+    const int n_series = lanes_.front().size();
+    for (int i = 0; i < n_series; ++i) {
+      const SeriesStart start = span_setup_(&triangle_.coef[static_cast<size_t>(i) * kTermsPerSeries], dx, dy);
+      if (n_lanes == 1) {
+        lanes_.front().load(i, start);
+      } else {
+        for (int j = 0; j < n_lanes; ++j) lanes_[static_cast<size_t>(j)].load(i, fanout_(start, j));
+      }
     }
     const int diffuse = config_.diffuse_series();
     const int per_light = config_.specular.series_per_light();
     PixelOut px;
     px.y = static_cast<uint16_t>(s->y);
-    for (int32_t k = 0; k < s->length; ++k) {
-      const int64_t* values = series_.values();
+    // Pixel k of the span, on `lane` of its beat, from that lane's series values.
+    auto shade = [&](const int64_t* values, int32_t k, int lane) {
       for (int l = 0; l < config_.lights; ++l) {
         spec_[l] = specular_.evaluate(&values[diffuse + l * per_light]);
       }
       px.x = static_cast<uint16_t>(s->x0 + k);
+      px.lane = lane;
       px.colour = combine_(values, spec_.data(), ambient_.data(), spec_colour_.data());
       px.end_of_row = s->last_in_row && k == s->length - 1;
       sink(static_cast<const PixelOut&>(px));
-      series_.step();
+    };
+    if (n_lanes == 1) {
+      SeriesBank& bank = lanes_.front();
+      for (int32_t k = 0; k < s->length; ++k) {
+        shade(bank.values(), k, 0);
+        bank.step();
+      }
+    } else {
+      for (int32_t first = 0; first < s->length; first += n_lanes) {
+        const int valid = std::min<int32_t>(n_lanes, s->length - first);
+        for (int j = 0; j < valid; ++j) shade(lanes_[static_cast<size_t>(j)].values(), first + j, j);
+        for (SeriesBank& bank : lanes_) bank.step();
+      }
     }
   } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
     triangle_ = *t;

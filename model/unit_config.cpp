@@ -14,6 +14,7 @@ void UnitConfig::validate() const {
   if (port_words != 1 && port_words != 2 && port_words != 4 && port_words != 8)
     fail("port_words must be 1, 2, 4 or 8, got " + std::to_string(port_words));
   if (tri_queue < 1 || tri_queue > 8) fail("tri_queue must be 1..8, got " + std::to_string(tri_queue));
+  if (lanes != 1 && lanes != 2 && lanes != 4) fail("lanes must be 1, 2 or 4, got " + std::to_string(lanes));
   coef.validate("unit config: coef");
   series.validate("unit config: series");
   spec_colour.validate("unit config: spec_colour");
@@ -65,6 +66,7 @@ std::string UnitConfig::to_string() const {
      << " spec=" << shadesim::to_string(specular.kind) << ':' << specular.out.to_string();
   if (port_words != 1) os << " port=" << port_words << 'w';
   if (tri_queue != 1) os << " triq=" << tri_queue;
+  if (lanes != 1) os << " lanes=" << lanes;
   return os.str();
 }
 

@@ -47,6 +47,10 @@ struct UnitConfig {
   // Triangle queue: coefficient banks (1..8). With more than one, SPAN headers wait in a span
   // queue of 4 per bank, so the port loads the next triangles while earlier spans still run.
   int tri_queue = 1;
+  // Pixel lanes: pixels of one span leaving per clock, 1, 2 or 4 (model/lane_fanout.h). Lane j of
+  // a beat is pixel x + j; each lane steps its own engines by `lanes` pixels. With a wrapping
+  // series the pixels equal the one-lane unit's bit for bit; saturating, see LaneFanout.
+  int lanes = 1;
 
   // Term t's format (0..5): coef's, or coef narrowed to coef_term_iwl[t] integer bits.
   FixedFormat coef_term(int t) const;

@@ -5,9 +5,13 @@
 // apart one item per cycle - a TRIANGLE header with the coefficient words after it in the beat,
 // or the rest of a triangle's coefficient words in the beat, or one other header or payload
 // word, or a NOP (0x00: the rest of the beat is padding) - and accepts the beat with its last.
-// pix port: one pixel per span pixel, in stream order; pix_eor_o marks the last pixel of a
-// span flagged last_in_row. Both ports are valid/ready; cmd_ready_o and the pipeline's
-// advance depend combinationally on pix_ready_i (no skid buffers).
+// pix port: a beat of up to LANES pixels of one span per handshake, in stream order: lane j is
+// pixel pix_x_o + j, its colour pix_colour_o[j*CHANNELS*OUT_BITS +: CHANNELS*OUT_BITS], valid
+// when pix_mask_o[j] (lanes 0 .. n-1; lane 0 whenever pix_valid_o). A span of length len leaves
+// in ceil(len / LANES) beats; pix_eor_o marks the beat holding the last pixel of a span flagged
+// last_in_row (its last valid lane). LANES = 1: one pixel per beat, pix_mask_o = 1. Both ports
+// are valid/ready; cmd_ready_o and the pipeline's advance depend combinationally on
+// pix_ready_i (no skid buffers).
 //
 // Pipeline (the README's "RTL and co-simulation" has the latency / interval table):
 //   decoder      header + payload words; TRIANGLE payload -> coefficient registers,
@@ -15,14 +19,17 @@
 //                TABLE payload -> specular slots. MATERIAL waits until the datapath is empty.
 //   span_setup   3 stages (products, sums, rounding) per series; a SPAN header enters stage 1
 //                whenever stage 1 is free, so setup overlaps the previous span's pixels.
-//   engines      series_engine per series; loaded from stage 3 on the cycle the previous
-//                span's last pixel leaves the engines (back-to-back spans have no bubble).
-//   slot         specular_slot per light (LATENCY / INTERVAL below). Pipelined units
+//   engines      series_engine per series and lane; loaded from stage 3 through lane_fanout
+//                (combinational: lane j's start and K-pixel differences) on the cycle the
+//                previous span's last beat leaves the engines (back-to-back spans have no
+//                bubble). A beat holds up to LANES pixels of one span.
+//   slot         specular_slot per light and lane (LATENCY / INTERVAL below; all lanes in
+//                lockstep). Pipelined units
 //                (INTERVAL 1): a LATENCY-deep metadata line (valid, x, y, eor, diffuse values)
 //                moves with the slot on the global advance. Iterative units (INTERVAL > 1): one
 //                pixel in flight in a pending register; the engines step only when the unit
 //                can start, which is also when the pending pixel is handed over.
-//   output       pixel_combine into the pix register.
+//   output       pixel_combine per lane into the pix register.
 module shade_unit #(
   parameter int CHANNELS         = 1,
   parameter int LIGHTS           = 1,
@@ -53,6 +60,8 @@ module shade_unit #(
   // of 4 * TRI_QUEUE entries (each with its triangle's bank) and span setup takes them from
   // there, so the port runs ahead of the pixels by up to TRI_QUEUE triangles.
   parameter int TRI_QUEUE        = 1,
+  // Pixel lanes: 1, 2 or 4 pixels of a span per beat (lane_fanout, model/lane_fanout.h).
+  parameter int LANES            = 1,
   // The specular unit's own parameters (specular_slot; model/specular_config.h field names
   // with the unit's prefix). Unused unless SPECULAR_KIND selects that unit.
   // verilator lint_off UNUSEDPARAM
@@ -82,7 +91,8 @@ module shade_unit #(
   output logic                         cmd_ready_o,
   output logic [XY_BITS-1:0]           pix_x_o,
   output logic [XY_BITS-1:0]           pix_y_o,
-  output logic [CHANNELS*OUT_BITS-1:0] pix_colour_o,
+  output logic [LANES*CHANNELS*OUT_BITS-1:0] pix_colour_o,  // lane j at j*CHANNELS*OUT_BITS
+  output logic [LANES-1:0]             pix_mask_o,
   output logic                         pix_eor_o,
   output logic                         pix_valid_o,
   input  logic                         pix_ready_i
@@ -103,13 +113,23 @@ module shade_unit #(
                                                            SCHLICK_QUOTIENT_BITS, SCHLICK_TIMING,
                                                            WPOW_MAX_M, WPOW_TIMING);
   localparam bit Iterative      = SpecInterval > 1;
+  localparam int LaneSerW       = NSer * SERIES_WL;  // one lane's series values
+  localparam int LaneDiffW      = NDiff * SERIES_WL;  // ... of them the diffuse ones
+  localparam int LaneColW       = CHANNELS * OUT_BITS;
+
+`ifndef SYNTHESIS
+  initial begin
+    if (LANES != 1 && LANES != 2 && LANES != 4)
+      $fatal(1, "shade_unit: LANES %0d is not 1, 2 or 4", LANES);
+  end
+`endif
 
   typedef enum logic [1:0] {PaySkip, PayMaterial, PayTriangle, PayTable} pay_e;
 
   // ---- handshakes and pipeline movement ------------------------------------------------
   logic adv;       // the pix register can take a new value this cycle
   logic emit;      // the engines hand a pixel to the pix register
-  logic last_pix;  // ... and it is the last of their span
+  logic last_pix;  // ... and it is the last beat of their span
   logic load_eng;  // the engines take the span waiting in setup stage 3
   logic stall_fault;
   logic s1_v_q, s2_v_q, s3_v_q, run_q;
@@ -483,7 +503,8 @@ module shade_unit #(
     if (s2_move)   s3_q <= s2_q;
   end
 
-  logic [NSer*SERIES_WL-1:0] start_v, start_d, start_d2, eng_v;
+  logic [NSer*SERIES_WL-1:0] start_v, start_d, start_d2;
+  logic [LANES*LaneSerW-1:0] eng_v;  // lane j's series at j * LaneSerW
 
   for (genvar i = 0; i < NSer; i++) begin : g_series
     span_setup #(
@@ -498,11 +519,27 @@ module shade_unit #(
       .v_o(start_v[i*SERIES_WL +: SERIES_WL]), .d_o(start_d[i*SERIES_WL +: SERIES_WL]),
       .d2_o(start_d2[i*SERIES_WL +: SERIES_WL])
     );
-    series_engine #(.SERIES_WL(SERIES_WL), .SERIES_OVERFLOW(SERIES_OVERFLOW)) u_engine (
-      .clk_i, .load_i(load_eng), .step_i(emit),
-      .v_i(start_v[i*SERIES_WL +: SERIES_WL]), .d_i(start_d[i*SERIES_WL +: SERIES_WL]),
-      .d2_i(start_d2[i*SERIES_WL +: SERIES_WL]), .v_o(eng_v[i*SERIES_WL +: SERIES_WL])
-    );
+    if (LANES == 1) begin : g_one_lane
+      series_engine #(.SERIES_WL(SERIES_WL), .SERIES_OVERFLOW(SERIES_OVERFLOW)) u_engine (
+        .clk_i, .load_i(load_eng), .step_i(emit),
+        .v_i(start_v[i*SERIES_WL +: SERIES_WL]), .d_i(start_d[i*SERIES_WL +: SERIES_WL]),
+        .d2_i(start_d2[i*SERIES_WL +: SERIES_WL]), .v_o(eng_v[i*SERIES_WL +: SERIES_WL])
+      );
+    end else begin : g_lanes
+      for (genvar j = 0; j < LANES; j++) begin : g_lane
+        logic [SERIES_WL-1:0] lane_v, lane_d, lane_d2;
+        lane_fanout #(
+          .SERIES_WL(SERIES_WL), .SERIES_OVERFLOW(SERIES_OVERFLOW), .LANES(LANES), .LANE(j)
+        ) u_fanout (
+          .v_i(start_v[i*SERIES_WL +: SERIES_WL]), .d_i(start_d[i*SERIES_WL +: SERIES_WL]),
+          .d2_i(start_d2[i*SERIES_WL +: SERIES_WL]), .v_o(lane_v), .d_o(lane_d), .d2_o(lane_d2)
+        );
+        series_engine #(.SERIES_WL(SERIES_WL), .SERIES_OVERFLOW(SERIES_OVERFLOW)) u_engine (
+          .clk_i, .load_i(load_eng), .step_i(emit), .v_i(lane_v), .d_i(lane_d), .d2_i(lane_d2),
+          .v_o(eng_v[j*LaneSerW + i*SERIES_WL +: SERIES_WL])
+        );
+      end
+    end
   end
 
   // ---- engines: span run control --------------------------------------------------------
@@ -512,7 +549,8 @@ module shade_unit #(
 
   assign adv      = !pix_valid_o || pix_ready_i;
   assign emit     = run_q && adv && !spec_busy;
-  assign last_pix = rem_q == 16'd1;
+  // 1 <= rem_q <= LANES (LANES = 1: rem_q == 1).
+  assign last_pix = rem_q - 16'd1 < 16'(LANES);
 
   if (FAULT_STALL_ROW >= 0) begin : g_stall_fault
     assign stall_fault = !fault_done_q && s3_q.last && s3_q.y == XY_BITS'(FAULT_STALL_ROW);
@@ -543,31 +581,42 @@ module shade_unit #(
       y_q    <= s3_q.y;
       last_q <= s3_q.last;
     end else if (emit) begin
-      rem_q <= rem_q - 16'd1;
-      x_q   <= x_q + XY_BITS'(1);
+      rem_q <= rem_q - 16'(LANES);
+      x_q   <= x_q + XY_BITS'(LANES);
     end
   end
 
   // ---- specular slots and the metadata that travels with them ------------------------------
   typedef struct packed {
-    logic [XY_BITS-1:0]         x, y;
+    logic [XY_BITS-1:0]         x, y;  // lane 0's pixel
     logic                       eor;
-    logic [NDiff*SERIES_WL-1:0] diffuse;
+    logic [LANES-1:0]           mask;  // valid lanes
+    logic [LANES*LaneDiffW-1:0] diffuse;  // lane j at j * LaneDiffW
   } meta_t;
 
   meta_t meta_in, meta_out;  // from the engines; at the slot's output
   logic  meta_out_valid;
+  logic [LANES-1:0]           lane_mask;
+  logic [LANES*LaneDiffW-1:0] lane_diffuse;
+  for (genvar j = 0; j < LANES; j++) begin : g_lane_meta
+    assign lane_mask[j] = 16'(j) < rem_q;
+    assign lane_diffuse[j*LaneDiffW +: LaneDiffW] = eng_v[j*LaneSerW +: LaneDiffW];
+  end
   assign meta_in.x       = x_q;
   assign meta_in.y       = y_q;
   assign meta_in.eor     = last_q && last_pix;
-  assign meta_in.diffuse = eng_v[NDiff*SERIES_WL-1:0];
+  assign meta_in.mask    = lane_mask;
+  assign meta_in.diffuse = lane_diffuse;
 
-  logic [LIGHTS*SPECULAR_OUT_WL-1:0] spec;
-  logic [LIGHTS-1:0]                 busy;
-  logic                              slot_en;
+  // Lane j, light l: spec and busy at j * LIGHTS + l. All lanes' slots start together.
+  logic [LANES*LIGHTS*SPECULAR_OUT_WL-1:0] spec;
+  logic [LANES*LIGHTS-1:0]                 busy;
+  logic                                    slot_en;
   assign slot_en   = Iterative ? emit : adv;
   assign spec_busy = |busy;
-  for (genvar l = 0; l < LIGHTS; l++) begin : g_spec
+  for (genvar g = 0; g < LANES * LIGHTS; g++) begin : g_spec
+    localparam int L = g % LIGHTS;
+    localparam int J = g / LIGHTS;
     specular_slot #(
       .SPECULAR_KIND(SPECULAR_KIND), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
       .SERIES_PER_LIGHT(SeriesPerLight), .SPECULAR_OUT_WL(SPECULAR_OUT_WL),
@@ -580,10 +629,11 @@ module shade_unit #(
       .WPOW_MAX_M(WPOW_MAX_M), .WPOW_BASE_BITS(WPOW_BASE_BITS), .WPOW_TIMING(WPOW_TIMING)
     ) u_slot (
       .clk_i, .rst_ni, .en_i(slot_en),
-      .series_i(eng_v[(NDiff + l*SeriesPerLight)*SERIES_WL +: SeriesPerLight*SERIES_WL]),
+      .series_i(eng_v[J*LaneSerW + (NDiff + L*SeriesPerLight)*SERIES_WL +:
+                      SeriesPerLight*SERIES_WL]),
       .cfg_valid_i(cfg_valid), .cfg_table_i(cfg_table), .cfg_addr_i(cfg_addr),
-      .cfg_data_i(cmd_word), .spec_o(spec[l*SPECULAR_OUT_WL +: SPECULAR_OUT_WL]),
-      .busy_o(busy[l])
+      .cfg_data_i(cmd_word), .spec_o(spec[g*SPECULAR_OUT_WL +: SPECULAR_OUT_WL]),
+      .busy_o(busy[g])
     );
   end
 
@@ -633,22 +683,28 @@ module shade_unit #(
   end
 
   // ---- pixel combine ----------------------------------------------------------------------------
-  logic [CHANNELS*OUT_BITS-1:0] colour, colour_out;
-  pixel_combine #(
-    .CHANNELS(CHANNELS), .LIGHTS(LIGHTS), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
-    .SERIES_QUANT(SERIES_QUANT), .SERIES_OVERFLOW(SERIES_OVERFLOW),
-    .SPEC_COLOUR_WL(SPEC_COLOUR_WL), .SPEC_COLOUR_IWL(SPEC_COLOUR_IWL),
-    .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL), .OUT_BITS(OUT_BITS)
-  ) u_combine (
-    .diffuse_i(meta_out.diffuse), .spec_i(spec), .ambient_i(ambient_q),
-    .spec_colour_i(spec_colour_q), .colour_o(colour)
-  );
+  logic [LANES*LaneColW-1:0] colour, colour_out;  // lane j at j * LaneColW
+  for (genvar j = 0; j < LANES; j++) begin : g_combine
+    pixel_combine #(
+      .CHANNELS(CHANNELS), .LIGHTS(LIGHTS), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
+      .SERIES_QUANT(SERIES_QUANT), .SERIES_OVERFLOW(SERIES_OVERFLOW),
+      .SPEC_COLOUR_WL(SPEC_COLOUR_WL), .SPEC_COLOUR_IWL(SPEC_COLOUR_IWL),
+      .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL), .OUT_BITS(OUT_BITS)
+    ) u_combine (
+      .diffuse_i(meta_out.diffuse[j*LaneDiffW +: LaneDiffW]),
+      .spec_i(spec[j*LIGHTS*SPECULAR_OUT_WL +: LIGHTS*SPECULAR_OUT_WL]), .ambient_i(ambient_q),
+      .spec_colour_i(spec_colour_q), .colour_o(colour[j*LaneColW +: LaneColW])
+    );
+  end
 
   if (FAULT_LSB_ROW >= 0) begin : g_lsb_fault
+    // Channel 0 of every lane's pixel on the row.
     always_comb begin
       colour_out = colour;
       if (meta_out.y == XY_BITS'(FAULT_LSB_ROW)) begin
-        colour_out[OUT_BITS-1:0] = colour[OUT_BITS-1:0] + OUT_BITS'(1);
+        for (int j = 0; j < LANES; j++) begin
+          colour_out[j*LaneColW +: OUT_BITS] = colour[j*LaneColW +: OUT_BITS] + OUT_BITS'(1);
+        end
       end
     end
   end else begin : g_no_lsb_fault
@@ -669,6 +725,7 @@ module shade_unit #(
       pix_x_o      <= meta_out.x;
       pix_y_o      <= meta_out.y;
       pix_colour_o <= colour_out;
+      pix_mask_o   <= meta_out.mask;
       pix_eor_o    <= meta_out.eor;
     end
   end

@@ -654,13 +654,23 @@ int64_t ceil_log2(int64_t v) {
   return k;
 }
 
-// Instances of each module (shade_unit.sv: NSer series, one slot per light, one combine).
+// LANES, 1 for a measurement made before the parameter existed.
+int64_t lanes_of(const ParamMap& p) {
+  const auto it = p.find("LANES");
+  return it == p.end() ? 1 : it->second;
+}
+
+// Instances of each module (shade_unit.sv: NSer series, one slot per light, one combine; with
+// LANES > 1 an engine per series, a slot per light and a combine per lane, one span setup).
 int64_t instances_of(const std::string& module, const ParamMap& p) {
   const int64_t ch = get(p, "CHANNELS"), l = get(p, "LIGHTS");
   const int64_t per_light = get(p, "SPECULAR_KIND") == 2 ? 2 : 1;
-  if (module == "span_setup" || module == "series_engine") return ch * l + l * per_light;
-  if (module == "specular_slot") return l;
-  return 1;  // pixel_combine, shade_unit glue
+  const int64_t lanes = lanes_of(p);
+  if (module == "span_setup") return ch * l + l * per_light;
+  if (module == "series_engine") return (ch * l + l * per_light) * lanes;
+  if (module == "specular_slot") return l * lanes;
+  if (module == "pixel_combine") return lanes;
+  return 1;  // shade_unit glue
 }
 
 // Structural size of one instance: what its cells grow with (the RTL's widths, see area.h).
@@ -703,7 +713,11 @@ double size_of(const std::string& module, const ParamMap& p) {
   // decoder and span pipeline (a fixed part).
   const double nser = static_cast<double>(instances_of("span_setup", p));
   const double xy = static_cast<double>(get(p, "XY_BITS"));
-  return 6 * nser * c + ch * s + ch * l * sc + 2 * (2 * xy + ch * l * s) + 400;
+  // Lanes add each lane's fan-out (three constant-multiplier adders per series, ~6 adder bits
+  // per series bit) and widen the metadata line and the pix register.
+  const double extra_lanes = static_cast<double>(lanes_of(p) - 1);
+  return 6 * nser * c + ch * s + ch * l * sc + 2 * (2 * xy + ch * l * s) + 400 +
+         extra_lanes * (6 * nser * s + 2 * ch * l * s);
 }
 
 }  // namespace

@@ -26,6 +26,7 @@ struct CyclesOptions {
   int lights = 0;
   int port_words = 0;  // 0: not given (1, or the --config file's)
   int tri_queue = 0;
+  int lanes = 0;
   uint64_t seed = 1;
   int gap_pct = 0, max_gap = 1, stall_pct = 0;
   std::string json_path;
@@ -43,6 +44,7 @@ int run_cycles(const CyclesOptions& o) {
   // wider port" is the question they answer.
   if (o.port_words > 0) fo.base.port_words = o.port_words;
   if (o.tri_queue > 0) fo.base.tri_queue = o.tri_queue;
+  if (o.lanes > 0) fo.base.lanes = o.lanes;
   if (!o.specular.empty()) fo.specular_override = parse_specular_unit(o.specular, "--specular");
   if (o.channels > 0 || o.lights > 0) {
     // A fixed unit, as built: the scene must fit it.
@@ -94,7 +96,8 @@ int run_cycles(const CyclesOptions& o) {
             << "specular     " << frame.config.specular.describe() << ": latency " << timing.latency
             << ", " << timing.interval << " cycle(s) per pixel\n"
             << "command port " << unit_timing.port_words << " word(s) per beat, triangle queue "
-            << unit_timing.tri_queue << " (span queue " << unit_timing.span_queue() << ")\n"
+            << unit_timing.tri_queue << " (span queue " << unit_timing.span_queue() << "), "
+            << unit_timing.lanes << " pixel lane(s)\n"
             << "stimulus     seed " << o.seed << ", input gaps " << o.gap_pct << "% (max " << o.max_gap
             << "), back-pressure " << o.stall_pct << "%\n"
             << "stream       " << words.size() << " words: " << frame.encoded.stats.triangles << " tri, "
@@ -105,7 +108,11 @@ int run_cycles(const CyclesOptions& o) {
             << diffuse_bits + specular_bits << " coefficient bits: diffuse " << diffuse_bits << " ("
             << frame.config.diffuse_series() << " series), specular " << specular_bits << " ("
             << frame.config.specular_series() << " series); T0..T5 " << term_bits << " bits\n"
-            << "pixels       " << run.pixels << "\n"
+            << "pixels       " << run.pixels
+            << (unit_timing.lanes > 1 ? " in " + std::to_string(run.breakdown.pixel) + " beats of up to " +
+                                            std::to_string(unit_timing.lanes) + " (lanes within a span)"
+                                      : std::string())
+            << "\n"
             << "cycles       " << run.cycles << "  (" << std::fixed << std::setprecision(3) << cpp
             << " cycles per pixel)\n"
             << "queue        " << queue_hid << " cycles hidden by the triangle queue (tri_queue 1: "
@@ -136,6 +143,7 @@ int run_cycles(const CyclesOptions& o) {
                         {"queue_hidden_cycles", queue_hid},
                         {"cycles_tri_queue_1", cycles_one_bank},
                         {"pixels", run.pixels},
+                        {"pixel_beats", run.breakdown.pixel},
                         {"cycles", run.cycles},
                         {"cycles_per_pixel", cpp},
                         {"breakdown", rows},
@@ -171,6 +179,10 @@ void register_cycles(CLI::App& app, int& exit_code) {
                   "triangle queue depth: coefficient banks; > 1 adds a span queue (default 1, or the\n"
                   "--config file's; given, it overrides the file's)")
       ->check(CLI::Range(1, 8));
+  sub->add_option("--lanes", o->lanes,
+                  "pixel lanes: pixels of one span per clock (k-step forward differences, lane j at\n"
+                  "x0 + j; default 1, or the --config file's; given, it overrides the file's)")
+      ->check(CLI::IsMember({1, 2, 4}));
   sub->add_option("--seed", o->seed, "stimulus seed")->capture_default_str();
   sub->add_option("--gap-pct", o->gap_pct, "chance of idle cycles before a command word")->check(CLI::Range(0, 100))->capture_default_str();
   sub->add_option("--max-gap", o->max_gap, "longest idle gap in cycles")->check(CLI::Range(1, 100000))->capture_default_str();

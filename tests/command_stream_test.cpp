@@ -147,16 +147,20 @@ TEST(CommandStream, ThroughputStructureRoundTripsAndDefaults) {
   UnitConfig c;
   c.port_words = 4;
   c.tri_queue = 3;
+  c.lanes = 4;
   const UnitConfig back = config_from_json(config_to_json(c), "t: ");
   EXPECT_EQ(back.port_words, 4);
   EXPECT_EQ(back.tri_queue, 3);
+  EXPECT_EQ(back.lanes, 4);
   const UnitConfig old = config_from_json(
       R"({"channels":1,"lights":1,"xy_bits":12,"coef":"s4.32:rnd","series":"s4.28:wrap",)"
       R"("spec_colour":"u1.12:rnd","out_bits":8,"specular":{"kind":"ideal","out":"u1.16"}})",
       "old: ");
   EXPECT_EQ(old.port_words, 1);
   EXPECT_EQ(old.tri_queue, 1);
-  for (const char* bad : {R"("port_words":3)", R"("port_words":2.5)", R"("tri_queue":0)", R"("tri_queue":9)"}) {
+  EXPECT_EQ(old.lanes, 1);
+  for (const char* bad : {R"("port_words":3)", R"("port_words":2.5)", R"("tri_queue":0)", R"("tri_queue":9)",
+                          R"("lanes":3)", R"("lanes":0)", R"("lanes":8)"}) {
     std::string json = config_to_json(UnitConfig{});
     const std::string key = std::string(bad).substr(0, std::string(bad).find(':'));
     const size_t at = json.find(key);

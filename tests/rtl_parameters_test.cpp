@@ -28,7 +28,7 @@ TEST(RtlParameters, DefaultUnitMapsToItsWidthsAndCodes) {
       {"SERIES_IWL", 4},      {"SERIES_QUANT", 0},   {"SERIES_OVERFLOW", 1},
       {"SPEC_COLOUR_WL", 13}, {"SPEC_COLOUR_IWL", 1}, {"OUT_BITS", 8},
       {"SPECULAR_KIND", 0},   {"SPECULAR_OUT_WL", 17}, {"SPECULAR_OUT_IWL", 1},
-      {"PORT_WORDS", 1},      {"TRI_QUEUE", 1}};
+      {"PORT_WORDS", 1},      {"TRI_QUEUE", 1},      {"LANES", 1}};
   EXPECT_EQ(m, want);
 }
 

@@ -82,16 +82,47 @@ inline uint64_t specular_affected_pixels(const CosimJob& job, const std::vector<
 // Reset cycles before cycle 0 (rst_ni low on these edges).
 constexpr int kResetCycles = 4;
 
-// Unpacks the pix_colour_o bus (channel c in bits [c*out_bits +: out_bits]).
+// Unpacks one lane of the pix_colour_o bus (channel c in bits [c*out_bits +: out_bits] of it).
 inline PixelOut unpack_pixel(uint64_t x, uint64_t y, uint64_t colour, bool eor, int channels,
-                             int out_bits) {
+                             int out_bits, int lane = 0) {
   PixelOut p;
   p.x = static_cast<uint16_t>(x);
   p.y = static_cast<uint16_t>(y);
+  p.lane = lane;
   const uint64_t mask = (uint64_t{1} << out_bits) - 1;
   for (int c = 0; c < channels; ++c) p.colour[c] = static_cast<uint16_t>((colour >> (c * out_bits)) & mask);
   p.end_of_row = eor;
   return p;
+}
+
+// Bits [lsb, lsb + width) of an output port of up to 64 bits (width <= 64).
+inline uint64_t port_bits(uint64_t port, int lsb, int width) {
+  const uint64_t v = port >> lsb;
+  return width >= 64 ? v : v & ((uint64_t{1} << width) - 1);
+}
+
+// A beat that left the RTL on `cycle` (pix_valid_o and pix_ready_i): lane 0's x and y, the lane
+// mask, pix_eor_o, and the colour bus as colour_bits(lsb, width) -> bits [lsb, lsb + width) (each
+// backend reads its own port types). Hands the valid lanes to the scoreboard in lane order,
+// each as pixel x + j; pix_eor_o belongs to the last of them. A mask that is not lanes
+// 0 .. n-1 is a mismatch of its own.
+template <class ColourBits>
+inline void score_beat(Scoreboard& board, uint64_t x, uint64_t y, uint64_t mask, bool eor,
+                       const ColourBits& colour_bits, const UnitConfig& cfg, uint64_t cycle) {
+  const uint64_t all = (uint64_t{1} << cfg.lanes) - 1;
+  if (mask == 0 || (mask & ~all) != 0 || (mask & (mask + 1)) != 0) {
+    board.rtl_bad_mask(x, y, mask, cycle);
+    return;
+  }
+  const int width = cfg.channels * cfg.out_bits;
+  for (int j = 0; (mask >> j) & 1; ++j) {
+    const uint64_t c = colour_bits(j * width, width);
+    const bool last = eor && ((mask >> (j + 1)) & 1) == 0;
+    const uint64_t xj = x + static_cast<uint64_t>(j);
+    if (!board.rtl_pixel_if_expected(xj, y, c, last, cfg.out_bits, cycle, j)) {
+      board.rtl_pixel(unpack_pixel(xj, y, c, last, cfg.channels, cfg.out_bits, j), cycle);
+    }
+  }
 }
 
 }  // namespace shadesim

@@ -30,6 +30,19 @@ inline bool port_fits(const QData&, int port_words) { return port_words == 1; }
 template <std::size_t N>
 inline bool port_fits(const VlWide<N>&, int port_words) { return N == 2 * static_cast<std::size_t>(port_words); }
 
+// Bits [lsb, lsb + width) (width <= 64) of a Verilated output: a plain integer up to 64 bits, a
+// VlWide of 32-bit words above (pix_colour_o with several lanes).
+inline uint64_t out_bits_of(QData port, int lsb, int width) { return port_bits(port, lsb, width); }
+template <std::size_t N>
+inline uint64_t out_bits_of(const VlWide<N>& port, int lsb, int width) {
+  uint64_t v = 0;
+  for (int b = 0; b < width; ++b) {
+    const int i = lsb + b;
+    v |= static_cast<uint64_t>((port[static_cast<std::size_t>(i / 32)] >> (i % 32)) & 1U) << b;
+  }
+  return v;
+}
+
 // With `waves`, only a trace-enabled build (SHADESIM_COSIM_TRACE, verilate(... TRACE_FST))
 // dumps the window into an FST file; other builds throw std::invalid_argument.
 template <class V>
@@ -37,7 +50,7 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
   Prepared prep = prepare(job);
   const auto t0 = std::chrono::steady_clock::now();  // simulation speed excludes preparation
   const UnitConfig& cfg = job.config.unit;
-  Scoreboard board(std::move(prep.expected), cfg.channels);  // not needed after this: no copy
+  Scoreboard board(std::move(prep.expected), cfg.channels, cfg.lanes);  // not needed after this: no copy
 
   VerilatedContext context;
 #ifdef SHADESIM_COSIM_TRACE
@@ -94,16 +107,13 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
     const uint64_t t = (cycle + kResetCycles) * kWaveUnitsPerCycle;
     dump(cycle, t);
     const bool cmd_fire = valid && top.cmd_ready_o;
-    if (top.pix_valid_o && ready &&
-        !board.rtl_pixel_if_expected(top.pix_x_o, top.pix_y_o, top.pix_colour_o, top.pix_eor_o,
-                                     cfg.out_bits, cycle)) {
-      board.rtl_pixel(unpack_pixel(top.pix_x_o, top.pix_y_o, top.pix_colour_o, top.pix_eor_o,
-                                   cfg.channels, cfg.out_bits),
-                      cycle);
+    if (top.pix_valid_o && ready) {
+      score_beat(board, top.pix_x_o, top.pix_y_o, top.pix_mask_o, top.pix_eor_o,
+                 [&top](int lsb, int width) { return out_bits_of(top.pix_colour_o, lsb, width); }, cfg, cycle);
     }
     const CycleModel::Edge e = model.clock(model_driver.valid(), model_driver.beat(), ready);
     model_driver.clock(e.cmd_fire);
-    if (e.pix_fire && e.pix_eor) board.model_scanline({e.pix_y, cycle, e.pix_x});
+    if (e.pix_fire && e.pix_eor) board.model_scanline({e.pix_y, cycle, e.pix_x + e.pix_count - 1});
     top.clk_i = 1;
     top.eval();
     dump(cycle, t + kWaveUnitsPerCycle / 2);

@@ -40,6 +40,14 @@ inline bool port_fits(const uint64_t&, int port_words) { return port_words == 1;
 template <int W>
 inline bool port_fits(const sc_dt::sc_bv<W>&, int port_words) { return W == 64 * port_words; }
 
+// Bits [lsb, lsb + width) (width <= 64) of an output port's value: an integer up to 64 bits,
+// sc_bv above (pix_colour_o with several lanes).
+inline uint64_t out_bits_of(uint64_t port, int lsb, int width) { return port_bits(port, lsb, width); }
+template <int W>
+inline uint64_t out_bits_of(const sc_dt::sc_bv<W>& port, int lsb, int width) {
+  return port.range(lsb + width - 1, lsb).to_uint64();
+}
+
 template <class DT>
 struct ScDriver : sc_core::sc_module {
   sc_core::sc_in<bool> clk;
@@ -74,18 +82,19 @@ struct ScDriver : sc_core::sc_module {
   CommandDriver driver_;
 };
 
-template <class XT, class CT>
+template <class XT, class CT, class MT>
 struct ScSink : sc_core::sc_module {
   sc_core::sc_in<bool> clk;
   sc_core::sc_in<bool> pix_valid;
   sc_core::sc_in<XT> pix_x, pix_y;
   sc_core::sc_in<CT> pix_colour;
+  sc_core::sc_in<MT> pix_mask;
   sc_core::sc_in<bool> pix_eor;
   sc_core::sc_out<bool> pix_ready;
 
   SC_HAS_PROCESS(ScSink);
   ScSink(sc_core::sc_module_name name, const Stimulus& stim, const UnitConfig& cfg, Scoreboard& board)
-      : sc_module(name), stim_(stim), channels_(cfg.channels), out_bits_(cfg.out_bits), board_(board) {
+      : sc_module(name), stim_(stim), cfg_(cfg), board_(board) {
     SC_METHOD(tick);
     sensitive << clk.pos();
     dont_initialize();
@@ -93,12 +102,11 @@ struct ScSink : sc_core::sc_module {
 
   void tick() {
     const int64_t cycle = sc_cycle_now();
-    if (cycle >= 0 && pix_valid.read() && stim_.pix_ready(static_cast<uint64_t>(cycle)) &&
-        !board_.rtl_pixel_if_expected(pix_x.read(), pix_y.read(), pix_colour.read(), pix_eor.read(),
-                                      out_bits_, static_cast<uint64_t>(cycle))) {
-      board_.rtl_pixel(unpack_pixel(pix_x.read(), pix_y.read(), pix_colour.read(), pix_eor.read(),
-                                    channels_, out_bits_),
-                       static_cast<uint64_t>(cycle));
+    if (cycle >= 0 && pix_valid.read() && stim_.pix_ready(static_cast<uint64_t>(cycle))) {
+      const CT& colour = pix_colour.read();
+      score_beat(board_, pix_x.read(), pix_y.read(), static_cast<uint64_t>(pix_mask.read()), pix_eor.read(),
+                 [&colour](int lsb, int width) { return out_bits_of(colour, lsb, width); }, cfg_,
+                 static_cast<uint64_t>(cycle));
     }
     const int64_t next = cycle + 1;
     pix_ready.write(next >= 0 && stim_.pix_ready(static_cast<uint64_t>(next)));
@@ -106,7 +114,7 @@ struct ScSink : sc_core::sc_module {
 
  private:
   Stimulus stim_;
-  int channels_, out_bits_;
+  UnitConfig cfg_;
   Scoreboard& board_;
 };
 
@@ -131,7 +139,7 @@ SC_MODULE(ScCycleModel) {
     const auto c = static_cast<uint64_t>(cycle);
     const CycleModel::Edge e = model_.clock(driver_.valid(), driver_.beat(), stim_.pix_ready(c));
     driver_.clock(e.cmd_fire);
-    if (e.pix_fire && e.pix_eor) board_.model_scanline({e.pix_y, c, e.pix_x});
+    if (e.pix_fire && e.pix_eor) board_.model_scanline({e.pix_y, c, e.pix_x + e.pix_count - 1});
     // The sink may record this edge's pixel after this check: completion is seen one edge
     // later, which changes nothing that is compared.
     if (board_.failed() || board_.complete()) {
@@ -156,9 +164,10 @@ CosimResult run_verilated_systemc(const CosimJob& job) {
   using XT = typename std::remove_reference_t<decltype(std::declval<V&>().pix_x_o)>::data_type;
   using CT = typename std::remove_reference_t<decltype(std::declval<V&>().pix_colour_o)>::data_type;
   using DT = typename std::remove_reference_t<decltype(std::declval<V&>().cmd_data_i)>::data_type;
+  using MT = typename std::remove_reference_t<decltype(std::declval<V&>().pix_mask_o)>::data_type;
   Prepared prep = prepare(job);
   const UnitConfig& cfg = job.config.unit;
-  Scoreboard board(std::move(prep.expected), cfg.channels);  // not needed after this: no copy
+  Scoreboard board(std::move(prep.expected), cfg.channels, cfg.lanes);  // not needed after this: no copy
 
   sc_core::sc_clock clk("clk", kScPeriodNs, sc_core::SC_NS, 0.5, 0, sc_core::SC_NS, true);
   sc_core::sc_signal<bool> rst_n("rst_n"), cmd_valid("cmd_valid"), cmd_ready("cmd_ready");
@@ -169,6 +178,7 @@ CosimResult run_verilated_systemc(const CosimJob& job) {
   }
   sc_core::sc_signal<XT> pix_x("pix_x"), pix_y("pix_y");
   sc_core::sc_signal<CT> pix_colour("pix_colour");
+  sc_core::sc_signal<MT> pix_mask("pix_mask");
   sc_core::sc_signal<bool> pix_eor("pix_eor"), pix_valid("pix_valid"), pix_ready("pix_ready");
 
   V dut("dut");
@@ -180,6 +190,7 @@ CosimResult run_verilated_systemc(const CosimJob& job) {
   dut.pix_x_o(pix_x);
   dut.pix_y_o(pix_y);
   dut.pix_colour_o(pix_colour);
+  dut.pix_mask_o(pix_mask);
   dut.pix_eor_o(pix_eor);
   dut.pix_valid_o(pix_valid);
   dut.pix_ready_i(pix_ready);
@@ -191,12 +202,13 @@ CosimResult run_verilated_systemc(const CosimJob& job) {
   driver.cmd_valid(cmd_valid);
   driver.cmd_data(cmd_data);
 
-  ScSink<XT, CT> sink("sink", job.stim, cfg, board);
+  ScSink<XT, CT, MT> sink("sink", job.stim, cfg, board);
   sink.clk(clk);
   sink.pix_valid(pix_valid);
   sink.pix_x(pix_x);
   sink.pix_y(pix_y);
   sink.pix_colour(pix_colour);
+  sink.pix_mask(pix_mask);
   sink.pix_eor(pix_eor);
   sink.pix_ready(pix_ready);
 

@@ -15,8 +15,8 @@ std::string to_string(Mismatch::Kind kind) {
   return "?";
 }
 
-Scoreboard::Scoreboard(std::vector<PixelOut> expected, int channels)
-    : expected_(std::move(expected)), channels_(channels) {
+Scoreboard::Scoreboard(std::vector<PixelOut> expected, int channels, int lanes)
+    : expected_(std::move(expected)), channels_(channels), lanes_(lanes) {
   for (const auto& p : expected_) expected_rows_ += p.end_of_row ? 1 : 0;
 }
 
@@ -24,7 +24,9 @@ std::string Scoreboard::describe(const PixelOut& p) const {
   std::ostringstream os;
   os << "(x=" << p.x << " y=" << p.y << " colour=";
   for (int c = 0; c < channels_; ++c) os << (c ? "," : "") << p.colour[c];
-  os << (p.end_of_row ? " eor" : "") << ')';
+  os << (p.end_of_row ? " eor" : "");
+  if (lanes_ > 1) os << " lane=" << p.lane;
+  os << ')';
   return os.str();
 }
 
@@ -95,6 +97,22 @@ void Scoreboard::compare_rows() {
     }
     ++rows_compared_;
   }
+}
+
+void Scoreboard::rtl_bad_mask(uint64_t x, uint64_t y, uint64_t mask, uint64_t cycle) {
+  if (failed()) return;
+  Mismatch m;
+  m.kind = Mismatch::Kind::kPixel;
+  m.scanline = scanline_;
+  m.x = static_cast<int>(x);
+  m.y = static_cast<int>(y);
+  m.expected = next_ < expected_.size() ? describe(expected_[next_]) + " in a beat of lanes 0..n-1"
+                                        : "no more pixels";
+  std::string bits;
+  for (int j = lanes_ - 1; j >= 0; --j) bits += ((mask >> j) & 1) ? '1' : '0';
+  m.got = "a beat at (x=" + std::to_string(x) + " y=" + std::to_string(y) + ") with lane mask 0b" + bits;
+  m.cycle = cycle;
+  fail(m);
 }
 
 void Scoreboard::timeout(uint64_t cycle) {

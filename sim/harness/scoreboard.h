@@ -2,6 +2,11 @@
 // pixel) and each scanline's completion cycle with the cycle model's. Backend-neutral: the
 // Verilator C++ loop and the SystemC sink feed it the same events. Stops at the first mismatch
 // and describes it.
+//
+// With pixel lanes the RTL's pixels leave in beats; the backends hand them over one pixel at a
+// time in lane order (score_beat in cosim.h), each with its lane, and the lane is compared like
+// every other field: a beat that ends early, runs into the next span or has a hole in its mask
+// puts a pixel on a lane the model did not expect (PixelOut::lane).
 #pragma once
 
 #include <cstdint>
@@ -27,7 +32,7 @@ std::string to_string(Mismatch::Kind kind);
 
 class Scoreboard {
  public:
-  Scoreboard(std::vector<PixelOut> expected, int channels);
+  Scoreboard(std::vector<PixelOut> expected, int channels, int lanes = 1);
 
   // The common case of a pixel leaving the RTL on `cycle`, straight from the pix_* ports (channel
   // c of `colour` in bits [c*out_bits +: out_bits], as unpack_pixel reads them): when it is the
@@ -35,10 +40,11 @@ class Scoreboard {
   // and returns false; the caller then passes the unpacked pixel to rtl_pixel(). Saves building
   // a PixelOut on every cycle.
   bool rtl_pixel_if_expected(uint64_t x, uint64_t y, uint64_t colour, bool eor, int out_bits,
-                             uint64_t cycle) {
+                             uint64_t cycle, int lane = 0) {
     if (failed() || next_ >= expected_.size()) return false;
     const PixelOut& want = expected_[next_];
-    if (want.end_of_row || eor || want.x != static_cast<uint16_t>(x) || want.y != static_cast<uint16_t>(y)) {
+    if (want.end_of_row || eor || want.x != static_cast<uint16_t>(x) || want.y != static_cast<uint16_t>(y) ||
+        want.lane != lane) {
       return false;
     }
     const uint64_t mask = (uint64_t{1} << out_bits) - 1;
@@ -64,6 +70,8 @@ class Scoreboard {
   }
   // The cycle model's end-of-row pixel left on `cycle`.
   void model_scanline(const ScanlineDone& done);
+  // A beat left the RTL on `cycle` with a lane mask that is not lanes 0 .. n-1 (n >= 1).
+  void rtl_bad_mask(uint64_t x, uint64_t y, uint64_t mask, uint64_t cycle);
   // The run stopped at `cycle` without finishing.
   void timeout(uint64_t cycle);
 
@@ -83,7 +91,9 @@ class Scoreboard {
  private:
   // Every field the RTL drives: x, y, end of row and the configured channels.
   bool same_pixel(const PixelOut& want, const PixelOut& got) const {
-    if (want.x != got.x || want.y != got.y || want.end_of_row != got.end_of_row) return false;
+    if (want.x != got.x || want.y != got.y || want.end_of_row != got.end_of_row || want.lane != got.lane) {
+      return false;
+    }
     for (int c = 0; c < channels_; ++c) {
       if (want.colour[c] != got.colour[c]) return false;
     }
@@ -97,6 +107,7 @@ class Scoreboard {
 
   std::vector<PixelOut> expected_;
   int channels_;
+  int lanes_;
   size_t next_ = 0;
   int scanline_ = 0;  // scanline of expected_[next_]
   uint64_t expected_rows_ = 0;

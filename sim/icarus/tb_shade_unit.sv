@@ -11,6 +11,8 @@
 // pixel's cycle + 1.
 //
 // PORT_WORDS > 1: the words go out PORT_WORDS to a beat, the last beat padded with zero words.
+// LANES > 1: each pixel beat is written as its valid lanes' pixels in lane order (x + j), the
+// end-of-row flag on the last of them; `pixels=` counts pixels, not beats.
 // Parameters are shade_unit's, set per configuration with iverilog -Ptb_shade_unit.NAME=VALUE.
 module tb_shade_unit #(
   parameter int CHANNELS         = 1,
@@ -36,6 +38,7 @@ module tb_shade_unit #(
   parameter int SPECULAR_OUT_IWL = 1,
   parameter int PORT_WORDS       = 1,
   parameter int TRI_QUEUE        = 1,
+  parameter int LANES            = 1,
   parameter int FAULT_LSB_ROW    = -1,
   parameter int FAULT_STALL_ROW  = -1,
   // Capacity of the word memory (Icarus allocates it all: ~45 bytes a word); a longer stream
@@ -56,7 +59,8 @@ module tb_shade_unit #(
   logic                         cmd_valid = 1'b0;
   logic                         cmd_ready;
   logic [XY_BITS-1:0]           pix_x, pix_y;
-  logic [CHANNELS*OUT_BITS-1:0] pix_colour;
+  logic [LANES*CHANNELS*OUT_BITS-1:0] pix_colour;
+  logic [LANES-1:0]             pix_mask;
   logic                         pix_eor, pix_valid;
   logic                         pix_ready = 1'b1;
 
@@ -70,12 +74,13 @@ module tb_shade_unit #(
     .SPEC_COLOUR_WL(SPEC_COLOUR_WL), .SPEC_COLOUR_IWL(SPEC_COLOUR_IWL), .OUT_BITS(OUT_BITS),
     .SPECULAR_KIND(SPECULAR_KIND),
     .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL),
-    .PORT_WORDS(PORT_WORDS), .TRI_QUEUE(TRI_QUEUE),
+    .PORT_WORDS(PORT_WORDS), .TRI_QUEUE(TRI_QUEUE), .LANES(LANES),
     .FAULT_LSB_ROW(FAULT_LSB_ROW), .FAULT_STALL_ROW(FAULT_STALL_ROW)
   ) dut (
     .clk_i(clk), .rst_ni(rst_n),
     .cmd_data_i(cmd_data), .cmd_valid_i(cmd_valid), .cmd_ready_o(cmd_ready),
-    .pix_x_o(pix_x), .pix_y_o(pix_y), .pix_colour_o(pix_colour), .pix_eor_o(pix_eor),
+    .pix_x_o(pix_x), .pix_y_o(pix_y), .pix_colour_o(pix_colour),
+    .pix_mask_o(pix_mask), .pix_eor_o(pix_eor),
     .pix_valid_o(pix_valid), .pix_ready_i(pix_ready)
   );
 
@@ -150,14 +155,20 @@ module tb_shade_unit #(
         cmd_data  <= beat_at(next_word);
       end
       if (pix_valid && pix_ready) begin
-        pixels = pixels + 1;
         last_pixel_cycle = cycle;
         last_progress = cycle;
         idle = 0;
-        if (pix_fd != 0) begin
-          $fwrite(pix_fd, "%0d %0d", pix_x, pix_y);
-          for (int c = 0; c < CHANNELS; c++) $fwrite(pix_fd, " %0d", pix_colour[c*OUT_BITS +: OUT_BITS]);
-          $fwrite(pix_fd, " %0d\n", pix_eor);
+        for (int j = 0; j < LANES; j++) begin
+          if (pix_mask[j]) begin
+            pixels = pixels + 1;
+            if (pix_fd != 0) begin
+              $fwrite(pix_fd, "%0d %0d", pix_x + XY_BITS'(j), pix_y);
+              for (int c = 0; c < CHANNELS; c++) begin
+                $fwrite(pix_fd, " %0d", pix_colour[(j*CHANNELS + c)*OUT_BITS +: OUT_BITS]);
+              end
+              $fwrite(pix_fd, " %0d\n", pix_eor && (j == LANES - 1 || !pix_mask[j+1]));
+            end
+          end
         end
       end else if (next_word >= n_words) begin
         idle = idle + 1;

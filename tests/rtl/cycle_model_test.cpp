@@ -528,5 +528,138 @@ TEST(CycleBreakdown, PartitionsRandomRuns) {
   }
 }
 
+// ---- pixel lanes -------------------------------------------------------------------------------
+// A span of len pixels leaves in ceil(len / K) beats of up to K pixels, one beat per cycle: a
+// SPAN header accepted on t has beat b leave on t + 5 + b (lane 0's pixel k of a one-lane unit
+// is its beat k). Counted by hand from that rule.
+
+CycleConfig lanes(int k, SlotTiming slot = SlotTiming{}) { return CycleConfig(slot, 1, 1, k); }
+
+TEST(PixelLanes, OneSpanOfFiveInFourLanesIsTwoBeats) {
+  // Beats [0 1 2 3] on cycle 5 and [4] on cycle 6; the run ends after cycle 6.
+  const CycleRun r = CycleModel::run(words({span(3, 10, 5, true)}), Stimulus{}, lanes(4));
+  ASSERT_EQ(r.scanlines.size(), 1u);
+  EXPECT_EQ(r.scanlines[0].y, 3);
+  EXPECT_EQ(r.scanlines[0].cycle, 6u);
+  EXPECT_EQ(r.scanlines[0].x, 14);  // the end-of-row pixel: lane 0 of the second beat
+  EXPECT_EQ(r.pixels, 5u);
+  EXPECT_EQ(r.breakdown.pixel, 2u);  // beats
+  EXPECT_EQ(r.breakdown.setup_load, 5u);
+  EXPECT_EQ(r.cycles, 7u);
+  EXPECT_EQ(r.breakdown.total(), r.cycles);
+}
+
+TEST(PixelLanes, SpanEndsAfterCeilLenOverLanesBeats) {
+  for (int k : {1, 2, 4}) {
+    for (int len : {1, 2, 3, 4, 5, 7, 8, 9, 2048}) {
+      const int beats = (len + k - 1) / k;
+      const CycleRun r = CycleModel::run(words({span(0, 0, len, true)}), Stimulus{}, lanes(k));
+      ASSERT_EQ(r.scanlines.size(), 1u);
+      EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(4 + beats)) << k << "," << len;
+      EXPECT_EQ(r.scanlines[0].x, len - 1) << k << "," << len;
+      EXPECT_EQ(r.pixels, static_cast<uint64_t>(len));
+      EXPECT_EQ(r.breakdown.pixel, static_cast<uint64_t>(beats));
+      EXPECT_EQ(r.cycles, static_cast<uint64_t>(5 + beats));
+    }
+  }
+}
+
+TEST(PixelLanes, BackToBackSpansLeaveNoBubbleAndNeverShareABeat) {
+  // Spans of 3 and 6 in 2 lanes: beats 2 + 3; the second span's last beat leaves on 4 + 5.
+  // In 4 lanes: 1 + 2 beats (a span's tail beat is not filled from the next span).
+  const std::vector<uint64_t> w = words({span(0, 0, 3, true), span(1, 0, 6, true)});
+  const CycleRun two = CycleModel::run(w, Stimulus{}, lanes(2));
+  ASSERT_EQ(two.scanlines.size(), 2u);
+  EXPECT_EQ(two.scanlines[0].cycle, 6u);
+  EXPECT_EQ(two.scanlines[1].cycle, 9u);
+  const CycleRun four = CycleModel::run(w, Stimulus{}, lanes(4));
+  ASSERT_EQ(four.scanlines.size(), 2u);
+  EXPECT_EQ(four.scanlines[0].cycle, 5u);
+  EXPECT_EQ(four.scanlines[1].cycle, 7u);
+  EXPECT_EQ(four.breakdown.pixel, 3u);
+}
+
+TEST(PixelLanes, SlotTimingIsPerBeat) {
+  // Pipelined latency 3: every beat 3 later. Iterative Q: beat b leaves on t + 5 + Q (b + 1),
+  // all lanes' units in lockstep.
+  const std::vector<uint64_t> w = words({span(0, 0, 7, true)});  // 2 beats in 4 lanes
+  const CycleRun pipe = CycleModel::run(w, Stimulus{}, lanes(4, SlotTiming{3, 1}));
+  ASSERT_EQ(pipe.scanlines.size(), 1u);
+  EXPECT_EQ(pipe.scanlines[0].cycle, 4u + 2u + 3u);
+  for (int q : {2, 5}) {
+    const CycleRun it = CycleModel::run(w, Stimulus{}, lanes(4, SlotTiming{q, q}));
+    ASSERT_EQ(it.scanlines.size(), 1u);
+    EXPECT_EQ(it.scanlines[0].cycle, static_cast<uint64_t>(5 + q * 2)) << q;
+    EXPECT_EQ(it.breakdown.unit_stall, static_cast<uint64_t>(q + (q - 1))) << q;
+    EXPECT_EQ(it.breakdown.total(), it.cycles);
+  }
+}
+
+TEST(PixelLanes, BeatsLeaveOnlyWhenReady) {
+  // 8 pixels in 4 lanes, ready on every third cycle: beat 0 valid from 5, leaves on 6; beat 1
+  // loaded on 6, leaves on 9.
+  const auto w = words({span(0, 0, 8, true)});
+  CycleModel m(lanes(4));
+  CommandDriver d(w, Stimulus{});
+  std::vector<uint64_t> left;
+  std::vector<int> counts;
+  for (uint64_t c = 0; c < 30; ++c) {
+    const auto e = m.clock(d.valid(), d.word(), c % 3 == 0);
+    d.clock(e.cmd_fire);
+    if (e.pix_fire) {
+      left.push_back(c);
+      counts.push_back(e.pix_count);
+      EXPECT_EQ(e.pix_x, 4 * static_cast<int>(left.size() - 1));
+      EXPECT_EQ(e.pix_eor, left.size() == 2);
+    }
+  }
+  EXPECT_EQ(left, (std::vector<uint64_t>{6, 9}));
+  EXPECT_EQ(counts, (std::vector<int>{4, 4}));
+  EXPECT_TRUE(m.idle());
+}
+
+TEST(PixelLanes, RejectsOtherLaneCounts) {
+  for (int k : {0, 3, 8}) EXPECT_THROW(CycleModel(lanes(k)), std::invalid_argument) << k;
+}
+
+// On random streams and stimuli the rows still sum to the cycles, the pixel row counts beats,
+// and the pixels are the spans' pixels.
+TEST(PixelLanes, BreakdownPartitionsRandomRuns) {
+  std::mt19937 rng(17);
+  for (int trial = 0; trial < 40; ++trial) {
+    const int k = 1 << (rng() % 3);
+    std::vector<Command> cmds;
+    uint64_t pixels = 0, beats = 0;
+    int y = 0;
+    for (int i = 0; i < 50; ++i) {
+      if (rng() % 4 == 0) {
+        TriangleCmd t;
+        t.coef.assign(12, 0);
+        cmds.push_back(t);
+      } else {
+        const bool last = rng() % 2 == 0;
+        const int len = 1 + static_cast<int>(rng() % 13);
+        cmds.push_back(span(y, 0, len, last));
+        pixels += static_cast<uint64_t>(len);
+        beats += static_cast<uint64_t>((len + k - 1) / k);
+        if (last) ++y;
+      }
+    }
+    Stimulus s;
+    s.seed = static_cast<uint64_t>(trial);
+    s.gap_pct = static_cast<int>(rng() % 50);
+    s.max_gap = 1 + static_cast<int>(rng() % 6);
+    s.stall_pct = static_cast<int>(rng() % 50);
+    const int q = static_cast<int>(rng() % 4);
+    const SlotTiming timing = q >= 2 ? SlotTiming{q, q} : SlotTiming{static_cast<int>(rng() % 5), 1};
+    const CycleRun r =
+        CycleModel::run(words(cmds), s, CycleConfig(timing, 1 << (rng() % 4), 1 + static_cast<int>(rng() % 3), k));
+    EXPECT_EQ(r.breakdown.total(), r.cycles) << "trial " << trial;
+    EXPECT_EQ(r.breakdown.pixel, beats) << "trial " << trial;
+    EXPECT_EQ(r.pixels, pixels) << "trial " << trial;
+    EXPECT_EQ(r.scanlines.size(), static_cast<size_t>(y)) << "trial " << trial;
+  }
+}
+
 }  // namespace
 }  // namespace shadesim
