@@ -7,7 +7,7 @@
 include(ExternalProject)
 
 set(SHADESIM_FUZZ_RUNS 100000 CACHE STRING "Inputs each fuzz ctest runs at most")
-set(SHADESIM_FUZZ_SECONDS 25 CACHE STRING
+set(SHADESIM_FUZZ_SECONDS 20 CACHE STRING
     "Seconds each fuzz ctest runs at most (4 harnesses: keep the sum under the CI's 2 minutes)")
 
 find_program(SHADESIM_CLANGXX NAMES clang++ clang++-14 DOC "clang++ for the libFuzzer harnesses")

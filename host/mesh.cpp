@@ -359,6 +359,8 @@ bool write_array(int fd, const std::vector<T>& items) {
   for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(sig, SIG_DFL);
   const rlimit cpu{kImportCpuSeconds, kImportCpuSeconds};
   setrlimit(RLIMIT_CPU, &cpu);
+  const rlimit no_core{0, 0};  // a crash here is reported, not dumped
+  setrlimit(RLIMIT_CORE, &no_core);
   const AddressSpaceCap cap(kImportAddressSpace);
   char kind = 'M';
   std::string message;
