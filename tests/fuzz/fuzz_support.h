@@ -9,19 +9,26 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
 namespace shadesim::fuzz {
 
-// A directory of this process only (mkdtemp), so parallel fuzzers and ctest -j never share files.
+// A directory of this process only (mkdtemp), so parallel fuzzers and ctest -j never share
+// files; removed when the fuzzer exits normally (after a crash it stays, beside the artifact).
+// The name lives in a plain array: the exit handler runs after static strings are destroyed.
 inline const std::string& private_dir() {
+  static char name[] = "/tmp/shadesim-fuzz-XXXXXX";
   static const std::string dir = [] {
-    char name[] = "/tmp/shadesim-fuzz-XXXXXX";
     if (mkdtemp(name) == nullptr) {
       std::perror("shadesim fuzz: mkdtemp");
       std::abort();
     }
+    std::atexit([] {
+      std::error_code ignored;
+      std::filesystem::remove_all(name, ignored);
+    });
     return std::string(name);
   }();
   return dir;
