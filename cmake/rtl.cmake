@@ -104,12 +104,13 @@ if(YOSYS)
     ENVIRONMENT "YOSYS_CHPARAM=-set LANES 4 -set SPECULAR_KIND 3 -set WPOW_MAX_M 4 -set WPOW_BASE_BITS 8 -set WPOW_TIMING 1")
 endif()
 
-# Co-simulation: every scenario, several seeds, both backends, both width sets.
+# Co-simulation: every scenario (--scenario all includes "edge"), several seeds, both backends,
+# both width sets.
 foreach(name grey_s428w rgb2_s320s)
   add_test(NAME rtl_cosim_cpp_${name}
     COMMAND ${COSIM_CPP} --config ${name} --scenario all --seed 1 --runs 3
             --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
-  foreach(scenario mixed long short slow maxbp switch tiny)
+  foreach(scenario mixed long short slow maxbp switch tiny edge)
     add_test(NAME rtl_cosim_sc_${name}_${scenario}
       COMMAND ${COSIM_SC} --config ${name} --scenario ${scenario} --seed 7
               --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)

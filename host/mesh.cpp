@@ -4,13 +4,19 @@
 #include <assimp/scene.h>
 
 #include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <assimp/Importer.hpp>
+#include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
+#include <type_traits>
 #include <utility>
+#include <vector>
 
 namespace shadesim {
 namespace {
@@ -81,7 +87,7 @@ bool is_finite(const Vec3& v) {
 // assimp-testmodels' invalid/OutOfMemory.off (1.3e9 vertices declared, 8 present), allocates and
 // fills ~24 GB and the process dies to the OOM killer instead of failing cleanly. While importing,
 // cap the address space a few GiB above current use so such a file ends in std::bad_alloc, which
-// assimp's Importer catches and reports. Restored on scope exit; the host side is single-threaded.
+// assimp's Importer catches and reports. Set in the import's child process (load_mesh_file).
 class AddressSpaceCap {
  public:
   explicit AddressSpaceCap(rlim_t extra_bytes) {
@@ -225,46 +231,78 @@ Mesh make_plane(double size, int tessellation) {
   return mesh;
 }
 
-Mesh load_mesh_file(const std::string& path) {
-  {
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe) throw SceneError(path + ": cannot open mesh file (expected a readable file)");
-  }
+namespace {
+
+// One mesh of an assimp scene as the import child sends it: positions and normals as x, y, z
+// floats per vertex, and the vertex indices of its three-index faces (points and lines have
+// nothing to shade), unchecked: the parent checks them (mesh_from_parts).
+struct RawPart {
+  std::vector<float> positions;
+  std::vector<float> normals;
+  std::vector<uint32_t> triangle_indices;
+};
+
+// Runs in the import child: only assimp and copying, so that everything that checks the data
+// runs in the parent process, where the fuzzer's sanitizers and coverage see it.
+std::vector<RawPart> import_with_assimp(const std::string& path) {
   Assimp::Importer importer;
-  const AddressSpaceCap cap(kImportAddressSpace);
   const aiScene* scene = importer.ReadFile(
       path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
                 aiProcess_PreTransformVertices);
   if (scene == nullptr) {
     throw SceneError(path + ": assimp could not read the mesh file: " + importer.GetErrorString());
   }
-  Mesh mesh;
+  std::vector<RawPart> parts;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* part = scene->mMeshes[m];
-    if (part == nullptr || !part->HasPositions() || !part->HasNormals()) continue;
+    RawPart raw;
+    if (part != nullptr && part->HasPositions() && part->HasNormals()) {
+      for (unsigned v = 0; v < part->mNumVertices; ++v) {
+        const aiVector3D& p = part->mVertices[v];
+        const aiVector3D& n = part->mNormals[v];
+        raw.positions.insert(raw.positions.end(), {p.x, p.y, p.z});
+        raw.normals.insert(raw.normals.end(), {n.x, n.y, n.z});
+      }
+      for (unsigned f = 0; f < part->mNumFaces; ++f) {
+        const aiFace& face = part->mFaces[f];
+        if (face.mNumIndices != 3) continue;
+        raw.triangle_indices.insert(raw.triangle_indices.end(),
+                                    {face.mIndices[0], face.mIndices[1], face.mIndices[2]});
+      }
+    }
+    parts.push_back(std::move(raw));  // empty for a part without positions or normals
+  }
+  return parts;
+}
+
+// The shadesim mesh of the imported parts, all merged; throws SceneError naming the file.
+Mesh mesh_from_parts(const std::string& path, const std::vector<RawPart>& parts) {
+  Mesh mesh;
+  for (size_t m = 0; m < parts.size(); ++m) {
+    const RawPart& part = parts[m];
+    const size_t vertices = part.positions.size() / 3;
+    if (part.positions.size() % 3 != 0 || part.normals.size() != part.positions.size() ||
+        part.triangle_indices.size() % 3 != 0) {
+      throw SceneError(path + ": mesh " + std::to_string(m) + ": import sent inconsistent arrays");
+    }
     const uint32_t base = static_cast<uint32_t>(mesh.positions.size());
-    for (unsigned v = 0; v < part->mNumVertices; ++v) {
-      const aiVector3D& p = part->mVertices[v];
-      const aiVector3D& n = part->mNormals[v];
-      const Vec3 position{p.x, p.y, p.z};
+    for (size_t v = 0; v < vertices; ++v) {
+      const Vec3 position{part.positions[3 * v], part.positions[3 * v + 1], part.positions[3 * v + 2]};
       if (!is_finite(position)) {
         throw SceneError(path + ": mesh " + std::to_string(m) + " vertex " + std::to_string(v) +
                          ": expected finite coordinates");
       }
       mesh.positions.push_back(position);
-      mesh.normals.push_back({n.x, n.y, n.z});  // checked below, after all faces are known
+      // checked below, after all faces are known
+      mesh.normals.push_back({part.normals[3 * v], part.normals[3 * v + 1], part.normals[3 * v + 2]});
     }
-    for (unsigned f = 0; f < part->mNumFaces; ++f) {
-      const aiFace& face = part->mFaces[f];
-      if (face.mNumIndices != 3) continue;  // points and lines: nothing to shade
-      bool in_range = true;
-      for (int k = 0; k < 3; ++k) in_range = in_range && face.mIndices[k] < part->mNumVertices;
-      if (!in_range) {
-        throw SceneError(path + ": mesh " + std::to_string(m) + " face " + std::to_string(f) +
-                         ": expected vertex indices below " + std::to_string(part->mNumVertices));
+    for (size_t f = 0; f < part.triangle_indices.size() / 3; ++f) {
+      const uint32_t* index = &part.triangle_indices[3 * f];
+      if (index[0] >= vertices || index[1] >= vertices || index[2] >= vertices) {
+        throw SceneError(path + ": mesh " + std::to_string(m) + " triangle " + std::to_string(f) +
+                         ": expected vertex indices below " + std::to_string(vertices));
       }
-      mesh.triangles.push_back(
-          {base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
+      mesh.triangles.push_back({base + index[0], base + index[1], base + index[2]});
     }
   }
   if (mesh.triangles.empty()) {
@@ -285,6 +323,172 @@ Mesh load_mesh_file(const std::string& path) {
     mesh.normals[i] = normalize(n);
   }
   return mesh;
+}
+
+// The import runs in a child process: Debian's assimp 5.2 dereferences null in its
+// post-processing on some files (assimp-testmodels' own RAW models among them, found by
+// tests/fuzz/fuzz_mesh.cpp) and may loop or allocate without bound on others. A crash, a
+// runaway or an exhausted address space then ends the child, and the parent reports it as a
+// SceneError naming the file instead of dying. The child sends the raw parts (or its
+// SceneError's message) through a pipe.
+constexpr rlim_t kImportCpuSeconds = 120;
+
+bool write_all(int fd, const void* data, size_t size) {
+  const char* p = static_cast<const char*>(data);
+  while (size > 0) {
+    const ssize_t n = ::write(fd, p, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    p += n;
+    size -= static_cast<size_t>(n);
+  }
+  return true;
+}
+
+template <typename T>
+bool write_array(int fd, const std::vector<T>& items) {
+  static_assert(std::is_trivially_copyable_v<T>, "sent as raw bytes");
+  const uint64_t count = items.size();
+  return write_all(fd, &count, sizeof count) &&
+         write_all(fd, items.data(), items.size() * sizeof(T));
+}
+
+[[noreturn]] void import_in_child(const std::string& path, int fd) {
+  // Crashes must end this child only, with the default action the parent can see, not a
+  // handler the parent installed (sanitizers, libFuzzer).
+  for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(sig, SIG_DFL);
+  const rlimit cpu{kImportCpuSeconds, kImportCpuSeconds};
+  setrlimit(RLIMIT_CPU, &cpu);
+  const rlimit no_core{0, 0};  // a crash here is reported, not dumped
+  setrlimit(RLIMIT_CORE, &no_core);
+  const AddressSpaceCap cap(kImportAddressSpace);
+  char kind = 'M';
+  std::string message;
+  std::vector<RawPart> parts;
+  try {
+    parts = import_with_assimp(path);
+  } catch (const SceneError& e) {
+    kind = 'E';
+    message = e.what();
+  } catch (const std::bad_alloc&) {
+    kind = 'E';
+    message = path + ": assimp ran out of memory reading the mesh file (more than " +
+              std::to_string(kImportAddressSpace >> 30) + " GiB; a corrupt element count?)";
+  } catch (const std::exception& e) {
+    kind = 'E';
+    message = path + ": assimp failed reading the mesh file: " + e.what();
+  }
+  bool ok = write_all(fd, &kind, 1);
+  if (kind == 'E') {
+    ok = ok && write_array(fd, std::vector<char>(message.begin(), message.end()));
+  } else {
+    const uint64_t count = parts.size();
+    ok = ok && write_all(fd, &count, sizeof count);
+    for (const RawPart& part : parts) {
+      ok = ok && write_array(fd, part.positions) && write_array(fd, part.normals) &&
+           write_array(fd, part.triangle_indices);
+    }
+  }
+  ::close(fd);
+  _exit(ok ? 0 : 3);
+}
+
+// Reads what import_in_child wrote; false when the bytes are short or inconsistent.
+class PipeReader {
+ public:
+  explicit PipeReader(std::string bytes) : bytes_(std::move(bytes)) {}
+  bool read(void* out, size_t size) {
+    if (size == 0) return true;  // an empty vector's data() may be null
+    if (bytes_.size() - at_ < size) return false;
+    std::memcpy(out, bytes_.data() + at_, size);
+    at_ += size;
+    return true;
+  }
+  template <typename T>
+  bool read_array(std::vector<T>& items) {
+    uint64_t count = 0;
+    if (!read(&count, sizeof count) || count > (bytes_.size() - at_) / sizeof(T)) return false;
+    items.resize(count);
+    return read(items.data(), count * sizeof(T));
+  }
+  bool at_end() const { return at_ == bytes_.size(); }
+
+ private:
+  std::string bytes_;
+  size_t at_ = 0;
+};
+
+std::string read_until_eof(int fd) {
+  std::string bytes;
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    bytes.append(buffer, static_cast<size_t>(n));
+  }
+  return bytes;
+}
+
+}  // namespace
+
+Mesh load_mesh_file(const std::string& path) {
+  {
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) throw SceneError(path + ": cannot open mesh file (expected a readable file)");
+  }
+  int fds[2];
+  if (::pipe(fds) != 0) {
+    throw SceneError(path + ": cannot import the mesh file: pipe failed: " + std::strerror(errno));
+  }
+  std::fflush(nullptr);  // nothing buffered is written twice by the child
+  const pid_t child = ::fork();
+  if (child < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw SceneError(path + ": cannot import the mesh file: fork failed: " + std::strerror(errno));
+  }
+  if (child == 0) {
+    ::close(fds[0]);
+    import_in_child(path, fds[1]);
+  }
+  ::close(fds[1]);
+  const std::string bytes = read_until_eof(fds[0]);
+  ::close(fds[0]);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFSIGNALED(status)) {
+    const int sig = WTERMSIG(status);
+    const std::string what = sig == SIGXCPU ? "ran past " + std::to_string(kImportCpuSeconds) +
+                                                  " s of CPU"
+                                            : std::string("crashed (") + strsignal(sig) + ")";
+    throw SceneError(path + ": assimp " + what +
+                     " reading the mesh file (expected a well-formed mesh file; Debian's assimp "
+                     "mishandles this one)");
+  }
+  PipeReader reader(bytes);
+  char kind = 0;
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !reader.read(&kind, 1)) {
+    throw SceneError(path + ": mesh import process failed (exit status " +
+                     std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
+  }
+  if (kind == 'E') {
+    std::vector<char> message;
+    if (!reader.read_array(message)) throw SceneError(path + ": mesh import process failed");
+    throw SceneError(std::string(message.begin(), message.end()));
+  }
+  uint64_t count = 0;
+  bool ok = kind == 'M' && reader.read(&count, sizeof count);
+  std::vector<RawPart> parts;
+  for (uint64_t m = 0; ok && m < count; ++m) {
+    RawPart part;
+    ok = reader.read_array(part.positions) && reader.read_array(part.normals) &&
+         reader.read_array(part.triangle_indices);
+    parts.push_back(std::move(part));
+  }
+  if (!ok || !reader.at_end()) throw SceneError(path + ": mesh import process sent a malformed result");
+  return mesh_from_parts(path, parts);
 }
 
 Mesh transform_mesh(const Mesh& mesh, const Transform& transform) {

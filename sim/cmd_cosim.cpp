@@ -201,7 +201,7 @@ void register_cosim(CLI::App& app, int& exit_code) {
       "pixel) and the cycle model (every scanline's cycle). The RTL is Verilated on demand into the\n"
       "build cache the first time a configuration is needed, and reused after that. Options not\n"
       "listed here go to the co-simulation itself: --scenario mixed|long|short|slow|maxbp|switch|\n"
-      "tiny|all, --seed, --runs, --gap-pct, --max-gap, --stall-pct, --expect-mismatch KIND:Y,\n"
+      "tiny|edge|all, --seed, --runs, --gap-pct, --max-gap, --stall-pct, --expect-mismatch KIND:Y,\n"
       "--save-dir, --json FILE, --min-spec-pct, --rows (run with any unit and --help to see them).");
   sub->add_option("--backend", o->backend, "cpp (Verilator C++) or systemc (Verilator in SystemC)")
       ->capture_default_str();

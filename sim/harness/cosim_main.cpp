@@ -412,7 +412,7 @@ int cosim_main(int argc, char** argv) {
   app.add_option("--unit", o.unit_path, "the unit (UnitConfig JSON) this build simulates");
   app.add_option("--config", o.config, "the build's name, for reports")->capture_default_str();
   app.add_flag("--list", o.list, "print the parameters this executable was Verilated with (--json: as JSON)");
-  app.add_option("--scenario", o.scenario, "mixed, long, short, slow, maxbp, switch, tiny, or all");
+  app.add_option("--scenario", o.scenario, "mixed, long, short, slow, maxbp, switch, tiny, edge, or all");
   app.add_option("--stream", o.stream_path, "replay a saved command stream (text form)");
   app.add_option("--seed", o.seed, "seed of the stream and of the stimulus (printed on every run)");
   app.add_option("--rows", o.rows, "override: scanlines per generated stream (for benchmarks)")->check(CLI::Range(1, 32768));

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "sim/harness/cosim.h"
+#include "sim/harness/idle_noise.h"
 #include "verilated.h"
 #ifdef SHADESIM_COSIM_TRACE
 #include "verilated_fst_c.h"
@@ -101,7 +102,9 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
     const bool ready = job.stim.pix_ready(cycle);
     const bool valid = rtl_driver.valid();
     top.cmd_valid_i = valid;
-    put_beat(top.cmd_data_i, rtl_driver.beat(), cfg.port_words);
+    // Valid low: noise on the data lines (sim/harness/idle_noise.h), not the next beat.
+    put_beat(top.cmd_data_i, valid ? rtl_driver.beat() : idle_noise(job.stim, cycle).data(),
+             cfg.port_words);
     top.pix_ready_i = ready;
     top.eval();
     const uint64_t t = (cycle + kResetCycles) * kWaveUnitsPerCycle;

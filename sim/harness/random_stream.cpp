@@ -9,7 +9,7 @@
 namespace shadesim {
 
 std::vector<std::string> scenario_names() {
-  return {"mixed", "long", "short", "slow", "maxbp", "switch", "tiny"};
+  return {"mixed", "long", "short", "slow", "maxbp", "switch", "tiny", "edge"};
 }
 
 Scenario scenario_by_name(const std::string& name) {
@@ -37,6 +37,10 @@ Scenario scenario_by_name(const std::string& name) {
     s.shape.rows = 2200; s.shape.max_spans_per_row = 8; s.shape.min_len = 1; s.shape.max_len = 4;
     s.shape.p_new_triangle = 1.0; s.shape.p_material = 0.002;
     s.stim.gap_pct = 5; s.stim.max_gap = 3; s.stim.stall_pct = 10;
+  } else if (name == "edge") {
+    s.shape.rows = 8; s.shape.frames = 3; s.shape.edge = true; s.shape.max_spans_per_row = 4;
+    s.shape.max_len = 64; s.shape.p_material = 0.15; s.shape.p_wild = 0.1;
+    s.stim.gap_pct = 20; s.stim.max_gap = 4; s.stim.stall_pct = 30;
   } else {
     std::string all;
     for (const auto& n : scenario_names()) all += (all.empty() ? "" : ", ") + n;
@@ -83,18 +87,56 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
       }
     }
     MaterialCmd m;
-    for (int c = 0; c < config.channels; ++c) m.ambient.push_back(config.series.from_double(uni(0.0, 0.25)));
+    // Edge: a negative ambient makes totals negative (the output clamps them to 0).
+    for (int c = 0; c < config.channels; ++c) {
+      const bool negative = shape.edge && chance(0.3);
+      m.ambient.push_back(config.series.from_double(negative ? uni(-0.6, 0.0) : uni(0.0, 0.25)));
+    }
     m.spec_colour.assign(static_cast<size_t>(config.lights * config.channels), 0);
     if (has_spec_hw) {
-      for (auto& v : m.spec_colour) v = config.spec_colour.from_double(uni(0.0, 0.5));
+      for (auto& v : m.spec_colour) {
+        v = config.spec_colour.from_double(shape.edge ? uni(0.2, 0.9) : uni(0.0, 0.5));
+      }
     }
     m.exponent = int64_t{irange(1, 200)} << kExponentFracBits;
+    // Edge: fractional exponents over the whole u10.16 range, every shift the units accept.
+    if (shape.edge) {
+      m.exponent = static_cast<int64_t>(rng() % (int64_t{1000} << kExponentFracBits)) + 1;
+    }
+    const int max_shift = shape.edge ? config.series.frac_bits() : std::min(4, config.series.frac_bits());
     if (spec.kind == SpecularUnitKind::kLut && chance(0.5)) {
-      m.unit_params = {irange(0, std::min(4, config.series.frac_bits()))};
+      m.unit_params = {irange(0, max_shift)};
     } else if (spec.kind == SpecularUnitKind::kWpow && chance(0.5)) {
-      m.unit_params = {irange(0, std::min(3, config.series.frac_bits())), irange(0, WpowUnit::stages(spec.wpow))};
+      m.unit_params = {irange(0, shape.edge ? max_shift : std::min(3, config.series.frac_bits())),
+                       irange(0, WpowUnit::stages(spec.wpow))};
     }
     cs.commands.emplace_back(m);
+  };
+  // Edge triangles: per series one of four kinds - ordinary (most often, so the specular term
+  // still shows in most pixels); a large value (totals above 1, the output saturates); a value
+  // at the top of the series range with a rising slope and curvature (the series leaves its
+  // format: wraps, or saturates in :sat builds); a negative value (the diffuse clamp at 0).
+  // Coefficients stay inside the coef format.
+  const double coef_top = std::ldexp(1.0, config.coef.iwl - 1) * 0.999;
+  const double series_top = std::ldexp(1.0, config.series.iwl - 1);
+  auto edge_terms = [&](TriangleCmd& t) {
+    for (int s = 0; s < series; ++s) {
+      const double base = has_spec_hw && s < config.diffuse_series() ? 0.5 / config.lights : 1.0;
+      double terms[kTermsPerSeries] = {uni(-0.3, 1.2) * base, uni(-1, 1) / 256, uni(-1, 1) / 256,
+                                       uni(-1, 1) / 16384, uni(-1, 1) / 16384, uni(-1, 1) / 16384};
+      const int kind = irange(0, 9);
+      if (kind == 7) {
+        terms[0] = uni(1.0, 3.0);
+      } else if (kind == 8) {
+        terms[0] = series_top * uni(0.9, 0.999);
+        terms[2] = uni(0.0, 1.0) / 32;
+        terms[5] = uni(0.0, 1.0) / 1024;
+      } else if (kind == 9) {
+        terms[0] = -uni(0.1, 2.0);
+      }
+      for (double& v : terms) v = std::clamp(v, -coef_top, coef_top);
+      for (double v : terms) t.coef.push_back(config.coef.from_double(v));
+    }
   };
   auto triangle = [&](int x0, int y) {
     TriangleCmd t;
@@ -107,6 +149,11 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
       t.yo = y + irange(-40, 40);
     }
     const double k = wild ? 64.0 : 1.0;
+    if (shape.edge && !wild) {
+      edge_terms(t);
+      cs.commands.emplace_back(t);
+      return;
+    }
     for (int s = 0; s < series; ++s) {
       // With a specular unit, keep most pixels below the output's saturation so the specular
       // term shows in the bits: diffuse terms scaled down by the light count.
@@ -124,22 +171,38 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
   if (spec.kind == SpecularUnitKind::kLut) lut_table(0, lut_size);
   material();
   bool have_triangle = false;
-  int y = irange(0, 3);
-  for (int row = 0; row < shape.rows; ++row, y = (y + 1) % width) {
-    const int spans = shape.full_rows ? 1 : irange(1, shape.max_spans_per_row);
-    int x = shape.full_rows ? 0 : irange(0, 16);
-    for (int s = 0; s < spans && x < width; ++s) {
-      SpanCmd span;
-      span.y = y;
-      span.x0 = x;
-      span.length = shape.full_rows ? std::min(width, 2048) : std::min(irange(shape.min_len, shape.max_len), width - x);
-      x += span.length + irange(0, 8);
-      span.last_in_row = s == spans - 1 || x >= width;
-      if (chance(shape.p_material)) material();
-      if (!have_triangle || chance(shape.p_new_triangle)) triangle(span.x0, span.y);
-      have_triangle = true;
-      cs.commands.emplace_back(span);
-      if (span.last_in_row) break;
+  for (int frame = 0; frame < shape.frames; ++frame) {
+    if (frame > 0) cs.commands.emplace_back(EndFrameCmd{});
+    // Edge: the frame's rows run off the bottom of the screen and wrap to the top.
+    int y = shape.edge ? width - irange(1, shape.rows) : irange(0, 3);
+    for (int row = 0; row < shape.rows; ++row, y = (y + 1) % width) {
+      const int spans = shape.full_rows ? 1 : irange(1, shape.max_spans_per_row);
+      int x = shape.full_rows ? 0 : irange(0, 16);
+      // Edge rows: one span across the whole screen width, or spans at the right edge.
+      const int edge_kind = shape.edge ? irange(0, 3) : -1;
+      if (edge_kind == 1) x = width - irange(1, shape.max_len) * spans;
+      if (edge_kind == 2) x = width - irange(1, 4);
+      x = std::max(x, 0);
+      for (int s = 0; s < spans && x < width; ++s) {
+        SpanCmd span;
+        span.y = y;
+        span.x0 = x;
+        if (edge_kind == 0) {
+          span.x0 = 0;
+          span.length = width;
+        } else if (shape.full_rows) {
+          span.length = std::min(width, 2048);
+        } else {
+          span.length = std::min(irange(shape.min_len, shape.max_len), width - x);
+        }
+        x = span.x0 + span.length + (edge_kind > 0 ? 0 : irange(0, 8));
+        span.last_in_row = s == spans - 1 || x >= width;
+        if (chance(shape.p_material)) material();
+        if (!have_triangle || chance(shape.p_new_triangle)) triangle(span.x0, span.y);
+        have_triangle = true;
+        cs.commands.emplace_back(span);
+        if (span.last_in_row) break;
+      }
     }
   }
   cs.commands.emplace_back(EndFrameCmd{});

@@ -24,6 +24,12 @@ struct StreamShape {
   double p_material = 0.08;     // per span (a TABLE load precedes it with p_table)
   double p_table = 0.5;
   double p_wild = 0.05;         // per triangle: coefficients/origins that overflow the series
+  int frames = 1;               // frames of `rows` scanlines, each closed by END_FRAME
+  // The corners of the value space (scenario "edge"): spans at the right and bottom screen
+  // edges and across the full width 2^xy_bits, negative ambient (totals below 0) and large
+  // diffuse terms (totals above 1), series that leave the series format (saturating in :sat
+  // builds), every LUT / W_m shift and squaring count, fractional exponents.
+  bool edge = false;
 };
 
 // A named workload: stream shape plus the default stimulus (gaps, back-pressure).
@@ -33,7 +39,8 @@ struct Scenario {
   Stimulus stim;
 };
 
-// "mixed", "long", "short", "slow", "maxbp", "switch", "tiny" (~10,000 triangles). Throws
+// "mixed", "long", "short", "slow", "maxbp", "switch", "tiny" (~10,000 triangles), "edge"
+// (StreamShape::edge over three frames, END_FRAME followed by more commands). Throws
 // std::invalid_argument naming the accepted names.
 Scenario scenario_by_name(const std::string& name);
 std::vector<std::string> scenario_names();

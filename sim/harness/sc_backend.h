@@ -7,6 +7,7 @@
 // A SystemC kernel elaborates once per process: one run per process.
 #pragma once
 
+#include <array>
 #include <chrono>
 #include <stdexcept>
 #include <systemc>
@@ -14,6 +15,7 @@
 #include <utility>
 
 #include "sim/harness/cosim.h"
+#include "sim/harness/idle_noise.h"
 
 namespace shadesim {
 
@@ -58,7 +60,7 @@ struct ScDriver : sc_core::sc_module {
 
   SC_HAS_PROCESS(ScDriver);
   ScDriver(sc_core::sc_module_name name, const std::vector<uint64_t>& words, const Stimulus& stim, int port_words)
-      : sc_module(name), driver_(words, stim, port_words) {
+      : sc_module(name), driver_(words, stim, port_words), stim_(stim) {
     SC_METHOD(tick);
     sensitive << clk.pos();
     dont_initialize();
@@ -72,14 +74,18 @@ struct ScDriver : sc_core::sc_module {
     }
     rst_n.write(cycle >= -1);
     const bool run = cycle >= -1;
-    cmd_valid.write(run && driver_.valid());
+    const bool valid = run && driver_.valid();
+    cmd_valid.write(valid);
     DT beat{};
-    to_port(beat, driver_.beat(), driver_.port_words());
+    // Valid low: noise on the data lines (sim/harness/idle_noise.h), not the next beat.
+    const std::array<uint64_t, 8> noise = idle_noise(stim_, static_cast<uint64_t>(cycle + 1));
+    to_port(beat, valid ? driver_.beat() : noise.data(), driver_.port_words());
     cmd_data.write(beat);
   }
 
  private:
   CommandDriver driver_;
+  Stimulus stim_;
 };
 
 template <class XT, class CT, class MT>

@@ -1,0 +1,92 @@
+# libFuzzer harnesses (tests/fuzz/) for the scene, mesh, command-stream and UnitConfig readers,
+# built with clang + ASan + UBSan as a project of their own in <build>/fuzz (the main build's
+# compiler need not be clang), and one ctest per harness that runs it for a bounded number of
+# inputs from its seed corpus. A crash, hang, leak, sanitizer report or an exception that is not
+# the reader's documented error type fails the test. The crashing inputs found so far are kept
+# in tests/fuzz/regressions/<harness>/ and run once each as their own tests.
+include(ExternalProject)
+
+set(SHADESIM_FUZZ_RUNS 100000 CACHE STRING "Inputs each fuzz ctest runs at most")
+set(SHADESIM_FUZZ_SECONDS 20 CACHE STRING
+    "Seconds each fuzz ctest runs at most (4 harnesses: keep the sum under the CI's 2 minutes)")
+
+find_program(SHADESIM_CLANGXX NAMES clang++ clang++-14 DOC "clang++ for the libFuzzer harnesses")
+set(fuzz_probe_ok FALSE)
+if(SHADESIM_CLANGXX)
+  # libFuzzer is a separate Debian package (libclang-rt-14-dev): link a one-line fuzzer to know.
+  set(probe_dir ${CMAKE_BINARY_DIR}/fuzz-probe)
+  file(MAKE_DIRECTORY ${probe_dir})
+  file(WRITE ${probe_dir}/probe.cpp
+       "#include <cstdint>\n#include <cstddef>\nextern \"C\" int LLVMFuzzerTestOneInput("
+       "const uint8_t*, size_t) { return 0; }\n")
+  execute_process(COMMAND ${SHADESIM_CLANGXX} -fsanitize=fuzzer,address,undefined
+                          ${probe_dir}/probe.cpp -o ${probe_dir}/probe
+                  RESULT_VARIABLE probe_result OUTPUT_QUIET ERROR_VARIABLE probe_error)
+  if(probe_result EQUAL 0)
+    set(fuzz_probe_ok TRUE)
+  endif()
+endif()
+if(NOT fuzz_probe_ok)
+  message(FATAL_ERROR
+          "SHADESIM_FUZZ is ON but clang++ with libFuzzer and ASan/UBSan was not found "
+          "(clang++: '${SHADESIM_CLANGXX}'; ${probe_error}). Install the Debian packages clang and "
+          "libclang-rt-14-dev (scripts/setup does), or configure with -DSHADESIM_FUZZ=OFF to "
+          "build and test without the fuzzers.")
+endif()
+message(STATUS "shadesim: libFuzzer harnesses with ${SHADESIM_CLANGXX} in ${CMAKE_BINARY_DIR}/fuzz")
+
+set(fuzz_dir ${CMAKE_BINARY_DIR}/fuzz)
+set(fuzz_targets scene mesh command_stream unit_config)
+set(fuzz_executables)
+foreach(target ${fuzz_targets})
+  list(APPEND fuzz_executables ${fuzz_dir}/fuzz_${target})
+endforeach()
+ExternalProject_Add(shadesim_fuzzers
+  SOURCE_DIR ${CMAKE_SOURCE_DIR}/tests/fuzz
+  BINARY_DIR ${fuzz_dir}
+  CMAKE_ARGS -DCMAKE_CXX_COMPILER=${SHADESIM_CLANGXX} -DCMAKE_BUILD_TYPE=RelWithDebInfo
+             -DSHADESIM_SOURCE_DIR=${CMAKE_SOURCE_DIR}
+  CMAKE_GENERATOR ${CMAKE_GENERATOR}
+  BUILD_ALWAYS ON  # its own build tool decides what is out of date
+  BUILD_BYPRODUCTS ${fuzz_executables}
+  INSTALL_COMMAND "")
+
+# The mesh harness's seeds: assimp-testmodels' files (its malformed ones too) with the
+# extension line the harness expects.
+set(mesh_models /usr/share/assimp/models)
+if(NOT IS_DIRECTORY ${mesh_models})
+  message(FATAL_ERROR "SHADESIM_FUZZ: ${mesh_models} not found; the mesh fuzzer's seed corpus "
+                      "comes from the Debian package assimp-testmodels (scripts/setup installs it)")
+endif()
+execute_process(COMMAND bash ${CMAKE_SOURCE_DIR}/tests/fuzz/mesh_seeds.sh ${mesh_models}
+                        ${fuzz_dir}/seeds/mesh
+                RESULT_VARIABLE seeds_result OUTPUT_QUIET)
+if(NOT seeds_result EQUAL 0)
+  message(FATAL_ERROR "SHADESIM_FUZZ: tests/fuzz/mesh_seeds.sh failed")
+endif()
+
+set(seeds_scene ${CMAKE_SOURCE_DIR}/scenes ${CMAKE_SOURCE_DIR}/scenes/hard)
+set(seeds_mesh ${fuzz_dir}/seeds/mesh)
+set(seeds_command_stream ${CMAKE_SOURCE_DIR}/tests/fuzz/seeds/commands)
+set(seeds_unit_config ${CMAKE_SOURCE_DIR}/tests/fuzz/seeds/unit_config)
+
+foreach(target ${fuzz_targets})
+  # New inputs go to a corpus folder of the build (the first folder argument); the seed folders
+  # are only read. -seed fixes the run so a failure repeats. One input may take up to 60 s (a
+  # 1024-tessellation scene under ASan on a loaded machine) before it counts as a hang.
+  set(corpus ${fuzz_dir}/corpus/${target})
+  file(MAKE_DIRECTORY ${corpus})
+  # malloc_limit_mb above the mesh import's own address-space cap (host/mesh.cpp), which turns
+  # absurd element counts into a clean error before libFuzzer would call them out of memory.
+  add_test(NAME fuzz_${target}
+    COMMAND ${fuzz_dir}/fuzz_${target} -runs=${SHADESIM_FUZZ_RUNS}
+            -max_total_time=${SHADESIM_FUZZ_SECONDS} -timeout=60 -rss_limit_mb=2048
+            -malloc_limit_mb=8192 -seed=1 -print_final_stats=1
+            -artifact_prefix=${fuzz_dir}/ ${corpus} ${seeds_${target}})
+  set_tests_properties(fuzz_${target} PROPERTIES LABELS fuzz TIMEOUT 300)
+  file(GLOB regressions CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tests/fuzz/regressions/${target}/*)
+  if(regressions)
+    add_test(NAME fuzz_${target}_regressions COMMAND ${fuzz_dir}/fuzz_${target} ${regressions})
+    set_tests_properties(fuzz_${target}_regressions PROPERTIES LABELS fuzz TIMEOUT 300)
+  endif()
+endforeach()
