@@ -121,10 +121,15 @@ RtlConfig own_config(const std::string& scene) {
   return c;
 }
 
-RtlConfig resolve_config(const RunSpec& s) {
-  if (s.config_kind == "own") return own_config(s.scene);
+// A path of a plan, from the folder the plan was made in.
+std::string from_base(const fs::path& base, const std::string& path) {
+  return base.empty() || fs::path(path).is_absolute() ? path : (base / path).string();
+}
+
+RtlConfig resolve_config(const RunSpec& s, const fs::path& base) {
+  if (s.config_kind == "own") return own_config(from_base(base, s.scene));
   if (s.config_kind == "named") return named_build(named_builds_path(), s.config);
-  return resolve_rtl_config(s.config, "--config");
+  return resolve_rtl_config(from_base(base, s.config), "--config");
 }
 
 // Whether any material of the stream lights a specular term (a build with no specular hardware
@@ -188,14 +193,18 @@ void write_plan(const fs::path& out, const std::string& name, const RunSettings&
   nlohmann::json runs = nlohmann::json::array(), ids = nlohmann::json::array();
   for (const auto& s : all) runs.push_back(spec_json(s));
   for (const auto& s : selected) ids.push_back(s.id());
+  // Relative scene and config paths are relative to the folder regress ran in: --resume from
+  // anywhere finds them there.
   const nlohmann::json plan = {{"tool", "shadesim regress"}, {"shard", shard.empty() ? nlohmann::json() : nlohmann::json(shard)},
-                               {"settings", settings_json(settings)}, {"runs", runs}, {"selected", ids}};
+                               {"cwd", fs::current_path().string()}, {"settings", settings_json(settings)},
+                               {"runs", runs}, {"selected", ids}};
   write_file_atomically((out / "plans" / (name + ".json")).string(), plan.dump(2) + '\n');
 }
 
 struct LoadedPlans {
   RunSettings settings;
   std::vector<RunSpec> selected;
+  fs::path base;  // the folder the plans' relative paths are relative to
 };
 
 // --resume DIR: the runs DIR's plans selected, with their settings (which must agree).
@@ -237,6 +246,7 @@ LoadedPlans load_plans(const fs::path& dir) {
     }
     if (settings_from.empty()) {
       lp.settings = s;
+      if (j.contains("cwd") && j.at("cwd").is_string()) lp.base = j.at("cwd").get<std::string>();
       settings_from = f.string();
     } else if (settings_json(s) != settings_json(lp.settings)) {
       throw std::invalid_argument(f.string() + ": its settings " + settings_json(s).dump() + " differ from " +
@@ -336,7 +346,7 @@ std::string replay_command(const Job& j, const RunSettings& settings) {
 // and configuration at a time (mesh import limits the process's address space while it runs, so
 // it is not done on several threads at once). A run the scene does not fit is skipped, one the
 // host cannot prepare is an error; either is recorded at once.
-std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& out) {
+std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& out, const fs::path& base) {
   std::vector<Job> jobs;
   std::map<std::string, size_t> first_of_pair;  // scene + config -> its first job
   for (const auto& spec : specs) {
@@ -366,7 +376,7 @@ std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& ou
     } else {
       first_of_pair[pair] = jobs.size();
       try {
-        j.build = resolve_config(spec);
+        j.build = resolve_config(spec, base);
         j.build.name = spec.config;
         j.rec.unit = nlohmann::json::parse(config_to_json(j.build.unit));
         j.rec.unit_text = j.build.unit.to_string() + fault_text(j.build.faults);
@@ -375,7 +385,7 @@ std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& ou
         fo.base = j.build.unit;
         fo.fixed_unit = true;
         try {
-          const PreparedFrame f = prepare_frame(spec.scene, fo);
+          const PreparedFrame f = prepare_frame(from_base(base, spec.scene), fo);
           j.rec.pixels = f.encoded.stats.pixels;
           if (j.build.unit.specular.kind == SpecularUnitKind::kIdeal && has_highlights(f.encoded.stream)) {
             j.rec.status = "skipped";
@@ -598,6 +608,7 @@ int run_regress(const RegressOptions& o) {
   std::vector<RunSpec> selected;
   std::vector<RunRecord> earlier;  // --resume: results already there
   fs::path out(o.out_dir);
+  fs::path base;  // --resume: where the plan's relative paths start
   if (!o.resume.empty()) {
     if (!o.scenes.empty() || !o.configs.empty() || !o.config_files.empty() || !o.shard.empty() ||
         !o.emit_jobs.empty()) {
@@ -607,6 +618,7 @@ int run_regress(const RegressOptions& o) {
     out = o.resume;
     const LoadedPlans plans = load_plans(out);
     settings = plans.settings;
+    base = plans.base;
     for (const auto& spec : plans.selected) {
       const fs::path record = run_dir(out, spec) / "run.json";
       if (fs::exists(record)) {
@@ -654,7 +666,7 @@ int run_regress(const RegressOptions& o) {
             << (settings.timeout > 0 ? number_text(settings.timeout) + " s" : std::string("none")) << "; results in "
             << (out / "runs").string() << std::endl;
 
-  std::vector<Job> jobs = plan_jobs(selected, out);
+  std::vector<Job> jobs = plan_jobs(selected, out, base);
   const auto t0 = std::chrono::steady_clock::now();
   build_all(jobs, o, workers);
   run_jobs(jobs, o, settings, workers);
