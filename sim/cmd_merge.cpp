@@ -135,6 +135,12 @@ int run_merge(const MergeOptions& o) {
   }
   if (planned.empty()) problems.push_back("no plan in any folder: missing runs cannot be named");
   for (const auto& p : problems) std::cout << "  " << p << '\n';
+  for (const auto& [id, r] : found) {
+    if (!planned.empty() && !planned.count(id)) {
+      std::cout << "  note: " << id << " (" << found_at.at(id)
+                << ") is in no plan of these folders: an earlier regress into the same folder? It is reported.\n";
+    }
+  }
   if (!o.junit_path.empty()) write_junit_report(o.junit_path, records);
   if (!o.json_path.empty()) {
     write_json_report(o.json_path, records,
