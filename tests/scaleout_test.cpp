@@ -177,6 +177,25 @@ TEST(Regress, EmitsOneSelfContainedLinePerRunNamingSceneConfigBackendSeed) {
   EXPECT_EQ(count_lines_matching(m.output, "never started"), 8u) << m.output;
 }
 
+TEST(Explore, EmitsTheRunsOfItsVerificationAsRegressJobLines) {
+  // The model-only search, then the chosen point's regress runs as lines instead of in RTL (the
+  // area estimate's anchor is synthesised into the build's area cache once, as explore_test does).
+  const fs::path d = temp_dir("scaleout", "explore_emit");
+  const Result r = in_source(kShadesim + " explore scenes/sphere.json --budget 1 --area-cache " + SHADESIM_BINARY_DIR +
+                             "/area-cache --out " + (d / "ex").string() + " --emit-jobs " + (d / "jobs.txt").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream is(d / "jobs.txt");
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(is, l);) lines.push_back(l);
+  ASSERT_EQ(lines.size(), 2u);  // one scene x the chosen point x 2 backends
+  const std::string chosen = (d / "ex" / "chosen.json").string(), out = (d / "ex" / "verify" / "chosen").string();
+  EXPECT_NE(lines[0].find("regress scenes/sphere.json --config " + chosen + " --backends cpp --seed 1"),
+            std::string::npos) << lines[0];
+  EXPECT_NE(lines[1].find("--backends systemc"), std::string::npos) << lines[1];
+  EXPECT_NE(lines[0].find("--out " + out), std::string::npos) << lines[0];
+  EXPECT_TRUE(fs::exists(d / "ex" / "verify" / "chosen" / "plans" / "emitted.json"));
+}
+
 #ifdef SHADESIM_HAVE_RTL
 
 TEST(Scaleout, ThreeShardsThroughGnuParallelMergeToTheUnshardedRun) {
