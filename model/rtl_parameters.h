@@ -17,7 +17,8 @@ namespace shadesim {
 struct InjectedFaults {
   int lsb_row = -1;    // add 1 LSB to channel 0 of every pixel of this row
   int stall_row = -1;  // one extra engine stall before the last_in_row span of this row
-  bool any() const { return lsb_row >= 0 || stall_row >= 0; }
+  int hang_row = -1;   // the engines stop for good on this row: no more pixels (a hang)
+  bool any() const { return lsb_row >= 0 || stall_row >= 0 || hang_row >= 0; }
 };
 
 struct VerilogParameter {

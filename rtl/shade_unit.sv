@@ -80,9 +80,11 @@ module shade_unit #(
   // verilator lint_on UNUSEDPARAM
   // Deliberate faults for the harness's own tests (-1 = off): add 1 LSB to channel 0 of every
   // pixel of row FAULT_LSB_ROW; hold the engines one extra cycle before the last_in_row span
-  // of row FAULT_STALL_ROW (first occurrence only).
+  // of row FAULT_STALL_ROW (first occurrence only); never let the engines take a span of row
+  // FAULT_HANG_ROW, so no pixel leaves after it (the co-simulation watchdog must say so).
   parameter int FAULT_LSB_ROW    = -1,
-  parameter int FAULT_STALL_ROW  = -1
+  parameter int FAULT_STALL_ROW  = -1,
+  parameter int FAULT_HANG_ROW   = -1
 ) (
   input  logic                         clk_i,
   input  logic                         rst_ni,
@@ -132,6 +134,7 @@ module shade_unit #(
   logic last_pix;  // ... and it is the last beat of their span
   logic load_eng;  // the engines take the span waiting in setup stage 3
   logic stall_fault;
+  logic hang_fault;
   logic s1_v_q, s2_v_q, s3_v_q, run_q;
   logic s1_move, s2_move, s1_free, s3_free;
   logic datapath_empty, slot_empty;
@@ -561,7 +564,12 @@ module shade_unit #(
     // verilator lint_on UNUSED
     assign stall_fault = 1'b0;
   end
-  assign load_eng = s3_v_q && (!run_q || (emit && last_pix)) && !stall_fault;
+  if (FAULT_HANG_ROW >= 0) begin : g_hang_fault
+    assign hang_fault = s3_q.y == XY_BITS'(FAULT_HANG_ROW);  // never takes that row's span
+  end else begin : g_no_hang_fault
+    assign hang_fault = 1'b0;
+  end
+  assign load_eng = s3_v_q && (!run_q || (emit && last_pix)) && !stall_fault && !hang_fault;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin

@@ -60,6 +60,7 @@ void list_named(bool json) {
       nlohmann::json faults = nlohmann::json::object();
       if (b.faults.lsb_row >= 0) faults["lsb_row"] = b.faults.lsb_row;
       if (b.faults.stall_row >= 0) faults["stall_row"] = b.faults.stall_row;
+      if (b.faults.hang_row >= 0) faults["hang_row"] = b.faults.hang_row;
       all.push_back({{"name", b.name}, {"unit", nlohmann::json::parse(config_to_json(b.unit))},
                      {"faults", faults}, {"backends", b.backends}});
     }

@@ -37,6 +37,7 @@ struct ExploreCliOptions {
   std::string area_cache = SHADESIM_BINARY_DIR "/area-cache";
   int out_bits = 8;
   bool verify = false;
+  std::string emit_jobs;  // FILE: the verification's regress runs as job lines, not run
   bool quiet = false;
 };
 
@@ -97,6 +98,40 @@ struct Verification {
 // Co-simulates each point on every scene through the on-demand Verilated builds (the RTL of a
 // configuration not yet built is Verilated into the build cache first) by running this very
 // shadesim's `regress` as a child, and marks the point verified or not.
+// --emit-jobs: the regress runs --verify would do, one command per line (regress --emit-jobs
+// writes them, so a line is the same as any regress job line), each point's results into
+// <out>/verify/<point>/ for `shadesim merge`.
+void emit_verify_jobs(const std::vector<PointToVerify>& points, const std::vector<std::string>& scenes,
+                      const std::string& out_dir, const std::string& jobs_file) {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) throw std::runtime_error("--emit-jobs: cannot find the shadesim executable: " + ec.message());
+  std::ofstream all(jobs_file);
+  if (!all) throw std::runtime_error("--emit-jobs " + jobs_file + ": cannot open for writing");
+  size_t lines = 0;
+  std::string dirs;
+  for (const auto& p : points) {
+    const std::filesystem::path dir = std::filesystem::path(out_dir) / "verify" / p.name;
+    std::filesystem::create_directories(dir);
+    const std::string part = (dir / "jobs.txt").string(), log = (dir / "emit.log").string();
+    std::vector<std::string> args = {self.string(), "regress"};
+    args.insert(args.end(), scenes.begin(), scenes.end());
+    args.insert(args.end(), {"--config", p.config_file, "--out", dir.string(), "--emit-jobs", part});
+    if (run_process(args, log).exit_code != 0) {
+      throw std::runtime_error("--emit-jobs: shadesim regress --emit-jobs for " + p.name + " failed (log: " + log + ")");
+    }
+    std::ifstream is(part);
+    for (std::string line; std::getline(is, line);) {
+      all << line << '\n';
+      ++lines;
+    }
+    dirs += " " + dir.string();
+  }
+  if (!all) throw std::runtime_error("--emit-jobs " + jobs_file + ": write failed");
+  std::cout << "jobs         " << lines << " regress run(s) of the verification in " << jobs_file
+            << "; run them (parallel < " << jobs_file << "), then shadesim merge" << dirs << "\n";
+}
+
 std::vector<Verification> verify_in_rtl(const std::vector<PointToVerify>& points,
                                         const std::vector<std::string>& scenes, const std::string& out_dir) {
   std::error_code ec;
@@ -430,12 +465,16 @@ int run_explore(const ExploreCliOptions& o) {
 
   // --verify: the chosen point (or, when none meets the budget, the start) in RTL.
   std::vector<Verification> verified;
-  if (o.verify) {
+  if (o.verify || !o.emit_jobs.empty()) {
     std::vector<PointToVerify> points;
     for (const auto& v : to_verify) {
       if (v.name == (r.chosen ? "chosen" : "start")) points.push_back(v);
     }
-    verified = verify_in_rtl(points, o.scenes, out_dir.string());
+    if (!o.emit_jobs.empty()) {
+      emit_verify_jobs(points, o.scenes, out_dir.string(), o.emit_jobs);
+    } else {
+      verified = verify_in_rtl(points, o.scenes, out_dir.string());
+    }
     for (const auto& v : verified) {
       std::cout << "verified     " << v.name << ": "
                 << (v.verified ? "yes - bit- and cycle-exact in RTL" : "NO") << " (" << v.passed
@@ -539,6 +578,9 @@ void register_explore(CLI::App& app, int& exit_code) {
   sub->add_flag("--verify", o->verify,
                 "co-simulate the chosen point on every scene in RTL, both backends (shadesim regress with\n"
                 "--config; its RTL is Verilated on demand) and mark it verified: 0 pixel, 0 cycle mismatches");
+  sub->add_option("--emit-jobs", o->emit_jobs,
+                  "write the regress runs --verify would do into FILE, one shell command per line (for GNU\n"
+                  "parallel or a batch system; README \"Regression on many machines\") instead of running them");
   sub->add_flag("-q,--quiet", o->quiet, "print nothing (use with --json / --csv)");
   sub->callback([o, &exit_code]() { exit_code = run_explore(*o); });
 }

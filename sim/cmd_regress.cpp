@@ -5,27 +5,34 @@
 //
 // By default each scene runs on its own configuration (the smallest unit that shades it); the
 // named builds (sim/harness/builds.json) with --configs, any other unit with --config FILE.json.
+//
+// Beyond one machine (README "Regression on many machines"): the job list is fixed before any
+// run (scenes x configurations x backends, seeds numbered in that order), so --shard I/N and
+// --emit-jobs FILE split it the same way on every host; each run writes its record into its own
+// folder as soon as it ends (sim/regress_results.h), --resume DIR runs only what is not there,
+// and `shadesim merge` puts the folders back together.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <thread>
-
-#include <cstdlib>
 
 #include "host/frame.h"
 #include "host/scene_config.h"
 #include "sim/commands.h"
-#include "sim/junit.h"
 #include "sim/process.h"
+#include "sim/regress_results.h"
 #include "sim/rtl_build.h"
 
 namespace shadesim {
@@ -45,53 +52,56 @@ struct RegressOptions {
   std::string junit_path;
   std::string json_path;
   std::string cache;
+  std::string shard;      // I/N
+  std::string emit_jobs;  // FILE: write one command per run instead of running
+  std::string resume;     // DIR: run what DIR's plans name and DIR has no result for
+  double timeout = 1800;  // seconds per run; 0: none
+  uint64_t watchdog = 0;  // cycles without pix_valid_o that count as a hang; 0: the harness's default
   bool waves = false;
   bool list = false;
 };
 
-struct Job {
-  std::string scene;       // path
-  std::string scene_name;  // stem
-  std::string config;      // the configuration's name in reports
-  RtlConfig build;
-  std::string backend;
-  std::string executable;  // the build's co-simulation executable
-  std::string unit_path;   // the unit as JSON, for --unit
-  std::string stream_path;
-  uint64_t seed = 0;
-  uint64_t pixels = 0;
-  // Filled in by the run.
-  std::string status = "pending";  // pass | mismatch | error | skipped
-  std::string message;
-  uint64_t cycles = 0;
-  double seconds = 0;
-  double cycles_per_second = 0;
-  std::string replay;
-  std::string log_path;
-  std::string waves_path;
+struct Shard {
+  int index = 1, count = 1;  // 1-based, as Slurm's array task ids are
 };
 
-// A field of a result file, or `fallback` when it is absent or null.
-template <typename T>
-T field(const nlohmann::json& j, const char* key, T fallback) {
-  if (!j.is_object() || !j.contains(key) || j.at(key).is_null()) return fallback;
+Shard parse_shard(const std::string& text) {
+  const std::string expected = "--shard '" + text + "': expected I/N with 1 <= I <= N, e.g. 2/3";
+  const auto slash = text.find('/');
+  if (slash == std::string::npos) throw std::invalid_argument(expected);
+  Shard s;
   try {
-    return j.at(key).get<T>();
-  } catch (const nlohmann::json::exception&) {
-    return fallback;
+    size_t used_i = 0, used_n = 0;
+    const std::string i = text.substr(0, slash), n = text.substr(slash + 1);
+    s.index = std::stoi(i, &used_i);
+    s.count = std::stoi(n, &used_n);
+    if (used_i != i.size() || used_n != n.size()) throw std::invalid_argument(expected);
+  } catch (const std::logic_error&) {
+    throw std::invalid_argument(expected);
   }
-}
-
-// A configuration's name as part of a file name: a config file's path ("out/x/chosen.json") has
-// folders in it.
-std::string file_label(const std::string& config) {
-  std::string s = config;
-  if (fs::path(s).extension() == ".json") s = fs::path(s).stem().string();
-  for (char& c : s) {
-    if (c == '/' || c == ':' || c == ' ') c = '_';
-  }
+  if (s.count < 1 || s.index < 1 || s.index > s.count) throw std::invalid_argument(expected);
   return s;
 }
+
+// The stimulus and run limits a plan fixes; every process running part of it uses the same.
+struct RunSettings {
+  int gap_pct = 20, max_gap = 8, stall_pct = 20;
+  double timeout = 1800;
+  uint64_t watchdog = 0;
+};
+
+nlohmann::json settings_json(const RunSettings& s) {
+  return {{"gap_pct", s.gap_pct}, {"max_gap", s.max_gap}, {"stall_pct", s.stall_pct}, {"timeout", s.timeout},
+          {"watchdog", s.watchdog}};
+}
+
+struct Job {
+  RunSpec spec;
+  RtlConfig build;
+  std::string executable;  // the build's co-simulation executable
+  std::string unit_path;   // the unit as JSON, for --unit
+  RunRecord rec;
+};
 
 RtlBuildOptions build_options(const RegressOptions& o) {
   RtlBuildOptions b;
@@ -100,105 +110,7 @@ RtlBuildOptions build_options(const RegressOptions& o) {
   return b;
 }
 
-// Runs one job's co-simulation as a child process; fills status and figures from its JSON.
-void run_job(Job& job, const RegressOptions& o, const fs::path& out) {
-  const std::string base = job.scene_name + "__" + file_label(job.config) + "__" + job.backend;
-  const fs::path result_path = out / "results" / (base + ".json");
-  job.log_path = (out / "logs" / (base + ".log")).string();
-  std::vector<std::string> args = {job.executable,
-                                   "--unit", job.unit_path,
-                                   "--config", job.config,
-                                   "--stream", job.stream_path,
-                                   "--seed", std::to_string(job.seed),
-                                   "--gap-pct", std::to_string(o.gap_pct),
-                                   "--max-gap", std::to_string(o.max_gap),
-                                   "--stall-pct", std::to_string(o.stall_pct),
-                                   "--save-dir", (out / "failing").string(),
-                                   "--json", result_path.string()};
-  // The children are SystemC programs too: keep their logs free of its banner; their replay
-  // lines name the stream, which carries its unit.
-  const ProcessResult r = run_process(args, job.log_path);
-  nlohmann::json j;
-  try {
-    std::ifstream is(result_path);
-    if (is) j = nlohmann::json::parse(is);
-  } catch (const nlohmann::json::exception&) {
-    j = nlohmann::json();
-  }
-  job.cycles = field(j, "cycles", uint64_t{0});
-  job.seconds = field(j, "seconds", 0.0);
-  job.cycles_per_second = field(j, "cycles_per_second", 0.0);
-  job.replay = field(j, "replay", std::string());
-  if (r.exit_code == 0 && field(j, "passed", false)) {
-    job.status = "pass";
-    return;
-  }
-  if (r.exit_code == 1 && j.is_object()) {
-    job.status = "mismatch";
-    job.message = field(field(j, "first_mismatch", nlohmann::json::object()), "message",
-                        std::string("mismatch (the result names none)"));
-    if (o.waves && job.backend == "cpp") {
-      const fs::path fst = out / "waves" / (base + ".fst");
-      args[0] = ensure_rtl_build(job.build, CosimBackend::kCppTrace, build_options(o)).executable;
-      args.back() = (out / "results" / (base + ".waves.json")).string();
-      args.push_back("--waves");
-      args.push_back(fst.string());
-      run_process(args, (out / "logs" / (base + ".waves.log")).string());
-      if (fs::exists(fst)) job.waves_path = fst.string();
-    }
-    return;
-  }
-  job.status = "error";
-  // The last non-empty line of the log says why; the whole log is kept beside the results.
-  std::ifstream log(job.log_path);
-  std::string line, last;
-  while (std::getline(log, line)) {
-    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
-  }
-  job.message = "co-simulation exited with " + std::to_string(r.exit_code) + ": " + last + " (log: " + job.log_path + ")";
-}
-
-std::string fmt(double v, int precision) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(precision) << v;
-  return os.str();
-}
-
-// Column width: the longest entry (at least the header), so long names never run together.
-template <typename F>
-int column_width(const std::vector<Job>& jobs, const std::string& header, F get) {
-  size_t w = header.size();
-  for (const auto& j : jobs) w = std::max(w, get(j).size());
-  return static_cast<int>(w + 2);
-}
-
-void print_table(const std::vector<Job>& jobs) {
-  const int ws = column_width(jobs, "scene", [](const Job& j) { return j.scene_name; });
-  const int wc = column_width(jobs, "config", [](const Job& j) { return j.config; });
-  std::cout << '\n'
-            << std::left << std::setw(ws) << "scene" << std::setw(wc) << "config" << std::setw(9) << "backend"
-            << std::right << std::setw(9) << "pixels" << std::setw(11) << "cycles" << std::setw(8) << "cyc/px"
-            << std::setw(10) << "result" << std::setw(9) << "wall s" << std::setw(11) << "Mcycles/s" << '\n';
-  for (const auto& j : jobs) {
-    // Only a completed run has a cycle count; a mismatch stops the run where it is found.
-    const bool complete = j.status == "pass";
-    std::cout << std::left << std::setw(ws) << j.scene_name << std::setw(wc) << j.config << std::setw(9) << j.backend
-              << std::right << std::setw(9) << j.pixels << std::setw(11) << (complete ? std::to_string(j.cycles) : "-")
-              << std::setw(8)
-              << (complete && j.pixels ? fmt(static_cast<double>(j.cycles) / static_cast<double>(j.pixels), 3) : "-")
-              << std::setw(10) << j.status << std::setw(9) << fmt(j.seconds, 2) << std::setw(11)
-              << (complete ? fmt(j.cycles_per_second / 1e6, 2) : "-") << '\n';
-  }
-  // What each configuration is.
-  std::vector<std::string> seen;
-  std::cout << "\nconfigurations:\n";
-  for (const auto& j : jobs) {
-    if (std::find(seen.begin(), seen.end(), j.config) != seen.end()) continue;
-    seen.push_back(j.config);
-    std::cout << "  " << std::left << std::setw(wc) << j.config << j.build.unit.to_string()
-              << fault_text(j.build.faults) << '\n';
-  }
-}
+fs::path run_dir(const fs::path& out, const RunSpec& s) { return out / "runs" / s.id(); }
 
 // The scene's own configuration: the smallest unit that shades it within its error budget, with
 // real specular hardware (host/scene_config.h states each rule).
@@ -207,6 +119,17 @@ RtlConfig own_config(const std::string& scene) {
   c.name = "own:" + fs::path(scene).stem().string();
   c.unit = derive_config({scene}, DeriveOptions{}).config;
   return c;
+}
+
+// A path of a plan, from the folder the plan was made in.
+std::string from_base(const fs::path& base, const std::string& path) {
+  return base.empty() || fs::path(path).is_absolute() ? path : (base / path).string();
+}
+
+RtlConfig resolve_config(const RunSpec& s, const fs::path& base) {
+  if (s.config_kind == "own") return own_config(from_base(base, s.scene));
+  if (s.config_kind == "named") return named_build(named_builds_path(), s.config);
+  return resolve_rtl_config(from_base(base, s.config), "--config");
 }
 
 // Whether any material of the stream lights a specular term (a build with no specular hardware
@@ -237,66 +160,254 @@ std::vector<std::string> default_scenes() {
   return scenes;
 }
 
-// The configurations every scene runs on: the named (--configs) and file (--config) ones. Empty:
-// each scene on its own.
-std::vector<RtlConfig> chosen_configs(const RegressOptions& o) {
-  std::vector<RtlConfig> configs;
-  for (const auto& name : o.configs) configs.push_back(named_build(named_builds_path(), name));
-  for (const auto& file : o.config_files) configs.push_back(resolve_rtl_config(file, "--config"));
-  return configs;
-}
-
-// Host side: encode each scene for each configuration and save the stream. One scene and
-// configuration at a time (mesh import limits the process's address space while it runs, so it
-// is not done on several threads at once).
-void plan_jobs(const RegressOptions& o, const std::vector<std::string>& scenes, const fs::path& out,
-               std::vector<Job>& jobs, std::vector<Job>& skipped) {
-  const std::vector<RtlConfig> fixed = chosen_configs(o);
-  uint64_t job_seed = o.seed;
+// The whole job list, before any host work: scenes x configurations x backends. Each scene and
+// configuration gets the next seed (both backends the same one), so a run's seed depends only on
+// its place in this list, never on what another run found.
+std::vector<RunSpec> full_run_list(const RegressOptions& o, const std::vector<std::string>& scenes) {
+  std::vector<std::pair<std::string, std::string>> configs;  // kind, name
+  for (const auto& name : o.configs) {
+    named_build(named_builds_path(), name);  // an unknown name fails here, listing the names
+    configs.push_back({"named", name});
+  }
+  for (const auto& file : o.config_files) {
+    resolve_rtl_config(file, "--config");  // an unreadable file fails here, naming the field
+    configs.push_back({"file", file});
+  }
+  std::vector<RunSpec> runs;
+  uint64_t seed = o.seed;
   for (const auto& scene : scenes) {
-    std::vector<RtlConfig> configs = fixed;
-    if (configs.empty()) configs.push_back(own_config(scene));
-    for (const auto& c : configs) {
-      Job proto;
-      proto.scene = scene;
-      proto.scene_name = fs::path(scene).stem().string();
-      proto.config = c.name;
-      proto.build = c;
-      const std::string safe = file_label(c.name);
-      auto skip = [&](const std::string& why) {
-        proto.status = "skipped";
-        proto.message = why;
-        for (const auto& b : o.backends) {
-          proto.backend = b;
-          skipped.push_back(proto);
-        }
-      };
-      FrameOptions fo;
-      fo.base = c.unit;
-      fo.fixed_unit = true;
-      try {
-        const PreparedFrame f = prepare_frame(scene, fo);
-        if (c.unit.specular.kind == SpecularUnitKind::kIdeal && has_highlights(f.encoded.stream)) {
-          skip("configuration " + c.name + " has no specular hardware (the ideal unit's RTL slot outputs 0) "
-               "and the scene has highlights: its pixels cannot match the model");
-          continue;
-        }
-        proto.stream_path = (out / "streams" / (proto.scene_name + "__" + safe + ".cmds")).string();
-        f.encoded.stream.save(proto.stream_path);
-        proto.pixels = f.encoded.stats.pixels;
-      } catch (const std::invalid_argument& e) {
-        skip(e.what());  // the scene needs more than this build has (lights, channels, coordinates)
-        continue;
-      }
-      for (const auto& b : o.backends) {
-        Job j = proto;
-        j.backend = b;
-        j.seed = job_seed;
-        jobs.push_back(j);
-      }
-      ++job_seed;
+    auto mine = configs;
+    if (mine.empty()) mine.push_back({"own", "own:" + fs::path(scene).stem().string()});
+    for (const auto& [kind, name] : mine) {
+      for (const auto& b : o.backends) runs.push_back({scene, kind, name, b, seed});
+      ++seed;
     }
   }
+  return runs;
+}
+
+// What a regress process was asked to run, written into OUT/plans/ before it runs anything:
+// merge compares it with the results to name what is missing; --resume runs the rest of it.
+void write_plan(const fs::path& out, const std::string& name, const RunSettings& settings, const std::string& shard,
+                const std::vector<RunSpec>& all, const std::vector<RunSpec>& selected) {
+  nlohmann::json runs = nlohmann::json::array(), ids = nlohmann::json::array();
+  for (const auto& s : all) runs.push_back(spec_json(s));
+  for (const auto& s : selected) ids.push_back(s.id());
+  // Relative scene and config paths are relative to the folder regress ran in: --resume from
+  // anywhere finds them there.
+  const nlohmann::json plan = {{"tool", "shadesim regress"}, {"shard", shard.empty() ? nlohmann::json() : nlohmann::json(shard)},
+                               {"cwd", fs::current_path().string()}, {"settings", settings_json(settings)},
+                               {"runs", runs}, {"selected", ids}};
+  write_file_atomically((out / "plans" / (name + ".json")).string(), plan.dump(2) + '\n');
+}
+
+struct LoadedPlans {
+  RunSettings settings;
+  std::vector<RunSpec> selected;
+  fs::path base;  // the folder the plans' relative paths are relative to
+};
+
+// --resume DIR: the runs DIR's plans selected, with their settings (which must agree).
+LoadedPlans load_plans(const fs::path& dir) {
+  if (!fs::is_directory(dir)) throw std::invalid_argument("--resume " + dir.string() + ": no such folder");
+  if (!fs::is_directory(dir / "plans")) {
+    throw std::invalid_argument("--resume " + dir.string() + ": not a regress output folder (it has no plans/ folder)");
+  }
+  LoadedPlans lp;
+  std::string settings_from;
+  std::set<std::string> seen;
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(dir / "plans")) {
+    if (e.path().extension() == ".json") files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end());
+  if (files.empty()) throw std::invalid_argument("--resume " + dir.string() + ": plans/ holds no plan (*.json)");
+  for (const auto& f : files) {
+    nlohmann::json j;
+    try {
+      std::ifstream is(f);
+      j = nlohmann::json::parse(is);
+    } catch (const nlohmann::json::exception& e) {
+      throw std::invalid_argument(f.string() + ": not valid JSON (" + e.what() + ")");
+    }
+    if (!j.is_object() || !j.contains("settings") || !j.contains("runs") || !j.contains("selected")) {
+      throw std::invalid_argument(f.string() + ": expected a regress plan with settings, runs and selected");
+    }
+    RunSettings s;
+    try {
+      const auto& js = j.at("settings");
+      s.gap_pct = js.at("gap_pct").get<int>();
+      s.max_gap = js.at("max_gap").get<int>();
+      s.stall_pct = js.at("stall_pct").get<int>();
+      s.timeout = js.at("timeout").get<double>();
+      s.watchdog = js.at("watchdog").get<uint64_t>();
+    } catch (const nlohmann::json::exception& e) {
+      throw std::invalid_argument(f.string() + ": settings: " + e.what());
+    }
+    if (settings_from.empty()) {
+      lp.settings = s;
+      if (j.contains("cwd") && j.at("cwd").is_string()) lp.base = j.at("cwd").get<std::string>();
+      settings_from = f.string();
+    } else if (settings_json(s) != settings_json(lp.settings)) {
+      throw std::invalid_argument(f.string() + ": its settings " + settings_json(s).dump() + " differ from " +
+                                  settings_from + "'s " + settings_json(lp.settings).dump());
+    }
+    std::map<std::string, RunSpec> by_id;
+    for (size_t i = 0; i < j.at("runs").size(); ++i) {
+      const RunSpec spec = spec_from_json(j.at("runs")[i], f.string() + ": runs[" + std::to_string(i) + "]");
+      by_id[spec.id()] = spec;
+    }
+    for (const auto& id : j.at("selected")) {
+      const auto it = by_id.find(id.is_string() ? id.get<std::string>() : std::string());
+      if (it == by_id.end()) throw std::invalid_argument(f.string() + ": selected run " + id.dump() + " is not in runs");
+      if (seen.insert(it->first).second) lp.selected.push_back(it->second);
+    }
+  }
+  return lp;
+}
+
+// A number as a person writes it: 1800, 0.5.
+std::string number_text(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+std::string shell_quote(const std::string& s) {
+  if (!s.empty() && s.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./:=,+-@%") ==
+                        std::string::npos) {
+    return s;
+  }
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// This shadesim, as a path that works from the current folder on every host with the same
+// checkout: relative when it is below the current folder, absolute otherwise.
+std::string self_path() {
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) throw std::runtime_error("--emit-jobs: cannot find the shadesim executable: " + ec.message());
+  const fs::path rel = fs::relative(self, fs::current_path(), ec);
+  if (!ec && !rel.empty() && *rel.begin() != "..") return rel.string();
+  return self.string();
+}
+
+// One self-contained command per run: it plans exactly that run (one scene, one configuration,
+// one backend, its seed) into the same OUT/runs/<id>/ the whole regression would use.
+void emit_jobs(const RegressOptions& o, const RunSettings& settings, const fs::path& out,
+               const std::vector<RunSpec>& all, const std::vector<RunSpec>& selected) {
+  const std::string exe = self_path();
+  std::ostringstream lines;
+  for (const auto& s : selected) {
+    std::vector<std::string> a = {"cd", fs::current_path().string(), "&&", exe, "regress", s.scene};
+    if (s.config_kind == "named") a.insert(a.end(), {"--configs", s.config});
+    if (s.config_kind == "file") a.insert(a.end(), {"--config", s.config});
+    a.insert(a.end(), {"--backends", s.backend, "--seed", std::to_string(s.seed),
+                       "--gap-pct", std::to_string(settings.gap_pct), "--max-gap", std::to_string(settings.max_gap),
+                       "--stall-pct", std::to_string(settings.stall_pct), "--timeout", number_text(settings.timeout),
+                       "--jobs", "1", "--out", out.string()});
+    if (settings.watchdog > 0) a.insert(a.end(), {"--watchdog", std::to_string(settings.watchdog)});
+    if (!o.cache.empty()) a.insert(a.end(), {"--cache", o.cache});
+    if (o.waves) a.push_back("--waves");
+    std::string line;
+    for (const auto& w : a) line += (line.empty() ? "" : " ") + (w == "&&" ? w : shell_quote(w));
+    lines << line << '\n';
+  }
+  std::ofstream os(o.emit_jobs);
+  if (!os) throw std::runtime_error("--emit-jobs " + o.emit_jobs + ": cannot open for writing");
+  os << lines.str();
+  if (!os) throw std::runtime_error("--emit-jobs " + o.emit_jobs + ": write failed");
+  // Every line's run is planned, so merge names a line that never ran.
+  write_plan(out, "emitted", settings, "", all, selected);
+  std::cout << "regress: wrote " << selected.size() << " job line(s) to " << o.emit_jobs << " (results into "
+            << (out / "runs").string() << "/<scene>__<config>__<backend>__seed<S>/)\n"
+            << "  run them:  parallel -j 8 < " << o.emit_jobs << "\n"
+            << "  then:      shadesim merge " << out.string() << " --json merged.json --junit merged.xml\n";
+}
+
+void save_record(const Job& j) {
+  write_file_atomically((fs::path(j.rec.dir) / "run.json").string(), record_json(j.rec).dump(2) + '\n');
+}
+
+// The replay command for a run the harness gave none for (a timeout, a crash).
+std::string replay_command(const Job& j, const RunSettings& settings) {
+  std::string cmd = "shadesim cosim --backend " + j.spec.backend;
+  if (j.spec.config_kind != "own") cmd += " --config " + j.spec.config;
+  cmd += " --stream " + j.rec.stream + " --seed " + std::to_string(j.spec.seed) + " --gap-pct " +
+         std::to_string(settings.gap_pct) + " --max-gap " + std::to_string(settings.max_gap) + " --stall-pct " +
+         std::to_string(settings.stall_pct);
+  if (settings.watchdog > 0) cmd += " --watchdog " + std::to_string(settings.watchdog);
+  return cmd;
+}
+
+// Host side: encode each scene for each configuration, into each of its runs' folders. One scene
+// and configuration at a time (mesh import limits the process's address space while it runs, so
+// it is not done on several threads at once). A run the scene does not fit is skipped, one the
+// host cannot prepare is an error; either is recorded at once.
+std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& out, const fs::path& base) {
+  std::vector<Job> jobs;
+  std::map<std::string, size_t> first_of_pair;  // scene + config -> its first job
+  for (const auto& spec : specs) {
+    Job j;
+    j.spec = spec;
+    j.rec.spec = spec;
+    j.rec.scene_name = fs::path(spec.scene).stem().string();
+    j.rec.dir = run_dir(out, spec).string();
+    j.rec.stream = (fs::path(j.rec.dir) / "stream.cmds").string();
+    j.unit_path = (fs::path(j.rec.dir) / "unit.json").string();
+    fs::create_directories(j.rec.dir);
+    const std::string pair = spec.scene + '\n' + spec.config + '\n' + std::to_string(spec.seed);
+    const auto done = first_of_pair.find(pair);
+    if (done != first_of_pair.end()) {
+      // The pair's other backend: the same unit and stream.
+      const Job& twin = jobs[done->second];
+      j.build = twin.build;
+      j.rec.unit = twin.rec.unit;
+      j.rec.unit_text = twin.rec.unit_text;
+      j.rec.pixels = twin.rec.pixels;
+      j.rec.status = twin.rec.status;
+      j.rec.message = twin.rec.message;
+      if (j.rec.status == "pending") {
+        fs::copy_file(twin.rec.stream, j.rec.stream, fs::copy_options::overwrite_existing);
+        fs::copy_file(twin.unit_path, j.unit_path, fs::copy_options::overwrite_existing);
+      }
+    } else {
+      first_of_pair[pair] = jobs.size();
+      try {
+        j.build = resolve_config(spec, base);
+        j.build.name = spec.config;
+        j.rec.unit = nlohmann::json::parse(config_to_json(j.build.unit));
+        j.rec.unit_text = j.build.unit.to_string() + fault_text(j.build.faults);
+        std::ofstream(j.unit_path) << config_to_json(j.build.unit) << '\n';
+        FrameOptions fo;
+        fo.base = j.build.unit;
+        fo.fixed_unit = true;
+        try {
+          const PreparedFrame f = prepare_frame(from_base(base, spec.scene), fo);
+          j.rec.pixels = f.encoded.stats.pixels;
+          if (j.build.unit.specular.kind == SpecularUnitKind::kIdeal && has_highlights(f.encoded.stream)) {
+            j.rec.status = "skipped";
+            j.rec.message = "configuration " + spec.config +
+                            " has no specular hardware (the ideal unit's RTL slot outputs 0) and the scene has "
+                            "highlights: its pixels cannot match the model";
+          } else {
+            f.encoded.stream.save(j.rec.stream);
+          }
+        } catch (const std::invalid_argument& e) {
+          j.rec.status = "skipped";  // the scene needs more than this build has (lights, channels, coordinates)
+          j.rec.message = e.what();
+        }
+      } catch (const std::exception& e) {
+        j.rec.status = "error";
+        j.rec.message = std::string("host setup failed: ") + e.what();
+      }
+    }
+    if (j.rec.status != "pending") save_record(j);
+    jobs.push_back(j);
+  }
+  return jobs;
 }
 
 // Runs `work(i)` for i in [0, n) on `workers` threads.
@@ -312,8 +423,9 @@ void parallel_for(size_t n, int workers, F work) {
   for (auto& t : pool) t.join();
 }
 
-// Every (configuration, backend) the jobs need, built once; a job whose build failed is an error.
-void build_all(std::vector<Job>& jobs, const RegressOptions& o, const fs::path& out, int workers) {
+// Every (configuration, backend) the pending jobs need, built once; a job whose build failed is
+// an error (recorded at once).
+void build_all(std::vector<Job>& jobs, const RegressOptions& o, int workers) {
   struct Need {
     RtlConfig build;
     CosimBackend backend;
@@ -321,7 +433,8 @@ void build_all(std::vector<Job>& jobs, const RegressOptions& o, const fs::path& 
   };
   std::vector<Need> needs;
   for (auto& j : jobs) {
-    const CosimBackend be = parse_cosim_backend(j.backend);
+    if (j.rec.status != "pending") continue;
+    const CosimBackend be = parse_cosim_backend(j.spec.backend);
     const std::string key = rtl_build_key(j.build, be);
     if (std::none_of(needs.begin(), needs.end(), [&](const Need& n) { return n.key == key; })) {
       needs.push_back({j.build, be, key, "", ""});
@@ -336,94 +449,138 @@ void build_all(std::vector<Job>& jobs, const RegressOptions& o, const fs::path& 
       needs[i].error = e.what();
     }
   });
-  fs::create_directories(out / "units");
   for (auto& j : jobs) {
-    const std::string key = rtl_build_key(j.build, parse_cosim_backend(j.backend));
+    if (j.rec.status != "pending") continue;
+    const std::string key = rtl_build_key(j.build, parse_cosim_backend(j.spec.backend));
     const auto it = std::find_if(needs.begin(), needs.end(), [&](const Need& n) { return n.key == key; });
     if (!it->error.empty()) {
-      j.status = "error";
-      j.message = "RTL build failed: " + it->error;
+      j.rec.status = "error";
+      j.rec.message = "RTL build failed: " + it->error;
+      save_record(j);
       continue;
     }
     j.executable = it->executable;
-    j.unit_path = (out / "units" / (file_label(j.config) + ".json")).string();
-    std::ofstream(j.unit_path) << config_to_json(j.build.unit) << '\n';
   }
 }
 
-void run_jobs(std::vector<Job>& jobs, const RegressOptions& o, const fs::path& out, int workers) {
+// A field of a result file, or `fallback` when it is absent or null.
+template <typename T>
+T field(const nlohmann::json& j, const char* key, T fallback) {
+  if (!j.is_object() || !j.contains(key) || j.at(key).is_null()) return fallback;
+  try {
+    return j.at(key).get<T>();
+  } catch (const nlohmann::json::exception&) {
+    return fallback;
+  }
+}
+
+// Runs one job's co-simulation as a child process; fills its record from the child's JSON.
+void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
+  RunRecord& rec = job.rec;
+  const fs::path dir(rec.dir);
+  const fs::path result_path = dir / "cosim.json";
+  fs::remove(result_path);  // a resumed run must not read the result of an earlier attempt
+  rec.log = (dir / "cosim.log").string();
+  std::vector<std::string> args = {job.executable,
+                                   "--unit", job.unit_path,
+                                   "--config", job.spec.config,
+                                   "--stream", rec.stream,
+                                   "--seed", std::to_string(job.spec.seed),
+                                   "--gap-pct", std::to_string(settings.gap_pct),
+                                   "--max-gap", std::to_string(settings.max_gap),
+                                   "--stall-pct", std::to_string(settings.stall_pct),
+                                   "--save-dir", (dir / "failing").string()};
+  if (settings.watchdog > 0) args.insert(args.end(), {"--watchdog", std::to_string(settings.watchdog)});
+  args.insert(args.end(), {"--json", result_path.string()});
+  // The children are SystemC programs too: keep their logs free of its banner; their replay
+  // lines name the stream, which carries its unit.
+  const auto t0 = std::chrono::steady_clock::now();
+  const ProcessResult r = run_process(args, rec.log, settings.timeout);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (r.timed_out) {
+    rec.status = "timeout";
+    rec.seconds = wall;
+    rec.message = "killed after " + number_text(settings.timeout) + " s (--timeout); log: " + rec.log;
+    rec.replay = replay_command(job, settings);
+    return;
+  }
+  nlohmann::json j;
+  try {
+    std::ifstream is(result_path);
+    if (is) j = nlohmann::json::parse(is);
+  } catch (const nlohmann::json::exception&) {
+    j = nlohmann::json();
+  }
+  rec.cycles = field(j, "cycles", uint64_t{0});
+  rec.seconds = field(j, "seconds", 0.0);
+  rec.cycles_per_second = field(j, "cycles_per_second", 0.0);
+  rec.replay = field(j, "replay", std::string());
+  if (r.exit_code == 0 && field(j, "passed", false)) {
+    rec.status = "pass";
+    return;
+  }
+  if (r.exit_code == 1 && j.is_object()) {
+    const nlohmann::json first = field(j, "first_mismatch", nlohmann::json::object());
+    rec.status = field(first, "kind", std::string()) == "hang" ? "hang" : "mismatch";
+    rec.message = field(first, "message", std::string("mismatch (the result names none)"));
+    if (o.waves && job.spec.backend == "cpp") {
+      const fs::path fst = dir / "waves.fst";
+      args[0] = ensure_rtl_build(job.build, CosimBackend::kCppTrace, build_options(o)).executable;
+      args.back() = (dir / "waves.json").string();
+      args.push_back("--waves");
+      args.push_back(fst.string());
+      run_process(args, (dir / "waves.log").string(), settings.timeout);
+      if (fs::exists(fst)) rec.waves = fst.string();
+    }
+    return;
+  }
+  rec.status = "error";
+  if (rec.replay.empty()) rec.replay = replay_command(job, settings);
+  // The last non-empty line of the log says why; the whole log is kept beside the results.
+  std::ifstream log(rec.log);
+  std::string line, last;
+  while (std::getline(log, line)) {
+    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
+  }
+  rec.message = "co-simulation exited with " + std::to_string(r.exit_code) + ": " + last + " (log: " + rec.log + ")";
+}
+
+std::string fmt(double v, int precision) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(precision) << v;
+  return os.str();
+}
+
+// Runs the pending jobs; each writes its record the moment it ends, so a killed regression keeps
+// every finished run.
+void run_jobs(std::vector<Job>& jobs, const RegressOptions& o, const RunSettings& settings, int workers) {
   std::atomic<size_t> done{0};
   std::mutex print_mutex;
   parallel_for(jobs.size(), workers, [&](size_t i) {
     Job& j = jobs[i];
-    if (j.status == "pending") {
+    if (j.rec.status == "pending") {
       try {
-        run_job(j, o, out);
+        run_job(j, o, settings);
       } catch (const std::exception& e) {
-        j.status = "error";
-        j.message = e.what();
+        j.rec.status = "error";
+        j.rec.message = e.what();
+      }
+      try {
+        save_record(j);
+      } catch (const std::exception& e) {
+        j.rec.status = "error";
+        j.rec.message += std::string(" (and its record could not be written: ") + e.what() + ")";
       }
     }
     const size_t n = ++done;
+    const RunRecord& r = j.rec;
     std::lock_guard<std::mutex> lock(print_mutex);
-    std::cout << "[" << n << "/" << jobs.size() << "] " << j.scene_name << " x " << j.config << " (" << j.backend
-              << "): " << j.status << ", " << j.cycles << " cycles, " << fmt(j.seconds, 2) << " s";
-    if (j.status != "pass") std::cout << "\n    " << j.message << (j.replay.empty() ? "" : "\n    replay: " + j.replay);
-    if (!j.waves_path.empty()) std::cout << "\n    waves: " << j.waves_path;
+    std::cout << "[" << n << "/" << jobs.size() << "] " << r.spec.id() << ": " << r.status << ", " << r.cycles
+              << " cycles, " << fmt(r.seconds, 2) << " s";
+    if (r.status != "pass") std::cout << "\n    " << r.message << (r.replay.empty() ? "" : "\n    replay: " + r.replay);
+    if (!r.waves.empty()) std::cout << "\n    waves: " << r.waves;
     std::cout << std::endl;
   });
-}
-
-// Both backends simulate the same RTL on the same stimulus: their cycle counts must agree.
-void check_backends_agree(std::vector<Job>& jobs) {
-  for (size_t a = 0; a < jobs.size(); ++a) {
-    for (size_t b = a + 1; b < jobs.size(); ++b) {
-      if (jobs[a].scene == jobs[b].scene && jobs[a].config == jobs[b].config && jobs[a].status == "pass" &&
-          jobs[b].status == "pass" && jobs[a].cycles != jobs[b].cycles) {
-        jobs[b].status = "mismatch";
-        jobs[b].message = "backends disagree: " + jobs[a].backend + " " + std::to_string(jobs[a].cycles) +
-                          " cycles, " + jobs[b].backend + " " + std::to_string(jobs[b].cycles);
-      }
-    }
-  }
-}
-
-void write_junit_report(const std::string& path, const std::vector<Job>& jobs) {
-  JUnitSuite suite{"shadesim.regress", {}};
-  for (const auto& j : jobs) {
-    JUnitCase c;
-    c.classname = "regress." + j.scene_name;
-    c.name = j.config + "." + j.backend;
-    c.seconds = j.seconds;
-    if (j.status == "mismatch" || j.status == "error") {
-      c.failure = j.message + (j.replay.empty() ? "" : "\nreplay: " + j.replay);
-    } else if (j.status == "skipped") {
-      c.skipped = j.message;
-    }
-    suite.cases.push_back(c);
-  }
-  write_junit(path, suite);
-}
-
-void write_json_report(const std::string& path, const RegressOptions& o, const std::vector<Job>& jobs,
-                       const nlohmann::json& totals) {
-  nlohmann::json all = nlohmann::json::array();
-  for (const auto& j : jobs) {
-    all.push_back({{"scene", j.scene}, {"config", j.config},
-                   {"unit", nlohmann::json::parse(config_to_json(j.build.unit))},
-                   {"backend", j.backend}, {"status", j.status},
-                   {"pixels", j.pixels}, {"cycles", j.cycles},
-                   {"cycles_per_pixel", j.pixels ? static_cast<double>(j.cycles) / static_cast<double>(j.pixels) : 0.0},
-                   {"seconds", j.seconds}, {"cycles_per_second", j.cycles_per_second}, {"seed", j.seed},
-                   {"message", j.message}, {"replay", j.replay}, {"stream", j.stream_path}, {"log", j.log_path},
-                   {"waves", j.waves_path}});
-  }
-  nlohmann::json doc = totals;
-  doc["seed"] = o.seed;
-  doc["jobs"] = all;
-  std::ofstream os(path);
-  if (!os) throw std::runtime_error(path + ": cannot open for writing");
-  os << doc.dump(2) << '\n';
 }
 
 void list_named_builds() {
@@ -444,48 +601,97 @@ int run_regress(const RegressOptions& o) {
   for (const auto& b : o.backends) {
     if (b != "cpp" && b != "systemc") throw std::invalid_argument("--backends: '" + b + "': expected cpp or systemc");
   }
-  const std::vector<std::string> scenes = o.scenes.empty() ? default_scenes() : o.scenes;
-  const fs::path out(o.out_dir);
-  for (const char* sub : {"streams", "results", "logs", "failing", "waves"}) fs::create_directories(out / sub);
   const int workers = std::max(1, o.jobs > 0 ? o.jobs : static_cast<int>(std::thread::hardware_concurrency()));
-  const bool own = o.configs.empty() && o.config_files.empty();
-  std::cout << "regress: seed " << o.seed << ", " << scenes.size() << " scene(s) x "
-            << (own ? std::string("its own configuration") : std::to_string(o.configs.size() + o.config_files.size()) +
-                                                                 " configuration(s)")
-            << " x " << o.backends.size() << " backend(s); stimulus gap " << o.gap_pct << "% (max " << o.max_gap
-            << "), back-pressure " << o.stall_pct << "%" << std::endl;
+  RunSettings settings{o.gap_pct, o.max_gap, o.stall_pct, o.timeout, o.watchdog};
 
-  std::vector<Job> jobs, skipped;
-  plan_jobs(o, scenes, out, jobs, skipped);
+  // What to run: the runs DIR's plans name (--resume), or the job list (its --shard).
+  std::vector<RunSpec> selected;
+  std::vector<RunRecord> earlier;  // --resume: results already there
+  fs::path out(o.out_dir);
+  fs::path base;  // --resume: where the plan's relative paths start
+  if (!o.resume.empty()) {
+    if (!o.scenes.empty() || !o.configs.empty() || !o.config_files.empty() || !o.shard.empty() ||
+        !o.emit_jobs.empty()) {
+      throw std::invalid_argument("--resume " + o.resume + " takes its runs and settings from " + o.resume +
+                                  "/plans/; give no scenes, --configs, --config, --shard or --emit-jobs with it");
+    }
+    out = o.resume;
+    const LoadedPlans plans = load_plans(out);
+    settings = plans.settings;
+    base = plans.base;
+    for (const auto& spec : plans.selected) {
+      const fs::path record = run_dir(out, spec) / "run.json";
+      if (fs::exists(record)) {
+        try {
+          RunRecord r = read_run_record(record.string());
+          if (r.status != "error") {  // an error may be the machine's: run it again
+            earlier.push_back(r);
+            continue;
+          }
+        } catch (const std::exception& e) {
+          std::cout << "regress: " << e.what() << ": running it again" << std::endl;
+        }
+      }
+      selected.push_back(spec);
+    }
+    std::cout << "regress: resuming " << out.string() << ": " << earlier.size() << " run(s) already there, "
+              << selected.size() << " to run" << std::endl;
+  } else {
+    const std::vector<std::string> scenes = o.scenes.empty() ? default_scenes() : o.scenes;
+    const std::vector<RunSpec> all = full_run_list(o, scenes);
+    const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
+    for (size_t i = 0; i < all.size(); ++i) {
+      if (static_cast<int>(i % static_cast<size_t>(shard.count)) == shard.index - 1) selected.push_back(all[i]);
+    }
+    if (!o.emit_jobs.empty()) {
+      emit_jobs(o, settings, out, all, selected);
+      return 0;
+    }
+    const std::string plan_name = !o.shard.empty() ? "shard-" + std::to_string(shard.index) + "-of-" +
+                                                         std::to_string(shard.count)
+                                  : all.size() == 1 ? "run-" + all.front().id()
+                                                    : "all";
+    write_plan(out, plan_name, settings, o.shard, all, selected);
+    const bool own = o.configs.empty() && o.config_files.empty();
+    std::cout << "regress: seed " << o.seed << ", " << scenes.size() << " scene(s) x "
+              << (own ? std::string("its own configuration")
+                      : std::to_string(o.configs.size() + o.config_files.size()) + " configuration(s)")
+              << " x " << o.backends.size() << " backend(s)"
+              << (o.shard.empty() ? "" : "; shard " + o.shard + ": " + std::to_string(selected.size()) + " of " +
+                                             std::to_string(all.size()) + " run(s)")
+              << std::endl;
+  }
+  std::cout << "regress: stimulus gap " << settings.gap_pct << "% (max " << settings.max_gap << "), back-pressure "
+            << settings.stall_pct << "%; per-run timeout "
+            << (settings.timeout > 0 ? number_text(settings.timeout) + " s" : std::string("none")) << "; results in "
+            << (out / "runs").string() << std::endl;
+
+  std::vector<Job> jobs = plan_jobs(selected, out, base);
   const auto t0 = std::chrono::steady_clock::now();
-  build_all(jobs, o, out, workers);
-  run_jobs(jobs, o, out, workers);
+  build_all(jobs, o, workers);
+  run_jobs(jobs, o, settings, workers);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  check_backends_agree(jobs);
-  jobs.insert(jobs.end(), skipped.begin(), skipped.end());
 
-  print_table(jobs);
-  const auto count = [&](const char* s) {
-    return std::count_if(jobs.begin(), jobs.end(), [&](const Job& j) { return j.status == s; });
-  };
-  const long passed = count("pass"), mismatched = count("mismatch"), errors = count("error"), skips = count("skipped");
-  std::cout << "\nregress: " << passed << " passed, " << mismatched << " mismatched, " << errors << " error(s), "
-            << skips << " skipped (the scene does not fit the configuration) in " << fmt(wall, 1) << " s with "
-            << workers << " job(s); seed " << o.seed << '\n';
-  for (const auto& j : jobs) {
-    if (j.status == "skipped") std::cout << "  skipped " << j.scene_name << " x " << j.config << ": " << j.message << '\n';
+  std::vector<RunRecord> records = earlier;
+  for (const auto& j : jobs) records.push_back(j.rec);
+  sort_records(records);
+  check_backends_agree(records);
+  print_run_table(records);
+  const RunCounts c = count_runs(records);
+  std::cout << "\nregress: " << c.passed << " passed, " << c.mismatched << " mismatched, " << c.hangs << " hung, "
+            << c.timeouts << " timed out, " << c.errors << " error(s), " << c.skipped
+            << " skipped (the scene does not fit the configuration) in " << fmt(wall, 1) << " s with " << workers
+            << " job(s)\n";
+  for (const auto& r : records) {
+    if (r.status == "skipped") std::cout << "  skipped " << r.scene_name << " x " << r.spec.config << ": " << r.message << '\n';
   }
-  if (!o.junit_path.empty()) write_junit_report(o.junit_path, jobs);
-  if (!o.json_path.empty()) {
-    write_json_report(o.json_path, o, jobs,
-                      {{"passed", passed}, {"mismatched", mismatched}, {"errors", errors}, {"skipped", skips},
-                       {"wall_seconds", wall}});
-  }
-  if (passed == 0 && mismatched == 0 && errors == 0) {
+  if (!o.junit_path.empty()) write_junit_report(o.junit_path, records);
+  if (!o.json_path.empty()) write_json_report(o.json_path, records, {{"seed", o.seed}, {"wall_seconds", wall}});
+  if (c.passed == 0 && !c.failed()) {
     std::cout << "regress: FAIL: no run was executed\n";
     return 1;
   }
-  return (mismatched > 0 || errors > 0) ? 1 : 0;
+  return c.failed() ? 1 : 0;
 }
 
 }  // namespace
@@ -502,8 +708,14 @@ void register_regress(CLI::App& app, int& exit_code) {
       "see --list), --config any UnitConfig FILE.json. The RTL of each configuration is Verilated on\n"
       "demand into the build cache. Each run compares every pixel bit for bit with the bit-accurate\n"
       "model and every scanline's completion cycle with the cycle model, under seeded input gaps and\n"
-      "output back-pressure. Exits 1 on any mismatch (naming it, with a replay command) and when no\n"
-      "run was executed.");
+      "output back-pressure. Exits 1 on any mismatch, hang, timeout or error (naming it, with a replay\n"
+      "command) and when no run was executed.\n"
+      "\n"
+      "Many machines: each run writes OUT/runs/<scene>__<config>__<backend>__seed<S>/run.json the\n"
+      "moment it ends. --shard I/N runs every N-th run of the job list (Slurm: --shard\n"
+      "$SLURM_ARRAY_TASK_ID/N), --emit-jobs FILE writes one command per run for GNU parallel,\n"
+      "--resume OUT runs what OUT's plan has no result for, and `shadesim merge OUT...` reports the\n"
+      "whole regression.");
   sub->add_option("scenes", o->scenes, "scene files (default: scenes/*.json)")->check(CLI::ExistingFile);
   sub->add_option("--configs", o->configs, "named builds to run every scene on (see --list)")
       ->delimiter(',')->allow_extra_args(false);
@@ -511,16 +723,31 @@ void register_regress(CLI::App& app, int& exit_code) {
       ->allow_extra_args(false);
   sub->add_option("--backends", o->backends, "cpp, systemc or both (comma-separated)")
       ->delimiter(',')->allow_extra_args(false)->capture_default_str();
-  sub->add_option("--seed", o->seed, "seed of the stimulus (printed on every run)")->capture_default_str();
+  sub->add_option("--seed", o->seed,
+                  "seed of the first scene x configuration; each next one gets the next seed (printed on every run)")
+      ->capture_default_str();
   sub->add_option("-j,--jobs", o->jobs, "parallel builds and co-simulations (default: hardware threads)")
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--gap-pct", o->gap_pct, "chance of idle cycles before a command word")->check(CLI::Range(0, 100))->capture_default_str();
   sub->add_option("--max-gap", o->max_gap, "longest idle gap in cycles")->check(CLI::Range(1, 100000))->capture_default_str();
   sub->add_option("--stall-pct", o->stall_pct, "chance of output back-pressure per cycle")->check(CLI::Range(0, 99))->capture_default_str();
-  sub->add_option("-o,--out", o->out_dir, "where streams, results, logs and waveforms go")->capture_default_str();
+  sub->add_option("-o,--out", o->out_dir, "where plans and each run's folder (stream, logs, result) go")->capture_default_str();
   sub->add_option("--junit", o->junit_path, "write JUnit XML for CI");
   sub->add_option("--json", o->json_path, "write every run's figures as JSON");
   sub->add_option("--cache", o->cache, "RTL build cache folder (default: <build>/rtl-cache)");
+  sub->add_option("--shard", o->shard,
+                  "I/N: run only the I-th of N equal shards of the job list (runs I, I+N, I+2N, ...; 1 <= I <= N)");
+  sub->add_option("--emit-jobs", o->emit_jobs,
+                  "write one self-contained shell command per run into FILE (for GNU parallel, a batch\n"
+                  "system) instead of running; each writes into --out");
+  sub->add_option("--resume", o->resume,
+                  "DIR: a regress output folder; run the runs its plans name that have no result there yet\n"
+                  "(and those that ended in an error), with the settings they were planned with");
+  sub->add_option("--timeout", o->timeout, "seconds a run may take before it is killed and reported as a timeout (0: none)")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
+  sub->add_option("--watchdog", o->watchdog,
+                  "cycles without pix_valid_o, while pixels are still expected, that count as a hang\n"
+                  "(default 0: the cycle model's longest pixel-less stretch of each stream + 1000)");
   sub->add_flag("--waves", o->waves, "on a mismatch, re-run the C++ backend with FST tracing of the window around it");
   sub->add_flag("--list", o->list, "list the named builds and exit");
   sub->callback([o, &exit_code]() { exit_code = run_regress(*o); });

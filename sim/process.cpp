@@ -5,7 +5,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <cerrno>
+#include <chrono>
+#include <thread>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -17,6 +20,43 @@ extern char** environ;
 namespace shadesim {
 
 ProcessResult run_process(const std::vector<std::string>& argv, const std::string& log_path) {
+  return run_process(argv, log_path, 0.0);
+}
+
+namespace {
+
+// Waits for `pid`; with a timeout, polls and kills it (TERM, then KILL) once it has run too long.
+int wait_child(pid_t pid, double timeout_seconds, bool& timed_out) {
+  int status = 0;
+  if (timeout_seconds <= 0) {
+    while (waitpid(pid, &status, 0) < 0) {
+      if (errno != EINTR) throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
+    }
+    return status;
+  }
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  auto term_sent = clock::time_point{};
+  for (;;) {
+    const pid_t r = waitpid(pid, &status, WNOHANG);
+    if (r == pid) return status;
+    if (r < 0 && errno != EINTR) throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
+    const double elapsed = std::chrono::duration<double>(clock::now() - start).count();
+    if (!timed_out && elapsed > timeout_seconds) {
+      timed_out = true;
+      kill(pid, SIGTERM);
+      term_sent = clock::now();
+    } else if (timed_out && clock::now() - term_sent > std::chrono::seconds(5)) {
+      kill(pid, SIGKILL);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+}  // namespace
+
+ProcessResult run_process(const std::vector<std::string>& argv, const std::string& log_path,
+                          double timeout_seconds) {
   if (argv.empty()) throw std::invalid_argument("run_process: no program");
   // Without a log file, capture through a temporary file (simple, no pipe deadlocks).
   std::string path = log_path;
@@ -41,11 +81,8 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::strin
   if (rc != 0) {
     throw std::runtime_error("cannot run '" + argv[0] + "': " + std::strerror(rc));
   }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
-  }
   ProcessResult r;
+  const int status = wait_child(pid, timeout_seconds, r.timed_out);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
   if (log_path.empty()) {
     std::ifstream is(path);

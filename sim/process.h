@@ -8,6 +8,7 @@ namespace shadesim {
 
 struct ProcessResult {
   int exit_code = -1;  // the child's exit status; 128 + signal when it was killed
+  bool timed_out = false;  // killed because it ran past the timeout
   std::string output;  // stdout and stderr, when no log file was given
 };
 
@@ -15,5 +16,9 @@ struct ProcessResult {
 // captured into ProcessResult::output when log_path is empty. Throws std::runtime_error when
 // the program cannot be started.
 ProcessResult run_process(const std::vector<std::string>& argv, const std::string& log_path);
+// The same with a limit: past `timeout_seconds` (> 0) of wall time the child gets SIGTERM, and
+// SIGKILL 5 s later if it is still there; the result says timed_out. 0: no limit.
+ProcessResult run_process(const std::vector<std::string>& argv, const std::string& log_path,
+                          double timeout_seconds);
 
 }  // namespace shadesim

@@ -329,7 +329,10 @@ RtlBuildResult ensure_rtl_build(const RtlConfig& build, CosimBackend backend,
   for (const auto& e : fs::directory_iterator(cache)) {
     if (e.path().filename().string().rfind(stem + ".tmp.", 0) == 0) fs::remove_all(e.path());
   }
-  const fs::path work = cache / (stem + ".tmp." + std::to_string(getpid()));
+  // Host and pid: on a cache shared over NFS two hosts can have the same pid.
+  char host[256] = {0};
+  gethostname(host, sizeof host - 1);
+  const fs::path work = cache / (stem + ".tmp." + host + "." + std::to_string(getpid()));
   fs::create_directories(work);
   const fs::path log = work / "build.log";
   try {

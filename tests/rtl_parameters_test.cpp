@@ -94,6 +94,11 @@ TEST(RtlParameters, FaultsOnlyWhenInjectedAndToolSyntax) {
   const auto m = as_map(params);
   EXPECT_EQ(m.at("FAULT_STALL_ROW"), 23);
   EXPECT_EQ(m.count("FAULT_LSB_ROW"), 0u);
+  EXPECT_EQ(m.count("FAULT_HANG_ROW"), 0u);
+  InjectedFaults hang;
+  hang.hang_row = 100;
+  EXPECT_TRUE(hang.any());
+  EXPECT_EQ(as_map(shade_unit_parameters(UnitConfig{}, hang)).at("FAULT_HANG_ROW"), 100);
   EXPECT_EQ(verilator_parameter_args(params).front(), "-GCHANNELS=1");
   EXPECT_EQ(iverilog_parameter_args(params, "tb").front(), "-Ptb.CHANNELS=1");
   EXPECT_EQ(yosys_chparam_args({{"A", 1}, {"B", -1}}), "-set A 1 -set B -1");

@@ -13,6 +13,7 @@
 #include "sim/harness/rtl_config.h"
 #include "sim/harness/scoreboard.h"
 #include "model/stimulus.h"
+#include "sim/harness/watchdog.h"
 
 namespace shadesim {
 
@@ -21,6 +22,7 @@ struct CosimJob {
   std::string scenario;  // for reports; "replay" for a loaded stream
   CommandStream stream;
   Stimulus stim;
+  uint64_t watchdog_cycles = 0;  // hang limit (sim/harness/watchdog.h); 0: the cycle model's
 };
 
 // Cycles to dump into an FST file (trace-enabled builds only), inclusive. The run goes on past
@@ -42,11 +44,13 @@ struct CosimResult {
 constexpr uint64_t kWaveUnitsPerCycle = 10;
 
 // Everything both backends need before the first clock: the words on the cmd port, the
-// bit-accurate model's pixels, and a cycle bound past which the run counts as hung.
+// bit-accurate model's pixels, a cycle bound past which the run counts as hung, and the
+// watchdog's limit of cycles without pix_valid_o.
 struct Prepared {
   std::vector<uint64_t> words;
   std::vector<PixelOut> expected;
   uint64_t cycle_limit = 0;
+  uint64_t watchdog_cycles = 0;
 };
 
 inline Prepared prepare(const CosimJob& job) {
@@ -54,7 +58,9 @@ inline Prepared prepare(const CosimJob& job) {
   p.words = job.stream.encode();
   ShadeUnit unit(job.config.unit);
   p.expected = unit.run(job.stream);
-  p.cycle_limit = CycleModel::run(p.words, job.stim, CycleConfig::of(job.config.unit)).cycles + 1000;
+  const PixelTiming timing = predict_pixel_timing(p.words, job.stim, CycleConfig::of(job.config.unit));
+  p.cycle_limit = timing.cycles + 1000;
+  p.watchdog_cycles = job.watchdog_cycles > 0 ? job.watchdog_cycles : timing.longest_quiet + kWatchdogMargin;
   return p;
 }
 

@@ -73,6 +73,7 @@ InjectedFaults built_faults() {
   for (const auto& p : built_parameters()) {
     if (p.name == "FAULT_LSB_ROW") f.lsb_row = static_cast<int>(p.value);
     if (p.name == "FAULT_STALL_ROW") f.stall_row = static_cast<int>(p.value);
+    if (p.name == "FAULT_HANG_ROW") f.hang_row = static_cast<int>(p.value);
   }
   return f;
 }
@@ -107,6 +108,7 @@ struct Options {
   std::string waves_path;
   uint64_t waves_before = 200, waves_after = 16;
   double min_spec_pct = 0;
+  uint64_t watchdog = 0;  // cycles without pix_valid_o that count as a hang; 0: from the cycle model
   bool list = false;
 };
 
@@ -114,12 +116,19 @@ nlohmann::json faults_json(const InjectedFaults& f) {
   nlohmann::json j = nlohmann::json::object();
   if (f.lsb_row >= 0) j["lsb_row"] = f.lsb_row;
   if (f.stall_row >= 0) j["stall_row"] = f.stall_row;
+  if (f.hang_row >= 0) j["hang_row"] = f.hang_row;
   return j;
 }
 
 // One line naming everything needed to find the mismatch.
 std::string mismatch_message(const Mismatch& m, const RtlConfig& c) {
   std::ostringstream os;
+  if (m.kind == Mismatch::Kind::kHang) {
+    os << "hang in configuration " << c.name << " [" << c.unit.to_string() << fault_text(c.faults)
+       << "]: " << m.got << ", at cycle " << m.cycle << ", while expecting " << m.expected << " (scanline "
+       << m.scanline << ")";
+    return os.str();
+  }
   os << to_string(m.kind) << " mismatch in configuration " << c.name << " [" << c.unit.to_string()
      << fault_text(c.faults) << "]: scanline " << m.scanline << " (y=" << m.y << "), x=" << m.x << ", cycle "
      << m.cycle << ": expected " << m.expected << ", got " << m.got;
@@ -200,6 +209,7 @@ std::vector<CosimJob> make_jobs(const Options& o, const RtlConfig& build) {
                        " differs from --config " + build.name + " (" + build.unit.to_string() + ")");
     }
     job.stim = apply_overrides(Stimulus{}, o.seed);
+    job.watchdog_cycles = o.watchdog;
     jobs.push_back(job);
     return jobs;
   }
@@ -220,6 +230,7 @@ std::vector<CosimJob> make_jobs(const Options& o, const RtlConfig& build) {
       const uint64_t seed = o.seed + static_cast<uint64_t>(k);
       job.stream = random_stream(build.unit, sc.shape, seed);
       job.stim = apply_overrides(sc.stim, seed);
+      job.watchdog_cycles = o.watchdog;
       jobs.push_back(job);
     }
   }
@@ -273,8 +284,8 @@ int run_all(const Options& o) {
     } catch (const std::logic_error&) {
       throw InputError("--expect-mismatch '" + o.expect + "': expected KIND:Y, e.g. pixel:17");
     }
-    if (expect_kind != "pixel" && expect_kind != "cycle") {
-      throw InputError("--expect-mismatch kind '" + expect_kind + "': expected pixel or cycle");
+    if (expect_kind != "pixel" && expect_kind != "cycle" && expect_kind != "hang") {
+      throw InputError("--expect-mismatch kind '" + expect_kind + "': expected pixel, cycle or hang");
     }
   }
   if (!o.waves_path.empty() && !kTraced) {
@@ -335,7 +346,8 @@ int run_all(const Options& o) {
       // alone names its unit in its header.
       const bool named = job.config.name != "custom" && job.config.name != "stream";
       out.replay = std::string(SHADESIM_EXE) + (named ? " --config " + job.config.name : "") + " --stream " + out.saved_stream +
-                   ' ' + job.stim.to_args();
+                   ' ' + job.stim.to_args() + (o.watchdog > 0 ? " --watchdog " + std::to_string(o.watchdog) : "");
+      if (m.kind == Mismatch::Kind::kHang) std::cout << "  HANG: " << mismatch_message(m, job.config) << '\n';
       std::cout << "  first mismatch (" << to_string(m.kind) << "): configuration " << job.config.name
                 << " [" << job.config.unit.to_string() << fault_text(job.config.faults) << "]\n"
                 << "    scanline " << m.scanline << " (y=" << m.y << "), x=" << m.x << ", cycle " << m.cycle << '\n'
@@ -421,7 +433,7 @@ int cosim_main(int argc, char** argv) {
   app.add_option("--max-gap", o.max_gap, "override: longest idle gap")->check(CLI::Range(1, 100000));
   app.add_option("--stall-pct", o.stall_pct, "override: chance of pix_ready low per cycle")->check(CLI::Range(0, 99));
   app.add_option("--expect-mismatch", o.expect,
-                 "KIND:Y - succeed only if the first mismatch is KIND (pixel|cycle) at scanline y=Y");
+                 "KIND:Y - succeed only if the first mismatch is KIND (pixel|cycle|hang) at scanline y=Y");
   app.add_option("--save-dir", o.save_dir, "where a failing run's command stream is saved");
   auto* json_opt = app.add_option("--json", o.json_path, "write each run's result as JSON to this file")
                        ->expected(0, 1);
@@ -430,6 +442,9 @@ int cosim_main(int argc, char** argv) {
   app.add_option("--min-spec-pct", o.min_spec_pct,
                  "fail a run where the specular term changes fewer than this percentage of the pixels")
       ->check(CLI::Range(0.0, 100.0));
+  app.add_option("--watchdog", o.watchdog,
+                 "cycles without pix_valid_o, while pixels are still expected, that count as a hang "
+                 "(default 0: the cycle model's longest pixel-less stretch on this stream + 1000)");
   app.add_option("--waves-before", o.waves_before, "cycles before the mismatch in the waveform")->capture_default_str();
   app.add_option("--waves-after", o.waves_after, "cycles after the mismatch in the waveform")->capture_default_str();
   try {

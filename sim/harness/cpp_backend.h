@@ -97,6 +97,7 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
   CommandDriver rtl_driver(prep.words, job.stim, cfg.port_words);
   CommandDriver model_driver(prep.words, job.stim, cfg.port_words);
   CycleModel model(CycleConfig::of(cfg));
+  PixelWatchdog watchdog(prep.watchdog_cycles);
   uint64_t cycle = 0;
   for (;; ++cycle) {
     const bool ready = job.stim.pix_ready(cycle);
@@ -110,6 +111,7 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
     const uint64_t t = (cycle + kResetCycles) * kWaveUnitsPerCycle;
     dump(cycle, t);
     const bool cmd_fire = valid && top.cmd_ready_o;
+    const bool pix_valid = top.pix_valid_o;
     if (top.pix_valid_o && ready) {
       score_beat(board, top.pix_x_o, top.pix_y_o, top.pix_mask_o, top.pix_eor_o,
                  [&top](int lsb, int width) { return out_bits_of(top.pix_colour_o, lsb, width); }, cfg, cycle);
@@ -128,6 +130,10 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
     if (cycle > prep.cycle_limit) {
       board.timeout(cycle);
       break;
+    }
+    if (watchdog.expired(cycle, pix_valid, board)) {
+      board.hang(cycle, watchdog.quiet_since(), watchdog.limit());
+      if (!window_open) break;
     }
   }
   top.final();

@@ -44,6 +44,7 @@ std::vector<RtlConfig> load_named_builds(const std::string& path) {
       };
       c.faults.lsb_row = row("lsb_row");
       c.faults.stall_row = row("stall_row");
+      c.faults.hang_row = row("hang_row");
     }
     if (b.contains("backends")) {
       for (const auto& be : b.at("backends")) {
@@ -73,6 +74,7 @@ std::string fault_text(const InjectedFaults& f) {
   std::string s;
   if (f.lsb_row >= 0) s += " fault=lsb@y" + std::to_string(f.lsb_row);
   if (f.stall_row >= 0) s += " fault=stall@y" + std::to_string(f.stall_row);
+  if (f.hang_row >= 0) s += " fault=hang@y" + std::to_string(f.hang_row);
   return s;
 }
 

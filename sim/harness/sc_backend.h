@@ -131,9 +131,10 @@ SC_MODULE(ScCycleModel) {
 
   SC_HAS_PROCESS(ScCycleModel);
   ScCycleModel(sc_core::sc_module_name name, const std::vector<uint64_t>& words, const Stimulus& stim,
-               CycleConfig timing, Scoreboard& board, uint64_t cycle_limit)
+               CycleConfig timing, Scoreboard& board, uint64_t cycle_limit,
+               const sc_core::sc_signal<bool>& pix_valid, uint64_t watchdog_cycles)
       : sc_module(name), driver_(words, stim, timing.port_words), stim_(stim), model_(timing), board_(board),
-        limit_(cycle_limit) {
+        limit_(cycle_limit), pix_valid_(pix_valid), watchdog_(watchdog_cycles) {
     SC_METHOD(tick);
     sensitive << clk.pos();
     dont_initialize();
@@ -153,6 +154,9 @@ SC_MODULE(ScCycleModel) {
     } else if (c > limit_) {
       board_.timeout(c);
       sc_core::sc_stop();
+    } else if (watchdog_.expired(c, pix_valid_.read(), board_)) {  // the value before this edge
+      board_.hang(c, watchdog_.quiet_since(), watchdog_.limit());
+      sc_core::sc_stop();
     }
   }
 
@@ -162,6 +166,8 @@ SC_MODULE(ScCycleModel) {
   CycleModel model_;
   Scoreboard& board_;
   uint64_t limit_;
+  const sc_core::sc_signal<bool>& pix_valid_;
+  PixelWatchdog watchdog_;
 };
 
 template <class V>
@@ -218,7 +224,8 @@ CosimResult run_verilated_systemc(const CosimJob& job) {
   sink.pix_eor(pix_eor);
   sink.pix_ready(pix_ready);
 
-  ScCycleModel model("cycle_model", prep.words, job.stim, CycleConfig::of(cfg), board, prep.cycle_limit);
+  ScCycleModel model("cycle_model", prep.words, job.stim, CycleConfig::of(cfg), board, prep.cycle_limit, pix_valid,
+                       prep.watchdog_cycles);
   model.clk(clk);
 
   const auto t0 = std::chrono::steady_clock::now();

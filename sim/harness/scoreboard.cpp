@@ -11,6 +11,7 @@ std::string to_string(Mismatch::Kind kind) {
     case Mismatch::Kind::kCycle: return "cycle";
     case Mismatch::Kind::kExtraPixel: return "extra-pixel";
     case Mismatch::Kind::kTimeout: return "timeout";
+    case Mismatch::Kind::kHang: return "hang";
   }
   return "?";
 }
@@ -129,6 +130,23 @@ void Scoreboard::timeout(uint64_t cycle) {
   }
   m.got = "nothing (RTL rows " + std::to_string(rtl_rows_.size()) + " / cycle-model rows " +
           std::to_string(model_rows_.size()) + " not yet paired)";
+  m.cycle = cycle;
+  fail(m);
+}
+
+void Scoreboard::hang(uint64_t cycle, uint64_t quiet_since, uint64_t limit) {
+  Mismatch m;
+  m.kind = Mismatch::Kind::kHang;
+  m.scanline = scanline_;
+  if (next_ < expected_.size()) {
+    m.x = expected_[next_].x;
+    m.y = expected_[next_].y;
+    m.expected = describe(expected_[next_]) + ", pixel " + std::to_string(next_) + " of " +
+                 std::to_string(expected_.size());
+  }
+  m.got = "no pix_valid_o for " + std::to_string(cycle - quiet_since + 1) + " cycles (" +
+          std::to_string(quiet_since) + ".." + std::to_string(cycle) + "; watchdog limit " +
+          std::to_string(limit) + ")";
   m.cycle = cycle;
   fail(m);
 }

@@ -20,7 +20,7 @@
 namespace shadesim {
 
 struct Mismatch {
-  enum class Kind { kNone, kPixel, kCycle, kExtraPixel, kTimeout };
+  enum class Kind { kNone, kPixel, kCycle, kExtraPixel, kTimeout, kHang };
   Kind kind = Kind::kNone;
   int scanline = -1;  // index of the scanline (count of end-of-row pixels before it)
   int y = -1, x = -1;
@@ -74,6 +74,11 @@ class Scoreboard {
   void rtl_bad_mask(uint64_t x, uint64_t y, uint64_t mask, uint64_t cycle);
   // The run stopped at `cycle` without finishing.
   void timeout(uint64_t cycle);
+  // The watchdog (sim/harness/watchdog.h) fired on `cycle`: no pix_valid_o since `quiet_since`,
+  // more than `limit` cycles, with pixels still expected.
+  void hang(uint64_t cycle, uint64_t quiet_since, uint64_t limit);
+  // Some expected pixel has not left the RTL yet.
+  bool pixels_pending() const { return next_ < expected_.size(); }
 
   bool failed() const { return first_.kind != Mismatch::Kind::kNone; }
   // Every expected pixel seen and every scanline's cycle compared.

@@ -41,6 +41,7 @@ module tb_shade_unit #(
   parameter int LANES            = 1,
   parameter int FAULT_LSB_ROW    = -1,
   parameter int FAULT_STALL_ROW  = -1,
+  parameter int FAULT_HANG_ROW   = -1,
   // Capacity of the word memory (Icarus allocates it all: ~45 bytes a word); a longer stream
   // is a hard error, never a silent truncation.
   parameter int MAX_WORDS        = 1 << 20,
@@ -75,7 +76,8 @@ module tb_shade_unit #(
     .SPECULAR_KIND(SPECULAR_KIND),
     .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL),
     .PORT_WORDS(PORT_WORDS), .TRI_QUEUE(TRI_QUEUE), .LANES(LANES),
-    .FAULT_LSB_ROW(FAULT_LSB_ROW), .FAULT_STALL_ROW(FAULT_STALL_ROW)
+    .FAULT_LSB_ROW(FAULT_LSB_ROW), .FAULT_STALL_ROW(FAULT_STALL_ROW),
+    .FAULT_HANG_ROW(FAULT_HANG_ROW)
   ) dut (
     .clk_i(clk), .rst_ni(rst_n),
     .cmd_data_i(cmd_data), .cmd_valid_i(cmd_valid), .cmd_ready_o(cmd_ready),

@@ -1,0 +1,178 @@
+// shadesim merge DIR...: the regression that shards, job lines or resumed runs wrote into one or
+// more output folders, reported as one `regress` would: the same table, JSON and JUnit. What the
+// folders' plans name but no folder holds a result for is reported as missing (started and never
+// finished, or never started), a run found in two folders as a duplicate, an unreadable result
+// by its file; any of them makes the merge fail. Folder layout: sim/regress_results.h.
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "sim/commands.h"
+#include "sim/regress_results.h"
+
+namespace shadesim {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct MergeOptions {
+  std::vector<std::string> dirs;
+  std::string json_path;
+  std::string junit_path;
+};
+
+struct Planned {
+  RunSpec spec;
+  std::string plan;  // the plan file that names it
+};
+
+std::vector<fs::path> json_files(const fs::path& dir) {
+  std::vector<fs::path> files;
+  if (!fs::is_directory(dir)) return files;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (e.path().extension() == ".json") files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+int run_merge(const MergeOptions& o) {
+  std::vector<std::string> problems;
+  std::map<std::string, Planned> planned;       // id -> the first plan naming it
+  std::map<std::string, RunRecord> found;       // id -> its record
+  std::map<std::string, std::string> found_at;  // id -> its run.json
+  std::map<std::string, std::string> unfinished;  // id -> a run folder without run.json
+  for (const auto& d : o.dirs) {
+    const fs::path dir(d);
+    if (!fs::is_directory(dir)) throw std::invalid_argument("merge: " + d + ": no such folder");
+    if (!fs::is_directory(dir / "plans") && !fs::is_directory(dir / "runs")) {
+      throw std::invalid_argument("merge: " + d + ": not a regress output folder (it has neither plans/ nor runs/)");
+    }
+    for (const auto& f : json_files(dir / "plans")) {
+      try {
+        std::ifstream is(f);
+        const nlohmann::json j = nlohmann::json::parse(is);
+        if (!j.is_object() || !j.contains("runs") || !j.at("runs").is_array()) {
+          throw std::runtime_error(f.string() + ": expected a regress plan with a runs array");
+        }
+        for (size_t i = 0; i < j.at("runs").size(); ++i) {
+          const RunSpec s = spec_from_json(j.at("runs")[i], f.string() + ": runs[" + std::to_string(i) + "]");
+          planned.emplace(s.id(), Planned{s, f.string()});
+        }
+      } catch (const nlohmann::json::exception& e) {
+        problems.push_back("malformed plan " + f.string() + ": not valid JSON (" + e.what() + ")");
+      } catch (const std::exception& e) {
+        problems.push_back(std::string("malformed plan ") + e.what());
+      }
+    }
+    if (!fs::is_directory(dir / "runs")) continue;
+    std::vector<fs::path> run_dirs;
+    for (const auto& e : fs::directory_iterator(dir / "runs")) {
+      if (e.is_directory()) run_dirs.push_back(e.path());
+    }
+    std::sort(run_dirs.begin(), run_dirs.end());
+    for (const auto& rd : run_dirs) {
+      const std::string id = rd.filename().string();
+      const fs::path file = rd / "run.json";
+      if (!fs::exists(file)) {
+        unfinished.emplace(id, rd.string());
+        continue;
+      }
+      RunRecord r;
+      try {
+        r = read_run_record(file.string());
+      } catch (const std::exception& e) {
+        problems.push_back(std::string("malformed result ") + e.what());
+        found_at.emplace(id, file.string());  // reported: not missing as well
+        continue;
+      }
+      if (r.spec.id() != id) {
+        problems.push_back("result " + file.string() + " is of run " + r.spec.id() + ", not of its folder's " + id);
+        continue;
+      }
+      if (found_at.count(id)) {
+        problems.push_back("duplicate run " + id + ": " + found_at.at(id) + " and " + file.string() + " (the first is reported)");
+        continue;
+      }
+      found_at.emplace(id, file.string());
+      found.emplace(id, r);
+    }
+  }
+
+  std::vector<RunRecord> records;
+  for (const auto& [id, r] : found) records.push_back(r);
+  std::vector<std::string> missing;
+  for (const auto& [id, p] : planned) {
+    if (found_at.count(id)) continue;
+    RunRecord r;
+    r.spec = p.spec;
+    r.scene_name = fs::path(p.spec.scene).stem().string();
+    r.status = "missing";
+    const auto u = unfinished.find(id);
+    r.message = "planned in " + p.plan + ", but no folder holds its result: " +
+                (u != unfinished.end() ? u->second + " has no run.json (started, never finished: killed?)"
+                                       : std::string("never started"));
+    if (u != unfinished.end()) r.dir = u->second;
+    missing.push_back(id);
+    records.push_back(r);
+  }
+  sort_records(records);
+  check_backends_agree(records);
+  print_run_table(records);
+  const RunCounts c = count_runs(records);
+  std::cout << "\nmerge: " << records.size() << " run(s) from " << o.dirs.size() << " folder(s): " << c.passed
+            << " passed, " << c.mismatched << " mismatched, " << c.hangs << " hung, " << c.timeouts << " timed out, "
+            << c.errors << " error(s), " << c.skipped << " skipped, " << c.missing << " missing\n";
+  for (const auto& r : records) {
+    if (r.status != "pass" && r.status != "skipped") {
+      std::cout << "  " << r.status << ": " << r.spec.id() << ": " << r.message
+                << (r.replay.empty() ? "" : "\n    replay: " + r.replay) << '\n';
+    }
+  }
+  if (planned.empty()) problems.push_back("no plan in any folder: missing runs cannot be named");
+  for (const auto& p : problems) std::cout << "  " << p << '\n';
+  for (const auto& [id, r] : found) {
+    if (!planned.empty() && !planned.count(id)) {
+      std::cout << "  note: " << id << " (" << found_at.at(id)
+                << ") is in no plan of these folders: an earlier regress into the same folder? It is reported.\n";
+    }
+  }
+  if (!o.junit_path.empty()) write_junit_report(o.junit_path, records);
+  if (!o.json_path.empty()) {
+    write_json_report(o.json_path, records,
+                      {{"merged_from", o.dirs}, {"missing_runs", missing}, {"problems", problems}});
+  }
+  if (records.empty()) {
+    std::cout << "merge: FAIL: no run found\n";
+    return 1;
+  }
+  if (!problems.empty() || c.failed()) {
+    std::cout << "merge: FAIL" << (missing.empty() ? "" : ": " + std::to_string(missing.size()) + " run(s) missing")
+              << '\n';
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+void register_merge(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<MergeOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "merge",
+      "Merge the results that `shadesim regress` runs wrote into one or more output folders (shards,\n"
+      "job lines of --emit-jobs, resumed runs) into the summary table, JSON and JUnit one regress\n"
+      "writes. Exits 1 when a run the folders' plans name has no result (named, with whether it\n"
+      "started), when a run is in two folders, when a result file cannot be read (named), and on any\n"
+      "mismatch, hang, timeout or error; 0 only when the whole regression is there and passed.");
+  sub->add_option("dirs", o->dirs, "regress output folders (each with plans/ and runs/)")->required();
+  sub->add_option("--json", o->json_path, "write every run's figures as JSON (the format of regress --json)");
+  sub->add_option("--junit", o->junit_path, "write JUnit XML for CI");
+  sub->callback([o, &exit_code]() { exit_code = run_merge(*o); });
+}
+
+}  // namespace shadesim
