@@ -16,12 +16,17 @@ constexpr Cycle kLongAgo = std::numeric_limits<Cycle>::min() / 4;
 // The spans' side of the recurrence: setup stages, engines, slot (see the header).
 class SpanPipe {
  public:
-  SpanPipe(const CycleConfig& unit, size_t expected_spans)
+  explicit SpanPipe(const CycleConfig& unit)
       : queued_(unit.tri_queue > 1),
         interval_(unit.slot.interval),
         latency_(unit.slot.latency) {
     prev_.fill(kLongAgo);
-    if (queued_) entry_.reserve(expected_spans);
+    // The entries of the last span_queue() spans are all the decoder asks for (room in the
+    // queue); a power-of-two ring holds them.
+    size_t ring = 1;
+    while (ring < static_cast<size_t>(unit.span_queue())) ring *= 2;
+    entry_.assign(queued_ ? ring : 0, kLongAgo);
+    ring_mask_ = ring - 1;
   }
 
   // The span taken by the decoder on cycle `taken`: returns the cycle its last pixel leaves.
@@ -35,23 +40,27 @@ class SpanPipe {
     const Cycle first = std::max(s[CycleEstimate::kSetupStages] + 1, last_emit_ + interval_);
     last_emit_ = first + static_cast<Cycle>(CycleEstimate::beats(len) - 1) * interval_;
     prev_ = s;
-    if (queued_) entry_.push_back(s[0]);
+    if (queued_) entry_[spans_ & ring_mask_] = s[0];
     last_leave_ = last_emit_ + latency_ + 1;
     ++spans_;
     return last_leave_;
   }
 
   size_t spans() const { return spans_; }
-  // Cycle span k entered s1 (queued units only).
-  Cycle entry(size_t k) const { return entry_[k]; }
+  // Cycle span k entered s1 (queued units; one of the last span_queue() spans).
+  Cycle entry(size_t k) const { return entry_[k & ring_mask_]; }
+  // Cycle the latest span entered s1.
+  Cycle last_entry() const { return prev_[0]; }
   // Earliest cycle on which s1 is free for the next span (unqueued decoder).
   Cycle s1_free() const { return prev_[1]; }
   // Earliest cycle on which the datapath is empty: the last pixel has left the slot.
   Cycle empty() const { return spans_ ? last_leave_ : 0; }
   Cycle last_leave() const { return last_leave_; }
   // Spans queued and not yet in s1 on cycle c; c must not decrease between calls.
+  // (Spans more than span_queue() back entered s1 before the decoder could queue the latest.)
   size_t queued_on(Cycle c) {
-    while (popped_ < spans_ && entry_[popped_] < c) ++popped_;
+    popped_ = std::max(popped_, spans_ - std::min(spans_, entry_.size()));
+    while (popped_ < spans_ && entry(popped_) < c) ++popped_;
     return spans_ - popped_;
   }
 
@@ -62,7 +71,8 @@ class SpanPipe {
   Cycle last_emit_ = kLongAgo;
   Cycle last_leave_ = kLongAgo;
   size_t spans_ = 0;
-  std::vector<Cycle> entry_;
+  std::vector<Cycle> entry_;  // ring of the latest spans' s1 entries
+  size_t ring_mask_ = 0;
   size_t popped_ = 0;
 };
 
@@ -74,6 +84,7 @@ CycleEstimate::CycleEstimate(CycleConfig unit) : unit_(unit) { CycleModel check(
 
 CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words) const {
   const uint64_t port = static_cast<uint64_t>(unit_.port_words);
+  const int port_shift = port == 8 ? 3 : port == 4 ? 2 : port == 2 ? 1 : 0;
   const bool queued = unit_.tri_queue > 1;
   const size_t queue_size = static_cast<size_t>(unit_.span_queue());
   const Cycle interval = unit_.slot.interval;
@@ -83,10 +94,13 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words) const {
   r.beats = (words.size() + port - 1) / port;
   const uint64_t padded = r.beats * port;  // the last beat is padded with NOP words
   const auto word_at = [&](uint64_t i) { return CommandWord{i < words.size() ? words[i] : 0}; };
-  const auto beat_end = [&](uint64_t i) { return i - i % port + port; };
+  const uint64_t in_beat = port - 1;  // port_words is a power of two
+  const auto beat_end = [&](uint64_t i) { return (i | in_beat) + 1; };
+  const auto next_bank = [&](int bank) { return bank + 1 == unit_.tri_queue ? 0 : bank + 1; };
 
-  SpanPipe pipe(unit_, words.size());
-  std::vector<int64_t> bank_last(static_cast<size_t>(unit_.tri_queue), -1);  // last span per bank
+  SpanPipe pipe(unit_);
+  // Per coefficient bank: the cycle its last queued span entered s1.
+  std::vector<Cycle> bank_free(static_cast<size_t>(unit_.tri_queue), kLongAgo);
   int wr_bank = 0;
   TriangleCost* tri = nullptr;  // the latest TRIANGLE's: its SPANs follow it
 
@@ -101,8 +115,7 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words) const {
       case Opcode::kTriangle: {
         // A free bank: the last span queued with the bank it loads has entered s1.
         if (!queued) return 0;
-        const int64_t last = bank_last[static_cast<size_t>((wr_bank + 1) % unit_.tri_queue)];
-        return last >= 0 ? pipe.entry(static_cast<size_t>(last)) + 1 : 0;
+        return bank_free[static_cast<size_t>(next_bank(wr_bank))] + 1;
       }
       case Opcode::kMaterial:
       case Opcode::kTable: return pipe.empty();
@@ -137,7 +150,7 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words) const {
         w += 1 + with_header;
         payload = count - with_header;
         tri_payload = true;
-        if (queued) wr_bank = (wr_bank + 1) % unit_.tri_queue;
+        if (queued) wr_bank = next_bank(wr_bank);
         break;
       }
       case Opcode::kSpan: {
@@ -153,8 +166,8 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words) const {
           const CommandWord s = word_at(w + k);
           const uint64_t len = static_cast<uint64_t>(s.span_length());
           if (len == 0) throw std::invalid_argument(at_word(w + k) + "SPAN of length 0 (lengths are >= 1)");
-          if (queued) bank_last[static_cast<size_t>(wr_bank)] = static_cast<int64_t>(pipe.spans());
           const Cycle leave = pipe.add(c, len);
+          if (queued) bank_free[static_cast<size_t>(wr_bank)] = pipe.last_entry();
           r.pixels += len;
           if (s.span_last()) r.scanlines.push_back({s.span_y(), static_cast<uint64_t>(leave), s.span_x0() + s.span_length() - 1});
           if (tri) {
@@ -190,13 +203,13 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words) const {
     // item of the last ones may carry the next header (the loop takes it with t = that cycle).
     const uint64_t first = std::min(payload, beat_end(w) - w);
     const uint64_t rest = payload - first;
-    const Cycle items = 1 + static_cast<Cycle>((rest + port - 1) / port);
+    const Cycle items = 1 + static_cast<Cycle>((rest + in_beat) >> port_shift);
     tri->decoder_cycles += static_cast<uint64_t>(items);
     const Cycle tail_cycle = t + items - 1;
     w += payload;
     last_item = tail_cycle;
     t = tail_cycle + 1;
-    if (w % port == 0 || w >= padded) continue;
+    if ((w & in_beat) == 0 || w >= padded) continue;
     // A header follows the tail in its beat: it goes on the tail's cycle if it may and is ready.
     const CommandWord next = word_at(w);
     const Opcode nop = static_cast<Opcode>(next.opcode());
