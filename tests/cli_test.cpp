@@ -140,6 +140,34 @@ void expect_error(const std::string& args, const std::string& needle) {
   EXPECT_EQ(r.output.find("terminate called"), std::string::npos) << r.output;
 }
 
+TEST(Cli, CyclesFastGivesTheClockedCountsAndClassifiesEveryTriangle) {
+  const auto dir = temp_dir("cycles_fast");
+  const std::string knobs = " --port-words 4 --tri-queue 2";
+  const auto clocked = run_json("cycles " + kScenes + "sphere.json" + knobs + " --stall-pct 1", dir / "a.json");
+  const auto fast = run_json("cycles " + kScenes + "sphere.json" + knobs + " --fast --worst 3", dir / "b.json");
+  // With 1 % back-pressure the figures are the clocked model's and cost more cycles than the
+  // closed form's schedule without any.
+  EXPECT_EQ(clocked["figures_from"], "clocked cycle model");
+  EXPECT_EQ(fast["figures_from"], "closed-form estimate");
+  EXPECT_TRUE(fast["breakdown"].is_null());
+  EXPECT_GT(clocked["cycles"].get<uint64_t>(), fast["cycles"].get<uint64_t>());
+  EXPECT_EQ(clocked["pixels"], fast["pixels"]);
+  const auto& t = fast["triangles"];
+  EXPECT_EQ(t["setup_bound"].get<size_t>() + t["fill_bound"].get<size_t>(), t["count"].get<size_t>());
+  EXPECT_EQ(t["each"].size(), t["count"].get<size_t>());
+  uint64_t setup_bound = 0, pixels_seen = 0;
+  for (const auto& e : t["each"]) setup_bound += e[1].get<uint64_t>() > e[2].get<uint64_t>();
+  EXPECT_EQ(setup_bound, t["setup_bound"].get<uint64_t>());
+  ASSERT_EQ(t["worst_setup_bound"].size(), 3u);
+  for (const auto& w : t["worst_setup_bound"]) {
+    EXPECT_TRUE(w["setup_bound"].get<bool>());
+    pixels_seen += w["pixels"].get<uint64_t>();
+  }
+  EXPECT_GT(pixels_seen, 0u);
+  expect_error("cycles " + kScenes + "sphere.json --fast --gap-pct 5", "--fast");
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Cli, BadInputGivesClearErrors) {
   const auto dir = temp_dir("bad");
   expect_error("render /nonexistent/scene.json", "scene.json");
