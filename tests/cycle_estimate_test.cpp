@@ -165,6 +165,25 @@ TEST(CycleEstimate, MaterialWaitsForTheLastPixel) {
   EXPECT_EQ(r.scanlines[1].cycle, 13u);
 }
 
+TEST(CycleEstimate, HeaderGoesWithTheTailOnTheCycleItBecomesReady) {
+  // Four-word port. Cycle 0: the SPAN (its pixel leaves on 5, so the datapath is empty from 5).
+  // Cycle 1: the TRIANGLE header with 2 of its 15 coefficient words; 2, 3, 4: a beat of them
+  // each; 5: the last one, and the MATERIAL behind it in the beat, ready on exactly that cycle;
+  // 6: the SPAN after it (its pixel leaves on 11); 7: the padding. The run ends on cycle 12.
+  std::vector<CommandWord> ws = {CommandWord::span(0, 0, 1, true), CommandWord::triangle(0, 0, 15)};
+  for (int i = 0; i < 15; ++i) ws.push_back(CommandWord{0});
+  ws.push_back(CommandWord::material(0));
+  ws.push_back(CommandWord::span(1, 0, 1, true));
+  const CycleConfig unit(SlotTiming{}, 4, 1);
+  const CycleEstimateRun r = CycleEstimate(unit).run(words_of(ws));
+  ASSERT_EQ(r.scanlines.size(), 2u);
+  EXPECT_EQ(r.scanlines[0].cycle, 5u);
+  EXPECT_EQ(r.scanlines[1].cycle, 11u);
+  EXPECT_EQ(r.cycles, 12u);
+  EXPECT_EQ(r.beats, 5u);
+  expect_same(words_of(ws), unit, "material with the tail");
+}
+
 TEST(CycleEstimate, ClassifiesTrianglesBySetupAndFill) {
   // One-word port: a triangle of 6 coefficient words and one 2-pixel span takes 8 decoder
   // cycles for 2 engine cycles (setup-bound); one with a 40-pixel span takes 8 for 40.
