@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -38,6 +39,7 @@ class SpanPipe {
     // The engines load once s3 holds the span and they idle or emit their last beat.
     s[CycleEstimate::kSetupStages] = std::max(s[CycleEstimate::kSetupStages - 1] + 1, last_emit_);
     const Cycle first = std::max(s[CycleEstimate::kSetupStages] + 1, last_emit_ + interval_);
+    first_emit_ = first;
     last_emit_ = first + static_cast<Cycle>(CycleEstimate::beats(len) - 1) * interval_;
     prev_ = s;
     if (queued_) entry_[spans_ & ring_mask_] = s[0];
@@ -56,6 +58,9 @@ class SpanPipe {
   // Earliest cycle on which the datapath is empty: the last pixel has left the slot.
   Cycle empty() const { return spans_ ? last_leave_ : 0; }
   Cycle last_leave() const { return last_leave_; }
+  // The latest span's first and last emit.
+  Cycle first_emit() const { return first_emit_; }
+  Cycle last_emit() const { return last_emit_; }
   // Spans queued and not yet in s1 on cycle c; c must not decrease between calls.
   // (Spans more than span_queue() back entered s1 before the decoder could queue the latest.)
   size_t queued_on(Cycle c) {
@@ -68,6 +73,7 @@ class SpanPipe {
   bool queued_;
   Cycle interval_, latency_;
   std::array<Cycle, CycleEstimate::kSetupStages + 1> prev_;  // the previous span's stage entries
+  Cycle first_emit_ = kLongAgo;
   Cycle last_emit_ = kLongAgo;
   Cycle last_leave_ = kLongAgo;
   size_t spans_ = 0;
@@ -76,13 +82,85 @@ class SpanPipe {
   size_t popped_ = 0;
 };
 
+// CycleBreakdown without the clock. With no back-pressure a cycle is a pixel cycle or a unit
+// stall exactly when it lies in a span's busy interval (pipelined slot: its pixels leave,
+// [F + latency + 1, E + latency + 1]; iterative: [F + 1, E + interval + 1], the unit holding a
+// pixel or one leaving); every other cycle is a bubble charged, as CycleModel does, to what the
+// port did span_latency() cycles earlier (setup_load before that). The port's category is
+// piecewise constant over the decoder's items and waits, recorded as segments.
+class BreakdownRecorder {
+ public:
+  BreakdownRecorder(const CycleConfig& unit)
+      : shift_(5 + (unit.tri_queue > 1 ? 1 : 0) + unit.slot.latency),
+        busy_from_(unit.slot.interval > 1 ? 1 : unit.slot.latency + 1),
+        busy_to_(unit.slot.latency + 2) {}
+
+  // From cycle `from` on, the port does `category`'s work (until the next call).
+  void port(Cycle from, CycleModel::Category category) { port_.push_back({from, category}); }
+  // A span's first and last emit.
+  void span(Cycle first, Cycle last) {
+    const Cycle b = first + busy_from_, e = last + busy_to_;  // [b, e)
+    if (!busy_.empty() && b <= busy_.back().second) busy_.back().second = std::max(busy_.back().second, e);
+    else busy_.push_back({b, e});
+  }
+
+  CycleBreakdown finish(Cycle total, uint64_t pixels) {
+    CycleBreakdown b;
+    uint64_t busy = 0;
+    for (const auto& iv : busy_) busy += static_cast<uint64_t>(iv.second - iv.first);
+    b.pixel = pixels;
+    b.unit_stall = busy - pixels;
+    // Bubbles in [from, to): the cycles there outside every busy interval.
+    size_t j = 0;
+    uint64_t below = 0;  // busy cycles in the intervals before j
+    const auto busy_below = [&](Cycle x) {
+      while (j < busy_.size() && busy_[j].second <= x) below += static_cast<uint64_t>(busy_[j].second - busy_[j].first), ++j;
+      return below + (j < busy_.size() && busy_[j].first < x ? static_cast<uint64_t>(x - busy_[j].first) : 0);
+    };
+    const auto charge = [&](CycleModel::Category c, Cycle from, Cycle to) {
+      from = std::clamp<Cycle>(from, 0, total);
+      to = std::clamp<Cycle>(to, from, total);
+      const uint64_t bubbles = static_cast<uint64_t>(to - from) - (busy_below(to) - busy_below(from));
+      switch (c) {
+        case CycleModel::Category::kCommandGap: b.command_gap += bubbles; break;
+        case CycleModel::Category::kMaterial: b.material += bubbles; break;
+        case CycleModel::Category::kTable: b.table += bubbles; break;
+        case CycleModel::Category::kCommandWords: b.command_words += bubbles; break;
+        default: b.setup_load += bubbles; break;
+      }
+    };
+    charge(CycleModel::Category::kSetupLoad, 0, shift_);
+    for (size_t i = 0; i < port_.size(); ++i) {
+      const Cycle to = i + 1 < port_.size() ? port_[i + 1].first : total;
+      charge(port_[i].second, port_[i].first + shift_, to + shift_);
+    }
+    return b;
+  }
+
+ private:
+  Cycle shift_, busy_from_, busy_to_;
+  std::vector<std::pair<Cycle, CycleModel::Category>> port_;
+  std::vector<std::pair<Cycle, Cycle>> busy_;
+};
+
+CycleModel::Category header_category(Opcode op) {
+  switch (op) {
+    case Opcode::kMaterial: return CycleModel::Category::kMaterial;
+    case Opcode::kTable: return CycleModel::Category::kTable;
+    case Opcode::kSpan: return CycleModel::Category::kSetupLoad;
+    default: return CycleModel::Category::kCommandWords;
+  }
+}
+
 std::string at_word(uint64_t i) { return "CycleEstimate: word " + std::to_string(i) + ": "; }
 
 }  // namespace
 
 CycleEstimate::CycleEstimate(CycleConfig unit) : unit_(unit) { CycleModel check(unit); }
 
-CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words) const {
+CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool with_breakdown) const {
+  std::optional<BreakdownRecorder> rec;
+  if (with_breakdown) rec.emplace(unit_);
   const uint64_t port = static_cast<uint64_t>(unit_.port_words);
   const int port_shift = port == 8 ? 3 : port == 4 ? 2 : port == 2 ? 1 : 0;
   const bool queued = unit_.tri_queue > 1;
@@ -131,6 +209,7 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words) const {
     const CommandWord word = word_at(w);
     const Opcode op = static_cast<Opcode>(word.opcode());
     const Cycle c = std::max(t, ready(op));
+    if (rec) rec->port(t, header_category(op));  // waiting for it, then taking it
     last_item = c;
     t = c + 1;
     uint64_t payload = 0;  // words after the header item
@@ -167,6 +246,7 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words) const {
           const uint64_t len = static_cast<uint64_t>(s.span_length());
           if (len == 0) throw std::invalid_argument(at_word(w + k) + "SPAN of length 0 (lengths are >= 1)");
           const Cycle leave = pipe.add(c, len);
+          if (rec) rec->span(pipe.first_emit(), pipe.last_emit());
           if (queued) bank_free[static_cast<size_t>(wr_bank)] = pipe.last_entry();
           r.pixels += len;
           if (s.span_last()) r.scanlines.push_back({s.span_y(), static_cast<uint64_t>(leave), s.span_x0() + s.span_length() - 1});
@@ -194,6 +274,7 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words) const {
     if (payload == 0) continue;
     if (!tri_payload) {
       // MATERIAL / TABLE payload: one word a cycle, never with a header.
+      if (rec) rec->port(t, header_category(op));
       last_item = t + static_cast<Cycle>(payload) - 1;
       t = last_item + 1;
       w += payload;
@@ -205,6 +286,7 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words) const {
     const uint64_t rest = payload - first;
     const Cycle items = 1 + static_cast<Cycle>((rest + in_beat) >> port_shift);
     tri->decoder_cycles += static_cast<uint64_t>(items);
+    if (rec) rec->port(t, CycleModel::Category::kCommandWords);
     const Cycle tail_cycle = t + items - 1;
     w += payload;
     last_item = tail_cycle;
@@ -223,6 +305,10 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words) const {
     }
   }
   r.cycles = static_cast<uint64_t>(std::max(last_item + 1, pipe.spans() ? pipe.last_leave() + 1 : 0));
+  if (rec) {
+    rec->port(last_item + 1, CycleModel::Category::kCommandGap);  // no beat left to offer
+    r.breakdown = rec->finish(static_cast<Cycle>(r.cycles), r.pixels);
+  }
   return r;
 }
 

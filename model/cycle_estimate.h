@@ -1,8 +1,8 @@
 // CycleEstimate: CycleModel's results for a whole stream with no input gaps and no
 // back-pressure, computed in closed form per decoder item and per span instead of clock by clock.
 // Exactly equal to CycleModel::run(words, Stimulus{}, unit) in cycles, pixels, words, beats and
-// every scanline's completion cycle (tests/cycle_estimate_test.cpp checks it); it gives no
-// breakdown (the breakdown's categories need the port's history cycle by cycle).
+// every scanline's completion cycle (tests/cycle_estimate_test.cpp checks it), and on request
+// its breakdown.
 //
 // The spec is CycleModel::clock(). With cmd_valid high until the last beat and pix_ready always
 // high, the pix register always advances, so every stage is an elastic pipeline stage and each
@@ -40,6 +40,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "model/cycle_model.h"
@@ -70,6 +71,7 @@ struct CycleEstimateRun {
   uint64_t beats = 0;
   std::vector<ScanlineDone> scanlines;
   std::vector<TriangleCost> triangles;  // in stream order
+  std::optional<CycleBreakdown> breakdown;  // with run(words, true)
 };
 
 class CycleEstimate {
@@ -84,7 +86,9 @@ class CycleEstimate {
 
   // Throws std::invalid_argument for a stream the clocked model could never finish: a command
   // whose payload runs past the last word, or a SPAN of length 0 (both name the word index).
-  CycleEstimateRun run(const std::vector<uint64_t>& words) const;
+  // with_breakdown: also CycleModel's breakdown (exactly), from segments of the port's work and
+  // the spans' busy intervals (costs memory per item; the figures alone need none).
+  CycleEstimateRun run(const std::vector<uint64_t>& words, bool with_breakdown = false) const;
 
  private:
   CycleConfig unit_;

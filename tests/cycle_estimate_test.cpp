@@ -29,13 +29,19 @@ std::string describe(const CycleConfig& u) {
 // Every figure the two share; returns the number of scanlines compared.
 size_t expect_same(const std::vector<uint64_t>& words, const CycleConfig& unit, const std::string& what) {
   const CycleRun clocked = CycleModel::run(words, Stimulus{}, unit);
-  const CycleEstimateRun fast = CycleEstimate(unit).run(words);
+  const CycleEstimateRun fast = CycleEstimate(unit).run(words, true);
   const std::string where = what + " on " + describe(unit);
   EXPECT_EQ(fast.cycles, clocked.cycles) << where;
   EXPECT_EQ(fast.pixels, clocked.pixels) << where;
   EXPECT_EQ(fast.words, clocked.words) << where;
   EXPECT_EQ(fast.beats, clocked.beats) << where;
   EXPECT_EQ(fast.scanlines.size(), clocked.scanlines.size()) << where;
+  if (fast.breakdown) {
+    const auto a = fast.breakdown->rows(), b = clocked.breakdown.rows();
+    for (size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i].cycles, b[i].cycles) << where << ": breakdown " << a[i].name;
+  } else {
+    ADD_FAILURE() << where << ": no breakdown";
+  }
   const size_t n = std::min(fast.scanlines.size(), clocked.scanlines.size());
   for (size_t i = 0; i < n; ++i) {
     const ScanlineDone& a = fast.scanlines[i];
