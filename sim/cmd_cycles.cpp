@@ -1,8 +1,8 @@
 // shadesim cycles SCENE: cycles per pixel from the cycle model alone — the timing of
 // rtl/shade_unit.sv without its datapath, exact to the cycle (co-simulation checks it against
 // the RTL on every scanline) and far faster than simulating the RTL. With no gaps and no
-// back-pressure the figures come from the closed-form CycleEstimate (model/cycle_estimate.h);
-// the breakdown still needs the clocked CycleModel, which then runs too and must agree.
+// back-pressure every figure, the breakdown included, comes from the closed-form CycleEstimate
+// (model/cycle_estimate.h); --clocked runs the clocked CycleModel too, which must agree.
 #include <algorithm>
 #include <chrono>
 #include <fstream>
@@ -34,7 +34,7 @@ struct CyclesOptions {
   int gap_pct = 0, max_gap = 1, stall_pct = 0;
   std::string json_path;
   std::string config_path;  // --config: the unit is exactly this file's
-  bool fast = false;        // closed form only: no clocked run, no breakdown
+  bool clocked = false;     // also the clocked model when the closed form applies; must agree
   int worst = 5;            // setup-bound triangles listed
 };
 
@@ -73,6 +73,14 @@ struct TriangleSummary {
 // The first difference between the estimate and the clocked run, or "" when they agree.
 std::string disagreement(const CycleEstimateRun& e, const CycleRun& c) {
   if (e.cycles != c.cycles) return "cycles " + std::to_string(e.cycles) + " vs " + std::to_string(c.cycles);
+  if (e.breakdown) {
+    const auto a = e.breakdown->rows(), b = c.breakdown.rows();
+    for (size_t i = 0; i < a.size(); ++i) {
+      if (a[i].cycles != b[i].cycles) {
+        return std::string("breakdown ") + a[i].name + " " + std::to_string(a[i].cycles) + " vs " + std::to_string(b[i].cycles);
+      }
+    }
+  }
   if (e.pixels != c.pixels) return "pixels " + std::to_string(e.pixels) + " vs " + std::to_string(c.pixels);
   if (e.scanlines.size() != c.scanlines.size()) {
     return "scanlines " + std::to_string(e.scanlines.size()) + " vs " + std::to_string(c.scanlines.size());
@@ -142,21 +150,17 @@ int run_cycles(const CyclesOptions& o) {
   const SlotTiming& timing = unit_timing.slot;
   const std::vector<uint64_t> words = frame.encoded.stream.encode();
   const bool no_stimulus = o.gap_pct == 0 && o.stall_pct == 0;
-  if (o.fast && !no_stimulus) {
-    throw std::invalid_argument("--fast is the closed form with no gaps and no back-pressure: it needs --gap-pct 0 and "
-                                "--stall-pct 0 (got " + std::to_string(o.gap_pct) + " and " +
-                                std::to_string(o.stall_pct) + ")");
-  }
-  // The closed form: the figures without gaps or back-pressure, and the per-triangle costs
+  // The closed form: every figure without gaps or back-pressure, and the per-triangle costs
   // (defined on that schedule, so given with any stimulus).
   const CycleEstimate estimate(unit_timing);
   const auto t1 = std::chrono::steady_clock::now();
-  const CycleEstimateRun est = estimate.run(words);
+  const CycleEstimateRun est = estimate.run(words, no_stimulus);
   const double estimate_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-  // The clocked model: the breakdown, and every figure under gaps or back-pressure.
+  // The clocked model: every figure under gaps or back-pressure, and the check on request.
+  const bool clocked = o.clocked || !no_stimulus;
   CycleRun run;
   double model_s = 0;
-  if (!o.fast) {
+  if (clocked) {
     const auto t2 = std::chrono::steady_clock::now();
     run = CycleModel::run(words, stim, unit_timing);
     model_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t2).count();
@@ -172,6 +176,7 @@ int run_cycles(const CyclesOptions& o) {
     run.pixels = est.pixels;
     run.words = est.words;
     run.beats = est.beats;
+    run.breakdown = *est.breakdown;
   }
   // What the triangle queue hid: the same stream and stimulus on the same unit with one bank.
   CycleConfig one_bank = unit_timing;
@@ -234,21 +239,17 @@ int run_cycles(const CyclesOptions& o) {
     }
   }
   nlohmann::json rows = nlohmann::json::array();
-  if (o.fast) {
-    std::cout << "\nbreakdown    not computed (--fast: the closed form has no per-cycle history)\n";
-  } else {
-    std::cout << "\nbreakdown    (every cycle charged to one reason; the rows sum to the total)\n";
-    for (const auto& r : run.breakdown.rows()) {
-      const double pct = run.cycles ? 100.0 * static_cast<double>(r.cycles) / static_cast<double>(run.cycles) : 0.0;
-      std::cout << "  " << std::left << std::setw(15) << r.name << std::right << std::setw(12) << r.cycles
-                << std::setw(8) << std::setprecision(1) << pct << " %  " << r.meaning << '\n';
-      rows.push_back({{"name", r.name}, {"cycles", r.cycles}, {"percent", pct}, {"meaning", r.meaning}});
-    }
+  std::cout << "\nbreakdown    (every cycle charged to one reason; the rows sum to the total)\n";
+  for (const auto& r : run.breakdown.rows()) {
+    const double pct = run.cycles ? 100.0 * static_cast<double>(r.cycles) / static_cast<double>(run.cycles) : 0.0;
+    std::cout << "  " << std::left << std::setw(15) << r.name << std::right << std::setw(12) << r.cycles
+              << std::setw(8) << std::setprecision(1) << pct << " %  " << r.meaning << '\n';
+    rows.push_back({{"name", r.name}, {"cycles", r.cycles}, {"percent", pct}, {"meaning", r.meaning}});
   }
   const auto rate = [&](double s) { return s > 0 ? static_cast<double>(run.cycles) / s / 1e6 : 0.0; };
   std::cout << "\ntime         host " << std::setprecision(3) << host_s << " s, closed-form estimate " << estimate_s
             << " s (" << std::setprecision(1) << rate(estimate_s) << " M cycles/s)";
-  if (!o.fast) {
+  if (clocked) {
     std::cout << ", clocked cycle model " << std::setprecision(3) << model_s << " s (" << std::setprecision(1)
               << rate(model_s) << " M cycles/s)";
     if (no_stimulus) std::cout << "; the two agree";
@@ -272,10 +273,11 @@ int run_cycles(const CyclesOptions& o) {
                         {"cycles", run.cycles},
                         {"cycles_per_pixel", cpp},
                         {"figures_from", no_stimulus ? "closed-form estimate" : "clocked cycle model"},
+                        {"clocked_check", no_stimulus && clocked},
                         {"triangles", triangles_json(est.triangles, tris)},
-                        {"breakdown", o.fast ? nlohmann::json(nullptr) : nlohmann::json(rows)},
+                        {"breakdown", rows},
                         {"seconds", {{"host", host_s}, {"estimate", estimate_s},
-                                     {"cycle_model", o.fast ? nlohmann::json(nullptr) : nlohmann::json(model_s)}}}};
+                                     {"cycle_model", clocked ? nlohmann::json(model_s) : nlohmann::json(nullptr)}}}};
     std::ofstream os(o.json_path);
     if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
     os << j.dump(2) << '\n';
@@ -293,8 +295,8 @@ void register_cycles(CLI::App& app, int& exit_code) {
       "clock, without its datapath: exact to the cycle, far faster than co-simulation), with a\n"
       "breakdown of where the cycles go: pixels, span setup, unit stalls, table reloads, material\n"
       "drains, command words and gaps, back-pressure. With no gaps and no back-pressure (the default)\n"
-      "the figures come from a closed-form recurrence over commands and spans, equal to the clocked\n"
-      "model (which still runs for the breakdown unless --fast).\n"
+      "every figure, the breakdown included, comes from a closed-form recurrence over commands and\n"
+      "spans (model/cycle_estimate.h), equal to the clocked model's (--clocked runs both and checks).\n"
       "Per triangle: its decoder cycles are the cycles on which the decoder takes its words (the\n"
       "TRIANGLE header, its coefficient words, the SPAN headers up to the next TRIANGLE; one item a\n"
       "cycle, waiting not counted); its engine cycles are its pixels' beats x the specular slot's\n"
@@ -318,10 +320,9 @@ void register_cycles(CLI::App& app, int& exit_code) {
   sub->add_option("--max-gap", o->max_gap, "longest idle gap in cycles")->check(CLI::Range(1, 100000))->capture_default_str();
   sub->add_option("--stall-pct", o->stall_pct, "chance of output back-pressure per cycle")->check(CLI::Range(0, 99))->capture_default_str();
   sub->add_option("--json", o->json_path, "write the figures as JSON");
-  sub->add_flag("--fast", o->fast,
-                "closed form only (model/cycle_estimate.h): cycles, scanlines and the per-triangle figures\n"
-                "without the clocked run and so without the breakdown; needs --gap-pct 0 --stall-pct 0.\n"
-                "Without it, a no-gap run computes both and fails if they disagree");
+  sub->add_flag("--clocked", o->clocked,
+                "also run the clocked cycle model when there are no gaps or back-pressure, and fail if the\n"
+                "closed form disagrees with it (with gaps or back-pressure it is the only one that runs)");
   sub->add_option("--worst", o->worst, "setup-bound triangles to list, worst first")->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   add_width_options(*sub, o->widths);
