@@ -1,5 +1,6 @@
 // Cycle estimation speed on one stream, host setup excluded (the stream is prepared once):
-//   CycleEstimate:  the closed form (model/cycle_estimate.h)
+//   CycleEstimate:  the closed form (model/cycle_estimate.h): cycles, scanlines, per triangle
+//   CycleEstimateWithBreakdown: the same and the breakdown (what `shadesim cycles` runs)
 //   CycleModel:     the clocked model, clock by clock (model/cycle_model.h)
 // both with no gaps and no back-pressure. The stream is bench/scenes/sphere_1024.json on its own
 // configuration (derive_config), or the saved stream named by SHADESIM_CYCLE_BENCH_STREAM (text
@@ -66,6 +67,20 @@ void BM_CycleEstimate(benchmark::State& state) {
   report(state, cycles);
 }
 BENCHMARK(BM_CycleEstimate)->Unit(benchmark::kMicrosecond);
+
+// What `shadesim cycles` runs by default: the figures and the breakdown.
+void BM_CycleEstimateWithBreakdown(benchmark::State& state) {
+  const BenchStream& s = stream();
+  const CycleEstimate estimate(CycleConfig::of(s.config));
+  uint64_t cycles = 0;
+  for (auto _ : state) {
+    const CycleEstimateRun r = estimate.run(s.words, true);
+    cycles = r.cycles;
+    benchmark::DoNotOptimize(r.breakdown->command_words);
+  }
+  report(state, cycles);
+}
+BENCHMARK(BM_CycleEstimateWithBreakdown)->Unit(benchmark::kMicrosecond);
 
 void BM_CycleModel(benchmark::State& state) {
   const BenchStream& s = stream();

@@ -96,7 +96,9 @@ class BreakdownRecorder {
         busy_to_(unit.slot.latency + 2) {}
 
   // From cycle `from` on, the port does `category`'s work (until the next call).
-  void port(Cycle from, CycleModel::Category category) { port_.push_back({from, category}); }
+  void port(Cycle from, CycleModel::Category category) {
+    if (port_.empty() || port_.back().second != category) port_.push_back({from, category});  // else it goes on
+  }
   // A span's first and last emit.
   void span(Cycle first, Cycle last) {
     const Cycle b = first + busy_from_, e = last + busy_to_;  // [b, e)
