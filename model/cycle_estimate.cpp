@@ -90,8 +90,8 @@ class SpanPipe {
 // piecewise constant over the decoder's items and waits, recorded as segments.
 class BreakdownRecorder {
  public:
-  BreakdownRecorder(const CycleConfig& unit)
-      : shift_(5 + (unit.tri_queue > 1 ? 1 : 0) + unit.slot.latency),
+  BreakdownRecorder(const CycleConfig& unit, int span_latency)
+      : shift_(span_latency),
         busy_from_(unit.slot.interval > 1 ? 1 : unit.slot.latency + 1),
         busy_to_(unit.slot.latency + 2) {}
 
@@ -158,11 +158,11 @@ std::string at_word(uint64_t i) { return "CycleEstimate: word " + std::to_string
 
 }  // namespace
 
-CycleEstimate::CycleEstimate(CycleConfig unit) : unit_(unit) { CycleModel check(unit); }
+CycleEstimate::CycleEstimate(CycleConfig unit) : unit_(unit), span_latency_(CycleModel(unit).span_latency()) {}
 
 CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool with_breakdown) const {
   std::optional<BreakdownRecorder> rec;
-  if (with_breakdown) rec.emplace(unit_);
+  if (with_breakdown) rec.emplace(unit_, span_latency_);
   const uint64_t port = static_cast<uint64_t>(unit_.port_words);
   const int port_shift = port == 8 ? 3 : port == 4 ? 2 : port == 2 ? 1 : 0;
   const bool queued = unit_.tri_queue > 1;

@@ -76,9 +76,11 @@ struct CycleEstimateRun {
 
 class CycleEstimate {
  public:
-  // Setup stages between the span queue and the engines (s1..s3 in rtl/shade_unit.sv).
+  // The two quantities pixel lanes change (with CycleModel::span_latency(), which the breakdown
+  // takes from CycleModel): the setup stages between the span queue and the engines (s1..s3 in
+  // rtl/shade_unit.sv; a lane fan-out stage would make 4), and the engine beats a span of `len`
+  // pixels takes (one pixel per beat; with lanes ceil(len / lanes)).
   static constexpr int kSetupStages = 3;
-  // Engine beats a span of `len` pixels takes (one pixel per beat).
   static constexpr uint64_t beats(uint64_t len) { return len; }
 
   // Accepts exactly the units CycleModel accepts (its constructor is the check).
@@ -92,6 +94,7 @@ class CycleEstimate {
 
  private:
   CycleConfig unit_;
+  int span_latency_;  // CycleModel::span_latency(): how far back a bubble's port category lies
 };
 
 }  // namespace shadesim

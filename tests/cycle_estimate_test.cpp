@@ -147,6 +147,9 @@ TEST(CycleEstimate, OneSpanTakesSpanLatencyPlusItsPixels) {
       EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(4 + len - 1 + latency + 1));
       EXPECT_EQ(r.scanlines[0].x, 10 + len - 1);
       EXPECT_EQ(r.cycles, r.scanlines[0].cycle + 1);
+      // The first pixel leaves span_latency() cycles after its SPAN header (taken on cycle 0).
+      EXPECT_EQ(r.scanlines[0].cycle - static_cast<uint64_t>(len - 1),
+                static_cast<uint64_t>(CycleModel(SlotTiming{latency, 1}).span_latency()));
     }
   }
 }
