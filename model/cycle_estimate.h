@@ -36,6 +36,14 @@
 // The run ends on the cycle after the later of the last beat's acceptance and the last pixel's
 // leaving.
 //
+// The breakdown (run(words, true)): with no back-pressure a cycle is a pixel or a unit stall
+// exactly when it lies in a span's busy interval (pipelined slot: [F_k + latency + 1,
+// E_k + latency + 1], its pixels leaving; iterative: [F_k + 1, E_k + interval + 1], the unit
+// holding a pixel or one leaving); every other cycle is a bubble charged, as CycleModel does, to
+// the port's category span_latency() cycles earlier. The port's category is constant over each
+// wait, item and payload run of the walk, so both are lists of intervals, counted against each
+// other in one sweep.
+//
 // Per triangle it also reports what bounds it (TriangleCost).
 #pragma once
 
