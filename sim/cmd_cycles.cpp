@@ -1,6 +1,9 @@
 // shadesim cycles SCENE: cycles per pixel from the cycle model alone — the timing of
 // rtl/shade_unit.sv without its datapath, exact to the cycle (co-simulation checks it against
-// the RTL on every scanline) and far faster than simulating the RTL.
+// the RTL on every scanline) and far faster than simulating the RTL. With no gaps and no
+// back-pressure every figure, the breakdown included, comes from the closed-form CycleEstimate
+// (model/cycle_estimate.h); --clocked runs the clocked CycleModel too, which must agree.
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <iomanip>
@@ -9,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host/frame.h"
+#include "model/cycle_estimate.h"
 #include "model/cycle_model.h"
 #include "sim/commands.h"
 #include "model/coef_packing.h"
@@ -31,7 +35,89 @@ struct CyclesOptions {
   int gap_pct = 0, max_gap = 1, stall_pct = 0;
   std::string json_path;
   std::string config_path;  // --config: the unit is exactly this file's
+  bool clocked = false;     // also the clocked model when the closed form applies; must agree
+  int worst = 5;            // setup-bound triangles listed
 };
+
+// The per-triangle figures of a no-gap run: how many triangles are setup- or fill-bound
+// (TriangleCost::setup_bound) and the worst setup-bound ones, by decoder cycles over engine
+// cycles.
+struct TriangleSummary {
+  size_t setup_bound = 0, fill_bound = 0;
+  uint64_t setup_bound_excess = 0;  // sum of decoder - engine cycles over setup-bound triangles
+  std::vector<TriangleCost> worst;
+
+  TriangleSummary(const std::vector<TriangleCost>& triangles, int worst_n) {
+    for (const TriangleCost& t : triangles) {
+      if (t.setup_bound()) {
+        ++setup_bound;
+        setup_bound_excess += t.decoder_cycles - t.engine_cycles;
+        worst.push_back(t);
+      } else {
+        ++fill_bound;
+      }
+    }
+    const auto excess = [](const TriangleCost& t) { return t.decoder_cycles - t.engine_cycles; };
+    const size_t n = std::min(worst.size(), static_cast<size_t>(std::max(worst_n, 0)));
+    std::partial_sort(worst.begin(), worst.begin() + static_cast<std::ptrdiff_t>(n), worst.end(),
+                      [&](const TriangleCost& a, const TriangleCost& b) {
+                        return excess(a) != excess(b) ? excess(a) > excess(b) : a.index < b.index;
+                      });
+    worst.resize(n);
+  }
+  double share(size_t n) const {
+    const size_t all = setup_bound + fill_bound;
+    return all ? 100.0 * static_cast<double>(n) / static_cast<double>(all) : 0.0;
+  }
+};
+
+// The first difference between the estimate and the clocked run, or "" when they agree.
+std::string disagreement(const CycleEstimateRun& e, const CycleRun& c) {
+  if (e.cycles != c.cycles) return "cycles " + std::to_string(e.cycles) + " vs " + std::to_string(c.cycles);
+  if (e.breakdown) {
+    const auto a = e.breakdown->rows(), b = c.breakdown.rows();
+    for (size_t i = 0; i < a.size(); ++i) {
+      if (a[i].cycles != b[i].cycles) {
+        return std::string("breakdown ") + a[i].name + " " + std::to_string(a[i].cycles) + " vs " + std::to_string(b[i].cycles);
+      }
+    }
+  }
+  if (e.pixels != c.pixels) return "pixels " + std::to_string(e.pixels) + " vs " + std::to_string(c.pixels);
+  if (e.scanlines.size() != c.scanlines.size()) {
+    return "scanlines " + std::to_string(e.scanlines.size()) + " vs " + std::to_string(c.scanlines.size());
+  }
+  for (size_t i = 0; i < e.scanlines.size(); ++i) {
+    if (e.scanlines[i].cycle != c.scanlines[i].cycle || e.scanlines[i].y != c.scanlines[i].y) {
+      return "scanline y " + std::to_string(c.scanlines[i].y) + " done on cycle " +
+             std::to_string(e.scanlines[i].cycle) + " vs " + std::to_string(c.scanlines[i].cycle);
+    }
+  }
+  return "";
+}
+
+nlohmann::json cost_json(const TriangleCost& t) {
+  return {{"index", t.index}, {"xo", t.xo}, {"yo", t.yo}, {"words", t.words}, {"spans", t.spans},
+          {"pixels", t.pixels}, {"decoder_cycles", t.decoder_cycles}, {"engine_cycles", t.engine_cycles},
+          {"setup_bound", t.setup_bound()}};
+}
+
+nlohmann::json triangles_json(const std::vector<TriangleCost>& all, const TriangleSummary& s) {
+  nlohmann::json worst = nlohmann::json::array();
+  for (const TriangleCost& t : s.worst) worst.push_back(cost_json(t));
+  nlohmann::json each = nlohmann::json::array();
+  for (const TriangleCost& t : all) {
+    each.push_back({t.index, t.decoder_cycles, t.engine_cycles, t.setup_bound()});
+  }
+  return {{"count", all.size()},
+          {"setup_bound", s.setup_bound},
+          {"fill_bound", s.fill_bound},
+          {"setup_bound_percent", s.share(s.setup_bound)},
+          {"fill_bound_percent", s.share(s.fill_bound)},
+          {"setup_bound_excess_cycles", s.setup_bound_excess},
+          {"worst_setup_bound", worst},
+          {"each_fields", {"index", "decoder_cycles", "engine_cycles", "setup_bound"}},
+          {"each", each}};
+}
 
 int run_cycles(const CyclesOptions& o) {
   FrameOptions fo;
@@ -65,15 +151,44 @@ int run_cycles(const CyclesOptions& o) {
   const CycleConfig unit_timing = CycleConfig::of(frame.config);
   const SlotTiming& timing = unit_timing.slot;
   const std::vector<uint64_t> words = frame.encoded.stream.encode();
+  const bool no_stimulus = o.gap_pct == 0 && o.stall_pct == 0;
+  // The closed form: every figure without gaps or back-pressure, and the per-triangle costs
+  // (defined on that schedule, so given with any stimulus).
+  const CycleEstimate estimate(unit_timing);
   const auto t1 = std::chrono::steady_clock::now();
-  const CycleRun run = CycleModel::run(words, stim, unit_timing);
-  const double model_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  const CycleEstimateRun est = estimate.run(words, no_stimulus);
+  const double estimate_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  // The clocked model: every figure under gaps or back-pressure, and the check on request.
+  const bool clocked = o.clocked || !no_stimulus;
+  CycleRun run;
+  double model_s = 0;
+  if (clocked) {
+    const auto t2 = std::chrono::steady_clock::now();
+    run = CycleModel::run(words, stim, unit_timing);
+    model_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t2).count();
+    if (no_stimulus) {
+      const std::string diff = disagreement(est, run);
+      if (!diff.empty()) {
+        throw std::logic_error("the closed-form cycle estimate disagrees with the clocked cycle model on " + o.scene +
+                               ": " + diff + " (estimate vs clocked); please report it");
+      }
+    }
+  } else {
+    run.cycles = est.cycles;
+    run.pixels = est.pixels;
+    run.words = est.words;
+    run.beats = est.beats;
+    run.breakdown = *est.breakdown;
+  }
   // What the triangle queue hid: the same stream and stimulus on the same unit with one bank.
   CycleConfig one_bank = unit_timing;
   one_bank.tri_queue = 1;
   const uint64_t cycles_one_bank =
-      unit_timing.tri_queue > 1 ? CycleModel::run(words, stim, one_bank).cycles : run.cycles;
+      unit_timing.tri_queue == 1 ? run.cycles
+      : no_stimulus              ? CycleEstimate(one_bank).run(words).cycles
+                                 : CycleModel::run(words, stim, one_bank).cycles;
   const int64_t queue_hid = static_cast<int64_t>(cycles_one_bank) - static_cast<int64_t>(run.cycles);
+  const TriangleSummary tris(est.triangles, o.worst);
   // Words per triangle by series (model/command_stream.h: a header, then T0..T5 per series).
   // A triangle's words: the header and the packed coefficients (model/coef_packing.h), whose
   // bits split by series.
@@ -116,18 +231,37 @@ int run_cycles(const CyclesOptions& o) {
             << "cycles       " << run.cycles << "  (" << std::fixed << std::setprecision(3) << cpp
             << " cycles per pixel)\n"
             << "queue        " << queue_hid << " cycles hidden by the triangle queue (tri_queue 1: "
-            << cycles_one_bank << ")\n\n"
-            << "breakdown    (every cycle charged to one reason; the rows sum to the total)\n";
+            << cycles_one_bank << ")\n"
+            << "triangles    " << est.triangles.size() << " (no gaps, no back-pressure): " << tris.setup_bound
+            << " setup-bound (" << std::setprecision(1) << tris.share(tris.setup_bound) << " %), " << tris.fill_bound
+            << " fill-bound (" << tris.share(tris.fill_bound) << " %); setup-bound: more decoder cycles for its\n"
+            << "             words than engine cycles for its pixels. The setup-bound ones need "
+            << tris.setup_bound_excess << " decoder cycles more than their pixels.\n";
+  if (!tris.worst.empty()) {
+    std::cout << "worst setup-bound triangles (decoder cycles - engine cycles):\n";
+    for (const TriangleCost& t : tris.worst) {
+      std::cout << "  #" << t.index << " origin (" << t.xo << ", " << t.yo << "): " << t.words << " words, "
+                << t.spans << " spans, " << t.pixels << " px: " << t.decoder_cycles << " decoder cycles, "
+                << t.engine_cycles << " engine cycles (+" << t.decoder_cycles - t.engine_cycles << ")\n";
+    }
+  }
   nlohmann::json rows = nlohmann::json::array();
+  std::cout << "\nbreakdown    (every cycle charged to one reason; the rows sum to the total)\n";
   for (const auto& r : run.breakdown.rows()) {
     const double pct = run.cycles ? 100.0 * static_cast<double>(r.cycles) / static_cast<double>(run.cycles) : 0.0;
     std::cout << "  " << std::left << std::setw(15) << r.name << std::right << std::setw(12) << r.cycles
               << std::setw(8) << std::setprecision(1) << pct << " %  " << r.meaning << '\n';
     rows.push_back({{"name", r.name}, {"cycles", r.cycles}, {"percent", pct}, {"meaning", r.meaning}});
   }
-  std::cout << "\ntime         host " << std::setprecision(3) << host_s << " s, cycle model " << model_s << " s ("
-            << std::setprecision(1) << (model_s > 0 ? static_cast<double>(run.cycles) / model_s / 1e6 : 0.0)
-            << " M cycles/s)\n";
+  const auto rate = [&](double s) { return s > 0 ? static_cast<double>(run.cycles) / s / 1e6 : 0.0; };
+  std::cout << "\ntime         host " << std::setprecision(3) << host_s << " s, closed-form estimate " << estimate_s
+            << " s (" << std::setprecision(1) << rate(estimate_s) << " M cycles/s)";
+  if (clocked) {
+    std::cout << ", clocked cycle model " << std::setprecision(3) << model_s << " s (" << std::setprecision(1)
+              << rate(model_s) << " M cycles/s)";
+    if (no_stimulus) std::cout << "; the two agree";
+  }
+  std::cout << "\n";
   if (!o.json_path.empty()) {
     nlohmann::json j = {{"scene", o.scene},
                         {"config", nlohmann::json::parse(config_to_json(frame.config))},
@@ -146,8 +280,12 @@ int run_cycles(const CyclesOptions& o) {
                         {"pixel_beats", run.breakdown.pixel},
                         {"cycles", run.cycles},
                         {"cycles_per_pixel", cpp},
+                        {"figures_from", no_stimulus ? "closed-form estimate" : "clocked cycle model"},
+                        {"clocked_check", no_stimulus && clocked},
+                        {"triangles", triangles_json(est.triangles, tris)},
                         {"breakdown", rows},
-                        {"seconds", {{"host", host_s}, {"cycle_model", model_s}}}};
+                        {"seconds", {{"host", host_s}, {"estimate", estimate_s},
+                                     {"cycle_model", clocked ? nlohmann::json(model_s) : nlohmann::json(nullptr)}}}};
     std::ofstream os(o.json_path);
     if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
     os << j.dump(2) << '\n';
@@ -164,7 +302,13 @@ void register_cycles(CLI::App& app, int& exit_code) {
       "Estimate cycles per pixel for a scene from the cycle model alone (the RTL's control, clock by\n"
       "clock, without its datapath: exact to the cycle, far faster than co-simulation), with a\n"
       "breakdown of where the cycles go: pixels, span setup, unit stalls, table reloads, material\n"
-      "drains, command words and gaps, back-pressure.");
+      "drains, command words and gaps, back-pressure. With no gaps and no back-pressure (the default)\n"
+      "every figure, the breakdown included, comes from a closed-form recurrence over commands and\n"
+      "spans (model/cycle_estimate.h), equal to the clocked model's (--clocked runs both and checks).\n"
+      "Per triangle: its decoder cycles are the cycles on which the decoder takes its words (the\n"
+      "TRIANGLE header, its coefficient words, the SPAN headers up to the next TRIANGLE; one item a\n"
+      "cycle, waiting not counted); its engine cycles are its pixels' beats x the specular slot's\n"
+      "interval. It is setup-bound if its decoder cycles exceed its engine cycles, else fill-bound.");
   sub->add_option("scene", o->scene, "scene JSON file")->required()->check(CLI::ExistingFile);
   sub->add_option("--specular", o->specular, "specular unit: ideal|lut|schlick|wpow (default: the scene's)");
   sub->add_option("--channels", o->channels, "build with this many channels (default: what the scene needs)")
@@ -188,6 +332,11 @@ void register_cycles(CLI::App& app, int& exit_code) {
   sub->add_option("--max-gap", o->max_gap, "longest idle gap in cycles")->check(CLI::Range(1, 100000))->capture_default_str();
   sub->add_option("--stall-pct", o->stall_pct, "chance of output back-pressure per cycle")->check(CLI::Range(0, 99))->capture_default_str();
   sub->add_option("--json", o->json_path, "write the figures as JSON");
+  sub->add_flag("--clocked", o->clocked,
+                "also run the clocked cycle model when there are no gaps or back-pressure, and fail if the\n"
+                "closed form disagrees with it (with gaps or back-pressure it is the only one that runs)");
+  sub->add_option("--worst", o->worst, "setup-bound triangles to list, worst first")->check(CLI::Range(0, 1000000))
+      ->capture_default_str();
   add_width_options(*sub, o->widths);
   add_config_option(*sub, o->config_path, {"--specular", "--channels", "--lights"});
   sub->callback([o, &exit_code]() { exit_code = run_cycles(*o); });

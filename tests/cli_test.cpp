@@ -140,6 +140,38 @@ void expect_error(const std::string& args, const std::string& needle) {
   EXPECT_EQ(r.output.find("terminate called"), std::string::npos) << r.output;
 }
 
+TEST(Cli, CyclesClosedFormEqualsClockedAndClassifiesEveryTriangle) {
+  const auto dir = temp_dir("cycles_closed_form");
+  const std::string knobs = " --port-words 4 --tri-queue 2";
+  const auto fast = run_json("cycles " + kScenes + "sphere.json" + knobs + " --worst 3", dir / "a.json");
+  const auto both = run_json("cycles " + kScenes + "sphere.json" + knobs + " --clocked", dir / "b.json");
+  const auto pressed = run_json("cycles " + kScenes + "sphere.json" + knobs + " --stall-pct 1", dir / "c.json");
+  EXPECT_EQ(fast["figures_from"], "closed-form estimate");
+  EXPECT_FALSE(fast["clocked_check"].get<bool>());
+  EXPECT_TRUE(both["clocked_check"].get<bool>());
+  EXPECT_TRUE(fast["seconds"]["cycle_model"].is_null());
+  EXPECT_EQ(pressed["figures_from"], "clocked cycle model");
+  // The closed form's figures are the clocked model's (which --clocked also checked itself).
+  EXPECT_EQ(fast["cycles"], both["cycles"]);
+  EXPECT_EQ(fast["breakdown"], both["breakdown"]);
+  // 1 % back-pressure costs cycles over the schedule without any.
+  EXPECT_GT(pressed["cycles"].get<uint64_t>(), fast["cycles"].get<uint64_t>());
+  EXPECT_EQ(pressed["pixels"], fast["pixels"]);
+  const auto& t = fast["triangles"];
+  EXPECT_EQ(t["setup_bound"].get<size_t>() + t["fill_bound"].get<size_t>(), t["count"].get<size_t>());
+  EXPECT_EQ(t["each"].size(), t["count"].get<size_t>());
+  uint64_t setup_bound = 0, pixels_seen = 0;
+  for (const auto& e : t["each"]) setup_bound += e[1].get<uint64_t>() > e[2].get<uint64_t>();
+  EXPECT_EQ(setup_bound, t["setup_bound"].get<uint64_t>());
+  ASSERT_EQ(t["worst_setup_bound"].size(), 3u);
+  for (const auto& w : t["worst_setup_bound"]) {
+    EXPECT_TRUE(w["setup_bound"].get<bool>());
+    pixels_seen += w["pixels"].get<uint64_t>();
+  }
+  EXPECT_GT(pixels_seen, 0u);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Cli, BadInputGivesClearErrors) {
   const auto dir = temp_dir("bad");
   expect_error("render /nonexistent/scene.json", "scene.json");
