@@ -15,6 +15,7 @@ void register_config(CLI::App& app, int& exit_code);
 void register_explore(CLI::App& app, int& exit_code);
 void register_cosim(CLI::App& app, int& exit_code);
 void register_area(CLI::App& app, int& exit_code);
+void register_report(CLI::App& app, int& exit_code);
 
 inline void register_commands(CLI::App& app, int& exit_code) {
   register_render(app, exit_code);
@@ -25,6 +26,7 @@ inline void register_commands(CLI::App& app, int& exit_code) {
   register_explore(app, exit_code);
   register_cosim(app, exit_code);
   register_area(app, exit_code);
+  register_report(app, exit_code);
 }
 
 }  // namespace shadesim
