@@ -253,6 +253,28 @@ std::string cycles_section(const ReportInput& in) {
   return h;
 }
 
+// One row per cycles input: cycles per pixel and each breakdown reason's share, side by side.
+std::string cycles_summary(const ReportPage& page) {
+  json rows = json::array();
+  std::vector<std::pair<std::string, std::string>> columns = {{"scene", "scene"}, {"cycles_per_pixel", "cycles/px"}};
+  for (const auto& in : page.inputs.inputs) {
+    if (in.kind != ReportKind::kCycles) continue;
+    json row = {{"scene", scene_name(in.doc)}, {"cycles_per_pixel", at(in.doc, {"cycles_per_pixel"})}};
+    for (const auto& r : in.doc["breakdown"]) {
+      const json name = at(r, {"name"});
+      if (!name.is_string()) continue;
+      const std::string key = name.get<std::string>();
+      row[key] = at(r, {"percent"});
+      if (std::none_of(columns.begin(), columns.end(), [&](const auto& c) { return c.first == key; })) {
+        columns.emplace_back(key, key + " %");
+      }
+    }
+    rows.push_back(row);
+  }
+  if (rows.size() < 2) return "";
+  return "<h3>every scene</h3>\n" + table(rows, columns);
+}
+
 std::string regress_section(const ReportInput& in) {
   const json& d = in.doc;
   std::string h = source(in) +
@@ -371,7 +393,13 @@ std::string report_html(const ReportPage& page) {
   h += section(t[3], kind_body(page, {ReportKind::kExplore},
                                "<code>shadesim explore scenes/sphere.json --json out/explore/sphere.json</code> writes one.",
                                [&](const ReportInput& in) { return explore_section(page, in); }));
-  h += section(t[4], kind_body(page, {ReportKind::kCycles},
+  std::string summary;
+  try {
+    summary = cycles_summary(page);
+  } catch (const std::exception& e) {
+    summary = "<p class=\"problem\">cycles summary: unexpected contents (" + esc(e.what()) + ")</p>\n";
+  }
+  h += section(t[4], summary + kind_body(page, {ReportKind::kCycles},
                                "<code>shadesim cycles SCENE --json out/&lt;scene&gt;/cycles.json</code> writes one.",
                                [](const ReportInput& in) { return cycles_section(in); }));
   h += section(t[5], kind_body(page, {ReportKind::kRegress},
