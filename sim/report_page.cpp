@@ -37,6 +37,11 @@ std::string text(const json& v) {
     }
     return os.str();
   }
+  if (v.is_array() && std::none_of(v.begin(), v.end(), [](const json& e) { return e.is_structured(); })) {
+    std::string joined;
+    for (const auto& e : v) joined += (joined.empty() ? "" : ", ") + text(e);
+    return joined.empty() ? "(none)" : joined;
+  }
   return v.dump();
 }
 
