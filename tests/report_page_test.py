@@ -4,8 +4,9 @@
   tests/report_page_test.py SHADESIM SOURCE_DIR WORK_DIR
 
 Makes small inputs itself: render and cycles of scenes/sphere.json, a short spec-error run, and
-hand-written explore and regress JSON in their commands' formats (both need Yosys or the RTL,
-minutes, which this test does not spend). Writes the page, loads it in Debian's chromium
+hand-written explore, regress and render --all-units JSON in their commands' formats (the first
+two need Yosys or the RTL, minutes, which this test does not spend), a unit configuration and a
+JUnit file (both listed as not read, with why). Writes the page, loads it in Debian's chromium
 (--headless) and asserts that the screenshot is not blank (pixel spread and colours, decoded with
 matplotlib), that the console logged no error, and that every section heading, the embedded
 images, the failure's replay command and the cycles breakdown are in the DOM. First it checks
@@ -106,6 +107,13 @@ def main():
         json.dump(regress, f)
     with open(os.path.join(inputs, "sphere", "unit.json"), "w") as f:
         json.dump({"channels": 1, "series": "s4.28"}, f)  # not a report: ignored, listed
+    with open(os.path.join(inputs, "junit.xml"), "w") as f:
+        f.write('<testsuite name="shadesim.regress"></testsuite>\n')  # read from regress --json instead
+    # render --all-units's format (sim/cmd_render.cpp run_all_units).
+    with open(os.path.join(inputs, "units.json"), "w") as f:
+        json.dump({"scene": "scenes/specular.json",
+                   "units": [{"unit": "wpow", "configuration": "wpow m=16 B=16", "max_code_lsb": 2,
+                              "mean_code_lsb": 0.22, "psnr_db": 52.8, "table_load_cycles": 0}]}, f)
 
     page_dir = os.path.join(work, "page")
     r = run([shadesim, "report", "--out", page_dir, inputs])
@@ -133,6 +141,8 @@ def main():
     check(rows and not missing, f"every cycles breakdown row with its cycles is on the page (missing: {missing})")
     check("No input" not in dom, "every section has its input")
     check("unit.json" in dom and "a unit configuration, not a report" in dom, "a non-report file is listed as ignored")
+    check("junit.xml" in dom and "JUnit XML is not read" in dom, "a JUnit file is listed with where its runs are read")
+    check("specular: every specular unit" in dom and "wpow m=16 B=16" in dom, "render --all-units's table is on the page")
 
     # Nothing to read: every section says so, and the folder is named.
     empty = os.path.join(work, "empty")
