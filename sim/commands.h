@@ -8,6 +8,7 @@
 namespace shadesim {
 
 void register_render(CLI::App& app, int& exit_code);
+void register_report(CLI::App& app, int& exit_code);
 void register_spec_error(CLI::App& app, int& exit_code);
 void register_regress(CLI::App& app, int& exit_code);
 void register_cycles(CLI::App& app, int& exit_code);
@@ -15,10 +16,10 @@ void register_config(CLI::App& app, int& exit_code);
 void register_explore(CLI::App& app, int& exit_code);
 void register_cosim(CLI::App& app, int& exit_code);
 void register_area(CLI::App& app, int& exit_code);
-void register_report(CLI::App& app, int& exit_code);
 
 inline void register_commands(CLI::App& app, int& exit_code) {
   register_render(app, exit_code);
+  register_report(app, exit_code);
   register_spec_error(app, exit_code);
   register_regress(app, exit_code);
   register_cycles(app, exit_code);
@@ -26,7 +27,6 @@ inline void register_commands(CLI::App& app, int& exit_code) {
   register_explore(app, exit_code);
   register_cosim(app, exit_code);
   register_area(app, exit_code);
-  register_report(app, exit_code);
 }
 
 }  // namespace shadesim
