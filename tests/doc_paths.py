@@ -7,10 +7,12 @@ Reads every *.md file, and the comments of the sources under rtl/ sim/ model/ ho
 scripts/ cmake/ bench/ and of every CMakeLists.txt (// and /* */ in C++ and SystemVerilog, # in
 shell, Python and CMake). A path is a token with a '/' that either ends in a file extension
 (notes/rtl.md) or starts with a top-level entry of the repository (scenes/hard/). It must exist
-relative to the repository root or to the file naming it (a name without its extension,
-host/specular_setup, names its .h/.cpp); a glob (model/*.cpp) must match a file. Outputs (out/, build/), placeholders (scenes/<scene>.json), URLs and absolute paths are not
-repository paths. A mention of the "design brief" or design.md (not in the repository) counts as missing too.
-Exits 1 naming file:line and the path for each that does not exist.
+relative to the repository root, to the file naming it, or to an installed package's files
+(assimp-testmodels' invalid/OutOfMemory.off; scripts/setup installs it). A name without its
+extension (host/specular_setup) names its .h/.cpp; a glob (model/*.cpp) must match a file.
+Outputs (out/, build/), placeholders (scenes/<scene>.json), URLs and absolute paths are not
+repository paths. A mention of the "design brief" or design.md (not in the repository) counts as
+missing too. Exits 1 naming file:line and the path for each that does not exist.
 
   tests/doc_paths.py --self-test
 
@@ -32,8 +34,10 @@ GENERATED = ("out/", "build/", "build-", "Testing/")
 # Paths of other projects that comments cite on purpose: path -> whose.
 EXTERNAL = {
     "dv/cosim/cosim.h": "lowRISC ibex",
-    "invalid/OutOfMemory.off": "Debian's assimp-testmodels",
 }
+# Installed packages whose files the docs name by their own relative paths (scripts/setup
+# installs them): a path found there is theirs.
+PACKAGE_ROOTS = ["/usr/share/assimp/models"]  # assimp-testmodels: invalid/OutOfMemory.off
 # Documents that comments used to cite but the repository does not hold: phrase -> what to cite.
 MISSING_DOCUMENTS = {
     "design brief": 'is not in the repository; cite a README section (e.g. "Checked numerical facts")',
@@ -136,7 +140,7 @@ def candidates(text, top_level):
 
 
 def exists(tok, base_dir):
-    for base in (ROOT, base_dir):
+    for base in [ROOT, base_dir] + PACKAGE_ROOTS:
         p = os.path.normpath(os.path.join(base, tok))
         if "*" in tok:
             if glob.glob(p):
