@@ -9,7 +9,8 @@
 //   stage 3  each rounded once into the series format (its quantization and overflow rule)
 //
 // Only stage 3 loses bits, so with truncation the per-pixel value after k steps differs from the
-// exact quantized quadratic by at most 2^-F (1 + k + k(k-1)/2): the design brief's drift bound.
+// exact quantized quadratic by at most 2^-F (1 + k + k(k-1)/2): the drift bound (README
+// "Checked numerical facts").
 #pragma once
 
 #include <cstdint>

@@ -8,6 +8,7 @@
 namespace shadesim {
 
 void register_render(CLI::App& app, int& exit_code);
+void register_report(CLI::App& app, int& exit_code);
 void register_spec_error(CLI::App& app, int& exit_code);
 void register_regress(CLI::App& app, int& exit_code);
 void register_cycles(CLI::App& app, int& exit_code);
@@ -19,6 +20,7 @@ void register_merge(CLI::App& app, int& exit_code);
 
 inline void register_commands(CLI::App& app, int& exit_code) {
   register_render(app, exit_code);
+  register_report(app, exit_code);
   register_spec_error(app, exit_code);
   register_regress(app, exit_code);
   register_cycles(app, exit_code);

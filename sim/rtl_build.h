@@ -3,7 +3,7 @@
 //
 // The cache key is a hash of everything the executable is made from: shade_unit's parameters
 // (model/rtl_parameters.h), the backend, the contents of the RTL, of the harness sources and
-// headers, of the model headers and of the prebuilt model/harness libraries it links, the compiler's
+// headers, of the model headers and of the prebuilt model and harness libraries it links, the compiler's
 // and Verilator's versions and the build flags. A changed input is a new key; an old entry is
 // never rebuilt in place.
 //

@@ -74,7 +74,7 @@ double quantization_step(const FixedFormat& f) {
 //     value at integer offsets (dx, dy) from the origin is off by at most q (1 + |dx| + |dy|)^2;
 //   span setup: v, d, d2 each quantized once into the series format (error < e, one series
 //     step: e = ulp with truncation, ulp/2 with rounding), after k steps at most
-//     e (1 + k + k(k-1)/2) - the design brief's drift bound; the additions themselves are exact.
+//     e (1 + k + k(k-1)/2) - README's drift bound; the additions themselves are exact.
 // The specular series error reaches the colour through clamp01(t)^n, n-Lipschitz on [0, 1] for
 // n >= 1, times ks; then the unit output, the specular colour and the product are quantized, and
 // the ambient colour is quantized once. Output saturation and max(0, .) only shrink errors.

@@ -185,7 +185,7 @@ TEST(SceneConfig, LongSpanIsWithinOneLsbOnItsOwnConfiguration) {
   EXPECT_NEAR(d.measured.gain, gain, 1e-9);
   const double budget = j["error_budget_lsb"];
   EXPECT_EQ(d.config.series.frac_bits(), closed_form_series_frac(L, gain, budget / 4, 8));
-  EXPECT_GE(d.config.series.frac_bits(), 30) << "the design brief: F >= 30 for L = 2048";
+  EXPECT_GE(d.config.series.frac_bits(), 30) << "the drift bound (README \"Checked numerical facts\"): F >= 30 for L = 2048";
   const ErrorStats e = render_at(path, d.config);
   EXPECT_LE(e.max_code_lsb, 1) << d.config.to_string();
   EXPECT_EQ(e.pixels_over_1lsb, 0u);

@@ -119,8 +119,8 @@ TEST(SchlickDivider, SmallestWidths) {
   EXPECT_EQ(h.at(1.0), 1.0);
 }
 
-// Schlick's lobe is not t^n: ~52 8-bit LSB worst at equal n (design brief); fitting n' for the
-// absolute error about halves it.
+// Schlick's lobe is not t^n: ~52 8-bit LSB worst at equal n (README "Checked numerical facts");
+// fitting n' for the absolute error about halves it.
 TEST(SchlickDivider, FittedExponentHalvesAbsoluteError) {
   double paper = 0, fitted = 0;
   for (double n : {16.0, 100.0, 1000.0}) {

@@ -1,5 +1,5 @@
 // SpanSetup + SeriesEngine against direct evaluation of the quantized quadratic, and the drift
-// bound 2^-F (1 + L(L-1)/2) from the design brief, on spans up to 2048 pixels.
+// bound 2^-F (1 + L(L-1)/2) of README "Checked numerical facts", on spans up to 2048 pixels.
 #include <gtest/gtest.h>
 
 #include <cmath>

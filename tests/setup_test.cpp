@@ -119,7 +119,7 @@ TEST(Setup, SixtyDegreeTriangleExceedsBudgetUnsplitAndFitsAfterSubdivision) {
   const Brute brute_whole = brute_force_error(t, whole, scene);
   std::printf("60 deg triangle, %d pixels: unsplit max error %.2f LSB (brute force %.2f)\n",
               brute_whole.pixels, unsplit, brute_whole.max_lsb);
-  EXPECT_GT(brute_whole.max_lsb, 10.0);  // design brief: tens of LSB
+  EXPECT_GT(brute_whole.max_lsb, 10.0);  // README "Checked numerical facts": tens of LSB
   EXPECT_NEAR(unsplit, brute_whole.max_lsb, 1e-9);
 
   const SetupResult r = subdivide_and_setup({t}, scene, SetupOptions());

@@ -1,6 +1,6 @@
 // Taylor coefficients by automatic differentiation, checked against Bishop & Weimer's closed forms
-// (with the design brief's corrections) and against central finite differences of the exact
-// shading functions.
+// (with the errata in README "Checked numerical facts") and against central finite differences
+// of the exact shading functions.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -43,7 +43,7 @@ FieldCase random_field(Rng& rng, Vec3 centre_value, double rate) {
   return fc;
 }
 
-// Bishop & Weimer, diffuse form, T5 corrected per design.md (printed "3ig^2").
+// Bishop & Weimer, diffuse form, T5 corrected (printed "3ig^2"; README "Checked numerical facts").
 std::array<double, 6> closed_diffuse(Vec3 A, Vec3 B, Vec3 C, Vec3 L, bool printed_t5 = false) {
   const double a = dot(L, A), b = dot(L, B), c = dot(L, C);
   const double d = dot(A, A), e = 2 * dot(A, B), f = dot(B, B);
@@ -60,8 +60,9 @@ std::array<double, 6> closed_diffuse(Vec3 A, Vec3 B, Vec3 C, Vec3 L, bool printe
   return T;
 }
 
-// Finite eye: N = A x + B y + C, H = D x + E y + F. Corrected T5, T4 and m = D.D, o = E.E per
-// design.md; T3..T0 as printed. printed_m_o uses the paper's m = E.E, o = 2 D.E instead.
+// Finite eye: N = A x + B y + C, H = D x + E y + F. Corrected T5, T4 and m = D.D, o = E.E
+// (README "Checked numerical facts"); T3..T0 as printed. printed_m_o uses the paper's m = E.E,
+// o = 2 D.E instead.
 std::array<double, 6> closed_finite(Vec3 A, Vec3 B, Vec3 C, Vec3 D, Vec3 E, Vec3 F,
                                     bool printed_m_o = false) {
   const double a = dot(A, D), b = dot(A, E) + dot(B, D), c = dot(B, E);

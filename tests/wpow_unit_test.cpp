@@ -1,6 +1,6 @@
 // WpowUnit against double precision: an exhaustive sweep at small widths, a derived bound
 // against the float W_m, the clamp at and below W_m's zero, t beyond [0, 1], small n, and the
-// W16 epicentre figures of the design brief (float arithmetic, n in [16, 1000]).
+// W16 epicentre figures of README "Checked numerical facts" (float, n in [16, 1000]).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -143,8 +143,8 @@ TEST(WpowUnit, RejectsBadParams) {
   EXPECT_THROW(unit.load_params({3}), std::invalid_argument);
 }
 
-// Design brief: W16 with zeta = n/16 has epicentre max relative error ~1.51 % over n in
-// [16, 1000]; a per-exponent fitted zeta brings it under 0.3 %.
+// README "Checked numerical facts": W16 with zeta = n/16 has epicentre max relative error
+// ~1.51 % over n in [16, 1000]; a per-exponent fitted zeta brings it under 0.3 %.
 TEST(WpowUnit, W16EpicentreFiguresInFloat) {
   double paper = 0, fitted = 0;
   for (int n = 16; n <= 1000; ++n) {

@@ -1,0 +1,213 @@
+#!/usr/bin/python3
+"""Every repository path named in the docs and in comments must exist (issue 10, section 3).
+
+  tests/doc_paths.py [SOURCE_DIR]
+
+Reads every *.md file, and the comments of the sources under rtl/ sim/ model/ host/ tests/
+scripts/ cmake/ bench/ and of every CMakeLists.txt (// and /* */ in C++ and SystemVerilog, # in
+shell, Python and CMake). A path is a token with a '/' that either ends in a file extension
+(notes/rtl.md) or starts with a top-level entry of the repository (scenes/hard/). It must exist
+relative to the repository root, to the file naming it, or to an installed package's files
+(assimp-testmodels' invalid/OutOfMemory.off; scripts/setup installs it). A name without its
+extension (host/specular_setup) names its .h/.cpp; a glob (model/*.cpp) must match a file.
+Outputs (out/, build/), placeholders (scenes/<scene>.json), URLs and absolute paths are not
+repository paths. A mention of the "design brief" or design.md (not in the repository) counts as
+missing too. Exits 1 naming file:line and the path for each that does not exist.
+
+  tests/doc_paths.py --self-test
+
+checks the checker on a small tree it writes: it must name each missing path there and pass
+the paths that exist, ignoring paths in code (string literals) and outputs.
+"""
+import glob
+import os
+import re
+import sys
+
+ROOT = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), ".."))
+SOURCE_DIRS = ["rtl", "sim", "model", "host", "tests", "scripts", "cmake", "bench"]
+C_LIKE = {".h", ".hpp", ".cpp", ".cc", ".c", ".sv", ".svh", ".v", ".vlt"}
+HASH = {".py", ".sh", ".cmake", ".txt", ".yml", ".yaml"}
+SKIP_DIRS = {".git", "build", "out", "Testing", "__pycache__"}
+# Written by the tools, not part of the repository.
+GENERATED = ("out/", "build/", "build-", "Testing/")
+# Paths of other projects that comments cite on purpose: path -> whose.
+EXTERNAL = {
+    "dv/cosim/cosim.h": "lowRISC ibex",
+}
+# Installed packages whose files the docs name by their own relative paths (scripts/setup
+# installs them): a path found there is theirs.
+PACKAGE_ROOTS = ["/usr/share/assimp/models"]  # assimp-testmodels: invalid/OutOfMemory.off
+# Documents that comments used to cite but the repository does not hold: phrase -> what to cite.
+MISSING_DOCUMENTS = {
+    "design brief": 'is not in the repository; cite a README section (e.g. "Checked numerical facts")',
+    "design.md": 'is not in the repository; cite a README section (e.g. "Checked numerical facts")',
+}
+TOKEN = re.compile(r"[A-Za-z0-9_.*<>{}$~\-]*(?:/[A-Za-z0-9_.*<>{}$\-]*)+")
+EXTENSION = re.compile(r"\.[a-z][a-z0-9]{0,4}$")
+
+
+def c_comments(text):
+    """(line number, comment text) of // and /* */ comments, skipping string and char literals."""
+    out, i, line, n = [], 0, 1, len(text)
+    while i < n:
+        c = text[i]
+        if c == "\n":
+            line += 1
+            i += 1
+        elif text.startswith("//", i):
+            j = text.find("\n", i)
+            j = n if j < 0 else j
+            out.append((line, text[i + 2:j]))
+            i = j
+        elif text.startswith("/*", i):
+            j = text.find("*/", i + 2)
+            j = n if j < 0 else j
+            for k, part in enumerate(text[i + 2:j].split("\n")):
+                out.append((line + k, part))
+            line += text.count("\n", i, j)
+            i = j + 2
+        elif c in "\"'":
+            j = i + 1
+            while j < n and text[j] != c and text[j] != "\n":
+                j += 2 if text[j] == "\\" else 1
+            i = j + 1
+        else:
+            i += 1
+    return out
+
+
+def hash_comments(text):
+    """(line number, comment text) after a # that is not inside quotes (shell, Python, CMake)."""
+    out = []
+    for number, line in enumerate(text.split("\n"), 1):
+        quote = None
+        for k, c in enumerate(line):
+            if quote:
+                if c == quote:
+                    quote = None
+            elif c in "\"'":
+                quote = c
+            elif c == "#" and (k == 0 or line[k - 1] in " \t(;"):
+                if not line.startswith("#!"):
+                    out.append((number, line[k + 1:]))
+                break
+    return out
+
+
+def files():
+    for dirpath, dirnames, filenames in os.walk(ROOT):
+        dirnames[:] = sorted(d for d in dirnames if d not in SKIP_DIRS)
+        rel_dir = os.path.relpath(dirpath, ROOT)
+        top = rel_dir.split(os.sep)[0]
+        for name in sorted(filenames):
+            path = os.path.join(dirpath, name)
+            ext = os.path.splitext(name)[1]
+            if ext == ".md":
+                yield path, "doc"
+            elif name == "CMakeLists.txt":
+                yield path, "hash"
+            elif top in SOURCE_DIRS:
+                if ext in C_LIKE:
+                    yield path, "c"
+                elif ext in HASH or (ext == "" and first_line(path).startswith("#!")):
+                    yield path, "hash"
+
+
+def first_line(path):
+    try:
+        with open(path, errors="replace") as f:
+            return f.readline()
+    except OSError:
+        return ""
+
+
+def candidates(text, top_level):
+    for m in TOKEN.finditer(text):
+        start = m.start()
+        if start > 0 and (text[start - 1].isalnum() or text[start - 1] in ":/@"):
+            continue  # part of a URL, an absolute path or a longer word
+        tok = m.group(0).rstrip(".,;:)")
+        if "/" not in tok or tok.startswith(("/", "~", "./")) and not tok.startswith("../"):
+            continue
+        if any(ch in tok for ch in "<>{}$") or "..." in tok.replace("../", "") or "//" in tok:
+            continue
+        if tok.startswith(GENERATED) or tok in EXTERNAL:
+            continue
+        first = tok.lstrip("./").split("/")[0] if not tok.startswith("../") else ".."
+        if EXTENSION.search(tok.rstrip("/")) or first in top_level:
+            yield tok
+
+
+def exists(tok, base_dir):
+    for base in [ROOT, base_dir] + PACKAGE_ROOTS:
+        p = os.path.normpath(os.path.join(base, tok))
+        if "*" in tok:
+            if glob.glob(p):
+                return True
+        elif os.path.exists(p) or glob.glob(p + ".*"):
+            return True  # host/specular_setup names host/specular_setup.{h,cpp}
+    return False
+
+
+def self_test():
+    import subprocess
+    import tempfile
+    with tempfile.TemporaryDirectory() as tmp:
+        def write(rel, text):
+            os.makedirs(os.path.dirname(os.path.join(tmp, rel)), exist_ok=True)
+            with open(os.path.join(tmp, rel), "w") as f:
+                f.write(text)
+        write("README.md", "See `model/a.h`, `notes/rtl.md` and `scenes/hard/`; out/x/compare.png is made.\n")
+        write("model/a.h", '// see model/*.h and sim/gone.cpp\nconst char* p = "sim/code_only.cpp";\n')
+        write("scenes/hard/x.json", "{}\n")
+        write("scripts/run", "#!/bin/sh\n# reads scenes/hard/x.json and scenes/none.json\necho '# not/a_comment.txt'\n")
+        write("sim/b.cpp", "/* the design brief says\n   so, in host/setup.h */\nint x;\n")
+        r = subprocess.run([sys.executable, __file__, tmp], capture_output=True, text=True)
+        expected = ["README.md:1: notes/rtl.md does not exist", "model/a.h:1: sim/gone.cpp does not exist",
+                    "scripts/run:2: scenes/none.json does not exist", "sim/b.cpp:1: the design brief",
+                    "sim/b.cpp:2: host/setup.h does not exist"]
+        lines = r.stdout.strip().split("\n")
+        problems = [e for e in expected if not any(line.startswith(e) for line in lines)]
+        if r.returncode != 1:
+            problems.append(f"exit {r.returncode}, expected 1")
+        if len(lines) != len(expected) + 1:
+            problems.append(f"{len(lines) - 1} finding(s), expected {len(expected)}")
+        if problems:
+            print("doc_paths self-test FAILED:", *problems, "output:", r.stdout, sep="\n  ")
+            return 1
+        print(f"doc_paths self-test: the {len(expected)} missing paths named, nothing else")
+        return 0
+
+
+def main():
+    if len(sys.argv) > 1 and sys.argv[1] == "--self-test":
+        return self_test()
+    top_level = {e for e in os.listdir(ROOT) if e not in SKIP_DIRS}
+    missing = []
+    checked = 0
+    for path, kind in files():
+        with open(path, errors="replace") as f:
+            text = f.read()
+        if kind == "doc":
+            lines = list(enumerate(text.split("\n"), 1))
+        elif kind == "c":
+            lines = c_comments(text)
+        else:
+            lines = hash_comments(text)
+        for number, line in lines:
+            for phrase, fix in MISSING_DOCUMENTS.items():
+                if phrase in line.lower():
+                    missing.append(f"{os.path.relpath(path, ROOT)}:{number}: the {phrase} {fix}")
+            for tok in candidates(line, top_level):
+                checked += 1
+                if not exists(tok, os.path.dirname(path)):
+                    missing.append(f"{os.path.relpath(path, ROOT)}:{number}: {tok} does not exist")
+    for m in missing:
+        print(m)
+    print(f"doc_paths: {checked} path(s) named in docs and comments, {len(missing)} missing")
+    return 1 if missing or checked == 0 else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,171 @@
+#!/usr/bin/python3
+"""shadesim report, end to end, in headless Chromium (issue 10, section 4).
+
+  tests/report_page_test.py SHADESIM SOURCE_DIR WORK_DIR
+
+Makes small inputs itself: render and cycles of scenes/sphere.json, a short spec-error run, and
+hand-written explore, regress and render --all-units JSON in their commands' formats (the first
+two need Yosys or the RTL, minutes, which this test does not spend), a unit configuration and a
+JUnit file (both listed as not read, with why). Writes the page, loads it in Debian's chromium
+(--headless) and asserts that the screenshot is not blank (pixel spread and colours, decoded with
+matplotlib), that the console logged no error, and that every section heading, the embedded
+images, the failure's replay command and the cycles breakdown are in the DOM. First it checks
+the console check itself on a page with a script error, so the check can fail. Then: a report
+without inputs says so in every section and names the folder; a malformed input is named.
+"""
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+SECTIONS = ["Inputs", "Scenes: model, reference, error", "Specular units: error against cost",
+            "Width exploration", "Cycles per pixel", "Regression", "Tool versions"]
+failures = []
+
+
+def check(ok, what):
+    print(("ok    " if ok else "FAIL  ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def run(args, **kw):
+    r = subprocess.run(args, capture_output=True, text=True, timeout=600, **kw)
+    return r
+
+
+def chromium(url, work, tag):
+    """(screenshot path, DOM text, console error lines) of a page loaded in headless chromium."""
+    exe = shutil.which("chromium")
+    if not exe:
+        sys.exit("chromium is not installed: scripts/setup installs Debian's chromium")
+    shot = os.path.join(work, tag + ".png")
+    base = [exe, "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--hide-scrollbars",
+            "--user-data-dir=" + os.path.join(work, "chromium-profile-" + tag),
+            "--enable-logging=stderr", "--v=0"]
+    r1 = run(base + ["--window-size=1280,2000", "--screenshot=" + shot, url])
+    r2 = run(base + ["--dump-dom", url])
+    log = r1.stderr + r2.stderr
+    console = [line for line in log.splitlines() if "CONSOLE" in line and
+               re.search(r"error|Uncaught|Failed to load|ERR_", line, re.I)]
+    return shot, r2.stdout, console
+
+
+def not_blank(png):
+    import matplotlib.image
+    img = matplotlib.image.imread(png)[:, :, :3]
+    colours = len({tuple(p) for p in (img[::4, ::4].reshape(-1, 3) * 255).astype(int).tolist()})
+    return float(img.std()), colours
+
+
+def main():
+    shadesim, src, work = sys.argv[1], sys.argv[2], os.path.abspath(sys.argv[3])
+    shutil.rmtree(work, ignore_errors=True)
+    inputs = os.path.join(work, "inputs")
+    os.makedirs(os.path.join(inputs, "sphere"))
+
+    # The console check must be able to fail: a page with a script error.
+    bad = os.path.join(work, "bad.html")
+    with open(bad, "w") as f:
+        f.write("<!DOCTYPE html><html><body><h1>x</h1><script>no_such_function();</script></body></html>")
+    _, _, console = chromium("file://" + bad, work, "bad")
+    check(bool(console), "the console check sees a script error on a page that has one")
+
+    sphere = os.path.join(inputs, "sphere")
+    r = run([shadesim, "render", os.path.join(src, "scenes/sphere.json"), "--out", sphere,
+             "--json", os.path.join(sphere, "render.json"), "-q"])
+    check(r.returncode == 0, "render scenes/sphere.json --json: " + r.stderr.strip())
+    r = run([shadesim, "cycles", os.path.join(src, "scenes/sphere.json"), "--json", os.path.join(sphere, "cycles.json")])
+    check(r.returncode == 0, "cycles scenes/sphere.json --json: " + r.stderr.strip())
+    r = run([shadesim, "spec-error", "--exponents", "20,60,200", "--points", "16", "--no-papers",
+             "--json", os.path.join(inputs, "spec-error.json")])
+    check(r.returncode == 0, "spec-error --json: " + r.stderr.strip())
+    # explore's format (sim/cmd_explore.cpp), three points.
+    def point(i, stage, area, mx, mean, pareto):
+        return {"index": i, "phase": "stage", "stage": stage, "knob": stage, "value": str(i), "valid": True,
+                "config_text": f"grey/1L point {i}", "error": {"max_code_lsb": mx, "mean_code_lsb": mean},
+                "cycles_per_pixel": 2.687, "area": area, "pareto": pareto}
+    explore = {"kind": "explore", "scenes": ["scenes/sphere.json"], "budget_lsb": 1, "area_metric": "cells (est.)",
+               "start": {"out_bits": 8}, "start_index": 0, "chosen_index": 2,
+               "points": [point(0, "coef", 16239, 1, 0.05, False), point(1, "series", 9000, 3, 0.6, True),
+                          point(2, "series", 7525, 1, 0.09, True)]}
+    with open(os.path.join(inputs, "explore.json"), "w") as f:
+        json.dump(explore, f)
+    # regress's format (sim/cmd_regress.cpp write_json_report): one pass, one mismatch.
+    replay = "build/shadesim cosim --stream out/regress/failing/torus.stream --seed 1"
+    regress = {"passed": 1, "mismatched": 1, "errors": 0, "skipped": 0, "wall_seconds": 3.5, "seed": 1,
+               "jobs": [{"scene": "scenes/sphere.json", "config": "own", "backend": "cpp", "status": "pass",
+                         "pixels": 16176, "cycles": 43470, "cycles_per_pixel": 2.687, "seconds": 0.4,
+                         "message": "", "replay": ""},
+                        {"scene": "scenes/torus.json", "config": "grey_s428w", "backend": "systemc",
+                         "status": "mismatch", "pixels": 19852, "cycles": 0, "cycles_per_pixel": 0,
+                         "seconds": 0.9, "message": "pixel mismatch at (10, 20): expected 135, got 134",
+                         "replay": replay}]}
+    with open(os.path.join(inputs, "regress.json"), "w") as f:
+        json.dump(regress, f)
+    with open(os.path.join(inputs, "sphere", "unit.json"), "w") as f:
+        json.dump({"channels": 1, "series": "s4.28"}, f)  # not a report: ignored, listed
+    with open(os.path.join(inputs, "junit.xml"), "w") as f:
+        f.write('<testsuite name="shadesim.regress"></testsuite>\n')  # read from regress --json instead
+    # render --all-units's format (sim/cmd_render.cpp run_all_units).
+    with open(os.path.join(inputs, "units.json"), "w") as f:
+        json.dump({"scene": "scenes/specular.json",
+                   "units": [{"unit": "wpow", "configuration": "wpow m=16 B=16", "max_code_lsb": 2,
+                              "mean_code_lsb": 0.22, "psnr_db": 52.8, "table_load_cycles": 0}]}, f)
+
+    page_dir = os.path.join(work, "page")
+    r = run([shadesim, "report", "--out", page_dir, inputs])
+    print(r.stdout)
+    check(r.returncode == 0, f"report exits 0 on good inputs (got {r.returncode}; {r.stderr.strip()})")
+    html_path = os.path.join(page_dir, "index.html")
+    check(os.path.exists(html_path), "report writes index.html")
+    with open(html_path) as f:
+        html = f.read()
+    check(not re.search(r"""(src|href)=["']?(https?:|//)""", html), "the page fetches nothing from the network")
+
+    shot, dom, console = chromium("file://" + os.path.abspath(html_path), work, "report")
+    check(not console, "no console errors loading the report: " + "; ".join(console))
+    spread, colours = not_blank(shot)
+    check(spread > 0.05 and colours > 50, f"screenshot not blank (pixel std {spread:.3f}, {colours} colours)")
+    headings = re.findall(r"<h2>(.*?)</h2>", dom)
+    for s in SECTIONS:
+        check(s in headings, f"section '{s}' in the DOM")
+    check(dom.count('src="data:image/png;base64,') >= 3, "render image and both plots are embedded in the DOM")
+    check(replay in dom, "the failure's replay command is on the page")
+    check("grey_s428w" in dom and "mismatch" in dom, "the regression table lists the failing run")
+    with open(os.path.join(sphere, "cycles.json")) as f:
+        rows = json.load(f)["breakdown"]
+    missing = [r["name"] for r in rows if f"<td>{r['name']}</td><td>{r['cycles']}</td>" not in dom]
+    check(rows and not missing, f"every cycles breakdown row with its cycles is on the page (missing: {missing})")
+    check("No input" not in dom, "every section has its input")
+    check("unit.json" in dom and "a unit configuration, not a report" in dom, "a non-report file is listed as ignored")
+    check("junit.xml" in dom and "JUnit XML is not read" in dom, "a JUnit file is listed with where its runs are read")
+    check("specular: every specular unit" in dom and "wpow m=16 B=16" in dom, "render --all-units's table is on the page")
+
+    # Nothing to read: every section says so, and the folder is named.
+    empty = os.path.join(work, "empty")
+    os.makedirs(empty)
+    r = run([shadesim, "report", "--out", os.path.join(work, "page-empty"), empty])
+    check(r.returncode == 1 and empty in r.stdout and "holds no report" in r.stdout,
+          "an empty folder: exit 1, the folder named (" + r.stdout.strip().replace("\n", " | ") + ")")
+    with open(os.path.join(work, "page-empty", "index.html")) as f:
+        empty_html = f.read()
+    check(empty_html.count("No input") == 5, f"each of the 5 report sections says it has no input "
+          f"({empty_html.count('No input')})")
+
+    # A malformed input is named, with what was expected.
+    broken = os.path.join(work, "broken.json")
+    with open(broken, "w") as f:
+        f.write('{"jobs": [')
+    r = run([shadesim, "report", "--out", os.path.join(work, "page-broken"), broken])
+    check(r.returncode == 1 and broken + ": not valid JSON" in r.stdout and "expected the JSON of" in r.stdout,
+          "a malformed file: exit 1, named, with what was expected")
+
+    print(f"\nreport_page_test: {len(failures)} failure(s)")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
