@@ -20,7 +20,8 @@ class SpanPipe {
   explicit SpanPipe(const CycleConfig& unit)
       : queued_(unit.tri_queue > 1),
         interval_(unit.slot.interval),
-        latency_(unit.slot.latency) {
+        latency_(unit.slot.latency),
+        lanes_(static_cast<uint64_t>(unit.lanes)) {
     prev_.fill(kLongAgo);
     // The entries of the last span_queue() spans are all the decoder asks for (room in the
     // queue); a power-of-two ring holds them.
@@ -40,7 +41,7 @@ class SpanPipe {
     s[CycleEstimate::kSetupStages] = std::max(s[CycleEstimate::kSetupStages - 1] + 1, last_emit_);
     const Cycle first = std::max(s[CycleEstimate::kSetupStages] + 1, last_emit_ + interval_);
     first_emit_ = first;
-    last_emit_ = first + static_cast<Cycle>(CycleEstimate::beats(len) - 1) * interval_;
+    last_emit_ = first + static_cast<Cycle>(CycleEstimate::beats(len, lanes_) - 1) * interval_;
     prev_ = s;
     if (queued_) entry_[spans_ & ring_mask_] = s[0];
     last_leave_ = last_emit_ + latency_ + 1;
@@ -72,6 +73,7 @@ class SpanPipe {
  private:
   bool queued_;
   Cycle interval_, latency_;
+  uint64_t lanes_;
   std::array<Cycle, CycleEstimate::kSetupStages + 1> prev_;  // the previous span's stage entries
   Cycle first_emit_ = kLongAgo;
   Cycle last_emit_ = kLongAgo;
@@ -106,12 +108,13 @@ class BreakdownRecorder {
     else busy_.push_back({b, e});
   }
 
-  CycleBreakdown finish(Cycle total, uint64_t pixels) {
+  // beats: the pixel beats that left (pixels with one lane).
+  CycleBreakdown finish(Cycle total, uint64_t beats) {
     CycleBreakdown b;
     uint64_t busy = 0;
     for (const auto& iv : busy_) busy += static_cast<uint64_t>(iv.second - iv.first);
-    b.pixel = pixels;
-    b.unit_stall = busy - pixels;
+    b.pixel = beats;
+    b.unit_stall = busy - beats;
     // Bubbles in [from, to): the cycles there outside every busy interval.
     size_t j = 0;
     uint64_t below = 0;  // busy cycles in the intervals before j
@@ -163,6 +166,7 @@ CycleEstimate::CycleEstimate(CycleConfig unit) : unit_(unit), span_latency_(Cycl
 CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool with_breakdown) const {
   std::optional<BreakdownRecorder> rec;
   if (with_breakdown) rec.emplace(unit_, span_latency_);
+  uint64_t pixel_beats = 0;  // beats that leave the engines (CycleBreakdown::pixel)
   const uint64_t port = static_cast<uint64_t>(unit_.port_words);
   const int port_shift = port == 8 ? 3 : port == 4 ? 2 : port == 2 ? 1 : 0;
   const bool queued = unit_.tri_queue > 1;
@@ -251,11 +255,12 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
           if (rec) rec->span(pipe.first_emit(), pipe.last_emit());
           if (queued) bank_free[static_cast<size_t>(wr_bank)] = pipe.last_entry();
           r.pixels += len;
+          pixel_beats += beats(len, static_cast<uint64_t>(unit_.lanes));
           if (s.span_last()) r.scanlines.push_back({s.span_y(), static_cast<uint64_t>(leave), s.span_x0() + s.span_length() - 1});
           if (tri) {
             ++tri->spans;
             tri->pixels += len;
-            tri->engine_cycles += beats(len) * static_cast<uint64_t>(interval);
+            tri->engine_cycles += beats(len, static_cast<uint64_t>(unit_.lanes)) * static_cast<uint64_t>(interval);
           }
         }
         if (tri) ++tri->decoder_cycles;
@@ -309,7 +314,7 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
   r.cycles = static_cast<uint64_t>(std::max(last_item + 1, pipe.spans() ? pipe.last_leave() + 1 : 0));
   if (rec) {
     rec->port(last_item + 1, CycleModel::Category::kCommandGap);  // no beat left to offer
-    r.breakdown = rec->finish(static_cast<Cycle>(r.cycles), r.pixels);
+    r.breakdown = rec->finish(static_cast<Cycle>(r.cycles), pixel_beats);
   }
   return r;
 }

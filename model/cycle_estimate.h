@@ -19,7 +19,7 @@
 //                                                            idle or emitting their last beat)
 //   F_k   first emit: max(L_k + 1, E_{k-1} + interval)      (an iterative slot is busy for
 //                                                            interval - 1 cycles after an emit)
-//   E_k   last emit:  F_k + (beats(len_k) - 1) * interval
+//   E_k   last emit:  F_k + (beats(len_k, lanes) - 1) * interval
 //   pixel j of the span leaves on cycle F_k + j * interval + latency + 1 (the slot's delay line
 //   or the iterative unit's interval, then the pix register).
 //
@@ -86,10 +86,9 @@ class CycleEstimate {
  public:
   // The two quantities pixel lanes change (with CycleModel::span_latency(), which the breakdown
   // takes from CycleModel): the setup stages between the span queue and the engines (s1..s3 in
-  // rtl/shade_unit.sv; a lane fan-out stage would make 4), and the engine beats a span of `len`
-  // pixels takes (one pixel per beat; with lanes ceil(len / lanes)).
-  static constexpr int kSetupStages = 3;
-  static constexpr uint64_t beats(uint64_t len) { return len; }
+  // rtl/shade_unit.sv), and the engine beats a span of `len` pixels takes: ceil(len / lanes).
+  static constexpr int kSetupStages = 3;  // lane_fanout is combinational: no stage of its own
+  static constexpr uint64_t beats(uint64_t len, uint64_t lanes) { return (len + lanes - 1) / lanes; }
 
   // Accepts exactly the units CycleModel accepts (its constructor is the check).
   explicit CycleEstimate(CycleConfig unit);

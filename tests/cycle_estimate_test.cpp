@@ -23,6 +23,7 @@ const std::vector<SlotTiming> kSlots = {{0, 1}, {2, 1}, {5, 1}, {2, 2}, {5, 5}, 
 
 std::string describe(const CycleConfig& u) {
   return "port_words " + std::to_string(u.port_words) + ", tri_queue " + std::to_string(u.tri_queue) +
+         ", lanes " + std::to_string(u.lanes) +
          ", slot latency " + std::to_string(u.slot.latency) + " interval " + std::to_string(u.slot.interval);
 }
 
@@ -84,6 +85,13 @@ TEST_P(SceneStreams, EqualsClockedModelOnOwnConfigAndKnobGrid) {
       for (const SlotTiming& slot : kSlots) expect_same(words, CycleConfig(slot, port, queue), scene);
     }
   }
+  for (int lanes : {2, 4}) {
+    for (int port : {1, 4}) {
+      for (int queue : {1, 2}) {
+        for (const SlotTiming& slot : kSlots) expect_same(words, CycleConfig(slot, port, queue, lanes), scene);
+      }
+    }
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(ShippedAndHard, SceneStreams, ::testing::ValuesIn(scenes()),
@@ -120,6 +128,9 @@ TEST(CycleEstimate, EqualsClockedModelOnRandomStreams) {
           for (int queue : {1, 2, 3}) {
             for (const SlotTiming& slot : kSlots) expect_same(words, CycleConfig(slot, port, queue), what);
           }
+        }
+        for (int lanes : {2, 4}) {
+          for (const SlotTiming& slot : kSlots) expect_same(words, CycleConfig(slot, 4, 2, lanes), what);
         }
       }
     }
