@@ -118,14 +118,14 @@ foreach(name grey_s428w rgb2_s320s)
 endforeach()
 # Wider command ports and triangle queues (issue 8): every scenario, three seeds; SystemC on
 # the four-word port with and without a queue; the deliberate faults caught at the right
-# scanline through a four-word port. The _pack builds (packed coefficients, several SPAN
-# headers a cycle) have specular units: they run with the specular builds below.
-foreach(name grey_p2 grey_p4 rgb2_p8 grey_p4_q2 rgb2_p8_q3 grey_p1_q2)
+# scanline through a four-word port. _pack: packed coefficients (rgb2_pack_p8_q3, a LUT build,
+# runs with the specular builds below).
+foreach(name grey_p2 grey_p4 rgb2_p8 grey_p4_q2 rgb2_p8_q3 grey_p1_q2 grey_pack_p4_q2)
   add_test(NAME rtl_cosim_cpp_${name}
     COMMAND ${COSIM_CPP} --config ${name} --scenario all --seed 1 --runs 3
             --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
 endforeach()
-foreach(name grey_p4 grey_p4_q2)
+foreach(name grey_p4 grey_p4_q2 grey_pack_p4_q2)
   foreach(scenario mixed tiny)
     add_test(NAME rtl_cosim_sc_${name}_${scenario}
       COMMAND ${COSIM_SC} --config ${name} --scenario ${scenario} --seed 7

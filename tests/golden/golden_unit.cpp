@@ -188,15 +188,32 @@ std::vector<Pixel> shade(const CommandStream& stream) {
         d0[i] = sc_quantize(q1 - q0, fc, c.series);
         d2[i] = sc_quantize(q2 - 2 * q1 + q0, fc, c.series);
       }
-      std::vector<int64_t> v = v0, d = d0;  // saturating builds: the per-step state
+      // Saturating builds: the per-step state of each of the K lanes (README, "Throughput: pixel
+      // lanes"): lane j starts at sat(v0 + j d0 + j(j-1)/2 d2) and steps by
+      // D_j = sat(K d0 + (K j + K(K-1)/2) d2), D2 = sat(K^2 d2), each addition saturating. With
+      // wrap every lane's value is the closed form below, whatever K.
+      const int lanes = c.lanes;
+      const Int128 kl = lanes;
+      std::vector<std::vector<int64_t>> lane_v(static_cast<size_t>(lanes), std::vector<int64_t>(series_count));
+      std::vector<std::vector<int64_t>> lane_d = lane_v;
+      std::vector<int64_t> lane_d2(series_count);
+      for (int i = 0; i < series_count; ++i) {
+        lane_d2[i] = sc_quantize(kl * kl * d2[i], fs, c.series);
+        for (int j = 0; j < lanes; ++j) {
+          const Int128 jj = j;
+          lane_v[j][i] = sc_quantize(v0[i] + jj * d0[i] + jj * (jj - 1) / 2 * d2[i], fs, c.series);
+          lane_d[j][i] = sc_quantize(kl * d0[i] + (kl * jj + kl * (kl - 1) / 2) * d2[i], fs, c.series);
+        }
+      }
       std::vector<int64_t> values(series_count);
       for (int k = 0; k < s->length; ++k) {
+        const size_t lane = static_cast<size_t>(k % lanes);
         for (int i = 0; i < series_count; ++i) {
           if (wrap) {
             const Int128 kk = k;
             values[i] = sc_quantize(v0[i] + kk * d0[i] + kk * (kk - 1) / 2 * d2[i], fs, c.series);
           } else {
-            values[i] = v[i];
+            values[i] = lane_v[lane][i];
           }
         }
         Pixel px;
@@ -215,10 +232,12 @@ std::vector<Pixel> shade(const CommandStream& stream) {
           px.colour[ch] = sc_quantize(sum, fs, out);
         }
         pixels.push_back(px);
-        if (!wrap) {  // v <- sat(v + d) and d <- sat(d + d2), both from the old d
+        if (!wrap) {  // the lane's v <- sat(v + D) and D <- sat(D + D2), both from the old D
+          std::vector<int64_t>& v = lane_v[lane];
+          std::vector<int64_t>& d = lane_d[lane];
           for (int i = 0; i < series_count; ++i) {
             const int64_t old_d = d[i];
-            d[i] = sc_quantize(Int128{d[i]} + d2[i], fs, c.series);
+            d[i] = sc_quantize(Int128{d[i]} + lane_d2[i], fs, c.series);
             v[i] = sc_quantize(Int128{v[i]} + old_d, fs, c.series);
           }
         }
