@@ -5,7 +5,6 @@
 // error stand the costs (table bits, multipliers, divider iterations, cycles per pixel, latency,
 // reload cycles, an area proxy). Then the reproduced paper figures: Bishop & Weimer's table
 // sizes and Romanyuk et al.'s Table 1, each with our metric named.
-#include <png.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -13,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -27,6 +27,8 @@
 #include "model/schlick_divider.h"
 #include "model/wpow_unit.h"
 #include "sim/commands.h"
+#include "sim/process.h"
+#include "sim/rtl_build.h"
 
 namespace shadesim {
 namespace {
@@ -211,109 +213,8 @@ struct Result {
   std::vector<std::pair<double, SpecErrors>> per_n;
 };
 
-// ------------------------------------------------------------------ PNG plot
-// 5x7 glyphs, one byte per row (low 5 bits, MSB left).
-const std::array<uint8_t, 7>* glyph(char ch) {
-  struct G { char c; std::array<uint8_t, 7> rows; };
-  static const G kFont[] = {
-      {'0', {14, 17, 19, 21, 25, 17, 14}}, {'1', {4, 12, 4, 4, 4, 4, 14}},
-      {'2', {14, 17, 1, 2, 4, 8, 31}},     {'3', {31, 2, 4, 2, 1, 17, 14}},
-      {'4', {2, 6, 10, 18, 31, 2, 2}},     {'5', {31, 16, 30, 1, 1, 17, 14}},
-      {'6', {6, 8, 16, 30, 17, 17, 14}},   {'7', {31, 1, 2, 4, 8, 8, 8}},
-      {'8', {14, 17, 17, 14, 17, 17, 14}}, {'9', {14, 17, 17, 15, 1, 2, 12}},
-      {'A', {14, 17, 17, 31, 17, 17, 17}}, {'B', {30, 17, 17, 30, 17, 17, 30}},
-      {'C', {14, 17, 16, 16, 16, 17, 14}}, {'D', {28, 18, 17, 17, 17, 18, 28}},
-      {'E', {31, 16, 16, 30, 16, 16, 31}}, {'F', {31, 16, 16, 30, 16, 16, 16}},
-      {'G', {14, 17, 16, 23, 17, 17, 15}}, {'H', {17, 17, 17, 31, 17, 17, 17}},
-      {'I', {14, 4, 4, 4, 4, 4, 14}},      {'J', {7, 2, 2, 2, 2, 18, 12}},
-      {'K', {17, 18, 20, 24, 20, 18, 17}}, {'L', {16, 16, 16, 16, 16, 16, 31}},
-      {'M', {17, 27, 21, 21, 17, 17, 17}}, {'N', {17, 17, 25, 21, 19, 17, 17}},
-      {'O', {14, 17, 17, 17, 17, 17, 14}}, {'P', {30, 17, 17, 30, 16, 16, 16}},
-      {'Q', {14, 17, 17, 17, 21, 18, 13}}, {'R', {30, 17, 17, 30, 20, 18, 17}},
-      {'S', {15, 16, 16, 14, 1, 1, 30}},   {'T', {31, 4, 4, 4, 4, 4, 4}},
-      {'U', {17, 17, 17, 17, 17, 17, 14}}, {'V', {17, 17, 17, 17, 17, 10, 4}},
-      {'W', {17, 17, 17, 21, 21, 21, 10}}, {'X', {17, 17, 10, 4, 10, 17, 17}},
-      {'Y', {17, 17, 17, 10, 4, 4, 4}},    {'Z', {31, 1, 2, 4, 8, 16, 31}},
-      {'.', {0, 0, 0, 0, 0, 12, 12}},      {'-', {0, 0, 0, 31, 0, 0, 0}},
-      {'+', {0, 4, 4, 31, 4, 4, 0}},       {'=', {0, 0, 31, 0, 31, 0, 0}},
-      {'%', {24, 25, 2, 4, 8, 19, 3}},     {'/', {0, 1, 2, 4, 8, 16, 0}},
-      {'(', {2, 4, 8, 8, 8, 4, 2}},        {')', {8, 4, 2, 2, 2, 4, 8}},
-      {':', {0, 12, 12, 0, 12, 12, 0}},    {',', {0, 0, 0, 0, 12, 4, 8}},
-      {'^', {4, 10, 17, 0, 0, 0, 0}},      {'\'', {4, 4, 8, 0, 0, 0, 0}},
-      {'[', {14, 8, 8, 8, 8, 8, 14}},      {']', {14, 2, 2, 2, 2, 2, 14}},
-      {'*', {0, 4, 21, 14, 21, 4, 0}},     {'_', {0, 0, 0, 0, 0, 0, 31}},
-  };
-  if (ch >= 'a' && ch <= 'z') ch = static_cast<char>(ch - 'a' + 'A');
-  for (const G& g : kFont) {
-    if (g.c == ch) return &g.rows;
-  }
-  return nullptr;
-}
-
-struct Canvas {
-  int w, h;
-  std::vector<uint8_t> rgb;
-  Canvas(int w_, int h_) : w(w_), h(h_), rgb(static_cast<size_t>(w_) * h_ * 3, 255) {}
-  void px(int x, int y, std::array<uint8_t, 3> c) {
-    if (x < 0 || y < 0 || x >= w || y >= h) return;
-    std::copy(c.begin(), c.end(), rgb.begin() + (static_cast<size_t>(y) * w + x) * 3);
-  }
-  void line(int x0, int y0, int x1, int y1, std::array<uint8_t, 3> c) {
-    const int steps = std::max({std::abs(x1 - x0), std::abs(y1 - y0), 1});
-    for (int i = 0; i <= steps; ++i) {
-      px(x0 + (x1 - x0) * i / steps, y0 + (y1 - y0) * i / steps, c);
-    }
-  }
-  void text(int x, int y, const std::string& s, std::array<uint8_t, 3> c) {
-    for (char ch : s) {
-      if (const auto* g = glyph(ch)) {
-        for (int r = 0; r < 7; ++r)
-          for (int k = 0; k < 5; ++k)
-            if ((*g)[r] & (16 >> k)) px(x + k, y + r, c);
-      }
-      x += 6;
-    }
-  }
-  void marker(int x, int y, int kind, std::array<uint8_t, 3> c) {
-    for (int dy = -3; dy <= 3; ++dy)
-      for (int dx = -3; dx <= 3; ++dx) {
-        const bool on = kind == 0   ? dx * dx + dy * dy <= 10
-                        : kind == 1 ? true
-                        : kind == 2 ? std::abs(dx) + std::abs(dy) <= 3
-                                    : (dy >= -3 && std::abs(dx) <= (dy + 3) / 2);
-        if (on) px(x + dx, y + dy, c);
-      }
-  }
-  void ring(int x, int y, std::array<uint8_t, 3> c) {
-    for (int a = 0; a < 64; ++a) {
-      const double th = a * 2 * M_PI / 64;
-      px(x + static_cast<int>(std::lround(6 * std::cos(th))), y + static_cast<int>(std::lround(6 * std::sin(th))), c);
-    }
-  }
-  void save(const std::string& path) const {
-    FILE* fp = std::fopen(path.c_str(), "wb");
-    if (!fp) throw std::runtime_error(path + ": cannot open for writing the plot");
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-    png_infop info = png ? png_create_info_struct(png) : nullptr;
-    if (!png || !info || setjmp(png_jmpbuf(png))) {
-      png_destroy_write_struct(&png, &info);
-      std::fclose(fp);
-      throw std::runtime_error(path + ": PNG write failed");
-    }
-    png_init_io(png, fp);
-    png_set_IHDR(png, info, static_cast<png_uint_32>(w), static_cast<png_uint_32>(h), 8,
-                 PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-                 PNG_FILTER_TYPE_DEFAULT);
-    png_write_info(png, info);
-    for (int y = 0; y < h; ++y) {
-      png_write_row(png, const_cast<png_bytep>(rgb.data() + static_cast<size_t>(y) * w * 3));
-    }
-    png_write_end(png, nullptr);
-    png_destroy_write_struct(&png, &info);
-    if (std::fclose(fp) != 0) throw std::runtime_error(path + ": PNG write failed");
-  }
-};
-
+// ------------------------------------------------------------------ Pareto front
+// Cost and error as the plot (scripts/plot --kind spec-error) draws them.
 double at_cost(const Result& r) { return std::max(1.0, r.cost.area * r.cost.cycles_per_pixel); }
 double plot_error(const Result& r) { return std::max(r.worst.abs_lsb, 0.01); }
 
@@ -329,62 +230,14 @@ std::vector<bool> pareto_front(const std::vector<Result>& rs) {
   return front;
 }
 
-void write_plot(const std::string& path, const std::vector<Result>& rs, const std::string& range) {
-  const int W = 900, H = 600, L = 80, R = 250, T = 40, B = 60;
-  Canvas cv(W, H);
-  const std::array<uint8_t, 3> black{0, 0, 0}, grey{200, 200, 200};
-  const std::array<std::array<uint8_t, 3>, 3> colours{{{31, 119, 180}, {214, 39, 40}, {44, 160, 44}}};
-  double x_lo = 1e300, x_hi = -1e300, y_lo = 1e300, y_hi = -1e300;
-  for (const Result& r : rs) {
-    x_lo = std::min(x_lo, std::log10(at_cost(r)));
-    x_hi = std::max(x_hi, std::log10(at_cost(r)));
-    y_lo = std::min(y_lo, std::log10(plot_error(r)));
-    y_hi = std::max(y_hi, std::log10(plot_error(r)));
+// The plot is matplotlib's (scripts/plot, shared with explore and the report), drawn from the
+// JSON this run wrote.
+void write_plot(const std::string& png_path, const std::string& json_path) {
+  const std::string plot = (std::filesystem::path(source_dir()) / "scripts" / "plot").string();
+  const ProcessResult r = run_process({plot, "--kind", "spec-error", json_path, "-o", png_path}, "");
+  if (r.exit_code != 0) {
+    throw std::runtime_error("--plot: scripts/plot failed (exit " + std::to_string(r.exit_code) + "): " + r.output);
   }
-  x_lo = std::floor(x_lo), x_hi = std::ceil(x_hi) + (std::ceil(x_hi) == std::floor(x_lo) ? 1 : 0);
-  y_lo = std::floor(y_lo), y_hi = std::ceil(y_hi) + (std::ceil(y_hi) == std::floor(y_lo) ? 1 : 0);
-  auto sx = [&](double v) { return L + static_cast<int>((v - x_lo) / (x_hi - x_lo) * (W - L - R)); };
-  auto sy = [&](double v) { return H - B - static_cast<int>((v - y_lo) / (y_hi - y_lo) * (H - T - B)); };
-  for (int d = static_cast<int>(x_lo); d <= static_cast<int>(x_hi); ++d) {
-    cv.line(sx(d), T, sx(d), H - B, grey);
-    cv.text(sx(d) - 9, H - B + 8, "1E" + std::to_string(d), black);
-  }
-  for (int d = static_cast<int>(y_lo); d <= static_cast<int>(y_hi); ++d) {
-    cv.line(L, sy(d), W - R, sy(d), grey);
-    cv.text(L - 36, sy(d) - 3, "1E" + std::to_string(d), black);
-  }
-  cv.line(L, H - B, W - R, H - B, black);
-  cv.line(L, T, L, H - B, black);
-  cv.text(L, 12, "SPECULAR UNITS: WORST ABS ERROR VS AREA X CYCLES/PIXEL, N " + range, black);
-  cv.text(L + 60, H - 25, "COST = AREA PROXY (ROM BIT 1, FULL ADDER BIT 8) X CYCLES PER PIXEL", black);
-  cv.text(6, T - 14, "MAX ABS ERR (8-BIT LSB)", black);
-  const std::vector<bool> front = pareto_front(rs);
-  // Pareto front: a staircase through the front points in cost order.
-  std::vector<size_t> idx;
-  for (size_t i = 0; i < rs.size(); ++i)
-    if (front[i]) idx.push_back(i);
-  std::sort(idx.begin(), idx.end(), [&](size_t a, size_t b) { return at_cost(rs[a]) < at_cost(rs[b]); });
-  for (size_t k = 1; k < idx.size(); ++k) {
-    const int x0 = sx(std::log10(at_cost(rs[idx[k - 1]]))), y0 = sy(std::log10(plot_error(rs[idx[k - 1]])));
-    const int x1 = sx(std::log10(at_cost(rs[idx[k]]))), y1 = sy(std::log10(plot_error(rs[idx[k]])));
-    cv.line(x0, y0, x1, y0, black);
-    cv.line(x1, y0, x1, y1, black);
-  }
-  int legend_y = T;
-  for (size_t i = 0; i < rs.size(); ++i) {
-    const int kind = static_cast<int>(rs[i].cand.spec.kind) - 1;  // lut 0, schlick 1, wpow 2
-    const auto colour = colours[static_cast<size_t>(std::clamp(kind, 0, 2))];
-    const int x = sx(std::log10(at_cost(rs[i]))), y = sy(std::log10(plot_error(rs[i])));
-    cv.marker(x, y, kind, colour);
-    if (front[i]) cv.ring(x, y, black);
-    cv.text(x + 8, y - 3, std::to_string(i + 1), colour);
-    cv.marker(W - R + 14, legend_y + 3, kind, colour);
-    std::string label = std::to_string(i + 1) + " " + rs[i].cand.name + (front[i] ? " *" : "");
-    cv.text(W - R + 22, legend_y, label.substr(0, 36), black);
-    legend_y += 12;
-  }
-  cv.text(W - R + 10, legend_y + 6, "* = PARETO FRONT (RINGED)", black);
-  cv.save(path);
 }
 
 // ------------------------------------------------------------------ output
@@ -556,7 +409,9 @@ void run(const std::string& exponents_text, const std::string& units, int points
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::cout << "\n(" << total << " unit x exponent runs, " << fmt(secs, 1) << " s)\n";
 
-  if (!json_path.empty()) {
+  // --plot draws from the JSON: without --json it goes beside the PNG.
+  const std::string json_out = !json_path.empty() ? json_path : plot_path.empty() ? "" : plot_path + ".json";
+  if (!json_out.empty()) {
     nlohmann::json j;
     j["exponents"] = exponents;
     j["metrics"] = {{"epi_rel", "max relative error where t^n >= 0.5"},
@@ -591,10 +446,10 @@ void run(const std::string& exponents_text, const std::string& units, int points
                                         {"ours_after_pct", row.ours_after}});
       j["w16_fitted_zeta_epi_pct"] = 100 * papers.w16_fit_epi;
     }
-    std::ofstream os(json_path);
-    if (!os) throw std::runtime_error(json_path + ": cannot open for writing (--json)");
+    std::ofstream os(json_out);
+    if (!os) throw std::runtime_error(json_out + ": cannot open for writing (--json)");
     os << j.dump(1) << '\n';
-    if (!os) throw std::runtime_error(json_path + ": write failed (--json)");
+    if (!os) throw std::runtime_error(json_out + ": write failed (--json)");
   }
   if (!csv_path.empty()) {
     std::ofstream os(csv_path);
@@ -610,7 +465,7 @@ void run(const std::string& exponents_text, const std::string& units, int points
            << ',' << r.cost.latency << ',' << r.cost.reload_cycles << ',' << r.cost.area << '\n';
     if (!os) throw std::runtime_error(csv_path + ": write failed (--csv)");
   }
-  if (!plot_path.empty()) write_plot(plot_path, results, range);
+  if (!plot_path.empty()) write_plot(plot_path, json_out);
   exit_code = 0;
 }
 
@@ -636,7 +491,9 @@ void register_spec_error(CLI::App& app, int& exit_code) {
                   "sample points per zone (epicentre, blooming, [0,1]) per exponent (default 256)");
   cmd->add_option("--json", opt->json, "write the results as JSON");
   cmd->add_option("--csv", opt->csv, "write one row per unit and exponent as CSV");
-  cmd->add_option("--plot", opt->plot, "write a PNG of error against cost with the Pareto front");
+  cmd->add_option("--plot", opt->plot,
+                  "write a PNG of error against cost with the Pareto front (scripts/plot, matplotlib,\n"
+                  "from the --json report; without --json the report goes to PLOT.json)");
   cmd->add_flag("--no-papers", opt->no_papers, "skip the Bishop and Romanyuk reproductions");
   cmd->callback([opt, &exit_code]() {
     run(opt->exponents, opt->units, opt->points, opt->json, opt->csv, opt->plot, opt->no_papers,

@@ -172,6 +172,20 @@ TEST(Cli, CyclesClosedFormEqualsClockedAndClassifiesEveryTriangle) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Cli, SpecErrorPlotIsMatplotlibsPngOfItsJson) {
+  const auto dir = temp_dir("spec_plot");
+  const auto png = dir / "spec.png";
+  const Result r = run("spec-error --units wpow --exponents 16,64 --points 16 --no-papers --plot " + png.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  // The report it was drawn from sits beside it, and the PNG is a real image of some size.
+  EXPECT_TRUE(std::filesystem::exists(dir / "spec.png.json"));
+  std::ifstream is(png, std::ios::binary);
+  std::string head(8, '\0');
+  is.read(head.data(), 8);
+  EXPECT_EQ(head, std::string("\x89PNG\r\n\x1a\n", 8));
+  EXPECT_GT(std::filesystem::file_size(png), 10000u);
+}
+
 TEST(Cli, BadInputGivesClearErrors) {
   const auto dir = temp_dir("bad");
   expect_error("render /nonexistent/scene.json", "scene.json");
