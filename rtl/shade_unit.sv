@@ -399,15 +399,21 @@ module shade_unit #(
     logic               last;
   } span_t;
 
+  localparam int SpanW = 2 * XY_BITS + 16 + 1;  // $bits(span_t)
+
   span_t s1_src, s1_q, s2_q, s3_q;
-  span_t beat_span [PORT_WORDS];  // each beat word read as a SPAN header
+  // Each beat word read as a SPAN header, span_t k at [k*SpanW +: SpanW]: {y, x0, len, last},
+  // MSB first. One flat vector: Yosys 0.23 leaves an element of an unpacked array of packed
+  // structs assigned in a generate loop undriven, and Icarus 11 cannot elaborate a member
+  // select of one.
+  logic [PORT_WORDS*SpanW-1:0] beat_span;
   for (genvar k = 0; k < PORT_WORDS; k++) begin : g_beat_span
-    // {y, x0, len, last}: span_t's fields, MSB first (one assignment: Icarus 11 cannot elaborate
-    // a member select of an array element).
-    assign beat_span[k] = {cmd_data_i[k*WordW + shade_pkg::HighLsb +: XY_BITS],
-                           cmd_data_i[k*WordW + shade_pkg::MidLsb +: XY_BITS],
-                           cmd_data_i[k*WordW + shade_pkg::CountLsb +: shade_pkg::FieldW],
-                           cmd_data_i[k*WordW + shade_pkg::SpanLastBit]};
+    logic [WordW-1:0] w;
+    assign w = cmd_data_i[k*WordW +: WordW];
+    assign beat_span[k*SpanW +: SpanW] = {w[shade_pkg::HighLsb +: XY_BITS],
+                                          w[shade_pkg::MidLsb +: XY_BITS],
+                                          w[shade_pkg::CountLsb +: shade_pkg::FieldW],
+                                          w[shade_pkg::SpanLastBit]};
   end
 
   if (Queued) begin : g_span_queue
@@ -457,7 +463,7 @@ module shade_unit #(
       if (span_fire) begin
         for (int k = 0; k < PORT_WORDS; k++) begin
           if (16'(k) >= hdr_pos && 16'(k) < hdr_pos + hdr_n) begin
-            sq_span_q[PtrW'(ring_add(tail_q, 16'(k) - hdr_pos))] <= beat_span[k];
+            sq_span_q[PtrW'(ring_add(tail_q, 16'(k) - hdr_pos))] <= beat_span[k*SpanW +: SpanW];
             sq_bank_q[PtrW'(ring_add(tail_q, 16'(k) - hdr_pos))] <= wr_bank_q;
           end
         end
@@ -469,7 +475,7 @@ module shade_unit #(
     assign sq_room       = 16'd1;  // unused: SPAN headers go one at a time
     assign sq_empty      = 1'b1;
     assign s1_load       = span_fire;
-    assign s1_src        = beat_span[word_sel];
+    assign s1_src        = beat_span[word_sel*SpanW +: SpanW];
     assign rd_bank       = '0;
     assign next_bank     = '0;
     assign wr_bank_q     = '0;
