@@ -194,18 +194,24 @@ module shade_unit #(
   logic [PORT_WORDS-1:0] word_is_span;
   logic [15:0]           span_run;  // SPAN headers from hdr_pos on, back to back in the beat
   logic [15:0]           sq_room;   // free span queue entries
-  always_comb begin
+  // SPAN headers back to back in the beat from word `from` on. (A function in a continuous
+  // assignment: an always_comb loop with a local flag never settles in Icarus 11.)
+  function automatic logic [15:0] run_length(input logic [PORT_WORDS-1:0] is_span,
+                                             input logic [15:0] from);
     logic going;
-    going    = 1'b1;
-    span_run = 16'd0;
+    going      = 1'b1;
+    run_length = 16'd0;
     for (int k = 0; k < PORT_WORDS; k++) begin
-      word_is_span[k] = cmd_data_i[k*WordW + shade_pkg::OpcodeLsb +: 8] == shade_pkg::OpSpan;
-      if (16'(k) >= hdr_pos) begin
-        if (going && word_is_span[k]) span_run = span_run + 16'd1;
+      if (16'(k) >= from) begin
+        if (going && is_span[k]) run_length = run_length + 16'd1;
         else going = 1'b0;
       end
     end
+  endfunction
+  for (genvar k = 0; k < PORT_WORDS; k++) begin : g_word_is_span
+    assign word_is_span[k] = cmd_data_i[k*WordW + shade_pkg::OpcodeLsb +: 8] == shade_pkg::OpSpan;
   end
+  assign span_run = run_length(word_is_span, hdr_pos);
 
   always_comb begin
     hdr_n = 16'd1;
