@@ -10,8 +10,9 @@
 //   1. CLAMP/ALIGN  num <= 0 -> 0; den <= 0 -> 1; both quantized (truncate, saturate) to unsigned
 //                   2.D operands; num_op == 0 -> 0; num_op >= den_op -> 1. Combinational, in
 //                   front of the first quotient bit.
-//   2. DIVIDE       Q restoring steps: r <- 2r; if r >= den_op { r -= den_op; bit 1 } else bit 0,
-//                   from r = num_op < den_op: q = floor(num_op 2^Q / den_op). One register per step.
+//   2. DIVIDE       Q restoring steps: r <- 2r; if r >= den_op { r -= den_op; bit 1 } else
+//                   bit 0, from r = num_op < den_op: q = floor(num_op 2^Q / den_op). One
+//                   register per step.
 //   3. OUTPUT       quantize(q, Q fraction bits) into the out format (1 as 2^Q): combinational.
 // The remainder stays below den_op < 2^(D+2), so a step is one (D+3)-bit subtract/compare.
 //
@@ -52,9 +53,7 @@ module schlick_divider #(
   localparam int OutRndW = ResW + 1 - OutDrop;
 
   // Result class decided by CLAMP/ALIGN.
-  localparam logic [1:0] ClsDiv  = 2'd0;
-  localparam logic [1:0] ClsZero = 2'd1;
-  localparam logic [1:0] ClsOne  = 2'd2;
+  typedef enum logic [1:0] {ClsDiv, ClsZero, ClsOne} cls_e;
 
   // One restoring step: r < den on entry and on exit.
   function automatic logic [OpW:0] divide_step(input logic [OpW-1:0] r, input logic [OpW-1:0] den);
@@ -74,11 +73,15 @@ module schlick_divider #(
   // ---- 1. CLAMP/ALIGN --------------------------------------------------------------------------
   logic signed [OpRndW-1:0] num_rnd, den_rnd;
   logic [OpW-1:0]           num_op, den_op;
-  logic [1:0]               cls_d;
-  fixed_round #(.IN_W(SERIES_WL), .DROP(OpDrop), .ROUND(0)) u_num_round (.in_i(num_i), .out_o(num_rnd));
-  fixed_round #(.IN_W(SERIES_WL), .DROP(OpDrop), .ROUND(0)) u_den_round (.in_i(den_i), .out_o(den_rnd));
-  fixed_sat #(.IN_W(OpRndW), .OUT_W(OpW), .OUT_SIGNED(0), .WRAP(0)) u_num_sat (.in_i(num_rnd), .out_o(num_op));
-  fixed_sat #(.IN_W(OpRndW), .OUT_W(OpW), .OUT_SIGNED(0), .WRAP(0)) u_den_sat (.in_i(den_rnd), .out_o(den_op));
+  cls_e                     cls_d;
+  fixed_round #(.IN_W(SERIES_WL), .DROP(OpDrop), .ROUND(0))
+    u_num_round (.in_i(num_i), .out_o(num_rnd));
+  fixed_round #(.IN_W(SERIES_WL), .DROP(OpDrop), .ROUND(0))
+    u_den_round (.in_i(den_i), .out_o(den_rnd));
+  fixed_sat #(.IN_W(OpRndW), .OUT_W(OpW), .OUT_SIGNED(0), .WRAP(0))
+    u_num_sat (.in_i(num_rnd), .out_o(num_op));
+  fixed_sat #(.IN_W(OpRndW), .OUT_W(OpW), .OUT_SIGNED(0), .WRAP(0))
+    u_den_sat (.in_i(den_rnd), .out_o(den_op));
 
   logic num_pos, den_pos;  // raw series value > 0
   assign num_pos = !num_i[SERIES_WL-1] && num_i != '0;
@@ -93,13 +96,13 @@ module schlick_divider #(
 
   // ---- 2. DIVIDE -------------------------------------------------------------------------------
   logic [Q-1:0] q_out;
-  logic [1:0]   cls_out;
+  cls_e         cls_out;
 
   if (TIMING == 0) begin : g_pipelined
     logic [OpW-1:0] r_q   [Q];
     logic [OpW-1:0] den_q [Q];
     logic [Q-1:0]   q_q   [Q];
-    logic [1:0]     cls_q [Q];
+    cls_e           cls_q [Q];
     logic [OpW:0]   step  [Q];  // step[k]: what stage k computes ({remainder, bit})
     always_comb begin
       step[0] = first;
@@ -131,7 +134,7 @@ module schlick_divider #(
     logic [CntW-1:0] cnt_q;   // steps still to do
     logic [OpW-1:0]  r_q, den_q;
     logic [Q-1:0]    q_q;
-    logic [1:0]      cls_q;
+    cls_e            cls_q;
     logic            start;
     logic [OpW:0]    step;
     assign busy_o = cnt_q != '0;
@@ -162,13 +165,14 @@ module schlick_divider #(
   logic signed [ResW-1:0]    res;
   logic signed [OutRndW-1:0] out_rnd;
   always_comb begin
-    case (cls_out)
+    unique case (cls_out)
       ClsZero: res = '0;
       ClsOne:  res = ResW'(1) << Q;
       default: res = ResW'(q_out);
     endcase
   end
-  fixed_round #(.IN_W(ResW), .DROP(OutDrop), .ROUND(OUT_QUANT)) u_out_round (.in_i(res), .out_o(out_rnd));
+  fixed_round #(.IN_W(ResW), .DROP(OutDrop), .ROUND(OUT_QUANT))
+    u_out_round (.in_i(res), .out_o(out_rnd));
   fixed_sat #(.IN_W(OutRndW), .OUT_W(OUT_WL), .OUT_SIGNED(0), .WRAP(OUT_OVERFLOW))
     u_out_sat (.in_i(out_rnd), .out_o(spec_o));
 endmodule

@@ -78,9 +78,12 @@ module span_setup #(
   logic signed [RndW-1:0] v_rnd, d_rnd, d2_rnd;
   logic [SERIES_WL-1:0]   v_fit, d_fit, d2_fit;
 
-  fixed_round #(.IN_W(SumW), .DROP(Drop), .ROUND(SERIES_QUANT)) u_round_v (.in_i(v_sum_q), .out_o(v_rnd));
-  fixed_round #(.IN_W(SumW), .DROP(Drop), .ROUND(SERIES_QUANT)) u_round_d (.in_i(d_sum_q), .out_o(d_rnd));
-  fixed_round #(.IN_W(SumW), .DROP(Drop), .ROUND(SERIES_QUANT)) u_round_d2 (.in_i(d2_sum_q), .out_o(d2_rnd));
+  fixed_round #(.IN_W(SumW), .DROP(Drop), .ROUND(SERIES_QUANT))
+    u_round_v (.in_i(v_sum_q), .out_o(v_rnd));
+  fixed_round #(.IN_W(SumW), .DROP(Drop), .ROUND(SERIES_QUANT))
+    u_round_d (.in_i(d_sum_q), .out_o(d_rnd));
+  fixed_round #(.IN_W(SumW), .DROP(Drop), .ROUND(SERIES_QUANT))
+    u_round_d2 (.in_i(d2_sum_q), .out_o(d2_rnd));
   fixed_sat #(.IN_W(RndW), .OUT_W(SERIES_WL), .OUT_SIGNED(1), .WRAP(SERIES_OVERFLOW))
     u_sat_v (.in_i(v_rnd), .out_o(v_fit));
   fixed_sat #(.IN_W(RndW), .OUT_W(SERIES_WL), .OUT_SIGNED(1), .WRAP(SERIES_OVERFLOW))
