@@ -4,7 +4,8 @@
 # names it ("The following tests did not run: ... left_out_...").
 #
 #   -DSHADESIM_RTL=OFF                  no RTL at all (Verilator, Icarus and Yosys not needed)
-#   -DSHADESIM_ALLOW_MISSING_TOOLS=ON   RTL on, but the tests of whichever tools are missing left out
+#   -DSHADESIM_ALLOW_MISSING_TOOLS=ON   the tests of whichever tools (or assimp-testmodels) are
+#                                       missing left out
 #   -DSHADESIM_FUZZ=OFF                 no libFuzzer harnesses (cmake/fuzz.cmake)
 option(SHADESIM_ALLOW_MISSING_TOOLS
        "With SHADESIM_RTL=ON: configure although Verilator, Icarus or Yosys is missing; their tests are left out and listed as skipped" OFF)
@@ -14,6 +15,19 @@ function(shadesim_left_out name what)
   add_test(NAME left_out_${name} COMMAND sh -c "echo 'left out: ${what}'; exit 77")
   set_tests_properties(left_out_${name} PROPERTIES SKIP_RETURN_CODE 77 LABELS left_out)
 endfunction()
+
+# Real and malformed meshes nobody here wrote (Debian's assimp-testmodels): the mesh, scene and
+# render tests need them with or without RTL. Allowed missing, those tests skip themselves
+# (tests/support/test_data.h); otherwise they would fail, so say so now.
+set(SHADESIM_ASSIMP_MODELS /usr/share/assimp/models)
+if(NOT EXISTS ${SHADESIM_ASSIMP_MODELS}/BLEND/Suzanne_248.blend)
+  if(NOT SHADESIM_ALLOW_MISSING_TOOLS)
+    message(FATAL_ERROR "shadesim: ${SHADESIM_ASSIMP_MODELS} (Debian package assimp-testmodels) is "
+                        "missing; the mesh tests need it. Install it (scripts/setup does), or "
+                        "configure with -DSHADESIM_ALLOW_MISSING_TOOLS=ON to skip those tests.")
+  endif()
+  shadesim_left_out(assimp_testmodels "assimp-testmodels: the real-mesh and malformed-mesh tests skip")
+endif()
 
 if(NOT SHADESIM_RTL)
   shadesim_left_out(rtl "SHADESIM_RTL=OFF: Verilator co-simulation, Icarus, Yosys and RTL unit tests were not configured")

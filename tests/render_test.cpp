@@ -8,6 +8,7 @@
 #include "host/metrics.h"
 #include "host/reference.h"
 #include "model/shade_unit.h"
+#include "tests/support/test_data.h"
 
 namespace shadesim {
 namespace {
@@ -47,9 +48,7 @@ TEST(Render, NarrowSeriesWidthShowsUpAsError) {
 }
 
 TEST(Render, RealMeshSliversAreExactThroughWrappingCoefficients) {
-  if (!std::filesystem::exists("/usr/share/assimp/models/BLEND/Suzanne_248.blend")) {
-    GTEST_SKIP() << "assimp-testmodels not installed (scripts/setup installs it)";
-  }
+  SHADESIM_NEEDS_TEST_FILE(std::filesystem::path("/usr/share/assimp/models/BLEND/Suzanne_248.blend"));
   // Setup keeps the Taylor error under 1 LSB; fixed-point error is far smaller, so the real
   // error stays under 1 LSB and the rounded codes differ by at most 1.
   EncodeStats wrapped;
@@ -68,10 +67,8 @@ TEST(Render, RealMeshSliversAreExactThroughWrappingCoefficients) {
 TEST(Render, EveryShippedSceneWithEveryUnitShadesEachVisiblePixelOnce) {
   for (const auto& entry : std::filesystem::directory_iterator(std::string(SHADESIM_SOURCE_DIR) + "/scenes")) {
     if (entry.path().extension() != ".json") continue;
-    if (entry.path().filename() == "suzanne.json" &&
-        !std::filesystem::exists("/usr/share/assimp/models/BLEND/Suzanne_248.blend")) {
-      std::cout << "skipping " << entry.path() << ": assimp-testmodels not installed\n";
-      continue;
+    if (entry.path().filename() == "suzanne.json") {
+      SHADESIM_NEEDS_TEST_FILE(std::filesystem::path("/usr/share/assimp/models/BLEND/Suzanne_248.blend"));
     }
     for (const auto unit : {SpecularUnitKind::kIdeal, SpecularUnitKind::kLut, SpecularUnitKind::kSchlick,
                             SpecularUnitKind::kWpow}) {

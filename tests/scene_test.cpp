@@ -17,6 +17,7 @@
 
 #include "host/mesh.h"
 #include "host/scene.h"
+#include "tests/support/test_data.h"
 
 namespace shadesim {
 namespace {
@@ -254,10 +255,7 @@ TEST(ShippedScenes, TorusSpecularAndMultiLoad) {
 }
 
 TEST(ShippedScenes, RealMeshFromAssimpTestModels) {
-  if (!fs::exists(kAssimpModels)) {
-    GTEST_SKIP() << kAssimpModels << " is absent (Debian package assimp-testmodels not installed); "
-                 << "scenes/suzanne.json cannot be loaded";
-  }
+  SHADESIM_NEEDS_TEST_FILE(fs::path(kAssimpModels));
   const Scene s = load_scene(kScenes + "suzanne.json");
   ASSERT_EQ(s.objects.size(), 1u);
   const Mesh& m = s.objects[0].mesh;
@@ -321,7 +319,7 @@ TEST(MeshFiles, PlyAndStlLoad) {
 
 TEST(MeshFiles, EveryAssimpInvalidModelGivesSceneError) {
   const fs::path invalid = fs::path(kAssimpModels) / "invalid";
-  if (!fs::exists(invalid)) GTEST_SKIP() << invalid << " is absent (assimp-testmodels not installed)";
+  SHADESIM_NEEDS_TEST_FILE(invalid);
   int checked = 0;
   for (const auto& entry : fs::directory_iterator(invalid)) {
     const std::string path = entry.path().string();
@@ -523,7 +521,7 @@ TEST(SceneErrors, TruncatedAndGarbageFiles) {
 
 TEST(SceneErrors, InvalidMeshInSceneNamesBothFiles) {
   const fs::path bad = fs::path(kAssimpModels) / "invalid" / "malformed.obj";
-  if (!fs::exists(bad)) GTEST_SKIP() << bad << " is absent (assimp-testmodels not installed)";
+  SHADESIM_NEEDS_TEST_FILE(bad);
   TempDir dir;
   json j = valid_scene();
   j["objects"][1] = {{"type", "mesh"}, {"material", "m"}, {"file", bad.string()}};
