@@ -22,7 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // Bumped when the way a build is made changes (flags, generated header), so old entries miss.
-constexpr const char* kRecipeVersion = "rtl-build 1";
+constexpr const char* kRecipeVersion = "rtl-build 2";  // 2: the driver in libshadesim_harness
 
 std::string read_file(const fs::path& p) {
   std::ifstream is(p, std::ios::binary);
@@ -237,7 +237,7 @@ fs::path build_into(const fs::path& work, const RtlConfig& build, CosimBackend b
   if (backend == CosimBackend::kSystemC) ldflags += " -lsystemc";
   args.insert(args.end(), {"-CFLAGS", cflags, "-LDFLAGS", ldflags});
   for (const auto& p : rtl_sources()) args.push_back(p.string());
-  args.push_back((src / "sim" / "harness" / "cosim_main.cpp").string());
+  args.push_back((src / "sim" / "harness" / "cosim_adapter.cpp").string());
   const ProcessResult r = run_process(args, log.string());
   const fs::path exe = work / "obj" / "cosim";
   if (r.exit_code != 0 || !fs::exists(exe)) {

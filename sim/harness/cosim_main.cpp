@@ -1,7 +1,9 @@
 // The co-simulation executable of one RTL build: the Verilated shade_unit (C++, SystemC, or C++
 // with FST tracing) against the bit-accurate model (every pixel) and the cycle model (every
 // scanline's completion cycle). shadesim builds one per parameter set into its cache
-// (sim/rtl_build.h) and runs it through `shadesim cosim`, which passes the unit as a file:
+// (sim/rtl_build.h) and runs it through `shadesim cosim`, which passes the unit as a file.
+// This file is the executable's shared driver, compiled once into libshadesim_harness; each
+// build adds its Verilated model through sim/harness/cosim_adapter.cpp (cosim_executable.h).
 //
 //   <exe> --unit unit.json --config grey_s428w --scenario all --seed 1 --runs 3
 //   <exe> --stream failing.cmds --seed 5 --gap-pct 30 ...   (replay: the stream names its unit)
@@ -30,47 +32,24 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "Vshade_unit.h"
-#include "cosim_build.h"
 #include "model/rtl_parameters.h"
 #include "model/unit_config_file.h"
 #include "sim/harness/cosim.h"
+#include "sim/harness/cosim_executable.h"
 #include "sim/harness/random_stream.h"
-
-#ifdef SHADESIM_COSIM_SYSTEMC
-#include "sim/harness/sc_backend.h"
-#define SHADESIM_BACKEND "systemc"
-#define SHADESIM_EXE "shadesim cosim --backend systemc"
-#else
-#include "sim/harness/cpp_backend.h"
-#define SHADESIM_BACKEND "cpp"
-#ifdef SHADESIM_COSIM_TRACE
-#define SHADESIM_EXE "shadesim cosim --backend cpp --waves"
-#else
-#define SHADESIM_EXE "shadesim cosim --backend cpp"
-#endif
-#endif
 
 namespace shadesim {
 namespace {
-
-#ifdef SHADESIM_COSIM_TRACE
-constexpr bool kTraced = true;
-#else
-constexpr bool kTraced = false;
-#endif
 
 // Bad input: exit status 2.
 struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The parameters this executable was Verilated with (cosim_build.h, written by sim/rtl_build.cpp).
-std::vector<VerilogParameter> built_parameters() { return SHADESIM_BUILD_PARAMETERS; }
-
-InjectedFaults built_faults() {
+// The deliberate faults, from the parameters this executable was Verilated with.
+InjectedFaults built_faults(const CosimExecutable& exe) {
   InjectedFaults f;
-  for (const auto& p : built_parameters()) {
+  for (const auto& p : exe.parameters) {
     if (p.name == "FAULT_LSB_ROW") f.lsb_row = static_cast<int>(p.value);
     if (p.name == "FAULT_STALL_ROW") f.stall_row = static_cast<int>(p.value);
     if (p.name == "FAULT_HANG_ROW") f.hang_row = static_cast<int>(p.value);
@@ -82,15 +61,6 @@ std::string parameter_text(const std::vector<VerilogParameter>& params) {
   std::string s;
   for (const auto& p : params) s += (s.empty() ? "" : " ") + p.name + "=" + std::to_string(p.value);
   return s;
-}
-
-CosimResult run_build(const CosimJob& job, const WaveWindow* waves) {
-#ifdef SHADESIM_COSIM_SYSTEMC
-  if (waves) throw InputError("waveforms need the trace-enabled C++ build (shadesim cosim --waves)");
-  return run_verilated_systemc<Vshade_unit>(job);
-#else
-  return run_verilated_cpp<Vshade_unit>(job, waves);
-#endif
 }
 
 struct Options {
@@ -150,13 +120,13 @@ struct Outcome {
   WaveWindow waves;  // path empty: none written
 };
 
-nlohmann::json outcome_json(const Outcome& o) {
+nlohmann::json outcome_json(const Outcome& o, const CosimExecutable& exe) {
   const CosimResult& r = o.result;
   const Stimulus& s = o.job.stim;
   nlohmann::json j;
   j["config"] = o.job.config.name;
-  j["backend"] = SHADESIM_BACKEND;
-  j["traced"] = kTraced;
+  j["backend"] = exe.backend;
+  j["traced"] = exe.traced;
   j["scenario"] = o.job.scenario;
   j["seed"] = s.seed;
   j["stimulus"] = {{"gap_pct", s.gap_pct}, {"max_gap", s.max_gap}, {"stall_pct", s.stall_pct}};
@@ -240,10 +210,10 @@ std::vector<CosimJob> make_jobs(const Options& o, const RtlConfig& build) {
 // The unit this run simulates: --unit, else the replayed stream's header. It must map to the
 // parameters this executable was Verilated with, or its pixels would be compared against a
 // model of another unit.
-RtlConfig resolve_build(const Options& o) {
+RtlConfig resolve_build(const Options& o, const CosimExecutable& exe) {
   RtlConfig b;
   b.name = o.config;
-  b.faults = built_faults();
+  b.faults = built_faults(exe);
   try {
     if (!o.unit_path.empty()) {
       std::ifstream is(o.unit_path);
@@ -261,7 +231,7 @@ RtlConfig resolve_build(const Options& o) {
   } catch (const CommandStreamError& e) {
     throw InputError(e.what());
   }
-  const std::string want = parameter_text(built_parameters());
+  const std::string want = parameter_text(exe.parameters);
   const std::string got = parameter_text(shade_unit_parameters(b.unit, b.faults));
   if (want != got) {
     throw InputError("the unit " + b.unit.to_string() + " maps to shade_unit parameters {" + got +
@@ -271,8 +241,8 @@ RtlConfig resolve_build(const Options& o) {
   return b;
 }
 
-int run_all(const Options& o) {
-  const RtlConfig build = resolve_build(o);
+int run_all(const Options& o, const CosimExecutable& exe) {
+  const RtlConfig build = resolve_build(o, exe);
   std::string expect_kind;
   int expect_y = -1;
   if (!o.expect.empty()) {
@@ -288,17 +258,15 @@ int run_all(const Options& o) {
       throw InputError("--expect-mismatch kind '" + expect_kind + "': expected pixel, cycle or hang");
     }
   }
-  if (!o.waves_path.empty() && !kTraced) {
+  if (!o.waves_path.empty() && !exe.traced) {
     throw InputError("--waves needs the trace-enabled build, which `shadesim cosim --waves FILE` picks");
   }
 
   const std::vector<CosimJob> jobs = make_jobs(o, build);
-#ifdef SHADESIM_COSIM_SYSTEMC
-  if (jobs.size() != 1) {
+  if (exe.one_job_per_process && jobs.size() != 1) {
     throw InputError("the SystemC kernel elaborates once per process, so this backend runs one job; got " +
                      std::to_string(jobs.size()) + " (use one --scenario and --runs 1)");
   }
-#endif
   if (!o.waves_path.empty() && jobs.size() != 1) {
     throw InputError("--waves writes one file: run one job (one --scenario or --stream, --runs 1); got " +
                      std::to_string(jobs.size()));
@@ -310,13 +278,13 @@ int run_all(const Options& o) {
   for (const auto& job : jobs) {
     Outcome out;
     out.job = job;
-    out.result = run_build(job, nullptr);
+    out.result = exe.run(job, nullptr);
     const CosimResult& r = out.result;
     char line[512];
     std::snprintf(line, sizeof line,
                   "%-8s %-12s %-7s seed=%-6llu pixels=%-7llu scanlines=%-5llu cycles=%-8llu "
                   "cyc/px=%.3f wall=%.3fs %.2f Mcycles/s  %s",
-                  SHADESIM_BACKEND, job.config.name.c_str(), job.scenario.c_str(),
+                  exe.backend.c_str(), job.config.name.c_str(), job.scenario.c_str(),
                   static_cast<unsigned long long>(job.stim.seed), static_cast<unsigned long long>(r.pixels),
                   static_cast<unsigned long long>(r.scanlines), static_cast<unsigned long long>(r.cycles),
                   r.pixels ? static_cast<double>(r.cycles) / static_cast<double>(r.pixels) : 0.0, r.seconds,
@@ -345,7 +313,7 @@ int run_all(const Options& o) {
       // shadesim cosim resolves --config (a named build or a UnitConfig file) again; a stream
       // alone names its unit in its header.
       const bool named = job.config.name != "custom" && job.config.name != "stream";
-      out.replay = std::string(SHADESIM_EXE) + (named ? " --config " + job.config.name : "") + " --stream " + out.saved_stream +
+      out.replay = exe.command + (named ? " --config " + job.config.name : "") + " --stream " + out.saved_stream +
                    ' ' + job.stim.to_args() + (o.watchdog > 0 ? " --watchdog " + std::to_string(o.watchdog) : "");
       if (m.kind == Mismatch::Kind::kHang) std::cout << "  HANG: " << mismatch_message(m, job.config) << '\n';
       std::cout << "  first mismatch (" << to_string(m.kind) << "): configuration " << job.config.name
@@ -363,7 +331,7 @@ int run_all(const Options& o) {
         w.last = m.cycle + o.waves_after;
         const std::filesystem::path parent = std::filesystem::path(w.path).parent_path();
         if (!parent.empty()) std::filesystem::create_directories(parent);
-        const CosimResult again = run_build(job, &w);
+        const CosimResult again = exe.run(job, &w);
         if (again.first.kind != m.kind || again.first.cycle != m.cycle) {
           std::cout << "    WARNING: the traced re-run mismatched differently (" << to_string(again.first.kind)
                     << " at cycle " << again.first.cycle << ")\n";
@@ -385,10 +353,10 @@ int run_all(const Options& o) {
   if (!o.json_path.empty()) {
     nlohmann::json j;
     if (outcomes.size() == 1) {
-      j = outcome_json(outcomes.front());
+      j = outcome_json(outcomes.front(), exe);
     } else {
       j = nlohmann::json::array();
-      for (const auto& out : outcomes) j.push_back(outcome_json(out));
+      for (const auto& out : outcomes) j.push_back(outcome_json(out, exe));
     }
     write_json(o.json_path, j);
   }
@@ -402,22 +370,24 @@ int run_all(const Options& o) {
   return failures == 0 ? 0 : 1;
 }
 
-void print_list(bool json) {
-  const std::vector<VerilogParameter> params = built_parameters();
+void print_list(bool json, const CosimExecutable& exe) {
+  const std::vector<VerilogParameter>& params = exe.parameters;
   if (!json) {
-    std::cout << SHADESIM_BACKEND << " build: " << parameter_text(params) << '\n';
+    std::cout << exe.backend << " build: " << parameter_text(params) << '\n';
     return;
   }
   nlohmann::json p = nlohmann::json::object();
   for (const auto& v : params) p[v.name] = v.value;
-  std::cout << nlohmann::json{{"backend", SHADESIM_BACKEND}, {"traced", kTraced}, {"parameters", p},
-                              {"faults", faults_json(built_faults())}}
+  std::cout << nlohmann::json{{"backend", exe.backend}, {"traced", exe.traced}, {"parameters", p},
+                              {"faults", faults_json(built_faults(exe))}}
                    .dump(2)
             << '\n';
 }
 
-int cosim_main(int argc, char** argv) {
-  CLI::App app{"Co-simulate the Verilated shade_unit (" SHADESIM_BACKEND
+}  // namespace
+
+int cosim_main(int argc, char** argv, const CosimExecutable& exe) {
+  CLI::App app{"Co-simulate the Verilated shade_unit (" + exe.backend +
                " backend) against the bit-accurate model and the cycle model"};
   Options o;
   bool list_json = false;
@@ -456,20 +426,20 @@ int cosim_main(int argc, char** argv) {
   list_json = json_opt->count() > 0;
   if (o.list) {
     if (list_json && !o.json_path.empty()) {
-      std::cerr << SHADESIM_EXE ": error: --list --json prints to stdout; it takes no file name\n";
+      std::cerr << exe.command << ": error: --list --json prints to stdout; it takes no file name\n";
       return 2;
     }
-    print_list(list_json);
+    print_list(list_json, exe);
     return 0;
   }
   if (list_json && o.json_path.empty()) {
-    std::cerr << SHADESIM_EXE ": error: --json needs a file name (only --list --json prints to stdout)\n";
+    std::cerr << exe.command << ": error: --json needs a file name (only --list --json prints to stdout)\n";
     return 2;
   }
   try {
-    return run_all(o);
+    return run_all(o, exe);
   } catch (const std::exception& e) {  // InputError, or a file the run could not write
-    std::cerr << SHADESIM_EXE ": error: " << e.what() << '\n';
+    std::cerr << exe.command << ": error: " << e.what() << '\n';
     if (!o.json_path.empty()) {
       std::ofstream os(o.json_path);
       if (os) os << nlohmann::json{{"passed", false}, {"error", e.what()}}.dump(2) << '\n';
@@ -478,25 +448,4 @@ int cosim_main(int argc, char** argv) {
   }
 }
 
-}  // namespace
 }  // namespace shadesim
-
-#ifdef SHADESIM_COSIM_SYSTEMC
-int sc_main(int argc, char** argv) {
-  try {
-    return shadesim::cosim_main(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << SHADESIM_EXE ": error: " << e.what() << '\n';
-    return 2;
-  }
-}
-#else
-int main(int argc, char** argv) {
-  try {
-    return shadesim::cosim_main(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << SHADESIM_EXE ": error: " << e.what() << '\n';
-    return 2;
-  }
-}
-#endif
