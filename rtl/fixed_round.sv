@@ -23,6 +23,7 @@ module fixed_round #(
     end else begin : g_trn
       assign biased = ext;
     end
+    // The top DROP bits of the shift are sign copies, never part of the (narrower) result.
     // verilator lint_off UNUSED
     logic signed [IN_W:0] shifted;
     // verilator lint_on UNUSED

@@ -39,6 +39,8 @@ module fixed_sat #(
       assign min_val  = '0;
     end
     if (WRAP != 0) begin : g_wrap
+      // Wrapping keeps the low bits by definition: the overflow test and the clamp values
+      // (which read the bits above) are not needed, and their inputs' top bits go unread.
       // verilator lint_off UNUSED
       logic unused_sat;
       assign unused_sat = overflow ^ (^max_val) ^ (^min_val);

@@ -58,8 +58,9 @@ module schlick_divider #(
   // One restoring step: r < den on entry and on exit.
   function automatic logic [OpW:0] divide_step(input logic [OpW-1:0] r, input logic [OpW-1:0] den);
     logic [OpW:0] r2, den_x;
+    // diff's top bit is 0 whenever diff is used (ge): the remainder stays below den.
     // verilator lint_off UNUSEDSIGNAL
-    logic [OpW:0] diff;  // top bit is 0 whenever it is used (ge)
+    logic [OpW:0] diff;
     // verilator lint_on UNUSEDSIGNAL
     logic         ge;
     r2    = {r, 1'b0};
@@ -99,25 +100,37 @@ module schlick_divider #(
   cls_e         cls_out;
 
   if (TIMING == 0) begin : g_pipelined
-    logic [OpW-1:0] r_q   [Q];
-    logic [OpW-1:0] den_q [Q];
-    logic [Q-1:0]   q_q   [Q];
-    cls_e           cls_q [Q];
-    logic [OpW:0]   step  [Q];  // step[k]: what stage k computes ({remainder, bit})
-    always_comb begin
-      step[0] = first;
-      for (int k = 1; k < Q; k++) step[k] = divide_step(r_q[k-1], den_q[k-1]);
+    // Stage k holds the quotient's top k + 1 bits and its class; the remainder and divisor are
+    // registered only into the stages that still divide (k < Q - 1).
+    logic [Q-1:0] q_q   [Q];
+    cls_e         cls_q [Q];
+    logic [OpW:0] step  [Q];  // step[k]: what stage k computes ({remainder, bit})
+    if (Q > 1) begin : g_carry
+      logic [OpW-1:0] r_q   [Q-1];
+      logic [OpW-1:0] den_q [Q-1];
+      always_comb begin
+        step[0] = first;
+        for (int k = 1; k < Q; k++) step[k] = divide_step(r_q[k-1], den_q[k-1]);
+      end
+      always_ff @(posedge clk_i) begin
+        if (en_i) begin
+          r_q[0]   <= step[0][OpW:1];
+          den_q[0] <= den_op;
+          for (int k = 1; k < Q - 1; k++) begin
+            r_q[k]   <= step[k][OpW:1];
+            den_q[k] <= den_q[k-1];
+          end
+        end
+      end
+    end else begin : g_one_bit
+      assign step[0] = first;
     end
     always_ff @(posedge clk_i) begin
       if (en_i) begin
-        r_q[0]   <= step[0][OpW:1];
         q_q[0]   <= Q'(step[0][0]);
-        den_q[0] <= den_op;
         cls_q[0] <= cls_d;
         for (int k = 1; k < Q; k++) begin
-          r_q[k]   <= step[k][OpW:1];
           q_q[k]   <= (q_q[k-1] << 1) | Q'(step[k][0]);
-          den_q[k] <= den_q[k-1];
           cls_q[k] <= cls_q[k-1];
         end
       end
@@ -125,9 +138,11 @@ module schlick_divider #(
     assign q_out   = q_q[Q-1];
     assign cls_out = cls_q[Q-1];
     assign busy_o  = 1'b0;
+    // The pipelined stages hold no state that needs a reset (every stage is overwritten on the
+    // advance before its output is used); the last step's remainder is not a quotient bit.
     // verilator lint_off UNUSEDSIGNAL
     logic unused_pipe;
-    assign unused_pipe = rst_ni ^ (^r_q[Q-1]) ^ (^den_q[Q-1]);
+    assign unused_pipe = rst_ni ^ (^step[Q-1][OpW:1]);
     // verilator lint_on UNUSEDSIGNAL
   end else begin : g_iterative
     localparam int CntW = $clog2(Q + 1);
