@@ -1,6 +1,7 @@
 # Checks of `shadesim cosim`'s machine interface (cmake -P, no other tools):
 #   MODE=json : --json results (pass, mismatch, bad input), exit codes 0/1/2, the replay line
-#               reproducing the mismatch, --list --list-json, --waves refused off the cpp backend
+#               reproducing the mismatch (a named build's, and a regress run's on a scene's own
+#               configuration), --list --list-json, --waves refused off the cpp backend
 #   MODE=waves: --waves (the traced build) writes a non-empty FST whose header covers exactly
 #               the window around the first mismatch, and the output names the file
 # usage: cmake -DMODE=json|waves -DSHADESIM=<exe> -DCACHE=<dir> -DWORK=<dir> -P cosim_cli_check.cmake
@@ -85,6 +86,35 @@ if(MODE STREQUAL "json")
   expect_eq("replayed mismatch cycle" "${r_cycle}" "${cycle}")
   expect_eq("replayed mismatch y" "${r_y}" "17")
   expect_eq("replayed scenario" "${r_scenario}" "replay")
+
+  # A run on a scene's own configuration (regress's own:<scene>, no --config `cosim` accepts):
+  # its replay line must run and reproduce the failure. --watchdog 1 makes the run fail (a hang
+  # before the first pixel) without a faulty build.
+  execute_process(COMMAND ${SHADESIM} rtl-build --print-source-dir OUTPUT_VARIABLE src
+                  OUTPUT_STRIP_TRAILING_WHITESPACE)
+  run(1 out ${SHADESIM} regress ${src}/scenes/sphere.json --backends cpp --watchdog 1 -j 1
+      --cache ${CACHE} --out ${WORK}/own --json ${WORK}/own.json)
+  read_json(${WORK}/own.json j)
+  string(JSON own_config GET "${j}" jobs 0 config)
+  string(JSON own_status GET "${j}" jobs 0 status)
+  string(JSON own_replay GET "${j}" jobs 0 replay)
+  string(JSON own_dir GET "${j}" jobs 0 dir)
+  expect_eq("own-configuration run's config" "${own_config}" "own:sphere")
+  expect_eq("own-configuration run's status" "${own_status}" "hang")
+  if(NOT own_replay MATCHES "^shadesim cosim --backend cpp --stream .* --watchdog 1$")
+    message(FATAL_ERROR "unexpected replay line for an own configuration: ${own_replay}")
+  endif()
+  read_json(${own_dir}/cosim.json c)
+  string(JSON own_cycle GET "${c}" first_mismatch cycle)
+  separate_arguments(replay_args UNIX_COMMAND "${own_replay}")
+  list(POP_FRONT replay_args)
+  run(1 out ${SHADESIM} ${replay_args} --cache ${CACHE} --save-dir ${WORK}/own_replay
+      --json ${WORK}/own_replay.json)
+  read_json(${WORK}/own_replay.json r)
+  string(JSON r_kind GET "${r}" first_mismatch kind)
+  string(JSON r_cycle GET "${r}" first_mismatch cycle)
+  expect_eq("replayed own-configuration mismatch kind" "${r_kind}" "hang")
+  expect_eq("replayed own-configuration mismatch cycle" "${r_cycle}" "${own_cycle}")
 
   # A passing run: exit 0, first_mismatch null, figures filled in.
   run(0 out ${COSIM} --config grey_s428w --scenario short --seed 2 --json ${WORK}/pass.json)

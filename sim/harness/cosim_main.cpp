@@ -1,9 +1,10 @@
 // The co-simulation executable of one RTL build: the Verilated shade_unit (C++, SystemC, or C++
 // with FST tracing) against the bit-accurate model (every pixel) and the cycle model (every
-// scanline's completion cycle). shadesim builds one per parameter set into its cache
-// (sim/rtl_build.h) and runs it through `shadesim cosim`, which passes the unit as a file.
-// This file is the executable's shared driver, compiled once into libshadesim_harness; each
-// build adds its Verilated model through sim/harness/cosim_adapter.cpp (cosim_executable.h).
+// pixel's exit cycle and cmd_ready_o on every cycle); sim/harness/cosim.h states the contract.
+// shadesim builds one per parameter set into its cache (sim/rtl_build.h) and runs it through
+// `shadesim cosim`, which passes the unit as a file. This file is the executable's shared
+// driver, compiled once into libshadesim_harness; each build adds its Verilated model through
+// sim/harness/cosim_adapter.cpp (sim/harness/cosim_executable.h):
 //
 //   <exe> --unit unit.json --config grey_s428w --scenario all --seed 1 --runs 3
 //   <exe> --stream failing.cmds --seed 5 --gap-pct 30 ...   (replay: the stream names its unit)
@@ -21,9 +22,12 @@
 //   {config, backend, traced, scenario, seed, stimulus: {gap_pct, max_gap, stall_pct}, passed,
 //    cycles, pixels, scanlines, seconds, cycles_per_second,
 //    first_mismatch: null | {kind, scanline, y, x, expected, got, cycle, message},
+//      kind: pixel | cycle | ready | extra-pixel | hang | timeout (sim/harness/cosim.h says each),
+//      before: null | an earlier ready mismatch this one follows from,
 //    saved_stream: null | path, replay: null | command line, waves: null | {path, first_cycle, last_cycle}}
 // On bad input (exit 2) the file holds {"passed": false, "error": message} when it can be written.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -31,6 +35,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <variant>
 
 #include "model/rtl_parameters.h"
 #include "model/unit_config_file.h"
@@ -62,6 +67,11 @@ std::string parameter_text(const std::vector<VerilogParameter>& params) {
   for (const auto& p : params) s += (s.empty() ? "" : " ") + p.name + "=" + std::to_string(p.value);
   return s;
 }
+
+// The kinds --expect-mismatch accepts (a deliberate fault may show as any of them).
+constexpr Mismatch::Kind kExpectableKinds[] = {Mismatch::Kind::kPixel, Mismatch::Kind::kCycle,
+                                               Mismatch::Kind::kReady, Mismatch::Kind::kExtraPixel,
+                                               Mismatch::Kind::kHang, Mismatch::Kind::kTimeout};
 
 struct Options {
   std::string config = "custom";  // the build's name, for reports
@@ -102,6 +112,7 @@ std::string mismatch_message(const Mismatch& m, const RtlConfig& c) {
   os << to_string(m.kind) << " mismatch in configuration " << c.name << " [" << c.unit.to_string()
      << fault_text(c.faults) << "]: scanline " << m.scanline << " (y=" << m.y << "), x=" << m.x << ", cycle "
      << m.cycle << ": expected " << m.expected << ", got " << m.got;
+  if (!m.before.empty()) os << " (" << m.before << ")";
   return os.str();
 }
 
@@ -143,6 +154,7 @@ nlohmann::json outcome_json(const Outcome& o, const CosimExecutable& exe) {
     const Mismatch& m = r.first;
     j["first_mismatch"] = {{"kind", to_string(m.kind)}, {"scanline", m.scanline}, {"y", m.y}, {"x", m.x},
                            {"expected", m.expected}, {"got", m.got}, {"cycle", m.cycle},
+                           {"before", m.before.empty() ? nlohmann::json(nullptr) : nlohmann::json(m.before)},
                            {"message", mismatch_message(m, o.job.config)}};
   }
   j["saved_stream"] = o.saved_stream.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.saved_stream);
@@ -241,28 +253,42 @@ RtlConfig resolve_build(const Options& o, const CosimExecutable& exe) {
   return b;
 }
 
-int run_all(const Options& o, const CosimExecutable& exe) {
-  const RtlConfig build = resolve_build(o, exe);
-  std::string expect_kind;
-  int expect_y = -1;
-  if (!o.expect.empty()) {
-    const auto colon = o.expect.find(':');
-    try {
-      if (colon == std::string::npos) throw std::invalid_argument(o.expect);
-      expect_kind = o.expect.substr(0, colon);
-      expect_y = std::stoi(o.expect.substr(colon + 1));
-    } catch (const std::logic_error&) {
-      throw InputError("--expect-mismatch '" + o.expect + "': expected KIND:Y, e.g. pixel:17");
-    }
-    if (expect_kind != "pixel" && expect_kind != "cycle" && expect_kind != "hang") {
-      throw InputError("--expect-mismatch kind '" + expect_kind + "': expected pixel, cycle or hang");
-    }
+// --expect-mismatch KIND:Y: the run succeeds only if its first mismatch is KIND on row Y.
+struct Expectation {
+  std::string kind;  // empty: none expected
+  int y = -1;
+  std::string text;  // as given
+
+  bool active() const { return !kind.empty(); }
+  bool met_by(const Mismatch& m) const { return to_string(m.kind) == kind && m.y == y; }
+};
+
+Expectation parse_expectation(const std::string& text) {
+  Expectation e;
+  if (text.empty()) return e;
+  e.text = text;
+  const auto colon = text.find(':');
+  try {
+    if (colon == std::string::npos) throw std::invalid_argument(text);
+    e.kind = text.substr(0, colon);
+    e.y = std::stoi(text.substr(colon + 1));
+  } catch (const std::logic_error&) {
+    throw InputError("--expect-mismatch '" + text + "': expected KIND:Y, e.g. pixel:17");
   }
+  std::string kinds;
+  for (Mismatch::Kind k : kExpectableKinds) {
+    if (to_string(k) == e.kind) return e;
+    kinds += (kinds.empty() ? "" : ", ") + to_string(k);
+  }
+  throw InputError("--expect-mismatch kind '" + e.kind + "': expected one of " + kinds);
+}
+
+// Options that only make sense for some runs, checked before anything runs.
+void check_run_options(const Options& o, const std::vector<CosimJob>& jobs,
+                       const CosimExecutable& exe) {
   if (!o.waves_path.empty() && !exe.traced) {
     throw InputError("--waves needs the trace-enabled build, which `shadesim cosim --waves FILE` picks");
   }
-
-  const std::vector<CosimJob> jobs = make_jobs(o, build);
   if (exe.one_job_per_process && jobs.size() != 1) {
     throw InputError("the SystemC kernel elaborates once per process, so this backend runs one job; got " +
                      std::to_string(jobs.size()) + " (use one --scenario and --runs 1)");
@@ -271,101 +297,170 @@ int run_all(const Options& o, const CosimExecutable& exe) {
     throw InputError("--waves writes one file: run one job (one --scenario or --stream, --runs 1); got " +
                      std::to_string(jobs.size()));
   }
+}
+
+// The one-line summary of a run.
+void print_run_line(const CosimJob& job, const CosimResult& r, const CosimExecutable& exe) {
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "%-8s %-12s %-7s seed=%-6llu pixels=%-7llu scanlines=%-5llu cycles=%-8llu "
+                "cyc/px=%.3f wall=%.3fs %.2f Mcycles/s  %s",
+                exe.backend.c_str(), job.config.name.c_str(), job.scenario.c_str(),
+                static_cast<unsigned long long>(job.stim.seed), static_cast<unsigned long long>(r.pixels),
+                static_cast<unsigned long long>(r.scanlines), static_cast<unsigned long long>(r.cycles),
+                r.pixels ? static_cast<double>(r.cycles) / static_cast<double>(r.pixels) : 0.0, r.seconds,
+                r.seconds > 0 ? static_cast<double>(r.cycles) / r.seconds / 1e6 : 0.0,
+                r.passed() ? "PASS" : "MISMATCH");
+  std::cout << line << '\n';
+}
+
+// How many of the model's pixels the specular term changes: the same stream with every
+// spec_colour set to 0, pixel by pixel. A run checks the specular units' bits only where this
+// is non-zero.
+uint64_t specular_affected_pixels(const CosimJob& job, const std::vector<PixelOut>& expected) {
+  CommandStream dark = job.stream;
+  for (auto& cmd : dark.commands) {
+    if (auto* m = std::get_if<MaterialCmd>(&cmd)) std::fill(m->spec_colour.begin(), m->spec_colour.end(), 0);
+  }
+  const std::vector<PixelOut> plain = ShadeUnit(job.config.unit).run(dark);
+  uint64_t n = 0;
+  for (size_t i = 0; i < expected.size() && i < plain.size(); ++i) {
+    for (int c = 0; c < job.config.unit.channels; ++c) {
+      if (expected[i].colour[c] != plain[i].colour[c]) {
+        ++n;
+        break;
+      }
+    }
+  }
+  return n;
+}
+
+// With real specular hardware: how much of the run exercised it (Outcome::spec_affected).
+// False when that is under --min-spec-pct.
+bool check_specular_share(Outcome& out, const Options& o) {
+  if (out.job.config.unit.specular.kind == SpecularUnitKind::kIdeal) return true;
+  const std::vector<PixelOut> expected = ShadeUnit(out.job.config.unit).run(out.job.stream);
+  out.spec_affected = static_cast<int64_t>(specular_affected_pixels(out.job, expected));
+  const double pct = expected.empty() ? 0.0 : 100.0 * static_cast<double>(out.spec_affected) /
+                                                  static_cast<double>(expected.size());
+  std::printf("  specular term changes %lld of %zu pixels (%.1f%%)\n", static_cast<long long>(out.spec_affected),
+              expected.size(), pct);
+  if (pct >= o.min_spec_pct) return true;
+  std::printf("  FAIL: fewer than --min-spec-pct %.1f%% of the pixels exercise the specular unit\n", o.min_spec_pct);
+  return false;
+}
+
+// The command that reproduces a failed run. Deliberate faults exist only in named builds
+// (sim/harness/builds.json), so a build with faults is named by --config; any other unit is
+// named by the saved stream's header, which `shadesim cosim --stream` reads (a name such as
+// own:sphere, regress's scene-own configuration, is no argument `cosim --config` accepts).
+std::string replay_line(const CosimJob& job, const std::string& stream_path, const Options& o,
+                        const CosimExecutable& exe) {
+  const InjectedFaults& f = job.config.faults;
+  const bool faulty = f.lsb_row >= 0 || f.stall_row >= 0 || f.hang_row >= 0;
+  return exe.command + (faulty ? " --config " + job.config.name : "") + " --stream " + stream_path +
+         ' ' + job.stim.to_args() + (o.watchdog > 0 ? " --watchdog " + std::to_string(o.watchdog) : "");
+}
+
+// A failed run: its stream saved into --save-dir, the replay command (Outcome::saved_stream,
+// replay).
+void save_failure(Outcome& out, const Options& o, const CosimExecutable& exe) {
+  const CosimJob& job = out.job;
+  std::filesystem::create_directories(o.save_dir);
+  // The configuration name may be a path (--config FILE.json) or carry a ':' (own:sphere).
+  std::string stem = job.config.name + "_" + job.scenario + "_" + std::to_string(job.stim.seed);
+  for (char& c : stem) {
+    if (c == '/' || c == ':' || c == '\\') c = '_';
+  }
+  out.saved_stream = o.save_dir + "/" + stem + ".cmds";
+  job.stream.save(out.saved_stream);
+  out.replay = replay_line(job, out.saved_stream, o, exe);
+}
+
+void print_mismatch(const Outcome& out) {
+  const Mismatch& m = out.result.first;
+  const RtlConfig& c = out.job.config;
+  if (m.kind == Mismatch::Kind::kHang) std::cout << "  HANG: " << mismatch_message(m, c) << '\n';
+  std::cout << "  first mismatch (" << to_string(m.kind) << "): configuration " << c.name << " ["
+            << c.unit.to_string() << fault_text(c.faults) << "]\n"
+            << "    scanline " << m.scanline << " (y=" << m.y << "), x=" << m.x << ", cycle " << m.cycle << '\n'
+            << "    expected " << m.expected << '\n'
+            << "    got      " << m.got << '\n'
+            << (m.before.empty() ? "" : "    before it: " + m.before + "\n")
+            << "    stream saved to " << out.saved_stream << '\n'
+            << "    replay: " << out.replay << '\n';
+}
+
+// The same job again (deterministic), dumping only the window of cycles around its first
+// mismatch into --waves (Outcome::waves).
+void write_waveform(Outcome& out, const Options& o, const CosimExecutable& exe) {
+  const Mismatch& m = out.result.first;
+  WaveWindow w;
+  w.path = o.waves_path;
+  w.first = m.cycle > o.waves_before ? m.cycle - o.waves_before : 0;
+  w.last = m.cycle + o.waves_after;
+  const std::filesystem::path parent = std::filesystem::path(w.path).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+  const CosimResult again = exe.run(out.job, &w);
+  if (again.first.kind != m.kind || again.first.cycle != m.cycle) {
+    std::cout << "    WARNING: the traced re-run mismatched differently (" << to_string(again.first.kind)
+              << " at cycle " << again.first.cycle << ")\n";
+  }
+  out.waves = w;
+  std::cout << "    waves: " << w.path << " (cycles " << w.first << ".." << w.last << ", time = "
+            << kWaveUnitsPerCycle << " x (cycle + " << kResetCycles << "))\n";
+}
+
+void write_results_json(const std::string& path, const std::vector<Outcome>& outcomes,
+                        const CosimExecutable& exe) {
+  if (path.empty()) return;
+  nlohmann::json j;
+  if (outcomes.size() == 1) {
+    j = outcome_json(outcomes.front(), exe);
+  } else {
+    j = nlohmann::json::array();
+    for (const auto& out : outcomes) j.push_back(outcome_json(out, exe));
+  }
+  write_json(path, j);
+}
+
+// Runs the jobs in order; with --expect-mismatch, stops at the first failed run and says
+// whether it failed as expected.
+int run_all(const Options& o, const CosimExecutable& exe) {
+  const RtlConfig build = resolve_build(o, exe);
+  const Expectation expect = parse_expectation(o.expect);
+  const std::vector<CosimJob> jobs = make_jobs(o, build);
+  check_run_options(o, jobs, exe);
 
   std::vector<Outcome> outcomes;
   int failures = 0;
-  int status = -1;  // set by --expect-mismatch
   for (const auto& job : jobs) {
     Outcome out;
     out.job = job;
     out.result = exe.run(job, nullptr);
-    const CosimResult& r = out.result;
-    char line[512];
-    std::snprintf(line, sizeof line,
-                  "%-8s %-12s %-7s seed=%-6llu pixels=%-7llu scanlines=%-5llu cycles=%-8llu "
-                  "cyc/px=%.3f wall=%.3fs %.2f Mcycles/s  %s",
-                  exe.backend.c_str(), job.config.name.c_str(), job.scenario.c_str(),
-                  static_cast<unsigned long long>(job.stim.seed), static_cast<unsigned long long>(r.pixels),
-                  static_cast<unsigned long long>(r.scanlines), static_cast<unsigned long long>(r.cycles),
-                  r.pixels ? static_cast<double>(r.cycles) / static_cast<double>(r.pixels) : 0.0, r.seconds,
-                  r.seconds > 0 ? static_cast<double>(r.cycles) / r.seconds / 1e6 : 0.0,
-                  r.passed() ? "PASS" : "MISMATCH");
-    std::cout << line << '\n';
-    if (job.config.unit.specular.kind != SpecularUnitKind::kIdeal) {
-      const Prepared prep = prepare(job);
-      out.spec_affected = static_cast<int64_t>(specular_affected_pixels(job, prep.expected));
-      const double pct = prep.expected.empty() ? 0.0 : 100.0 * static_cast<double>(out.spec_affected) /
-                                                           static_cast<double>(prep.expected.size());
-      std::printf("  specular term changes %lld of %zu pixels (%.1f%%)\n", static_cast<long long>(out.spec_affected),
-                  prep.expected.size(), pct);
-      if (pct < o.min_spec_pct) {
-        std::printf("  FAIL: fewer than --min-spec-pct %.1f%% of the pixels exercise the specular unit\n", o.min_spec_pct);
-        ++failures;
-      }
+    print_run_line(job, out.result, exe);
+    if (!check_specular_share(out, o)) ++failures;
+    if (out.result.passed()) {
+      outcomes.push_back(out);
+      continue;
     }
-    if (!r.passed()) {
-      ++failures;
-      const Mismatch& m = r.first;
-      std::filesystem::create_directories(o.save_dir);
-      out.saved_stream = o.save_dir + "/" + job.config.name + "_" + job.scenario + "_" +
-                         std::to_string(job.stim.seed) + ".cmds";
-      job.stream.save(out.saved_stream);
-      // shadesim cosim resolves --config (a named build or a UnitConfig file) again; a stream
-      // alone names its unit in its header.
-      const bool named = job.config.name != "custom" && job.config.name != "stream";
-      out.replay = exe.command + (named ? " --config " + job.config.name : "") + " --stream " + out.saved_stream +
-                   ' ' + job.stim.to_args() + (o.watchdog > 0 ? " --watchdog " + std::to_string(o.watchdog) : "");
-      if (m.kind == Mismatch::Kind::kHang) std::cout << "  HANG: " << mismatch_message(m, job.config) << '\n';
-      std::cout << "  first mismatch (" << to_string(m.kind) << "): configuration " << job.config.name
-                << " [" << job.config.unit.to_string() << fault_text(job.config.faults) << "]\n"
-                << "    scanline " << m.scanline << " (y=" << m.y << "), x=" << m.x << ", cycle " << m.cycle << '\n'
-                << "    expected " << m.expected << '\n'
-                << "    got      " << m.got << '\n'
-                << "    stream saved to " << out.saved_stream << '\n'
-                << "    replay: " << out.replay << '\n';
-      if (!o.waves_path.empty()) {
-        // Same job again (deterministic), dumping only the window around the mismatch.
-        WaveWindow w;
-        w.path = o.waves_path;
-        w.first = m.cycle > o.waves_before ? m.cycle - o.waves_before : 0;
-        w.last = m.cycle + o.waves_after;
-        const std::filesystem::path parent = std::filesystem::path(w.path).parent_path();
-        if (!parent.empty()) std::filesystem::create_directories(parent);
-        const CosimResult again = exe.run(job, &w);
-        if (again.first.kind != m.kind || again.first.cycle != m.cycle) {
-          std::cout << "    WARNING: the traced re-run mismatched differently (" << to_string(again.first.kind)
-                    << " at cycle " << again.first.cycle << ")\n";
-        }
-        out.waves = w;
-        std::cout << "    waves: " << w.path << " (cycles " << w.first << ".." << w.last << ", time = "
-                  << kWaveUnitsPerCycle << " x (cycle + " << kResetCycles << "))\n";
-      }
-      if (!expect_kind.empty() && status < 0) {
-        const bool as_expected = to_string(m.kind) == expect_kind && m.y == expect_y;
-        std::cout << (as_expected ? "  the deliberate fault was caught where expected\n"
-                                  : "  FAIL: expected the first mismatch to be " + o.expect + "\n");
-        status = as_expected ? 0 : 1;
-      }
-    }
+    ++failures;
+    save_failure(out, o, exe);
+    print_mismatch(out);
+    if (!o.waves_path.empty()) write_waveform(out, o, exe);
     outcomes.push_back(out);
-    if (status >= 0) break;
-  }
-  if (!o.json_path.empty()) {
-    nlohmann::json j;
-    if (outcomes.size() == 1) {
-      j = outcome_json(outcomes.front(), exe);
-    } else {
-      j = nlohmann::json::array();
-      for (const auto& out : outcomes) j.push_back(outcome_json(out, exe));
+    if (expect.active()) {
+      const bool as_expected = expect.met_by(out.result.first);
+      std::cout << (as_expected ? "  the deliberate fault was caught where expected\n"
+                                : "  FAIL: expected the first mismatch to be " + expect.text + "\n");
+      write_results_json(o.json_path, outcomes, exe);
+      return as_expected ? 0 : 1;
     }
-    write_json(o.json_path, j);
   }
-  if (!expect_kind.empty()) {
-    if (status < 0) {
-      std::cout << "FAIL: expected a mismatch (" << o.expect << "), but every run passed\n";
-      return 1;
-    }
-    return status;
+  write_results_json(o.json_path, outcomes, exe);
+  if (expect.active()) {
+    std::cout << "FAIL: expected a mismatch (" << expect.text << "), but every run passed\n";
+    return 1;
   }
   return failures == 0 ? 0 : 1;
 }
@@ -403,7 +498,8 @@ int cosim_main(int argc, char** argv, const CosimExecutable& exe) {
   app.add_option("--max-gap", o.max_gap, "override: longest idle gap")->check(CLI::Range(1, 100000));
   app.add_option("--stall-pct", o.stall_pct, "override: chance of pix_ready low per cycle")->check(CLI::Range(0, 99));
   app.add_option("--expect-mismatch", o.expect,
-                 "KIND:Y - succeed only if the first mismatch is KIND (pixel|cycle|hang) at scanline y=Y");
+                 "KIND:Y - succeed only if the first mismatch is KIND (pixel|cycle|ready|extra-pixel|hang|timeout) "
+                 "at scanline y=Y");
   app.add_option("--save-dir", o.save_dir, "where a failing run's command stream is saved");
   auto* json_opt = app.add_option("--json", o.json_path, "write each run's result as JSON to this file")
                        ->expected(0, 1);

@@ -1,5 +1,5 @@
-// Verilator C++ backend: the Verilated shade_unit clocked by a plain loop, the cycle model
-// stepped in lockstep on the same stimulus, both feeding the scoreboard.
+// Verilator C++ backend: the Verilated shade_unit clocked by a plain loop that moves values
+// between its ports and the lockstep block (sim/harness/cosim.h, the contract).
 #pragma once
 
 #include <chrono>
@@ -8,7 +8,6 @@
 #include <utility>
 
 #include "sim/harness/cosim.h"
-#include "sim/harness/idle_noise.h"
 #include "verilated.h"
 #ifdef SHADESIM_COSIM_TRACE
 #include "verilated_fst_c.h"
@@ -48,10 +47,9 @@ inline uint64_t out_bits_of(const VlWide<N>& port, int lsb, int width) {
 // dumps the window into an FST file; other builds throw std::invalid_argument.
 template <class V>
 CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nullptr) {
-  Prepared prep = prepare(job);
+  Lockstep lockstep(job, waves);
   const auto t0 = std::chrono::steady_clock::now();  // simulation speed excludes preparation
-  const UnitConfig& cfg = job.config.unit;
-  Scoreboard board(std::move(prep.expected), cfg.channels, cfg.lanes);  // not needed after this: no copy
+  const UnitConfig& cfg = lockstep.unit();
 
   VerilatedContext context;
 #ifdef SHADESIM_COSIM_TRACE
@@ -94,59 +92,34 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
   }
   top.rst_ni = 1;
 
-  CommandDriver rtl_driver(prep.words, job.stim, cfg.port_words);
-  CommandDriver model_driver(prep.words, job.stim, cfg.port_words);
-  CycleModel model(CycleConfig::of(cfg));
-  PixelWatchdog watchdog(prep.watchdog_cycles);
-  uint64_t cycle = 0;
-  for (;; ++cycle) {
-    const bool ready = job.stim.pix_ready(cycle);
-    const bool valid = rtl_driver.valid();
-    top.cmd_valid_i = valid;
-    // Valid low: noise on the data lines (sim/harness/idle_noise.h), not the next beat.
-    put_beat(top.cmd_data_i, valid ? rtl_driver.beat() : idle_noise(job.stim, cycle).data(),
-             cfg.port_words);
-    top.pix_ready_i = ready;
+  const auto colour_bits = [&top](int lsb, int width) { return out_bits_of(top.pix_colour_o, lsb, width); };
+  for (uint64_t cycle = 0;; ++cycle) {
+    const Lockstep::Drive& in = lockstep.drive(cycle);
+    top.cmd_valid_i = in.cmd_valid;
+    put_beat(top.cmd_data_i, in.cmd_data, cfg.port_words);
+    top.pix_ready_i = in.pix_ready;
     top.eval();
     const uint64_t t = (cycle + kResetCycles) * kWaveUnitsPerCycle;
     dump(cycle, t);
-    const bool cmd_fire = valid && top.cmd_ready_o;
-    const bool pix_valid = top.pix_valid_o;
-    if (top.pix_valid_o && ready) {
-      score_beat(board, top.pix_x_o, top.pix_y_o, top.pix_mask_o, top.pix_eor_o,
-                 [&top](int lsb, int width) { return out_bits_of(top.pix_colour_o, lsb, width); }, cfg, cycle);
-    }
-    const CycleModel::Edge e = model.clock(model_driver.valid(), model_driver.beat(), ready);
-    model_driver.clock(e.cmd_fire);
-    if (e.pix_fire && e.pix_eor) board.model_scanline({e.pix_y, cycle, e.pix_x + e.pix_count - 1});
+    Lockstep::Sample out;
+    out.cmd_ready = top.cmd_ready_o;
+    out.pix_valid = top.pix_valid_o;
+    out.pix_x = top.pix_x_o;
+    out.pix_y = top.pix_y_o;
+    out.pix_mask = top.pix_mask_o;
+    out.pix_eor = top.pix_eor_o;
+    const bool go_on = lockstep.edge(cycle, out, colour_bits);
     top.clk_i = 1;
     top.eval();
     dump(cycle, t + kWaveUnitsPerCycle / 2);
     top.clk_i = 0;
-    rtl_driver.clock(cmd_fire);
-    // With a wave window, run on to its end (or to the natural end of the stream).
-    const bool window_open = waves && cycle < waves->last && !board.complete();
-    if ((board.failed() && !window_open) || board.complete()) break;
-    if (cycle > prep.cycle_limit) {
-      board.timeout(cycle);
-      break;
-    }
-    if (watchdog.expired(cycle, pix_valid, board)) {
-      board.hang(cycle, watchdog.quiet_since(), watchdog.limit());
-      if (!window_open) break;
-    }
+    if (!go_on) break;
   }
   top.final();
 #ifdef SHADESIM_COSIM_TRACE
   if (fst) fst->close();
 #endif
-  CosimResult r;
-  r.first = board.first_mismatch();
-  r.cycles = board.cycles();
-  r.pixels = board.pixels_checked();
-  r.scanlines = board.scanlines_checked();
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return r;
+  return lockstep.result(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 }
 
 }  // namespace shadesim

@@ -1,8 +1,6 @@
-// SystemC backend: the Verilated shade_unit (verilate(... SYSTEMC)) under an sc_clock, fed by a
-// Driver and drained by a Sink (SC_MODULEs), with the cycle model wrapped as a third module that
-// steps in lockstep. Every module acts on the rising edge: it samples the handshake signals as
-// they were just before the edge (what the RTL saw) and drives the next cycle's inputs, so
-// cycle numbers match the C++ backend's exactly.
+// SystemC backend: the Verilated shade_unit (verilate(... SYSTEMC)) under an sc_clock, with the
+// testbench as one SC_MODULE (ScLockstep) that moves values between its ports and the lockstep
+// block (sim/harness/cosim.h, the contract) on every rising edge.
 //
 // A SystemC kernel elaborates once per process: one run per process.
 #pragma once
@@ -15,7 +13,6 @@
 #include <utility>
 
 #include "sim/harness/cosim.h"
-#include "sim/harness/idle_noise.h"
 
 namespace shadesim {
 
@@ -50,17 +47,28 @@ inline uint64_t out_bits_of(const sc_dt::sc_bv<W>& port, int lsb, int width) {
   return port.range(lsb + width - 1, lsb).to_uint64();
 }
 
-template <class DT>
-struct ScDriver : sc_core::sc_module {
+// The testbench as one SC_MODULE around the lockstep block (sim/harness/cosim.h): on each
+// rising edge it reads the DUT's outputs as they were just before the edge (signal values
+// change only after the edge's evaluation), hands them to Lockstep::edge, and writes the next
+// cycle's inputs, so cycle numbers match the C++ backend's exactly. During reset it holds
+// every input low.
+template <class DT, class XT, class CT, class MT>
+struct ScLockstep : sc_core::sc_module {
   sc_core::sc_in<bool> clk;
-  sc_core::sc_in<bool> cmd_ready;
   sc_core::sc_out<bool> rst_n;
   sc_core::sc_out<bool> cmd_valid;
   sc_core::sc_out<DT> cmd_data;
+  sc_core::sc_in<bool> cmd_ready;
+  sc_core::sc_in<bool> pix_valid;
+  sc_core::sc_in<XT> pix_x, pix_y;
+  sc_core::sc_in<CT> pix_colour;
+  sc_core::sc_in<MT> pix_mask;
+  sc_core::sc_in<bool> pix_eor;
+  sc_core::sc_out<bool> pix_ready;
 
-  SC_HAS_PROCESS(ScDriver);
-  ScDriver(sc_core::sc_module_name name, const std::vector<uint64_t>& words, const Stimulus& stim, int port_words)
-      : sc_module(name), driver_(words, stim, port_words), stim_(stim) {
+  SC_HAS_PROCESS(ScLockstep);
+  ScLockstep(sc_core::sc_module_name name, Lockstep& lockstep)
+      : sc_module(name), lockstep_(lockstep) {
     SC_METHOD(tick);
     sensitive << clk.pos();
     dont_initialize();
@@ -69,105 +77,37 @@ struct ScDriver : sc_core::sc_module {
   void tick() {
     const int64_t cycle = sc_cycle_now();
     if (cycle >= 0) {
-      const bool fire = driver_.valid() && cmd_ready.read();
-      driver_.clock(fire);
+      Lockstep::Sample out;
+      out.cmd_ready = cmd_ready.read();
+      out.pix_valid = pix_valid.read();
+      out.pix_x = pix_x.read();
+      out.pix_y = pix_y.read();
+      out.pix_mask = static_cast<uint64_t>(pix_mask.read());
+      out.pix_eor = pix_eor.read();
+      const CT& colour = pix_colour.read();
+      const auto colour_bits = [&colour](int lsb, int width) { return out_bits_of(colour, lsb, width); };
+      if (!lockstep_.edge(static_cast<uint64_t>(cycle), out, colour_bits)) {
+        sc_core::sc_stop();
+        return;
+      }
     }
-    rst_n.write(cycle >= -1);
-    const bool run = cycle >= -1;
-    const bool valid = run && driver_.valid();
-    cmd_valid.write(valid);
+    const int64_t next = cycle + 1;
+    rst_n.write(next >= 0);
     DT beat{};
-    // Valid low: noise on the data lines (sim/harness/idle_noise.h), not the next beat.
-    const std::array<uint64_t, 8> noise = idle_noise(stim_, static_cast<uint64_t>(cycle + 1));
-    to_port(beat, valid ? driver_.beat() : noise.data(), driver_.port_words());
+    if (next < 0) {
+      cmd_valid.write(false);
+      pix_ready.write(false);
+    } else {
+      const Lockstep::Drive& in = lockstep_.drive(static_cast<uint64_t>(next));
+      cmd_valid.write(in.cmd_valid);
+      to_port(beat, in.cmd_data, lockstep_.unit().port_words);
+      pix_ready.write(in.pix_ready);
+    }
     cmd_data.write(beat);
   }
 
  private:
-  CommandDriver driver_;
-  Stimulus stim_;
-};
-
-template <class XT, class CT, class MT>
-struct ScSink : sc_core::sc_module {
-  sc_core::sc_in<bool> clk;
-  sc_core::sc_in<bool> pix_valid;
-  sc_core::sc_in<XT> pix_x, pix_y;
-  sc_core::sc_in<CT> pix_colour;
-  sc_core::sc_in<MT> pix_mask;
-  sc_core::sc_in<bool> pix_eor;
-  sc_core::sc_out<bool> pix_ready;
-
-  SC_HAS_PROCESS(ScSink);
-  ScSink(sc_core::sc_module_name name, const Stimulus& stim, const UnitConfig& cfg, Scoreboard& board)
-      : sc_module(name), stim_(stim), cfg_(cfg), board_(board) {
-    SC_METHOD(tick);
-    sensitive << clk.pos();
-    dont_initialize();
-  }
-
-  void tick() {
-    const int64_t cycle = sc_cycle_now();
-    if (cycle >= 0 && pix_valid.read() && stim_.pix_ready(static_cast<uint64_t>(cycle))) {
-      const CT& colour = pix_colour.read();
-      score_beat(board_, pix_x.read(), pix_y.read(), static_cast<uint64_t>(pix_mask.read()), pix_eor.read(),
-                 [&colour](int lsb, int width) { return out_bits_of(colour, lsb, width); }, cfg_,
-                 static_cast<uint64_t>(cycle));
-    }
-    const int64_t next = cycle + 1;
-    pix_ready.write(next >= 0 && stim_.pix_ready(static_cast<uint64_t>(next)));
-  }
-
- private:
-  Stimulus stim_;
-  UnitConfig cfg_;
-  Scoreboard& board_;
-};
-
-// The cycle model as a SystemC module: same stimulus, own driver, lockstep with the RTL; it
-// also ends the simulation when the scoreboard is complete, failed or the run hangs.
-SC_MODULE(ScCycleModel) {
-  sc_core::sc_in<bool> clk;
-
-  SC_HAS_PROCESS(ScCycleModel);
-  ScCycleModel(sc_core::sc_module_name name, const std::vector<uint64_t>& words, const Stimulus& stim,
-               CycleConfig timing, Scoreboard& board, uint64_t cycle_limit,
-               const sc_core::sc_signal<bool>& pix_valid, uint64_t watchdog_cycles)
-      : sc_module(name), driver_(words, stim, timing.port_words), stim_(stim), model_(timing), board_(board),
-        limit_(cycle_limit), pix_valid_(pix_valid), watchdog_(watchdog_cycles) {
-    SC_METHOD(tick);
-    sensitive << clk.pos();
-    dont_initialize();
-  }
-
-  void tick() {
-    const int64_t cycle = sc_cycle_now();
-    if (cycle < 0) return;
-    const auto c = static_cast<uint64_t>(cycle);
-    const CycleModel::Edge e = model_.clock(driver_.valid(), driver_.beat(), stim_.pix_ready(c));
-    driver_.clock(e.cmd_fire);
-    if (e.pix_fire && e.pix_eor) board_.model_scanline({e.pix_y, c, e.pix_x + e.pix_count - 1});
-    // The sink may record this edge's pixel after this check: completion is seen one edge
-    // later, which changes nothing that is compared.
-    if (board_.failed() || board_.complete()) {
-      sc_core::sc_stop();
-    } else if (c > limit_) {
-      board_.timeout(c);
-      sc_core::sc_stop();
-    } else if (watchdog_.expired(c, pix_valid_.read(), board_)) {  // the value before this edge
-      board_.hang(c, watchdog_.quiet_since(), watchdog_.limit());
-      sc_core::sc_stop();
-    }
-  }
-
- private:
-  CommandDriver driver_;
-  Stimulus stim_;
-  CycleModel model_;
-  Scoreboard& board_;
-  uint64_t limit_;
-  const sc_core::sc_signal<bool>& pix_valid_;
-  PixelWatchdog watchdog_;
+  Lockstep& lockstep_;
 };
 
 template <class V>
@@ -177,9 +117,8 @@ CosimResult run_verilated_systemc(const CosimJob& job) {
   using CT = typename std::remove_reference_t<decltype(std::declval<V&>().pix_colour_o)>::data_type;
   using DT = typename std::remove_reference_t<decltype(std::declval<V&>().cmd_data_i)>::data_type;
   using MT = typename std::remove_reference_t<decltype(std::declval<V&>().pix_mask_o)>::data_type;
-  Prepared prep = prepare(job);
-  const UnitConfig& cfg = job.config.unit;
-  Scoreboard board(std::move(prep.expected), cfg.channels, cfg.lanes);  // not needed after this: no copy
+  Lockstep lockstep(job);
+  const UnitConfig& cfg = lockstep.unit();
 
   sc_core::sc_clock clk("clk", kScPeriodNs, sc_core::SC_NS, 0.5, 0, sc_core::SC_NS, true);
   sc_core::sc_signal<bool> rst_n("rst_n"), cmd_valid("cmd_valid"), cmd_ready("cmd_ready");
@@ -207,36 +146,23 @@ CosimResult run_verilated_systemc(const CosimJob& job) {
   dut.pix_valid_o(pix_valid);
   dut.pix_ready_i(pix_ready);
 
-  ScDriver<DT> driver("driver", prep.words, job.stim, cfg.port_words);
-  driver.clk(clk);
-  driver.cmd_ready(cmd_ready);
-  driver.rst_n(rst_n);
-  driver.cmd_valid(cmd_valid);
-  driver.cmd_data(cmd_data);
-
-  ScSink<XT, CT, MT> sink("sink", job.stim, cfg, board);
-  sink.clk(clk);
-  sink.pix_valid(pix_valid);
-  sink.pix_x(pix_x);
-  sink.pix_y(pix_y);
-  sink.pix_colour(pix_colour);
-  sink.pix_mask(pix_mask);
-  sink.pix_eor(pix_eor);
-  sink.pix_ready(pix_ready);
-
-  ScCycleModel model("cycle_model", prep.words, job.stim, CycleConfig::of(cfg), board, prep.cycle_limit, pix_valid,
-                       prep.watchdog_cycles);
-  model.clk(clk);
+  ScLockstep<DT, XT, CT, MT> bench("bench", lockstep);
+  bench.clk(clk);
+  bench.rst_n(rst_n);
+  bench.cmd_valid(cmd_valid);
+  bench.cmd_data(cmd_data);
+  bench.cmd_ready(cmd_ready);
+  bench.pix_valid(pix_valid);
+  bench.pix_x(pix_x);
+  bench.pix_y(pix_y);
+  bench.pix_colour(pix_colour);
+  bench.pix_mask(pix_mask);
+  bench.pix_eor(pix_eor);
+  bench.pix_ready(pix_ready);
 
   const auto t0 = std::chrono::steady_clock::now();
   sc_core::sc_start();
-  CosimResult r;
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.first = board.first_mismatch();
-  r.cycles = board.cycles();
-  r.pixels = board.pixels_checked();
-  r.scanlines = board.scanlines_checked();
-  return r;
+  return lockstep.result(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 }
 
 }  // namespace shadesim

@@ -1,5 +1,7 @@
 #include "sim/harness/scoreboard.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <sstream>
 
 namespace shadesim {
@@ -9,6 +11,7 @@ std::string to_string(Mismatch::Kind kind) {
     case Mismatch::Kind::kNone: return "none";
     case Mismatch::Kind::kPixel: return "pixel";
     case Mismatch::Kind::kCycle: return "cycle";
+    case Mismatch::Kind::kReady: return "ready";
     case Mismatch::Kind::kExtraPixel: return "extra-pixel";
     case Mismatch::Kind::kTimeout: return "timeout";
     case Mismatch::Kind::kHang: return "hang";
@@ -18,7 +21,13 @@ std::string to_string(Mismatch::Kind kind) {
 
 Scoreboard::Scoreboard(std::vector<PixelOut> expected, int channels, int lanes)
     : expected_(std::move(expected)), channels_(channels), lanes_(lanes) {
-  for (const auto& p : expected_) expected_rows_ += p.end_of_row ? 1 : 0;
+  for (size_t k = 0; k < expected_.size(); ++k) {
+    if (expected_[k].end_of_row) row_end_.push_back(k);
+  }
+}
+
+int Scoreboard::scanline_of(size_t k) const {
+  return static_cast<int>(std::lower_bound(row_end_.begin(), row_end_.end(), k) - row_end_.begin());
 }
 
 std::string Scoreboard::describe(const PixelOut& p) const {
@@ -35,6 +44,24 @@ void Scoreboard::fail(Mismatch m) {
   if (!failed()) first_ = std::move(m);
 }
 
+Mismatch Scoreboard::first_mismatch() const {
+  if (!failed()) return ready_;
+  Mismatch m = first_;
+  if (ready_.kind != Mismatch::Kind::kNone && ready_.cycle <= m.cycle) {
+    m.before = "cmd_ready_o differed first, on cycle " + std::to_string(ready_.cycle) + ": expected " +
+               ready_.expected + ", got " + ready_.got;
+  }
+  return m;
+}
+
+void Scoreboard::place_at_output(Mismatch& m) const {
+  m.scanline = scanline_;
+  if (expected_.empty()) return;
+  const PixelOut& p = expected_[std::min(next_, expected_.size() - 1)];
+  m.x = p.x;
+  m.y = p.y;
+}
+
 void Scoreboard::rtl_pixel_checked(const PixelOut& got, uint64_t cycle) {
   if (failed()) return;
   if (next_ >= expected_.size()) {
@@ -43,7 +70,7 @@ void Scoreboard::rtl_pixel_checked(const PixelOut& got, uint64_t cycle) {
     m.scanline = scanline_;
     m.x = got.x;
     m.y = got.y;
-    m.expected = "no more pixels";
+    m.expected = "no more pixels (all " + std::to_string(expected_.size()) + " have left)";
     m.got = describe(got);
     m.cycle = cycle;
     fail(m);
@@ -62,42 +89,59 @@ void Scoreboard::rtl_pixel_checked(const PixelOut& got, uint64_t cycle) {
     fail(m);
     return;
   }
-  ++next_;
-  cycles_ = cycle + 1;
-  if (want.end_of_row) {
-    ++scanline_;
-    rtl_rows_.push_back({got.y, cycle, got.x});
-    rtl_done_.push_back({got.y, cycle, got.x});
-    compare_rows();
-  }
+  if (want.end_of_row) ++scanline_;
+  accept_rtl_pixel(cycle);
 }
 
-void Scoreboard::model_scanline(const ScanlineDone& done) {
-  if (failed()) return;
-  model_rows_.push_back(done);
-  compare_rows();
+void Scoreboard::exit_mismatch(size_t k, uint64_t rtl_cycle, uint64_t model_cycle) {
+  const PixelOut& p = expected_[k];
+  Mismatch m;
+  m.kind = Mismatch::Kind::kCycle;
+  m.scanline = scanline_of(k);
+  m.x = p.x;
+  m.y = p.y;
+  const std::string which = "pixel " + std::to_string(k) + " " + describe(p);
+  m.expected = which + " leaves on cycle " + std::to_string(model_cycle) + " (cycle model)";
+  m.got = "it left on cycle " + std::to_string(rtl_cycle) + " (RTL)";
+  m.cycle = std::min(rtl_cycle, model_cycle);
+  fail(m);
 }
 
-void Scoreboard::compare_rows() {
-  while (!failed() && !rtl_rows_.empty() && !model_rows_.empty()) {
-    const ScanlineDone r = rtl_rows_.front(), m = model_rows_.front();
-    rtl_rows_.pop_front();
-    model_rows_.pop_front();
-    if (r.y != m.y || r.cycle != m.cycle) {
-      Mismatch mm;
-      mm.kind = Mismatch::Kind::kCycle;
-      mm.scanline = static_cast<int>(rows_compared_);
-      mm.y = m.y;
-      mm.x = r.x;
-      mm.expected = "y=" + std::to_string(m.y) + " done at cycle " + std::to_string(m.cycle) +
-                    " (cycle model)";
-      mm.got = "y=" + std::to_string(r.y) + " done at cycle " + std::to_string(r.cycle) + " (RTL)";
-      mm.cycle = r.cycle < m.cycle ? r.cycle : m.cycle;
-      fail(mm);
-      return;
-    }
-    ++rows_compared_;
-  }
+void Scoreboard::model_disagrees(uint64_t cycle, int x, int y, int lane, bool eor) {
+  // The two reference models describe different streams: a harness or model bug, not the RTL's.
+  Mismatch m;
+  m.kind = Mismatch::Kind::kCycle;
+  m.scanline = scanline_of(model_next_);
+  m.x = x;
+  m.y = y;
+  m.expected = model_next_ < expected_.size()
+                   ? "pixel " + std::to_string(model_next_) + " " + describe(expected_[model_next_]) +
+                         " (bit-accurate model)"
+                   : "no more pixels (bit-accurate model)";
+  m.got = "the cycle model's pixel (x=" + std::to_string(x) + " y=" + std::to_string(y) +
+          (eor ? " eor" : "") + (lanes_ > 1 ? " lane=" + std::to_string(lane) : "") +
+          ") on cycle " + std::to_string(cycle) + ": the reference models disagree";
+  m.cycle = cycle;
+  fail(m);
+}
+
+void Scoreboard::ready_mismatch(uint64_t cycle, bool rtl, bool model,
+                                const CommandPortState& port) {
+  Mismatch m;
+  m.kind = Mismatch::Kind::kReady;
+  place_at_output(m);
+  char word[32];
+  std::snprintf(word, sizeof word, "0x%016llx", static_cast<unsigned long long>(port.word0));
+  const std::string on_port =
+      port.beat < port.beats
+          ? std::string(port.valid ? "beat " : "idle before beat ") + std::to_string(port.beat) +
+                " of " + std::to_string(port.beats) + " on the port (cmd_valid_i " +
+                (port.valid ? "1" : "0") + ", word 0 " + word + ")"
+          : std::string("every beat accepted (cmd_valid_i 0, word 0 ") + word + ")";
+  m.expected = std::string("cmd_ready_o ") + (model ? "1" : "0") + " (cycle model), " + on_port;
+  m.got = std::string("cmd_ready_o ") + (rtl ? "1" : "0") + " (RTL)";
+  m.cycle = cycle;
+  ready_ = std::move(m);
 }
 
 void Scoreboard::rtl_bad_mask(uint64_t x, uint64_t y, uint64_t mask, uint64_t cycle) {
@@ -111,7 +155,25 @@ void Scoreboard::rtl_bad_mask(uint64_t x, uint64_t y, uint64_t mask, uint64_t cy
                                         : "no more pixels";
   std::string bits;
   for (int j = lanes_ - 1; j >= 0; --j) bits += ((mask >> j) & 1) ? '1' : '0';
-  m.got = "a beat at (x=" + std::to_string(x) + " y=" + std::to_string(y) + ") with lane mask 0b" + bits;
+  m.got = "a beat at (x=" + std::to_string(x) + " y=" + std::to_string(y) + ") with lane mask 0b" +
+          bits;
+  m.cycle = cycle;
+  fail(m);
+}
+
+void Scoreboard::rtl_valid_after_end(uint64_t x, uint64_t y, uint64_t mask, uint64_t cycle) {
+  if (failed()) return;
+  Mismatch m;
+  m.kind = Mismatch::Kind::kExtraPixel;
+  m.scanline = scanline_;
+  m.x = static_cast<int>(x);
+  m.y = static_cast<int>(y);
+  m.expected = "pix_valid_o 0: all " + std::to_string(expected_.size()) +
+               " pixels have left (draining the pipeline)";
+  std::string bits;
+  for (int j = lanes_ - 1; j >= 0; --j) bits += ((mask >> j) & 1) ? '1' : '0';
+  m.got = "pix_valid_o 1 with (x=" + std::to_string(x) + " y=" + std::to_string(y) +
+          (lanes_ > 1 ? " lane mask 0b" + bits : std::string()) + ")";
   m.cycle = cycle;
   fail(m);
 }
@@ -126,10 +188,11 @@ void Scoreboard::timeout(uint64_t cycle) {
     m.expected = describe(expected_[next_]) + ", pixel " + std::to_string(next_) + " of " +
                  std::to_string(expected_.size());
   } else {
-    m.expected = std::to_string(expected_rows_) + " scanline completions from both models";
+    m.expected = std::to_string(expected_.size()) + " pixel exits from the cycle model";
   }
-  m.got = "nothing (RTL rows " + std::to_string(rtl_rows_.size()) + " / cycle-model rows " +
-          std::to_string(model_rows_.size()) + " not yet paired)";
+  m.got = "nothing (" + std::to_string(rtl_exit_.size()) + " RTL / " +
+          std::to_string(model_exit_.size()) + " cycle-model exit cycles not yet paired; the cycle "
+          "model sent " + std::to_string(model_next_) + " pixels)";
   m.cycle = cycle;
   fail(m);
 }

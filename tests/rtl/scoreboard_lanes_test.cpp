@@ -41,16 +41,24 @@ struct Beat {
   bool eor;
 };
 
-// Feeds the beats on cycles 0, 1, ...; lane j's colour is x + j (the model's colour above).
+// Feeds the beats on cycles 0, 1, ...; lane j's colour is x + j (the model's colour above). The
+// cycle model's beats are the expected pixels' own (a beat starts at each lane-0 pixel), one a
+// cycle from cycle 0 too.
 Scoreboard run(const std::vector<PixelOut>& want, const std::vector<Beat>& beats) {
   const UnitConfig c = four_lanes();
   Scoreboard board(want, c.channels, c.lanes);
   uint64_t cycle = 0;
+  for (size_t k = 0; k < want.size(); ++cycle) {
+    size_t n = 1;
+    while (k + n < want.size() && want[k + n].lane != 0) ++n;
+    board.model_beat(cycle, want[k].x, want[k].y, static_cast<int>(n), want[k + n - 1].end_of_row);
+    k += n;
+  }
+  cycle = 0;
   for (const Beat& b : beats) {
     const uint64_t x = static_cast<uint64_t>(b.x);
     score_beat(board, x, 4, b.mask, b.eor,
                [x](int lsb, int width) { return ((x + static_cast<uint64_t>(lsb / width)) & 0xff); }, c, cycle);
-    if (b.eor) board.model_scanline({4, cycle, b.x});
     ++cycle;
   }
   return board;
