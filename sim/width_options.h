@@ -89,9 +89,11 @@ inline void add_width_options(CLI::App& sub, WidthOptions& w) {
             own.end());
   own.insert(own.end(), shared.begin(), shared.end());
   for (const SpecularField* f : own) {
-    std::string help = f->help;
-    if (f->is_enum()) help += " (" + f->expected() + ")";
-    sub.add_option(f->cli, w.unit_fields.at(f->cli), help)->capture_default_str()->group(kUnitWidthGroup);
+    const std::string help = std::string(f->help) + " (" + f->expected() + ")";
+    sub.add_option(f->cli, w.unit_fields.at(f->cli), help)
+        ->capture_default_str()
+        ->type_name(f->is_enum() ? "TEXT" : "INT")
+        ->group(kUnitWidthGroup);
   }
 }
 
