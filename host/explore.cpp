@@ -15,6 +15,7 @@
 #include "model/command_stream.h"
 #include "model/cycle_model.h"
 #include "model/shade_unit.h"
+#include "model/specular_units.h"
 
 namespace shadesim {
 
@@ -200,33 +201,14 @@ std::vector<Knob> knobs_for(const UnitConfig& start) {
       spec, "spec.out.frac", 4, std::min(s.out.frac_bits() + 2, 60),
       [](UnitConfig& c, int v) { c.specular.out.wl = c.specular.out.iwl + v; },
       [](const UnitConfig& c) { return c.specular.out.frac_bits(); }));
-  switch (s.kind) {
-    case SpecularUnitKind::kLut:
-      k.push_back(numeric(spec, "lut.addr_bits", 4, std::min(s.lut.addr_bits + 2, 20),
-                          [](UnitConfig& c, int v) { c.specular.lut.addr_bits = v; },
-                          [](const UnitConfig& c) { return c.specular.lut.addr_bits; }));
-      k.push_back(numeric(spec, "lut.entry_bits", 4, std::min(s.lut.entry_bits + 4, 32),
-                          [](UnitConfig& c, int v) { c.specular.lut.entry_bits = v; },
-                          [](const UnitConfig& c) { return c.specular.lut.entry_bits; }));
-      k.push_back(numeric(spec, "lut.interp_bits", 0, std::max(s.lut.interp_bits, 4),
-                          [](UnitConfig& c, int v) { c.specular.lut.interp_bits = v; },
-                          [](const UnitConfig& c) { return c.specular.lut.interp_bits; }));
-      break;
-    case SpecularUnitKind::kSchlick:
-      k.push_back(numeric(spec, "schlick.quotient_bits", 4, std::min(s.schlick.quotient_bits + 2, 32),
-                          [](UnitConfig& c, int v) { c.specular.schlick.quotient_bits = v; },
-                          [](const UnitConfig& c) { return c.specular.schlick.quotient_bits; }));
-      k.push_back(numeric(spec, "schlick.operand_bits", 8, std::min(s.schlick.operand_bits + 4, 48),
-                          [](UnitConfig& c, int v) { c.specular.schlick.operand_bits = v; },
-                          [](const UnitConfig& c) { return c.specular.schlick.operand_bits; }));
-      break;
-    case SpecularUnitKind::kWpow:
-      k.push_back(numeric(spec, "wpow.base_bits", 6, std::min(s.wpow.base_bits + 4, 30),
-                          [](UnitConfig& c, int v) { c.specular.wpow.base_bits = v; },
-                          [](const UnitConfig& c) { return c.specular.wpow.base_bits; }));
-      break;
-    case SpecularUnitKind::kIdeal:
-      break;
+  // The selected unit's explored fields (model/specular_units.h).
+  const SpecularUnitDescriptor& unit = specular_unit(s.kind);
+  for (const SpecularField& f : unit.fields) {
+    if (f.explore_hi == nullptr) continue;
+    const SpecularField* field = &f;  // the table outlives every knob
+    k.push_back(numeric(spec, unit.field_name(f), f.explore_lo, f.explore_hi(f.get(s)),
+                        [field](UnitConfig& c, int v) { field->set(c.specular, v); },
+                        [field](const UnitConfig& c) { return field->get(c.specular); }));
   }
   k.push_back(frac_knob("specular colour", "spec_colour.frac", &UnitConfig::spec_colour, 2, 2, start));
   k.push_back(numeric(

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "model/coef_packing.h"
+#include "model/specular_units.h"
 #include "model/unit_config_file.h"
 
 namespace shadesim {
@@ -393,21 +394,16 @@ std::string config_to_json(const UnitConfig& c) {
   j["lanes"] = c.lanes;
   const SpecularConfig& sp = c.specular;
   j["specular"] = {{"kind", to_string(sp.kind)}, {"out", sp.out.to_string()}};
-  j["specular"]["lut"] = {{"addr_bits", sp.lut.addr_bits},
-                          {"entry_bits", sp.lut.entry_bits},
-                          {"interp_bits", sp.lut.interp_bits},
-                          {"index", to_string(sp.lut.index)},
-                          {"addressing", to_string(sp.lut.addressing)},
-                          {"shared_range_log2", sp.lut.shared_range_log2},
-                          {"fit", to_string(sp.lut.fit)}};
-  j["specular"]["schlick"] = {{"quotient_bits", sp.schlick.quotient_bits},
-                              {"operand_bits", sp.schlick.operand_bits},
-                              {"timing", to_string(sp.schlick.timing)},
-                              {"fit", to_string(sp.schlick.fit)}};
-  j["specular"]["wpow"] = {{"max_m", sp.wpow.max_m},
-                           {"base_bits", sp.wpow.base_bits},
-                           {"timing", to_string(sp.wpow.timing)},
-                           {"fit", to_string(sp.wpow.fit)}};
+  for (const SpecularUnitDescriptor& u : specular_units()) {
+    for (const SpecularField& f : u.fields) {
+      auto& v = j["specular"][u.name][f.key];
+      if (f.is_enum()) {
+        v = f.text(sp);
+      } else {
+        v = f.get(sp);
+      }
+    }
+  }
   return j.dump();
 }
 
@@ -448,37 +444,34 @@ class ConfigJsonReader {
     }
     const auto& s = j.at("specular");
     if (!s.is_object()) fail("specular", "expected an object, got " + s.dump());
-    check_keys(s, "specular.", {"kind", "out", "lut", "schlick", "wpow"});
+    std::vector<std::string> specular_keys = {"kind", "out"};
+    for (const SpecularUnitDescriptor& u : specular_units()) {
+      if (!u.fields.empty()) specular_keys.emplace_back(u.name);
+    }
+    check_keys(s, "specular.", specular_keys);
     SpecularConfig& sp = c.specular;
     read_enum(s, "specular.", "kind", require_top_, parse_specular_unit, sp.kind);
     read_format(s, "specular.", "out", require_top_, sp.out);
-    // Unit widths: absent keys keep their base values (streams written before the units
-    // existed); present ones must be integers / strings (validate() then checks their ranges).
+    // Unit fields (model/specular_units.h): absent keys keep their base values (streams written
+    // before the units existed); present ones must be integers / names (validate() then checks
+    // their ranges).
     constexpr int kLo = -1000000, kHi = 1000000;
-    if (const auto* o = unit_object(s, "lut", {"addr_bits", "entry_bits", "interp_bits", "index",
-                                               "addressing", "shared_range_log2", "fit"})) {
-      const std::string at = "specular.lut.";
-      read_int(*o, at, "addr_bits", kLo, kHi, false, sp.lut.addr_bits);
-      read_int(*o, at, "entry_bits", kLo, kHi, false, sp.lut.entry_bits);
-      read_int(*o, at, "interp_bits", kLo, kHi, false, sp.lut.interp_bits);
-      read_int(*o, at, "shared_range_log2", kLo, kHi, false, sp.lut.shared_range_log2);
-      read_enum(*o, at, "index", false, parse_lut_index, sp.lut.index);
-      read_enum(*o, at, "addressing", false, parse_lut_addressing, sp.lut.addressing);
-      read_enum(*o, at, "fit", false, parse_fit_objective, sp.lut.fit);
-    }
-    if (const auto* o = unit_object(s, "schlick", {"quotient_bits", "operand_bits", "timing", "fit"})) {
-      const std::string at = "specular.schlick.";
-      read_int(*o, at, "quotient_bits", kLo, kHi, false, sp.schlick.quotient_bits);
-      read_int(*o, at, "operand_bits", kLo, kHi, false, sp.schlick.operand_bits);
-      read_enum(*o, at, "timing", false, parse_unit_timing, sp.schlick.timing);
-      read_enum(*o, at, "fit", false, parse_fit_objective, sp.schlick.fit);
-    }
-    if (const auto* o = unit_object(s, "wpow", {"max_m", "base_bits", "timing", "fit"})) {
-      const std::string at = "specular.wpow.";
-      read_int(*o, at, "max_m", kLo, kHi, false, sp.wpow.max_m);
-      read_int(*o, at, "base_bits", kLo, kHi, false, sp.wpow.base_bits);
-      read_enum(*o, at, "timing", false, parse_unit_timing, sp.wpow.timing);
-      read_enum(*o, at, "fit", false, parse_fit_objective, sp.wpow.fit);
+    for (const SpecularUnitDescriptor& u : specular_units()) {
+      if (u.fields.empty()) continue;
+      std::vector<std::string> keys;
+      for (const SpecularField& f : u.fields) keys.emplace_back(f.key);
+      const auto* o = unit_object(s, u.name, keys);
+      if (!o) continue;
+      const std::string at = std::string("specular.") + u.name + ".";
+      for (const SpecularField& f : u.fields) {
+        int v = f.get(sp);
+        if (f.is_enum()) {
+          if (const auto* text = read_string(*o, at, f.key, false)) v = f.parse(*text, prefix_ + at + f.key);
+        } else {
+          read_int(*o, at, f.key, kLo, kHi, false, v);
+        }
+        f.set(sp, v);
+      }
     }
   }
 
@@ -490,14 +483,14 @@ class ConfigJsonReader {
   }
 
   void check_keys(const nlohmann::json& o, const std::string& at,
-                  std::initializer_list<const char*> known) const {
+                  const std::vector<std::string>& known) const {
     if (!reject_unknown_) return;
     for (const auto& item : o.items()) {
       bool found = false;
       std::string names;
-      for (const char* k : known) {
+      for (const std::string& k : known) {
         found = found || item.key() == k;
-        names += (names.empty() ? "" : ", ") + std::string(k);
+        names += (names.empty() ? "" : ", ") + k;
       }
       if (!found) fail(at + item.key(), "unknown field; expected one of " + names);
     }
@@ -563,7 +556,7 @@ class ConfigJsonReader {
   }
 
   const nlohmann::json* unit_object(const nlohmann::json& s, const char* unit,
-                                    std::initializer_list<const char*> known) const {
+                                    const std::vector<std::string>& known) const {
     if (!s.contains(unit)) return nullptr;
     const auto& o = s.at(unit);
     if (!o.is_object()) fail(std::string("specular.") + unit, "expected an object, got " + o.dump());

@@ -2,24 +2,13 @@
 
 #include <stdexcept>
 
-#include "model/exponent_lut.h"
-#include "model/schlick_divider.h"
-#include "model/wpow_unit.h"
+#include "model/specular_units.h"
 
 namespace shadesim {
 
 SlotTiming SlotTiming::of(const SpecularConfig& config) {
-  switch (config.kind) {
-    case SpecularUnitKind::kLut:
-      return {ExponentLut::latency(config.lut), ExponentLut::cycles_per_pixel(config.lut)};
-    case SpecularUnitKind::kSchlick:
-      return {SchlickDivider::latency(config.schlick), SchlickDivider::cycles_per_pixel(config.schlick)};
-    case SpecularUnitKind::kWpow:
-      return {WpowUnit::latency(config.wpow), WpowUnit::cycles_per_pixel(config.wpow)};
-    case SpecularUnitKind::kIdeal:
-    default:
-      return {0, 1};
-  }
+  const SpecularUnitDescriptor& unit = specular_unit(config.kind);
+  return {unit.latency(config), unit.interval(config)};
 }
 
 CycleConfig CycleConfig::of(const UnitConfig& config) {

@@ -31,8 +31,9 @@ struct SlotTiming {
   int latency = 0;   // registers from the engines' values to the specular result
   int interval = 1;  // cycles per pixel; > 1: iterative unit (then latency == interval)
 
-  // The selected unit's timing (ExponentLut / SchlickDivider / WpowUnit latency and
-  // cycles_per_pixel; ideal: 0 and 1), as rtl/specular_slot.sv builds it.
+  // The selected unit's timing (its row in model/specular_units.cpp: ExponentLut /
+  // SchlickDivider / WpowUnit latency and cycles_per_pixel; ideal: 0 and 1), as
+  // rtl/specular_slot.sv builds it.
   static SlotTiming of(const SpecularConfig& config);
 };
 

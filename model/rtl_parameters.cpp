@@ -1,28 +1,20 @@
 #include "model/rtl_parameters.h"
 
+#include "model/specular_units.h"
+
 namespace shadesim {
 namespace {
 
 // The RTL's integer codes for the model's enums (rtl/shade_unit.sv documents each).
 int64_t code(Quantization q) { return q == Quantization::kRoundNearest ? 1 : 0; }
 int64_t code(Overflow o) { return o == Overflow::kWrap ? 1 : 0; }
-int64_t code(SpecularUnitKind k) {
-  switch (k) {
-    case SpecularUnitKind::kIdeal: return 0;
-    case SpecularUnitKind::kLut: return 1;
-    case SpecularUnitKind::kSchlick: return 2;
-    case SpecularUnitKind::kWpow: return 3;
-  }
-  return 0;
-}
-int64_t code(LutIndex i) { return i == LutIndex::kNearest ? 1 : 0; }
-int64_t code(UnitTiming t) { return t == UnitTiming::kIterative ? 1 : 0; }
 
 }  // namespace
 
 std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u, const InjectedFaults& f) {
   u.validate();
   const SpecularConfig& s = u.specular;
+  const SpecularUnitDescriptor& unit = specular_unit(s.kind);
   std::vector<VerilogParameter> p = {
       {"CHANNELS", u.channels},
       {"LIGHTS", u.lights},
@@ -36,7 +28,7 @@ std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u, const I
       {"SPEC_COLOUR_WL", u.spec_colour.wl},
       {"SPEC_COLOUR_IWL", u.spec_colour.iwl},
       {"OUT_BITS", u.out_bits},
-      {"SPECULAR_KIND", code(s.kind)},
+      {"SPECULAR_KIND", unit.verilog_kind},
       {"SPECULAR_OUT_WL", s.out.wl},
       {"SPECULAR_OUT_IWL", s.out.iwl},
       {"PORT_WORDS", u.port_words},
@@ -50,29 +42,14 @@ std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u, const I
   // Only the selected unit's parameters: the others keep shade_unit's defaults, so two configs
   // that differ in an unused unit's widths map to the same build. The ideal unit has no output
   // stage to round.
-  if (s.kind != SpecularUnitKind::kIdeal) {
+  if (unit.hardware) {
     p.push_back({"SPECULAR_OUT_QUANT", code(s.out.quant)});
     p.push_back({"SPECULAR_OUT_OVERFLOW", code(s.out.overflow)});
   }
-  switch (s.kind) {
-    case SpecularUnitKind::kIdeal:
-      break;
-    case SpecularUnitKind::kLut:
-      p.push_back({"LUT_ADDR_BITS", s.lut.addr_bits});
-      p.push_back({"LUT_ENTRY_BITS", s.lut.entry_bits});
-      p.push_back({"LUT_INTERP_BITS", s.lut.interp_bits});
-      p.push_back({"LUT_INDEX", code(s.lut.index)});
-      break;
-    case SpecularUnitKind::kSchlick:
-      p.push_back({"SCHLICK_QUOTIENT_BITS", s.schlick.quotient_bits});
-      p.push_back({"SCHLICK_OPERAND_BITS", s.schlick.operand_bits});
-      p.push_back({"SCHLICK_TIMING", code(s.schlick.timing)});
-      break;
-    case SpecularUnitKind::kWpow:
-      p.push_back({"WPOW_MAX_M", s.wpow.max_m});
-      p.push_back({"WPOW_BASE_BITS", s.wpow.base_bits});
-      p.push_back({"WPOW_TIMING", code(s.wpow.timing)});
-      break;
+  // The unit's own fields that are hardware (model/specular_units.h); an enum's code is its
+  // Verilog code.
+  for (const SpecularField& field : unit.fields) {
+    if (*field.verilog != '\0') p.push_back({field.verilog, field.get(s)});
   }
   if (f.lsb_row >= 0) p.push_back({"FAULT_LSB_ROW", f.lsb_row});
   if (f.stall_row >= 0) p.push_back({"FAULT_STALL_ROW", f.stall_row});

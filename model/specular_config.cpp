@@ -1,27 +1,17 @@
 #include "model/specular_config.h"
 
-#include <sstream>
 #include <stdexcept>
+
+#include "model/specular_units.h"
 
 namespace shadesim {
 
-std::string to_string(SpecularUnitKind kind) {
-  switch (kind) {
-    case SpecularUnitKind::kIdeal: return "ideal";
-    case SpecularUnitKind::kLut: return "lut";
-    case SpecularUnitKind::kSchlick: return "schlick";
-    case SpecularUnitKind::kWpow: return "wpow";
-  }
-  return "?";
-}
+std::string to_string(SpecularUnitKind kind) { return specular_unit(kind).name; }
 
 SpecularUnitKind parse_specular_unit(const std::string& name, const std::string& what) {
-  for (auto k : {SpecularUnitKind::kIdeal, SpecularUnitKind::kLut, SpecularUnitKind::kSchlick,
-                 SpecularUnitKind::kWpow}) {
-    if (name == to_string(k)) return k;
-  }
-  throw std::invalid_argument(what + ": unknown specular unit '" + name +
-                              "'; expected one of ideal, lut, schlick, wpow");
+  if (const SpecularUnitDescriptor* u = find_specular_unit(name)) return u->kind;
+  throw std::invalid_argument(what + ": unknown specular unit '" + name + "'; expected one of " +
+                              specular_unit_names());
 }
 
 std::string to_string(LutIndex v) { return v == LutIndex::kTruncate ? "truncate" : "nearest"; }
@@ -67,71 +57,31 @@ UnitTiming parse_unit_timing(const std::string& s, const std::string& what) {
   return parse_enum(s, what, v);
 }
 
+int SpecularConfig::series_per_light() const { return specular_unit(kind).series_per_light; }
+
 void SpecularConfig::validate() const {
   auto fail = [](const std::string& field, const std::string& msg) {
     throw std::invalid_argument("specular config: " + field + " " + msg);
   };
   out.validate("specular config: out");
   if (out.is_signed || out.iwl < 1) fail("out", "must be unsigned with an integer bit (holds 1.0)");
-  switch (kind) {
-    case SpecularUnitKind::kLut:
-      if (lut.addr_bits < 1 || lut.addr_bits > 20)
-        fail("lut.addr_bits", "must be 1..20, got " + std::to_string(lut.addr_bits));
-      if (lut.entry_bits < 1 || lut.entry_bits > 32)
-        fail("lut.entry_bits", "must be 1..32, got " + std::to_string(lut.entry_bits));
-      if (lut.interp_bits < 0 || lut.interp_bits > 16)
-        fail("lut.interp_bits", "must be 0..16, got " + std::to_string(lut.interp_bits));
-      if (lut.interp_bits > 0 && lut.addr_bits < 2)
-        fail("lut.addr_bits", "must be >= 2 with interpolation (two entries per interval)");
-      if (lut.shared_range_log2 < 0 || lut.shared_range_log2 > 6)
-        fail("lut.shared_range_log2", "must be 0..6, got " + std::to_string(lut.shared_range_log2));
-      break;
-    case SpecularUnitKind::kSchlick:
-      if (schlick.quotient_bits < 1 || schlick.quotient_bits > 32)
-        fail("schlick.quotient_bits", "must be 1..32, got " + std::to_string(schlick.quotient_bits));
-      if (schlick.operand_bits < 2 || schlick.operand_bits > 48)
-        fail("schlick.operand_bits", "must be 2..48, got " + std::to_string(schlick.operand_bits));
-      break;
-    case SpecularUnitKind::kWpow:
-      if (wpow.max_m != 1 && wpow.max_m != 2 && wpow.max_m != 4 && wpow.max_m != 8 &&
-          wpow.max_m != 16 && wpow.max_m != 32)
-        fail("wpow.max_m", "must be a power of two 1..32 (4, 8 or 16 usual), got " +
-                               std::to_string(wpow.max_m));
-      if (wpow.base_bits < 2 || wpow.base_bits > 30)
-        fail("wpow.base_bits", "must be 2..30, got " + std::to_string(wpow.base_bits));
-      break;
-    case SpecularUnitKind::kIdeal:
-      break;
+  const SpecularUnitDescriptor& unit = specular_unit(kind);
+  for (const SpecularField& f : unit.fields) {
+    const int v = f.get(*this);
+    if (!f.in_range(v)) fail(unit.field_name(f), "must be " + f.expected() + ", got " + f.text(*this));
+  }
+  if (unit.check != nullptr) {
+    try {
+      unit.check(*this);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("specular config: ") + e.what());
+    }
   }
 }
 
 std::string SpecularConfig::describe() const {
-  std::ostringstream os;
-  os << to_string(kind);
-  switch (kind) {
-    case SpecularUnitKind::kLut:
-      os << (lut.addressing == LutAddressing::kShared ? " shared" : " per-n") << " A=" << lut.addr_bits
-         << " B=" << lut.entry_bits << (lut.index == LutIndex::kTruncate ? " trn" : " near");
-      if (lut.interp_bits > 0) os << " F=" << lut.interp_bits;
-      if (lut.addressing == LutAddressing::kShared) {
-        os << " U=2^" << lut.shared_range_log2;
-        if (lut.fit != FitObjective::kNone) os << " fit=" << to_string(lut.fit);
-      }
-      break;
-    case SpecularUnitKind::kSchlick:
-      os << " Q=" << schlick.quotient_bits << " D=" << schlick.operand_bits
-         << (schlick.timing == UnitTiming::kIterative ? " iter" : " pipe");
-      if (schlick.fit != FitObjective::kNone) os << " fit=" << to_string(schlick.fit);
-      break;
-    case SpecularUnitKind::kWpow:
-      os << " m=" << wpow.max_m << " B=" << wpow.base_bits
-         << (wpow.timing == UnitTiming::kIterative ? " iter" : " pipe");
-      if (wpow.fit != FitObjective::kNone) os << " fit=" << to_string(wpow.fit);
-      break;
-    case SpecularUnitKind::kIdeal:
-      break;
-  }
-  return os.str();
+  const SpecularUnitDescriptor& unit = specular_unit(kind);
+  return unit.name + unit.describe(*this);
 }
 
 }  // namespace shadesim

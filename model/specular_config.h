@@ -48,6 +48,7 @@ LutAddressing parse_lut_addressing(const std::string& s, const std::string& what
 FitObjective parse_fit_objective(const std::string& s, const std::string& what);
 UnitTiming parse_unit_timing(const std::string& s, const std::string& what);
 
+// The units' fields: each is also one row of model/specular_units.cpp (JSON, CLI, Verilog, range).
 struct LutConfig {
   int addr_bits = 10;   // A: 2^A entries
   int entry_bits = 8;   // B: entry e means e / 2^B
@@ -83,9 +84,10 @@ struct SpecularConfig {
   WpowConfig wpow;
 
   // How many series per light the unit consumes (Schlick needs numerator and denominator).
-  int series_per_light() const { return kind == SpecularUnitKind::kSchlick ? 2 : 1; }
+  int series_per_light() const;
 
-  // Checks the selected unit's widths; throws std::invalid_argument naming the field.
+  // Checks the selected unit's fields against their ranges (model/specular_units.h); throws
+  // std::invalid_argument naming the field.
   void validate() const;
   // Short text, e.g. "wpow m=16 B=16 pipe fit=epicentre".
   std::string describe() const;

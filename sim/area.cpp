@@ -21,6 +21,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "model/specular_units.h"
 #include "sim/process.h"
 
 #ifndef SHADESIM_SOURCE_DIR
@@ -648,12 +649,6 @@ int64_t get(const ParamMap& p, const char* name) {
   return it->second;
 }
 
-int64_t ceil_log2(int64_t v) {
-  int64_t k = 0;
-  while ((int64_t{1} << k) < v) ++k;
-  return k;
-}
-
 // LANES, 1 for a measurement made before the parameter existed.
 int64_t lanes_of(const ParamMap& p) {
   const auto it = p.find("LANES");
@@ -664,7 +659,7 @@ int64_t lanes_of(const ParamMap& p) {
 // LANES > 1 an engine per series, a slot per light and a combine per lane, one span setup).
 int64_t instances_of(const std::string& module, const ParamMap& p) {
   const int64_t ch = get(p, "CHANNELS"), l = get(p, "LIGHTS");
-  const int64_t per_light = get(p, "SPECULAR_KIND") == 2 ? 2 : 1;
+  const int64_t per_light = specular_config_of_parameters(p).series_per_light();
   const int64_t lanes = lanes_of(p);
   if (module == "span_setup") return ch * l + l * per_light;
   if (module == "series_engine") return (ch * l + l * per_light) * lanes;
@@ -693,21 +688,9 @@ double size_of(const std::string& module, const ParamMap& p) {
   if (module == "series_engine") return s;
   if (module == "pixel_combine") return ch * (l * so * sc + (l + 1) * (s + 4));
   if (module == "specular_slot") {
-    switch (get(p, "SPECULAR_KIND")) {
-      case 1:
-        return std::ldexp(static_cast<double>(get(p, "LUT_ENTRY_BITS")), static_cast<int>(get(p, "LUT_ADDR_BITS"))) +
-               static_cast<double>(get(p, "LUT_ENTRY_BITS") * (get(p, "LUT_INTERP_BITS") + 1)) * s;
-      case 2:
-        return static_cast<double>(get(p, "SCHLICK_QUOTIENT_BITS") * get(p, "SCHLICK_OPERAND_BITS")) *
-               (get(p, "SCHLICK_TIMING") == 1 ? 1.0 : static_cast<double>(get(p, "SCHLICK_QUOTIENT_BITS")));
-      case 3: {
-        const double b = static_cast<double>(get(p, "WPOW_BASE_BITS"));
-        const double k = static_cast<double>(ceil_log2(get(p, "WPOW_MAX_M")));
-        return b * b * (get(p, "WPOW_TIMING") == 1 ? 1.0 : k) + b * s;
-      }
-      default:
-        return 0;  // ideal: no hardware
-    }
+    // The unit's own size (model/specular_units.cpp), from its parameters.
+    const SpecularConfig unit = specular_config_of_parameters(p);
+    return specular_unit(unit.kind).slot_size(unit, static_cast<int>(s));
   }
   // shade_unit glue: coefficient, ambient and specular-colour registers, the metadata line,
   // decoder and span pipeline (a fixed part).

@@ -15,6 +15,7 @@
 #include "host/metrics.h"
 #include "host/reference.h"
 #include "model/shade_unit.h"
+#include "model/specular_units.h"
 #include "sim/commands.h"
 #include "sim/config_option.h"
 #include "sim/width_options.h"
@@ -233,8 +234,8 @@ int run_all_units(const RenderOptions& o) {
     std::cout << std::left << std::setw(9) << "unit" << std::setw(9) << "max LSB" << std::setw(11)
               << "mean LSB" << std::setw(18) << "PSNR" << "configuration\n";
   }
-  for (const auto kind : {SpecularUnitKind::kIdeal, SpecularUnitKind::kLut, SpecularUnitKind::kSchlick,
-                          SpecularUnitKind::kWpow}) {
+  for (const SpecularUnitDescriptor& unit : specular_units()) {  // model/specular_units.h
+    const SpecularUnitKind kind = unit.kind;
     fo.specular_override = kind;
     const PreparedFrame frame = prepare_frame(o.scene, fo);
     const auto pixels = ShadeUnit(frame.config).run(frame.encoded.stream);
@@ -253,7 +254,7 @@ int run_all_units(const RenderOptions& o) {
     if (!o.quiet) {
       std::cout << std::left << std::setw(9) << to_string(kind) << std::setw(9) << e.max_code_lsb << std::setw(11)
                 << std::setprecision(4) << e.mean_code_lsb << std::setw(18) << format_db(e.psnr_db)
-                << description << (kind == SpecularUnitKind::kIdeal ? " (exact pow; not hardware)" : "") << "\n";
+                << description << (unit.hardware ? "" : " (exact pow; not hardware)") << "\n";
     }
     units.push_back({{"unit", to_string(kind)}, {"configuration", description},
                      {"max_code_lsb", e.max_code_lsb}, {"mean_code_lsb", e.mean_code_lsb},

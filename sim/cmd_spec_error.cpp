@@ -23,9 +23,7 @@
 #include <vector>
 
 #include "host/specular_setup.h"
-#include "model/exponent_lut.h"
-#include "model/schlick_divider.h"
-#include "model/wpow_unit.h"
+#include "model/specular_units.h"
 #include "sim/commands.h"
 #include "sim/process.h"
 #include "sim/rtl_build.h"
@@ -38,53 +36,6 @@ struct Candidate {
   std::string name;
   SpecularConfig spec;
 };
-
-struct Cost {
-  int64_t table_bits = 0;
-  int multipliers = 0;
-  int divider_iterations = 0;
-  int cycles_per_pixel = 1;
-  int latency = 0;
-  int64_t reload_cycles = 0;
-  double area = 0;  // proxy: ROM bit = 1, full-adder bit = 8 (stated in the report)
-};
-
-constexpr double kFullAdder = 8.0;
-
-Cost cost_of(const SpecularConfig& s) {
-  Cost c;
-  switch (s.kind) {
-    case SpecularUnitKind::kLut:
-      c.table_bits = ExponentLut::table_bits(s.lut);
-      c.multipliers = ExponentLut::multipliers(s.lut);
-      c.cycles_per_pixel = ExponentLut::cycles_per_pixel(s.lut);
-      c.latency = ExponentLut::latency(s.lut);
-      c.reload_cycles = ExponentLut::reload_cycles(s.lut);
-      c.area = static_cast<double>(c.table_bits) +
-               (s.lut.interp_bits > 0
-                    ? kFullAdder * ((s.lut.interp_bits + 1) * (s.lut.entry_bits + 1) +
-                                    s.lut.entry_bits + s.lut.interp_bits)
-                    : 0.0);
-      break;
-    case SpecularUnitKind::kSchlick:
-      c.divider_iterations = SchlickDivider::iterations(s.schlick);
-      c.cycles_per_pixel = SchlickDivider::cycles_per_pixel(s.schlick);
-      c.latency = SchlickDivider::latency(s.schlick);
-      c.area = kFullAdder * SchlickDivider::subtractor_stages(s.schlick) * (s.schlick.operand_bits + 3);
-      break;
-    case SpecularUnitKind::kWpow: {
-      c.multipliers = WpowUnit::multipliers(s.wpow);
-      c.cycles_per_pixel = WpowUnit::cycles_per_pixel(s.wpow);
-      c.latency = WpowUnit::latency(s.wpow);
-      const double b = s.wpow.base_bits + 1;
-      c.area = kFullAdder * c.multipliers * b * b / 2.0;  // a squarer is about half a multiplier
-      break;
-    }
-    case SpecularUnitKind::kIdeal:
-      break;
-  }
-  return c;
-}
 
 std::vector<Candidate> builtin_candidates() {
   std::vector<Candidate> v;
@@ -206,7 +157,7 @@ std::vector<double> parse_exponents(const std::string& text) {
 
 struct Result {
   Candidate cand;
-  Cost cost;
+  SpecularCost cost;  // model/specular_units.h
   SpecErrors worst;
   double worst_epi_n = 0, worst_bloom_n = 0, worst_abs_n = 0;
   double n_within_1pct = 0;  // largest n of the run such that every n' <= n keeps abs <= 1 %
@@ -361,8 +312,10 @@ void run(const std::string& exponents_text, const std::string& units, int points
   for (std::stringstream ss(units); ;) {
     std::string u;
     if (!std::getline(ss, u, ',')) break;
-    if (u != "all" && u != "lut" && u != "schlick" && u != "wpow")
-      throw std::invalid_argument("--units: unknown unit '" + u + "'; expected all or a comma list of lut, schlick, wpow");
+    const SpecularUnitDescriptor* d = find_specular_unit(u);
+    if (u != "all" && (d == nullptr || !d->hardware))
+      throw std::invalid_argument("--units: unknown unit '" + u + "'; expected all or a comma list of " +
+                                  specular_unit_names(true));
   }
   if (cands.empty()) throw std::invalid_argument("--units: no configuration selected");
 
@@ -375,7 +328,7 @@ void run(const std::string& exponents_text, const std::string& units, int points
   for (const Candidate& c : cands) {
     Result r;
     r.cand = c;
-    r.cost = cost_of(c.spec);
+    r.cost = specular_cost(c.spec);
     UnitConfig cfg = base;
     cfg.specular = c.spec;
     bool all_ok = true;
@@ -486,7 +439,7 @@ void register_spec_error(CLI::App& app, int& exit_code) {
   auto opt = std::make_shared<Options>();
   cmd->add_option("--exponents", opt->exponents,
                   "exponents n: numbers, ranges a-b, a-b:step, comma-separated (default 1-1000)");
-  cmd->add_option("--units", opt->units, "all, or a comma list of lut, schlick, wpow (default all)");
+  cmd->add_option("--units", opt->units, "all, or a comma list of " + specular_unit_names(true) + " (default all)");
   cmd->add_option("--points", opt->points,
                   "sample points per zone (epicentre, blooming, [0,1]) per exponent (default 256)");
   cmd->add_option("--json", opt->json, "write the results as JSON");

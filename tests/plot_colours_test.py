@@ -1,0 +1,77 @@
+#!/usr/bin/python3
+"""scripts/plot gives every unit family (spec-error) and every stage (explore) its own colour.
+
+Issue 10: spec-error's plot colours used to repeat silently once there were more families than
+the palette held. This draws a spec-error report with many families through scripts/plot's real
+plotting function and checks, on the figure matplotlib built, that no two families' points share
+a colour; and checks distinct_colours itself for every count up to 60.
+
+  tests/plot_colours_test.py SOURCE_DIR
+"""
+import importlib.machinery
+import importlib.util
+import os
+import sys
+import tempfile
+
+
+def load_plot(source_dir):
+    path = os.path.join(source_dir, "scripts", "plot")
+    loader = importlib.machinery.SourceFileLoader("shadesim_plot", path)
+    spec = importlib.util.spec_from_loader("shadesim_plot", loader)
+    module = importlib.util.module_from_spec(spec)
+    loader.exec_module(module)
+    return module
+
+
+def rgb(c):
+    return tuple(round(float(x), 4) for x in list(c)[:3])
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    plot = load_plot(sys.argv[1])
+    failures = []
+    for n in range(1, 61):
+        colours = [rgb(c) for c in plot.distinct_colours(n)]
+        if len(colours) != n or len(set(colours)) != n:
+            failures.append(f"distinct_colours({n}) gives {len(set(colours))} distinct of {len(colours)}")
+
+    # A spec-error report with 13 families (more than tab10 holds) and two units each.
+    families = [f"fam{i:02d}" for i in range(13)]
+    units = []
+    for i, f in enumerate(families):
+        for j in range(2):
+            units.append({"name": f"{f} v{j}", "area": 100.0 * (i + 1) + j, "cycles_per_pixel": 1,
+                          "abs_lsb": 1.0 / (i + 1 + j), "pareto": False})
+    report = {"exponents": [16, 64], "units": units}
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "spec.png")
+        plot.plot_spec_error(report, out)
+        if not os.path.getsize(out) > 0:
+            failures.append("plot_spec_error wrote an empty PNG")
+    ax = plot.plt.gcf().axes[0]
+    by_label = {}
+    for coll in ax.collections:
+        label = coll.get_label()
+        if label in families:
+            faces = {rgb(c) for c in coll.get_facecolors()}
+            if len(faces) != 1:
+                failures.append(f"family {label} drawn in {len(faces)} colours")
+            by_label[label] = faces.pop()
+    if sorted(by_label) != families:
+        failures.append(f"families drawn: {sorted(by_label)}, expected {families}")
+    if len(set(by_label.values())) != len(by_label):
+        failures.append(f"{len(by_label)} families share {len(set(by_label.values()))} colours")
+    plot.plt.close("all")
+
+    for f in failures:
+        print("FAIL:", f)
+    if failures:
+        sys.exit(1)
+    print(f"plot colours: distinct for 1..60 colours and for {len(families)} spec-error families")
+
+
+if __name__ == "__main__":
+    main()
