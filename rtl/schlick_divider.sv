@@ -98,8 +98,10 @@ module schlick_divider #(
   if (TIMING == 0) begin : g_pipelined
     logic [OpW-1:0] r_q   [Q];
     logic [OpW-1:0] den_q [Q];
-    logic [Q-1:0]   q_q   [Q];
-    logic [1:0]     cls_q [Q];
+    // q_q and cls_q packed: Icarus 11 left the last stage of these unpacked arrays X (every
+    // quotient out of the pipelined divider X), though r_q and den_q were known.
+    logic [Q-1:0][Q-1:0] q_q;
+    logic [Q-1:0][1:0]   cls_q;
     logic [OpW:0]   step  [Q];  // step[k]: what stage k computes ({remainder, bit})
     always_comb begin
       step[0] = first;
