@@ -102,9 +102,11 @@ module schlick_divider #(
   if (TIMING == 0) begin : g_pipelined
     // Stage k holds the quotient's top k + 1 bits and its class; the remainder and divisor are
     // registered only into the stages that still divide (k < Q - 1).
-    logic [Q-1:0] q_q   [Q];
-    cls_e         cls_q [Q];
-    logic [OpW:0] step  [Q];  // step[k]: what stage k computes ({remainder, bit})
+    // q_q and cls_q packed: Icarus 11 left the last stage of these unpacked arrays X (every
+    // quotient out of the pipelined divider X), though the remainders were known.
+    logic [Q-1:0][Q-1:0] q_q;
+    logic [Q-1:0][1:0]   cls_q;  // cls_e per stage
+    logic [OpW:0]        step  [Q];  // step[k]: what stage k computes ({remainder, bit})
     if (Q > 1) begin : g_carry
       logic [OpW-1:0] r_q   [Q-1];
       logic [OpW-1:0] den_q [Q-1];
@@ -136,7 +138,7 @@ module schlick_divider #(
       end
     end
     assign q_out   = q_q[Q-1];
-    assign cls_out = cls_q[Q-1];
+    assign cls_out = cls_e'(cls_q[Q-1]);
     assign busy_o  = 1'b0;
     // The pipelined stages hold no state that needs a reset (every stage is overwritten on the
     // advance before its output is used); the last step's remainder is not a quotient bit.

@@ -676,7 +676,9 @@ module shade_unit #(
   end else if (SpecLatency > 0) begin : g_delay
     // SpecLatency stages moving with the slot's pipeline on the global advance (en_i = adv).
     logic [SpecLatency-1:0] line_v_q;
-    meta_t                  line_q [SpecLatency];
+    // A packed array: Icarus 11 left the unpacked array of packed structs X here (and with it
+    // every pixel's x, y and mask on the LUT builds), though meta_in and line_v_q were known.
+    meta_t [SpecLatency-1:0] line_q;
     assign out_adv        = adv;
     assign meta_out       = line_q[SpecLatency-1];
     assign meta_out_valid = line_v_q[SpecLatency-1];

@@ -106,7 +106,9 @@ module wpow_unit #(
   logic [BW-1:0] b_out;
 
   if (TIMING == 0 || K == 0) begin : g_pipelined
-    logic [BW-1:0] b_q [K+1];  // b_q[0]: base; b_q[k]: after stage k
+    // Packed: Icarus 11 left the last stage of this unpacked array X (every pipelined W_m
+    // colour X), as it did schlick_divider's.
+    logic [K:0][BW-1:0] b_q;  // b_q[0]: base; b_q[k]: after stage k
     always_ff @(posedge clk_i) begin
       if (en_i) begin
         b_q[0] <= base_d;

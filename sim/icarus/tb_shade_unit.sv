@@ -1,19 +1,27 @@
 // tb_shade_unit: Icarus Verilog (-g2012) testbench of rtl/shade_unit.sv, an independent
 // simulator of the same RTL the Verilator harness runs. It replays a command stream's binary
-// words and writes every output pixel, so its pixels can be compared with the bit-accurate
-// model (sim/icarus/stream_tool.cpp writes both files), and its cycle count with the harness's.
+// words and writes every output pixel with its exit cycle, so its pixels and cycles can be
+// compared with the bit-accurate model's and the cycle model's (sim/icarus/stream_tool.cpp
+// writes the files), and its cycle count with the harness's.
 //
-//   vvp tb.vvp +words=/abs/stream.hex [+pixels=/abs/out.txt]
+//   vvp tb.vvp +words=/abs/stream.hex [+gaps=/abs/gaps.hex +cycles=/abs/cycles.hex]
+//              [+pixels=/abs/out.txt]
 //
-// Stimulus: no idle gaps on the cmd port and pix_ready always high (the harness's
-// --gap-pct 0 --stall-pct 0), so the cycle count equals rtl_cosim_*'s `cycles=` for the same
-// stream. Cycle 0 is the first clock edge after reset, as in the harness; the count is the last
-// pixel's cycle + 1.
+// Stimulus: the Verilator harness's, from the schedule files icarus_stream_tool export writes
+// (the generator has one home, model/stimulus.h and sim/harness/idle_noise.h): +gaps= gives the
+// idle cycles before each beat is offered (CommandDriver: valid stays high until the beat is
+// taken), +cycles= per cycle pix_ready and the random words on cmd_data while cmd_valid is low.
+// Both are read as the run goes, one entry per beat / per cycle. Without them: no gaps, pix_ready
+// always high, zeros while valid is low (the harness's --gap-pct 0 --stall-pct 0). Either way
+// the cycle count equals rtl_cosim_*'s `cycles=` for the same stream and stimulus. Cycle 0 is
+// the first clock edge after reset, as in the harness; the count is the last pixel's cycle + 1.
+// A run that outlasts the +cycles= schedule (the harness's bound) is late or hung: an error.
 //
 // PORT_WORDS > 1: the words go out PORT_WORDS to a beat, the last beat padded with zero words.
 // LANES > 1: each pixel beat is written as its valid lanes' pixels in lane order (x + j), the
 // end-of-row flag on the last of them; `pixels=` counts pixels, not beats.
-// Parameters are shade_unit's, set per configuration with iverilog -Ptb_shade_unit.NAME=VALUE.
+// Parameters are shade_unit's, every one of them with its default (tb_params_check.cmake checks
+// the two lists agree), set per configuration with iverilog -Ptb_shade_unit.NAME=VALUE.
 module tb_shade_unit #(
   parameter int CHANNELS         = 1,
   parameter int LIGHTS           = 1,
@@ -39,14 +47,26 @@ module tb_shade_unit #(
   parameter int PORT_WORDS       = 1,
   parameter int TRI_QUEUE        = 1,
   parameter int LANES            = 1,
+  parameter int SPECULAR_OUT_QUANT    = 0,
+  parameter int SPECULAR_OUT_OVERFLOW = 0,
+  parameter int LUT_ADDR_BITS         = 10,
+  parameter int LUT_ENTRY_BITS        = 8,
+  parameter int LUT_INTERP_BITS       = 0,
+  parameter int LUT_INDEX             = 0,
+  parameter int SCHLICK_QUOTIENT_BITS = 16,
+  parameter int SCHLICK_OPERAND_BITS  = 24,
+  parameter int SCHLICK_TIMING        = 1,
+  parameter int WPOW_MAX_M            = 16,
+  parameter int WPOW_BASE_BITS        = 16,
+  parameter int WPOW_TIMING           = 0,
   parameter int FAULT_LSB_ROW    = -1,
   parameter int FAULT_STALL_ROW  = -1,
   parameter int FAULT_HANG_ROW   = -1,
   // Capacity of the word memory (Icarus allocates it all: ~45 bytes a word); a longer stream
   // is a hard error, never a silent truncation.
   parameter int MAX_WORDS        = 1 << 20,
-  // After the last word is accepted, this many cycles without a pixel mean the unit is drained
-  // (its pipeline is a few cycles deep). Without any progress for HANG_CYCLES it is hung.
+  // After the last word is accepted, this many cycles with pix_valid low mean the unit is
+  // drained (its pipeline is a few cycles deep; a pixel held by back-pressure keeps it high). Without any progress for HANG_CYCLES it is hung.
   parameter int DRAIN_CYCLES     = 64,
   parameter int HANG_CYCLES      = 100000
 );
@@ -63,7 +83,7 @@ module tb_shade_unit #(
   logic [LANES*CHANNELS*OUT_BITS-1:0] pix_colour;
   logic [LANES-1:0]             pix_mask;
   logic                         pix_eor, pix_valid;
-  logic                         pix_ready = 1'b1;
+  logic                         pix_ready = 1'b0;  // low in reset, as the harness drives it
 
   shade_unit #(
     .CHANNELS(CHANNELS), .LIGHTS(LIGHTS), .XY_BITS(XY_BITS),
@@ -76,6 +96,12 @@ module tb_shade_unit #(
     .SPECULAR_KIND(SPECULAR_KIND),
     .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL),
     .PORT_WORDS(PORT_WORDS), .TRI_QUEUE(TRI_QUEUE), .LANES(LANES),
+    .SPECULAR_OUT_QUANT(SPECULAR_OUT_QUANT), .SPECULAR_OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW),
+    .LUT_ADDR_BITS(LUT_ADDR_BITS), .LUT_ENTRY_BITS(LUT_ENTRY_BITS),
+    .LUT_INTERP_BITS(LUT_INTERP_BITS), .LUT_INDEX(LUT_INDEX),
+    .SCHLICK_QUOTIENT_BITS(SCHLICK_QUOTIENT_BITS), .SCHLICK_OPERAND_BITS(SCHLICK_OPERAND_BITS),
+    .SCHLICK_TIMING(SCHLICK_TIMING),
+    .WPOW_MAX_M(WPOW_MAX_M), .WPOW_BASE_BITS(WPOW_BASE_BITS), .WPOW_TIMING(WPOW_TIMING),
     .FAULT_LSB_ROW(FAULT_LSB_ROW), .FAULT_STALL_ROW(FAULT_STALL_ROW),
     .FAULT_HANG_ROW(FAULT_HANG_ROW)
   ) dut (
@@ -96,7 +122,11 @@ module tb_shade_unit #(
   int idle = 0;
   bit running = 1'b0;
   int pix_fd = 0;
-  string words_path, pixels_path;
+  int gaps_fd = 0, cycles_fd = 0;
+  int gaps_read = 0;
+  longint schedule_cycles = 0;  // entries of +cycles=
+  int wait_cycles = 0;  // idle cycles left before the next beat is offered (CommandDriver)
+  string words_path, pixels_path, gaps_path, cycles_path;
 
   function automatic bit loaded(int i);
     return (^words[i]) !== 1'bx;
@@ -111,6 +141,54 @@ module tb_shade_unit #(
     end
     return b;
   endfunction
+
+  // Opens a schedule file and checks its first line, "// shadesim-KIND N ...".
+  // (A task: Icarus 11 allows only input ports on functions.)
+  task automatic open_schedule(input string path, input string kind, output int fd,
+                               output longint n);
+    reg [8*512-1:0] header;
+    string got;
+    fd = $fopen(path, "r");
+    if (fd == 0) $fatal(1, "tb_shade_unit: +%0s=%0s: cannot open the file", kind, path);
+    if ($fgets(header, fd) == 0 || $sscanf(header, "// shadesim-%s %d", got, n) != 2 ||
+        got != kind) begin
+      $fatal(1, "tb_shade_unit: %0s: line 1: expected \"// shadesim-%0s N ...\" (icarus_stream_tool export --%0s writes it)",
+             path, kind, kind);
+    end
+  endtask
+
+  // Idle cycles before beat `gaps_read` (0 without +gaps=).
+  function automatic int next_gap();
+    int g;
+    if (gaps_fd == 0) return 0;
+    if ($fscanf(gaps_fd, "%h", g) != 1) begin
+      $fatal(1, "tb_shade_unit: %0s: line %0d: expected the hex gap before beat %0d", gaps_path,
+             gaps_read + 2, gaps_read);
+    end
+    gaps_read = gaps_read + 1;
+    return g;
+  endfunction
+
+  // Drives the inputs of cycle `c` (nonblocking, as a register would): the next beat when the
+  // driver offers one, else the schedule's idle noise; pix_ready from the schedule.
+  task automatic drive(longint c);
+    logic [PORT_WORDS*64-1:0] noise;
+    logic                     ready;
+    logic                     valid;
+    noise = '0;
+    ready = 1'b1;
+    if (cycles_fd != 0) begin
+      if (c >= schedule_cycles || $fscanf(cycles_fd, "%h %h", ready, noise) != 2) begin
+        $fatal(1, {"tb_shade_unit: cycle %0d is past the %0d cycles of %0s (the harness's bound: ",
+                   "the cycle model's count + 1000): the unit is late or hung (word %0d of %0d, ",
+                   "%0d pixels out)"}, c, schedule_cycles, cycles_path, next_word, n_words, pixels);
+      end
+    end
+    valid = next_word < n_words && wait_cycles == 0;
+    cmd_valid <= valid;
+    cmd_data  <= valid ? beat_at(next_word) : noise;
+    pix_ready <= ready;
+  endtask
 
   initial begin
     int fd;
@@ -135,14 +213,25 @@ module tb_shade_unit #(
     if (!loaded(n_words - 1)) begin
       $fatal(1, "tb_shade_unit: %0s: fewer hex words than the %0d the first line promises", words_path, n_words);
     end
+    if ($value$plusargs("gaps=%s", gaps_path)) begin
+      longint n_gaps;
+      open_schedule(gaps_path, "gaps", gaps_fd, n_gaps);
+      if (n_gaps != (n_words + PORT_WORDS - 1) / PORT_WORDS) begin
+        $fatal(1, "tb_shade_unit: %0s: %0d gaps, but the %0d words make %0d beats of PORT_WORDS=%0d",
+               gaps_path, n_gaps, n_words, (n_words + PORT_WORDS - 1) / PORT_WORDS, PORT_WORDS);
+      end
+    end
+    if ($value$plusargs("cycles=%s", cycles_path)) begin
+      open_schedule(cycles_path, "cycles", cycles_fd, schedule_cycles);
+    end
     if ($value$plusargs("pixels=%s", pixels_path)) begin
       pix_fd = $fopen(pixels_path, "w");
       if (pix_fd == 0) $fatal(1, "tb_shade_unit: +pixels=%0s: cannot open for writing", pixels_path);
     end
     repeat (ResetCycles) @(posedge clk);
     rst_n     <= 1'b1;
-    cmd_valid <= 1'b1;
-    cmd_data  <= beat_at(0);
+    wait_cycles = next_gap();
+    drive(0);
     running   <= 1'b1;
   end
 
@@ -150,16 +239,17 @@ module tb_shade_unit #(
   // cycle are driven with nonblocking assignments, as a register would.
   always @(posedge clk) begin
     if (running) begin
+      // CommandDriver::clock: the gap before the next beat starts when this one is taken.
       if (cmd_valid && cmd_ready) begin
         next_word = next_word + PORT_WORDS;
         last_progress = cycle;
-        cmd_valid <= next_word < n_words;
-        cmd_data  <= beat_at(next_word);
+        wait_cycles = next_word < n_words ? next_gap() : 0;
+      end else if (wait_cycles > 0) begin
+        wait_cycles = wait_cycles - 1;
       end
       if (pix_valid && pix_ready) begin
         last_pixel_cycle = cycle;
         last_progress = cycle;
-        idle = 0;
         for (int j = 0; j < LANES; j++) begin
           if (pix_mask[j]) begin
             pixels = pixels + 1;
@@ -168,11 +258,14 @@ module tb_shade_unit #(
               for (int c = 0; c < CHANNELS; c++) begin
                 $fwrite(pix_fd, " %0d", pix_colour[(j*CHANNELS + c)*OUT_BITS +: OUT_BITS]);
               end
-              $fwrite(pix_fd, " %0d\n", pix_eor && (j == LANES - 1 || !pix_mask[j+1]));
+              $fwrite(pix_fd, " %0d %0d\n", pix_eor && (j == LANES - 1 || !pix_mask[j+1]), cycle);
             end
           end
         end
-      end else if (next_word >= n_words) begin
+      end
+      if (pix_valid || next_word < n_words) begin
+        idle = 0;
+      end else begin
         idle = idle + 1;
       end
       if (next_word >= n_words && idle >= DRAIN_CYCLES) begin
@@ -185,6 +278,7 @@ module tb_shade_unit #(
                HANG_CYCLES, cycle, next_word, n_words, pixels);
       end
       cycle = cycle + 1;
+      drive(cycle);
     end
   end
 endmodule
