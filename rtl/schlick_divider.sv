@@ -97,7 +97,7 @@ module schlick_divider #(
 
   // ---- 2. DIVIDE -------------------------------------------------------------------------------
   logic [Q-1:0] q_out;
-  cls_e         cls_out;
+  logic [1:0]   cls_out;  // a cls_e (no enum cast: Icarus 11 cannot elaborate one)
 
   if (TIMING == 0) begin : g_pipelined
     // Stage k holds the quotient's top k + 1 bits and its class; the remainder and divisor are
@@ -138,7 +138,7 @@ module schlick_divider #(
       end
     end
     assign q_out   = q_q[Q-1];
-    assign cls_out = cls_e'(cls_q[Q-1]);
+    assign cls_out = cls_q[Q-1];
     assign busy_o  = 1'b0;
     // The pipelined stages hold no state that needs a reset (every stage is overwritten on the
     // advance before its output is used); the last step's remainder is not a quotient bit.
