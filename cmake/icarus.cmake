@@ -120,8 +120,8 @@ set(_icarus_scenarios_rgb2_s320s mixed long)
 set(_icarus_scenarios_grey_p4 mixed short)
 set(_icarus_scenarios_grey_p4_q2 mixed short)
 set(_icarus_scenarios_grey_pack_p4_q2 mixed short)
-set(_icarus_scenarios_grey_p4_q2_l4 mixed short)
-foreach(name grey_s428w rgb2_s320s grey_p4 grey_p4_q2 grey_pack_p4_q2 grey_p4_q2_l4)
+set(_icarus_scenarios_grey_p4_q2_l4_m2 mixed short)
+foreach(name grey_s428w rgb2_s320s grey_p4 grey_p4_q2 grey_pack_p4_q2 grey_p4_q2_l4_m2)
   foreach(scenario ${_icarus_scenarios_${name}})
     add_test(NAME icarus_model_${name}_${scenario}
       COMMAND ${_icarus_check} -DTB=${ICARUS_DIR}/check/${name}/tb_${scenario}.vvp -DCONFIG=${name}

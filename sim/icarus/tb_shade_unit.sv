@@ -39,6 +39,7 @@ module tb_shade_unit #(
   parameter int PORT_WORDS       = 1,
   parameter int TRI_QUEUE        = 1,
   parameter int LANES            = 1,
+  parameter int MATERIAL_BUFFERS = 1,
   parameter int FAULT_LSB_ROW    = -1,
   parameter int FAULT_STALL_ROW  = -1,
   parameter int FAULT_HANG_ROW   = -1,
@@ -76,6 +77,7 @@ module tb_shade_unit #(
     .SPECULAR_KIND(SPECULAR_KIND),
     .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL),
     .PORT_WORDS(PORT_WORDS), .TRI_QUEUE(TRI_QUEUE), .LANES(LANES),
+    .MATERIAL_BUFFERS(MATERIAL_BUFFERS),
     .FAULT_LSB_ROW(FAULT_LSB_ROW), .FAULT_STALL_ROW(FAULT_STALL_ROW),
     .FAULT_HANG_ROW(FAULT_HANG_ROW)
   ) dut (
