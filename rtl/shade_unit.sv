@@ -246,7 +246,8 @@ module shade_unit #(
 
   // MATERIAL (ambient, spec_colour, exponent and unit parameters) and TABLE (LUT entries) must
   // not change what in-flight pixels read: both wait for an empty datapath, as the model
-  // applies them in stream order.
+  // applies them in stream order. With two material buffers a MATERIAL writes the other bank
+  // and waits only until no span in flight reads that one.
   always_comb begin
     case (hdr_op)
       shade_pkg::OpMaterial: hdr_ready = MatBanked ? mat_other_free : datapath_empty;
