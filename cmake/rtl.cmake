@@ -97,6 +97,17 @@ if(YOSYS)
     COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_check.sh ${YOSYS} ${CMAKE_BINARY_DIR}/rtl_yosys_p4q3.log ${RTL_SOURCES})
   set_tests_properties(rtl_yosys_no_latch_port4_queue3 PROPERTIES
     ENVIRONMENT "YOSYS_CHPARAM=-set PORT_WORDS 4 -set TRI_QUEUE 3")
+  # Two material buffers: the banked material registers and each unit's banked parameters with
+  # the bank tag in its stages (LUT; W_m pipelined and iterative), behind a triangle queue.
+  set(_yosys_m2_lut "-set SPECULAR_KIND 1 -set LUT_ADDR_BITS 4 -set LUT_INTERP_BITS 2")
+  set(_yosys_m2_wpow0 "-set SPECULAR_KIND 3 -set WPOW_MAX_M 4 -set WPOW_BASE_BITS 8 -set WPOW_TIMING 0")
+  set(_yosys_m2_wpow1 "-set SPECULAR_KIND 3 -set WPOW_MAX_M 4 -set WPOW_BASE_BITS 8 -set WPOW_TIMING 1")
+  foreach(unit lut wpow0 wpow1)
+    add_test(NAME rtl_yosys_no_latch_material_buffers2_${unit}
+      COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_check.sh ${YOSYS} ${CMAKE_BINARY_DIR}/rtl_yosys_m2_${unit}.log ${RTL_SOURCES})
+    set_tests_properties(rtl_yosys_no_latch_material_buffers2_${unit} PROPERTIES
+      ENVIRONMENT "YOSYS_CHPARAM=-set MATERIAL_BUFFERS 2 -set TRI_QUEUE 2 ${_yosys_m2_${unit}}")
+  endforeach()
   # Four pixel lanes: each lane's fan-out, engines and combine, the wider metadata line.
   add_test(NAME rtl_yosys_no_latch_lanes4
     COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_check.sh ${YOSYS} ${CMAKE_BINARY_DIR}/rtl_yosys_l4.log ${RTL_SOURCES})
@@ -135,14 +146,14 @@ endforeach()
 # Pixel lanes (issue 8): every scenario, three seeds, on wrapping and saturating series; the
 # SystemC backend on four lanes; the deliberate faults caught at the right scanline through a
 # four-word port with four lanes. The specular-unit lane builds run with the others below.
-foreach(name grey_p4_q2_l2 grey_p4_q2_l4 rgb2_p8_q3_l4)
+foreach(name grey_p4_q2_l2 grey_p4_q2_l4_m2 rgb2_p8_q3_l4)
   add_test(NAME rtl_cosim_cpp_${name}
     COMMAND ${COSIM_CPP} --config ${name} --scenario all --seed 1 --runs 3
             --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
 endforeach()
 foreach(scenario mixed tiny long)
-  add_test(NAME rtl_cosim_sc_grey_p4_q2_l4_${scenario}
-    COMMAND ${COSIM_SC} --config grey_p4_q2_l4 --scenario ${scenario} --seed 7
+  add_test(NAME rtl_cosim_sc_grey_p4_q2_l4_m2_${scenario}
+    COMMAND ${COSIM_SC} --config grey_p4_q2_l4_m2 --scenario ${scenario} --seed 7
             --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
 endforeach()
 add_test(NAME rtl_cosim_catches_lsb_fault_p4_l4

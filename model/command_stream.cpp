@@ -392,6 +392,8 @@ std::string config_to_json(const UnitConfig& c) {
   j["port_words"] = c.port_words;
   j["tri_queue"] = c.tri_queue;
   j["lanes"] = c.lanes;
+  // Only when not the default: streams and build keys of one-buffer units stay as they were.
+  if (c.material_buffers != 1) j["material_buffers"] = c.material_buffers;
   const SpecularConfig& sp = c.specular;
   j["specular"] = {{"kind", to_string(sp.kind)}, {"out", sp.out.to_string()}};
   for (const SpecularUnitDescriptor& u : specular_units()) {
@@ -425,7 +427,8 @@ class ConfigJsonReader {
     // "derivation" is the annotation `shadesim config --json` writes beside the fields (how each
     // was derived); it is for people and never read.
     check_keys(j, "", {"channels", "lights", "xy_bits", "coef", "series", "spec_colour", "out_bits",
-                       "coef_term_iwl", "port_words", "tri_queue", "lanes", "specular", "derivation"});
+                       "coef_term_iwl", "port_words", "tri_queue", "lanes", "material_buffers",
+                       "specular", "derivation"});
     read_int(j, "", "channels", 1, 3, require_top_, c.channels);
     read_int(j, "", "lights", 1, 8, require_top_, c.lights);
     read_int(j, "", "xy_bits", 1, 16, require_top_, c.xy_bits);
@@ -438,6 +441,7 @@ class ConfigJsonReader {
     read_int(j, "", "port_words", 1, 8, false, c.port_words);
     read_int(j, "", "tri_queue", 1, 8, false, c.tri_queue);
     read_int(j, "", "lanes", 1, 4, false, c.lanes);
+    read_int(j, "", "material_buffers", 1, 2, false, c.material_buffers);
     if (!j.contains("specular")) {
       if (require_top_) fail("specular", "expected an object (missing)");
       return;

@@ -186,6 +186,11 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
   // Per coefficient bank: the cycle its last queued span entered s1.
   std::vector<Cycle> bank_free(static_cast<size_t>(unit_.tri_queue), kLongAgo);
   int wr_bank = 0;
+  // Two material buffers: the bank the latest MATERIAL writes, and per bank the cycle the last
+  // pixel of its latest span leaves the slot (spans leave in order).
+  const bool mat_banked = unit_.material_buffers == 2;
+  int mat_wr = 0;
+  std::array<Cycle, 2> mat_leave = {kLongAgo, kLongAgo};
   TriangleCost* tri = nullptr;  // the latest TRIANGLE's: its SPANs follow it
 
   // The first cycle on which a header of this opcode may go (model/command_stream.h).
@@ -202,6 +207,9 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
         return bank_free[static_cast<size_t>(next_bank(wr_bank))] + 1;
       }
       case Opcode::kMaterial:
+        // Two buffers: no span of the bank it switches to in flight.
+        if (mat_banked) return mat_leave[static_cast<size_t>(1 - mat_wr)];
+        return pipe.empty();
       case Opcode::kTable: return pipe.empty();
       default: return 0;
     }
@@ -252,6 +260,7 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
           const uint64_t len = static_cast<uint64_t>(s.span_length());
           if (len == 0) throw std::invalid_argument(at_word(w + k) + "SPAN of length 0 (lengths are >= 1)");
           const Cycle leave = pipe.add(c, len);
+          mat_leave[static_cast<size_t>(mat_wr)] = leave;
           if (rec) rec->span(pipe.first_emit(), pipe.last_emit());
           if (queued) bank_free[static_cast<size_t>(wr_bank)] = pipe.last_entry();
           r.pixels += len;
@@ -269,6 +278,7 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
       }
       case Opcode::kMaterial:
       case Opcode::kTable:
+        if (op == Opcode::kMaterial && mat_banked) mat_wr = 1 - mat_wr;
         w += 1;
         payload = word.count();
         break;

@@ -33,6 +33,9 @@
 //   TRIANGLE, queue     its bank's last queued span has entered s1: cycle >= A_last + 1
 //   MATERIAL, TABLE     empty datapath: cycle >= E_last + latency + 1 (the last pixel has left
 //                       the slot; the pix register does not count)
+//   MATERIAL, two       the bank it switches to is free: cycle >= E_m + latency + 1 for the
+//   material buffers    latest span m of that bank (spans carry the bank of the MATERIAL
+//                       before them; MATERIALs alternate the banks)
 // The run ends on the cycle after the later of the last beat's acceptance and the last pixel's
 // leaving.
 //

@@ -12,7 +12,9 @@ SlotTiming SlotTiming::of(const SpecularConfig& config) {
 }
 
 CycleConfig CycleConfig::of(const UnitConfig& config) {
-  return CycleConfig(SlotTiming::of(config.specular), config.port_words, config.tri_queue, config.lanes);
+  CycleConfig c(SlotTiming::of(config.specular), config.port_words, config.tri_queue, config.lanes);
+  c.material_buffers = config.material_buffers;
+  return c;
 }
 
 std::string to_string(CycleModel::Category c) {
@@ -52,7 +54,12 @@ CycleModel::CycleModel(CycleConfig unit)
     : timing_(unit.slot),
       port_words_(static_cast<unsigned>(unit.port_words)),
       tri_queue_(unit.tri_queue),
-      lanes_(static_cast<unsigned>(unit.lanes)) {
+      lanes_(static_cast<unsigned>(unit.lanes)),
+      mat_banked_(unit.material_buffers == 2) {
+  if (unit.material_buffers != 1 && unit.material_buffers != 2) {
+    throw std::invalid_argument("CycleModel: material_buffers must be 1 or 2, got " +
+                                std::to_string(unit.material_buffers));
+  }
   if (unit.lanes != 1 && unit.lanes != 2 && unit.lanes != 4) {
     throw std::invalid_argument("CycleModel: lanes must be 1, 2 or 4, got " + std::to_string(unit.lanes));
   }

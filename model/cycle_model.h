@@ -5,7 +5,9 @@
 //
 // Mirrored structure (names as in the RTL): a command decoder (a beat of port_words words taken
 // apart one item per cycle, model/command_stream.h; headers, payload counting; MATERIAL and TABLE
-// wait for an empty datapath), with tri_queue > 1 a span queue whose spans carry their
+// wait for an empty datapath - with material_buffers 2 a MATERIAL waits only until no span of
+// the material bank it switches to is in flight: spans carry their material bank to the pix
+// register, counted per bank), with tri_queue > 1 a span queue whose spans carry their
 // triangle's coefficient bank (a TRIANGLE waits until no queued span reads the bank it
 // loads), three span-setup stages s1..s3 with valid bits, the
 // engines' run state (run, rem: pixels left, `lanes` of them per beat), the specular slot's timing (a LATENCY-deep delay line for a
@@ -44,6 +46,7 @@ struct CycleConfig {
   int port_words = 1;  // UnitConfig::port_words
   int tri_queue = 1;   // UnitConfig::tri_queue
   int lanes = 1;       // UnitConfig::lanes: pixels per beat
+  int material_buffers = 1;  // UnitConfig::material_buffers
 
   CycleConfig() = default;
   // A unit with the default structure around this slot.
@@ -75,7 +78,8 @@ struct ScanlineDone {
 //   was doing on the cycle that SPAN header would have had to be accepted for its pixel to
 //   leave now, i.e. span_latency() cycles earlier:
 //   command_gap    no word was offered (an idle gap in the input)
-//   material       a MATERIAL header (waiting for the empty datapath, or accepted) or its
+//   material       a MATERIAL header (waiting for the empty datapath - with two material
+//                  buffers for its bank's last span to leave the slot - or accepted) or its
 //                  payload: the drain, the words, and the refill after them
 //   table          a TABLE header or payload word
 //   command_words  TRIANGLE, END_FRAME or unknown words (command bandwidth)
@@ -131,7 +135,7 @@ class CycleModel {
 
   // Throws std::invalid_argument for a negative latency, an interval < 1, an iterative
   // interval that differs from the latency, a port width other than 1, 2, 4, 8, or lanes other
-  // than 1, 2, 4.
+  // than 1, 2, 4, or material_buffers other than 1, 2.
   explicit CycleModel(CycleConfig timing = CycleConfig{});
 
   // Inputs as seen just before the edge (`beat`: the port_words words on the port); advances
@@ -156,12 +160,15 @@ class CycleModel {
     bool valid = false;
     int y = 0, x0 = 0, len = 0;
     bool last = false;
+    int mat = 0;  // material bank (material_buffers 2)
   };
   struct Pix {
     bool valid = false;
     int x = 0, y = 0;  // lane 0's pixel
     bool eor = false;
     int count = 0;  // valid lanes
+    int mat = 0;    // material bank of its span
+    bool span_end = false;  // the span's last beat: its bank's count drops when it leaves the slot
   };
   enum class Payload { kSkip, kMaterial, kTriangle, kTable };
 
@@ -190,6 +197,12 @@ class CycleModel {
   size_t sq_head_ = 0, sq_count_ = 0;
   std::vector<int> bank_spans_;
   int wr_bank_ = 0;
+  // Material buffers (material_buffers 2): the bank the latest MATERIAL writes, and per bank the
+  // spans taken and not yet out of the slot (all of them in flight with one buffer).
+  bool mat_banked_ = false;
+  int mat_wr_ = 0;
+  int mat_spans_[2] = {0, 0};
+  int mat_ = 0;  // the engines' span's bank
   // Decoder: pos_ is the next word of the beat on the port still to be taken.
   unsigned pos_ = 0;
   bool in_payload_ = false;
@@ -289,7 +302,9 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   }
   bool hdr_ready = true;
   // Only MATERIAL and TABLE headers wait for the empty datapath; the check walks the delay line.
+  // With two material buffers a MATERIAL waits only for the bank it switches to.
   if (op == Opcode::kMaterial || op == Opcode::kTable) hdr_ready = datapath_empty();
+  if (op == Opcode::kMaterial && mat_banked_) hdr_ready = mat_spans_[1 - mat_wr_] == 0;
   // Without a span queue a SPAN's setup reads the coefficients as it is taken: not on the edge
   // that writes its triangle's last words.
   if (op == Opcode::kSpan) hdr_ready = queued() ? sq_count_ < sq_.size() : s1_free && tail == 0;
@@ -326,17 +341,20 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   if (++history_pos_ == port_history_.size()) history_pos_ = 0;
 
   // ---- the edge: engines -> slot -> pix register ----
-  const Pix from_engines{run_, x_, y_, last_ && last_pix, static_cast<int>(std::min(rem_, lanes_))};
+  const Pix from_engines{run_, x_, y_, last_ && last_pix, static_cast<int>(std::min(rem_, lanes_)), mat_, last_pix};
+  bool to_pix = false;  // pix_ takes the slot's output on this edge
   if (iterative()) {
     if (adv && !busy) {
       pix_ = inflight_;
       inflight_ = from_engines;  // valid == emit
+      to_pix = true;
     } else if (adv) {
       pix_.valid = false;
     }
     if (emit) busy_ = timing_.interval - 1;
     else if (busy_ > 0) --busy_;
   } else if (adv) {
+    to_pix = true;
     if (dl_.empty()) {
       pix_ = from_engines;
     } else {
@@ -345,12 +363,16 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
       dl_[0] = from_engines;
     }
   }
+  // A span's last beat out of the slot: the pix register holds finished colours, which no
+  // later MATERIAL changes.
+  if (to_pix && pix_.valid && pix_.span_end) --mat_spans_[pix_.mat];
   if (load_eng) {
     run_ = true;
     rem_ = static_cast<unsigned>(s_[2].len);
     x_ = s_[2].x0;
     y_ = s_[2].y;
     last_ = s_[2].last;
+    mat_ = s_[2].mat;
   } else if (emit) {
     if (last_pix) run_ = false;
     rem_ -= lanes_;  // wraps after the last beat, as the RTL's rem_q; reloaded before use
@@ -366,6 +388,8 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   header_span.x0 = word.span_x0();
   header_span.len = word.span_length();
   header_span.last = word.span_last();
+  header_span.mat = mat_wr_;
+  if (span_fire) mat_spans_[mat_wr_] += static_cast<int>(hdr_n);
   if (!queued()) {
     if (span_fire) s_[0] = header_span;
     else if (s1_move) s_[0].valid = false;
@@ -384,7 +408,7 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
         const CommandWord w{beat[hdr_pos + k]};
         size_t tail = sq_head_ + sq_count_;
         if (tail >= sq_.size()) tail -= sq_.size();
-        sq_[tail] = {Span{true, w.span_y(), w.span_x0(), w.span_length(), w.span_last()}, wr_bank_};
+        sq_[tail] = {Span{true, w.span_y(), w.span_x0(), w.span_length(), w.span_last(), mat_wr_}, wr_bank_};
         ++bank_spans_[static_cast<size_t>(wr_bank_)];
         ++sq_count_;
       }
@@ -396,7 +420,12 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
     pay_idx_ = 0;
     pay_last_ = (count - 1) & CommandWord::kFieldMask;
     switch (op) {
-      case Opcode::kMaterial: pay_op_ = Payload::kMaterial; in_payload_ = count != 0; break;
+      case Opcode::kMaterial:
+        // Its payload writes the other bank, which no span in flight reads.
+        if (mat_banked_) mat_wr_ = 1 - mat_wr_;
+        pay_op_ = Payload::kMaterial;
+        in_payload_ = count != 0;
+        break;
       case Opcode::kTriangle:
         // The coefficient words that came with the header are already taken.
         wr_bank_ = next_bank;

@@ -35,6 +35,8 @@ std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u, const I
       {"TRI_QUEUE", u.tri_queue},
       {"LANES", u.lanes},
   };
+  // shade_unit's default is 1: one-buffer units keep their parameter list (and build key).
+  if (u.material_buffers != 1) p.push_back({"MATERIAL_BUFFERS", u.material_buffers});
   // Narrowed coefficient terms (coef packing); shade_unit's defaults are COEF_WL.
   if (!u.coef_term_iwl.empty()) {
     for (int t = 0; t < 6; ++t) p.push_back({"COEF_T" + std::to_string(t) + "_WL", u.coef_term_bits(t)});

@@ -15,6 +15,8 @@ void UnitConfig::validate() const {
     fail("port_words must be 1, 2, 4 or 8, got " + std::to_string(port_words));
   if (tri_queue < 1 || tri_queue > 8) fail("tri_queue must be 1..8, got " + std::to_string(tri_queue));
   if (lanes != 1 && lanes != 2 && lanes != 4) fail("lanes must be 1, 2 or 4, got " + std::to_string(lanes));
+  if (material_buffers != 1 && material_buffers != 2)
+    fail("material_buffers must be 1 or 2, got " + std::to_string(material_buffers));
   coef.validate("unit config: coef");
   series.validate("unit config: series");
   spec_colour.validate("unit config: spec_colour");
@@ -67,6 +69,7 @@ std::string UnitConfig::to_string() const {
   if (port_words != 1) os << " port=" << port_words << 'w';
   if (tri_queue != 1) os << " triq=" << tri_queue;
   if (lanes != 1) os << " lanes=" << lanes;
+  if (material_buffers != 1) os << " matbuf=" << material_buffers;
   return os.str();
 }
 

@@ -51,6 +51,14 @@ struct UnitConfig {
   // a beat is pixel x + j; each lane steps its own engines by `lanes` pixels. With a wrapping
   // series the pixels equal the one-lane unit's bit for bit; saturating, see LaneFanout.
   int lanes = 1;
+  // Material buffers, 1 or 2. With 1 a MATERIAL or TABLE header waits until the datapath is
+  // empty. With 2 the per-material registers (ambient, spec_colour, the specular unit's
+  // parameters) have two banks and every span carries the bank of the latest MATERIAL: a
+  // MATERIAL switches to the other bank and waits only while an in-flight span still reads that
+  // one. The LUT table stays one copy (a shared table is loaded once and must serve every
+  // material), so a TABLE still waits for the empty datapath. Each MATERIAL defines every banked
+  // field (model/command_stream.h), so pixels do not depend on this either.
+  int material_buffers = 1;
 
   // Term t's format (0..5): coef's, or coef narrowed to coef_term_iwl[t] integer bits.
   FixedFormat coef_term(int t) const;

@@ -21,6 +21,9 @@
 //            unit_params mean shift 0), 1 = unit_params[0] = shift (0..fs, low bits taken).
 //   TABLE    (cfg_table_i = 1): cfg_addr_i = entry address (base + i), cfg_data_i[B-1:0] = entry;
 //            addresses >= 2^A are ignored (the model rejects them).
+// Material banks (BANKS = 2, shade_unit's MATERIAL_BUFFERS): the shift register is doubled;
+// MATERIAL words write bank cfg_bank_i, and ADDRESS reads the bank bank_i of the pixel on
+// series_i (the only stage that reads a per-material register). The table is one copy.
 // TABLE_FILE: optional $readmemh file written by ExponentLut::write_hex (absolute path), loaded at
 // time 0; a missing file is a $fatal error, not $readmemh's warning.
 module exponent_lut #(
@@ -35,13 +38,16 @@ module exponent_lut #(
   parameter int OUT_QUANT    = 0,  // Quantization: 0 truncate, 1 round to nearest
   parameter int OUT_OVERFLOW = 0,  // Overflow: 0 saturate, 1 wrap
   parameter int CFG_ADDR_W   = 16,
+  parameter int BANKS        = 1,  // material banks, 1 or 2
   parameter     TABLE_FILE   = ""
 ) (
   input  logic                  clk_i,
   input  logic                  rst_ni,
   input  logic                  en_i,
   input  logic [SERIES_WL-1:0]  series_i,
+  input  logic                  bank_i,      // material bank of the pixel on series_i
   input  logic                  cfg_valid_i,
+  input  logic                  cfg_bank_i,  // material bank the MATERIAL words write
   input  logic                  cfg_table_i,
   input  logic [CFG_ADDR_W-1:0] cfg_addr_i,
   // verilator lint_off UNUSEDSIGNAL
@@ -60,14 +66,26 @@ module exponent_lut #(
   localparam int OutDrop = ENTRY_BITS + INTERP_BITS - (OUT_WL - OUT_IWL);
   localparam int OutRndW = VW + 1 - OutDrop;
 
-  // ---- per-material parameter: the input shift ------------------------------------------
-  logic [ShiftW-1:0] shift_q;
+  // ---- per-material parameter: the input shift, per bank ---------------------------------
+  logic [ShiftW-1:0] shift_q [BANKS];
+  logic              rd_bank, wr_bank;  // the banks read (ADDRESS) and written (cfg)
+  if (BANKS > 1) begin : g_banks
+    assign rd_bank = bank_i;
+    assign wr_bank = cfg_bank_i;
+  end else begin : g_one_bank
+    // verilator lint_off UNUSEDSIGNAL
+    logic unused_bank;  // one bank: the tags are always 0
+    assign unused_bank = bank_i ^ cfg_bank_i;
+    // verilator lint_on UNUSEDSIGNAL
+    assign rd_bank = 1'b0;
+    assign wr_bank = 1'b0;
+  end
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      shift_q <= '0;
+      for (int b = 0; b < BANKS; b++) shift_q[b] <= '0;
     end else if (cfg_valid_i && !cfg_table_i) begin
-      if (cfg_addr_i == CFG_ADDR_W'(0))      shift_q <= '0;
-      else if (cfg_addr_i == CFG_ADDR_W'(1)) shift_q <= cfg_data_i[ShiftW-1:0];
+      if (cfg_addr_i == CFG_ADDR_W'(0))      shift_q[wr_bank] <= '0;
+      else if (cfg_addr_i == CFG_ADDR_W'(1)) shift_q[wr_bank] <= cfg_data_i[ShiftW-1:0];
     end
   end
 
@@ -91,7 +109,9 @@ module exponent_lut #(
     initial begin
       int fd;
       fd = $fopen(TABLE_FILE, "r");
-      if (fd == 0) $fatal(1, "exponent_lut: cannot open TABLE_FILE '%s' (ExponentLut::write_hex output expected)", TABLE_FILE);
+      if (fd == 0)
+        $fatal(1, "exponent_lut: cannot open TABLE_FILE '%s' (%s)", TABLE_FILE,
+               "ExponentLut::write_hex output expected");
       $fclose(fd);
       $readmemh(TABLE_FILE, mem_q);
     end
@@ -104,9 +124,11 @@ module exponent_lut #(
   logic signed [XW-1:0]      shifted;
   logic signed [AdrRndW-1:0] a_rnd;
   logic [AW-1:0]             a_d, a_q;
-  assign shifted = {{Fs{series_i[SERIES_WL-1]}}, series_i} << shift_q;
-  fixed_round #(.IN_W(XW), .DROP(AdrDrop), .ROUND(INDEX)) u_adr_round (.in_i(shifted), .out_o(a_rnd));
-  fixed_sat #(.IN_W(AdrRndW), .OUT_W(AW), .OUT_SIGNED(0), .WRAP(0)) u_adr_sat (.in_i(a_rnd), .out_o(a_d));
+  assign shifted = {{Fs{series_i[SERIES_WL-1]}}, series_i} << shift_q[rd_bank];
+  fixed_round #(.IN_W(XW), .DROP(AdrDrop), .ROUND(INDEX))
+    u_adr_round (.in_i(shifted), .out_o(a_rnd));
+  fixed_sat #(.IN_W(AdrRndW), .OUT_W(AW), .OUT_SIGNED(0), .WRAP(0))
+    u_adr_sat (.in_i(a_rnd), .out_o(a_d));
   always_ff @(posedge clk_i) begin
     if (en_i) a_q <= a_d;
   end
@@ -150,13 +172,15 @@ module exponent_lut #(
 
   // ---- 4. OUTPUT -------------------------------------------------------------------------------
   logic signed [OutRndW-1:0] out_rnd;
-  fixed_round #(.IN_W(VW), .DROP(OutDrop), .ROUND(OUT_QUANT)) u_out_round (.in_i(v), .out_o(out_rnd));
+  fixed_round #(.IN_W(VW), .DROP(OutDrop), .ROUND(OUT_QUANT))
+    u_out_round (.in_i(v), .out_o(out_rnd));
   fixed_sat #(.IN_W(OutRndW), .OUT_W(OUT_WL), .OUT_SIGNED(0), .WRAP(OUT_OVERFLOW))
     u_out_sat (.in_i(out_rnd), .out_o(spec_o));
 
 `ifndef SYNTHESIS
   initial begin
     if (Fs < 1) $fatal(1, "exponent_lut: the series format needs at least one fraction bit");
+    if (BANKS != 1 && BANKS != 2) $fatal(1, "exponent_lut: BANKS %0d is not 1 or 2", BANKS);
   end
 `endif
 endmodule

@@ -16,7 +16,9 @@
 // Pipeline (the README's "RTL and co-simulation" has the latency / interval table):
 //   decoder      header + payload words; TRIANGLE payload -> coefficient registers,
 //                MATERIAL payload -> ambient / spec_colour registers and the specular slots,
-//                TABLE payload -> specular slots. MATERIAL waits until the datapath is empty.
+//                TABLE payload -> specular slots. MATERIAL waits until the datapath is empty;
+//                with MATERIAL_BUFFERS = 2 only until no span of the bank it switches to is in
+//                flight (each span carries its material bank down to the pix register).
 //   span_setup   3 stages (products, sums, rounding) per series; a SPAN header enters stage 1
 //                whenever stage 1 is free, so setup overlaps the previous span's pixels.
 //   engines      series_engine per series and lane; loaded from stage 3 through lane_fanout
@@ -62,6 +64,10 @@ module shade_unit #(
   parameter int TRI_QUEUE        = 1,
   // Pixel lanes: 1, 2 or 4 pixels of a span per beat (lane_fanout, model/lane_fanout.h).
   parameter int LANES            = 1,
+  // Material buffers, 1 or 2 (UnitConfig::material_buffers): with 2 the per-material registers
+  // (ambient, spec_colour, the specular unit's parameters) have two banks; a MATERIAL writes the
+  // one no span in flight reads. The LUT table is one copy: a TABLE still drains the datapath.
+  parameter int MATERIAL_BUFFERS = 1,
   // The specular unit's own parameters (specular_slot; model/specular_config.h field names
   // with the unit's prefix). Unused unless SPECULAR_KIND selects that unit.
   // verilator lint_off UNUSEDPARAM
@@ -152,6 +158,16 @@ module shade_unit #(
   logic             tri_bank_free;  // no queued span reads next_bank
   logic             sq_full, sq_empty, s1_load;
 
+  // ---- material buffers: the bank the latest MATERIAL writes, and the bank of each span in
+  // flight (span queue, setup stages, engines, slot metadata); spans in flight per bank --------
+  localparam bit MatBanked = MATERIAL_BUFFERS == 2;
+  logic mat_wr;             // bank the latest MATERIAL writes (0 with one buffer)
+  logic mat_other_free;     // no span in flight reads the other bank
+  logic s1_src_mat;         // bank of the span entering setup stage 1
+  logic mat_q;              // bank of the engines' span
+  logic mat_leave;          // a span's last beat leaves the slot for the pix register ...
+  logic mat_leave_bank;     // ... of this bank
+
   // ---- decoder state ----------------------------------------------------------------------
   logic        in_payload_q;
   pay_e        pay_op_q;
@@ -230,10 +246,11 @@ module shade_unit #(
 
   // MATERIAL (ambient, spec_colour, exponent and unit parameters) and TABLE (LUT entries) must
   // not change what in-flight pixels read: both wait for an empty datapath, as the model
-  // applies them in stream order.
+  // applies them in stream order. With two material buffers a MATERIAL writes the other bank
+  // and waits only until no span in flight reads that one.
   always_comb begin
     case (hdr_op)
-      shade_pkg::OpMaterial: hdr_ready = datapath_empty;
+      shade_pkg::OpMaterial: hdr_ready = MatBanked ? mat_other_free : datapath_empty;
       shade_pkg::OpTable:    hdr_ready = datapath_empty;
       // Without a span queue a SPAN's setup reads the coefficient registers as it is taken:
       // not on the edge that writes its triangle's last words.
@@ -302,8 +319,8 @@ module shade_unit #(
   // An array, not one packed vector: a partial write of a 1000+-bit vector costs the Verilated
   // model a full copy every clock.
   logic [COEF_WL-1:0]             coef_q [TRI_QUEUE*NCoef];  // bank b at b * NCoef
-  logic [CHANNELS*SERIES_WL-1:0]  ambient_q;
-  logic [NDiff*SPEC_COLOUR_WL-1:0] spec_colour_q;
+  logic [CHANNELS*SERIES_WL-1:0]  ambient_q [MATERIAL_BUFFERS];      // per material bank
+  logic [NDiff*SPEC_COLOUR_WL-1:0] spec_colour_q [MATERIAL_BUFFERS];
 
   // Payload words of this cycle's item, per beat word k: the tail (words pos_q ..
   // pos_q + tail_n - 1, the current triangle's, bank wr_bank_q) or a new TRIANGLE's (the words
@@ -378,11 +395,14 @@ module shade_unit #(
     end
     if (pay_fire && pay_op_q == PayMaterial) begin
       for (int i = 0; i < CHANNELS; i++) begin
-        if (pay_idx_q == 16'(i)) ambient_q[i*SERIES_WL +: SERIES_WL] <= cmd_word[SERIES_WL-1:0];
+        if (pay_idx_q == 16'(i)) begin
+          ambient_q[mat_wr][i*SERIES_WL +: SERIES_WL] <= cmd_word[SERIES_WL-1:0];
+        end
       end
       for (int i = 0; i < NDiff; i++) begin
         if (pay_idx_q == 16'(CHANNELS + i)) begin
-          spec_colour_q[i*SPEC_COLOUR_WL +: SPEC_COLOUR_WL] <= cmd_word[SPEC_COLOUR_WL-1:0];
+          spec_colour_q[mat_wr][i*SPEC_COLOUR_WL +: SPEC_COLOUR_WL] <=
+              cmd_word[SPEC_COLOUR_WL-1:0];
         end
       end
     end
@@ -427,6 +447,7 @@ module shade_unit #(
     localparam int CntW = $clog2(SpanQ + 1);
     span_t            sq_span_q [SpanQ];  // each queued span and its triangle's bank
     logic [BankW-1:0] sq_bank_q [SpanQ];
+    logic             sq_mat_q [SpanQ];   // each queued span's material bank
     logic [PtrW-1:0] head_q, tail_q;
     logic [CntW-1:0] count_q;
     logic [CntW-1:0] bank_spans_q [TRI_QUEUE];  // queued spans per bank
@@ -438,6 +459,7 @@ module shade_unit #(
     assign s1_load       = sq_pop;
     assign s1_src        = sq_span_q[head_q];
     assign rd_bank       = sq_bank_q[head_q];
+    assign s1_src_mat    = sq_mat_q[head_q];
     assign next_bank     = wr_bank_q == BankW'(TRI_QUEUE - 1) ? '0 : wr_bank_q + BankW'(1);
     assign tri_bank_free = bank_spans_q[next_bank] == '0;
     always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -471,6 +493,7 @@ module shade_unit #(
           if (16'(k) >= hdr_pos && 16'(k) < hdr_pos + hdr_n) begin
             sq_span_q[PtrW'(ring_add(tail_q, 16'(k) - hdr_pos))] <= beat_span[k*SpanW +: SpanW];
             sq_bank_q[PtrW'(ring_add(tail_q, 16'(k) - hdr_pos))] <= wr_bank_q;
+            sq_mat_q[PtrW'(ring_add(tail_q, 16'(k) - hdr_pos))]  <= mat_wr;
           end
         end
       end
@@ -483,6 +506,7 @@ module shade_unit #(
     assign s1_load       = span_fire;
     assign s1_src        = beat_span[word_sel*SpanW +: SpanW];
     assign rd_bank       = '0;
+    assign s1_src_mat    = mat_wr;
     assign next_bank     = '0;
     assign wr_bank_q     = '0;
     assign tri_bank_free = 1'b1;
@@ -516,6 +540,44 @@ module shade_unit #(
     if (s1_load)   s1_q <= s1_src;
     if (s1_move)   s2_q <= s1_q;
     if (s2_move)   s3_q <= s2_q;
+  end
+
+  // The material bank moves with the span (constant 0 with one buffer).
+  if (MatBanked) begin : g_mat_banks
+    localparam int MatCntW = $clog2(SpanQ + SpecLatency + 8);  // spans in flight, with margin
+    logic                mat_wr_q;
+    logic                s1_mat_q, s2_mat_q, s3_mat_q;  // bank of each setup stage's span
+    logic [MatCntW-1:0]  mat_spans_q [2];  // per bank: spans taken, last beat not out of the slot
+    assign mat_wr         = mat_wr_q;
+    assign mat_other_free = mat_spans_q[!mat_wr_q] == '0;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        mat_wr_q       <= 1'b0;
+        mat_spans_q[0] <= '0;
+        mat_spans_q[1] <= '0;
+      end else begin
+        if (hdr_fire && hdr_op == shade_pkg::OpMaterial) mat_wr_q <= !mat_wr_q;
+        for (int b = 0; b < 2; b++) begin
+          mat_spans_q[b] <= mat_spans_q[b]
+                          + (span_fire && mat_wr_q == 1'(b) ? MatCntW'(hdr_n) : '0)
+                          - MatCntW'(mat_leave && mat_leave_bank == 1'(b));
+        end
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      if (s1_load)  s1_mat_q <= s1_src_mat;
+      if (s1_move)  s2_mat_q <= s1_mat_q;
+      if (s2_move)  s3_mat_q <= s2_mat_q;
+      if (load_eng) mat_q    <= s3_mat_q;
+    end
+  end else begin : g_one_mat
+    // verilator lint_off UNUSEDSIGNAL
+    logic unused_mat;  // one buffer: every span reads bank 0
+    assign unused_mat = s1_src_mat ^ mat_leave ^ mat_leave_bank;
+    // verilator lint_on UNUSEDSIGNAL
+    assign mat_wr         = 1'b0;
+    assign mat_other_free = 1'b1;
+    assign mat_q          = 1'b0;
   end
 
   logic [NSer*SERIES_WL-1:0] start_v, start_d, start_d2;
@@ -610,6 +672,8 @@ module shade_unit #(
   typedef struct packed {
     logic [XY_BITS-1:0]         x, y;  // lane 0's pixel
     logic                       eor;
+    logic                       span_end;  // the span's last beat
+    logic                       mat;       // the span's material bank
     logic [LANES-1:0]           mask;  // valid lanes
     logic [LANES*LaneDiffW-1:0] diffuse;  // lane j at j * LaneDiffW
   } meta_t;
@@ -625,6 +689,8 @@ module shade_unit #(
   assign meta_in.x       = x_q;
   assign meta_in.y       = y_q;
   assign meta_in.eor     = last_q && last_pix;
+  assign meta_in.span_end = last_pix;
+  assign meta_in.mat      = mat_q;
   assign meta_in.mask    = lane_mask;
   assign meta_in.diffuse = lane_diffuse;
 
@@ -641,7 +707,7 @@ module shade_unit #(
       .SPECULAR_KIND(SPECULAR_KIND), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
       .SERIES_PER_LIGHT(SeriesPerLight), .SPECULAR_OUT_WL(SPECULAR_OUT_WL),
       .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL), .SPECULAR_OUT_QUANT(SPECULAR_OUT_QUANT),
-      .SPECULAR_OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW),
+      .SPECULAR_OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW), .MATERIAL_BUFFERS(MATERIAL_BUFFERS),
       .LUT_ADDR_BITS(LUT_ADDR_BITS), .LUT_ENTRY_BITS(LUT_ENTRY_BITS),
       .LUT_INTERP_BITS(LUT_INTERP_BITS), .LUT_INDEX(LUT_INDEX),
       .SCHLICK_QUOTIENT_BITS(SCHLICK_QUOTIENT_BITS), .SCHLICK_OPERAND_BITS(SCHLICK_OPERAND_BITS),
@@ -650,8 +716,8 @@ module shade_unit #(
     ) u_slot (
       .clk_i, .rst_ni, .en_i(slot_en),
       .series_i(eng_v[J*LaneSerW + (NDiff + L*SeriesPerLight)*SERIES_WL +:
-                      SeriesPerLight*SERIES_WL]),
-      .cfg_valid_i(cfg_valid), .cfg_table_i(cfg_table), .cfg_addr_i(cfg_addr),
+                      SeriesPerLight*SERIES_WL]), .bank_i(mat_q),
+      .cfg_valid_i(cfg_valid), .cfg_bank_i(mat_wr), .cfg_table_i(cfg_table), .cfg_addr_i(cfg_addr),
       .cfg_data_i(cmd_word), .spec_o(spec[g*SPECULAR_OUT_WL +: SPECULAR_OUT_WL]),
       .busy_o(busy[g])
     );
@@ -714,8 +780,9 @@ module shade_unit #(
       .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL), .OUT_BITS(OUT_BITS)
     ) u_combine (
       .diffuse_i(meta_out.diffuse[j*LaneDiffW +: LaneDiffW]),
-      .spec_i(spec[j*LIGHTS*SPECULAR_OUT_WL +: LIGHTS*SPECULAR_OUT_WL]), .ambient_i(ambient_q),
-      .spec_colour_i(spec_colour_q), .colour_o(colour[j*LaneColW +: LaneColW])
+      .spec_i(spec[j*LIGHTS*SPECULAR_OUT_WL +: LIGHTS*SPECULAR_OUT_WL]),
+      .ambient_i(ambient_q[meta_out.mat]), .spec_colour_i(spec_colour_q[meta_out.mat]),
+      .colour_o(colour[j*LaneColW +: LaneColW])
     );
   end
 
@@ -732,6 +799,11 @@ module shade_unit #(
   end else begin : g_no_lsb_fault
     assign colour_out = colour;
   end
+
+  // A span's last beat leaves the slot: no pixel of it reads its bank any more (the pix register
+  // holds finished colours).
+  assign mat_leave      = out_adv && meta_out_valid && meta_out.span_end;
+  assign mat_leave_bank = meta_out.mat;
 
   // ---- output register ------------------------------------------------------------------------
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -757,6 +829,8 @@ module shade_unit #(
       $fatal(1, "shade_unit: PORT_WORDS %0d is not 1, 2, 4 or 8", PORT_WORDS);
     if (TRI_QUEUE < 1 || TRI_QUEUE > 8)
       $fatal(1, "shade_unit: TRI_QUEUE %0d is not 1..8", TRI_QUEUE);
+    if (MATERIAL_BUFFERS != 1 && MATERIAL_BUFFERS != 2)
+      $fatal(1, "shade_unit: MATERIAL_BUFFERS %0d is not 1 or 2", MATERIAL_BUFFERS);
     for (int t = 0; t < 6; t++) begin
       if (shade_pkg::coef_term_wl(t, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL, COEF_T3_WL, COEF_T4_WL,
                                   COEF_T5_WL) > COEF_WL ||

@@ -18,6 +18,9 @@
 // cfg port: MATERIAL words after ambient/spec_colour (cfg_table_i = 0, cfg_addr_i = 0 for the
 // exponent, 1.. for unit_params[0..]) and TABLE entries (cfg_table_i = 1, cfg_addr_i = base + i).
 // The exponent word resets the unit parameters to their defaults (empty unit_params).
+// MATERIAL_BUFFERS = 2: the unit's per-material registers have two banks; cfg_bank_i is the bank
+// MATERIAL words write, bank_i the bank of the pixel on series_i (it travels with the pixel
+// through the unit's stages). Schlick has no per-material state.
 module specular_slot #(
   // Each unit's parameters are unused when another unit is selected.
   // verilator lint_off UNUSEDPARAM
@@ -29,6 +32,7 @@ module specular_slot #(
   parameter int SPECULAR_OUT_IWL      = 1,
   parameter int SPECULAR_OUT_QUANT    = 0,  // Quantization: 0 truncate, 1 round to nearest
   parameter int SPECULAR_OUT_OVERFLOW = 0,  // Overflow: 0 saturate, 1 wrap
+  parameter int MATERIAL_BUFFERS      = 1,  // material banks, 1 or 2
   // LutConfig
   parameter int LUT_ADDR_BITS         = 10,
   parameter int LUT_ENTRY_BITS        = 8,
@@ -49,7 +53,9 @@ module specular_slot #(
   input  logic                                  rst_ni,
   input  logic                                  en_i,
   input  logic [SERIES_PER_LIGHT*SERIES_WL-1:0] series_i,
+  input  logic                                  bank_i,       // material bank of series_i
   input  logic                                  cfg_valid_i,
+  input  logic                                  cfg_bank_i,   // material bank cfg writes
   input  logic                                  cfg_table_i,  // 1: TABLE entry, 0: MATERIAL word
   input  logic [15:0]                           cfg_addr_i,   // table address / material index
   input  logic [63:0]                           cfg_data_i,
@@ -61,10 +67,11 @@ module specular_slot #(
       .ADDR_BITS(LUT_ADDR_BITS), .ENTRY_BITS(LUT_ENTRY_BITS), .INTERP_BITS(LUT_INTERP_BITS),
       .INDEX(LUT_INDEX), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
       .OUT_WL(SPECULAR_OUT_WL), .OUT_IWL(SPECULAR_OUT_IWL), .OUT_QUANT(SPECULAR_OUT_QUANT),
-      .OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW), .CFG_ADDR_W(16), .TABLE_FILE(LUT_TABLE_FILE)
+      .OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW), .CFG_ADDR_W(16), .BANKS(MATERIAL_BUFFERS),
+      .TABLE_FILE(LUT_TABLE_FILE)
     ) u_lut (
-      .clk_i, .rst_ni, .en_i, .series_i(series_i[SERIES_WL-1:0]),
-      .cfg_valid_i, .cfg_table_i, .cfg_addr_i, .cfg_data_i, .spec_o
+      .clk_i, .rst_ni, .en_i, .series_i(series_i[SERIES_WL-1:0]), .bank_i,
+      .cfg_valid_i, .cfg_bank_i, .cfg_table_i, .cfg_addr_i, .cfg_data_i, .spec_o
     );
     assign busy_o = 1'b0;
     if (SERIES_PER_LIGHT > 1) begin : g_unused_series
@@ -83,20 +90,21 @@ module specular_slot #(
       .clk_i, .rst_ni, .en_i, .num_i(series_i[SERIES_WL-1:0]),
       .den_i(series_i[SERIES_PER_LIGHT*SERIES_WL-1 -: SERIES_WL]), .spec_o, .busy_o
     );
-    // No per-material parameters and no table: the cfg port is not used.
+    // No per-material parameters and no table: the cfg port and the banks are not used.
     // verilator lint_off UNUSEDSIGNAL
     logic unused_cfg;
-    assign unused_cfg = cfg_valid_i ^ cfg_table_i ^ (^cfg_addr_i) ^ (^cfg_data_i);
+    assign unused_cfg = cfg_valid_i ^ cfg_table_i ^ (^cfg_addr_i) ^ (^cfg_data_i) ^ bank_i ^
+                        cfg_bank_i;
     // verilator lint_on UNUSEDSIGNAL
   end else if (SPECULAR_KIND == shade_pkg::SpecWpow) begin : g_wpow
     wpow_unit #(
       .MAX_M(WPOW_MAX_M), .BASE_BITS(WPOW_BASE_BITS), .TIMING(WPOW_TIMING),
       .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
       .OUT_WL(SPECULAR_OUT_WL), .OUT_IWL(SPECULAR_OUT_IWL), .OUT_QUANT(SPECULAR_OUT_QUANT),
-      .OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW), .CFG_ADDR_W(16)
+      .OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW), .CFG_ADDR_W(16), .BANKS(MATERIAL_BUFFERS)
     ) u_wpow (
-      .clk_i, .rst_ni, .en_i, .series_i(series_i[SERIES_WL-1:0]),
-      .cfg_valid_i, .cfg_table_i, .cfg_addr_i, .cfg_data_i, .spec_o, .busy_o
+      .clk_i, .rst_ni, .en_i, .series_i(series_i[SERIES_WL-1:0]), .bank_i,
+      .cfg_valid_i, .cfg_bank_i, .cfg_table_i, .cfg_addr_i, .cfg_data_i, .spec_o, .busy_o
     );
     if (SERIES_PER_LIGHT > 1) begin : g_unused_series
       // verilator lint_off UNUSEDSIGNAL
@@ -108,7 +116,7 @@ module specular_slot #(
     // verilator lint_off UNUSEDSIGNAL
     logic unused_inputs;
     assign unused_inputs = clk_i ^ rst_ni ^ en_i ^ (^series_i) ^ cfg_valid_i ^ cfg_table_i ^
-                           (^cfg_addr_i) ^ (^cfg_data_i);
+                           (^cfg_addr_i) ^ (^cfg_data_i) ^ bank_i ^ cfg_bank_i;
     // verilator lint_on UNUSEDSIGNAL
     assign spec_o = '0;
     assign busy_o = 1'b0;
@@ -117,11 +125,13 @@ module specular_slot #(
 `ifndef SYNTHESIS
   initial begin
     if (SPECULAR_KIND < shade_pkg::SpecIdeal || SPECULAR_KIND > shade_pkg::SpecWpow)
-      $fatal(1, "specular_slot: SPECULAR_KIND %0d is not a unit (0 ideal .. 3 wpow)", SPECULAR_KIND);
+      $fatal(1, "specular_slot: SPECULAR_KIND %0d is not a unit (0 ideal .. 3 wpow)",
+             SPECULAR_KIND);
     if (SPECULAR_KIND == shade_pkg::SpecSchlick && SERIES_PER_LIGHT != 2)
       $fatal(1, "specular_slot: schlick needs SERIES_PER_LIGHT = 2 (numerator, denominator)");
     if (SPECULAR_KIND == shade_pkg::SpecLut && LUT_ADDR_BITS > 16)
-      $fatal(1, "specular_slot: LUT_ADDR_BITS %0d > 16: cfg_addr_i cannot reach every entry", LUT_ADDR_BITS);
+      $fatal(1, "specular_slot: LUT_ADDR_BITS %0d > 16: cfg_addr_i cannot reach every entry",
+             LUT_ADDR_BITS);
   end
 `endif
 endmodule

@@ -27,6 +27,9 @@
 //   cfg_addr_i 0 = exponent word: resets shift = 0, squarings = K (empty unit_params);
 //   1 = unit_params[0] = shift (0..fs); 2 = unit_params[1] = squarings s (0..K).
 // Out-of-range values are the model's error; the hardware takes the low bits.
+// Material banks (BANKS = 2, shade_unit's MATERIAL_BUFFERS): shift and squarings are doubled;
+// MATERIAL words write bank cfg_bank_i. The bank tag bank_i of the pixel on series_i travels
+// with it through the unit's own stages, so each stage reads the bank of the pixel it holds.
 module wpow_unit #(
   parameter int MAX_M        = 16,
   parameter int BASE_BITS    = 16,
@@ -37,13 +40,16 @@ module wpow_unit #(
   parameter int OUT_IWL      = 1,
   parameter int OUT_QUANT    = 0,  // Quantization: 0 truncate, 1 round to nearest
   parameter int OUT_OVERFLOW = 0,  // Overflow: 0 saturate, 1 wrap
-  parameter int CFG_ADDR_W   = 16
+  parameter int CFG_ADDR_W   = 16,
+  parameter int BANKS        = 1   // material banks, 1 or 2
 ) (
   input  logic                  clk_i,
   input  logic                  rst_ni,
   input  logic                  en_i,
   input  logic [SERIES_WL-1:0]  series_i,
+  input  logic                  bank_i,      // material bank of the pixel on series_i
   input  logic                  cfg_valid_i,
+  input  logic                  cfg_bank_i,  // material bank the MATERIAL words write
   input  logic                  cfg_table_i,
   input  logic [CFG_ADDR_W-1:0] cfg_addr_i,
   // verilator lint_off UNUSEDSIGNAL
@@ -65,21 +71,35 @@ module wpow_unit #(
   localparam int OutRndW = BW + 2 - OutDrop;
   localparam logic [BW-1:0] One = BW'(1) << B;
 
-  // ---- per-material parameters --------------------------------------------------------------
-  logic [ShiftW-1:0] shift_q;
-  logic [SqW-1:0]    sq_q;
+  // ---- per-material parameters, per bank ----------------------------------------------------
+  logic [ShiftW-1:0] shift_q [BANKS];
+  logic [SqW-1:0]    sq_q [BANKS];
+  logic              in_bank, wr_bank;  // the bank of the pixel on series_i; the bank written
+  if (BANKS > 1) begin : g_banks
+    assign in_bank = bank_i;
+    assign wr_bank = cfg_bank_i;
+  end else begin : g_one_bank
+    // verilator lint_off UNUSEDSIGNAL
+    logic unused_bank;  // one bank: the tags are always 0
+    assign unused_bank = bank_i ^ cfg_bank_i;
+    // verilator lint_on UNUSEDSIGNAL
+    assign in_bank = 1'b0;
+    assign wr_bank = 1'b0;
+  end
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      shift_q <= '0;
-      sq_q    <= SqW'(K);
+      for (int b = 0; b < BANKS; b++) begin
+        shift_q[b] <= '0;
+        sq_q[b]    <= SqW'(K);
+      end
     end else if (cfg_valid_i && !cfg_table_i) begin
       if (cfg_addr_i == CFG_ADDR_W'(0)) begin
-        shift_q <= '0;
-        sq_q    <= SqW'(K);
+        shift_q[wr_bank] <= '0;
+        sq_q[wr_bank]    <= SqW'(K);
       end else if (cfg_addr_i == CFG_ADDR_W'(1)) begin
-        shift_q <= cfg_data_i[ShiftW-1:0];
+        shift_q[wr_bank] <= cfg_data_i[ShiftW-1:0];
       end else if (cfg_addr_i == CFG_ADDR_W'(2)) begin
-        sq_q <= cfg_data_i[SqW-1:0];
+        sq_q[wr_bank] <= cfg_data_i[SqW-1:0];
       end
     end
   end
@@ -97,33 +117,43 @@ module wpow_unit #(
   logic signed [XW-1:0]       shifted;
   logic signed [BaseRndW-1:0] base_rnd;
   logic [BW-1:0]              base_sat, base_d;
-  assign shifted = {{Fs{series_i[SERIES_WL-1]}}, series_i} << shift_q;
-  fixed_round #(.IN_W(XW), .DROP(BaseDrop), .ROUND(0)) u_base_round (.in_i(shifted), .out_o(base_rnd));
-  fixed_sat #(.IN_W(BaseRndW), .OUT_W(BW), .OUT_SIGNED(0), .WRAP(0)) u_base_sat (.in_i(base_rnd), .out_o(base_sat));
+  assign shifted = {{Fs{series_i[SERIES_WL-1]}}, series_i} << shift_q[in_bank];
+  fixed_round #(.IN_W(XW), .DROP(BaseDrop), .ROUND(0))
+    u_base_round (.in_i(shifted), .out_o(base_rnd));
+  fixed_sat #(.IN_W(BaseRndW), .OUT_W(BW), .OUT_SIGNED(0), .WRAP(0))
+    u_base_sat (.in_i(base_rnd), .out_o(base_sat));
   assign base_d = base_sat > One ? One : base_sat;
 
   // ---- 1..K. SQUARE ----------------------------------------------------------------------------
   logic [BW-1:0] b_out;
 
   if (TIMING == 0 || K == 0) begin : g_pipelined
-    // Packed: Icarus 11 left the last stage of this unpacked array X (every pipelined W_m
+    // Packed: Icarus 11 left the last stage of these unpacked arrays X (every pipelined W_m
     // colour X), as it did schlick_divider's.
-    logic [K:0][BW-1:0] b_q;  // b_q[0]: base; b_q[k]: after stage k
+    logic [K:0][BW-1:0] b_q;   // b_q[0]: base; b_q[k]: after stage k
+    logic [K:0]         bk_q;  // the bank of the pixel in b_q[k]
     always_ff @(posedge clk_i) begin
       if (en_i) begin
-        b_q[0] <= base_d;
+        b_q[0]  <= base_d;
+        bk_q[0] <= in_bank;
         for (int k = 1; k <= K; k++) begin
           // Stage k squares iff k > K - s, i.e. s >= K - k + 1.
-          b_q[k] <= sq_q >= SqW'(K - k + 1) ? square(b_q[k-1]) : b_q[k-1];
+          b_q[k]  <= sq_q[bk_q[k-1]] >= SqW'(K - k + 1) ? square(b_q[k-1]) : b_q[k-1];
+          bk_q[k] <= bk_q[k-1];
         end
       end
     end
+    // verilator lint_off UNUSEDSIGNAL
+    logic unused_last_bank;  // the last stage's bank: nothing after it reads a parameter
+    assign unused_last_bank = bk_q[K];
+    // verilator lint_on UNUSEDSIGNAL
     assign b_out  = b_q[K];
     assign busy_o = 1'b0;
   end else begin : g_iterative
     localparam int CntW = $clog2(K + 1);
     logic [CntW-1:0] cnt_q;  // steps still to do; the step done with cnt_q = c squares iff c <= s
     logic [BW-1:0]   w_q;
+    logic            wb_q;  // the bank of the pixel in w_q
     assign busy_o = cnt_q != '0;
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni)               cnt_q <= '0;
@@ -131,8 +161,12 @@ module wpow_unit #(
       else if (busy_o)           cnt_q <= cnt_q - CntW'(1);
     end
     always_ff @(posedge clk_i) begin
-      if (en_i && !busy_o)                  w_q <= base_d;
-      else if (busy_o && cnt_q <= sq_q)     w_q <= square(w_q);
+      if (en_i && !busy_o) begin
+        w_q  <= base_d;
+        wb_q <= in_bank;
+      end else if (busy_o && cnt_q <= sq_q[wb_q]) begin
+        w_q <= square(w_q);
+      end
     end
     assign b_out = w_q;
   end
@@ -147,7 +181,9 @@ module wpow_unit #(
 `ifndef SYNTHESIS
   initial begin
     if (Fs < 1) $fatal(1, "wpow_unit: the series format needs at least one fraction bit");
-    if (MAX_M < 1 || (1 << K) != MAX_M) $fatal(1, "wpow_unit: MAX_M must be a power of two, got %0d", MAX_M);
+    if (MAX_M < 1 || (1 << K) != MAX_M)
+      $fatal(1, "wpow_unit: MAX_M must be a power of two, got %0d", MAX_M);
+    if (BANKS != 1 && BANKS != 2) $fatal(1, "wpow_unit: BANKS %0d is not 1 or 2", BANKS);
   end
 `endif
 endmodule

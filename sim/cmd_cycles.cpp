@@ -31,6 +31,7 @@ struct CyclesOptions {
   int port_words = 0;  // 0: not given (1, or the --config file's)
   int tri_queue = 0;
   int lanes = 0;
+  int material_buffers = 0;
   uint64_t seed = 1;
   int gap_pct = 0, max_gap = 1, stall_pct = 0;
   std::string json_path;
@@ -131,6 +132,7 @@ int run_cycles(const CyclesOptions& o) {
   if (o.port_words > 0) fo.base.port_words = o.port_words;
   if (o.tri_queue > 0) fo.base.tri_queue = o.tri_queue;
   if (o.lanes > 0) fo.base.lanes = o.lanes;
+  if (o.material_buffers > 0) fo.base.material_buffers = o.material_buffers;
   if (!o.specular.empty()) fo.specular_override = parse_specular_unit(o.specular, "--specular");
   if (o.channels > 0 || o.lights > 0) {
     // A fixed unit, as built: the scene must fit it.
@@ -212,7 +214,8 @@ int run_cycles(const CyclesOptions& o) {
             << ", " << timing.interval << " cycle(s) per pixel\n"
             << "command port " << unit_timing.port_words << " word(s) per beat, triangle queue "
             << unit_timing.tri_queue << " (span queue " << unit_timing.span_queue() << "), "
-            << unit_timing.lanes << " pixel lane(s)\n"
+            << unit_timing.lanes << " pixel lane(s), " << unit_timing.material_buffers
+            << " material buffer(s)\n"
             << "stimulus     seed " << o.seed << ", input gaps " << o.gap_pct << "% (max " << o.max_gap
             << "), back-pressure " << o.stall_pct << "%\n"
             << "stream       " << words.size() << " words: " << frame.encoded.stats.triangles << " tri, "
@@ -274,6 +277,7 @@ int run_cycles(const CyclesOptions& o) {
                                             {"total", 1 + layout.words},
                                             {"diffuse_bits", diffuse_bits}, {"specular_bits", specular_bits},
                                             {"term_bits", term_bits_json}}},
+                        {"material_buffers", unit_timing.material_buffers},
                         {"queue_hidden_cycles", queue_hid},
                         {"cycles_tri_queue_1", cycles_one_bank},
                         {"pixels", run.pixels},
@@ -327,6 +331,11 @@ void register_cycles(CLI::App& app, int& exit_code) {
                   "pixel lanes: pixels of one span per clock (k-step forward differences, lane j at\n"
                   "x0 + j; default 1, or the --config file's; given, it overrides the file's)")
       ->check(CLI::IsMember({1, 2, 4}));
+  sub->add_option("--material-buffers", o->material_buffers,
+                  "material buffers: 2 loads a MATERIAL into the bank no span in flight reads, so it\n"
+                  "does not drain the datapath (a TABLE still does); default 1, or the --config file's;\n"
+                  "given, it overrides the file's")
+      ->check(CLI::IsMember({1, 2}));
   sub->add_option("--seed", o->seed, "stimulus seed")->capture_default_str();
   sub->add_option("--gap-pct", o->gap_pct, "chance of idle cycles before a command word")->check(CLI::Range(0, 100))->capture_default_str();
   sub->add_option("--max-gap", o->max_gap, "longest idle gap in cycles")->check(CLI::Range(1, 100000))->capture_default_str();

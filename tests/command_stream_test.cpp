@@ -148,10 +148,24 @@ TEST(CommandStream, ThroughputStructureRoundTripsAndDefaults) {
   c.port_words = 4;
   c.tri_queue = 3;
   c.lanes = 4;
+  c.material_buffers = 2;
   const UnitConfig back = config_from_json(config_to_json(c), "t: ");
   EXPECT_EQ(back.port_words, 4);
   EXPECT_EQ(back.tri_queue, 3);
   EXPECT_EQ(back.lanes, 4);
+  EXPECT_EQ(back.material_buffers, 2);
+  // Written only when not 1, so a one-buffer unit's stream header is what it was.
+  EXPECT_EQ(config_to_json(UnitConfig{}).find("material_buffers"), std::string::npos);
+  for (const char* bad : {"0", "3", "1.5"}) {
+    std::string json = config_to_json(UnitConfig{});
+    json.insert(1, std::string(R"("material_buffers":)") + bad + ",");
+    try {
+      config_from_json(json, "bad: ");
+      ADD_FAILURE() << "accepted material_buffers " << bad;
+    } catch (const CommandStreamError& e) {
+      EXPECT_NE(std::string(e.what()).find("material_buffers"), std::string::npos) << e.what();
+    }
+  }
   const UnitConfig old = config_from_json(
       R"({"channels":1,"lights":1,"xy_bits":12,"coef":"s4.32:rnd","series":"s4.28:wrap",)"
       R"("spec_colour":"u1.12:rnd","out_bits":8,"specular":{"kind":"ideal","out":"u1.16"}})",
@@ -159,6 +173,7 @@ TEST(CommandStream, ThroughputStructureRoundTripsAndDefaults) {
   EXPECT_EQ(old.port_words, 1);
   EXPECT_EQ(old.tri_queue, 1);
   EXPECT_EQ(old.lanes, 1);
+  EXPECT_EQ(old.material_buffers, 1);
   for (const char* bad : {R"("port_words":3)", R"("port_words":2.5)", R"("tri_queue":0)", R"("tri_queue":9)",
                           R"("lanes":3)", R"("lanes":0)", R"("lanes":8)"}) {
     std::string json = config_to_json(UnitConfig{});

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <stdexcept>
 #include <string>
 
 namespace shadesim {
@@ -66,6 +67,20 @@ TEST(RtlParameters, EachUnitGetsOnlyItsOwnParameters) {
   EXPECT_EQ(m.at("WPOW_TIMING"), 1);
   EXPECT_EQ(m.at("WPOW_BASE_BITS"), 12);
   EXPECT_EQ(m.count("SCHLICK_TIMING"), 0u);
+}
+
+TEST(RtlParameters, MaterialBuffersMapOnlyWhenTwo) {
+  UnitConfig u;
+  EXPECT_EQ(as_map(shade_unit_parameters(u)).count("MATERIAL_BUFFERS"), 0u);  // RTL default: 1
+  u.material_buffers = 2;
+  EXPECT_EQ(as_map(shade_unit_parameters(u)).at("MATERIAL_BUFFERS"), 2);
+  u.material_buffers = 3;
+  try {
+    shade_unit_parameters(u);
+    FAIL() << "material_buffers 3 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("material_buffers must be 1 or 2, got 3"), std::string::npos) << e.what();
+  }
 }
 
 TEST(RtlParameters, NarrowedCoefficientTermsMapToTheirWidths) {

@@ -59,6 +59,7 @@ module tb_shade_unit #(
   parameter int WPOW_MAX_M            = 16,
   parameter int WPOW_BASE_BITS        = 16,
   parameter int WPOW_TIMING           = 0,
+  parameter int MATERIAL_BUFFERS = 1,
   parameter int FAULT_LSB_ROW    = -1,
   parameter int FAULT_STALL_ROW  = -1,
   parameter int FAULT_HANG_ROW   = -1,
@@ -102,6 +103,7 @@ module tb_shade_unit #(
     .SCHLICK_QUOTIENT_BITS(SCHLICK_QUOTIENT_BITS), .SCHLICK_OPERAND_BITS(SCHLICK_OPERAND_BITS),
     .SCHLICK_TIMING(SCHLICK_TIMING),
     .WPOW_MAX_M(WPOW_MAX_M), .WPOW_BASE_BITS(WPOW_BASE_BITS), .WPOW_TIMING(WPOW_TIMING),
+    .MATERIAL_BUFFERS(MATERIAL_BUFFERS),
     .FAULT_LSB_ROW(FAULT_LSB_ROW), .FAULT_STALL_ROW(FAULT_STALL_ROW),
     .FAULT_HANG_ROW(FAULT_HANG_ROW)
   ) dut (

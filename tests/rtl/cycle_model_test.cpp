@@ -77,6 +77,48 @@ TEST(CycleModel, MaterialWaitsForEmptyDatapath) {
   EXPECT_EQ(r.scanlines[1].cycle, 18u + 4u + 1u);
 }
 
+// Two material buffers: the MATERIAL switches to the bank no span reads, so the drain is gone;
+// switching back waits for the first bank's span, and a TABLE still waits for the empty datapath.
+TEST(CycleModel, TwoMaterialBuffersRemoveTheDrain) {
+  MaterialCmd m;
+  m.ambient = {0};
+  m.spec_colour = {0};
+  m.exponent = 1;  // header count 3
+  CycleConfig two;
+  two.material_buffers = 2;
+  // SPAN 0 (bank 0) on 0, its pixels leave on 5..14. MATERIAL (to bank 1) on 1, payload 2..4,
+  // SPAN 1 on 5: its pixel right behind span 0's, on 15.
+  CycleRun r = CycleModel::run(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{}, two);
+  ASSERT_EQ(r.scanlines.size(), 2u);
+  EXPECT_EQ(r.scanlines[0].cycle, 14u);
+  EXPECT_EQ(r.scanlines[1].cycle, 15u);
+  EXPECT_EQ(r.cycles, 16u);
+  // A second MATERIAL (back to bank 0) waits 6..13: span 0's last pixel leaves the slot on the
+  // edge of 13. Accepted on 14, payload 15..17, SPAN 2 on 18, its pixel on 23 (as one buffer).
+  r = CycleModel::run(words({span(0, 0, 10, true), m, span(1, 0, 1, true), m, span(2, 0, 1, true)}), Stimulus{},
+                      two);
+  ASSERT_EQ(r.scanlines.size(), 3u);
+  EXPECT_EQ(r.scanlines[1].cycle, 15u);
+  EXPECT_EQ(r.scanlines[2].cycle, 23u);
+  // MATERIAL on 1 (payload 2..4); the TABLE header waits 5..13 for the empty datapath, is
+  // accepted on 14, its 2 words take 15, 16; SPAN 1 on 17, its pixel on 22.
+  TableCmd t;
+  t.base = 0;
+  t.entries.assign(2, 0);
+  r = CycleModel::run(words({span(0, 0, 10, true), m, t, span(1, 0, 1, true)}), Stimulus{}, two);
+  ASSERT_EQ(r.scanlines.size(), 2u);
+  EXPECT_EQ(r.scanlines[1].cycle, 22u);
+  // With a slot of latency 3 the first case's pixel still follows span 0's without a bubble.
+  CycleConfig slow(SlotTiming{3, 1});
+  slow.material_buffers = 2;
+  r = CycleModel::run(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{}, slow);
+  ASSERT_EQ(r.scanlines.size(), 2u);
+  EXPECT_EQ(r.scanlines[1].cycle, r.scanlines[0].cycle + 1);
+  CycleConfig three;
+  three.material_buffers = 3;
+  EXPECT_THROW(CycleModel{three}, std::invalid_argument);
+}
+
 TEST(CycleModel, TrianglePayloadTakesOneCyclePerWord) {
   TriangleCmd t;
   t.coef.assign(12, 0);
