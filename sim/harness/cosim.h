@@ -12,7 +12,7 @@
 #include "model/cycle_model.h"
 #include "sim/harness/rtl_config.h"
 #include "sim/harness/scoreboard.h"
-#include "model/stimulus.h"
+#include "sim/harness/stimulus.h"
 #include "sim/harness/watchdog.h"
 
 namespace shadesim {
