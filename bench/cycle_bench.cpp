@@ -16,6 +16,7 @@
 #include "model/command_stream.h"
 #include "model/cycle_estimate.h"
 #include "model/cycle_model.h"
+#include "sim/harness/cycle_run.h"
 
 namespace shadesim {
 namespace {
@@ -87,7 +88,7 @@ void BM_CycleModel(benchmark::State& state) {
   const CycleConfig unit = CycleConfig::of(s.config);
   uint64_t cycles = 0;
   for (auto _ : state) {
-    const CycleRun r = CycleModel::run(s.words, Stimulus{}, unit);
+    const CycleRun r = run_cycle_model(s.words, Stimulus{}, unit);
     cycles = r.cycles;
     benchmark::DoNotOptimize(r.scanlines.data());
   }

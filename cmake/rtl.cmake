@@ -200,10 +200,6 @@ add_test(NAME rtl_cosim_catches_hang_fault
 set_tests_properties(rtl_cosim_catches_lsb_fault rtl_cosim_catches_stall_fault rtl_cosim_catches_hang_fault
   PROPERTIES LABELS rtl)
 
-# Cycle model on its own, against closed forms.
-add_executable(rtl_cycle_model_test ${CMAKE_SOURCE_DIR}/tests/rtl/cycle_model_test.cpp)
-target_link_libraries(rtl_cycle_model_test PRIVATE shadesim_harness GTest::gtest_main)
-add_test(NAME rtl_cycle_model_test COMMAND rtl_cycle_model_test)
 # The scoreboard's lane checks (a beat the model did not expect is a mismatch).
 add_executable(rtl_scoreboard_lanes_test ${CMAKE_SOURCE_DIR}/tests/rtl/scoreboard_lanes_test.cpp)
 target_link_libraries(rtl_scoreboard_lanes_test PRIVATE shadesim_harness GTest::gtest_main)

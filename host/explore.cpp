@@ -13,6 +13,7 @@
 #include "host/encode.h"
 #include "host/specular_setup.h"
 #include "model/command_stream.h"
+#include "model/cycle_estimate.h"
 #include "model/cycle_model.h"
 #include "model/shade_unit.h"
 #include "model/specular_units.h"
@@ -78,7 +79,8 @@ PointFigures evaluate_point(const ExploreScenes& scenes, const UnitConfig& confi
                                               f.scene.height, config.channels, config.out_bits)
                              .stats;
     // The unit's whole timing: its slot, port width, triangle queue and pixel lanes.
-    const CycleRun run = CycleModel::run(enc.stream.encode(), Stimulus{}, CycleConfig::of(config));
+    // (CycleEstimate: exactly the clocked CycleModel's figures with no gaps or back-pressure.)
+    const CycleEstimateRun run = CycleEstimate(CycleConfig::of(config)).run(enc.stream.encode());
     p.cycles += run.cycles;
     p.pixels += run.pixels;
 

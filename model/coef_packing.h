@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "model/fixed_point.h"
 #include "model/unit_config.h"
 
 namespace shadesim {
@@ -54,14 +55,14 @@ struct CoefLayout {
     return out;
   }
 
-  // Payload words -> raw coefficients, each sign-extended from its width.
+  // Payload words -> raw coefficients, each sign-extended from its width (the wrap of a signed
+  // format of that word length: the field's two's-complement bits read as a number).
   std::vector<int64_t> unpack(const uint64_t* payload) const {
     std::vector<int64_t> out;
     out.reserve(slots.size());
     for (const CoefSlot& s : slots) {
-      const uint64_t field = (payload[s.word] >> s.lsb) & mask(s.bits);
-      const uint64_t sign = uint64_t{1} << (s.bits - 1);
-      out.push_back(static_cast<int64_t>((field ^ sign) - sign));
+      const FixedFormat field_format{s.bits, s.bits, true, Quantization::kTruncate, Overflow::kWrap};
+      out.push_back(field_format.wrap(payload[s.word] >> s.lsb));
     }
     return out;
   }

@@ -1,6 +1,6 @@
 // CycleEstimate: CycleModel's results for a whole stream with no input gaps and no
 // back-pressure, computed in closed form per decoder item and per span instead of clock by clock.
-// Exactly equal to CycleModel::run(words, Stimulus{}, unit) in cycles, pixels, words, beats and
+// Exactly equal to run_cycle_model(words, Stimulus{}, unit) (sim/harness/cycle_run.h) in cycles, pixels, words, beats and
 // every scanline's completion cycle (tests/cycle_estimate_test.cpp checks it), and on request
 // its breakdown.
 //

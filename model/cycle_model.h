@@ -1,6 +1,7 @@
 // CycleModel: the shading unit's control, clock by clock, in plain C++ — the timing of
 // rtl/shade_unit.sv without its datapath. Usable on its own (fast cycle estimates and a
-// breakdown of where the cycles went: run()) or in lockstep with the RTL (clock()), where every
+// breakdown of where the cycles went: run_cycle_model in sim/harness/cycle_run.h) or in
+// lockstep with the RTL (clock()), where every
 // scanline's completion cycle must match exactly.
 //
 // Mirrored structure (names as in the RTL): a command decoder (a beat of port_words words taken
@@ -23,7 +24,6 @@
 
 #include "model/command_word.h"
 #include "model/specular_config.h"
-#include "model/stimulus.h"
 #include "model/unit_config.h"
 
 namespace shadesim {
@@ -151,9 +151,8 @@ class CycleModel {
   // (a span queue adds its register).
   int span_latency() const { return 5 + (queued() ? 1 : 0) + timing_.latency; }
 
-  // Runs a whole stream with the stimulus's gaps and back-pressure.
-  static CycleRun run(const std::vector<uint64_t>& words, const Stimulus& stim,
-                      CycleConfig timing = CycleConfig{});
+  // A whole stream under a testbench's gaps and back-pressure: run_cycle_model
+  // (sim/harness/cycle_run.h); with none, CycleEstimate (model/cycle_estimate.h).
 
  private:
   struct Span {

@@ -33,16 +33,7 @@ int64_t FixedFormat::quantize(Int128 raw, int src_frac) const {
   } else {
     v = shift_left(raw, -drop);
   }
-  const Int128 hi = raw_max();
-  const Int128 lo = raw_min();
-  if (v >= lo && v <= hi) return static_cast<int64_t>(v);
-  if (overflow == Overflow::kSaturate) return static_cast<int64_t>(v > hi ? hi : lo);
-  // Wrap: keep the low wl bits (a mask, exact in two's complement), then sign-extend for signed
-  // formats.
-  const Int128 modulus = Int128{1} << wl;
-  Int128 w = v & (modulus - 1);
-  if (is_signed && w > hi) w -= modulus;
-  return static_cast<int64_t>(w);
+  return fit(v);
 }
 
 int64_t FixedFormat::from_double(double x) const {

@@ -30,6 +30,35 @@ enum class Overflow {
 
 using Int128 = __int128;
 
+// A format's overflow rule with its constants worked out once (FixedFormat::raw_overflow()), for
+// a loop over many values of one format (SeriesBank); FixedFormat::wrap / saturate / fit are
+// these. On a raw value already at the format's fraction bits:
+//   wrap      keep the low wl bits, two's complement: ((raw + 2^(wl-1)) mod 2^wl) - 2^(wl-1)
+//             for signed formats, raw mod 2^wl for unsigned ones (a plain adder's carry-out
+//             dropped). Branch-free, so a loop of them vectorizes.
+//   saturate  clamp to [min, max]
+//   fit       the format's own rule
+struct RawOverflow {
+  uint64_t offset = 0;  // 2^(wl-1) for signed formats, 0 for unsigned ones
+  uint64_t mask = 0;    // 2^wl - 1
+  int64_t min = 0, max = 0;
+  bool wraps = false;
+
+  template <typename Int>
+  constexpr int64_t wrap(Int raw) const {
+    return static_cast<int64_t>((static_cast<uint64_t>(raw) + offset) & mask) -
+           static_cast<int64_t>(offset);
+  }
+  template <typename Int>
+  constexpr int64_t saturate(Int raw) const {
+    if (raw > static_cast<Int>(max)) return max;
+    if (raw < static_cast<Int>(min)) return min;
+    return static_cast<int64_t>(raw);
+  }
+  template <typename Int>
+  constexpr int64_t fit(Int raw) const { return wraps ? wrap(raw) : saturate(raw); }
+};
+
 struct FixedFormat {
   int wl = 32;
   int iwl = 4;
@@ -43,6 +72,19 @@ struct FixedFormat {
     return is_signed ? (int64_t{1} << (wl - 1)) - 1 : (int64_t{1} << wl) - 1;
   }
   constexpr int64_t raw_min() const { return is_signed ? -(int64_t{1} << (wl - 1)) : 0; }
+
+  // The overflow rules alone, on a raw value already at this format's fraction bits (nothing to
+  // drop): inline, for the per-pixel path. quantize(raw, frac_bits()) == fit(raw). `Int` is
+  // int64_t or Int128. See RawOverflow.
+  constexpr RawOverflow raw_overflow() const;
+  template <typename Int>
+  constexpr int64_t wrap(Int raw) const;
+  template <typename Int>
+  constexpr int64_t saturate(Int raw) const;
+  template <typename Int>
+  constexpr int64_t fit(Int raw) const;
+  // Whether `raw` is representable (fit leaves it unchanged).
+  constexpr bool holds(int64_t raw) const { return raw >= raw_min() && raw <= raw_max(); }
 
   // Throws std::invalid_argument with a message naming `what` when the format is unusable.
   void validate(const std::string& what) const;
@@ -61,6 +103,17 @@ struct FixedFormat {
   // with rounding and overflow suffixes when not the defaults: "s4.28:rnd:wrap".
   std::string to_string() const;
 };
+
+constexpr RawOverflow FixedFormat::raw_overflow() const {
+  return {is_signed ? uint64_t{1} << (wl - 1) : 0, ~uint64_t{0} >> (64 - wl), raw_min(), raw_max(),
+          overflow == Overflow::kWrap};
+}
+template <typename Int>
+constexpr int64_t FixedFormat::wrap(Int raw) const { return raw_overflow().wrap(raw); }
+template <typename Int>
+constexpr int64_t FixedFormat::saturate(Int raw) const { return raw_overflow().saturate(raw); }
+template <typename Int>
+constexpr int64_t FixedFormat::fit(Int raw) const { return raw_overflow().fit(raw); }
 
 // Parse "s4.28", "u1.16", "s4.28:rnd", "u1.16:trn:wrap". Throws std::invalid_argument naming
 // `what` and the text on malformed input.

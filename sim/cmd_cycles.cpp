@@ -15,6 +15,7 @@
 #include "model/cycle_estimate.h"
 #include "model/cycle_model.h"
 #include "sim/commands.h"
+#include "sim/harness/cycle_run.h"
 #include "model/coef_packing.h"
 #include "sim/config_option.h"
 #include "sim/width_options.h"
@@ -166,7 +167,7 @@ int run_cycles(const CyclesOptions& o) {
   double model_s = 0;
   if (clocked) {
     const auto t2 = std::chrono::steady_clock::now();
-    run = CycleModel::run(words, stim, unit_timing);
+    run = run_cycle_model(words, stim, unit_timing);
     model_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t2).count();
     if (no_stimulus) {
       const std::string diff = disagreement(est, run);
@@ -188,7 +189,7 @@ int run_cycles(const CyclesOptions& o) {
   const uint64_t cycles_one_bank =
       unit_timing.tri_queue == 1 ? run.cycles
       : no_stimulus              ? CycleEstimate(one_bank).run(words).cycles
-                                 : CycleModel::run(words, stim, one_bank).cycles;
+                                 : run_cycle_model(words, stim, one_bank).cycles;
   const int64_t queue_hid = static_cast<int64_t>(cycles_one_bank) - static_cast<int64_t>(run.cycles);
   const TriangleSummary tris(est.triangles, o.worst);
   // Words per triangle by series (model/command_stream.h: a header, then T0..T5 per series).

@@ -1,5 +1,5 @@
-// CycleEstimate (closed form) against CycleModel::run (clock by clock, the spec) with no gaps and
-// no back-pressure: cycles, pixels, words, beats and every scanline's completion cycle equal, on
+// CycleEstimate (closed form) against run_cycle_model (the clocked CycleModel, the spec) with no
+// gaps and no back-pressure: cycles, pixels, words, beats and every scanline's completion cycle equal, on
 // every shipped and hard scene (each on its own configuration, then on a grid of port widths,
 // queue depths and slot timings) and on random streams with MATERIAL and TABLE commands.
 #include <gtest/gtest.h>
@@ -13,6 +13,7 @@
 #include "host/scene_config.h"
 #include "model/cycle_estimate.h"
 #include "model/cycle_model.h"
+#include "sim/harness/cycle_run.h"
 #include "sim/harness/random_stream.h"
 
 namespace shadesim {
@@ -35,7 +36,7 @@ CycleConfig buffered(CycleConfig u, int material_buffers) {
 
 // Every figure the two share; returns the number of scanlines compared.
 size_t expect_same(const std::vector<uint64_t>& words, const CycleConfig& unit, const std::string& what) {
-  const CycleRun clocked = CycleModel::run(words, Stimulus{}, unit);
+  const CycleRun clocked = run_cycle_model(words, Stimulus{}, unit);
   const CycleEstimateRun fast = CycleEstimate(unit).run(words, true);
   const std::string where = what + " on " + describe(unit);
   EXPECT_EQ(fast.cycles, clocked.cycles) << where;

@@ -78,6 +78,46 @@ TEST(FixedPoint, QuantizeRawMatchesScFixOnShiftedIntegers) {
   }
 }
 
+TEST(FixedPoint, RawOverflowHelpersMatchScFix) {
+  // wrap / saturate / fit on a raw value already at the format's fraction bits (the per-pixel
+  // path), against sc_fix fed the exact value raw * 2^-frac: every raw in [-4 2^wl, 4 2^wl) for
+  // narrow formats, random raws up to 2^52 for wide ones (exact in a double), signed and unsigned.
+  std::mt19937_64 rng(5);
+  for (const Case c : {Case{5, 2, true}, Case{5, 2, false}, Case{8, 8, true}, Case{1, 1, false},
+                       Case{12, -3, true}, Case{32, 4, true}, Case{36, 4, true}, Case{40, 3, false}}) {
+    for (auto o : {Overflow::kSaturate, Overflow::kWrap}) {
+      const FixedFormat f{c.wl, c.iwl, c.is_signed, Quantization::kTruncate, o};
+      auto check = [&](int64_t raw) {
+        const int64_t want = sc_raw(std::ldexp(static_cast<double>(raw), -f.frac_bits()), f);
+        const FixedFormat w{f.wl, f.iwl, f.is_signed, f.quant, Overflow::kWrap};
+        const FixedFormat s{f.wl, f.iwl, f.is_signed, f.quant, Overflow::kSaturate};
+        ASSERT_EQ(f.fit(raw), want) << f.to_string() << " raw=" << raw;
+        ASSERT_EQ(f.fit(Int128{raw}), want) << f.to_string() << " raw=" << raw << " (Int128)";
+        ASSERT_EQ(o == Overflow::kWrap ? f.wrap(raw) : f.saturate(raw), want) << f.to_string();
+        ASSERT_EQ((o == Overflow::kWrap ? w : s).fit(raw), want) << f.to_string();
+        ASSERT_EQ(f.holds(raw), raw >= f.raw_min() && raw <= f.raw_max()) << f.to_string();
+      };
+      if (c.wl <= 12) {
+        for (int64_t raw = -(int64_t{4} << c.wl); raw < (int64_t{4} << c.wl); ++raw) check(raw);
+      } else {
+        std::uniform_int_distribution<int64_t> dist(-(int64_t{1} << 52), int64_t{1} << 52);
+        for (int i = 0; i < 20000; ++i) check(i % 2 ? dist(rng) : dist(rng) >> (i % 50));
+      }
+    }
+  }
+  // Int128 sums far outside int64: wrap keeps the low wl bits (closed form: the value modulo
+  // 2^wl, brought into [-2^(wl-1), 2^(wl-1))), saturate clamps.
+  const FixedFormat w{36, 4, true, Quantization::kTruncate, Overflow::kWrap};
+  const FixedFormat s{36, 4, true, Quantization::kTruncate, Overflow::kSaturate};
+  for (const Int128 big : {(Int128{1} << 100) + 12345, -(Int128{1} << 90) - 7, (Int128{3} << 70) - 1}) {
+    const Int128 m = Int128{1} << 36;
+    const Int128 low = ((big % m) + m) % m;
+    const int64_t want = static_cast<int64_t>(low >= m / 2 ? low - m : low);
+    EXPECT_EQ(w.wrap(big), want);
+    EXPECT_EQ(s.saturate(big), big > 0 ? s.raw_max() : s.raw_min());
+  }
+}
+
 TEST(FixedPoint, ExhaustiveSmallFormatAgainstClosedForm) {
   // Every 10-bit source value into a 5-bit format: closed forms for floor/round and clamp/wrap.
   for (auto q : {Quantization::kTruncate, Quantization::kRoundNearest}) {

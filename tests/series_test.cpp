@@ -1,5 +1,8 @@
 // SpanSetup + SeriesEngine against direct evaluation of the quantized quadratic, and the drift
 // bound 2^-F (1 + L(L-1)/2) of README "Checked numerical facts", on spans up to 2048 pixels.
+#define SC_INCLUDE_FX
+#include <systemc>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -111,7 +114,17 @@ TEST(Series, WrapAndSaturateFollowTheFormat) {
   EXPECT_EQ(s.value(), 127);
 }
 
-TEST(Series, BankIsBitIdenticalToSeparateEngines) {
+// The engines' adders against sc_fix (IEEE 1666) as an independent oracle of wrap and
+// saturation: v <- fit(v + d) and d <- fit(d + d2), both from the old d, for a bank of engines
+// and for single engines.
+int64_t sc_fit(int64_t raw, const FixedFormat& f) {
+  sc_dt::sc_fix v(f.wl, f.iwl, sc_dt::SC_TRN,
+                  f.overflow == Overflow::kWrap ? sc_dt::SC_WRAP : sc_dt::SC_SAT);
+  v = std::ldexp(static_cast<double>(raw), -f.frac_bits());  // exact: |raw| < 2^14
+  return static_cast<int64_t>(std::ldexp(v.to_double(), f.frac_bits()));
+}
+
+TEST(Series, BankAndEnginesStepAsScFixAdders) {
   std::mt19937_64 rng(11);
   for (auto o : {Overflow::kWrap, Overflow::kSaturate}) {
     const FixedFormat f{12, 3, true, Quantization::kTruncate, o};  // narrow: overflow happens
@@ -119,16 +132,30 @@ TEST(Series, BankIsBitIdenticalToSeparateEngines) {
     const int n = 5;
     SeriesBank bank(f, n);
     std::vector<SeriesEngine> engines(n, SeriesEngine(f));
+    std::vector<SeriesStart> want(n);
     for (int i = 0; i < n; ++i) {
-      const SeriesStart s{raw(rng), raw(rng) / 16, raw(rng) / 256};
-      bank.load(i, s);
-      engines[static_cast<size_t>(i)].load(s);
+      want[static_cast<size_t>(i)] = {raw(rng), raw(rng) / 16, raw(rng) / 256};
+      bank.load(i, want[static_cast<size_t>(i)]);
+      engines[static_cast<size_t>(i)].load(want[static_cast<size_t>(i)]);
     }
+    int overflowed = 0;
     for (int k = 0; k < 500; ++k) {
-      for (int i = 0; i < n; ++i) ASSERT_EQ(bank.values()[i], engines[static_cast<size_t>(i)].value()) << k;
+      for (int i = 0; i < n; ++i) {
+        const SeriesStart& w = want[static_cast<size_t>(i)];
+        ASSERT_EQ(bank.values()[i], w.v) << "step " << k << " series " << i;
+        ASSERT_EQ(engines[static_cast<size_t>(i)].value(), w.v) << "step " << k << " series " << i;
+        ASSERT_EQ(engines[static_cast<size_t>(i)].state().d, w.d) << "step " << k << " series " << i;
+      }
       bank.step();
       for (auto& e : engines) e.step();
+      for (SeriesStart& w : want) {
+        overflowed += !f.holds(w.v + w.d);
+        const int64_t old_d = w.d;
+        w.d = sc_fit(w.d + w.d2, f);
+        w.v = sc_fit(w.v + old_d, f);
+      }
     }
+    EXPECT_GT(overflowed, 0) << "the test never reached the overflow rule";
   }
 }
 

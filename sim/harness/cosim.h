@@ -10,7 +10,7 @@
 //   - the cycle model (model/cycle_model.h, CycleModel::clock): the unit's control, clocked once
 //     per rising edge on the same inputs as the RTL; per edge it says whether cmd_ready_o is
 //     high and which pixel beat (if any) leaves;
-//   - a command driver for each side (model/stimulus.h: the stream cut into beats, the job's
+//   - a command driver for each side (sim/harness/stimulus.h: the stream cut into beats, the job's
 //     seeded idle gaps) and the job's seeded pix_ready_i pattern; while cmd_valid_i is low the
 //     data lines carry seeded noise (sim/harness/idle_noise.h), which the cycle model sees too.
 //
@@ -53,10 +53,10 @@
 #include "model/command_stream.h"
 #include "model/cycle_model.h"
 #include "model/shade_unit.h"
-#include "model/stimulus.h"
 #include "sim/harness/idle_noise.h"
 #include "sim/harness/rtl_config.h"
 #include "sim/harness/scoreboard.h"
+#include "sim/harness/stimulus.h"
 #include "sim/harness/watchdog.h"
 
 namespace shadesim {

@@ -6,7 +6,7 @@
 #include <array>
 #include <cstdint>
 
-#include "model/stimulus.h"
+#include "sim/harness/stimulus.h"
 
 namespace shadesim {
 

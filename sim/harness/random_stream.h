@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "model/command_stream.h"
-#include "model/stimulus.h"
+#include "sim/harness/stimulus.h"
 
 namespace shadesim {
 

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "model/cycle_model.h"
-#include "model/stimulus.h"
+#include "sim/harness/stimulus.h"
 #include "sim/harness/scoreboard.h"
 
 namespace shadesim {

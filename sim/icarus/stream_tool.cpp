@@ -7,7 +7,7 @@
 //       one 16-digit hex word per line) and the bit-accurate model's pixels (ShadeUnit), one
 //       "x y c0 [c1 c2] eor cycle" line each, decimal, `cycle` being the one on which the cycle
 //       model (the harness's cycle oracle) lets the pixel's beat leave under that stimulus.
-//       --gaps / --cycles: the Verilator harness's stimulus (model/stimulus.h, the same options
+//       --gaps / --cycles: the Verilator harness's stimulus (sim/harness/stimulus.h, the same options
 //       and defaults as `shadesim cosim --stream`) as the testbench's schedule, so that it drives
 //       the same inputs on the same cycles instead of a Verilog copy of the generator:
 //         GAPS.hex    "// shadesim-gaps N ...", then per beat the idle cycles before it is
@@ -36,7 +36,7 @@
 #include "model/command_stream.h"
 #include "model/cycle_model.h"
 #include "model/shade_unit.h"
-#include "model/stimulus.h"
+#include "sim/harness/stimulus.h"
 #include "sim/harness/cosim.h"
 #include "sim/harness/idle_noise.h"
 #include "sim/harness/random_stream.h"

@@ -27,14 +27,11 @@ sc_dt::sc_fxval exact_value(Int128 raw, int src_frac) {
   return src_frac >= 0 ? sc_dt::sc_fxval(value >> src_frac) : sc_dt::sc_fxval(value << -src_frac);
 }
 
-// The raw bits of a quantized number, sign-extended for signed formats.
+// The raw integer of a quantized number: its value times 2^frac_bits, read by SystemC (an
+// sc_fxval holds it exactly; no bit manipulation of our own).
 template <typename Fx>
 int64_t raw_of(const Fx& fx, const FixedFormat& format) {
-  uint64_t bits = fx.range(format.wl - 1, 0).to_uint64();
-  if (format.is_signed && format.wl < 64 && (bits >> (format.wl - 1)) & 1) {
-    bits |= ~uint64_t{0} << format.wl;
-  }
-  return static_cast<int64_t>(bits);
+  return (sc_dt::sc_fxval(fx) << format.frac_bits()).to_int64();
 }
 
 template <typename Value>

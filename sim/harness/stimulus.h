@@ -1,4 +1,5 @@
-// Seeded, reproducible stimulus shared by the RTL driver/sink and the cycle model: idle gaps
+// Testbench stimulus, seeded and reproducible, shared by the RTL driver/sink and the cycle model
+// (sim/harness/cycle_run.h): idle gaps
 // before each command word and back-pressure on the pixel port. Both are pure functions of the
 // seed and of a word index or a cycle number, so the RTL and the cycle model see the identical
 // pattern as long as they accept the same words on the same cycles (which is what is checked).

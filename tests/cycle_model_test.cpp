@@ -12,6 +12,7 @@
 
 #include "model/command_stream.h"
 #include "model/cycle_model.h"
+#include "sim/harness/cycle_run.h"
 
 namespace shadesim {
 namespace {
@@ -45,7 +46,7 @@ std::vector<uint64_t> words(std::vector<Command> cmds) {
 
 TEST(CycleModel, SingleSpanLatencyIsFiveCycles) {
   for (int len : {1, 2, 7, 2048}) {
-    const CycleRun r = CycleModel::run(words({span(3, 0, len, true)}), Stimulus{});
+    const CycleRun r = run_cycle_model(words({span(3, 0, len, true)}), Stimulus{});
     ASSERT_EQ(r.scanlines.size(), 1u);
     EXPECT_EQ(r.scanlines[0].y, 3);
     EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(len + 4)) << "len " << len;
@@ -57,7 +58,7 @@ TEST(CycleModel, SingleSpanLatencyIsFiveCycles) {
 TEST(CycleModel, BackToBackSpansLeaveNoBubble) {
   for (int l1 : {1, 2, 5}) {
     for (int l2 : {1, 3}) {
-      const CycleRun r = CycleModel::run(words({span(0, 0, l1, true), span(1, 0, l2, true)}), Stimulus{});
+      const CycleRun r = run_cycle_model(words({span(0, 0, l1, true), span(1, 0, l2, true)}), Stimulus{});
       ASSERT_EQ(r.scanlines.size(), 2u);
       EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(l1 + 4));
       EXPECT_EQ(r.scanlines[1].cycle, static_cast<uint64_t>(l1 + l2 + 4)) << l1 << "," << l2;
@@ -70,7 +71,7 @@ TEST(CycleModel, MaterialWaitsForEmptyDatapath) {
   m.ambient = {0};
   m.spec_colour = {0};
   m.exponent = 1;  // header count 3
-  const CycleRun r = CycleModel::run(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{});
+  const CycleRun r = run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{});
   ASSERT_EQ(r.scanlines.size(), 2u);
   EXPECT_EQ(r.scanlines[0].cycle, 14u);
   // Last pixel handed over on cycle 13; MATERIAL accepted on 14, payload 15..17, SPAN on 18.
@@ -88,14 +89,14 @@ TEST(CycleModel, TwoMaterialBuffersRemoveTheDrain) {
   two.material_buffers = 2;
   // SPAN 0 (bank 0) on 0, its pixels leave on 5..14. MATERIAL (to bank 1) on 1, payload 2..4,
   // SPAN 1 on 5: its pixel right behind span 0's, on 15.
-  CycleRun r = CycleModel::run(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{}, two);
+  CycleRun r = run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{}, two);
   ASSERT_EQ(r.scanlines.size(), 2u);
   EXPECT_EQ(r.scanlines[0].cycle, 14u);
   EXPECT_EQ(r.scanlines[1].cycle, 15u);
   EXPECT_EQ(r.cycles, 16u);
   // A second MATERIAL (back to bank 0) waits 6..13: span 0's last pixel leaves the slot on the
   // edge of 13. Accepted on 14, payload 15..17, SPAN 2 on 18, its pixel on 23 (as one buffer).
-  r = CycleModel::run(words({span(0, 0, 10, true), m, span(1, 0, 1, true), m, span(2, 0, 1, true)}), Stimulus{},
+  r = run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true), m, span(2, 0, 1, true)}), Stimulus{},
                       two);
   ASSERT_EQ(r.scanlines.size(), 3u);
   EXPECT_EQ(r.scanlines[1].cycle, 15u);
@@ -105,13 +106,13 @@ TEST(CycleModel, TwoMaterialBuffersRemoveTheDrain) {
   TableCmd t;
   t.base = 0;
   t.entries.assign(2, 0);
-  r = CycleModel::run(words({span(0, 0, 10, true), m, t, span(1, 0, 1, true)}), Stimulus{}, two);
+  r = run_cycle_model(words({span(0, 0, 10, true), m, t, span(1, 0, 1, true)}), Stimulus{}, two);
   ASSERT_EQ(r.scanlines.size(), 2u);
   EXPECT_EQ(r.scanlines[1].cycle, 22u);
   // With a slot of latency 3 the first case's pixel still follows span 0's without a bubble.
   CycleConfig slow(SlotTiming{3, 1});
   slow.material_buffers = 2;
-  r = CycleModel::run(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{}, slow);
+  r = run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{}, slow);
   ASSERT_EQ(r.scanlines.size(), 2u);
   EXPECT_EQ(r.scanlines[1].cycle, r.scanlines[0].cycle + 1);
   CycleConfig three;
@@ -122,7 +123,7 @@ TEST(CycleModel, TwoMaterialBuffersRemoveTheDrain) {
 TEST(CycleModel, TrianglePayloadTakesOneCyclePerWord) {
   TriangleCmd t;
   t.coef.assign(12, 0);
-  const CycleRun r = CycleModel::run(words({t, span(0, 0, 6, true)}), Stimulus{});
+  const CycleRun r = run_cycle_model(words({t, span(0, 0, 6, true)}), Stimulus{});
   ASSERT_EQ(r.scanlines.size(), 1u);
   EXPECT_EQ(r.scanlines[0].cycle, 13u + 6u + 4u);
 }
@@ -131,7 +132,7 @@ TEST(CycleModel, IdleGapsDelayAcceptance) {
   Stimulus s;
   s.gap_pct = 100;
   s.max_gap = 1;  // exactly one idle cycle before every word
-  const CycleRun r = CycleModel::run(words({span(0, 0, 1, true), span(1, 0, 1, true)}), s);
+  const CycleRun r = run_cycle_model(words({span(0, 0, 1, true), span(1, 0, 1, true)}), s);
   ASSERT_EQ(r.scanlines.size(), 2u);
   EXPECT_EQ(r.scanlines[0].cycle, 1u + 4u + 1u);  // accepted on cycle 1
   EXPECT_EQ(r.scanlines[1].cycle, 3u + 4u + 1u);  // accepted on cycle 3
@@ -159,7 +160,7 @@ TEST(CycleModel, CountsPixelsAndScanlines) {
   s.gap_pct = 40;
   s.max_gap = 5;
   s.stall_pct = 50;
-  const CycleRun r = CycleModel::run(
+  const CycleRun r = run_cycle_model(
       words({span(0, 0, 5, false), span(0, 9, 3, true), span(1, 0, 1, true), EndFrameCmd{}}), s);
   EXPECT_EQ(r.pixels, 9u);
   ASSERT_EQ(r.scanlines.size(), 2u);
@@ -175,7 +176,7 @@ TEST(CycleModel, PipelinedSlotAddsItsLatencyToEveryPixel) {
   for (int lat : {1, 3, 6}) {
     for (int len : {1, 4}) {
       const CycleRun r =
-          CycleModel::run(words({span(0, 0, len, true), span(1, 0, 3, true)}), Stimulus{}, SlotTiming{lat, 1});
+          run_cycle_model(words({span(0, 0, len, true), span(1, 0, 3, true)}), Stimulus{}, SlotTiming{lat, 1});
       ASSERT_EQ(r.scanlines.size(), 2u);
       EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(len + 4 + lat)) << lat << "," << len;
       EXPECT_EQ(r.scanlines[1].cycle, static_cast<uint64_t>(len + 3 + 4 + lat)) << lat << "," << len;
@@ -188,7 +189,7 @@ TEST(CycleModel, IterativeSlotTakesItsIntervalPerPixel) {
     for (int a : {1, 3}) {
       const int b = 2;
       const CycleRun r =
-          CycleModel::run(words({span(0, 0, a, true), span(1, 0, b, true)}), Stimulus{}, SlotTiming{q, q});
+          run_cycle_model(words({span(0, 0, a, true), span(1, 0, b, true)}), Stimulus{}, SlotTiming{q, q});
       ASSERT_EQ(r.scanlines.size(), 2u);
       EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(5 + q * a)) << q << "," << a;
       EXPECT_EQ(r.scanlines[1].cycle, static_cast<uint64_t>(5 + q * (a + b))) << q << "," << a;
@@ -203,7 +204,7 @@ TEST(CycleModel, MaterialDrainIncludesTheSlot) {
   m.exponent = 1;  // header count 3
   for (int lat : {0, 2, 7}) {
     const CycleRun r =
-        CycleModel::run(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{}, SlotTiming{lat, 1});
+        run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{}, SlotTiming{lat, 1});
     ASSERT_EQ(r.scanlines.size(), 2u);
     // Last pixel leaves on 14 + lat; MATERIAL accepted then, payload 3 words, SPAN 4 cycles
     // after it, its pixel 5 + lat cycles later.
@@ -258,7 +259,7 @@ TEST(CommandPort, TriangleHeaderTakesTheCoefficientsInItsBeat) {
   // cycle 2 the SPAN (accepted on t = 2, so the span of 6 ends on 2 + 4 + 6).
   TriangleCmd t;
   t.coef.assign(6, 0);
-  const CycleRun r = CycleModel::run(words({t, span(0, 0, 6, true)}), Stimulus{}, port(4));
+  const CycleRun r = run_cycle_model(words({t, span(0, 0, 6, true)}), Stimulus{}, port(4));
   ASSERT_EQ(r.scanlines.size(), 1u);
   EXPECT_EQ(r.scanlines[0].cycle, 12u);
   EXPECT_EQ(r.beats, 2u);
@@ -272,10 +273,10 @@ TEST(CommandPort, ANextHeaderGoesWithTheTail) {
   TriangleCmd t;
   t.coef.assign(6, 0);
   const std::vector<uint64_t> w = words({t, t, span(0, 0, 3, true)});
-  const CycleRun r = CycleModel::run(w, Stimulus{}, port(4));
+  const CycleRun r = run_cycle_model(w, Stimulus{}, port(4));
   ASSERT_EQ(r.scanlines.size(), 1u);
   EXPECT_EQ(r.scanlines[0].cycle, 11u);
-  const CycleRun q = CycleModel::run(w, Stimulus{}, CycleConfig(SlotTiming{}, 4, 2));
+  const CycleRun q = run_cycle_model(w, Stimulus{}, CycleConfig(SlotTiming{}, 4, 2));
   ASSERT_EQ(q.scanlines.size(), 1u);
   EXPECT_EQ(q.scanlines[0].cycle, 11u);
 }
@@ -285,7 +286,7 @@ TEST(CommandPort, TwoWordPortTakesTwoCoefficientsPerCycle) {
   // cycle 6 c11, cycle 7 the SPAN.
   TriangleCmd t;
   t.coef.assign(12, 0);
-  const CycleRun r = CycleModel::run(words({t, span(0, 0, 3, true)}), Stimulus{}, port(2));
+  const CycleRun r = run_cycle_model(words({t, span(0, 0, 3, true)}), Stimulus{}, port(2));
   ASSERT_EQ(r.scanlines.size(), 1u);
   EXPECT_EQ(r.scanlines[0].cycle, 7u + 4u + 3u);
 }
@@ -295,7 +296,7 @@ TEST(CommandPort, OneSpanPerCycleAndPaddingInOneCycle) {
   // NOP on 5 (the beat then), span k ends on k + 5.
   std::vector<Command> cmds;
   for (int y = 0; y < 5; ++y) cmds.push_back(span(y, 0, 1, true));
-  const CycleRun r = CycleModel::run(words(cmds), Stimulus{}, port(8));
+  const CycleRun r = run_cycle_model(words(cmds), Stimulus{}, port(8));
   ASSERT_EQ(r.scanlines.size(), 5u);
   for (int y = 0; y < 5; ++y) EXPECT_EQ(r.scanlines[static_cast<size_t>(y)].cycle, static_cast<uint64_t>(y + 5));
   EXPECT_EQ(r.beats, 1u);
@@ -333,7 +334,7 @@ TEST(CommandPort, MaterialPayloadIsOneWordPerCycle) {
   m.ambient = {0};
   m.spec_colour = {0};
   m.exponent = 1;
-  const CycleRun r = CycleModel::run(words({m, span(0, 0, 2, true)}), Stimulus{}, port(4));
+  const CycleRun r = run_cycle_model(words({m, span(0, 0, 2, true)}), Stimulus{}, port(4));
   ASSERT_EQ(r.scanlines.size(), 1u);
   EXPECT_EQ(r.scanlines[0].cycle, 4u + 4u + 2u);
 }
@@ -345,7 +346,7 @@ TEST(CommandPort, GapsComeBeforeBeats) {
   s.gap_pct = 100;
   s.max_gap = 1;
   const CycleRun r =
-      CycleModel::run(words({span(0, 0, 1, true), span(1, 0, 1, true), span(2, 0, 1, true)}), s, port(2));
+      run_cycle_model(words({span(0, 0, 1, true), span(1, 0, 1, true), span(2, 0, 1, true)}), s, port(2));
   ASSERT_EQ(r.scanlines.size(), 3u);
   EXPECT_EQ(r.scanlines[0].cycle, 1u + 5u);
   EXPECT_EQ(r.scanlines[1].cycle, 2u + 5u);
@@ -358,7 +359,7 @@ TEST(TriangleQueue, SpanQueueAddsOneRegister) {
   // tri_queue 2: a SPAN accepted on t enters setup stage 1 from the queue on t + 1, so a span
   // of len ends on t + 5 + len (one more than without a queue).
   for (int len : {1, 5}) {
-    const CycleRun r = CycleModel::run(words({span(0, 0, len, true)}), Stimulus{}, CycleConfig(SlotTiming{}, 1, 2));
+    const CycleRun r = run_cycle_model(words({span(0, 0, len, true)}), Stimulus{}, CycleConfig(SlotTiming{}, 1, 2));
     ASSERT_EQ(r.scanlines.size(), 1u);
     EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(5 + len)) << len;
   }
@@ -403,7 +404,7 @@ TEST(CommandPort, RejectsOtherWidths) {
 TEST(CycleBreakdown, SingleSpanIsFillThenPixels) {
   for (int lat : {0, 3}) {
     const int len = 9;
-    const CycleRun r = CycleModel::run(words({span(0, 0, len, true)}), Stimulus{}, SlotTiming{lat, 1});
+    const CycleRun r = run_cycle_model(words({span(0, 0, len, true)}), Stimulus{}, SlotTiming{lat, 1});
     const CycleBreakdown& b = r.breakdown;
     EXPECT_EQ(b.pixel, static_cast<uint64_t>(len));
     EXPECT_EQ(b.setup_load, static_cast<uint64_t>(5 + lat));
@@ -417,7 +418,7 @@ TEST(CycleBreakdown, MaterialSwitchCostsItsWordsAndARefill) {
   m.ambient = {0};
   m.spec_colour = {0};
   m.exponent = 1;  // header + 3 payload words
-  const CycleRun r = CycleModel::run(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{});
+  const CycleRun r = run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{});
   const CycleBreakdown& b = r.breakdown;
   EXPECT_EQ(r.cycles, 24u);
   EXPECT_EQ(b.pixel, 11u);
@@ -435,7 +436,7 @@ TEST(CycleBreakdown, GapsBeforeEveryWordAreChargedToTheInput) {
   const int n = 20;
   std::vector<Command> cmds;
   for (int i = 0; i < n; ++i) cmds.push_back(span(i, 0, 1, true));
-  const CycleRun r = CycleModel::run(words(cmds), s);
+  const CycleRun r = run_cycle_model(words(cmds), s);
   const CycleBreakdown& b = r.breakdown;
   // SPAN i accepted on 2i + 1, its pixel leaves on 2i + 6.
   EXPECT_EQ(r.cycles, static_cast<uint64_t>(2 * n + 5));
@@ -454,7 +455,7 @@ TEST(CycleBreakdown, SmallTrianglesAreCommandBound) {
     cmds.push_back(t);
     cmds.push_back(span(i, 0, 2, true));
   }
-  const CycleRun r = CycleModel::run(words(cmds), Stimulus{});
+  const CycleRun r = run_cycle_model(words(cmds), Stimulus{});
   const CycleBreakdown& b = r.breakdown;
   // 14 words per triangle at one per clock; its 2 pixels leave 5 and 6 cycles after its SPAN.
   EXPECT_EQ(r.cycles, static_cast<uint64_t>(14 * (k - 1) + 20));
@@ -468,7 +469,7 @@ TEST(CycleBreakdown, TableWaitsForTheDatapathAndIsCharged) {
   TableCmd t;
   t.base = 0;
   t.entries.assign(20, 0);
-  const CycleRun r = CycleModel::run(words({span(0, 0, 2, true), t, span(1, 0, 2, true)}), Stimulus{});
+  const CycleRun r = run_cycle_model(words({span(0, 0, 2, true), t, span(1, 0, 2, true)}), Stimulus{});
   const CycleBreakdown& b = r.breakdown;
   // SPAN 0 on 0 (pixels 5, 6; engines empty from 6); the TABLE header waits 1..5, is accepted
   // on 6, its 20 words take 7..26; SPAN 1 on 27 (pixels 32, 33).
@@ -508,7 +509,7 @@ TEST(CycleBreakdown, BackPressureCountsCyclesAPixelWaited) {
 TEST(CycleBreakdown, IterativeUnitStallsAreItsIntervalAndLatency) {
   for (int q : {2, 8}) {
     const int n = 6;
-    const CycleRun r = CycleModel::run(words({span(0, 0, n, true)}), Stimulus{}, SlotTiming{q, q});
+    const CycleRun r = run_cycle_model(words({span(0, 0, n, true)}), Stimulus{}, SlotTiming{q, q});
     const CycleBreakdown& b = r.breakdown;
     EXPECT_EQ(r.cycles, static_cast<uint64_t>(6 + q * n));
     EXPECT_EQ(b.pixel, static_cast<uint64_t>(n));
@@ -555,7 +556,7 @@ TEST(CycleBreakdown, PartitionsRandomRuns) {
     const SlotTiming timing = q >= 2 ? SlotTiming{q, q} : SlotTiming{static_cast<int>(rng() % 5), 1};
     const int port_words = 1 << (rng() % 4);
     const int tri_queue = 1 + static_cast<int>(rng() % 3);
-    const CycleRun r = CycleModel::run(words(cmds), s, CycleConfig(timing, port_words, tri_queue));
+    const CycleRun r = run_cycle_model(words(cmds), s, CycleConfig(timing, port_words, tri_queue));
     EXPECT_EQ(r.breakdown.total(), r.cycles) << "trial " << trial;
     EXPECT_EQ(r.breakdown.pixel, r.pixels) << "trial " << trial;
     if (timing.interval == 1) {
@@ -579,7 +580,7 @@ CycleConfig lanes(int k, SlotTiming slot = SlotTiming{}) { return CycleConfig(sl
 
 TEST(PixelLanes, OneSpanOfFiveInFourLanesIsTwoBeats) {
   // Beats [0 1 2 3] on cycle 5 and [4] on cycle 6; the run ends after cycle 6.
-  const CycleRun r = CycleModel::run(words({span(3, 10, 5, true)}), Stimulus{}, lanes(4));
+  const CycleRun r = run_cycle_model(words({span(3, 10, 5, true)}), Stimulus{}, lanes(4));
   ASSERT_EQ(r.scanlines.size(), 1u);
   EXPECT_EQ(r.scanlines[0].y, 3);
   EXPECT_EQ(r.scanlines[0].cycle, 6u);
@@ -595,7 +596,7 @@ TEST(PixelLanes, SpanEndsAfterCeilLenOverLanesBeats) {
   for (int k : {1, 2, 4}) {
     for (int len : {1, 2, 3, 4, 5, 7, 8, 9, 2048}) {
       const int beats = (len + k - 1) / k;
-      const CycleRun r = CycleModel::run(words({span(0, 0, len, true)}), Stimulus{}, lanes(k));
+      const CycleRun r = run_cycle_model(words({span(0, 0, len, true)}), Stimulus{}, lanes(k));
       ASSERT_EQ(r.scanlines.size(), 1u);
       EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(4 + beats)) << k << "," << len;
       EXPECT_EQ(r.scanlines[0].x, len - 1) << k << "," << len;
@@ -610,11 +611,11 @@ TEST(PixelLanes, BackToBackSpansLeaveNoBubbleAndNeverShareABeat) {
   // Spans of 3 and 6 in 2 lanes: beats 2 + 3; the second span's last beat leaves on 4 + 5.
   // In 4 lanes: 1 + 2 beats (a span's tail beat is not filled from the next span).
   const std::vector<uint64_t> w = words({span(0, 0, 3, true), span(1, 0, 6, true)});
-  const CycleRun two = CycleModel::run(w, Stimulus{}, lanes(2));
+  const CycleRun two = run_cycle_model(w, Stimulus{}, lanes(2));
   ASSERT_EQ(two.scanlines.size(), 2u);
   EXPECT_EQ(two.scanlines[0].cycle, 6u);
   EXPECT_EQ(two.scanlines[1].cycle, 9u);
-  const CycleRun four = CycleModel::run(w, Stimulus{}, lanes(4));
+  const CycleRun four = run_cycle_model(w, Stimulus{}, lanes(4));
   ASSERT_EQ(four.scanlines.size(), 2u);
   EXPECT_EQ(four.scanlines[0].cycle, 5u);
   EXPECT_EQ(four.scanlines[1].cycle, 7u);
@@ -625,11 +626,11 @@ TEST(PixelLanes, SlotTimingIsPerBeat) {
   // Pipelined latency 3: every beat 3 later. Iterative Q: beat b leaves on t + 5 + Q (b + 1),
   // all lanes' units in lockstep.
   const std::vector<uint64_t> w = words({span(0, 0, 7, true)});  // 2 beats in 4 lanes
-  const CycleRun pipe = CycleModel::run(w, Stimulus{}, lanes(4, SlotTiming{3, 1}));
+  const CycleRun pipe = run_cycle_model(w, Stimulus{}, lanes(4, SlotTiming{3, 1}));
   ASSERT_EQ(pipe.scanlines.size(), 1u);
   EXPECT_EQ(pipe.scanlines[0].cycle, 4u + 2u + 3u);
   for (int q : {2, 5}) {
-    const CycleRun it = CycleModel::run(w, Stimulus{}, lanes(4, SlotTiming{q, q}));
+    const CycleRun it = run_cycle_model(w, Stimulus{}, lanes(4, SlotTiming{q, q}));
     ASSERT_EQ(it.scanlines.size(), 1u);
     EXPECT_EQ(it.scanlines[0].cycle, static_cast<uint64_t>(5 + q * 2)) << q;
     EXPECT_EQ(it.breakdown.unit_stall, static_cast<uint64_t>(q + (q - 1))) << q;
@@ -695,7 +696,7 @@ TEST(PixelLanes, BreakdownPartitionsRandomRuns) {
     const int q = static_cast<int>(rng() % 4);
     const SlotTiming timing = q >= 2 ? SlotTiming{q, q} : SlotTiming{static_cast<int>(rng() % 5), 1};
     const CycleRun r =
-        CycleModel::run(words(cmds), s, CycleConfig(timing, 1 << (rng() % 4), 1 + static_cast<int>(rng() % 3), k));
+        run_cycle_model(words(cmds), s, CycleConfig(timing, 1 << (rng() % 4), 1 + static_cast<int>(rng() % 3), k));
     EXPECT_EQ(r.breakdown.total(), r.cycles) << "trial " << trial;
     EXPECT_EQ(r.breakdown.pixel, beats) << "trial " << trial;
     EXPECT_EQ(r.pixels, pixels) << "trial " << trial;
