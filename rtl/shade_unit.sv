@@ -304,6 +304,7 @@ module shade_unit #(
   logic [COEF_WL-1:0]             coef_q [TRI_QUEUE*NCoef];  // bank b at b * NCoef
   logic [CHANNELS*SERIES_WL-1:0]  ambient_q;
   logic [NDiff*SPEC_COLOUR_WL-1:0] spec_colour_q;
+  logic [LIGHTS-1:0]              gate_only_q;  // MATERIAL header: diffuse series gate only
 
   // Payload words of this cycle's item, per beat word k: the tail (words pos_q ..
   // pos_q + tail_n - 1, the current triangle's, bank wr_bank_q) or a new TRIANGLE's (the words
@@ -375,6 +376,10 @@ module shade_unit #(
     if (hdr_fire && hdr_op == shade_pkg::OpTriangle) begin
       xo_q[next_bank] <= cmd_word[shade_pkg::HighLsb +: shade_pkg::FieldW];
       yo_q[next_bank] <= cmd_word[shade_pkg::MidLsb +: shade_pkg::FieldW];
+    end
+    // The datapath is empty when a MATERIAL header goes, as for its payload registers.
+    if (hdr_fire && hdr_op == shade_pkg::OpMaterial) begin
+      gate_only_q <= cmd_word[shade_pkg::GateOnlyLsb +: LIGHTS];
     end
     if (pay_fire && pay_op_q == PayMaterial) begin
       for (int i = 0; i < CHANNELS; i++) begin
@@ -713,7 +718,8 @@ module shade_unit #(
     ) u_combine (
       .diffuse_i(meta_out.diffuse[j*LaneDiffW +: LaneDiffW]),
       .spec_i(spec[j*LIGHTS*SPECULAR_OUT_WL +: LIGHTS*SPECULAR_OUT_WL]), .ambient_i(ambient_q),
-      .spec_colour_i(spec_colour_q), .colour_o(colour[j*LaneColW +: LaneColW])
+      .spec_colour_i(spec_colour_q), .gate_only_i(gate_only_q),
+      .colour_o(colour[j*LaneColW +: LaneColW])
     );
   end
 

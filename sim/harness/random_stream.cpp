@@ -54,6 +54,9 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
   auto uni = [&rng](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
   auto irange = [&rng](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
   auto chance = [&](double p) { return uni(0.0, 1.0) < p; };
+  // The MATERIAL's gate-only mask has a generator of its own, so every other field of a seed's
+  // stream stays what it was before the mask existed.
+  std::mt19937_64 gate_rng(seed ^ 0x9E3779B97F4A7C15u);
 
   CommandStream cs;
   cs.config = config;
@@ -97,6 +100,10 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
       for (auto& v : m.spec_colour) {
         v = config.spec_colour.from_double(shape.edge ? uni(0.2, 0.9) : uni(0.0, 0.5));
       }
+    }
+    // A quarter of the materials with spec hardware: a random set of gate-only lights.
+    if (has_spec_hw && gate_rng() % 4 == 0) {
+      m.gate_only = static_cast<uint32_t>(gate_rng() % (uint64_t{1} << config.lights));
     }
     m.exponent = int64_t{irange(1, 200)} << kExponentFracBits;
     // Edge: fractional exponents over the whole u10.16 range, every shift the units accept.
