@@ -42,6 +42,11 @@ class CoefficientWriter {
   EncodeStats& stats_;
 };
 
+// What light l's diffuse series of channel c is scaled by: kd_c L_c.
+double diffuse_scale(const Scene& scene, const Material& m, int l, int c) {
+  return channel(m.diffuse, c) * channel(scene.lights[static_cast<size_t>(l)].colour, c);
+}
+
 MaterialCmd material_command(const Scene& scene, const UnitConfig& config, const Material& m,
                              const SpecularSeriesPlan& plan) {
   MaterialCmd cmd;
@@ -57,6 +62,16 @@ MaterialCmd material_command(const Scene& scene, const UnitConfig& config, const
   }
   cmd.exponent = kExponentFormat.from_double(m.exponent);
   cmd.unit_params = plan.unit_params;
+  // The specular gate reads light l's diffuse series (model/pixel_combine.h): a light with a
+  // specular colour and no diffuse colour gets channel 0's series unscaled, gate only.
+  for (int l = 0; l < config.lights && l < static_cast<int>(scene.lights.size()); ++l) {
+    bool diffuse = false, specular = false;
+    for (int c = 0; c < config.channels; ++c) {
+      diffuse = diffuse || diffuse_scale(scene, m, l, c) > 0;
+      specular = specular || cmd.spec_colour[static_cast<size_t>(l * config.channels + c)] != 0;
+    }
+    if (specular && !diffuse) cmd.gate_only |= 1u << l;
+  }
   return cmd;
 }
 
@@ -98,6 +113,7 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
   // for a per-exponent LUT the table to load on every switch to that material.
   std::vector<SpecularSeriesPlan> plans;
   for (const auto& m : scene.materials) plans.push_back(plan_specular(config, m.exponent));
+  std::vector<uint32_t> material_gate_only(scene.materials.size(), 0);  // each MATERIAL's mask
   // A shared table (no reload) is loaded once, before the first pixel.
   for (auto& t : shared_lut_tables(config)) {
     stats.table_words += t.entries.size();
@@ -114,7 +130,9 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
 
     const SpecularSeriesPlan& plan = plans[static_cast<size_t>(tri.material)];
     if (tri.material != current_material) {
-      cmds.emplace_back(material_command(scene, config, material, plan));
+      MaterialCmd m = material_command(scene, config, material, plan);
+      material_gate_only[static_cast<size_t>(tri.material)] = m.gate_only;
+      cmds.emplace_back(std::move(m));
       for (const auto& t : plan.tables) {
         stats.table_words += t.entries.size();
         cmds.emplace_back(t);
@@ -135,12 +153,16 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
     t.xo = static_cast<int32_t>(std::clamp(std::floor(xc), 0.0, scene.width - 1.0));
     t.yo = static_cast<int32_t>(std::clamp(std::floor(yc), 0.0, scene.height - 1.0));
     const double ox = t.xo + 0.5, oy = t.yo + 0.5;
+    const uint32_t gate_only = material_gate_only[static_cast<size_t>(tri.material)];
     for (int l = 0; l < config.lights; ++l) {
       const bool present = l < scene_lights;
       const Quadratic q = present ? series.diffuse[static_cast<size_t>(l)].recentred(ox, oy) : zero;
       for (int c = 0; c < config.channels; ++c) {
-        const double scale =
-            present ? channel(material.diffuse, c) * channel(scene.lights[static_cast<size_t>(l)].colour, c) : 0.0;
+        // A gate-only light: channel 0 carries N.L itself (its colour is 0 in every channel).
+        double scale = 0.0;
+        if (present) {
+          scale = (gate_only >> l & 1) != 0 ? (c == 0 ? 1.0 : 0.0) : diffuse_scale(scene, material, l, c);
+        }
         writer.append(q, scale, 0.0, t.coef);
       }
     }

@@ -114,9 +114,13 @@ static ReferenceImage render_shading(const std::vector<ScreenTriangle>& triangle
           }
         }
         const double diffuse = std::max(0.0, t_d);
-        const double specular = variant.specular.empty()
-                                    ? std::pow(q ? clamp01(t_s) : std::max(0.0, t_s), mat.exponent)
-                                    : variant.specular[static_cast<std::size_t>(t.material)](t_s);
+        // No specular where N.L <= 0: a highlight never shines through the terminator.
+        double specular = 0.0;
+        if (t_d > 0) {
+          specular = variant.specular.empty()
+                         ? std::pow(q ? clamp01(t_s) : std::max(0.0, t_s), mat.exponent)
+                         : variant.specular[static_cast<std::size_t>(t.material)](t_s);
+        }
         const Vec3& lc = scene.lights[l].colour;
         colour.x += lc.x * (mat.diffuse.x * diffuse + mat.specular.x * specular);
         colour.y += lc.y * (mat.diffuse.y * diffuse + mat.specular.y * specular);

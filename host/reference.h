@@ -25,12 +25,12 @@ struct ReferenceImage {
 // Per owned pixel, at its centre (px + 0.5, py + 0.5), with N and the to-eye vector E interpolated
 // affinely in screen space from the owner's vertices (the same fields the Taylor series expand):
 //   colour = clamp01(ambient_mat * ambient_light
-//                    + sum_l kd * Lc * max(0, N.L / |N|) + ks * Lc * max(0, N.H / |N|)^n)
+//                    + sum_l kd * Lc * max(0, N.L / |N|) + [N.L > 0] ks * Lc * max(0, N.H / |N|)^n)
 // with L = normalize(light.direction), H = normalize(L + V) (eye at infinity, V toward the eye
 // from the camera) or normalize(E + L) (finite eye). A material whose specular_model is phong
 // uses R.V in place of N.H: R = 2 (N^.L) N^ - L with N^ = N / |N|, and V as above (eye at
-// infinity) or E / |E| (finite eye). Specular is deliberately NOT gated by
-// N.L > 0: the hardware model computes it the same way. A zero |N| or |H| gives a zero term.
+// infinity) or E / |E| (finite eye). Specular is gated by N.L > 0 ([N.L > 0] is 1 there, else
+// 0), as the hardware gates it (model/pixel_combine.h). A zero |N| or |H| gives a zero term.
 // Pixels with owner -1 are 0. channels 1 uses the first (x, red) component of every colour.
 // Throws std::invalid_argument when channels is not 1 or 3, owner.size() != width * height, an
 // owner index is out of range, or a material index is not in scene.materials.
@@ -48,7 +48,8 @@ inline ReferenceImage render_reference(const std::vector<ScreenTriangle>& triang
 // instead of the exact per-pixel ones, and the specular function of a hardware unit instead of pow.
 struct ShadingVariant {
   // Parallel to the triangles: their quadratics (host/triangle_setup.h). nullptr: exact cosines.
-  // With quadratics, diffuse is max(0, q_d) per light and the specular argument is q_s, unclamped.
+  // With quadratics, diffuse is max(0, q_d) per light, the specular gate q_d > 0 and the specular
+  // argument q_s, unclamped.
   const std::vector<TriangleSeries>* quadratics = nullptr;
   // Per material index, f(t) replacing max(0, t)^n (it must clamp t itself). Empty: pow.
   std::vector<std::function<double(double)>> specular;

@@ -156,8 +156,10 @@ double measure_with(const ScreenTriangle& tri, const TriangleSeries& series, con
         } else {
           ts = n_len > 0 ? dot(n, li.H[l]) / n_len : 0.0;
         }
-        s_exact = std::pow(clamp01(ts), n_exp);
-        s_approx = std::pow(clamp01(series.specular[l].eval(x, y)), n_exp);
+        // The specular gate (N.L > 0) by each side's own diffuse value: where the quadratic's
+        // sign differs from the exact one the whole specular term is error, and it is budgeted.
+        s_exact = td > 0 ? std::pow(clamp01(ts), n_exp) : 0.0;
+        s_approx = qd > 0 ? std::pow(clamp01(series.specular[l].eval(x, y)), n_exp) : 0.0;
       }
       const Vec3& c = li.colour[l];
       const double lc[3] = {c.x, c.y, c.z};

@@ -65,8 +65,10 @@ TriangleSeries setup_triangle(const ScreenTriangle& tri, const Scene& scene);
 // image (a superset of what a half-open rasterizer gives it, so an upper bound), over channels,
 // of |colour(quadratics) - colour(exact cosines)| * 2^output_bits, where
 //   colour = clamp01(ambient_mat * ambient_light
-//                    + sum_l kd * Lc * max(0, t_d) + ks * Lc * clamp01(t_s)^n),
-// t_s the material's specular cosine (Blinn's N.H or Phong's R.V).
+//                    + sum_l kd * Lc * max(0, t_d) + [t_d > 0] ks * Lc * clamp01(t_s)^n),
+// t_s the material's specular cosine (Blinn's N.H or Phong's R.V); the specular gate [t_d > 0]
+// is taken from each side's own t_d (quadratic or exact), so a sign flip near the terminator
+// counts as error.
 // Returns 0 when no centre is covered, +inf when a value is not finite. Stops early, returning a
 // value above stop_above, as soon as one pixel exceeds it.
 double measure_error_lsb(const ScreenTriangle& tri, const TriangleSeries& series,

@@ -55,6 +55,11 @@ void validate_command(const Command& cmd, const UnitConfig& cfg, const std::stri
     if (m->ambient.size() + m->spec_colour.size() + 1 + m->unit_params.size() > kMask16) {
       throw CommandStreamError(loc + "material: too many payload words");
     }
+    if (m->gate_only >> cfg.lights != 0) {
+      throw CommandStreamError(loc + "material.gate_only = " + std::to_string(m->gate_only) +
+                               ": expected a mask of the unit's " + std::to_string(cfg.lights) +
+                               " lights (0.." + std::to_string((1u << cfg.lights) - 1) + ")");
+    }
   } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
     const size_t expected = static_cast<size_t>(cfg.series_per_triangle() * kTermsPerSeries);
     check_payload(loc, "tri.coef", t->coef, expected, cfg.coef);
@@ -104,7 +109,7 @@ std::vector<uint64_t> CommandStream::encode() const {
   for (const auto& cmd : commands) {
     if (const auto* m = std::get_if<MaterialCmd>(&cmd)) {
       const size_t n = m->ambient.size() + m->spec_colour.size() + 1 + m->unit_params.size();
-      words.push_back(CommandWord::material(n).bits);
+      words.push_back(CommandWord::material(n, m->gate_only).bits);
       for (auto v : m->ambient) words.push_back(static_cast<uint64_t>(v));
       for (auto v : m->spec_colour) words.push_back(static_cast<uint64_t>(v));
       words.push_back(static_cast<uint64_t>(m->exponent));
@@ -160,6 +165,7 @@ CommandStream CommandStream::decode(const std::vector<uint64_t>& words, const Un
         m.spec_colour.assign(p.begin() + config.channels, p.begin() + static_cast<long>(fixed) - 1);
         m.exponent = p[fixed - 1];
         m.unit_params.assign(p.begin() + static_cast<long>(fixed), p.end());
+        m.gate_only = h.material_gate_only();
         cs.commands.emplace_back(std::move(m));
         break;
       }
@@ -223,6 +229,7 @@ void CommandStream::write_text(std::ostream& os) const {
       list(m->spec_colour);
       os << " exponent " << m->exponent << " params";
       list(m->unit_params);
+      if (m->gate_only != 0) os << " gate_only " << m->gate_only;
       os << '\n';
     } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
       os << "tri " << t->xo << ' ' << t->yo;
@@ -318,6 +325,11 @@ CommandStream CommandStream::read_text(std::istream& is, const std::string& sour
       ls >> kw;
       expect_keyword(kw, "params");
       m.unit_params = read_list(&kw);
+      if (kw == "gate_only") {
+        m.gate_only = static_cast<uint32_t>(read_int("gate_only", 0, kField16));
+        kw.clear();
+        ls >> kw;
+      }
       if (!kw.empty()) throw CommandStreamError(loc + "material: unexpected '" + kw + "'");
       cs.commands.emplace_back(std::move(m));
     } else if (op == "tri") {

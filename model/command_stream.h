@@ -4,7 +4,9 @@
 // header word followed by its payload words.
 //
 //   header[63:56]  opcode
-//   MATERIAL  0x01 header[15:0] = payload words. Payload: ambient[channels] (series format),
+//   MATERIAL  0x01 header[31:16] = gate-only light mask (bit l: light l's first diffuse series
+//                  is N.L for the specular gate, not added; model/pixel_combine.h),
+//                  header[15:0] = payload words. Payload: ambient[channels] (series format),
 //                  spec_colour[lights*channels] (spec_colour format, light-major),
 //                  exponent (u10.16), then unit parameters (SpecularUnit-defined, may be empty).
 //   TRIANGLE  0x02 header[47:32] = xo, header[31:16] = yo (signed 16-bit origin pixel),
@@ -43,7 +45,8 @@
 // Text form: one command per line, '#' starts a comment, a first line
 // "shadesim-commands 1 <config json>" carries the unit configuration so a saved stream replays
 // on its own.
-//   material ambient A.. spec_colour S.. exponent E params P..
+//   material ambient A.. spec_colour S.. exponent E params P.. [gate_only MASK]
+//     (gate_only written when not 0; absent means 0)
 //   tri XO YO | T0 T1 T2 T3 T4 T5 | T0 ... (one group per series)
 //   span Y X0 LEN [last]
 //   table BASE E0 E1 ...
@@ -67,6 +70,9 @@ struct MaterialCmd {
   std::vector<int64_t> spec_colour;  // [lights * channels], spec_colour format
   int64_t exponent = 0;              // u10.16
   std::vector<int64_t> unit_params;  // specular-unit defined
+  // Bit l: light l's diffuse series of channel 0 carries N.L for the specular gate only
+  // (PixelCombine does not add it). Bits at and above `lights` must be 0.
+  uint32_t gate_only = 0;
 };
 
 struct TriangleCmd {

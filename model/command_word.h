@@ -21,7 +21,8 @@ struct CommandWord {
   static constexpr int kOpcodeLsb = 56;        // [63:56]
   static constexpr int kFieldBits = 16;        // every field below is 16 bits wide
   static constexpr int kCountLsb = 0;          // [15:0]  payload words; SPAN: length
-  static constexpr int kMidLsb = 16;           // [31:16] TRIANGLE yo, SPAN x0, TABLE base
+  static constexpr int kMidLsb = 16;           // [31:16] TRIANGLE yo, SPAN x0, TABLE base,
+                                               //         MATERIAL gate-only light mask
   static constexpr int kHighLsb = 32;          // [47:32] TRIANGLE xo, SPAN y
   static constexpr int kSpanLastBit = 55;      // SPAN: last span of its scanline
   static constexpr uint64_t kFieldMask = 0xFFFF;
@@ -41,13 +42,18 @@ struct CommandWord {
   constexpr bool span_last() const { return ((bits >> kSpanLastBit) & 1) != 0; }
   // TABLE
   constexpr uint32_t table_base() const { return field(kMidLsb); }
+  // MATERIAL: bit l set = light l's first diffuse series carries N.L for the specular gate only
+  // (the material has no diffuse colour for that light; model/pixel_combine.h has the rule).
+  constexpr uint32_t material_gate_only() const { return field(kMidLsb); }
 
   // Header words. Fields are masked to 16 bits; range checks are the stream validator's job.
   static constexpr CommandWord header(Opcode op, uint64_t count, uint64_t mid = 0, uint64_t high = 0) {
     return {static_cast<uint64_t>(op) << kOpcodeLsb | (high & kFieldMask) << kHighLsb |
             (mid & kFieldMask) << kMidLsb | (count & kFieldMask) << kCountLsb};
   }
-  static constexpr CommandWord material(uint64_t count) { return header(Opcode::kMaterial, count); }
+  static constexpr CommandWord material(uint64_t count, uint64_t gate_only = 0) {
+    return header(Opcode::kMaterial, count, gate_only);
+  }
   static constexpr CommandWord triangle(int32_t xo, int32_t yo, uint64_t count) {
     return header(Opcode::kTriangle, count, static_cast<uint64_t>(yo), static_cast<uint64_t>(xo));
   }

@@ -4,7 +4,18 @@
 //   stage 1  each diffuse series value clamped below at 0 (sign bit test: max(0, N.L) per light)
 //            each specular intensity s_l times the light's specular colour k_lc (a small
 //            unsigned multiply), brought to the series fraction bits by the series rule
-//   stage 2  exact sum per channel: ambient_c + sum_l max(0, D_lc) + sum_l s_l k_lc
+//            the specular gate of light l: g_l = (sum over channels c of D_lc) > 0 - an adder
+//            per extra channel and a comparator per light. Specular is added only where g_l
+//            is 1, i.e. where N.L > 0 ("no highlight through the terminator"). The host writes
+//            D_lc = kd_c L_c (N.L)/|N| with kd_c L_c >= 0, so the sum is (sum_c kd_c L_c) N.L:
+//            a channel of colour 0 adds exactly 0, and the sign's error is the channels'
+//            quantization error over the summed scale (a per-channel OR would divide by the
+//            smallest non-zero scale instead). When every kd_c L_c of light l is 0 but the
+//            light has a specular colour, the host writes channel 0's series unscaled,
+//            (N.L)/|N|, and sets bit l of the MATERIAL's gate-only mask: that series then sets
+//            g_l and is not added to the colour.
+//   stage 2  exact sum per channel: ambient_c + sum_l max(0, D_lc) [not gate-only]
+//                                   + sum_l g_l s_l k_lc
 //   stage 3  output code = round-to-nearest into u0.out_bits, saturating (negative -> 0,
 //            >= 1 - 2^-(out_bits+1) -> all ones). A code c stands for c / 2^out_bits.
 #pragma once
@@ -17,6 +28,7 @@
 namespace shadesim {
 
 constexpr int kMaxChannels = 3;
+constexpr int kMaxLights = 8;  // UnitConfig::validate's bound
 
 class PixelCombine {
  public:
@@ -33,16 +45,28 @@ class PixelCombine {
     return {out_bits, 0, false, Quantization::kRoundNearest, Overflow::kSaturate};
   }
 
-  // diffuse[l * channels + c], spec[l], ambient[c], spec_colour[l * channels + c].
+  // The specular gate of light l (stage 1): the sum of its channels' diffuse values is > 0.
+  bool gate(const int64_t* diffuse, int l) const {
+    Int128 sum = 0;
+    for (int c = 0; c < channels_; ++c) sum += diffuse[l * channels_ + c];
+    return sum > 0;
+  }
+
+  // diffuse[l * channels + c], spec[l], ambient[c], spec_colour[l * channels + c]; gate_only:
+  // the MATERIAL's mask (bit l: light l's diffuse series gate only, not added).
   std::array<uint16_t, kMaxChannels> operator()(const int64_t* diffuse, const int64_t* spec,
                                                 const int64_t* ambient,
-                                                const int64_t* spec_colour) const {
+                                                const int64_t* spec_colour,
+                                                uint32_t gate_only) const {
+    std::array<bool, kMaxLights> lit{};
+    for (int l = 0; l < lights_; ++l) lit[static_cast<size_t>(l)] = gate(diffuse, l);
     std::array<uint16_t, kMaxChannels> out{};
     for (int c = 0; c < channels_; ++c) {
       Int128 acc = ambient[c];
       for (int l = 0; l < lights_; ++l) {
         const int64_t d = diffuse[l * channels_ + c];
-        acc += d > 0 ? d : 0;
+        if ((gate_only >> l & 1) == 0) acc += d > 0 ? d : 0;
+        if (!lit[static_cast<size_t>(l)]) continue;
         const Int128 product = Int128{spec[l]} * spec_colour[l * channels_ + c];
         acc += series_.quantize(product, product_frac_);
       }

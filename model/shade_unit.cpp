@@ -25,6 +25,7 @@ ShadeUnit::ShadeUnit(const UnitConfig& config)
 void ShadeUnit::load_material(const MaterialCmd& m) {
   ambient_ = m.ambient;
   spec_colour_ = m.spec_colour;
+  gate_only_ = m.gate_only;
   specular_.load_material(m);
   have_material_ = true;
 }

@@ -2,8 +2,10 @@
 // (model/pixel_combine.h, class PixelCombine). Combinational; shade_unit registers the result.
 //   stage 1  each diffuse value clamped below at 0; each specular intensity s_l times the
 //            light's specular colour k_lc, brought to the series fraction bits by the series
-//            rule (fixed_round + fixed_sat)
-//   stage 2  exact sum per channel: ambient_c + sum_l max(0, D_lc) + sum_l s_l k_lc
+//            rule (fixed_round + fixed_sat); the specular gate of light l,
+//            g_l = (sum_c D_lc) > 0 (the model's header comment states the rule and why)
+//   stage 2  exact sum per channel: ambient_c + sum_l max(0, D_lc) [light not gate-only]
+//                                   + sum_l g_l s_l k_lc
 //   stage 3  round to nearest into u0.OUT_BITS, saturating
 module pixel_combine #(
   parameter int CHANNELS         = 1,
@@ -22,6 +24,7 @@ module pixel_combine #(
   input  logic [LIGHTS*SPECULAR_OUT_WL-1:0]         spec_i,         // [l]
   input  logic [CHANNELS*SERIES_WL-1:0]             ambient_i,      // [c]
   input  logic [LIGHTS*CHANNELS*SPEC_COLOUR_WL-1:0] spec_colour_i,  // [l*CHANNELS + c]
+  input  logic [LIGHTS-1:0]                         gate_only_i,    // [l]: D_l0 gates only
   output logic [CHANNELS*OUT_BITS-1:0]              colour_o        // [c]
 );
   localparam int SeriesFrac = SERIES_WL - SERIES_IWL;
@@ -32,6 +35,25 @@ module pixel_combine #(
   localparam int AccW       = SERIES_WL + $clog2(2 * LIGHTS + 1) + 1;
   localparam int OutDrop    = SeriesFrac - OUT_BITS;
   localparam int OutRndW    = AccW + 1 - OutDrop;
+
+  localparam int GateW      = SERIES_WL + $clog2(CHANNELS + 1);  // sum of a light's channels
+
+  // The specular gate per light: the sum of its channels' diffuse values is > 0.
+  logic [LIGHTS-1:0] lit;
+  for (genvar l = 0; l < LIGHTS; l++) begin : g_gate
+    // Running sum over the channels (continuous assignments: Icarus 11 does not settle an
+    // always_comb that reads back what it writes).
+    logic [(CHANNELS + 1)*GateW-1:0] part /*verilator split_var*/;
+    assign part[0 +: GateW] = '0;
+    for (genvar c = 0; c < CHANNELS; c++) begin : g_sum
+      logic signed [SERIES_WL-1:0] d;
+      assign d = $signed(diffuse_i[(l*CHANNELS + c)*SERIES_WL +: SERIES_WL]);
+      assign part[(c + 1)*GateW +: GateW] = part[c*GateW +: GateW] + GateW'(d);
+    end
+    logic signed [GateW-1:0] n_dot_l;
+    assign n_dot_l = $signed(part[CHANNELS*GateW +: GateW]);
+    assign lit[l]  = !n_dot_l[GateW-1] && n_dot_l != '0;
+  end
 
   for (genvar c = 0; c < CHANNELS; c++) begin : g_chan
     // Running sum over the lights: sums[0] = ambient, sums[l+1] = sums[l] + diffuse + specular.
@@ -57,8 +79,8 @@ module pixel_combine #(
       fixed_sat #(.IN_W(ProdRndW), .OUT_W(SERIES_WL), .OUT_SIGNED(1), .WRAP(SERIES_OVERFLOW))
         u_sat (.in_i(product_rnd), .out_o(product_fit));
 
-      assign diffuse_term = diffuse[SERIES_WL-1] ? '0 : AccW'(diffuse);
-      assign spec_term    = AccW'($signed(product_fit));
+      assign diffuse_term = diffuse[SERIES_WL-1] || gate_only_i[l] ? '0 : AccW'(diffuse);
+      assign spec_term    = lit[l] ? AccW'($signed(product_fit)) : '0;
       assign sums[(l + 1)*AccW +: AccW] = $signed(sums[l*AccW +: AccW]) + diffuse_term + spec_term;
     end
 

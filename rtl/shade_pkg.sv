@@ -20,6 +20,7 @@ package shade_pkg;
   localparam int          FieldW      = 16;     // every header field below is 16 bits wide
   localparam int          CountLsb    = 0;      // [15:0]  payload words; SPAN: length
   localparam int          MidLsb      = 16;     // [31:16] TRIANGLE yo, SPAN x0, TABLE base
+  localparam int          GateOnlyLsb = MidLsb; // MATERIAL [31:16]: gate-only light mask
   localparam int          HighLsb     = 32;     // [47:32] TRIANGLE xo, SPAN y
   localparam int          SpanLastBit = 55;     // SPAN: last span of its scanline
 

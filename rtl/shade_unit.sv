@@ -162,6 +162,8 @@ module shade_unit #(
   // flight (span queue, setup stages, engines, slot metadata); spans in flight per bank --------
   localparam bit MatBanked = MATERIAL_BUFFERS == 2;
   logic mat_wr;             // bank the latest MATERIAL writes (0 with one buffer)
+  logic mat_hdr_bank;       // bank a MATERIAL header taken now switches to
+  assign mat_hdr_bank = MATERIAL_BUFFERS > 1 ? !mat_wr : 1'b0;
   logic mat_other_free;     // no span in flight reads the other bank
   logic s1_src_mat;         // bank of the span entering setup stage 1
   logic mat_q;              // bank of the engines' span
@@ -321,6 +323,7 @@ module shade_unit #(
   logic [COEF_WL-1:0]             coef_q [TRI_QUEUE*NCoef];  // bank b at b * NCoef
   logic [CHANNELS*SERIES_WL-1:0]  ambient_q [MATERIAL_BUFFERS];      // per material bank
   logic [NDiff*SPEC_COLOUR_WL-1:0] spec_colour_q [MATERIAL_BUFFERS];
+  logic [LIGHTS-1:0]              gate_only_q [MATERIAL_BUFFERS];  // diffuse series gate only
 
   // Payload words of this cycle's item, per beat word k: the tail (words pos_q ..
   // pos_q + tail_n - 1, the current triangle's, bank wr_bank_q) or a new TRIANGLE's (the words
@@ -392,6 +395,11 @@ module shade_unit #(
     if (hdr_fire && hdr_op == shade_pkg::OpTriangle) begin
       xo_q[next_bank] <= cmd_word[shade_pkg::HighLsb +: shade_pkg::FieldW];
       yo_q[next_bank] <= cmd_word[shade_pkg::MidLsb +: shade_pkg::FieldW];
+    end
+    // Loaded with the MATERIAL header into the bank its payload writes (the other one with two
+    // buffers: mat_wr switches on this edge), which no in-flight pixel reads.
+    if (hdr_fire && hdr_op == shade_pkg::OpMaterial) begin
+      gate_only_q[mat_hdr_bank] <= cmd_word[shade_pkg::GateOnlyLsb +: LIGHTS];
     end
     if (pay_fire && pay_op_q == PayMaterial) begin
       for (int i = 0; i < CHANNELS; i++) begin
@@ -782,6 +790,7 @@ module shade_unit #(
       .diffuse_i(meta_out.diffuse[j*LaneDiffW +: LaneDiffW]),
       .spec_i(spec[j*LIGHTS*SPECULAR_OUT_WL +: LIGHTS*SPECULAR_OUT_WL]),
       .ambient_i(ambient_q[meta_out.mat]), .spec_colour_i(spec_colour_q[meta_out.mat]),
+      .gate_only_i(gate_only_q[meta_out.mat]),
       .colour_o(colour[j*LaneColW +: LaneColW])
     );
   end

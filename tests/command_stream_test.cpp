@@ -26,6 +26,7 @@ CommandStream sample_stream(const UnitConfig& c, uint64_t seed) {
   for (int i = 0; i < c.lights * c.channels; ++i) m.spec_colour.push_back(static_cast<int64_t>(rng() % 4096));
   m.exponent = int64_t{37} << kExponentFracBits;
   m.unit_params = {1, -2, 3};
+  m.gate_only = 2;  // light 1's diffuse series gates only
   cs.commands.emplace_back(m);
   cs.commands.emplace_back(TableCmd{5, {1, 2, 3, 255}});
   for (int tri = 0; tri < 3; ++tri) {
@@ -58,6 +59,7 @@ TEST(CommandStream, BinaryRoundTripIsIdentity) {
   EXPECT_EQ(t.xo, t0.xo);
   EXPECT_EQ(t.yo, t0.yo);  // negative origins survive the 16-bit field
   EXPECT_EQ(t.coef, t0.coef);
+  EXPECT_EQ(std::get<MaterialCmd>(back.commands[0]).gate_only, 2u);
 }
 
 TEST(CommandStream, TextRoundTripKeepsConfigAndWords) {
@@ -68,6 +70,29 @@ TEST(CommandStream, TextRoundTripKeepsConfigAndWords) {
   const auto back = CommandStream::read_text(ss, "<text>");
   EXPECT_EQ(back.encode(), cs.encode());
   EXPECT_EQ(back.config.to_string(), c.to_string());
+  EXPECT_EQ(std::get<MaterialCmd>(back.commands[0]).gate_only, 2u);
+}
+
+TEST(CommandStream, MaterialGateOnlyMaskIsHeaderBits31To16) {
+  CommandStream cs;
+  cs.config.lights = 3;
+  MaterialCmd m;
+  m.ambient = {0};
+  m.spec_colour = {0, 0, 0};
+  m.gate_only = 5;
+  cs.commands.emplace_back(m);
+  const auto w = cs.encode();
+  EXPECT_EQ(w[0] >> 56, 0x01u);
+  EXPECT_EQ((w[0] >> 16) & 0xFFFF, 5u);
+  EXPECT_EQ(w[0] & 0xFFFF, 5u);  // 1 ambient + 3 spec_colour + exponent
+  // A bit beyond the unit's lights is an error naming the field.
+  const std::vector<uint64_t> bad = {(uint64_t{0x01} << 56) | (uint64_t{8} << 16) | 5, 0, 0, 0, 0, 0};
+  try {
+    CommandStream::decode(bad, cs.config, "dump.bin");
+    FAIL();
+  } catch (const CommandStreamError& e) {
+    EXPECT_NE(std::string(e.what()).find("material.gate_only = 8"), std::string::npos) << e.what();
+  }
 }
 
 TEST(CommandStream, HeaderWordLayoutMatchesDocumentation) {
@@ -104,6 +129,10 @@ TEST(CommandStream, TextErrorsNameLineAndExpectation) {
   expect_text_error("material ambient 1 spec_colour 1 exponent 99999999999 params\n", "exponent");
   expect_text_error("material ambient 1 2 spec_colour 1 exponent 5 params\n", "material.ambient");
   expect_text_error("tri 0 0 | 1 2 3 4 5 x\n", "expected an integer coefficient");
+  expect_text_error("material ambient 1 spec_colour 1 exponent 5 params gate_only 2\n",
+                    "material.gate_only = 2: expected a mask of the unit's 1 lights");
+  expect_text_error("material ambient 1 spec_colour 1 exponent 5 params gate_only\n",
+                    "expected an integer for gate_only");
 }
 
 TEST(CommandStream, MissingHeaderAndEmptyStreamAreErrors) {

@@ -1,7 +1,8 @@
 // Hard cases for co-simulation (scenes/hard/): each scene is rendered through the whole pipeline
 // and the bit-accurate model, checked against the double reference, and checked to really contain
 // the stream property that makes it hard (a 2048-pixel span, 1-pixel spans, 10,000 triangles,
-// frequent material switches, a finite-eye specular that varies across a flat plane).
+// frequent material switches, a finite-eye specular that varies across a flat plane, a highlight
+// cut off at the terminator).
 //
 // Error bounds are derived, not observed: the setup measures each triangle's Taylor error (max
 // over the pixel centres it covers, in output LSBs), and the fixed-point error on top of it is
@@ -373,6 +374,146 @@ TEST(HardScenes, FloorTheCameraStandsOnCoversTheLowerHalfWithinOneLsb) {
   report("floor", r, bound);
   ASSERT_LT(bound, 1.0);
   EXPECT_LE(r.error.max_code_lsb, 1);
+}
+
+// ---- scenes/hard/terminator.json: no specular where N.L <= 0 --------------------------------
+//
+// The scene is a unit sphere at the origin seen by an orthographic camera on +z (screen x =
+// world x, screen y = -world y), lit from 120 degrees off the view direction, so the terminator
+// crosses the visible disc and the Blinn lobe around H straddles it. The closed form of a
+// pixel (px, py), independent of the mesh, the setup and the model:
+//   x = (px + 1/2 - W/2) / s,  y = (H/2 - py - 1/2) / s,  s = H / ortho_height (pixels per unit)
+//   N = (x, y, sqrt(1 - x^2 - y^2))            (the sphere's normal under the pixel centre)
+//   L = light direction / |.|,  V = (0, 0, 1),  Hv = (L + V) / |L + V|
+//   c_ch = ka_ch Ia_ch + Lc_ch (kd_ch max(0, N.L) + [N.L > 0] ks_ch max(0, N.Hv)^n)
+//   code_ch = min(255, max(0, floor(min(1, max(0, c_ch)) * 2^8 + 1/2)))  (model/pixel_combine.h)
+// and "ungated" drops [N.L > 0]. Compared: the pixels the mesh owns with x^2 + y^2 < 0.97^2 (at
+// the rim the faceted silhouette and normals leave the sphere's).
+struct TerminatorCompare {
+  int compared = 0;
+  int model_max = 0, reference_max = 0;  // |code - gated closed form|
+  int ungated_max = 0;                   // |gated - ungated closed form|, over compared pixels
+  int gate_visible = 0;                  // pixels where they differ by more than 2 codes
+  int model_vs_ungated_max = 0;
+};
+
+int output_code(double c) {
+  const double v = std::min(1.0, std::max(0.0, c));
+  return static_cast<int>(std::clamp(std::floor(v * 256.0 + 0.5), 0.0, 255.0));
+}
+
+TerminatorCompare compare_terminator(const Rendered& r) {
+  const PreparedFrame& f = r.frame;
+  const Scene& sc = f.scene;
+  EXPECT_EQ(sc.camera.kind, Camera::Kind::kOrthographic);
+  EXPECT_TRUE(sc.eye_at_infinity);
+  EXPECT_EQ(f.config.out_bits, 8);
+  const double s = sc.height / sc.camera.ortho_height;
+  const Vec3 L = normalize(sc.lights.at(0).direction);
+  const Vec3 V{0, 0, 1};
+  const Vec3 Hv = normalize(L + V);
+  const Material& m = sc.materials.at(0);
+  auto comp = [](const Vec3& v, int ch) { return ch == 0 ? v.x : ch == 1 ? v.y : v.z; };
+  std::vector<int> model(sc.width * sc.height * 3, -1);
+  for (const PixelOut& p : r.pixels) {
+    for (int ch = 0; ch < f.config.channels; ++ch) model[(p.y * sc.width + p.x) * 3 + ch] = p.colour[ch];
+  }
+  TerminatorCompare out;
+  for (int py = 0; py < sc.height; ++py) {
+    for (int px = 0; px < sc.width; ++px) {
+      const size_t pixel = static_cast<size_t>(py) * sc.width + px;
+      if (f.visibility.owner[pixel] < 0) continue;
+      const double x = (px + 0.5 - sc.width / 2.0) / s, y = (sc.height / 2.0 - py - 0.5) / s;
+      if (x * x + y * y >= 0.97 * 0.97) continue;
+      const Vec3 N{x, y, std::sqrt(1 - x * x - y * y)};
+      const double nl = dot(N, L), nh = dot(N, Hv);
+      ++out.compared;
+      for (int ch = 0; ch < f.config.channels; ++ch) {
+        const double lc = comp(sc.lights[0].colour, ch);
+        const double spec = comp(m.specular, ch) * lc * std::pow(std::max(0.0, nh), m.exponent);
+        const double base = comp(m.ambient, ch) * comp(sc.ambient_light, ch) +
+                            comp(m.diffuse, ch) * lc * std::max(0.0, nl);
+        const int gated = output_code(base + (nl > 0 ? spec : 0.0));
+        const int ungated = output_code(base + spec);
+        const int got = model[pixel * 3 + ch];
+        const int ref = output_code(r.reference.values[pixel * f.config.channels + ch]);
+        EXPECT_GE(got, 0) << "no model pixel at " << px << "," << py;
+        out.model_max = std::max(out.model_max, std::abs(got - gated));
+        out.reference_max = std::max(out.reference_max, std::abs(ref - gated));
+        out.ungated_max = std::max(out.ungated_max, std::abs(ungated - gated));
+        out.model_vs_ungated_max = std::max(out.model_vs_ungated_max, std::abs(got - ungated));
+        if (ch == 0 && std::abs(ungated - gated) > 2) ++out.gate_visible;
+        if (std::abs(got - gated) > 1 || std::abs(ref - gated) > 1) {
+          ADD_FAILURE() << "pixel " << px << "," << py << " ch " << ch << ": model " << got
+                        << ", reference " << ref << ", gated closed form " << gated << " (N.L "
+                        << nl << ", N.H " << nh << ")";
+        }
+      }
+    }
+  }
+  std::cout << "terminator (" << f.config.to_string() << "): " << out.compared
+            << " pixels compared; model within " << out.model_max << ", reference within "
+            << out.reference_max << " codes of the gated closed form; the ungated one differs by up to "
+            << out.ungated_max << " (" << out.gate_visible << " pixels by more than 2), from the model by up to "
+            << out.model_vs_ungated_max << "\n";
+  return out;
+}
+
+TEST(HardScenes, TerminatorHasNoHighlightWhereNDotLIsNotPositive) {
+  const Rendered r = render(hard_scene("terminator.json"));
+  const TerminatorCompare c = compare_terminator(r);
+  EXPECT_GT(c.compared, 20000);
+  EXPECT_LE(c.model_max, 1);
+  EXPECT_LE(c.reference_max, 1);
+  // Without the gate the lobe shines through: the ungated closed form is far from the gated one
+  // (and from the model) on a visible share of the disc, so the checks above can fail.
+  EXPECT_GT(c.ungated_max, 15);
+  EXPECT_GT(c.model_vs_ungated_max, 15);
+  EXPECT_GT(c.gate_visible, c.compared / 50);
+  // The gate-only mask is for materials without diffuse colour, not this one.
+  for (const MaterialCmd& m : commands_of<MaterialCmd>(r.frame.encoded.stream)) EXPECT_EQ(m.gate_only, 0u);
+}
+
+TEST(HardScenes, TerminatorGateHoldsWithAZeroDiffuseChannel) {
+  // Green has no diffuse colour: its diffuse series is identically 0 and carries no sign; the
+  // gate takes the sign from the sum of the light's channels.
+  // scenes/hard/terminator_green0.json: terminator.json with kd = (0.5, 0, 0.3).
+  const Rendered r = render(hard_scene("terminator_green0.json"));
+  ASSERT_EQ(r.frame.config.channels, 3);
+  ASSERT_EQ(r.frame.scene.materials[0].diffuse.y, 0.0);
+  for (const TriangleCmd& t : commands_of<TriangleCmd>(r.frame.encoded.stream)) {
+    for (int k = 0; k < kTermsPerSeries; ++k) ASSERT_EQ(t.coef[kTermsPerSeries + k], 0) << "green diffuse";
+  }
+  for (const MaterialCmd& m : commands_of<MaterialCmd>(r.frame.encoded.stream)) EXPECT_EQ(m.gate_only, 0u);
+  const TerminatorCompare c = compare_terminator(r);
+  EXPECT_LE(c.model_max, 1);
+  EXPECT_LE(c.reference_max, 1);
+  EXPECT_GT(c.ungated_max, 15);
+}
+
+TEST(HardScenes, TerminatorGateHoldsWithoutAnyDiffuseColour) {
+  // kd = 0: every diffuse series would be 0. The encoder sends N.L unscaled in channel 0's
+  // series and marks the light gate-only, so the series gates and adds nothing.
+  // scenes/hard/terminator_kd0.json: terminator.json with kd = 0.
+  const Rendered r = render(hard_scene("terminator_kd0.json"));
+  ASSERT_EQ(r.frame.scene.materials[0].diffuse.x, 0.0);
+  const auto materials = commands_of<MaterialCmd>(r.frame.encoded.stream);
+  ASSERT_FALSE(materials.empty());
+  for (const MaterialCmd& m : materials) EXPECT_EQ(m.gate_only, 1u);
+  const TerminatorCompare c = compare_terminator(r);
+  EXPECT_LE(c.model_max, 1);
+  EXPECT_LE(c.reference_max, 1);
+  EXPECT_GT(c.ungated_max, 15);
+  // The same stream with the mask cleared adds N.L as diffuse: the mask is what keeps it out.
+  CommandStream cleared = r.frame.encoded.stream;
+  for (Command& cmd : cleared.commands) {
+    if (auto* m = std::get_if<MaterialCmd>(&cmd)) m->gate_only = 0;
+  }
+  const std::vector<PixelOut> wrong = ShadeUnit(r.frame.config).run(cleared);
+  ASSERT_EQ(wrong.size(), r.pixels.size());
+  int most = 0;
+  for (size_t i = 0; i < wrong.size(); ++i) most = std::max(most, std::abs(wrong[i].colour[0] - r.pixels[i].colour[0]));
+  EXPECT_GT(most, 100);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 // PixelCombine against the same sum computed in double (exact for these widths) and rounded by
 // the documented output rule: code = clamp(floor(x * 2^out_bits + 1/2), 0, 2^out_bits - 1).
+// The specular gate as documented: light l's specular term counts only where the sum of its
+// channels' diffuse values is > 0; a gate-only light's diffuse values are not added.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -24,13 +26,28 @@ TEST(PixelCombine, MatchesDoubleSumAndOutputRule) {
     for (auto& a : ambient) a = c.series.from_double(0.3 * std::fabs(series(rng)));
     for (auto& s : spec) s = static_cast<int64_t>(rng() % (c.specular.out.raw_max() + 1));
     for (auto& k : colour) k = static_cast<int64_t>(rng() % (c.spec_colour.raw_max() + 1));
-    const auto out = combine(diffuse, spec, ambient, colour);
+    // A third of the trials: light l's channels all of one sign, so the gate is that sign.
+    if (trial % 3 == 0) {
+      for (int l = 0; l < 2; ++l) {
+        const bool negative = rng() % 2 == 0;
+        for (int ch = 0; ch < 3; ++ch) {
+          const int64_t a = diffuse[l * 3 + ch] < 0 ? -diffuse[l * 3 + ch] : diffuse[l * 3 + ch];
+          diffuse[l * 3 + ch] = negative ? -a : a;
+        }
+      }
+    }
+    const uint32_t gate_only = static_cast<uint32_t>(rng() % 4);
+    const auto out = combine(diffuse, spec, ambient, colour, gate_only);
     for (int ch = 0; ch < 3; ++ch) {
       double x = c.series.to_double(ambient[ch]);
       for (int l = 0; l < 2; ++l) {
-        x += std::max(0.0, c.series.to_double(diffuse[l * 3 + ch]));
+        const bool gate_only_light = (gate_only & (1u << l)) != 0;
+        if (!gate_only_light) x += std::max(0.0, c.series.to_double(diffuse[l * 3 + ch]));
+        double nl = 0.0;
+        for (int k = 0; k < 3; ++k) nl += c.series.to_double(diffuse[l * 3 + k]);
+        const bool lit = nl > 0.0;
         // s * k has 16 + 12 = 28 fraction bits = the series' own: no rounding.
-        x += c.specular.out.to_double(spec[l]) * c.spec_colour.to_double(colour[l * 3 + ch]);
+        if (lit) x += c.specular.out.to_double(spec[l]) * c.spec_colour.to_double(colour[l * 3 + ch]);
       }
       const double code = std::clamp(std::floor(x * 256.0 + 0.5), 0.0, 255.0);
       ASSERT_EQ(out[ch], code) << "x=" << x << " lsb=" << series_lsb;
@@ -44,7 +61,46 @@ TEST(PixelCombine, GreyUsesOneChannelAndClampsNegativeDiffuse) {
   const int64_t diffuse = c.series.from_double(-0.75);
   const int64_t spec = 0, colour = 0;
   const int64_t ambient = c.series.from_double(0.25);
-  EXPECT_EQ(combine(&diffuse, &spec, &ambient, &colour)[0], 64);  // 0.25 * 256, diffuse clamped
+  EXPECT_EQ(combine(&diffuse, &spec, &ambient, &colour, 0)[0], 64);  // 0.25 * 256, diffuse clamped
+}
+
+TEST(PixelCombine, SpecularOnlyWhereSomeDiffuseIsPositive) {
+  UnitConfig c;  // grey, one light
+  const PixelCombine combine(c);
+  const int64_t spec = c.specular.out.from_double(0.5);
+  const int64_t colour = c.spec_colour.from_double(0.5);
+  const int64_t ambient = 0;
+  const int64_t behind = c.series.from_double(-0.001), zero = 0, lit = 1;  // lit: one LSB
+  EXPECT_EQ(combine(&behind, &spec, &ambient, &colour, 0)[0], 0);
+  EXPECT_EQ(combine(&zero, &spec, &ambient, &colour, 0)[0], 0);     // N.L = 0 is not lit
+  EXPECT_EQ(combine(&lit, &spec, &ambient, &colour, 0)[0], 64);     // 0.25 * 256
+  // Gate only: the diffuse value opens the gate and is not added.
+  const int64_t half = c.series.from_double(0.5);
+  EXPECT_EQ(combine(&half, &spec, &ambient, &colour, 1)[0], 64);
+  EXPECT_EQ(combine(&half, &spec, &ambient, &colour, 0)[0], 192);   // (0.5 + 0.25) * 256
+  EXPECT_EQ(combine(&behind, &spec, &ambient, &colour, 1)[0], 0);
+}
+
+TEST(PixelCombine, GateIsTheSignOfTheLightsChannelSum) {
+  UnitConfig c;
+  c.channels = 3;
+  c.lights = 2;
+  const PixelCombine combine(c);
+  const int64_t one = c.series.from_double(0.25);
+  // Light 0: only the blue channel is lit (red and green colour 0). Light 1: behind.
+  const int64_t diffuse[6] = {0, 0, one, -one, 0, -one};
+  const int64_t spec[2] = {c.specular.out.from_double(0.5), c.specular.out.from_double(0.5)};
+  const int64_t ambient[3] = {0, 0, 0};
+  const int64_t k = c.spec_colour.from_double(0.5);
+  const int64_t colour[6] = {k, k, k, k, k, k};
+  const auto out = combine(diffuse, spec, ambient, colour, 0);
+  EXPECT_EQ(out[0], 64);        // light 0's specular only: 0.25
+  EXPECT_EQ(out[1], 64);
+  EXPECT_EQ(out[2], 64 + 64);   // + blue diffuse 0.25
+  // Channels that disagree near the terminator: the sum decides (a small scale's rounding
+  // cannot open the gate on its own).
+  const int64_t mixed[6] = {1, -one, -one, 0, 0, 0};
+  EXPECT_EQ(combine(mixed, spec, ambient, colour, 0)[0], 0);
 }
 
 }  // namespace

@@ -181,7 +181,8 @@ TEST(Reference, FiniteEyeUsesInterpolatedEyeVector) {
   EXPECT_NEAR(img.at(20, 15, 0), std::pow(dot(normalize(mean), H), 30), 1e-13);
 }
 
-TEST(Reference, SpecularIsNotGatedByNDotL) {
+// Issue 10: no specular where N.L <= 0 (LM3DGP's Phong chapter), though N.H > 0 there.
+TEST(Reference, SpecularIsGatedByNDotL) {
   Material m;
   m.ambient = {0, 0, 0};
   m.diffuse = {1, 1, 1};
@@ -196,7 +197,15 @@ TEST(Reference, SpecularIsNotGatedByNDotL) {
   const ReferenceImage img = render_reference({t}, owners(t, 40, 30), 40, 30, s, 1);
   const double nh = dot(n, normalize(L + Vec3{0, 0, 1}));
   ASSERT_GT(nh, 0.0);
-  EXPECT_NEAR(img.at(15, 12, 0), std::pow(nh, 4), 1e-14);  // diffuse 0, specular present
+  EXPECT_EQ(img.at(15, 12, 0), 0.0);  // diffuse 0 and no specular, though pow(nh, 4) = 0.06
+  ASSERT_GT(std::pow(nh, 4), 0.05);   // (15 8-bit LSBs)
+  // The same normal turned just in front of the terminator: N.L > 0, specular present.
+  const Vec3 lit = normalize(Vec3{-0.04, 0, 1});
+  ASSERT_GT(dot(lit, L), 0.0);
+  t.v = {vert(2, 3, lit), vert(37, 5, lit), vert(15, 28, lit)};
+  const ReferenceImage img_lit = render_reference({t}, owners(t, 40, 30), 40, 30, s, 1);
+  EXPECT_NEAR(img_lit.at(15, 12, 0),
+              dot(lit, L) + std::pow(dot(lit, normalize(L + Vec3{0, 0, 1})), 4), 1e-14);
 }
 
 TEST(Reference, ClampsToOne) {

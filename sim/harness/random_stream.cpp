@@ -54,6 +54,9 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
   auto uni = [&rng](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
   auto irange = [&rng](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
   auto chance = [&](double p) { return uni(0.0, 1.0) < p; };
+  // The MATERIAL's gate-only mask has a generator of its own, so every other field of a seed's
+  // stream stays what it was before the mask existed.
+  std::mt19937_64 gate_rng(seed ^ 0x9E3779B97F4A7C15u);
 
   CommandStream cs;
   cs.config = config;
@@ -98,6 +101,10 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
         v = config.spec_colour.from_double(shape.edge ? uni(0.2, 0.9) : uni(0.0, 0.5));
       }
     }
+    // A quarter of the materials with spec hardware: a random set of gate-only lights.
+    if (has_spec_hw && gate_rng() % 4 == 0) {
+      m.gate_only = static_cast<uint32_t>(gate_rng() % (uint64_t{1} << config.lights));
+    }
     m.exponent = int64_t{irange(1, 200)} << kExponentFracBits;
     // Edge: fractional exponents over the whole u10.16 range, every shift the units accept.
     if (shape.edge) {
@@ -117,13 +124,22 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
   // at the top of the series range with a rising slope and curvature (the series leaves its
   // format: wraps, or saturates in :sat builds); a negative value (the diffuse clamp at 0).
   // Coefficients stay inside the coef format.
+  // The lowest T0 of series s. A specular unit's diffuse series start at or above 0: the
+  // specular term shows only where light l's diffuse values sum to more than 0 (the N.L gate,
+  // model/pixel_combine.h), and the slopes and the edge kinds below still take them negative.
+  auto diffuse_lo = [&](int s) { return has_spec_hw && s < config.diffuse_series() ? 0.0 : -0.3; };
+  // Their slopes and curvatures are 1/256 of the others', so over a long span they stay in the
+  // range where the specular term is neither gated off nor saturated.
+  auto slope = [&](int s) { return has_spec_hw && s < config.diffuse_series() ? 1.0 / 256 : 1.0; };
   const double coef_top = std::ldexp(1.0, config.coef.iwl - 1) * 0.999;
   const double series_top = std::ldexp(1.0, config.series.iwl - 1);
   auto edge_terms = [&](TriangleCmd& t) {
     for (int s = 0; s < series; ++s) {
       const double base = has_spec_hw && s < config.diffuse_series() ? 0.5 / config.lights : 1.0;
-      double terms[kTermsPerSeries] = {uni(-0.3, 1.2) * base, uni(-1, 1) / 256, uni(-1, 1) / 256,
-                                       uni(-1, 1) / 16384, uni(-1, 1) / 16384, uni(-1, 1) / 16384};
+      const double g = slope(s);
+      double terms[kTermsPerSeries] = {uni(diffuse_lo(s), 1.2) * base, uni(-1, 1) / 256 * g,
+                                       uni(-1, 1) / 256 * g, uni(-1, 1) / 16384 * g,
+                                       uni(-1, 1) / 16384 * g, uni(-1, 1) / 16384 * g};
       const int kind = irange(0, 9);
       if (kind == 7) {
         terms[0] = uni(1.0, 3.0);
@@ -158,9 +174,10 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
       // With a specular unit, keep most pixels below the output's saturation so the specular
       // term shows in the bits: diffuse terms scaled down by the light count.
       const double base = has_spec_hw && s < config.diffuse_series() ? 0.5 / config.lights : 1.0;
+      const double g = slope(s) * k;
       const double terms[kTermsPerSeries] = {
-          uni(-0.3, 1.2) * base * k,    uni(-1, 1) / 256 * k,          uni(-1, 1) / 256 * k,
-          uni(-1, 1) / 16384 * k,       uni(-1, 1) / 16384 * k,        uni(-1, 1) / 16384 * k};
+          uni(diffuse_lo(s), 1.2) * base * k,    uni(-1, 1) / 256 * g,          uni(-1, 1) / 256 * g,
+          uni(-1, 1) / 16384 * g,       uni(-1, 1) / 16384 * g,        uni(-1, 1) / 16384 * g};
       // A narrowed term (coef_term_iwl) saturates: wild values reach its limits.
       for (int k = 0; k < kTermsPerSeries; ++k) t.coef.push_back(config.coef_term(k).from_double(terms[k]));
     }

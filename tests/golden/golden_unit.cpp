@@ -64,6 +64,7 @@ Int128 quadratic(const int64_t* t, Int128 dx, Int128 dy) {
 // State of the unit between commands, as the command stream's documentation defines it.
 struct State {
   std::vector<int64_t> ambient, spec_colour, unit_params;
+  uint32_t gate_only = 0;  // MATERIAL header: lights whose diffuse series only gates specular
   double exponent = 0;
   std::vector<int64_t> table;
   TriangleCmd triangle;
@@ -160,6 +161,7 @@ std::vector<Pixel> shade(const CommandStream& stream) {
       st.ambient = m->ambient;
       st.spec_colour = m->spec_colour;
       st.unit_params = m->unit_params;
+      st.gate_only = m->gate_only;
       st.exponent = static_cast<double>(m->exponent) / 65536.0;  // u10.16
       st.have_material = true;
     } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
@@ -221,7 +223,12 @@ std::vector<Pixel> shade(const CommandStream& stream) {
         for (int ch = 0; ch < c.channels; ++ch) {
           Int128 sum = st.ambient[ch];
           for (int l = 0; l < c.lights; ++l) {
-            sum += std::max<int64_t>(0, values[l * c.channels + ch]);
+            if ((st.gate_only & (1u << l)) == 0) sum += std::max<int64_t>(0, values[l * c.channels + ch]);
+            // The gate (model/pixel_combine.h): specular only where light l's channels' diffuse
+            // values sum to more than 0.
+            Int128 n_dot_l = 0;
+            for (int k = 0; k < c.channels; ++k) n_dot_l += values[l * c.channels + k];
+            if (n_dot_l <= 0) continue;
             const int64_t spec = specular(c, st, &values[diffuse + l * per_light]);
             sum += sc_quantize(Int128{spec} * st.spec_colour[l * c.channels + ch], product_frac,
                                c.series);
