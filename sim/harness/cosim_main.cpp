@@ -36,6 +36,9 @@
 #include "model/unit_config_file.h"
 #include "sim/harness/cosim.h"
 #include "sim/harness/random_stream.h"
+#ifdef SHADESIM_COSIM_COVERAGE
+#include "verilated_cov.h"
+#endif
 
 #ifdef SHADESIM_COSIM_SYSTEMC
 #include "sim/harness/sc_backend.h"
@@ -58,6 +61,11 @@ namespace {
 constexpr bool kTraced = true;
 #else
 constexpr bool kTraced = false;
+#endif
+#ifdef SHADESIM_COSIM_COVERAGE
+constexpr bool kCovered = true;
+#else
+constexpr bool kCovered = false;
 #endif
 
 // Bad input: exit status 2.
@@ -87,7 +95,12 @@ std::string parameter_text(const std::vector<VerilogParameter>& params) {
 CosimResult run_build(const CosimJob& job, const WaveWindow* waves) {
 #ifdef SHADESIM_COSIM_SYSTEMC
   if (waves) throw InputError("waveforms need the trace-enabled C++ build (shadesim cosim --waves)");
-  return run_verilated_systemc<Vshade_unit>(job);
+  CosimResult r = run_verilated_systemc<Vshade_unit>(job);
+#ifdef SHADESIM_COSIM_COVERAGE
+  // The SystemC model counts into the thread's context (one job per process).
+  if (!job.coverage_path.empty()) Verilated::threadContextp()->coveragep()->write(job.coverage_path.c_str());
+#endif
+  return r;
 #else
   return run_verilated_cpp<Vshade_unit>(job, waves);
 #endif
@@ -109,6 +122,7 @@ struct Options {
   uint64_t waves_before = 200, waves_after = 16;
   double min_spec_pct = 0;
   uint64_t watchdog = 0;  // cycles without pix_valid_o that count as a hang; 0: from the cycle model
+  std::string coverage_path;  // covered builds: FILE.dat (several jobs: FILE_<i>.dat)
   bool list = false;
 };
 
@@ -185,6 +199,19 @@ nlohmann::json outcome_json(const Outcome& o) {
   return j;
 }
 
+// Each job's coverage file: FILE itself for one job, FILE_<i>.dat for several (verilator_coverage
+// merges them).
+void set_coverage_paths(std::vector<CosimJob>& jobs, const std::string& path) {
+  if (path.empty()) return;
+  if (!kCovered) throw InputError("--coverage needs a covered build (shadesim regress --coverage picks it)");
+  const std::filesystem::path p(path);
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    jobs[i].coverage_path = jobs.size() == 1 ? path
+                                             : (p.parent_path() / (p.stem().string() + "_" + std::to_string(i) +
+                                                                   p.extension().string())).string();
+  }
+}
+
 std::vector<CosimJob> make_jobs(const Options& o, const RtlConfig& build) {
   std::vector<CosimJob> jobs;
   auto apply_overrides = [&o](Stimulus s, uint64_t seed) {
@@ -211,6 +238,7 @@ std::vector<CosimJob> make_jobs(const Options& o, const RtlConfig& build) {
     job.stim = apply_overrides(Stimulus{}, o.seed);
     job.watchdog_cycles = o.watchdog;
     jobs.push_back(job);
+    set_coverage_paths(jobs, o.coverage_path);
     return jobs;
   }
   std::vector<std::string> names;
@@ -234,6 +262,7 @@ std::vector<CosimJob> make_jobs(const Options& o, const RtlConfig& build) {
       jobs.push_back(job);
     }
   }
+  set_coverage_paths(jobs, o.coverage_path);
   return jobs;
 }
 
@@ -410,7 +439,7 @@ void print_list(bool json) {
   }
   nlohmann::json p = nlohmann::json::object();
   for (const auto& v : params) p[v.name] = v.value;
-  std::cout << nlohmann::json{{"backend", SHADESIM_BACKEND}, {"traced", kTraced}, {"parameters", p},
+  std::cout << nlohmann::json{{"backend", SHADESIM_BACKEND}, {"traced", kTraced}, {"covered", kCovered}, {"parameters", p},
                               {"faults", faults_json(built_faults())}}
                    .dump(2)
             << '\n';
@@ -445,6 +474,8 @@ int cosim_main(int argc, char** argv) {
   app.add_option("--watchdog", o.watchdog,
                  "cycles without pix_valid_o, while pixels are still expected, that count as a hang "
                  "(default 0: the cycle model's longest pixel-less stretch on this stream + 1000)");
+  app.add_option("--coverage", o.coverage_path,
+                 "write the run's line/toggle/user coverage to FILE.dat, pass or fail (covered build)");
   app.add_option("--waves-before", o.waves_before, "cycles before the mismatch in the waveform")->capture_default_str();
   app.add_option("--waves-after", o.waves_after, "cycles after the mismatch in the waveform")->capture_default_str();
   try {

@@ -13,6 +13,9 @@
 #ifdef SHADESIM_COSIM_TRACE
 #include "verilated_fst_c.h"
 #endif
+#ifdef SHADESIM_COSIM_COVERAGE
+#include "verilated_cov.h"
+#endif
 
 namespace shadesim {
 
@@ -137,6 +140,10 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
     }
   }
   top.final();
+#ifdef SHADESIM_COSIM_COVERAGE
+  // The counts live in this run's context: write them before it goes, pass or fail.
+  if (!job.coverage_path.empty()) context.coveragep()->write(job.coverage_path.c_str());
+#endif
 #ifdef SHADESIM_COSIM_TRACE
   if (fst) fst->close();
 #endif
