@@ -765,7 +765,7 @@ bool report_coverage(const std::vector<RunRecord>& records, const fs::path& out,
             << (std::to_string(sum.toggles_hit) + "/" + std::to_string(sum.toggles)) << std::setw(10)
             << percent(sum.toggles_hit, sum.toggles) << '\n';
   for (const auto& f : sum.files_without_points) {
-    std::cout << "  not elaborated by any run (no points, not counted): " << fs::relative(f, source_dir()).string()
+    std::cout << "  no points (a package, or not elaborated by any run; not counted): " << fs::relative(f, source_dir()).string()
               << '\n';
   }
   for (const auto& f : sum.files) {

@@ -138,8 +138,9 @@ std::string key_of(const RtlConfig& build, CosimBackend backend, const Tools& to
   Hasher h;
   // Only covered builds hash this, so the keys of plain builds (and their cache) stay as they were.
   if (coverage) {
+    static const std::string cover_points = read_file(cover_points_file());  // once, like `inputs`
     h.add("coverage: line toggle user");
-    h.add(read_file(cover_points_file()));
+    h.add(cover_points);
   }
   h.add(kRecipeVersion);
   h.add(parameter_text(shade_unit_parameters(build.unit, build.faults)));
