@@ -23,7 +23,8 @@ module shade_unit_cover #(
   input logic               hdr_fire_i,
   input logic [7:0]         hdr_op_i
 );
-  // A command header after an END_FRAME: decoding goes on into the next frame.
+  // A command header after an END_FRAME (not the NOP padding of its beat): decoding goes on
+  // into the next frame.
   logic frame_ended_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) frame_ended_q <= 1'b0;
@@ -36,7 +37,8 @@ module shade_unit_cover #(
   cov_pix_x_msb: cover property (@(posedge clk_i) pix_valid_i && pix_ready_i && pix_x_i[XY_BITS-1]);
   cov_end_frame: cover property (@(posedge clk_i) hdr_fire_i && hdr_op_i == shade_pkg::OpEndFrame);
   cov_command_after_end_frame: cover property (@(posedge clk_i)
-    frame_ended_q && hdr_fire_i && hdr_op_i != shade_pkg::OpEndFrame);
+    frame_ended_q && hdr_fire_i && hdr_op_i != shade_pkg::OpEndFrame &&
+    hdr_op_i != shade_pkg::OpNop);
   // Lane 0's output code of a channel at either end of its range: 0 (a total at or below 0,
   // clamped) and all ones (a total at or above 1, saturated).
   logic any_zero, any_full;
