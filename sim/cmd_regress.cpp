@@ -315,6 +315,7 @@ void emit_jobs(const RegressOptions& o, const RunSettings& settings, const fs::p
     if (settings.watchdog > 0) a.insert(a.end(), {"--watchdog", std::to_string(settings.watchdog)});
     if (!o.cache.empty()) a.insert(a.end(), {"--cache", o.cache});
     if (o.waves) a.push_back("--waves");
+    if (o.coverage) a.push_back("--coverage");  // each line's run writes its coverage.dat
     std::string line;
     for (const auto& w : a) line += (line.empty() ? "" : " ") + (w == "&&" ? w : shell_quote(w));
     lines << line << '\n';
