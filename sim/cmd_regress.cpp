@@ -726,10 +726,16 @@ std::string percent(int hit, int total) {
 // --coverage-min (true without one).
 bool report_coverage(const std::vector<RunRecord>& records, const fs::path& out, const RegressOptions& o) {
   std::vector<std::string> dats;
+  std::vector<std::string> without;  // runs that ran and left no coverage (killed, crashed, plain build)
   for (const auto& r : records) {
     const fs::path dat = fs::path(r.dir) / "coverage.dat";
-    if (!r.dir.empty() && fs::exists(dat)) dats.push_back(dat.string());
+    if (!r.dir.empty() && fs::exists(dat)) {
+      dats.push_back(dat.string());
+    } else if (r.status != "skipped") {
+      without.push_back(r.spec.id() + " (" + r.status + ")");
+    }
   }
+  for (const auto& w : without) std::cout << "regress: coverage: no coverage file from run " << w << '\n';
   const fs::path dir = out / "coverage";
   fs::create_directories(dir);
   const fs::path rtl_dir = fs::path(source_dir()) / "rtl";
