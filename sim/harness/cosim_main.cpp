@@ -36,9 +36,6 @@
 #include "model/unit_config_file.h"
 #include "sim/harness/cosim.h"
 #include "sim/harness/random_stream.h"
-#ifdef SHADESIM_COSIM_COVERAGE
-#include "verilated_cov.h"
-#endif
 
 #ifdef SHADESIM_COSIM_SYSTEMC
 #include "sim/harness/sc_backend.h"
@@ -95,12 +92,7 @@ std::string parameter_text(const std::vector<VerilogParameter>& params) {
 CosimResult run_build(const CosimJob& job, const WaveWindow* waves) {
 #ifdef SHADESIM_COSIM_SYSTEMC
   if (waves) throw InputError("waveforms need the trace-enabled C++ build (shadesim cosim --waves)");
-  CosimResult r = run_verilated_systemc<Vshade_unit>(job);
-#ifdef SHADESIM_COSIM_COVERAGE
-  // The SystemC model counts into the thread's context (one job per process).
-  if (!job.coverage_path.empty()) Verilated::threadContextp()->coveragep()->write(job.coverage_path.c_str());
-#endif
-  return r;
+  return run_verilated_systemc<Vshade_unit>(job);
 #else
   return run_verilated_cpp<Vshade_unit>(job, waves);
 #endif

@@ -140,10 +140,6 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
     }
   }
   top.final();
-#ifdef SHADESIM_COSIM_COVERAGE
-  // The counts live in this run's context: write them before it goes, pass or fail.
-  if (!job.coverage_path.empty()) context.coveragep()->write(job.coverage_path.c_str());
-#endif
 #ifdef SHADESIM_COSIM_TRACE
   if (fst) fst->close();
 #endif
@@ -153,6 +149,10 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
   r.pixels = board.pixels_checked();
   r.scanlines = board.scanlines_checked();
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+#ifdef SHADESIM_COSIM_COVERAGE
+  // The counts live in this run's context: write them before it goes, pass or fail.
+  if (!job.coverage_path.empty()) context.coveragep()->write(job.coverage_path.c_str());
+#endif
   return r;
 }
 

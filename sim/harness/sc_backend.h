@@ -16,6 +16,9 @@
 
 #include "sim/harness/cosim.h"
 #include "sim/harness/idle_noise.h"
+#ifdef SHADESIM_COSIM_COVERAGE
+#include "verilated_cov.h"
+#endif
 
 namespace shadesim {
 
@@ -236,6 +239,10 @@ CosimResult run_verilated_systemc(const CosimJob& job) {
   r.cycles = board.cycles();
   r.pixels = board.pixels_checked();
   r.scanlines = board.scanlines_checked();
+#ifdef SHADESIM_COSIM_COVERAGE
+  // The counters live in the model (counted into the thread's context): write them while it exists.
+  if (!job.coverage_path.empty()) Verilated::threadContextp()->coveragep()->write(job.coverage_path.c_str());
+#endif
   return r;
 }
 
