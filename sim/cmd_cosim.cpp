@@ -29,6 +29,7 @@ struct CosimOptions {
   std::string stream;
   std::string waves;
   std::string cache;
+  std::string coverage;  // FILE.dat: run the covered build, write its coverage there
   bool list = false;
   bool list_json = false;
 };
@@ -98,12 +99,17 @@ int run_cosim(const CosimOptions& o, std::vector<std::string> passthrough) {
   RtlBuildOptions bo;
   bo.cache_dir = o.cache;
   bo.make_jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  bo.coverage = !o.coverage.empty();
+  if (bo.coverage && backend == CosimBackend::kCppTrace) {
+    throw std::invalid_argument("--coverage and --waves: a traced build has no coverage; run them one at a time");
+  }
   const RtlBuildResult r = ensure_rtl_build(build, backend, bo);
   const fs::path cache(o.cache.empty() ? default_rtl_cache_dir() : o.cache);
   std::vector<std::string> args = {r.executable, "--unit", write_unit_file(cache, build.unit),
                                    "--config", build.name};
   if (!o.stream.empty()) args.insert(args.end(), {"--stream", o.stream});
   if (!o.waves.empty()) args.insert(args.end(), {"--waves", o.waves});
+  if (!o.coverage.empty()) args.insert(args.end(), {"--coverage", o.coverage});
   args.insert(args.end(), passthrough.begin(), passthrough.end());
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
@@ -120,6 +126,7 @@ struct RtlBuildCliOptions {
   std::string cache;
   int jobs = 0;
   bool print_key = false;
+  bool coverage = false;
   bool print_source_dir = false;
   bool print_rtl_sources = false;
 };
@@ -156,7 +163,7 @@ int run_rtl_build(const RtlBuildCliOptions& o) {
     }
   }
   if (o.print_key) {
-    for (const auto& it : items) std::cout << rtl_build_key(it.config, it.backend) << '\n';
+    for (const auto& it : items) std::cout << rtl_build_key(it.config, it.backend, o.coverage) << '\n';
     return 0;
   }
   const int workers = std::max(1, o.jobs > 0 ? o.jobs : static_cast<int>(std::thread::hardware_concurrency()));
@@ -168,6 +175,7 @@ int run_rtl_build(const RtlBuildCliOptions& o) {
       RtlBuildOptions bo;
       bo.cache_dir = o.cache;
       bo.make_jobs = 1;  // parallelism across builds
+      bo.coverage = o.coverage;
       try {
         const RtlBuildResult r = ensure_rtl_build(items[i].config, items[i].backend, bo);
         items[i].result = r.executable + (r.built ? "" : " (cached)");
@@ -210,6 +218,9 @@ void register_cosim(CLI::App& app, int& exit_code) {
   sub->add_option("--stream", o->stream, "replay a saved command stream (text form; its header names the unit)");
   sub->add_option("--waves", o->waves, "on a mismatch, write an FST of the cycles around it (cpp backend)");
   sub->add_option("--cache", o->cache, "build cache folder (default: <build>/rtl-cache)");
+  sub->add_option("--coverage", o->coverage,
+                  "run the covered build (line, toggle, user cover points) and write its Verilator\n"
+                  "coverage to FILE.dat, pass or fail (several runs: FILE_<i>.dat)");
   sub->add_flag("--list", o->list, "list the named builds (sim/harness/builds.json)");
   sub->add_flag("--list-json", o->list_json, "with --list: as JSON");
   sub->allow_extras();
@@ -239,6 +250,7 @@ void register_cosim(CLI::App& app, int& exit_code) {
   build->add_option("--backends", b->backends, "cpp, systemc, cpp_trace (default: each build's own)")->delimiter(',');
   build->add_option("--cache", b->cache, "build cache folder (default: <build>/rtl-cache)");
   build->add_option("-j,--jobs", b->jobs, "builds at once (default: hardware threads)")->check(CLI::NonNegativeNumber);
+  build->add_flag("--coverage", b->coverage, "the covered builds (what regress --coverage runs)");
   build->add_flag("--print-key", b->print_key, "print each build's cache key and build nothing");
   build->add_flag("--print-source-dir", b->print_source_dir, "print the checkout the builds read");
   build->add_flag("--print-rtl-sources", b->print_rtl_sources, "print shade_unit's sources, leaves first");

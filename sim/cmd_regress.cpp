@@ -31,6 +31,7 @@
 #include "host/frame.h"
 #include "host/scene_config.h"
 #include "sim/commands.h"
+#include "sim/coverage.h"
 #include "sim/process.h"
 #include "sim/regress_results.h"
 #include "sim/rtl_build.h"
@@ -59,6 +60,8 @@ struct RegressOptions {
   uint64_t watchdog = 0;  // cycles without pix_valid_o that count as a hang; 0: the harness's default
   bool waves = false;
   bool list = false;
+  bool coverage = false;      // covered builds; merge and report RTL coverage
+  double coverage_min = -1;   // --coverage-min PCT: exit 1 below this rtl/ line coverage
 };
 
 struct Shard {
@@ -107,6 +110,7 @@ RtlBuildOptions build_options(const RegressOptions& o) {
   RtlBuildOptions b;
   b.cache_dir = o.cache;
   b.make_jobs = 1;  // builds run side by side
+  b.coverage = o.coverage;
   return b;
 }
 
@@ -311,6 +315,7 @@ void emit_jobs(const RegressOptions& o, const RunSettings& settings, const fs::p
     if (settings.watchdog > 0) a.insert(a.end(), {"--watchdog", std::to_string(settings.watchdog)});
     if (!o.cache.empty()) a.insert(a.end(), {"--cache", o.cache});
     if (o.waves) a.push_back("--waves");
+    if (o.coverage) a.push_back("--coverage");  // each line's run writes its coverage.dat
     std::string line;
     for (const auto& w : a) line += (line.empty() ? "" : " ") + (w == "&&" ? w : shell_quote(w));
     lines << line << '\n';
@@ -435,7 +440,7 @@ void build_all(std::vector<Job>& jobs, const RegressOptions& o, int workers) {
   for (auto& j : jobs) {
     if (j.rec.status != "pending") continue;
     const CosimBackend be = parse_cosim_backend(j.spec.backend);
-    const std::string key = rtl_build_key(j.build, be);
+    const std::string key = rtl_build_key(j.build, be, o.coverage);
     if (std::none_of(needs.begin(), needs.end(), [&](const Need& n) { return n.key == key; })) {
       needs.push_back({j.build, be, key, "", ""});
     }
@@ -451,7 +456,7 @@ void build_all(std::vector<Job>& jobs, const RegressOptions& o, int workers) {
   });
   for (auto& j : jobs) {
     if (j.rec.status != "pending") continue;
-    const std::string key = rtl_build_key(j.build, parse_cosim_backend(j.spec.backend));
+    const std::string key = rtl_build_key(j.build, parse_cosim_backend(j.spec.backend), o.coverage);
     const auto it = std::find_if(needs.begin(), needs.end(), [&](const Need& n) { return n.key == key; });
     if (!it->error.empty()) {
       j.rec.status = "error";
@@ -491,6 +496,12 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
                                    "--stall-pct", std::to_string(settings.stall_pct),
                                    "--save-dir", (dir / "failing").string()};
   if (settings.watchdog > 0) args.insert(args.end(), {"--watchdog", std::to_string(settings.watchdog)});
+  if (o.coverage) {
+    // Written by the run itself, pass or fail; a resumed run must not keep an earlier attempt's.
+    const fs::path dat = dir / "coverage.dat";
+    fs::remove(dat);
+    args.insert(args.end(), {"--coverage", dat.string()});
+  }
   args.insert(args.end(), {"--json", result_path.string()});
   // The children are SystemC programs too: keep their logs free of its banner; their replay
   // lines name the stream, which carries its unit.
@@ -525,7 +536,11 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
     rec.message = field(first, "message", std::string("mismatch (the result names none)"));
     if (o.waves && job.spec.backend == "cpp") {
       const fs::path fst = dir / "waves.fst";
-      args[0] = ensure_rtl_build(job.build, CosimBackend::kCppTrace, build_options(o)).executable;
+      RtlBuildOptions traced = build_options(o);
+      traced.coverage = false;  // the traced re-run only draws the window; its coverage is the run's
+      args[0] = ensure_rtl_build(job.build, CosimBackend::kCppTrace, traced).executable;
+      const auto cov = std::find(args.begin(), args.end(), "--coverage");
+      if (cov != args.end()) args.erase(cov, cov + 2);
       args.back() = (dir / "waves.json").string();
       args.push_back("--waves");
       args.push_back(fst.string());
@@ -592,90 +607,101 @@ void list_named_builds() {
   }
 }
 
-int run_regress(const RegressOptions& o) {
-  setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
-  if (o.list) {
-    list_named_builds();
-    return 0;
-  }
-  for (const auto& b : o.backends) {
-    if (b != "cpp" && b != "systemc") throw std::invalid_argument("--backends: '" + b + "': expected cpp or systemc");
-  }
-  const int workers = std::max(1, o.jobs > 0 ? o.jobs : static_cast<int>(std::thread::hardware_concurrency()));
-  RunSettings settings{o.gap_pct, o.max_gap, o.stall_pct, o.timeout, o.watchdog};
-
-  // What to run: the runs DIR's plans name (--resume), or the job list (its --shard).
+// What one regress process runs: the selected runs (and, with --resume, the results already
+// there), where results go and the settings every run uses.
+struct Selection {
+  std::vector<std::string> scenes;  // a new plan: its scenes and whole job list
+  std::vector<RunSpec> all;
   std::vector<RunSpec> selected;
   std::vector<RunRecord> earlier;  // --resume: results already there
-  fs::path out(o.out_dir);
+  fs::path out;
   fs::path base;  // --resume: where the plan's relative paths start
-  if (!o.resume.empty()) {
-    if (!o.scenes.empty() || !o.configs.empty() || !o.config_files.empty() || !o.shard.empty() ||
-        !o.emit_jobs.empty()) {
-      throw std::invalid_argument("--resume " + o.resume + " takes its runs and settings from " + o.resume +
-                                  "/plans/; give no scenes, --configs, --config, --shard or --emit-jobs with it");
-    }
-    out = o.resume;
-    const LoadedPlans plans = load_plans(out);
-    settings = plans.settings;
-    base = plans.base;
-    for (const auto& spec : plans.selected) {
-      const fs::path record = run_dir(out, spec) / "run.json";
-      if (fs::exists(record)) {
-        try {
-          RunRecord r = read_run_record(record.string());
-          if (r.status != "error") {  // an error may be the machine's: run it again
-            earlier.push_back(r);
-            continue;
-          }
-        } catch (const std::exception& e) {
-          std::cout << "regress: " << e.what() << ": running it again" << std::endl;
-        }
-      }
-      selected.push_back(spec);
-    }
-    std::cout << "regress: resuming " << out.string() << ": " << earlier.size() << " run(s) already there, "
-              << selected.size() << " to run" << std::endl;
-  } else {
-    const std::vector<std::string> scenes = o.scenes.empty() ? default_scenes() : o.scenes;
-    const std::vector<RunSpec> all = full_run_list(o, scenes);
-    const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
-    for (size_t i = 0; i < all.size(); ++i) {
-      if (static_cast<int>(i % static_cast<size_t>(shard.count)) == shard.index - 1) selected.push_back(all[i]);
-    }
-    if (!o.emit_jobs.empty()) {
-      emit_jobs(o, settings, out, all, selected);
-      return 0;
-    }
-    const std::string plan_name = !o.shard.empty() ? "shard-" + std::to_string(shard.index) + "-of-" +
-                                                         std::to_string(shard.count)
-                                  : all.size() == 1 ? "run-" + all.front().id()
-                                                    : "all";
-    write_plan(out, plan_name, settings, o.shard, all, selected);
-    const bool own = o.configs.empty() && o.config_files.empty();
-    std::cout << "regress: seed " << o.seed << ", " << scenes.size() << " scene(s) x "
-              << (own ? std::string("its own configuration")
-                      : std::to_string(o.configs.size() + o.config_files.size()) + " configuration(s)")
-              << " x " << o.backends.size() << " backend(s)"
-              << (o.shard.empty() ? "" : "; shard " + o.shard + ": " + std::to_string(selected.size()) + " of " +
-                                             std::to_string(all.size()) + " run(s)")
-              << std::endl;
+  RunSettings settings;
+};
+
+// --resume DIR: the runs DIR's plans name that have no result there (or ended in an error).
+Selection select_resumed(const RegressOptions& o) {
+  if (!o.scenes.empty() || !o.configs.empty() || !o.config_files.empty() || !o.shard.empty() ||
+      !o.emit_jobs.empty()) {
+    throw std::invalid_argument("--resume " + o.resume + " takes its runs and settings from " + o.resume +
+                                "/plans/; give no scenes, --configs, --config, --shard or --emit-jobs with it");
   }
-  std::cout << "regress: stimulus gap " << settings.gap_pct << "% (max " << settings.max_gap << "), back-pressure "
-            << settings.stall_pct << "%; per-run timeout "
-            << (settings.timeout > 0 ? number_text(settings.timeout) + " s" : std::string("none")) << "; results in "
-            << (out / "runs").string() << std::endl;
+  Selection sel;
+  sel.out = o.resume;
+  const LoadedPlans plans = load_plans(sel.out);
+  sel.settings = plans.settings;
+  sel.base = plans.base;
+  for (const auto& spec : plans.selected) {
+    const fs::path record = run_dir(sel.out, spec) / "run.json";
+    if (fs::exists(record)) {
+      try {
+        RunRecord r = read_run_record(record.string());
+        if (r.status != "error") {  // an error may be the machine's: run it again
+          sel.earlier.push_back(r);
+          continue;
+        }
+      } catch (const std::exception& e) {
+        std::cout << "regress: " << e.what() << ": running it again" << std::endl;
+      }
+    }
+    sel.selected.push_back(spec);
+  }
+  std::cout << "regress: resuming " << sel.out.string() << ": " << sel.earlier.size() << " run(s) already there, "
+            << sel.selected.size() << " to run" << std::endl;
+  return sel;
+}
 
-  std::vector<Job> jobs = plan_jobs(selected, out, base);
-  const auto t0 = std::chrono::steady_clock::now();
-  build_all(jobs, o, workers);
-  run_jobs(jobs, o, settings, workers);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+// Scenes x configurations x backends, and the runs of this process's shard of it.
+Selection select_planned(const RegressOptions& o) {
+  Selection sel;
+  sel.out = o.out_dir;
+  sel.settings = RunSettings{o.gap_pct, o.max_gap, o.stall_pct, o.timeout, o.watchdog};
+  sel.scenes = o.scenes.empty() ? default_scenes() : o.scenes;
+  sel.all = full_run_list(o, sel.scenes);
+  const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
+  for (size_t i = 0; i < sel.all.size(); ++i) {
+    if (static_cast<int>(i % static_cast<size_t>(shard.count)) == shard.index - 1) sel.selected.push_back(sel.all[i]);
+  }
+  return sel;
+}
 
+// The plan, written into OUT/plans/ before anything runs, and what it holds.
+void write_and_announce_plan(const RegressOptions& o, const Selection& sel) {
+  const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
+  const std::string plan_name = !o.shard.empty() ? "shard-" + std::to_string(shard.index) + "-of-" +
+                                                       std::to_string(shard.count)
+                                : sel.all.size() == 1 ? "run-" + sel.all.front().id()
+                                                      : "all";
+  write_plan(sel.out, plan_name, sel.settings, o.shard, sel.all, sel.selected);
+  const bool own = o.configs.empty() && o.config_files.empty();
+  std::cout << "regress: seed " << o.seed << ", " << sel.scenes.size() << " scene(s) x "
+            << (own ? std::string("its own configuration")
+                    : std::to_string(o.configs.size() + o.config_files.size()) + " configuration(s)")
+            << " x " << o.backends.size() << " backend(s)"
+            << (o.shard.empty() ? "" : "; shard " + o.shard + ": " + std::to_string(sel.selected.size()) + " of " +
+                                           std::to_string(sel.all.size()) + " run(s)")
+            << std::endl;
+}
+
+void print_settings(const Selection& sel, bool coverage) {
+  const RunSettings& s = sel.settings;
+  std::cout << "regress: stimulus gap " << s.gap_pct << "% (max " << s.max_gap << "), back-pressure " << s.stall_pct
+            << "%; per-run timeout " << (s.timeout > 0 ? number_text(s.timeout) + " s" : std::string("none"))
+            << (coverage ? "; covered builds (line, toggle, user cover points)" : "") << "; results in "
+            << (sel.out / "runs").string() << std::endl;
+}
+
+// Every run's record, the earlier ones (--resume) first, in job-list order.
+std::vector<RunRecord> collect_records(const std::vector<RunRecord>& earlier, const std::vector<Job>& jobs) {
   std::vector<RunRecord> records = earlier;
   for (const auto& j : jobs) records.push_back(j.rec);
   sort_records(records);
   check_backends_agree(records);
+  return records;
+}
+
+// The table, the counts and the --junit / --json files.
+RunCounts report_runs(const std::vector<RunRecord>& records, const RegressOptions& o, double wall, int workers) {
   print_run_table(records);
   const RunCounts c = count_runs(records);
   std::cout << "\nregress: " << c.passed << " passed, " << c.mismatched << " mismatched, " << c.hangs << " hung, "
@@ -687,11 +713,144 @@ int run_regress(const RegressOptions& o) {
   }
   if (!o.junit_path.empty()) write_junit_report(o.junit_path, records);
   if (!o.json_path.empty()) write_json_report(o.json_path, records, {{"seed", o.seed}, {"wall_seconds", wall}});
+  return c;
+}
+
+std::string percent(int hit, int total) {
+  return total ? fmt(100.0 * hit / total, 1) + " %" : std::string("-");
+}
+
+// --coverage: merges the runs' coverage files into OUT/coverage/ (merged.dat, coverage.info for
+// lcov, annotated sources), prints line and toggle coverage per file, the uncovered lines of
+// rtl/, the user cover points and the exclusions. Returns whether rtl/ line coverage meets
+// --coverage-min (true without one).
+bool report_coverage(const std::vector<RunRecord>& records, const fs::path& out, const RegressOptions& o) {
+  std::vector<std::string> dats;
+  std::vector<std::string> without;  // runs that ran and left no coverage (killed, crashed, plain build)
+  for (const auto& r : records) {
+    const fs::path dat = fs::path(r.dir) / "coverage.dat";
+    if (!r.dir.empty() && fs::exists(dat)) {
+      dats.push_back(dat.string());
+    } else if (r.status != "skipped") {
+      without.push_back(r.spec.id() + " (" + r.status + ")");
+    }
+  }
+  for (const auto& w : without) std::cout << "regress: coverage: no coverage file from run " << w << '\n';
+  const fs::path dir = out / "coverage";
+  fs::create_directories(dir);
+  const fs::path rtl_dir = fs::path(source_dir()) / "rtl";
+  const std::vector<std::string> rtl_files = rtl_source_files();
+  const std::vector<CoverageExclusion> exclusions = list_exclusions(rtl_files);
+  {
+    std::ofstream ex(dir / "exclusions.txt");
+    for (const auto& e : exclusions) {
+      ex << fs::relative(e.file, source_dir()).string() << ':' << e.first_line << '-' << e.last_line << ": "
+         << e.reason << '\n';
+    }
+  }
+  if (dats.empty()) {
+    std::cout << "regress: coverage: FAIL: no run wrote a coverage file\n";
+    return false;
+  }
+  const fs::path merged = dir / "merged.dat", info = dir / "coverage.info", annotated = dir / "annotated";
+  merge_coverage(dats, merged.string(), info.string(), annotated.string());
+  const CoverageSummary sum = summarize_coverage(merged.string(), rtl_dir.string(), rtl_files);
+
+  std::cout << "\nregress: coverage of " << dats.size() << " run(s), merged into " << merged.string() << '\n'
+            << "  " << std::left << std::setw(28) << "file" << std::right << std::setw(8) << "lines" << std::setw(10)
+            << "line %" << std::setw(10) << "toggles" << std::setw(10) << "toggle %" << '\n';
+  for (const auto& f : sum.files) {
+    std::cout << "  " << std::left << std::setw(28) << fs::relative(f.path, source_dir()).string() << std::right
+              << std::setw(8) << (std::to_string(f.lines_hit) + "/" + std::to_string(f.lines)) << std::setw(10)
+              << percent(f.lines_hit, f.lines) << std::setw(10)
+              << (std::to_string(f.toggles_hit) + "/" + std::to_string(f.toggles)) << std::setw(10)
+              << percent(f.toggles_hit, f.toggles) << '\n';
+  }
+  std::cout << "  " << std::left << std::setw(28) << "rtl/ (total)" << std::right << std::setw(8)
+            << (std::to_string(sum.lines_hit) + "/" + std::to_string(sum.lines)) << std::setw(10)
+            << percent(sum.lines_hit, sum.lines) << std::setw(10)
+            << (std::to_string(sum.toggles_hit) + "/" + std::to_string(sum.toggles)) << std::setw(10)
+            << percent(sum.toggles_hit, sum.toggles) << '\n';
+  for (const auto& f : sum.files_without_points) {
+    std::cout << "  no points (a package, or not elaborated by any run; not counted): " << fs::relative(f, source_dir()).string()
+              << '\n';
+  }
+  for (const auto& f : sum.files) {
+    if (f.uncovered_lines.empty() || fs::path(f.path).parent_path() != rtl_dir) continue;
+    std::ifstream src(f.path);
+    std::vector<std::string> text;
+    for (std::string l; std::getline(src, l);) text.push_back(l);
+    for (int l : f.uncovered_lines) {
+      const std::string code = l >= 1 && static_cast<size_t>(l) <= text.size() ? text[l - 1] : "";
+      std::cout << "  uncovered " << fs::relative(f.path, source_dir()).string() << ':' << l << ": "
+                << code.substr(code.find_first_not_of(" \t") == std::string::npos ? 0 : code.find_first_not_of(" \t"))
+                << '\n';
+    }
+  }
+  int user_hit = 0;
+  for (const auto& u : sum.user) user_hit += u.count > 0;
+  std::cout << "  user cover points: " << user_hit << " of " << sum.user.size() << " hit\n";
+  for (const auto& u : sum.user) {
+    std::cout << "    " << (u.count > 0 ? "hit    " : "MISSED ") << std::left << std::setw(30) << u.name << std::right
+              << std::setw(10) << u.count << "  " << fs::relative(u.file, source_dir()).string() << ':' << u.line
+              << '\n';
+  }
+  std::cout << "  exclusions (" << exclusions.size() << ", the RTL's coverage_off pragmas): "
+            << (dir / "exclusions.txt").string() << '\n'
+            << "  lcov: " << info.string() << "; annotated sources (%000000: never run): " << annotated.string()
+            << '\n';
+  std::ofstream(dir / "summary.json")
+      << nlohmann::json{{"runs", dats.size()}, {"rtl_lines", sum.lines}, {"rtl_lines_hit", sum.lines_hit},
+                        {"rtl_line_pct", sum.line_pct()}, {"rtl_toggles", sum.toggles},
+                        {"rtl_toggles_hit", sum.toggles_hit}, {"rtl_toggle_pct", sum.toggle_pct()},
+                        {"user_points", sum.user.size()}, {"user_points_hit", user_hit}}
+             .dump(2)
+      << '\n';
+  if (o.coverage_min < 0) return true;
+  const bool met = sum.lines > 0 && sum.line_pct() >= o.coverage_min;
+  std::cout << "regress: coverage: rtl/ line coverage " << fmt(sum.line_pct(), 2) << " % "
+            << (met ? ">= " : "is below ") << "--coverage-min " << number_text(o.coverage_min) << " %"
+            << (met ? "" : ": FAIL") << '\n';
+  return met;
+}
+
+int run_regress(const RegressOptions& o) {
+  setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
+  if (o.list) {
+    list_named_builds();
+    return 0;
+  }
+  for (const auto& b : o.backends) {
+    if (b != "cpp" && b != "systemc") throw std::invalid_argument("--backends: '" + b + "': expected cpp or systemc");
+  }
+  const int workers = std::max(1, o.jobs > 0 ? o.jobs : static_cast<int>(std::thread::hardware_concurrency()));
+
+  // Select configurations and scenes; a new plan is written down (or handed out as job lines).
+  const Selection sel = o.resume.empty() ? select_planned(o) : select_resumed(o);
+  if (!o.emit_jobs.empty()) {
+    emit_jobs(o, sel.settings, sel.out, sel.all, sel.selected);
+    return 0;
+  }
+  if (o.resume.empty()) write_and_announce_plan(o, sel);
+  print_settings(sel, o.coverage);
+
+  // Host setup, build, run: each run's record is on disk the moment it ends.
+  std::vector<Job> jobs = plan_jobs(sel.selected, sel.out, sel.base);
+  const auto t0 = std::chrono::steady_clock::now();
+  build_all(jobs, o, workers);
+  run_jobs(jobs, o, sel.settings, workers);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  // Collect, report, exit code.
+  const std::vector<RunRecord> records = collect_records(sel.earlier, jobs);
+  const RunCounts c = report_runs(records, o, wall, workers);
+  const bool coverage_met = !o.coverage || report_coverage(records, sel.out, o);
+
   if (c.passed == 0 && !c.failed()) {
     std::cout << "regress: FAIL: no run was executed\n";
     return 1;
   }
-  return c.failed() ? 1 : 0;
+  return c.failed() || !coverage_met ? 1 : 0;
 }
 
 }  // namespace
@@ -750,7 +909,17 @@ void register_regress(CLI::App& app, int& exit_code) {
                   "(default 0: the cycle model's longest pixel-less stretch of each stream + 1000)");
   sub->add_flag("--waves", o->waves, "on a mismatch, re-run the C++ backend with FST tracing of the window around it");
   sub->add_flag("--list", o->list, "list the named builds and exit");
-  sub->callback([o, &exit_code]() { exit_code = run_regress(*o); });
+  sub->add_flag("--coverage", o->coverage,
+                "run covered builds (Verilator line, toggle and user cover points) and merge their\n"
+                "coverage into OUT/coverage/: per-file line and toggle table, uncovered rtl/ lines, lcov\n"
+                "coverage.info, annotated sources; exclusions are the RTL's coverage_off pragmas");
+  sub->add_option("--coverage-min", o->coverage_min,
+                  "PCT: with --coverage (implied), exit 1 when rtl/ line coverage is below PCT")
+      ->check(CLI::Range(0.0, 100.0));
+  sub->callback([o, &exit_code]() {
+    if (o->coverage_min >= 0) o->coverage = true;
+    exit_code = run_regress(*o);
+  });
 }
 
 }  // namespace shadesim

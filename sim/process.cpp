@@ -10,7 +10,9 @@
 #include <chrono>
 #include <thread>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -18,6 +20,17 @@
 extern char** environ;
 
 namespace shadesim {
+
+std::string find_program(const std::string& name, const std::string& package, const std::string& what) {
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "/usr/bin:/bin");
+  for (std::string dir; std::getline(dirs, dir, ':');) {
+    const std::filesystem::path p = std::filesystem::path(dir.empty() ? "." : dir) / name;
+    if (access(p.c_str(), X_OK) == 0) return p.string();
+  }
+  throw std::runtime_error(what + ": '" + name + "' not found on PATH (Debian package " + package +
+                           "; scripts/setup installs it)");
+}
 
 ProcessResult run_process(const std::vector<std::string>& argv, const std::string& log_path) {
   return run_process(argv, log_path, 0.0);

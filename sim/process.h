@@ -21,4 +21,8 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::strin
 ProcessResult run_process(const std::vector<std::string>& argv, const std::string& log_path,
                           double timeout_seconds);
 
+// The full path of a program on PATH, or a std::runtime_error "<what>: '<name>' not found on PATH"
+// naming the Debian package that provides it.
+std::string find_program(const std::string& name, const std::string& package, const std::string& what);
+
 }  // namespace shadesim

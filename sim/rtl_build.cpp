@@ -50,18 +50,6 @@ struct Hasher {
   }
 };
 
-// A program on PATH, or an error that says which package provides it.
-std::string find_program(const std::string& name, const std::string& package) {
-  const char* path = std::getenv("PATH");
-  std::stringstream dirs(path ? path : "/usr/bin:/bin");
-  for (std::string dir; std::getline(dirs, dir, ':');) {
-    const fs::path p = fs::path(dir.empty() ? "." : dir) / name;
-    if (access(p.c_str(), X_OK) == 0) return p.string();
-  }
-  throw std::runtime_error("rtl build: '" + name + "' not found on PATH; it is needed to build RTL " +
-                           "on demand (Debian package " + package + "; scripts/setup installs it)");
-}
-
 std::string tool_version(const std::string& exe, const std::string& arg) {
   const ProcessResult r = run_process({exe, arg}, "");
   return r.output.substr(0, r.output.find('\n'));
@@ -108,13 +96,13 @@ struct Tools {
 
 Tools find_tools_now() {
   Tools t;
-  t.verilator = find_program("verilator", "verilator");
-  t.make = find_program("make", "make");
-  t.cxx = find_program("g++", "g++");
+  t.verilator = find_program("verilator", "verilator", "rtl build (RTL on demand)");
+  t.make = find_program("make", "make", "rtl build (RTL on demand)");
+  t.cxx = find_program("g++", "g++", "rtl build (RTL on demand)");
   t.verilator_version = tool_version(t.verilator, "--version");
   t.cxx_version = tool_version(t.cxx, "--version");
   try {
-    t.ccache = find_program("ccache", "ccache");
+    t.ccache = find_program("ccache", "ccache", "rtl build (optional compiler cache)");
   } catch (const std::runtime_error&) {
     t.ccache.clear();
   }
@@ -153,9 +141,15 @@ std::string inputs_digest() {
   return h.hex();
 }
 
-std::string key_of(const RtlConfig& build, CosimBackend backend, const Tools& tools) {
+std::string key_of(const RtlConfig& build, CosimBackend backend, const Tools& tools, bool coverage) {
   static const std::string inputs = inputs_digest();
   Hasher h;
+  // Only covered builds hash this, so the keys of plain builds (and their cache) stay as they were.
+  if (coverage) {
+    static const std::string cover_points = read_file(cover_points_file());  // once, like `inputs`
+    h.add("coverage: line toggle user");
+    h.add(cover_points);
+  }
   h.add(kRecipeVersion);
   h.add(parameter_text(shade_unit_parameters(build.unit, build.faults)));
   h.add(to_string(backend));
@@ -206,7 +200,7 @@ std::string generated_header(const RtlConfig& build, CosimBackend backend) {
 
 // Verilates and compiles into `work`; returns the executable's path there.
 fs::path build_into(const fs::path& work, const RtlConfig& build, CosimBackend backend,
-                    const Tools& tools, int make_jobs, const fs::path& log) {
+                    const Tools& tools, int make_jobs, bool coverage, const fs::path& log) {
   const fs::path src(source_dir());
   fs::create_directories(work);
   {
@@ -233,10 +227,15 @@ fs::path build_into(const fs::path& work, const RtlConfig& build, CosimBackend b
   for (const auto& a : verilator_parameter_args(shade_unit_parameters(build.unit, build.faults))) {
     args.push_back(a);
   }
+  if (coverage) {
+    args.insert(args.end(), {"--coverage-line", "--coverage-toggle", "--coverage-user"});
+    cflags += " -DSHADESIM_COSIM_COVERAGE=1";
+  }
   for (const auto& lib : harness_libraries()) ldflags += " " + lib.string();
   if (backend == CosimBackend::kSystemC) ldflags += " -lsystemc";
   args.insert(args.end(), {"-CFLAGS", cflags, "-LDFLAGS", ldflags});
   for (const auto& p : rtl_sources()) args.push_back(p.string());
+  if (coverage) args.push_back(cover_points_file());  // bound into shade_unit; no RTL file names it
   args.push_back((src / "sim" / "harness" / "cosim_adapter.cpp").string());
   const ProcessResult r = run_process(args, log.string());
   const fs::path exe = work / "obj" / "cosim";
@@ -277,14 +276,18 @@ std::vector<std::string> rtl_source_files() {
   return out;
 }
 
+std::string cover_points_file() {
+  return (fs::path(source_dir()) / "sim" / "harness" / "shade_cover.sv").string();
+}
+
 std::string named_builds_path() {
   return (fs::path(source_dir()) / "sim" / "harness" / "builds.json").string();
 }
 
 std::string default_rtl_cache_dir() { return (fs::path(SHADESIM_BINARY_DIR) / "rtl-cache").string(); }
 
-std::string rtl_build_key(const RtlConfig& build, CosimBackend backend) {
-  return key_of(build, backend, find_tools());
+std::string rtl_build_key(const RtlConfig& build, CosimBackend backend, bool coverage) {
+  return key_of(build, backend, find_tools(), coverage);
 }
 
 RtlConfig resolve_rtl_config(const std::string& name_or_file, const std::string& what) {
@@ -311,10 +314,10 @@ RtlBuildResult ensure_rtl_build(const RtlConfig& build, CosimBackend backend,
   const auto t0 = std::chrono::steady_clock::now();
   const Tools& tools = find_tools();
   RtlBuildResult r;
-  r.key = key_of(build, backend, tools);
+  r.key = key_of(build, backend, tools, o.coverage);
   // Absolute: the compiler runs in the build's own folder.
   const fs::path cache = fs::absolute(o.cache_dir.empty() ? default_rtl_cache_dir() : o.cache_dir);
-  const std::string stem = to_string(backend) + "-" + r.key;
+  const std::string stem = to_string(backend) + (o.coverage ? "-coverage-" : "-") + r.key;
   const fs::path final_dir = cache / stem;
   const fs::path exe = final_dir / "obj" / "cosim";
   r.executable = exe.string();
@@ -332,7 +335,7 @@ RtlBuildResult ensure_rtl_build(const RtlConfig& build, CosimBackend backend,
   if (!o.quiet) {
     std::cerr << "rtl build: Verilating " << build.name << " [" << build.unit.to_string()
               << fault_text(build.faults) << "] for the " << to_string(backend)
-              << " backend into " << final_dir.string() << " (about a minute)..." << std::endl;
+              << " backend" << (o.coverage ? " with coverage" : "") << " into " << final_dir.string() << " (about a minute)..." << std::endl;
   }
   // Folders of builds that were killed: nobody else works on this key while we hold the lock.
   for (const auto& e : fs::directory_iterator(cache)) {
@@ -345,7 +348,7 @@ RtlBuildResult ensure_rtl_build(const RtlConfig& build, CosimBackend backend,
   fs::create_directories(work);
   const fs::path log = work / "build.log";
   try {
-    build_into(work, build, backend, tools, o.make_jobs, log);
+    build_into(work, build, backend, tools, o.make_jobs, o.coverage, log);
   } catch (...) {
     fs::create_directories(cache / "failed");
     std::error_code ec;
@@ -363,7 +366,8 @@ RtlBuildResult ensure_rtl_build(const RtlConfig& build, CosimBackend backend,
   r.built = true;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!o.quiet) {
-    std::cerr << "rtl build: " << build.name << " (" << to_string(backend) << ") built in "
+    std::cerr << "rtl build: " << build.name << " (" << to_string(backend) << (o.coverage ? ", coverage" : "")
+              << ") built in "
               << static_cast<int>(r.seconds + 0.5) << " s" << std::endl;
   }
   return r;

@@ -30,6 +30,9 @@ struct RtlBuildOptions {
   std::string cache_dir;  // empty: <build dir>/rtl-cache
   int make_jobs = 1;      // parallel compiler processes of one build
   bool quiet = false;     // no progress lines
+  // Verilator line, toggle and user (cover property) coverage; the executable then takes
+  // --coverage FILE.dat. Part of the key: covered and plain builds never share an entry.
+  bool coverage = false;
 };
 
 struct RtlBuildResult {
@@ -43,7 +46,7 @@ struct RtlBuildResult {
 std::string default_rtl_cache_dir();
 
 // The cache key of a build (hex), without building it.
-std::string rtl_build_key(const RtlConfig& build, CosimBackend backend);
+std::string rtl_build_key(const RtlConfig& build, CosimBackend backend, bool coverage = false);
 
 // The executable for `build` on `backend`, building it first when the cache lacks it. Throws
 // std::runtime_error naming the missing tool (verilator, make, the compiler) or the failed
@@ -56,6 +59,8 @@ std::vector<std::string> rtl_source_files();
 
 // Where the project's sources are (the checkout shadesim was built from).
 std::string source_dir();
+// The user cover points bound into shade_unit in covered builds (sim/harness/shade_cover.sv).
+std::string cover_points_file();
 // The named builds file, sim/harness/builds.json.
 std::string named_builds_path();
 

@@ -67,6 +67,7 @@ struct CosimJob {
   CommandStream stream;
   Stimulus stim;
   uint64_t watchdog_cycles = 0;  // hang limit (sim/harness/watchdog.h); 0: the cycle model's
+  std::string coverage_path;     // covered builds: where the run writes its coverage .dat
 };
 
 // Cycles to dump into an FST file (trace-enabled builds only), inclusive. The run goes on past

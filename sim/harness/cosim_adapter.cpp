@@ -20,6 +20,9 @@ namespace {
 shadesim::CosimExecutable this_build() {
   shadesim::CosimExecutable exe;
   exe.parameters = SHADESIM_BUILD_PARAMETERS;
+#ifdef SHADESIM_COSIM_COVERAGE
+  exe.covered = true;
+#endif
 #ifdef SHADESIM_COSIM_SYSTEMC
   exe.backend = "systemc";
   exe.command = "shadesim cosim --backend systemc";

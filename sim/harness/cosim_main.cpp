@@ -89,6 +89,7 @@ struct Options {
   uint64_t waves_before = 200, waves_after = 16;
   double min_spec_pct = 0;
   uint64_t watchdog = 0;  // cycles without pix_valid_o that count as a hang; 0: from the cycle model
+  std::string coverage_path;  // covered builds: FILE.dat (several jobs: FILE_<i>.dat)
   bool list = false;
 };
 
@@ -167,6 +168,18 @@ nlohmann::json outcome_json(const Outcome& o, const CosimExecutable& exe) {
   return j;
 }
 
+// Each job's coverage file: FILE itself for one job, FILE_<i>.dat for several (verilator_coverage
+// merges them).
+void set_coverage_paths(std::vector<CosimJob>& jobs, const std::string& path) {
+  if (path.empty()) return;
+  const std::filesystem::path p(path);
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    jobs[i].coverage_path = jobs.size() == 1 ? path
+                                             : (p.parent_path() / (p.stem().string() + "_" + std::to_string(i) +
+                                                                   p.extension().string())).string();
+  }
+}
+
 std::vector<CosimJob> make_jobs(const Options& o, const RtlConfig& build) {
   std::vector<CosimJob> jobs;
   auto apply_overrides = [&o](Stimulus s, uint64_t seed) {
@@ -193,6 +206,7 @@ std::vector<CosimJob> make_jobs(const Options& o, const RtlConfig& build) {
     job.stim = apply_overrides(Stimulus{}, o.seed);
     job.watchdog_cycles = o.watchdog;
     jobs.push_back(job);
+    set_coverage_paths(jobs, o.coverage_path);
     return jobs;
   }
   std::vector<std::string> names;
@@ -216,6 +230,7 @@ std::vector<CosimJob> make_jobs(const Options& o, const RtlConfig& build) {
       jobs.push_back(job);
     }
   }
+  set_coverage_paths(jobs, o.coverage_path);
   return jobs;
 }
 
@@ -286,6 +301,9 @@ Expectation parse_expectation(const std::string& text) {
 // Options that only make sense for some runs, checked before anything runs.
 void check_run_options(const Options& o, const std::vector<CosimJob>& jobs,
                        const CosimExecutable& exe) {
+  if (!o.coverage_path.empty() && !exe.covered) {
+    throw InputError("--coverage needs a covered build (shadesim regress --coverage picks it)");
+  }
   if (!o.waves_path.empty() && !exe.traced) {
     throw InputError("--waves needs the trace-enabled build, which `shadesim cosim --waves FILE` picks");
   }
@@ -473,7 +491,8 @@ void print_list(bool json, const CosimExecutable& exe) {
   }
   nlohmann::json p = nlohmann::json::object();
   for (const auto& v : params) p[v.name] = v.value;
-  std::cout << nlohmann::json{{"backend", exe.backend}, {"traced", exe.traced}, {"parameters", p},
+  std::cout << nlohmann::json{{"backend", exe.backend}, {"traced", exe.traced},
+                              {"covered", exe.covered}, {"parameters", p},
                               {"faults", faults_json(built_faults(exe))}}
                    .dump(2)
             << '\n';
@@ -511,6 +530,8 @@ int cosim_main(int argc, char** argv, const CosimExecutable& exe) {
   app.add_option("--watchdog", o.watchdog,
                  "cycles without pix_valid_o, while pixels are still expected, that count as a hang "
                  "(default 0: the cycle model's longest pixel-less stretch on this stream + 1000)");
+  app.add_option("--coverage", o.coverage_path,
+                 "write the run's line/toggle/user coverage to FILE.dat, pass or fail (covered build)");
   app.add_option("--waves-before", o.waves_before, "cycles before the mismatch in the waveform")->capture_default_str();
   app.add_option("--waves-after", o.waves_after, "cycles after the mismatch in the waveform")->capture_default_str();
   try {

@@ -12,6 +12,9 @@
 #ifdef SHADESIM_COSIM_TRACE
 #include "verilated_fst_c.h"
 #endif
+#ifdef SHADESIM_COSIM_COVERAGE
+#include "verilated_cov.h"
+#endif
 
 namespace shadesim {
 
@@ -119,7 +122,13 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
 #ifdef SHADESIM_COSIM_TRACE
   if (fst) fst->close();
 #endif
-  return lockstep.result(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  const CosimResult r =
+      lockstep.result(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+#ifdef SHADESIM_COSIM_COVERAGE
+  // The counts live in this run's context: write them before it goes, pass or fail.
+  if (!job.coverage_path.empty()) context.coveragep()->write(job.coverage_path.c_str());
+#endif
+  return r;
 }
 
 }  // namespace shadesim

@@ -13,6 +13,9 @@
 #include <utility>
 
 #include "sim/harness/cosim.h"
+#ifdef SHADESIM_COSIM_COVERAGE
+#include "verilated_cov.h"
+#endif
 
 namespace shadesim {
 
@@ -162,7 +165,13 @@ CosimResult run_verilated_systemc(const CosimJob& job) {
 
   const auto t0 = std::chrono::steady_clock::now();
   sc_core::sc_start();
-  return lockstep.result(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  const CosimResult r =
+      lockstep.result(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+#ifdef SHADESIM_COSIM_COVERAGE
+  // The counters live in the model (counted into the thread's context): write them while it exists.
+  if (!job.coverage_path.empty()) Verilated::threadContextp()->coveragep()->write(job.coverage_path.c_str());
+#endif
+  return r;
 }
 
 }  // namespace shadesim
