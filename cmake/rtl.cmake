@@ -21,7 +21,7 @@ set(RTL_SOURCES
   ${RTL_DIR}/shade_pkg.sv ${RTL_DIR}/fixed_round.sv ${RTL_DIR}/fixed_sat.sv ${RTL_DIR}/span_setup.sv
   ${RTL_DIR}/series_engine.sv ${RTL_DIR}/lane_fanout.sv ${RTL_DIR}/pixel_combine.sv
   ${RTL_DIR}/exponent_lut.sv ${RTL_DIR}/schlick_divider.sv ${RTL_DIR}/wpow_unit.sv
-  ${RTL_DIR}/specular_slot.sv ${RTL_DIR}/shade_unit.sv)
+  ${RTL_DIR}/specular_unit.sv ${RTL_DIR}/shade_unit.sv)
 
 # The named builds (and what the tests iterate over), read from the same file shadesim reads.
 file(READ ${CMAKE_SOURCE_DIR}/sim/harness/builds.json _builds_json)

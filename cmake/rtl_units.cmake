@@ -1,5 +1,5 @@
 # Standalone checks of the specular units' RTL (rtl/exponent_lut.sv, schlick_divider.sv,
-# wpow_unit.sv, specular_slot.sv) against their model classes.
+# wpow_unit.sv, specular_unit.sv) against their model classes.
 #
 # Every configuration is Verilated once, straight into the one test executable rtl_units_test;
 # its parameters are written to a generated header as "NAME=VALUE ..." text, which the test
@@ -15,7 +15,7 @@ find_program(YOSYS yosys)
 set(RTL_UNITS_DIR ${CMAKE_SOURCE_DIR}/rtl)
 set(RTL_UNITS_GEN ${CMAKE_BINARY_DIR}/verilated/units)
 set(RTL_UNITS_COMMON ${RTL_UNITS_DIR}/shade_pkg.sv ${RTL_UNITS_DIR}/fixed_round.sv ${RTL_UNITS_DIR}/fixed_sat.sv)
-set(RTL_UNITS_SLOT ${RTL_UNITS_DIR}/specular_slot.sv)
+set(RTL_UNITS_SLOT ${RTL_UNITS_DIR}/specular_unit.sv)
 set(RTL_UNITS_SOURCES ${RTL_UNITS_COMMON} ${RTL_UNITS_DIR}/exponent_lut.sv
     ${RTL_UNITS_DIR}/schlick_divider.sv ${RTL_UNITS_DIR}/wpow_unit.sv ${RTL_UNITS_SLOT})
 # The per-exponent table the "lut_file" configuration loads at time 0 ($readmemh); the test
@@ -95,15 +95,15 @@ rtl_unit(wpow_w16 wpow_unit MAX_M=16 BASE_BITS=16 TIMING=0
 rtl_unit(wpow_m32_iter wpow_unit MAX_M=32 BASE_BITS=12 TIMING=1
          SERIES_WL=23 SERIES_IWL=3 OUT_WL=9 OUT_IWL=1 OUT_QUANT=1 OUT_OVERFLOW=0)
 # The slot: the cfg-port mapping and the timing contract through the wrapper.
-rtl_unit(slot_lut specular_slot SPECULAR_KIND=1 SERIES_WL=16 SERIES_IWL=3 SERIES_PER_LIGHT=1
+rtl_unit(slot_lut specular_unit SPECULAR_KIND=1 SERIES_WL=16 SERIES_IWL=3 SERIES_PER_LIGHT=1
          SPECULAR_OUT_WL=12 SPECULAR_OUT_IWL=1 LUT_ADDR_BITS=6 LUT_ENTRY_BITS=10
          LUT_INTERP_BITS=2 LUT_INDEX=1)
-rtl_unit(slot_schlick specular_slot SPECULAR_KIND=2 SERIES_WL=32 SERIES_IWL=4 SERIES_PER_LIGHT=2
+rtl_unit(slot_schlick specular_unit SPECULAR_KIND=2 SERIES_WL=32 SERIES_IWL=4 SERIES_PER_LIGHT=2
          SPECULAR_OUT_WL=17 SPECULAR_OUT_IWL=1 SCHLICK_QUOTIENT_BITS=12 SCHLICK_OPERAND_BITS=16
          SCHLICK_TIMING=1)
-rtl_unit(slot_wpow specular_slot SPECULAR_KIND=3 SERIES_WL=20 SERIES_IWL=4 SERIES_PER_LIGHT=1
+rtl_unit(slot_wpow specular_unit SPECULAR_KIND=3 SERIES_WL=20 SERIES_IWL=4 SERIES_PER_LIGHT=1
          SPECULAR_OUT_WL=11 SPECULAR_OUT_IWL=1 WPOW_MAX_M=8 WPOW_BASE_BITS=10 WPOW_TIMING=1)
-rtl_unit(slot_ideal specular_slot SPECULAR_KIND=0 SERIES_WL=32 SERIES_IWL=4 SERIES_PER_LIGHT=1
+rtl_unit(slot_ideal specular_unit SPECULAR_KIND=0 SERIES_WL=32 SERIES_IWL=4 SERIES_PER_LIGHT=1
          SPECULAR_OUT_WL=17 SPECULAR_OUT_IWL=1)
 
 file(WRITE ${RTL_UNITS_GEN}/rtl_units_configs.inc.new

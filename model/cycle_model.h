@@ -35,7 +35,7 @@ struct SlotTiming {
 
   // The selected unit's timing (its row in model/specular_units.cpp: ExponentLut /
   // SchlickDivider / WpowUnit latency and cycles_per_pixel; ideal: 0 and 1), as
-  // rtl/specular_slot.sv builds it.
+  // rtl/specular_unit.sv builds it.
   static SlotTiming of(const SpecularConfig& config);
 };
 

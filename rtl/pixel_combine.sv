@@ -29,7 +29,8 @@ module pixel_combine #(
 );
   localparam int SeriesFrac = SERIES_WL - SERIES_IWL;
   localparam int ProdW      = SPECULAR_OUT_WL + SPEC_COLOUR_WL + 1;  // unsigned product + sign
-  localparam int ProdFrac   = (SPECULAR_OUT_WL - SPECULAR_OUT_IWL) + (SPEC_COLOUR_WL - SPEC_COLOUR_IWL);
+  localparam int ProdFrac   = (SPECULAR_OUT_WL - SPECULAR_OUT_IWL) +
+                              (SPEC_COLOUR_WL - SPEC_COLOUR_IWL);
   localparam int ProdDrop   = ProdFrac - SeriesFrac;
   localparam int ProdRndW   = ProdW + 1 - ProdDrop;
   localparam int AccW       = SERIES_WL + $clog2(2 * LIGHTS + 1) + 1;

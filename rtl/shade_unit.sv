@@ -25,7 +25,7 @@
 //                (combinational: lane j's start and K-pixel differences) on the cycle the
 //                previous span's last beat leaves the engines (back-to-back spans have no
 //                bubble). A beat holds up to LANES pixels of one span.
-//   slot         specular_slot per light and lane (LATENCY / INTERVAL below; all lanes in
+//   slot         specular_unit per light and lane (LATENCY / INTERVAL below; all lanes in
 //                lockstep). Pipelined units
 //                (INTERVAL 1): a LATENCY-deep metadata line (valid, x, y, eor, diffuse values)
 //                moves with the slot on the global advance. Iterative units (INTERVAL > 1): one
@@ -68,7 +68,7 @@ module shade_unit #(
   // (ambient, spec_colour, the specular unit's parameters) have two banks; a MATERIAL writes the
   // one no span in flight reads. The LUT table is one copy: a TABLE still drains the datapath.
   parameter int MATERIAL_BUFFERS = 1,
-  // The specular unit's own parameters (specular_slot; model/specular_config.h field names
+  // The specular unit's own parameters (specular_unit; model/specular_config.h field names
   // with the unit's prefix). Unused unless SPECULAR_KIND selects that unit.
   // verilator lint_off UNUSEDPARAM
   parameter int SPECULAR_OUT_QUANT    = 0,  // Quantization: 0 truncate, 1 round to nearest
@@ -114,7 +114,7 @@ module shade_unit #(
                                                        COEF_T5_WL) + 1;  // TRIANGLE payload
   localparam int NMatFixed      = CHANNELS + LIGHTS * CHANNELS;  // ambient + spec_colour words
   localparam int OfsW           = 17;  // x0 - xo with x0 < 2^15 and xo a signed 16-bit value
-  // The slot's timing (shade_pkg, the one definition; specular_slot's contract).
+  // The slot's timing (shade_pkg, the one definition; specular_unit's contract).
   localparam int SpecLatency    = shade_pkg::spec_latency(SPECULAR_KIND, LUT_INTERP_BITS,
                                                           SCHLICK_QUOTIENT_BITS, WPOW_MAX_M);
   localparam int SpecInterval   = shade_pkg::spec_interval(SPECULAR_KIND, LUT_INTERP_BITS,
@@ -126,7 +126,22 @@ module shade_unit #(
   localparam int LaneColW       = CHANNELS * OUT_BITS;
 
 `ifndef SYNTHESIS
+  // The ranges UnitConfig::validate enforces (model/unit_config.cpp): a parameter outside them
+  // would elaborate some other unit silently.
   initial begin
+    if (CHANNELS != 1 && CHANNELS != 3)
+      $fatal(1, "shade_unit: CHANNELS %0d is not 1 or 3", CHANNELS);
+    if (LIGHTS < 1 || LIGHTS > 8)
+      $fatal(1, "shade_unit: LIGHTS %0d is not 1..8", LIGHTS);
+    if (XY_BITS < 4 || XY_BITS > 15)
+      $fatal(1, "shade_unit: XY_BITS %0d is not 4..15", XY_BITS);
+    if (SPECULAR_KIND < shade_pkg::SpecIdeal || SPECULAR_KIND > shade_pkg::SpecWpow)
+      $fatal(1, "shade_unit: SPECULAR_KIND %0d is not a unit (0 ideal .. 3 wpow)", SPECULAR_KIND);
+    if (SERIES_QUANT != 0 && SERIES_QUANT != 1)
+      $fatal(1, "shade_unit: SERIES_QUANT %0d is not 0 (truncate) or 1 (round)", SERIES_QUANT);
+    if (SERIES_OVERFLOW != 0 && SERIES_OVERFLOW != 1)
+      $fatal(1, "shade_unit: SERIES_OVERFLOW %0d is not 0 (saturate) or 1 (wrap)",
+             SERIES_OVERFLOW);
     if (LANES != 1 && LANES != 2 && LANES != 4)
       $fatal(1, "shade_unit: LANES %0d is not 1, 2 or 4", LANES);
   end
@@ -251,7 +266,7 @@ module shade_unit #(
   // applies them in stream order. With two material buffers a MATERIAL writes the other bank
   // and waits only until no span in flight reads that one.
   always_comb begin
-    case (hdr_op)
+    unique case (hdr_op)
       shade_pkg::OpMaterial: hdr_ready = MatBanked ? mat_other_free : datapath_empty;
       shade_pkg::OpTable:    hdr_ready = datapath_empty;
       // Without a span queue a SPAN's setup reads the coefficient registers as it is taken:
@@ -289,7 +304,7 @@ module shade_unit #(
         pay_idx_q  <= 16'd0;
         pay_last_q <= hdr_count - 16'd1;
         tbl_base_q <= cmd_word[shade_pkg::MidLsb +: shade_pkg::FieldW];
-        case (hdr_op)
+        unique case (hdr_op)
           shade_pkg::OpMaterial: begin
             pay_op_q     <= PayMaterial;
             in_payload_q <= hdr_count != 16'd0;
@@ -711,7 +726,7 @@ module shade_unit #(
   for (genvar g = 0; g < LANES * LIGHTS; g++) begin : g_spec
     localparam int L = g % LIGHTS;
     localparam int J = g / LIGHTS;
-    specular_slot #(
+    specular_unit #(
       .SPECULAR_KIND(SPECULAR_KIND), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
       .SERIES_PER_LIGHT(SeriesPerLight), .SPECULAR_OUT_WL(SPECULAR_OUT_WL),
       .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL), .SPECULAR_OUT_QUANT(SPECULAR_OUT_QUANT),

@@ -48,7 +48,7 @@ constexpr const char* kFlatScript =
 // boundary Yosys cannot drop unread logic, so this total is at least the flat one.
 constexpr const char* kBreakdownScript =
     "hierarchy -top shade_unit\n"
-    "setattr -mod -set keep_hierarchy 1 *span_setup *series_engine *specular_slot *pixel_combine\n"
+    "setattr -mod -set keep_hierarchy 1 *span_setup *series_engine *specular_unit *pixel_combine\n"
     "synth -flatten -top shade_unit\n"
     "abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX\n"
     "opt_clean\n"
@@ -663,7 +663,7 @@ int64_t instances_of(const std::string& module, const ParamMap& p) {
   const int64_t lanes = lanes_of(p);
   if (module == "span_setup") return ch * l + l * per_light;
   if (module == "series_engine") return (ch * l + l * per_light) * lanes;
-  if (module == "specular_slot") return l * lanes;
+  if (module == "specular_unit") return l * lanes;
   if (module == "pixel_combine") return lanes;
   return 1;  // shade_unit glue
 }
@@ -687,7 +687,7 @@ double size_of(const std::string& module, const ParamMap& p) {
   }
   if (module == "series_engine") return s;
   if (module == "pixel_combine") return ch * (l * so * sc + (l + 1) * (s + 4));
-  if (module == "specular_slot") {
+  if (module == "specular_unit") {
     // The unit's own size (model/specular_units.cpp), from its parameters.
     const SpecularConfig unit = specular_config_of_parameters(p);
     return specular_unit(unit.kind).slot_size(unit, static_cast<int>(s));

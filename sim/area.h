@@ -84,7 +84,7 @@ struct AreaReport {
   bool transistors_partial = false;  // Yosys's CMOS cost table has no flip-flops: not counted
   int64_t flip_flops = 0;
   // Where the area goes (empty without AreaOptions::breakdown): the same flow with span_setup,
-  // series_engine, specular_slot and pixel_combine kept as modules. shade_unit's row is its own
+  // series_engine, specular_unit and pixel_combine kept as modules. shade_unit's row is its own
   // glue only (decoder, coefficient and material registers, span pipeline control, metadata
   // lines, output register). Rows sum to breakdown_cells, which is >= cells: across a kept
   // boundary Yosys cannot remove logic whose result the neighbour never reads.
@@ -105,7 +105,7 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& options);
 //   cells(m) = anchor cells_each(m) * size_m(unit) / size_m(anchor) * instances_m(unit)
 // with size_m a structural count from the parameters (span_setup: product bits that reach the
 // series register; series_engine: series width; pixel_combine: multiplier and adder bits;
-// specular_slot: table bits / divider or squarer array; glue: register bits), summed and scaled
+// specular_unit: table bits / divider or squarer array; glue: register bits), summed and scaled
 // by the anchor's flat/kept-hierarchy ratio. The anchor is the one with the fewest parameters
 // that differ; reports with warnings (series Yosys removed) are no anchors. LUT4s scale with
 // the cells. Throws std::runtime_error when no anchor has the

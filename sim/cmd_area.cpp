@@ -149,7 +149,7 @@ void register_area(CLI::App& app, int& exit_code) {
       "  transistors  Yosys's CMOS estimate of those cells (stat -tech cmos; flip-flops have no\n"
       "               CMOS cost in Yosys and are not included)\n"
       "  flip-flops   the flip-flops among them\n"
-      "  per module   cells per instance of span_setup, series_engine, specular_slot, pixel_combine\n"
+      "  per module   cells per instance of span_setup, series_engine, specular_unit, pixel_combine\n"
       "               and shade_unit's own glue (decoder, registers, control), from the same flow\n"
       "               with those modules kept: read the shares (the kept total exceeds the flat one)\n"
       "  iCE40        SB_LUT4 / SB_DFF* / SB_CARRY / SB_RAM40_4K counts from synth_ice40, whether\n"

@@ -15,7 +15,7 @@ AreaReport anchor_for(const UnitConfig& u) {
   r.key = "anchor";
   r.modules = {{"span_setup", 2, 10000, 0, 0},
                {"series_engine", 2, 400, 0, 0},
-               {"specular_slot", 1, 0, 0, 0},
+               {"specular_unit", 1, 0, 0, 0},
                {"pixel_combine", 1, 1500, 0, 0},
                {"shade_unit", 1, 1300, 0, 0}};
   for (const auto& m : r.modules) r.breakdown_cells += m.cells();

@@ -1,5 +1,5 @@
-// Drives one Verilated specular unit (or specular_slot) and checks it against the model class,
-// every output bit and the exact timing contract (rtl/specular_slot.sv):
+// Drives one Verilated specular unit (or specular_unit) and checks it against the model class,
+// every output bit and the exact timing contract (rtl/specular_unit.sv):
 //   pipelined (II 1): spec_o is the result for the input sampled at the LATENCY-th most recent
 //                     en_i edge, with en_i toggled at random (stalls hold the pipe);
 //   iterative (II = LATENCY): busy_o high exactly LATENCY-1 cycles after a start, result from

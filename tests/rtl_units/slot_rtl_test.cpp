@@ -1,4 +1,4 @@
-// rtl/specular_slot.sv against SpecularUnit: the cfg-port mapping of MATERIAL words (exponent at
+// rtl/specular_unit.sv against SpecularUnit: the cfg-port mapping of MATERIAL words (exponent at
 // index 0 resets the unit parameters, unit_params[i] at index 1 + i) and TABLE entries
 // (base + i), the series order (schlick: numerator low, denominator high), the timing contract
 // (LATENCY, busy_o / INTERVAL) and ideal's constant 0.

@@ -1,4 +1,4 @@
-// specular_slot: one light's specular unit, whichever the configuration selects
+// specular_unit: one light's specular unit, whichever the configuration selects
 // (model/specular_unit.h, class SpecularUnit). SPECULAR_KIND: 0 ideal, 1 lut (exponent_lut),
 // 2 schlick (schlick_divider), 3 wpow (wpow_unit). Ideal is pow() in double, not hardware: the
 // slot outputs 0 for it (bit-exact with the model whenever spec_colour is 0).
@@ -21,7 +21,7 @@
 // MATERIAL_BUFFERS = 2: the unit's per-material registers have two banks; cfg_bank_i is the bank
 // MATERIAL words write, bank_i the bank of the pixel on series_i (it travels with the pixel
 // through the unit's stages). Schlick has no per-material state.
-module specular_slot #(
+module specular_unit #(
   // Each unit's parameters are unused when another unit is selected.
   // verilator lint_off UNUSEDPARAM
   parameter int SPECULAR_KIND         = 0,  // SpecularUnitKind: 0 ideal, 1 lut, 2 schlick, 3 wpow
@@ -125,12 +125,12 @@ module specular_slot #(
 `ifndef SYNTHESIS
   initial begin
     if (SPECULAR_KIND < shade_pkg::SpecIdeal || SPECULAR_KIND > shade_pkg::SpecWpow)
-      $fatal(1, "specular_slot: SPECULAR_KIND %0d is not a unit (0 ideal .. 3 wpow)",
+      $fatal(1, "specular_unit: SPECULAR_KIND %0d is not a unit (0 ideal .. 3 wpow)",
              SPECULAR_KIND);
     if (SPECULAR_KIND == shade_pkg::SpecSchlick && SERIES_PER_LIGHT != 2)
-      $fatal(1, "specular_slot: schlick needs SERIES_PER_LIGHT = 2 (numerator, denominator)");
+      $fatal(1, "specular_unit: schlick needs SERIES_PER_LIGHT = 2 (numerator, denominator)");
     if (SPECULAR_KIND == shade_pkg::SpecLut && LUT_ADDR_BITS > 16)
-      $fatal(1, "specular_slot: LUT_ADDR_BITS %0d > 16: cfg_addr_i cannot reach every entry",
+      $fatal(1, "specular_unit: LUT_ADDR_BITS %0d > 16: cfg_addr_i cannot reach every entry",
              LUT_ADDR_BITS);
   end
 `endif
