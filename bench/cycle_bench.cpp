@@ -49,7 +49,8 @@ const BenchStream& stream() {
 
 void report(benchmark::State& state, uint64_t cycles) {
   const BenchStream& s = stream();
-  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * cycles));  // items = simulated cycles
+  state.SetItemsProcessed(
+      static_cast<int64_t>(state.iterations() * cycles));  // items = simulated cycles
   state.counters["cycles"] = static_cast<double>(cycles);
   state.counters["words"] = static_cast<double>(s.words.size());
   state.counters["port_words"] = s.config.port_words;

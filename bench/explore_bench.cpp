@@ -33,8 +33,8 @@ void BM_ExplorePoint(benchmark::State& state) {
   uint64_t pixels = 0;
   for (auto _ : state) {
     UnitConfig c = base;
-    c.series.wl = c.series.iwl + 12 + i % 9;        // series fraction 12..20
-    c.coef.wl = c.coef.iwl + 12 + (i / 9) % 9;      // coefficient fraction 12..20
+    c.series.wl = c.series.iwl + 12 + i % 9;    // series fraction 12..20
+    c.coef.wl = c.coef.iwl + 12 + (i / 9) % 9;  // coefficient fraction 12..20
     ++i;
     const PointFigures p = evaluate_point(s, c, AreaFunction{});
     pixels = p.pixels;

@@ -37,7 +37,8 @@ void BM_ForwardDifference(benchmark::State& state) {
         tri = t;
       } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
         for (int i = 0; i < n; ++i) {
-          bank.load(i, setup(&tri->coef[static_cast<size_t>(i) * kTermsPerSeries], s->x0 - tri->xo, s->y - tri->yo));
+          bank.load(i, setup(&tri->coef[static_cast<size_t>(i) * kTermsPerSeries], s->x0 - tri->xo,
+                             s->y - tri->yo));
         }
         for (int32_t k = 0; k < s->length; ++k) {
           checksum += bank.values()[0];

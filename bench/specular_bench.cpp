@@ -28,11 +28,13 @@ void run_unit(benchmark::State& state, SpecularConfig spec) {
   std::vector<int64_t> series;
   for (int i = 0; i < 4096; ++i) {
     const double t = -0.1 + 1.2 * i / 4095.0;
-    for (int k = 0; k < per; ++k) series.push_back(cfg.series.from_double(plan.affine[k].first * t + plan.affine[k].second));
+    for (int k = 0; k < per; ++k)
+      series.push_back(cfg.series.from_double(plan.affine[k].first * t + plan.affine[k].second));
   }
   int64_t sum = 0;
   for (auto _ : state) {
-    for (size_t i = 0; i < series.size(); i += static_cast<size_t>(per)) sum += unit.evaluate(&series[i]);
+    for (size_t i = 0; i < series.size(); i += static_cast<size_t>(per))
+      sum += unit.evaluate(&series[i]);
     benchmark::DoNotOptimize(sum);
   }
   state.SetItemsProcessed(state.iterations() * 4096);

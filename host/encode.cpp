@@ -1,13 +1,13 @@
 #include "host/encode.h"
 
-#include "host/specular_setup.h"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
 #include <vector>
+
+#include "host/specular_setup.h"
 
 namespace shadesim {
 namespace {
@@ -51,13 +51,15 @@ MaterialCmd material_command(const Scene& scene, const UnitConfig& config, const
                              const SpecularSeriesPlan& plan) {
   MaterialCmd cmd;
   for (int c = 0; c < config.channels; ++c) {
-    cmd.ambient.push_back(config.series.from_double(channel(m.ambient, c) * channel(scene.ambient_light, c)));
+    cmd.ambient.push_back(
+        config.series.from_double(channel(m.ambient, c) * channel(scene.ambient_light, c)));
   }
   for (int l = 0; l < config.lights; ++l) {
     for (int c = 0; c < config.channels; ++c) {
       const bool present = l < static_cast<int>(scene.lights.size());
       cmd.spec_colour.push_back(config.spec_colour.from_double(
-          present ? channel(m.specular, c) * channel(scene.lights[static_cast<size_t>(l)].colour, c) : 0.0));
+          present ? channel(m.specular, c) * channel(scene.lights[static_cast<size_t>(l)].colour, c)
+                  : 0.0));
     }
   }
   cmd.exponent = kExponentFormat.from_double(m.exponent);
@@ -88,8 +90,8 @@ void check_scene_fits(const Scene& scene, const UnitConfig& config) {
   if (static_cast<int>(scene.lights.size()) > config.lights) {
     throw std::invalid_argument(scene.path + ": scene has " + std::to_string(scene.lights.size()) +
                                 " lights; the unit (" + config.to_string() + ") has series for " +
-                                std::to_string(config.lights) + ": it needs lights >= " +
-                                std::to_string(scene.lights.size()));
+                                std::to_string(config.lights) +
+                                ": it needs lights >= " + std::to_string(scene.lights.size()));
   }
   if (!scene.is_grey() && config.channels < 3) {
     throw std::invalid_argument(scene.path + ": scene has colour; the unit (" + config.to_string() +
@@ -123,7 +125,8 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
   size_t i = 0;
   while (i < vis.spans.size()) {
     const uint32_t tri_index = vis.spans[i].triangle;
-    if (tri_index >= setup.triangles.size()) throw std::logic_error("encoder: span names an unknown triangle");
+    if (tri_index >= setup.triangles.size())
+      throw std::logic_error("encoder: span names an unknown triangle");
     const ScreenTriangle& tri = setup.triangles[tri_index];
     const TriangleSeries& series = setup.series[tri_index];
     const Material& material = scene.materials.at(static_cast<size_t>(tri.material));
@@ -161,7 +164,8 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
         // A gate-only light: channel 0 carries N.L itself (its colour is 0 in every channel).
         double scale = 0.0;
         if (present) {
-          scale = (gate_only >> l & 1) != 0 ? (c == 0 ? 1.0 : 0.0) : diffuse_scale(scene, material, l, c);
+          scale = (gate_only >> l & 1) != 0 ? (c == 0 ? 1.0 : 0.0)
+                                            : diffuse_scale(scene, material, l, c);
         }
         writer.append(q, scale, 0.0, t.coef);
       }
@@ -169,7 +173,8 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
     for (int l = 0; l < config.lights; ++l) {
       // An absent light's specular series still feeds the unit (its colour is 0): give it the
       // unit's value for t = 0 so it stays in the unit's input range.
-      const Quadratic q = l < scene_lights ? series.specular[static_cast<size_t>(l)].recentred(ox, oy) : zero;
+      const Quadratic q =
+          l < scene_lights ? series.specular[static_cast<size_t>(l)].recentred(ox, oy) : zero;
       for (const auto& [a, b] : plan.affine) writer.append(q, a, b, t.coef);
     }
     cmds.emplace_back(std::move(t));

@@ -19,12 +19,12 @@ namespace shadesim {
 UnitConfig config_for_scene(const Scene& scene, UnitConfig base);
 
 struct EncodeStats {
-  std::size_t materials = 0;    // MATERIAL commands (material switches, including the first)
-  std::size_t triangles = 0;    // TRI commands: triangles that own at least one pixel
+  std::size_t materials = 0;  // MATERIAL commands (material switches, including the first)
+  std::size_t triangles = 0;  // TRI commands: triangles that own at least one pixel
   std::size_t spans = 0;
   std::size_t pixels = 0;
-  std::size_t words = 0;        // 64-bit words on the cmd port
-  std::size_t table_words = 0;  // of which exponent-table entries
+  std::size_t words = 0;          // 64-bit words on the cmd port
+  std::size_t table_words = 0;    // of which exponent-table entries
   int64_t table_load_cycles = 0;  // table reload cost of the material switches
   // Coefficients outside the coef format's range. With :wrap they are exact modulo 2^iwl and
   // harmless while pixel values stay in range; with :sat they were clipped and pixels are wrong.

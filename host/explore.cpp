@@ -24,7 +24,10 @@ namespace shadesim {
 
 ExploreScenes::ExploreScenes(std::vector<std::string> paths, const UnitConfig& start,
                              std::optional<double> setup_budget_lsb, int max_depth)
-    : paths_(std::move(paths)), start_(start), setup_budget_lsb_(setup_budget_lsb), max_depth_(max_depth) {
+    : paths_(std::move(paths)),
+      start_(start),
+      setup_budget_lsb_(setup_budget_lsb),
+      max_depth_(max_depth) {
   if (paths_.empty()) throw std::invalid_argument("explore: no scene given");
   prepare(start.out_bits);
 }
@@ -51,14 +54,16 @@ void ExploreScenes::prepare(int out_bits) {
 const HostSetup& ExploreScenes::setup(std::size_t scene, int out_bits) const {
   const auto it = by_out_bits_.find(out_bits);
   if (it == by_out_bits_.end() || scene >= it->second.size()) {
-    throw std::logic_error("explore: host setup for out_bits " + std::to_string(out_bits) + " not prepared");
+    throw std::logic_error("explore: host setup for out_bits " + std::to_string(out_bits) +
+                           " not prepared");
   }
   return *it->second[scene];
 }
 
 // ---------------------------------------------------------------- one point
 
-PointFigures evaluate_point(const ExploreScenes& scenes, const UnitConfig& config, const AreaFunction& area) {
+PointFigures evaluate_point(const ExploreScenes& scenes, const UnitConfig& config,
+                            const AreaFunction& area) {
   PointFigures p;
   double sum_abs = 0, sum_sq = 0;
   std::array<double, kMaxChannels> sum_abs_channel{};
@@ -75,9 +80,10 @@ PointFigures evaluate_point(const ExploreScenes& scenes, const UnitConfig& confi
     for (const auto& cmd : enc.stream.commands) {
       unit.consume(cmd, [&pixels](const PixelOut& px) { pixels.push_back(px); });
     }
-    const ErrorStats e = compare_to_reference(pixels, h.reference.values, f.visibility.owner, f.scene.width,
-                                              f.scene.height, config.channels, config.out_bits)
-                             .stats;
+    const ErrorStats e =
+        compare_to_reference(pixels, h.reference.values, f.visibility.owner, f.scene.width,
+                             f.scene.height, config.channels, config.out_bits)
+            .stats;
     // The unit's whole timing: its slot, port width, triangle queue and pixel lanes.
     // (CycleEstimate: exactly the clocked CycleModel's figures with no gaps or back-pressure.)
     const CycleEstimateRun run = CycleEstimate(CycleConfig::of(config)).run(enc.stream.encode());
@@ -91,7 +97,8 @@ PointFigures evaluate_point(const ExploreScenes& scenes, const UnitConfig& confi
     t.pixels_over_1lsb += e.pixels_over_1lsb;
     const double n = static_cast<double>(e.pixels);
     sum_abs += e.mean_code_lsb * n * config.channels;
-    if (!std::isinf(e.psnr_db)) sum_sq += peak * peak / std::pow(10.0, e.psnr_db / 10.0) * n * config.channels;
+    if (!std::isinf(e.psnr_db))
+      sum_sq += peak * peak / std::pow(10.0, e.psnr_db / 10.0) * n * config.channels;
     for (int c = 0; c < config.channels; ++c) {
       const auto k = static_cast<std::size_t>(c);
       t.max_code_lsb_channel[k] = std::max(t.max_code_lsb_channel[k], e.max_code_lsb_channel[k]);
@@ -103,13 +110,15 @@ PointFigures evaluate_point(const ExploreScenes& scenes, const UnitConfig& confi
     const double samples = static_cast<double>(t.pixels) * config.channels;
     t.mean_code_lsb = sum_abs / samples;
     const double mse = sum_sq / samples;
-    t.psnr_db = mse > 0 ? 10.0 * std::log10(peak * peak / mse) : std::numeric_limits<double>::infinity();
+    t.psnr_db =
+        mse > 0 ? 10.0 * std::log10(peak * peak / mse) : std::numeric_limits<double>::infinity();
     for (int c = 0; c < config.channels; ++c) {
       t.mean_code_lsb_channel[static_cast<std::size_t>(c)] =
           sum_abs_channel[static_cast<std::size_t>(c)] / static_cast<double>(t.pixels);
     }
   }
-  p.cycles_per_pixel = p.pixels ? static_cast<double>(p.cycles) / static_cast<double>(p.pixels) : 0.0;
+  p.cycles_per_pixel =
+      p.pixels ? static_cast<double>(p.cycles) / static_cast<double>(p.pixels) : 0.0;
   if (area) p.area = area(config);
   return p;
 }
@@ -130,7 +139,8 @@ std::vector<std::string> numbers(const std::vector<int>& v) {
   return s;
 }
 
-Knob numeric(std::string stage, std::string name, int lo, int hi, std::function<void(UnitConfig&, int)> apply,
+Knob numeric(std::string stage, std::string name, int lo, int hi,
+             std::function<void(UnitConfig&, int)> apply,
              std::function<int(const UnitConfig&)> read, bool searched = true) {
   Knob k;
   k.stage = std::move(stage);
@@ -144,17 +154,18 @@ Knob numeric(std::string stage, std::string name, int lo, int hi, std::function<
 }
 
 // Fraction bits of a format held in a UnitConfig member, keeping its integer bits.
-Knob frac_knob(std::string stage, std::string name, FixedFormat UnitConfig::*member, int lo, int widen,
-               const UnitConfig& start) {
+Knob frac_knob(std::string stage, std::string name, FixedFormat UnitConfig::*member, int lo,
+               int widen, const UnitConfig& start) {
   const FixedFormat& f = start.*member;
   const int hi = std::min(f.frac_bits() + widen, 62 - f.iwl);
   return numeric(
-      std::move(stage), std::move(name), lo, hi, [member](UnitConfig& c, int v) { (c.*member).wl = (c.*member).iwl + v; },
+      std::move(stage), std::move(name), lo, hi,
+      [member](UnitConfig& c, int v) { (c.*member).wl = (c.*member).iwl + v; },
       [member](const UnitConfig& c) { return (c.*member).frac_bits(); });
 }
 
-Knob int_knob(std::string stage, std::string name, FixedFormat UnitConfig::*member, int lo, int widen,
-              const UnitConfig& start) {
+Knob int_knob(std::string stage, std::string name, FixedFormat UnitConfig::*member, int lo,
+              int widen, const UnitConfig& start) {
   const FixedFormat& f = start.*member;
   const int hi = std::min(f.iwl + widen, 62 - f.frac_bits());
   return numeric(
@@ -169,7 +180,8 @@ Knob int_knob(std::string stage, std::string name, FixedFormat UnitConfig::*memb
 }
 
 Knob choice(std::string stage, std::string name, std::vector<std::string> labels,
-            std::function<void(UnitConfig&, int)> apply, std::function<int(const UnitConfig&)> read) {
+            std::function<void(UnitConfig&, int)> apply,
+            std::function<int(const UnitConfig&)> read) {
   Knob k;
   k.stage = std::move(stage);
   k.name = std::move(name);
@@ -192,12 +204,16 @@ std::vector<Knob> knobs_for(const UnitConfig& start) {
   k.push_back(frac_knob(coef, "coef.frac", &UnitConfig::coef, 8, 4, start));
   k.push_back(int_knob(series, "series.int", &UnitConfig::series, 2, 2, start));
   k.push_back(frac_knob(series, "series.frac", &UnitConfig::series, start.out_bits, 4, start));
-  k.push_back(choice(series, "series.quant", {"trn", "rnd"},
-                     [](UnitConfig& c, int v) { c.series.quant = v ? Quantization::kRoundNearest : Quantization::kTruncate; },
-                     [](const UnitConfig& c) { return c.series.quant == Quantization::kRoundNearest ? 1 : 0; }));
-  k.push_back(choice(series, "series.overflow", {"wrap", "sat"},
-                     [](UnitConfig& c, int v) { c.series.overflow = v ? Overflow::kSaturate : Overflow::kWrap; },
-                     [](const UnitConfig& c) { return c.series.overflow == Overflow::kSaturate ? 1 : 0; }));
+  k.push_back(choice(
+      series, "series.quant", {"trn", "rnd"},
+      [](UnitConfig& c, int v) {
+        c.series.quant = v ? Quantization::kRoundNearest : Quantization::kTruncate;
+      },
+      [](const UnitConfig& c) { return c.series.quant == Quantization::kRoundNearest ? 1 : 0; }));
+  k.push_back(choice(
+      series, "series.overflow", {"wrap", "sat"},
+      [](UnitConfig& c, int v) { c.series.overflow = v ? Overflow::kSaturate : Overflow::kWrap; },
+      [](const UnitConfig& c) { return c.series.overflow == Overflow::kSaturate ? 1 : 0; }));
   const SpecularConfig& s = start.specular;
   k.push_back(numeric(
       spec, "spec.out.frac", 4, std::min(s.out.frac_bits() + 2, 60),
@@ -208,11 +224,13 @@ std::vector<Knob> knobs_for(const UnitConfig& start) {
   for (const SpecularField& f : unit.fields) {
     if (f.explore_hi == nullptr) continue;
     const SpecularField* field = &f;  // the table outlives every knob
-    k.push_back(numeric(spec, unit.field_name(f), f.explore_lo, f.explore_hi(f.get(s)),
-                        [field](UnitConfig& c, int v) { field->set(c.specular, v); },
-                        [field](const UnitConfig& c) { return field->get(c.specular); }));
+    k.push_back(numeric(
+        spec, unit.field_name(f), f.explore_lo, f.explore_hi(f.get(s)),
+        [field](UnitConfig& c, int v) { field->set(c.specular, v); },
+        [field](const UnitConfig& c) { return field->get(c.specular); }));
   }
-  k.push_back(frac_knob("specular colour", "spec_colour.frac", &UnitConfig::spec_colour, 2, 2, start));
+  k.push_back(
+      frac_knob("specular colour", "spec_colour.frac", &UnitConfig::spec_colour, 2, 2, start));
   k.push_back(numeric(
       "output", "out_bits", std::max(1, start.out_bits - 2), std::min(16, start.out_bits + 2),
       [](UnitConfig& c, int v) { c.out_bits = v; }, [](const UnitConfig& c) { return c.out_bits; },
@@ -298,7 +316,9 @@ class Evaluator {
 };
 
 // The cheaper of two points; on equal area the earlier (narrower) one.
-bool cheaper(const ExplorePoint& a, const ExplorePoint& b) { return a.figures.area.cells < b.figures.area.cells; }
+bool cheaper(const ExplorePoint& a, const ExplorePoint& b) {
+  return a.figures.area.cells < b.figures.area.cells;
+}
 
 std::string knob_setting(const Knob& k, const UnitConfig& c) {
   const int v = k.read(c);
@@ -319,17 +339,22 @@ std::string describe(const ExplorePoint& p) {
 }  // namespace
 
 void mark_pareto(std::vector<ExplorePoint>& points, int out_bits) {
-  auto no_worse = [](const ExplorePoint& a, const ExplorePoint& b) {  // a no worse than b in all four
+  auto no_worse = [](const ExplorePoint& a,
+                     const ExplorePoint& b) {  // a no worse than b in all four
     return a.figures.error.max_code_lsb <= b.figures.error.max_code_lsb &&
            a.figures.error.mean_code_lsb <= b.figures.error.mean_code_lsb &&
-           a.figures.area.cells <= b.figures.area.cells && a.figures.cycles_per_pixel <= b.figures.cycles_per_pixel;
+           a.figures.area.cells <= b.figures.area.cells &&
+           a.figures.cycles_per_pixel <= b.figures.cycles_per_pixel;
   };
   auto better_somewhere = [](const ExplorePoint& a, const ExplorePoint& b) {
     return a.figures.error.max_code_lsb < b.figures.error.max_code_lsb ||
            a.figures.error.mean_code_lsb < b.figures.error.mean_code_lsb ||
-           a.figures.area.cells < b.figures.area.cells || a.figures.cycles_per_pixel < b.figures.cycles_per_pixel;
+           a.figures.area.cells < b.figures.area.cells ||
+           a.figures.cycles_per_pixel < b.figures.cycles_per_pixel;
   };
-  auto takes_part = [out_bits](const ExplorePoint& p) { return p.valid && p.config.out_bits == out_bits; };
+  auto takes_part = [out_bits](const ExplorePoint& p) {
+    return p.valid && p.config.out_bits == out_bits;
+  };
   for (auto& p : points) {
     p.pareto = takes_part(p);
     if (!p.pareto) continue;
@@ -357,7 +382,8 @@ ExploreResult explore(ExploreScenes& scenes, const UnitConfig& start, const Area
   sp.config = start;
   r.start_index = eval.run("start", {sp}).front();
   const ExplorePoint start_point = r.points[r.start_index];
-  if (!start_point.valid) throw std::invalid_argument("explore: start " + start_point.invalid_reason);
+  if (!start_point.valid)
+    throw std::invalid_argument("explore: start " + start_point.invalid_reason);
   r.log.push_back("start " + start.to_string() + ": " + describe(start_point) +
                   (start_point.meets_budget ? "" : " - breaks the budget"));
 
@@ -391,11 +417,12 @@ ExploreResult explore(ExploreScenes& scenes, const UnitConfig& start, const Area
     }
     if (best) {
       knobs[k].apply(joint, knobs[k].read(r.points[*best].config));
-      r.log.push_back("stage " + knobs[k].stage + ": " + knobs[k].name + " = " + knob_setting(knobs[k], joint) +
-                      " (start " + knob_setting(knobs[k], start) + "), " + describe(r.points[*best]));
+      r.log.push_back("stage " + knobs[k].stage + ": " + knobs[k].name + " = " +
+                      knob_setting(knobs[k], joint) + " (start " + knob_setting(knobs[k], start) +
+                      "), " + describe(r.points[*best]));
     } else {
-      r.log.push_back("stage " + knobs[k].stage + ": " + knobs[k].name + " - no value meets the budget alone; kept " +
-                      knob_setting(knobs[k], start));
+      r.log.push_back("stage " + knobs[k].stage + ": " + knobs[k].name +
+                      " - no value meets the budget alone; kept " + knob_setting(knobs[k], start));
     }
   }
 
@@ -406,10 +433,11 @@ ExploreResult explore(ExploreScenes& scenes, const UnitConfig& start, const Area
   if (!r.points[current].valid) {
     // The minima are valid alone but not together (e.g. coef.int below series.int): start from
     // the start's integer bits, which every knob combination accepts.
-    r.log.push_back("joint: per-stage minima combined are invalid (" + r.points[current].invalid_reason +
-                    "); widening from there");
+    r.log.push_back("joint: per-stage minima combined are invalid (" +
+                    r.points[current].invalid_reason + "); widening from there");
   } else {
-    r.log.push_back("joint: per-stage minima combined " + joint.to_string() + ": " + describe(r.points[current]));
+    r.log.push_back("joint: per-stage minima combined " + joint.to_string() + ": " +
+                    describe(r.points[current]));
   }
   for (int step = 1; !(r.points[current].valid && r.points[current].meets_budget); ++step) {
     const UnitConfig& cur = r.points[current].config;
@@ -434,11 +462,14 @@ ExploreResult explore(ExploreScenes& scenes, const UnitConfig& start, const Area
       candidates.push_back(std::move(c));
     }
     if (candidates.empty()) {
-      r.log.push_back("joint: every knob is at its widest swept value and the budget is still broken");
+      r.log.push_back(
+          "joint: every knob is at its widest swept value and the budget is still broken");
       break;
     }
-    const std::vector<std::size_t> tried = eval.run("joint step " + std::to_string(step), std::move(candidates));
-    // Prefer the cheapest candidate that meets the budget; otherwise the most error bought per area.
+    const std::vector<std::size_t> tried =
+        eval.run("joint step " + std::to_string(step), std::move(candidates));
+    // Prefer the cheapest candidate that meets the budget; otherwise the most error bought per
+    // area.
     std::optional<std::size_t> pick;
     for (std::size_t i : tried) {
       const ExplorePoint& p = r.points[i];
@@ -455,7 +486,8 @@ ExploreResult explore(ExploreScenes& scenes, const UnitConfig& start, const Area
       for (std::size_t i : tried) {
         const ExplorePoint& p = r.points[i];
         if (!p.valid) continue;
-        const double gain = cur_err - (p.figures.error.max_real_lsb + p.figures.error.mean_code_lsb);
+        const double gain =
+            cur_err - (p.figures.error.max_real_lsb + p.figures.error.mean_code_lsb);
         const double cost = std::max(p.figures.area.cells - cur_area, 1e-9);
         const double score = std::isinf(gain) ? -p.figures.area.cells : gain / cost;
         if (!pick || score > best_score) best_score = score, pick = i;
@@ -468,9 +500,10 @@ ExploreResult explore(ExploreScenes& scenes, const UnitConfig& start, const Area
       break;
     }
     current = *pick;
-    r.log.push_back("joint step " + std::to_string(step) + ": " + r.points[current].knob + " -> " +
-                    r.points[current].value + " (" + why + "): " +
-                    (r.points[current].valid ? describe(r.points[current]) : r.points[current].invalid_reason));
+    r.log.push_back(
+        "joint step " + std::to_string(step) + ": " + r.points[current].knob + " -> " +
+        r.points[current].value + " (" + why + "): " +
+        (r.points[current].valid ? describe(r.points[current]) : r.points[current].invalid_reason));
   }
   if (r.points[current].valid && r.points[current].meets_budget) r.chosen = current;
 
@@ -486,8 +519,8 @@ namespace {
 // compare_to_reference measures real error).
 double shown(double r, double scale) { return std::min(r * scale, scale - 1.0); }
 
-ErrorPart image_difference(const ReferenceImage& a, const ReferenceImage& b, const std::vector<int32_t>& owner,
-                           int out_bits) {
+ErrorPart image_difference(const ReferenceImage& a, const ReferenceImage& b,
+                           const std::vector<int32_t>& owner, int out_bits) {
   ErrorPart e;
   const double scale = std::ldexp(1.0, out_bits);
   double sum = 0;
@@ -506,15 +539,18 @@ ErrorPart image_difference(const ReferenceImage& a, const ReferenceImage& b, con
   return e;
 }
 
-ErrorPart model_difference(const std::vector<PixelOut>& pixels, const ReferenceImage& img, int out_bits) {
+ErrorPart model_difference(const std::vector<PixelOut>& pixels, const ReferenceImage& img,
+                           int out_bits) {
   ErrorPart e;
   const double scale = std::ldexp(1.0, out_bits);
   double sum = 0;
   std::size_t samples = 0;
   for (const PixelOut& p : pixels) {
-    const std::size_t pixel = static_cast<std::size_t>(p.y) * static_cast<std::size_t>(img.width) + p.x;
+    const std::size_t pixel =
+        static_cast<std::size_t>(p.y) * static_cast<std::size_t>(img.width) + p.x;
     for (int c = 0; c < img.channels; ++c) {
-      const double r = img.values[pixel * static_cast<std::size_t>(img.channels) + static_cast<std::size_t>(c)];
+      const double r =
+          img.values[pixel * static_cast<std::size_t>(img.channels) + static_cast<std::size_t>(c)];
       const double d = std::fabs(p.colour[static_cast<std::size_t>(c)] - shown(r, scale));
       e.max_lsb = std::max(e.max_lsb, d);
       sum += d;
@@ -532,12 +568,15 @@ ErrorBudget error_budget(const ExploreScenes& scenes, std::size_t scene, const U
   const HostSetup& h = scenes.setup(scene, config.out_bits);
   const PreparedFrame& f = h.frame;
   ShadingVariant function;
-  for (const Material& m : f.scene.materials) function.specular.push_back(unit_float_function(config, m.exponent));
+  for (const Material& m : f.scene.materials)
+    function.specular.push_back(unit_float_function(config, m.exponent));
   ShadingVariant taylor = function;
   taylor.quadratics = &f.setup.series;
   const int ch = config.channels;
-  const ReferenceImage exact_fn = render_variant(f.setup.triangles, f.visibility, f.scene, ch, function);
-  const ReferenceImage quad_fn = render_variant(f.setup.triangles, f.visibility, f.scene, ch, taylor);
+  const ReferenceImage exact_fn =
+      render_variant(f.setup.triangles, f.visibility, f.scene, ch, function);
+  const ReferenceImage quad_fn =
+      render_variant(f.setup.triangles, f.visibility, f.scene, ch, taylor);
   const EncodedFrame enc = encode_frame(f.scene, config, f.setup, f.visibility);
   const std::vector<PixelOut> pixels = ShadeUnit(config).run(enc.stream);
 

@@ -43,8 +43,8 @@ class ExploreScenes {
  public:
   // Prepares every scene on `start` (a unit that fits all of them: fixed structure). Throws
   // SceneError / std::invalid_argument naming the scene for bad input.
-  ExploreScenes(std::vector<std::string> paths, const UnitConfig& start, std::optional<double> setup_budget_lsb,
-                int max_depth);
+  ExploreScenes(std::vector<std::string> paths, const UnitConfig& start,
+                std::optional<double> setup_budget_lsb, int max_depth);
 
   const std::vector<std::string>& paths() const { return paths_; }
   // Sets up every scene for out_bits unless done already. Not thread-safe: call before a batch.
@@ -71,7 +71,8 @@ struct PointFigures {
 };
 
 // Evaluates `config` on every scene (prepare(config.out_bits) first). Thread-safe.
-PointFigures evaluate_point(const ExploreScenes& scenes, const UnitConfig& config, const AreaFunction& area);
+PointFigures evaluate_point(const ExploreScenes& scenes, const UnitConfig& config,
+                            const AreaFunction& area);
 
 // One width the sweep varies: its stage, its candidate values (narrowest / cheapest first) and
 // how a value is written into a configuration.
@@ -93,10 +94,10 @@ std::vector<Knob> knobs_for(const UnitConfig& start);
 
 struct ExplorePoint {
   UnitConfig config;
-  std::string phase;    // start | stage | joint
+  std::string phase;               // start | stage | joint
   std::string stage, knob, value;  // what this point changed from the start ("" for start/joint)
   PointFigures figures;
-  bool valid = true;    // false: the configuration does not validate (figures empty)
+  bool valid = true;  // false: the configuration does not validate (figures empty)
   std::string invalid_reason;
   bool meets_budget = false;
   bool pareto = false;  // on the front of (max LSB, mean LSB) against area and cycles per pixel
@@ -109,7 +110,8 @@ struct ExploreOptions {
 
 // Called from worker threads (serialised) after each point: phase, points done, points in the
 // phase so far known.
-using ExploreProgress = std::function<void(const std::string& phase, std::size_t done, std::size_t total)>;
+using ExploreProgress =
+    std::function<void(const std::string& phase, std::size_t done, std::size_t total)>;
 
 struct ExploreResult {
   UnitConfig start;

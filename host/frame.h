@@ -14,10 +14,10 @@
 namespace shadesim {
 
 struct FrameOptions {
-  UnitConfig base;                                   // widths; structure comes from the scene
-  std::optional<double> budget_lsb;                  // unset: the scene's error_budget_lsb
-  int max_depth = 12;                                // subdivision depth limit
-  std::optional<SpecularUnitKind> specular_override; // unset: the scene's (first) material unit
+  UnitConfig base;                                    // widths; structure comes from the scene
+  std::optional<double> budget_lsb;                   // unset: the scene's error_budget_lsb
+  int max_depth = 12;                                 // subdivision depth limit
+  std::optional<SpecularUnitKind> specular_override;  // unset: the scene's (first) material unit
   // true: shade on exactly `base`, structure and specular unit included (a fixed RTL build); the
   // scene must fit it. false: take channels and lights from the scene.
   bool fixed_unit = false;

@@ -12,7 +12,8 @@ namespace shadesim {
 Image::Image(int w, int h, int c) : width(w), height(h), channels(c) {
   if (w < 0 || h < 0 || (c != 1 && c != 3)) {
     throw std::invalid_argument("Image: expected width, height >= 0 and 1 or 3 channels, got " +
-                                std::to_string(w) + "x" + std::to_string(h) + "x" + std::to_string(c));
+                                std::to_string(w) + "x" + std::to_string(h) + "x" +
+                                std::to_string(c));
   }
   pixels.assign(static_cast<size_t>(w) * h * c, 0);
 }
@@ -20,7 +21,8 @@ Image::Image(int w, int h, int c) : width(w), height(h), channels(c) {
 void write_png(const std::string& path, const Image& image) {
   if ((image.channels != 1 && image.channels != 3) || image.width <= 0 || image.height <= 0 ||
       image.pixels.size() != static_cast<size_t>(image.width) * image.height * image.channels) {
-    throw std::runtime_error(path + ": cannot write PNG: image is not a non-empty 1- or 3-channel "
+    throw std::runtime_error(path +
+                             ": cannot write PNG: image is not a non-empty 1- or 3-channel "
                              "image whose pixel count matches its size");
   }
   png_image png;
@@ -75,7 +77,8 @@ Image error_heat_map(const std::vector<double>& error_lsb, int width, int height
     const int k = std::min(static_cast<int>(t), 2);
     const double f = t - k;
     for (int c = 0; c < 3; ++c) {
-      p[c] = static_cast<uint8_t>(std::lround(kStops[k][c] + f * (kStops[k + 1][c] - kStops[k][c])));
+      p[c] =
+          static_cast<uint8_t>(std::lround(kStops[k][c] + f * (kStops[k + 1][c] - kStops[k][c])));
     }
   }
   return image;

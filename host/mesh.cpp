@@ -2,7 +2,6 @@
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
-
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -62,20 +61,26 @@ struct Mat3 {
 
 Mat3 rotation_x(double rad) {
   Mat3 r;
-  r.m[1][1] = std::cos(rad); r.m[1][2] = -std::sin(rad);
-  r.m[2][1] = std::sin(rad); r.m[2][2] = std::cos(rad);
+  r.m[1][1] = std::cos(rad);
+  r.m[1][2] = -std::sin(rad);
+  r.m[2][1] = std::sin(rad);
+  r.m[2][2] = std::cos(rad);
   return r;
 }
 Mat3 rotation_y(double rad) {
   Mat3 r;
-  r.m[0][0] = std::cos(rad); r.m[0][2] = std::sin(rad);
-  r.m[2][0] = -std::sin(rad); r.m[2][2] = std::cos(rad);
+  r.m[0][0] = std::cos(rad);
+  r.m[0][2] = std::sin(rad);
+  r.m[2][0] = -std::sin(rad);
+  r.m[2][2] = std::cos(rad);
   return r;
 }
 Mat3 rotation_z(double rad) {
   Mat3 r;
-  r.m[0][0] = std::cos(rad); r.m[0][1] = -std::sin(rad);
-  r.m[1][0] = std::sin(rad); r.m[1][1] = std::cos(rad);
+  r.m[0][0] = std::cos(rad);
+  r.m[0][1] = -std::sin(rad);
+  r.m[1][0] = std::sin(rad);
+  r.m[1][1] = std::cos(rad);
   return r;
 }
 
@@ -134,7 +139,8 @@ Mesh make_sphere(double radius, int tessellation) {
     ring_start[i] = static_cast<uint32_t>(mesh.positions.size());
     for (int j = 0; j < segments; ++j) {
       const double phi = 2 * kPi * j / segments;
-      const Vec3 n{std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)};
+      const Vec3 n{std::sin(theta) * std::cos(phi), std::cos(theta),
+                   std::sin(theta) * std::sin(phi)};
       add_vertex(mesh, n * radius, n);
     }
   }
@@ -170,11 +176,10 @@ Mesh make_torus(double major_radius, double minor_radius, int tessellation) {
     }
   }
   // s runs along theta, t along phi: cross(d/dtheta, d/dphi) points outward.
-  auto at = [&](int i, int j) {
-    return static_cast<uint32_t>((j % around) * tube + (i % tube));
-  };
+  auto at = [&](int i, int j) { return static_cast<uint32_t>((j % around) * tube + (i % tube)); };
   for (int j = 0; j < around; ++j)
-    for (int i = 0; i < tube; ++i) add_quad(mesh, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+    for (int i = 0; i < tube; ++i)
+      add_quad(mesh, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
   return mesh;
 }
 
@@ -209,8 +214,10 @@ Mesh make_cylinder(double radius, double height, int tessellation) {
       const uint32_t a = first + static_cast<uint32_t>(j);
       const uint32_t b = first + static_cast<uint32_t>((j + 1) % around);
       // Increasing phi runs clockwise seen from +y, so the top cap takes (centre, b, a).
-      if (cap) mesh.triangles.push_back({centre, b, a});
-      else mesh.triangles.push_back({centre, a, b});
+      if (cap)
+        mesh.triangles.push_back({centre, b, a});
+      else
+        mesh.triangles.push_back({centre, a, b});
     }
   }
   return mesh;
@@ -227,7 +234,8 @@ Mesh make_plane(double size, int tessellation) {
   auto at = [&](int i, int k) { return static_cast<uint32_t>(k * (n + 1) + i); };
   // s runs along z, t along x: cross(d/dz, d/dx) = +y.
   for (int k = 0; k < n; ++k)
-    for (int i = 0; i < n; ++i) add_quad(mesh, at(i, k), at(i, k + 1), at(i + 1, k + 1), at(i + 1, k));
+    for (int i = 0; i < n; ++i)
+      add_quad(mesh, at(i, k), at(i, k + 1), at(i + 1, k + 1), at(i + 1, k));
   return mesh;
 }
 
@@ -246,9 +254,9 @@ struct RawPart {
 // runs in the parent process, where the fuzzer's sanitizers and coverage see it.
 std::vector<RawPart> import_with_assimp(const std::string& path) {
   Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
-                aiProcess_PreTransformVertices);
+  const aiScene* scene =
+      importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                  aiProcess_GenSmoothNormals | aiProcess_PreTransformVertices);
   if (scene == nullptr) {
     throw SceneError(path + ": assimp could not read the mesh file: " + importer.GetErrorString());
   }
@@ -287,14 +295,16 @@ Mesh mesh_from_parts(const std::string& path, const std::vector<RawPart>& parts)
     }
     const uint32_t base = static_cast<uint32_t>(mesh.positions.size());
     for (size_t v = 0; v < vertices; ++v) {
-      const Vec3 position{part.positions[3 * v], part.positions[3 * v + 1], part.positions[3 * v + 2]};
+      const Vec3 position{part.positions[3 * v], part.positions[3 * v + 1],
+                          part.positions[3 * v + 2]};
       if (!is_finite(position)) {
         throw SceneError(path + ": mesh " + std::to_string(m) + " vertex " + std::to_string(v) +
                          ": expected finite coordinates");
       }
       mesh.positions.push_back(position);
       // checked below, after all faces are known
-      mesh.normals.push_back({part.normals[3 * v], part.normals[3 * v + 1], part.normals[3 * v + 2]});
+      mesh.normals.push_back(
+          {part.normals[3 * v], part.normals[3 * v + 1], part.normals[3 * v + 2]});
     }
     for (size_t f = 0; f < part.triangle_indices.size() / 3; ++f) {
       const uint32_t* index = &part.triangle_indices[3 * f];
@@ -460,9 +470,9 @@ Mesh load_mesh_file(const std::string& path) {
   }
   if (WIFSIGNALED(status)) {
     const int sig = WTERMSIG(status);
-    const std::string what = sig == SIGXCPU ? "ran past " + std::to_string(kImportCpuSeconds) +
-                                                  " s of CPU"
-                                            : std::string("crashed (") + strsignal(sig) + ")";
+    const std::string what = sig == SIGXCPU
+                                 ? "ran past " + std::to_string(kImportCpuSeconds) + " s of CPU"
+                                 : std::string("crashed (") + strsignal(sig) + ")";
     throw SceneError(path + ": assimp " + what +
                      " reading the mesh file (expected a well-formed mesh file; Debian's assimp "
                      "mishandles this one)");
@@ -487,7 +497,8 @@ Mesh load_mesh_file(const std::string& path) {
          reader.read_array(part.triangle_indices);
     parts.push_back(std::move(part));
   }
-  if (!ok || !reader.at_end()) throw SceneError(path + ": mesh import process sent a malformed result");
+  if (!ok || !reader.at_end())
+    throw SceneError(path + ": mesh import process sent a malformed result");
   return mesh_from_parts(path, parts);
 }
 
@@ -497,10 +508,15 @@ Mesh transform_mesh(const Mesh& mesh, const Transform& transform) {
                         rotation_y(transform.rotate_deg.y * deg) *
                         rotation_x(transform.rotate_deg.x * deg);
   const Vec3 s = transform.scale;
-  if (s.x == 0 || s.y == 0 || s.z == 0) throw std::invalid_argument("transform scale must be non-zero");
+  if (s.x == 0 || s.y == 0 || s.z == 0)
+    throw std::invalid_argument("transform scale must be non-zero");
   Mat3 scale, inverse_scale;
-  scale.m[0][0] = s.x; scale.m[1][1] = s.y; scale.m[2][2] = s.z;
-  inverse_scale.m[0][0] = 1 / s.x; inverse_scale.m[1][1] = 1 / s.y; inverse_scale.m[2][2] = 1 / s.z;
+  scale.m[0][0] = s.x;
+  scale.m[1][1] = s.y;
+  scale.m[2][2] = s.z;
+  inverse_scale.m[0][0] = 1 / s.x;
+  inverse_scale.m[1][1] = 1 / s.y;
+  inverse_scale.m[2][2] = 1 / s.z;
   const Mat3 linear = rotation * scale;
   // (R S)^-T = R^-T S^-T = R S^-1 for a rotation R and diagonal S.
   const Mat3 normal_matrix = rotation * inverse_scale;

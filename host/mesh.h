@@ -17,7 +17,8 @@ constexpr int kMaxTessellation = 1024;
 // `tessellation` latitude bands and 2*tessellation longitude segments; one vertex at each pole, so
 // the mesh is closed (every edge shared by exactly two triangles).
 Mesh make_sphere(double radius, int tessellation);
-// Ring around the y axis in the xz plane: 2*tessellation segments around, tessellation around the tube.
+// Ring around the y axis in the xz plane: 2*tessellation segments around, tessellation around the
+// tube.
 Mesh make_torus(double major_radius, double minor_radius, int tessellation);
 // Axis y, from -height/2 to +height/2, `tessellation` segments around, closed by flat caps. Cap
 // vertices duplicate the rim positions because the cap normal (+-y) differs from the side normal.
@@ -38,8 +39,9 @@ struct Transform {
   Vec3 scale{1, 1, 1};  // every component non-zero
 };
 
-// Positions by the transform, normals by its inverse transpose (renormalised). A mirroring transform
-// (negative determinant) reverses the winding so triangles stay counter-clockwise from outside.
+// Positions by the transform, normals by its inverse transpose (renormalised). A mirroring
+// transform (negative determinant) reverses the winding so triangles stay counter-clockwise from
+// outside.
 Mesh transform_mesh(const Mesh& mesh, const Transform& transform);
 
 }  // namespace shadesim

@@ -25,13 +25,15 @@ Int128 ceil_div(Int128 a, Int128 b) { return -floor_div(-a, b); }
 
 int64_t to_raster_units(double v, const char* axis, int vertex) {
   if (!std::isfinite(v) || std::fabs(v) > kMaxScreenCoordinate) {
-    throw std::logic_error(std::string("rasterizer: vertex ") + std::to_string(vertex) + " " + axis +
-                           " = " + std::to_string(v) + " is not a finite screen coordinate within +-2^28");
+    throw std::logic_error(std::string("rasterizer: vertex ") + std::to_string(vertex) + " " +
+                           axis + " = " + std::to_string(v) +
+                           " is not a finite screen coordinate within +-2^28");
   }
   const double scaled = std::ldexp(v, kRasterFractionBits);  // exact: a power-of-two scale
   if (scaled != std::floor(scaled)) {
-    throw std::logic_error(std::string("rasterizer: vertex ") + std::to_string(vertex) + " " + axis +
-                           " is not on the 2^-" + std::to_string(kRasterFractionBits) + " pixel grid");
+    throw std::logic_error(std::string("rasterizer: vertex ") + std::to_string(vertex) + " " +
+                           axis + " is not on the 2^-" + std::to_string(kRasterFractionBits) +
+                           " pixel grid");
   }
   return static_cast<int64_t>(scaled);
 }
@@ -57,7 +59,8 @@ void rasterize(const ScreenTriangle& triangle, int width, int height, RowFn&& ro
   }
   // Edge i runs from vertex i to vertex i+1: E_i(P) = dx (Py - ay) - dy (Px - ax), whose gradient
   // (-dy, dx) points inward. A centre exactly on the edge (E = 0) counts only for a left edge
-  // (inward normal toward +x: dy < 0) or a top edge (horizontal, inward toward +y: dy == 0, dx > 0).
+  // (inward normal toward +x: dy < 0) or a top edge (horizontal, inward toward +y: dy == 0, dx >
+  // 0).
   int64_t edge_dx[3], edge_dy[3], threshold[3];
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3;
@@ -76,9 +79,11 @@ void rasterize(const ScreenTriangle& triangle, int width, int height, RowFn&& ro
   const int64_t min_y = std::min({y[0], y[1], y[2]}), max_y = std::max({y[0], y[1], y[2]});
   // Pixels whose centre lies within the bounding box, clipped to the screen.
   const int64_t px_lo = std::max<int64_t>(0, static_cast<int64_t>(ceil_div(min_x - kHalf, kOne)));
-  const int64_t px_hi = std::min<int64_t>(width - 1, static_cast<int64_t>(floor_div(max_x - kHalf, kOne)));
+  const int64_t px_hi =
+      std::min<int64_t>(width - 1, static_cast<int64_t>(floor_div(max_x - kHalf, kOne)));
   const int64_t py_lo = std::max<int64_t>(0, static_cast<int64_t>(ceil_div(min_y - kHalf, kOne)));
-  const int64_t py_hi = std::min<int64_t>(height - 1, static_cast<int64_t>(floor_div(max_y - kHalf, kOne)));
+  const int64_t py_hi =
+      std::min<int64_t>(height - 1, static_cast<int64_t>(floor_div(max_y - kHalf, kOne)));
   if (px_lo > px_hi) return;
 
   const int64_t centre_x0 = px_lo * kOne + kHalf;
@@ -88,7 +93,8 @@ void rasterize(const ScreenTriangle& triangle, int width, int height, RowFn&& ro
     Int128 e_at_lo[3];
     bool empty = false;
     for (int i = 0; i < 3 && !empty; ++i) {
-      const Int128 e0 = Int128(edge_dx[i]) * (centre_y - y[i]) - Int128(edge_dy[i]) * (centre_x0 - x[i]);
+      const Int128 e0 =
+          Int128(edge_dx[i]) * (centre_y - y[i]) - Int128(edge_dy[i]) * (centre_x0 - x[i]);
       e_at_lo[i] = e0;
       // E_i(px_lo + k) = e0 + k * step must reach threshold[i].
       const Int128 step = -Int128(edge_dy[i]) * kOne;
@@ -188,9 +194,9 @@ std::vector<ScreenTriangle> project_scene(const Scene& scene, ProjectStats* stat
   const Camera& camera = scene.camera;
   const ViewBasis basis = view_basis(camera);
   const bool perspective = camera.kind == Camera::Kind::kPerspective;
-  const double pixels_per_unit = perspective
-                                     ? (scene.height / 2.0) / std::tan(camera.fov_y_deg * kPi / 360.0)
-                                     : scene.height / camera.ortho_height;
+  const double pixels_per_unit =
+      perspective ? (scene.height / 2.0) / std::tan(camera.fov_y_deg * kPi / 360.0)
+                  : scene.height / camera.ortho_height;
   const double near = camera.near_plane, far = camera.far_plane;
 
   // For triangles crossing the near plane: the near plane, then the guard band,
@@ -199,11 +205,10 @@ std::vector<ScreenTriangle> project_scene(const Scene& scene, ProjectStats* stat
   const double gy = (scene.height / 2.0 + kGuardBandPixels) / pixels_per_unit;
   const double gd = perspective ? 1.0 : 0.0, gc = perspective ? 0.0 : 1.0;
   const ClipPlane planes[kClipPlanes] = {
-      {0, 0, 1, -near, true},
-      {1, 0, gx * gd, gx * gc, false},   // right >= -gx (depth)
-      {-1, 0, gx * gd, gx * gc, false},  // right <= gx (depth)
-      {0, 1, gy * gd, gy * gc, false},   // up >= -gy (depth)
-      {0, -1, gy * gd, gy * gc, false},  // up <= gy (depth)
+      {0, 0, 1, -near, true},           {1, 0, gx * gd, gx * gc, false},  // right >= -gx (depth)
+      {-1, 0, gx * gd, gx * gc, false},                                   // right <= gx (depth)
+      {0, 1, gy * gd, gy * gc, false},                                    // up >= -gy (depth)
+      {0, -1, gy * gd, gy * gc, false},                                   // up <= gy (depth)
   };
   auto project = [&](const ViewPoint& p) {
     ProjectedVertex pv;
@@ -296,8 +301,8 @@ std::vector<ScreenTriangle> project_scene(const Scene& scene, ProjectStats* stat
           const bool cur_in = plane.inside(cur), nxt_in = plane.inside(nxt);
           if (cur_in) next_polygon[kept++] = cur;
           if (cur_in != nxt_in) {
-            next_polygon[kept++] = cur_in ? plane_point(cur, nxt, plane, near)
-                                          : plane_point(nxt, cur, plane, near);
+            next_polygon[kept++] =
+                cur_in ? plane_point(cur, nxt, plane, near) : plane_point(nxt, cur, plane, near);
           }
         }
         corners = kept;
@@ -315,7 +320,8 @@ std::vector<ScreenTriangle> project_scene(const Scene& scene, ProjectStats* stat
 }
 
 Visibility resolve_visibility(const std::vector<ScreenTriangle>& triangles, int width, int height) {
-  if (width < 0 || height < 0) throw std::invalid_argument("resolve_visibility: negative image size");
+  if (width < 0 || height < 0)
+    throw std::invalid_argument("resolve_visibility: negative image size");
   Visibility vis;
   vis.width = width;
   vis.height = height;
@@ -324,16 +330,18 @@ Visibility resolve_visibility(const std::vector<ScreenTriangle>& triangles, int 
   std::vector<double> depth(pixels, std::numeric_limits<double>::infinity());
   for (size_t t = 0; t < triangles.size(); ++t) {
     const int32_t id = static_cast<int32_t>(t);
-    rasterize(triangles[t], width, height, [&](int y, int x_begin, int x_end, double z, double dz_dx) {
-      const size_t row = static_cast<size_t>(y) * width;
-      for (int x = x_begin; x < x_end; ++x, z += dz_dx) {
-        // Strictly nearer only: on a tie the earlier (lower-index) triangle keeps the pixel.
-        if (z < depth[row + x]) {
-          depth[row + x] = z;
-          vis.owner[row + x] = id;
-        }
-      }
-    });
+    rasterize(triangles[t], width, height,
+              [&](int y, int x_begin, int x_end, double z, double dz_dx) {
+                const size_t row = static_cast<size_t>(y) * width;
+                for (int x = x_begin; x < x_end; ++x, z += dz_dx) {
+                  // Strictly nearer only: on a tie the earlier (lower-index) triangle keeps the
+                  // pixel.
+                  if (z < depth[row + x]) {
+                    depth[row + x] = z;
+                    vis.owner[row + x] = id;
+                  }
+                }
+              });
   }
 
   // Runs of equal owner, bucketed by triangle. Scanning rows top-down and left to right already
@@ -364,7 +372,8 @@ Visibility resolve_visibility(const std::vector<ScreenTriangle>& triangles, int 
     span.triangle = static_cast<uint32_t>(owner);
   });
   std::vector<int64_t> last_of_row(height, -1);
-  for (size_t i = 0; i < vis.spans.size(); ++i) last_of_row[vis.spans[i].y] = static_cast<int64_t>(i);
+  for (size_t i = 0; i < vis.spans.size(); ++i)
+    last_of_row[vis.spans[i].y] = static_cast<int64_t>(i);
   for (int64_t i : last_of_row)
     if (i >= 0) vis.spans[i].last_in_row = true;
   return vis;

@@ -14,8 +14,7 @@ double clamp01(double v) { return std::min(1.0, std::max(0.0, v)); }
 // gradients) so the two interpolations check each other in tests.
 std::array<double, 3> barycentric(const ScreenTriangle& t, double x, double y) {
   const auto& v = t.v;
-  const double area =
-      (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y);
+  const double area = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y);
   if (!(area != 0.0) || !std::isfinite(area)) return {1.0 / 3, 1.0 / 3, 1.0 / 3};
   std::array<double, 3> w;
   for (int k = 0; k < 3; ++k) {
@@ -30,8 +29,9 @@ std::array<double, 3> barycentric(const ScreenTriangle& t, double x, double y) {
 
 // One body for the reference and its variants, so they differ only in what the variant swaps.
 static ReferenceImage render_shading(const std::vector<ScreenTriangle>& triangles,
-                              const std::vector<int32_t>& owner, int width, int height,
-                              const Scene& scene, int channels, const ShadingVariant& variant) {
+                                     const std::vector<int32_t>& owner, int width, int height,
+                                     const Scene& scene, int channels,
+                                     const ShadingVariant& variant) {
   if (channels != 1 && channels != 3) {
     throw std::invalid_argument("render_reference: channels " + std::to_string(channels) +
                                 ", expected 1 or 3");
@@ -39,8 +39,9 @@ static ReferenceImage render_shading(const std::vector<ScreenTriangle>& triangle
   if (width < 0 || height < 0 ||
       owner.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height)) {
     throw std::invalid_argument("render_reference: owner buffer has " +
-                                std::to_string(owner.size()) + " entries, expected width * height = " +
-                                std::to_string(width) + " * " + std::to_string(height));
+                                std::to_string(owner.size()) +
+                                " entries, expected width * height = " + std::to_string(width) +
+                                " * " + std::to_string(height));
   }
   for (std::size_t i = 0; i < triangles.size(); ++i) {
     const int m = triangles[i].material;
@@ -52,12 +53,13 @@ static ReferenceImage render_shading(const std::vector<ScreenTriangle>& triangle
   }
   if (variant.quadratics && variant.quadratics->size() != triangles.size()) {
     throw std::invalid_argument("render_variant: " + std::to_string(variant.quadratics->size()) +
-                                " quadratic sets for " + std::to_string(triangles.size()) + " triangles");
+                                " quadratic sets for " + std::to_string(triangles.size()) +
+                                " triangles");
   }
   if (!variant.specular.empty() && variant.specular.size() != scene.materials.size()) {
     throw std::invalid_argument("render_variant: " + std::to_string(variant.specular.size()) +
-                                " specular functions for " + std::to_string(scene.materials.size()) +
-                                " materials");
+                                " specular functions for " +
+                                std::to_string(scene.materials.size()) + " materials");
   }
   std::vector<Vec3> L, H_inf;
   const Vec3 V = normalize(scene.camera.position - scene.camera.target);
@@ -94,7 +96,8 @@ static ReferenceImage render_shading(const std::vector<ScreenTriangle>& triangle
       // Phong's V: unit toward the eye; the interpolated to-eye vector is not unit.
       const double e_len = length(e);
       const Vec3 V_phong = scene.eye_at_infinity ? V : (e_len > 0 ? e / e_len : Vec3{});
-      const TriangleSeries* q = variant.quadratics ? &(*variant.quadratics)[static_cast<std::size_t>(o)] : nullptr;
+      const TriangleSeries* q =
+          variant.quadratics ? &(*variant.quadratics)[static_cast<std::size_t>(o)] : nullptr;
       const double x = px + 0.5, y = py + 0.5;
       for (std::size_t l = 0; l < L.size(); ++l) {
         double t_d = 0.0, t_s = 0.0;

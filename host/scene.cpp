@@ -28,7 +28,9 @@ std::string join(const std::string& path, const std::string& key) {
   return path.empty() ? key : path + "." + key;
 }
 
-std::string index(const std::string& path, size_t i) { return path + "[" + std::to_string(i) + "]"; }
+std::string index(const std::string& path, size_t i) {
+  return path + "[" + std::to_string(i) + "]";
+}
 
 std::string format_number(double v) {
   std::ostringstream out;
@@ -44,7 +46,9 @@ class Reader {
   [[noreturn]] void fail(const std::string& path, const std::string& message) const {
     throw SceneError(file_ + ": " + (path.empty() ? "(top level)" : path) + ": " + message);
   }
-  [[noreturn]] void fail_raw(const std::string& message) const { throw SceneError(file_ + ": " + message); }
+  [[noreturn]] void fail_raw(const std::string& message) const {
+    throw SceneError(file_ + ": " + message);
+  }
   [[noreturn]] void fail_expected(const std::string& path, const std::string& expected,
                                   const json& got) const {
     fail(path, "expected " + expected + ", got " + describe(got));
@@ -73,7 +77,8 @@ class Reader {
   const json& require(const json& object, const std::string& path, const char* key,
                       const std::string& expected) const {
     const json* value = find(object, key);
-    if (value == nullptr) fail(join(path, key), "expected " + expected + ", got nothing (key missing)");
+    if (value == nullptr)
+      fail(join(path, key), "expected " + expected + ", got nothing (key missing)");
     return *value;
   }
 
@@ -91,8 +96,8 @@ class Reader {
     const json* value = find(object, key);
     if (value == nullptr) {
       if (fallback) return *fallback;
-      fail(join(path, key), "expected a number in [" + format_number(lo) + ", " + format_number(hi) +
-                                "], got nothing (key missing)");
+      fail(join(path, key), "expected a number in [" + format_number(lo) + ", " +
+                                format_number(hi) + "], got nothing (key missing)");
     }
     return number(*value, join(path, key), lo, hi);
   }
@@ -106,7 +111,8 @@ class Reader {
       if (fallback) return *fallback;
       fail(where, "expected a positive number, got nothing (key missing)");
     }
-    if (!value->is_number() || !(value->get<double>() > 0) || !std::isfinite(value->get<double>())) {
+    if (!value->is_number() || !(value->get<double>() > 0) ||
+        !std::isfinite(value->get<double>())) {
       fail_expected(where, "a positive number", *value);
     }
     return value->get<double>();
@@ -158,7 +164,8 @@ class Reader {
     const json* value = find(object, key);
     if (value == nullptr) {
       if (fallback) return *fallback;
-      fail(join(path, key), "expected " + what + " (array of 3 finite numbers), got nothing (key missing)");
+      fail(join(path, key),
+           "expected " + what + " (array of 3 finite numbers), got nothing (key missing)");
     }
     return vec3(*value, join(path, key), what);
   }
@@ -244,7 +251,8 @@ json parse_file(const std::string& path) {
     if (open != std::string::npos && close > open + 1) {
       const size_t at = text.find(reason.substr(open + 1, close - open - 1));
       if (at != std::string::npos) {
-        const size_t line = 1 + static_cast<size_t>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+        const size_t line = 1 + static_cast<size_t>(std::count(
+                                    text.begin(), text.begin() + static_cast<long>(at), '\n'));
         const size_t line_start = text.rfind('\n', at == 0 ? 0 : at - 1);
         const size_t column = line_start == std::string::npos || at == 0 ? at + 1 : at - line_start;
         where = ":" + std::to_string(line) + ":" + std::to_string(column);
@@ -275,11 +283,12 @@ Camera read_camera(const Reader& r, const json& j, const std::string& path) {
   camera.near_plane = r.positive(j, path, "near", camera.near_plane);
   camera.far_plane = r.positive(j, path, "far", camera.far_plane);
   if (!(camera.far_plane > camera.near_plane)) {
-    r.fail(join(path, "far"), "expected far > near (" + format_number(camera.near_plane) + "), got " +
-                                  format_number(camera.far_plane));
+    r.fail(join(path, "far"), "expected far > near (" + format_number(camera.near_plane) +
+                                  "), got " + format_number(camera.far_plane));
   }
   const Vec3 forward = camera.target - camera.position;
-  if (!(length(forward) > 1e-12)) r.fail(join(path, "target"), "expected a target distinct from position");
+  if (!(length(forward) > 1e-12))
+    r.fail(join(path, "target"), "expected a target distinct from position");
   if (!(length(camera.up) > 1e-12)) r.fail(join(path, "up"), "expected a non-zero up vector");
   if (!(length(cross(normalize(forward), normalize(camera.up))) > 1e-6)) {
     r.fail(join(path, "up"), "expected an up vector not parallel to the view direction");
@@ -356,7 +365,8 @@ Object read_object(const Reader& r, const json& j, const std::string& path,
                                   [&](const Material& m) { return m.name == material; });
   if (found == materials.end()) {
     std::string names;
-    for (const Material& m : materials) names += std::string(names.empty() ? "" : ", ") + "\"" + m.name + "\"";
+    for (const Material& m : materials)
+      names += std::string(names.empty() ? "" : ", ") + "\"" + m.name + "\"";
     r.fail(join(path, "material"),
            "expected the name of a material (one of " + names + "), got \"" + material + "\"");
   }
@@ -370,13 +380,15 @@ Object read_object(const Reader& r, const json& j, const std::string& path,
     r.check_keys(j, path, {"name", "type", "material", "tessellation", "radius", "transform"});
     mesh = make_sphere(r.positive(j, path, "radius", 1.0), tessellation(kMinTessellation, 32));
   } else if (type == "torus") {
-    r.check_keys(j, path, {"name", "type", "material", "tessellation", "major_radius", "minor_radius",
-                           "transform"});
+    r.check_keys(
+        j, path,
+        {"name", "type", "material", "tessellation", "major_radius", "minor_radius", "transform"});
     const double major = r.positive(j, path, "major_radius", 1.0);
     const double minor = r.positive(j, path, "minor_radius", 0.25);
     mesh = make_torus(major, minor, tessellation(kMinTessellation, 32));
   } else if (type == "cylinder") {
-    r.check_keys(j, path, {"name", "type", "material", "tessellation", "radius", "height", "transform"});
+    r.check_keys(j, path,
+                 {"name", "type", "material", "tessellation", "radius", "height", "transform"});
     const double radius = r.positive(j, path, "radius", 1.0);
     const double height = r.positive(j, path, "height", 2.0);
     mesh = make_cylinder(radius, height, tessellation(kMinTessellation, 32));
@@ -394,11 +406,12 @@ Object read_object(const Reader& r, const json& j, const std::string& path,
       r.fail(join(path, "file"), e.what());
     }
   } else {
-    r.fail_expected(join(path, "type"), "\"sphere\", \"torus\", \"cylinder\", \"plane\" or \"mesh\"",
-                    j.at("type"));
+    r.fail_expected(join(path, "type"),
+                    "\"sphere\", \"torus\", \"cylinder\", \"plane\" or \"mesh\"", j.at("type"));
   }
   Transform transform;
-  if (const json* t = r.find(j, "transform")) transform = read_transform(r, *t, join(path, "transform"));
+  if (const json* t = r.find(j, "transform"))
+    transform = read_transform(r, *t, join(path, "transform"));
   object.mesh = transform_mesh(mesh, transform);
   return object;
 }
@@ -419,8 +432,9 @@ bool Scene::is_grey() const {
 Scene load_scene(const std::string& path) {
   const json root = parse_file(path);
   const Reader r(path);
-  r.check_keys(root, "", {"image", "camera", "lights", "ambient_light", "eye", "error_budget_lsb",
-                          "specular_model", "materials", "objects"});
+  r.check_keys(root, "",
+               {"image", "camera", "lights", "ambient_light", "eye", "error_budget_lsb",
+                "specular_model", "materials", "objects"});
   Scene scene;
   scene.path = path;
 
@@ -455,7 +469,8 @@ Scene load_scene(const std::string& path) {
     Material m = read_material(r, materials[i], index("materials", i), scene_model);
     for (const Material& earlier : scene.materials) {
       if (earlier.name == m.name) {
-        r.fail(index("materials", i) + ".name", "expected a unique name, \"" + m.name + "\" is used twice");
+        r.fail(index("materials", i) + ".name",
+               "expected a unique name, \"" + m.name + "\" is used twice");
       }
     }
     scene.materials.push_back(m);
@@ -464,7 +479,8 @@ Scene load_scene(const std::string& path) {
   const std::string scene_dir = directory_of(path);
   const json& objects = r.array(root, "", "objects", "objects");
   for (size_t i = 0; i < objects.size(); ++i) {
-    scene.objects.push_back(read_object(r, objects[i], index("objects", i), scene.materials, scene_dir));
+    scene.objects.push_back(
+        read_object(r, objects[i], index("objects", i), scene.materials, scene_dir));
   }
   return scene;
 }

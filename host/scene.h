@@ -45,10 +45,10 @@ inline const char* to_string(SpecularModel m) {
 
 struct Material {
   std::string name;
-  Vec3 ambient{0.1, 0.1, 0.1};   // multiplied by the scene's ambient light
+  Vec3 ambient{0.1, 0.1, 0.1};  // multiplied by the scene's ambient light
   Vec3 diffuse{0.7, 0.7, 0.7};
   Vec3 specular{0.3, 0.3, 0.3};
-  double exponent = 32.0;        // n, 1..1000, need not be an integer
+  double exponent = 32.0;  // n, 1..1000, need not be an integer
   SpecularUnitKind unit = SpecularUnitKind::kIdeal;
   // JSON "specular_model" of the material, else of the scene, else blinn.
   SpecularModel specular_model = SpecularModel::kBlinn;

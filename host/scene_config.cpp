@@ -1,7 +1,5 @@
 #include "host/scene_config.h"
 
-#include "model/coef_packing.h"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -11,6 +9,7 @@
 
 #include "host/frame.h"
 #include "host/specular_setup.h"
+#include "model/coef_packing.h"
 #include "model/command_stream.h"
 
 namespace shadesim {
@@ -51,7 +50,8 @@ double unit_slope(const UnitConfig& config, double n) {
       return n / scale;
     case SpecularUnitKind::kLut:
       // per-exponent: table of t^n; shared: exp(-k (1 - t)) has slope <= k.
-      return (config.specular.lut.addressing == LutAddressing::kShared ? plan.parameter : n) / scale;
+      return (config.specular.lut.addressing == LutAddressing::kShared ? plan.parameter : n) /
+             scale;
     case SpecularUnitKind::kWpow:
       // (zeta (t - 1) + 1)^m with the base clamped to [0, 1]: slope <= m zeta in t.
       return plan.effective_m * plan.parameter / scale;
@@ -103,13 +103,16 @@ void walk_stream(const CommandStream& stream, Walk& w) {
       const Int128 dy = s->y - tri->yo;
       for (int x = s->x0; x < s->x0 + s->length; ++x) {
         const Int128 dx = x - tri->xo;
-        const double adx = std::fabs(static_cast<double>(dx)), ady = std::fabs(static_cast<double>(dy));
+        const double adx = std::fabs(static_cast<double>(dx)),
+                     ady = std::fabs(static_cast<double>(dy));
         w.max_offset = std::max(w.max_offset, static_cast<int>(std::max(adx, ady)));
-        w.monomial_sum = std::max(w.monomial_sum, 1 + adx + ady + adx * adx + adx * ady + ady * ady);
+        w.monomial_sum =
+            std::max(w.monomial_sum, 1 + adx + ady + adx * adx + adx * ady + ady * ady);
         for (int i = 0; i < series_count; ++i) {
           const int64_t* k = &tri->coef[static_cast<size_t>(i) * kTermsPerSeries];
           // The exact quantized quadratic and its differences at this pixel (span setup's sums).
-          const Int128 v = Int128{k[0]} + k[1] * dy + k[2] * dx + k[3] * dy * dy + k[4] * dx * dy + k[5] * dx * dx;
+          const Int128 v = Int128{k[0]} + k[1] * dy + k[2] * dx + k[3] * dy * dy + k[4] * dx * dy +
+                           k[5] * dx * dx;
           const Int128 d = Int128{k[2]} + k[4] * dy + k[5] * (2 * dx + 1);
           const double vd = static_cast<double>(v) * coef_lsb;
           w.v_min = std::min(w.v_min, vd);
@@ -124,7 +127,8 @@ void walk_stream(const CommandStream& stream, Walk& w) {
 
 }  // namespace
 
-int drift_fraction_bits(int longest_span, double gain, double share_lsb, int out_bits, bool rounding) {
+int drift_fraction_bits(int longest_span, double gain, double share_lsb, int out_bits,
+                        bool rounding) {
   const double L = std::max(1, longest_span);
   const double steps = 1.0 + L * (L - 1.0) / 2.0;
   const double allowed = share_lsb * std::ldexp(1.0, -out_bits);
@@ -135,7 +139,8 @@ int drift_fraction_bits(int longest_span, double gain, double share_lsb, int out
   return 61;
 }
 
-DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const DeriveOptions& options) {
+DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
+                            const DeriveOptions& options) {
   if (scene_paths.empty()) throw std::invalid_argument("derive_config: no scenes given");
   std::vector<SceneInfo> scenes;
   for (const auto& p : scene_paths) scenes.push_back({p, load_scene(p)});
@@ -145,7 +150,8 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const D
   UnitConfig cfg;  // quantization and overflow rules and unit widths: the defaults
   cfg.out_bits = options.out_bits;
   std::vector<FieldReason> reasons;
-  auto reason = [&reasons](const std::string& field, const std::string& value, const std::string& why) {
+  auto reason = [&reasons](const std::string& field, const std::string& value,
+                           const std::string& why) {
     reasons.push_back({field, value, why});
   };
 
@@ -166,7 +172,8 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const D
     }
   }
   if (!(budget > 0) || !std::isfinite(budget)) {
-    throw std::invalid_argument("derive_config: budget must be a positive number of LSBs, got " + fmt(budget));
+    throw std::invalid_argument("derive_config: budget must be a positive number of LSBs, got " +
+                                fmt(budget));
   }
   ms.budget_lsb = budget;
   ms.drift_share_lsb = kDriftShare * budget;
@@ -194,8 +201,8 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const D
       if (m.unit != unit_material->unit) {
         throw std::invalid_argument(
             "derive_config: one unit serves every scene, but " + unit_scene->path + " (material '" +
-            unit_material->name + "') names the specular unit " + to_string(unit_material->unit) + " and " +
-            s.path + " (material '" + m.name + "') names " + to_string(m.unit) +
+            unit_material->name + "') names the specular unit " + to_string(unit_material->unit) +
+            " and " + s.path + " (material '" + m.name + "') names " + to_string(m.unit) +
             "; derive them separately or make the materials agree");
       }
     }
@@ -205,9 +212,12 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const D
   if (named == SpecularUnitKind::kIdeal) {
     cfg.specular = options.ideal_substitute;
     specular_why = cfg.specular.kind == SpecularUnitKind::kIdeal
-                       ? "the scenes name ideal, kept as asked: exact pow, not hardware (its RTL slot outputs 0)"
-                       : "the scenes name ideal, which is not hardware (its RTL slot outputs 0); substituted by " +
-                             cfg.specular.describe() + ", the closest hardware unit to ideal in the README table";
+                       ? "the scenes name ideal, kept as asked: exact pow, not hardware (its RTL "
+                         "slot outputs 0)"
+                       : "the scenes name ideal, which is not hardware (its RTL slot outputs 0); "
+                         "substituted by " +
+                             cfg.specular.describe() +
+                             ", the closest hardware unit to ideal in the README table";
   } else {
     cfg.specular.kind = named;
     specular_why = "the unit the scenes' materials name, default widths";
@@ -225,9 +235,10 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const D
 
   // Measure on a trial unit of that structure whose formats lose nothing.
   UnitConfig trial = cfg;
-  trial.series = FixedFormat{kTrialSeriesIwl + kTrialSeriesFrac, kTrialSeriesIwl, true, cfg.series.quant, cfg.series.overflow};
-  trial.coef = FixedFormat{kTrialCoefIwl + kTrialCoefFrac, kTrialCoefIwl, true, Quantization::kRoundNearest,
-                           Overflow::kSaturate};
+  trial.series = FixedFormat{kTrialSeriesIwl + kTrialSeriesFrac, kTrialSeriesIwl, true,
+                             cfg.series.quant, cfg.series.overflow};
+  trial.coef = FixedFormat{kTrialCoefIwl + kTrialCoefFrac, kTrialCoefIwl, true,
+                           Quantization::kRoundNearest, Overflow::kSaturate};
   trial.validate();
   Walk w;
   for (const auto& s : scenes) {
@@ -238,9 +249,10 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const D
     fo.max_depth = options.max_depth;
     const PreparedFrame frame = prepare_frame(s.path, fo);
     if (frame.encoded.stats.coefficients_out_of_range > 0) {
-      throw std::invalid_argument(s.path + ": " + std::to_string(frame.encoded.stats.coefficients_out_of_range) +
-                                  " Taylor coefficient(s) exceed the trial format " + trial.coef.to_string() +
-                                  "; cannot measure their range");
+      throw std::invalid_argument(s.path + ": " +
+                                  std::to_string(frame.encoded.stats.coefficients_out_of_range) +
+                                  " Taylor coefficient(s) exceed the trial format " +
+                                  trial.coef.to_string() + "; cannot measure their range");
     }
     walk_stream(frame.encoded.stream, w);
   }
@@ -258,7 +270,8 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const D
   const double need_hi = series_wraps ? w.v_max : std::max(w.v_max, w.diff_max);
   const int series_iwl = std::max(2, signed_integer_bits(need_lo, need_hi));
   cfg.series.iwl = series_iwl;
-  cfg.series.wl = series_iwl + cfg.out_bits;  // fraction bits set below; only iwl matters for the plan
+  cfg.series.wl =
+      series_iwl + cfg.out_bits;  // fraction bits set below; only iwl matters for the plan
 
   // Gain of the series into one output channel.
   double gain = 0;
@@ -270,7 +283,8 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const D
       for (const auto& m : s.scene.materials) {
         double colour = 0;
         for (int c = 0; c < 3; ++c) {
-          colour = std::max(colour, channel(m.specular, c) * channel(s.scene.lights[static_cast<size_t>(l)].colour, c));
+          colour = std::max(colour, channel(m.specular, c) *
+                                        channel(s.scene.lights[static_cast<size_t>(l)].colour, c));
         }
         if (colour > 0) spec = std::max(spec, colour * unit_slope(cfg, m.exponent));
       }
@@ -282,8 +296,9 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const D
 
   // Series fraction bits.
   const bool series_rounds = cfg.series.quant == Quantization::kRoundNearest;
-  const int series_frac = std::max(cfg.out_bits, drift_fraction_bits(ms.longest_span, gain, ms.drift_share_lsb,
-                                                                    cfg.out_bits, series_rounds));
+  const int series_frac = std::max(
+      cfg.out_bits,
+      drift_fraction_bits(ms.longest_span, gain, ms.drift_share_lsb, cfg.out_bits, series_rounds));
   cfg.series.wl = series_iwl + series_frac;
 
   // Coefficient bits.
@@ -291,14 +306,17 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const D
   std::string coef_int_why;
   if (cfg.coef.overflow == Overflow::kWrap) {
     coef_iwl = series_iwl;
-    coef_int_why = "coefficients reach |T| = " + fmt(w.coef_max) + " (" + std::to_string(signed_integer_bits(-w.coef_max, w.coef_max)) +
-                   " integer bits unwrapped); the format wraps, exact modulo 2^iwl because span setup multiplies "
-                   "coefficients only by integers, so the series' " + std::to_string(series_iwl) +
+    coef_int_why = "coefficients reach |T| = " + fmt(w.coef_max) + " (" +
+                   std::to_string(signed_integer_bits(-w.coef_max, w.coef_max)) +
+                   " integer bits unwrapped); the format wraps, exact modulo 2^iwl because span "
+                   "setup multiplies "
+                   "coefficients only by integers, so the series' " +
+                   std::to_string(series_iwl) +
                    " integer bits suffice (UnitConfig needs coef.iwl >= series.iwl when wrapping)";
   } else {
     coef_iwl = signed_integer_bits(-w.coef_max, w.coef_max);
-    coef_int_why = "coefficients reach |T| = " + fmt(w.coef_max) + ", which " + std::to_string(coef_iwl) +
-                   " saturating integer bits hold";
+    coef_int_why = "coefficients reach |T| = " + fmt(w.coef_max) + ", which " +
+                   std::to_string(coef_iwl) + " saturating integer bits hold";
   }
   const double coef_allowed = ms.coef_share_lsb * std::ldexp(1.0, -cfg.out_bits);
   const bool coef_rounds = cfg.coef.quant == Quantization::kRoundNearest;
@@ -315,62 +333,76 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const D
   // saturating integer bits that hold every measured |T_t| plus one final LSB (the trial's
   // finer coefficients may round up into it).
   cfg.coef_term_iwl.assign(kTermsPerSeries, coef_iwl);
-  std::string terms_why = "T0 keeps coef's " + std::to_string(coef_iwl) + " integer bits (it wraps)";
+  std::string terms_why =
+      "T0 keeps coef's " + std::to_string(coef_iwl) + " integer bits (it wraps)";
   const double final_lsb = std::ldexp(1.0, -coef_frac);
   for (int t = 1; t < kTermsPerSeries; ++t) {
     const double reach = w.term_max[static_cast<size_t>(t)] + final_lsb;
     const int iwl = std::clamp(signed_integer_bits(-reach, reach), 2 - coef_frac, coef_iwl);
     cfg.coef_term_iwl[static_cast<size_t>(t)] = iwl;
-    terms_why += "; T" + std::to_string(t) + " reaches |T| = " + fmt(w.term_max[static_cast<size_t>(t)]) + ": " +
+    terms_why += "; T" + std::to_string(t) +
+                 " reaches |T| = " + fmt(w.term_max[static_cast<size_t>(t)]) + ": " +
                  std::to_string(iwl) + " integer bits (saturating)";
   }
   cfg.validate();
 
   // One reason per field, in config_to_json's order.
   const auto json = nlohmann::json::parse(config_to_json(cfg));
-  auto value = [&json](const char* key) { return json.at(key).is_string() ? json.at(key).get<std::string>() : json.at(key).dump(); };
+  auto value = [&json](const char* key) {
+    return json.at(key).is_string() ? json.at(key).get<std::string>() : json.at(key).dump();
+  };
   reason("channels", value("channels"),
          colour_scene.empty() ? "every scene is grey: one channel carries the image"
                               : colour_scene + " has colour: three channels");
-  reason("lights", value("lights"), "the most directional lights of any scene (" + lights_scene + ")");
+  reason("lights", value("lights"),
+         "the most directional lights of any scene (" + lights_scene + ")");
   reason("xy_bits", value("xy_bits"),
-         "largest image " + std::to_string(ms.max_width) + "x" + std::to_string(ms.max_height) + ": " +
-             std::to_string(size) + " <= 2^" + std::to_string(cfg.xy_bits) + (xy < 4 ? " (at least 4)" : ""));
+         "largest image " + std::to_string(ms.max_width) + "x" + std::to_string(ms.max_height) +
+             ": " + std::to_string(size) + " <= 2^" + std::to_string(cfg.xy_bits) +
+             (xy < 4 ? " (at least 4)" : ""));
   const double steps = 1.0 + ms.longest_span * (ms.longest_span - 1.0) / 2.0;
   reason("coef", value("coef"),
-         "integer: " + coef_int_why + "; fraction " + std::to_string(coef_frac) + ": pixels lie up to " +
-             std::to_string(ms.max_offset) + " px from their triangle's origin, max 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 = " +
-             fmt(w.monomial_sum, 6) + ", so coefficient rounding " + (coef_rounds ? "2^-(F+1)" : "2^-F") + " x " +
-             fmt(w.monomial_sum, 6) + " x gain " + fmt(gain) + " <= " + fmt(ms.coef_share_lsb) + " LSB (budget/4)");
+         "integer: " + coef_int_why + "; fraction " + std::to_string(coef_frac) +
+             ": pixels lie up to " + std::to_string(ms.max_offset) +
+             " px from their triangle's origin, max 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 = " +
+             fmt(w.monomial_sum, 6) + ", so coefficient rounding " +
+             (coef_rounds ? "2^-(F+1)" : "2^-F") + " x " + fmt(w.monomial_sum, 6) + " x gain " +
+             fmt(gain) + " <= " + fmt(ms.coef_share_lsb) + " LSB (budget/4)");
   {
     const CoefLayout layout = CoefLayout::of(cfg);
     int bits = 0;
     for (int t = 0; t < kTermsPerSeries; ++t) bits += cfg.coef_term_bits(t);
     reason("coef_term_iwl", value("coef_term_iwl"),
            terms_why + "; " + std::to_string(bits) + " bits per series, a triangle's " +
-               std::to_string(cfg.series_per_triangle()) + " series in " + std::to_string(layout.words) +
-               " payload words (" + std::to_string(cfg.series_per_triangle() * kTermsPerSeries) +
-               " unpacked)");
+               std::to_string(cfg.series_per_triangle()) + " series in " +
+               std::to_string(layout.words) + " payload words (" +
+               std::to_string(cfg.series_per_triangle() * kTermsPerSeries) + " unpacked)");
   }
   reason("series", value("series"),
-         "integer " + std::to_string(series_iwl) + ": series values at the pixels span [" + fmt(w.v_min) + ", " +
-             fmt(w.v_max) + "]" + (series_wraps ? "" : " and differences reach " + fmt(w.diff_max)) +
-             "; fraction " + std::to_string(series_frac) + ": longest span L = " + std::to_string(ms.longest_span) +
-             ", drift bound 2^-F (1 + L(L-1)/2) = 2^-F x " + fmt(steps, 8) + (series_rounds ? " / 2 (rounding)" : "") +
-             " x gain " + fmt(gain) + " = " + gain_detail + " (lights x (1 + spec colour x unit slope)) <= " +
-             fmt(ms.drift_share_lsb) + " LSB (budget/4)" +
-             (series_frac == cfg.out_bits ? " (at least out_bits)" : ""));
+         "integer " + std::to_string(series_iwl) + ": series values at the pixels span [" +
+             fmt(w.v_min) + ", " + fmt(w.v_max) + "]" +
+             (series_wraps ? "" : " and differences reach " + fmt(w.diff_max)) + "; fraction " +
+             std::to_string(series_frac) + ": longest span L = " + std::to_string(ms.longest_span) +
+             ", drift bound 2^-F (1 + L(L-1)/2) = 2^-F x " + fmt(steps, 8) +
+             (series_rounds ? " / 2 (rounding)" : "") + " x gain " + fmt(gain) + " = " +
+             gain_detail +
+             " (lights x (1 + spec colour x unit slope)) <= " + fmt(ms.drift_share_lsb) +
+             " LSB (budget/4)" + (series_frac == cfg.out_bits ? " (at least out_bits)" : ""));
   reason("spec_colour", value("spec_colour"), "default (not derived)");
   reason("out_bits", value("out_bits"), "as requested");
-  reason("port_words", value("port_words"),
-         "as requested (throughput only: pixels do not depend on it); 4 with tri_queue 2 brings every "
-         "shipped scene to <= 1.1 cycles per pixel");
+  reason(
+      "port_words", value("port_words"),
+      "as requested (throughput only: pixels do not depend on it); 4 with tri_queue 2 brings every "
+      "shipped scene to <= 1.1 cycles per pixel");
   reason("tri_queue", value("tri_queue"), "as requested (throughput only)");
-  reason("specular", cfg.specular.describe() + " out=" + cfg.specular.out.to_string(), specular_why);
-  reasons.insert(reasons.begin(), FieldReason{"budget", fmt(budget) + " LSB",
-                                              "from " + budget_from + "; Taylor error keeps it in setup, the "
-                                              "fixed-point error gets budget/4 for drift and budget/4 for "
-                                              "coefficient rounding on top"});
+  reason("specular", cfg.specular.describe() + " out=" + cfg.specular.out.to_string(),
+         specular_why);
+  reasons.insert(reasons.begin(),
+                 FieldReason{"budget", fmt(budget) + " LSB",
+                             "from " + budget_from +
+                                 "; Taylor error keeps it in setup, the "
+                                 "fixed-point error gets budget/4 for drift and budget/4 for "
+                                 "coefficient rounding on top"});
   out.config = cfg;
   out.reasons = std::move(reasons);
   return out;

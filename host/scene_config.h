@@ -65,15 +65,15 @@ struct FieldReason {
 struct ConfigMeasurements {
   double budget_lsb = 0;
   int max_width = 0, max_height = 0;
-  int longest_span = 0;           // pixels
-  int max_offset = 0;             // max |dx|, |dy| of a pixel from its triangle's origin
-  double max_monomial_sum = 0;    // max of 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 over pixels
+  int longest_span = 0;                   // pixels
+  int max_offset = 0;                     // max |dx|, |dy| of a pixel from its triangle's origin
+  double max_monomial_sum = 0;            // max of 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 over pixels
   double series_min = 0, series_max = 0;  // every series value at a pixel, and ambient words
-  double difference_max = 0;      // max |d|, |d2|
-  double coef_max = 0;            // max |T_k| over all triangles and series
-  double gain = 0;                // G (see above)
-  double drift_share_lsb = 0;     // output LSBs allowed for drift (budget / 4)
-  double coef_share_lsb = 0;      // output LSBs allowed for coefficient rounding (budget / 4)
+  double difference_max = 0;              // max |d|, |d2|
+  double coef_max = 0;                    // max |T_k| over all triangles and series
+  double gain = 0;                        // G (see above)
+  double drift_share_lsb = 0;             // output LSBs allowed for drift (budget / 4)
+  double coef_share_lsb = 0;  // output LSBs allowed for coefficient rounding (budget / 4)
 };
 
 struct DerivedConfig {
@@ -86,10 +86,12 @@ struct DerivedConfig {
 
 // Throws SceneError for bad scenes and std::invalid_argument for scenes no one unit can shade
 // (different specular units: the message names the scenes and units) or impossible budgets.
-DerivedConfig derive_config(const std::vector<std::string>& scene_paths, const DeriveOptions& options);
+DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
+                            const DeriveOptions& options);
 
 // The fraction bits F the drift bound asks for: the smallest F with
 // gain * 2^-F (1 + L(L-1)/2) [/ 2 when rounding] <= share_lsb * 2^-out_bits.
-int drift_fraction_bits(int longest_span, double gain, double share_lsb, int out_bits, bool rounding);
+int drift_fraction_bits(int longest_span, double gain, double share_lsb, int out_bits,
+                        bool rounding);
 
 }  // namespace shadesim

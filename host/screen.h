@@ -16,8 +16,8 @@ struct ScreenVertex {
   // Values of the screen-affine fields at this vertex. At mesh vertices these are unit vectors;
   // at subdivision midpoints they are the averages of their endpoints (not renormalised), so the
   // field a sub-triangle interpolates is exactly its parent's.
-  Vec3 normal;   // interpolated surface normal N(x, y)
-  Vec3 to_eye;   // unit vector toward the eye at mesh vertices (finite-eye specular)
+  Vec3 normal;  // interpolated surface normal N(x, y)
+  Vec3 to_eye;  // unit vector toward the eye at mesh vertices (finite-eye specular)
 };
 
 constexpr int kSubpixelBits = 8;

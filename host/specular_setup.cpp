@@ -64,15 +64,17 @@ double objective(double n, FitObjective o, const std::function<double(double)>& 
   for (int i = 0; i <= kPoints; ++i) {
     const double t1 = tq + (1.0 - tq) * i / kPoints;
     const double t2 = static_cast<double>(i) / kPoints;
-    worst = std::max({worst, std::fabs(f(t1) - std::pow(t1, n)), std::fabs(f(t2) - std::pow(t2, n))});
+    worst =
+        std::max({worst, std::fabs(f(t1) - std::pow(t1, n)), std::fabs(f(t2) - std::pow(t2, n))});
   }
   return worst;
 }
 
 void check_exponent(double n) {
   if (!(n > 0.0) || n > 1023.0) {
-    throw std::invalid_argument("specular setup: exponent " + std::to_string(n) +
-                                " out of range; expected 0 < n <= 1023 (MATERIAL exponent is u10.16)");
+    throw std::invalid_argument(
+        "specular setup: exponent " + std::to_string(n) +
+        " out of range; expected 0 < n <= 1023 (MATERIAL exponent is u10.16)");
   }
 }
 
@@ -87,7 +89,8 @@ SpecErrors measure_errors(double n, const std::function<double(double)>& f, int 
     const double t_bloom = tb + (te - tb) * i / (points + 1);  // excludes te
     const double t_all = static_cast<double>(i) / points;
     const double f_epi = f(t_epi), f_bloom = f(t_bloom), f_all = f(t_all);
-    const double r_epi = std::pow(t_epi, n), r_bloom = std::pow(t_bloom, n), r_all = std::pow(t_all, n);
+    const double r_epi = std::pow(t_epi, n), r_bloom = std::pow(t_bloom, n),
+                 r_all = std::pow(t_all, n);
     e.epi_rel = std::max(e.epi_rel, rel(f_epi, r_epi));
     e.bloom_rel = std::max(e.bloom_rel, rel(f_bloom, r_bloom));
     e.abs_lsb = std::max({e.abs_lsb, std::fabs(f_epi - r_epi) * kLsb8,
@@ -117,24 +120,28 @@ int wpow_effective_m(double n, int max_m) {
 double fit_wpow_zeta(double n, int m, FitObjective o) {
   const double paper = n / m;
   if (o == FitObjective::kNone) return paper;
-  return minimise(0.5 * paper, 1.5 * paper,
-                  [&](double z) { return objective(n, o, [&](double t) { return wpow_float(t, z, m); }); });
+  return minimise(0.5 * paper, 1.5 * paper, [&](double z) {
+    return objective(n, o, [&](double t) { return wpow_float(t, z, m); });
+  });
 }
 
 double fit_schlick_n(double n, FitObjective o) {
   if (o == FitObjective::kNone) return n;
-  return minimise(0.5 * n, 4.0 * n,
-                  [&](double p) { return objective(n, o, [&](double t) { return schlick_float(t, p); }); });
+  return minimise(0.5 * n, 4.0 * n, [&](double p) {
+    return objective(n, o, [&](double t) { return schlick_float(t, p); });
+  });
 }
 
 double fit_exp_k(double n, FitObjective o) {
   if (o == FitObjective::kNone) return n;
-  return minimise(0.5 * n, 2.0 * n,
-                  [&](double k) { return objective(n, o, [&](double t) { return exp_float(t, k); }); });
+  return minimise(0.5 * n, 2.0 * n, [&](double k) {
+    return objective(n, o, [&](double t) { return exp_float(t, k); });
+  });
 }
 
 int series_shift(const FixedFormat& series, double scale, double offset) {
-  const double reach = std::max(std::fabs(1.25 * scale + offset), std::fabs(-1.25 * scale + offset));
+  const double reach =
+      std::max(std::fabs(1.25 * scale + offset), std::fabs(-1.25 * scale + offset));
   const double limit = std::ldexp(1.0, series.iwl - 2);
   int shift = 0;
   while (reach > std::ldexp(limit, shift) && shift < series.frac_bits()) ++shift;
@@ -161,7 +168,8 @@ std::vector<TableCmd> to_table_commands(const std::vector<int64_t>& entries) {
     TableCmd t;
     t.base = static_cast<uint32_t>(base);
     const size_t end = std::min(entries.size(), base + kMaxPerCommand);
-    t.entries.assign(entries.begin() + static_cast<long>(base), entries.begin() + static_cast<long>(end));
+    t.entries.assign(entries.begin() + static_cast<long>(base),
+                     entries.begin() + static_cast<long>(end));
     cmds.push_back(std::move(t));
   }
   return cmds;
@@ -272,7 +280,8 @@ int bishop_n_max(int entries, double tol, bool exact_entries) {
   c.interp_bits = 0;
   int bits = 0;
   while ((1 << bits) < entries) ++bits;
-  if ((1 << bits) != entries) throw std::invalid_argument("bishop_n_max: entries must be a power of two");
+  if ((1 << bits) != entries)
+    throw std::invalid_argument("bishop_n_max: entries must be a power of two");
   c.addr_bits = bits;
   c.entry_bits = 8;
   const FixedFormat byte{8, 0, false, Quantization::kRoundNearest, Overflow::kSaturate};

@@ -36,10 +36,9 @@ Lighting lighting_of(const Scene& scene) {
 const Material& material_of(const ScreenTriangle& tri, const Scene& scene,
                             const std::string& which) {
   if (tri.material < 0 || static_cast<std::size_t>(tri.material) >= scene.materials.size()) {
-    throw std::invalid_argument("triangle setup: " + which +
-                                " has material index " + std::to_string(tri.material) +
-                                ", expected 0.." + std::to_string(scene.materials.size()) +
-                                " - 1 (scene.materials)");
+    throw std::invalid_argument("triangle setup: " + which + " has material index " +
+                                std::to_string(tri.material) + ", expected 0.." +
+                                std::to_string(scene.materials.size()) + " - 1 (scene.materials)");
   }
   return scene.materials[static_cast<std::size_t>(tri.material)];
 }
@@ -79,7 +78,8 @@ TriangleSeries setup_with(const ScreenTriangle& tri, const Lighting& li, Specula
 template <class Visit>
 bool for_each_covered_centre(const ScreenTriangle& tri, int width, int height, Visit visit) {
   const auto& v = tri.v;
-  const double area2 = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x);
+  const double area2 =
+      (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x);
   if (!(area2 != 0.0) || !std::isfinite(area2)) return true;
   const double orient = area2 > 0 ? 1.0 : -1.0;
   const double ymin = std::min({v[0].y, v[1].y, v[2].y});
@@ -131,55 +131,56 @@ double measure_with(const ScreenTriangle& tri, const TriangleSeries& series, con
   const bool has_specular = mat.specular.x != 0 || mat.specular.y != 0 || mat.specular.z != 0;
   const double n_exp = mat.exponent;
   double worst = 0.0;
-  const bool complete = for_each_covered_centre(tri, scene.width, scene.height, [&](int px, int py) {
-    const double x = px + 0.5, y = py + 0.5;
-    const Vec3 n = N->at(x, y);
-    const double n_len = length(n);
-    const Vec3 e = li.finite_eye ? E->at(x, y) : Vec3{};
-    double exact[3] = {ambient[0], ambient[1], ambient[2]};
-    double approx[3] = {ambient[0], ambient[1], ambient[2]};
-    for (std::size_t l = 0; l < lights; ++l) {
-      const Vec3& L = li.L[l];
-      const double td = n_len > 0 ? dot(n, L) / n_len : 0.0;
-      const double qd = series.diffuse[l].eval(x, y);
-      const double d_exact = std::max(0.0, td);
-      const double d_approx = opt.diffuse_clamped_per_light ? std::max(0.0, qd) : qd;
-      double s_exact = 0.0, s_approx = 0.0;
-      if (has_specular) {
-        double ts;
-        if (mat.specular_model == SpecularModel::kPhong) {
-          ts = phong_cosine(n, L, li.finite_eye ? e : li.V);
-        } else if (li.finite_eye) {
-          const Vec3 h = e + L;
-          const double len = n_len * length(h);
-          ts = len > 0 ? dot(n, h) / len : 0.0;
-        } else {
-          ts = n_len > 0 ? dot(n, li.H[l]) / n_len : 0.0;
+  const bool complete =
+      for_each_covered_centre(tri, scene.width, scene.height, [&](int px, int py) {
+        const double x = px + 0.5, y = py + 0.5;
+        const Vec3 n = N->at(x, y);
+        const double n_len = length(n);
+        const Vec3 e = li.finite_eye ? E->at(x, y) : Vec3{};
+        double exact[3] = {ambient[0], ambient[1], ambient[2]};
+        double approx[3] = {ambient[0], ambient[1], ambient[2]};
+        for (std::size_t l = 0; l < lights; ++l) {
+          const Vec3& L = li.L[l];
+          const double td = n_len > 0 ? dot(n, L) / n_len : 0.0;
+          const double qd = series.diffuse[l].eval(x, y);
+          const double d_exact = std::max(0.0, td);
+          const double d_approx = opt.diffuse_clamped_per_light ? std::max(0.0, qd) : qd;
+          double s_exact = 0.0, s_approx = 0.0;
+          if (has_specular) {
+            double ts;
+            if (mat.specular_model == SpecularModel::kPhong) {
+              ts = phong_cosine(n, L, li.finite_eye ? e : li.V);
+            } else if (li.finite_eye) {
+              const Vec3 h = e + L;
+              const double len = n_len * length(h);
+              ts = len > 0 ? dot(n, h) / len : 0.0;
+            } else {
+              ts = n_len > 0 ? dot(n, li.H[l]) / n_len : 0.0;
+            }
+            // The specular gate (N.L > 0) by each side's own diffuse value: where the quadratic's
+            // sign differs from the exact one the whole specular term is error, and it is budgeted.
+            s_exact = td > 0 ? std::pow(clamp01(ts), n_exp) : 0.0;
+            s_approx = qd > 0 ? std::pow(clamp01(series.specular[l].eval(x, y)), n_exp) : 0.0;
+          }
+          const Vec3& c = li.colour[l];
+          const double lc[3] = {c.x, c.y, c.z};
+          const double kd[3] = {mat.diffuse.x, mat.diffuse.y, mat.diffuse.z};
+          const double ks[3] = {mat.specular.x, mat.specular.y, mat.specular.z};
+          for (int ch = 0; ch < 3; ++ch) {
+            exact[ch] += lc[ch] * (kd[ch] * d_exact + ks[ch] * s_exact);
+            approx[ch] += lc[ch] * (kd[ch] * d_approx + ks[ch] * s_approx);
+          }
         }
-        // The specular gate (N.L > 0) by each side's own diffuse value: where the quadratic's
-        // sign differs from the exact one the whole specular term is error, and it is budgeted.
-        s_exact = td > 0 ? std::pow(clamp01(ts), n_exp) : 0.0;
-        s_approx = qd > 0 ? std::pow(clamp01(series.specular[l].eval(x, y)), n_exp) : 0.0;
-      }
-      const Vec3& c = li.colour[l];
-      const double lc[3] = {c.x, c.y, c.z};
-      const double kd[3] = {mat.diffuse.x, mat.diffuse.y, mat.diffuse.z};
-      const double ks[3] = {mat.specular.x, mat.specular.y, mat.specular.z};
-      for (int ch = 0; ch < 3; ++ch) {
-        exact[ch] += lc[ch] * (kd[ch] * d_exact + ks[ch] * s_exact);
-        approx[ch] += lc[ch] * (kd[ch] * d_approx + ks[ch] * s_approx);
-      }
-    }
-    for (int ch = 0; ch < 3; ++ch) {
-      const double err = std::fabs(clamp01(approx[ch]) - clamp01(exact[ch])) * lsb_scale;
-      if (!std::isfinite(err) || !std::isfinite(approx[ch])) {
-        worst = std::numeric_limits<double>::infinity();
-        return false;
-      }
-      worst = std::max(worst, err);
-    }
-    return !(worst > stop_above);
-  });
+        for (int ch = 0; ch < 3; ++ch) {
+          const double err = std::fabs(clamp01(approx[ch]) - clamp01(exact[ch])) * lsb_scale;
+          if (!std::isfinite(err) || !std::isfinite(approx[ch])) {
+            worst = std::numeric_limits<double>::infinity();
+            return false;
+          }
+          worst = std::max(worst, err);
+        }
+        return !(worst > stop_above);
+      });
   (void)complete;
   return worst;
 }
@@ -266,8 +267,9 @@ SetupResult subdivide_and_setup(const std::vector<ScreenTriangle>& in, const Sce
                                 const SetupOptions& opt) {
   const double budget = opt.budget_lsb.value_or(scene.error_budget_lsb);
   if (!(budget > 0) || !std::isfinite(budget)) {
-    throw std::invalid_argument("triangle setup: error budget " + std::to_string(budget) +
-                                " LSB, expected a finite value > 0 (budget_lsb / error_budget_lsb)");
+    throw std::invalid_argument(
+        "triangle setup: error budget " + std::to_string(budget) +
+        " LSB, expected a finite value > 0 (budget_lsb / error_budget_lsb)");
   }
   if (opt.max_depth < 0 || opt.max_depth > 30) {
     throw std::invalid_argument("triangle setup: max_depth " + std::to_string(opt.max_depth) +
@@ -284,8 +286,8 @@ SetupResult subdivide_and_setup(const std::vector<ScreenTriangle>& in, const Sce
   for (std::size_t i = 0; i < in.size(); ++i) {
     out.first_out.push_back(out.triangles.size());
     const std::size_t splits_before = out.stats.splits;
-    Subdivider sub{scene, &material_of(in[i], scene, "triangle " + std::to_string(i)), li, opt, budget,
-                   in[i].parent >= 0 ? in[i].parent : static_cast<int>(i), out};
+    Subdivider sub{scene,  &material_of(in[i], scene, "triangle " + std::to_string(i)), li, opt,
+                   budget, in[i].parent >= 0 ? in[i].parent : static_cast<int>(i),      out};
     sub.run(in[i], 0);
     if (out.stats.splits != splits_before) ++out.stats.inputs_split;
   }

@@ -16,7 +16,7 @@ namespace shadesim {
 // The t series of one triangle, one entry per scene light in scene order, all about the triangle
 // centroid. Channel-independent cosines: colour scaling (and ambient) is left to the encoder.
 struct TriangleSeries {
-  std::vector<Quadratic> diffuse;   // N.L / |N|
+  std::vector<Quadratic> diffuse;  // N.L / |N|
   // Blinn: N.H / |N| (eye at infinity) or N.H / (|N||H|) (finite eye). Phong (the material's
   // specular_model): R.V, V constant (eye at infinity) or E / |E| (finite eye).
   std::vector<Quadratic> specular;
@@ -38,12 +38,12 @@ struct SetupOptions {
 struct SetupStats {
   std::size_t triangles_in = 0;
   std::size_t triangles_out = 0;
-  std::size_t splits = 0;          // split operations; each turns one triangle into two
-  std::size_t inputs_split = 0;    // input triangles split at least once
-  std::size_t over_budget = 0;     // output triangles still over budget (at max depth)
-  std::size_t degenerate = 0;      // output triangles with no field
+  std::size_t splits = 0;        // split operations; each turns one triangle into two
+  std::size_t inputs_split = 0;  // input triangles split at least once
+  std::size_t over_budget = 0;   // output triangles still over budget (at max depth)
+  std::size_t degenerate = 0;    // output triangles with no field
   int max_depth_reached = 0;
-  double worst_error_lsb = 0.0;    // over output triangles; +inf if a series was not finite
+  double worst_error_lsb = 0.0;  // over output triangles; +inf if a series was not finite
 };
 
 struct SetupResult {

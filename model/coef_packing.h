@@ -18,9 +18,9 @@
 namespace shadesim {
 
 struct CoefSlot {
-  int word = 0;   // payload word (0 = the first after the TRIANGLE header)
-  int lsb = 0;    // lowest bit in that word
-  int bits = 0;   // width: the term's format's wl
+  int word = 0;  // payload word (0 = the first after the TRIANGLE header)
+  int lsb = 0;   // lowest bit in that word
+  int bits = 0;  // width: the term's format's wl
 };
 
 struct CoefLayout {
@@ -61,7 +61,8 @@ struct CoefLayout {
     std::vector<int64_t> out;
     out.reserve(slots.size());
     for (const CoefSlot& s : slots) {
-      const FixedFormat field_format{s.bits, s.bits, true, Quantization::kTruncate, Overflow::kWrap};
+      const FixedFormat field_format{s.bits, s.bits, true, Quantization::kTruncate,
+                                     Overflow::kWrap};
       out.push_back(field_format.wrap(payload[s.word] >> s.lsb));
     }
     return out;

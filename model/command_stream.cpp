@@ -1,13 +1,12 @@
 #include "model/command_stream.h"
 
-#include <initializer_list>
-#include <utility>
-
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <utility>
 
 #include "model/coef_packing.h"
 #include "model/specular_units.h"
@@ -33,8 +32,8 @@ void check_payload(const std::string& loc, const char* field, const std::vector<
   }
   for (size_t i = 0; i < values.size(); ++i) {
     if (!fits(values[i], format)) {
-      throw CommandStreamError(loc + field + "[" + std::to_string(i) + "] = " +
-                               std::to_string(values[i]) + " does not fit format " +
+      throw CommandStreamError(loc + field + "[" + std::to_string(i) +
+                               "] = " + std::to_string(values[i]) + " does not fit format " +
                                format.to_string());
     }
   }
@@ -67,8 +66,8 @@ void validate_command(const Command& cmd, const UnitConfig& cfg, const std::stri
       for (size_t i = 0; i < t->coef.size(); ++i) {
         const FixedFormat term = cfg.coef_term(static_cast<int>(i % kTermsPerSeries));
         if (!fits(t->coef[i], term)) {
-          throw CommandStreamError(loc + "tri.coef[" + std::to_string(i) + "] = " +
-                                   std::to_string(t->coef[i]) + " does not fit term T" +
+          throw CommandStreamError(loc + "tri.coef[" + std::to_string(i) +
+                                   "] = " + std::to_string(t->coef[i]) + " does not fit term T" +
                                    std::to_string(i % kTermsPerSeries) + "'s format " +
                                    term.to_string() + " (coef_term_iwl)");
         }
@@ -80,8 +79,8 @@ void validate_command(const Command& cmd, const UnitConfig& cfg, const std::stri
   } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
     if (s->y < 0 || s->y > xy_max || s->x0 < 0 || s->x0 > xy_max) {
       throw CommandStreamError(loc + "span: y and x0 must be 0.." + std::to_string(xy_max) +
-                               " (xy_bits " + std::to_string(cfg.xy_bits) + "), got y=" +
-                               std::to_string(s->y) + " x0=" + std::to_string(s->x0));
+                               " (xy_bits " + std::to_string(cfg.xy_bits) +
+                               "), got y=" + std::to_string(s->y) + " x0=" + std::to_string(s->x0));
     }
     if (s->length < 1 || int64_t{s->x0} + s->length - 1 > xy_max) {
       throw CommandStreamError(loc + "span: length must be >= 1 and end inside the screen, got " +
@@ -115,7 +114,8 @@ std::vector<uint64_t> CommandStream::encode() const {
       words.push_back(static_cast<uint64_t>(m->exponent));
       for (auto v : m->unit_params) words.push_back(static_cast<uint64_t>(v));
     } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
-      words.push_back(CommandWord::triangle(t->xo, t->yo, static_cast<uint64_t>(layout.words)).bits);
+      words.push_back(
+          CommandWord::triangle(t->xo, t->yo, static_cast<uint64_t>(layout.words)).bits);
       for (auto w : layout.pack(t->coef)) words.push_back(w);
     } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
       words.push_back(CommandWord::span(s->y, s->x0, s->length, s->last_in_row).bits);
@@ -153,7 +153,8 @@ CommandStream CommandStream::decode(const std::vector<uint64_t>& words, const Un
     const size_t count = h.count();
     switch (static_cast<Opcode>(op)) {
       case Opcode::kMaterial: {
-        const size_t fixed = static_cast<size_t>(config.channels + config.lights * config.channels + 1);
+        const size_t fixed =
+            static_cast<size_t>(config.channels + config.lights * config.channels + 1);
         if (count < fixed) {
           throw CommandStreamError(where(source, at, "word") + "material: expected at least " +
                                    std::to_string(fixed) + " payload words, header says " +
@@ -283,8 +284,8 @@ CommandStream CommandStream::read_text(std::istream& is, const std::string& sour
       long long v = 0;
       if (!(ls >> v)) throw CommandStreamError(loc + op + ": expected an integer for " + field);
       if (v < lo || v > hi) {
-        throw CommandStreamError(loc + op + ": " + field + " = " + std::to_string(v) + " is outside " +
-                                 std::to_string(lo) + ".." + std::to_string(hi));
+        throw CommandStreamError(loc + op + ": " + field + " = " + std::to_string(v) +
+                                 " is outside " + std::to_string(lo) + ".." + std::to_string(hi));
       }
       return static_cast<int64_t>(v);
     };
@@ -355,7 +356,8 @@ CommandStream CommandStream::read_text(std::istream& is, const std::string& sour
       s.length = static_cast<int32_t>(read_int("length", 1, kField16));
       std::string flag;
       if (ls >> flag) {
-        if (flag != "last") throw CommandStreamError(loc + "span: expected 'last' or nothing, got '" + flag + "'");
+        if (flag != "last")
+          throw CommandStreamError(loc + "span: expected 'last' or nothing, got '" + flag + "'");
         s.last_in_row = true;
       }
       cs.commands.emplace_back(s);
@@ -438,9 +440,10 @@ class ConfigJsonReader {
     if (!j.is_object()) fail("", "expected a JSON object (a UnitConfig), got " + j.dump());
     // "derivation" is the annotation `shadesim config --json` writes beside the fields (how each
     // was derived); it is for people and never read.
-    check_keys(j, "", {"channels", "lights", "xy_bits", "coef", "series", "spec_colour", "out_bits",
-                       "coef_term_iwl", "port_words", "tri_queue", "lanes", "material_buffers",
-                       "specular", "derivation"});
+    check_keys(j, "",
+               {"channels", "lights", "xy_bits", "coef", "series", "spec_colour", "out_bits",
+                "coef_term_iwl", "port_words", "tri_queue", "lanes", "material_buffers", "specular",
+                "derivation"});
     read_int(j, "", "channels", 1, 3, require_top_, c.channels);
     read_int(j, "", "lights", 1, 8, require_top_, c.lights);
     read_int(j, "", "xy_bits", 1, 16, require_top_, c.xy_bits);
@@ -482,7 +485,8 @@ class ConfigJsonReader {
       for (const SpecularField& f : u.fields) {
         int v = f.get(sp);
         if (f.is_enum()) {
-          if (const auto* text = read_string(*o, at, f.key, false)) v = f.parse(*text, prefix_ + at + f.key);
+          if (const auto* text = read_string(*o, at, f.key, false))
+            v = f.parse(*text, prefix_ + at + f.key);
         } else {
           read_int(*o, at, f.key, kLo, kHi, false, v);
         }
@@ -514,8 +518,8 @@ class ConfigJsonReader {
 
   // An integer field: must be a JSON integer (not 12.9, not true) within [lo, hi].
   // An optional array of integers (absent keeps the base value).
-  void read_int_list(const nlohmann::json& o, const std::string& at, const char* key, int lo, int hi,
-                     std::vector<int>& v) const {
+  void read_int_list(const nlohmann::json& o, const std::string& at, const char* key, int lo,
+                     int hi, std::vector<int>& v) const {
     if (!o.contains(key)) return;
     const auto& x = o.at(key);
     if (!x.is_array()) fail(at + key, "expected an array of integers, got " + x.dump());
@@ -526,7 +530,8 @@ class ConfigJsonReader {
       if (!e.is_number_integer()) fail(name, "expected an integer, got " + e.dump());
       const auto n = e.get<int64_t>();
       if (n < lo || n > hi) {
-        fail(name, "expected " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " + e.dump());
+        fail(name,
+             "expected " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " + e.dump());
       }
       out.push_back(static_cast<int>(n));
     }
@@ -543,7 +548,8 @@ class ConfigJsonReader {
     if (!x.is_number_integer()) fail(at + key, "expected an integer, got " + x.dump());
     const auto n = x.get<int64_t>();
     if (n < lo || n > hi) {
-      fail(at + key, "expected " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " + x.dump());
+      fail(at + key,
+           "expected " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " + x.dump());
     }
     v = static_cast<int>(n);
   }
@@ -562,7 +568,8 @@ class ConfigJsonReader {
 
   void read_format(const nlohmann::json& o, const std::string& at, const char* key, bool required,
                    FixedFormat& v) const {
-    if (const auto* text = read_string(o, at, key, required)) v = parse_fixed_format(*text, prefix_ + at + key);
+    if (const auto* text = read_string(o, at, key, required))
+      v = parse_fixed_format(*text, prefix_ + at + key);
   }
 
   template <typename E>
@@ -575,7 +582,8 @@ class ConfigJsonReader {
                                     const std::vector<std::string>& known) const {
     if (!s.contains(unit)) return nullptr;
     const auto& o = s.at(unit);
-    if (!o.is_object()) fail(std::string("specular.") + unit, "expected an object, got " + o.dump());
+    if (!o.is_object())
+      fail(std::string("specular.") + unit, "expected an object, got " + o.dump());
     check_keys(o, std::string("specular.") + unit + ".", known);
     return &o;
   }

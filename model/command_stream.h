@@ -90,14 +90,14 @@ struct TableCmd {
   std::vector<int64_t> entries;
 };
 
-struct EndFrameCmd {
-};
+struct EndFrameCmd {};
 
 using Command = std::variant<MaterialCmd, TriangleCmd, SpanCmd, TableCmd, EndFrameCmd>;
 
 // The MATERIAL exponent word: u10.16, rounded, saturating - the one definition the encoder and
 // spec-error's unit measurements both quantize with.
-constexpr FixedFormat kExponentFormat{26, 10, false, Quantization::kRoundNearest, Overflow::kSaturate};
+constexpr FixedFormat kExponentFormat{26, 10, false, Quantization::kRoundNearest,
+                                      Overflow::kSaturate};
 constexpr int kExponentFracBits = kExponentFormat.frac_bits();
 constexpr int kTermsPerSeries = 6;
 

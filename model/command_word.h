@@ -18,13 +18,13 @@ enum class Opcode : uint8_t {
 };
 
 struct CommandWord {
-  static constexpr int kOpcodeLsb = 56;        // [63:56]
-  static constexpr int kFieldBits = 16;        // every field below is 16 bits wide
-  static constexpr int kCountLsb = 0;          // [15:0]  payload words; SPAN: length
-  static constexpr int kMidLsb = 16;           // [31:16] TRIANGLE yo, SPAN x0, TABLE base,
-                                               //         MATERIAL gate-only light mask
-  static constexpr int kHighLsb = 32;          // [47:32] TRIANGLE xo, SPAN y
-  static constexpr int kSpanLastBit = 55;      // SPAN: last span of its scanline
+  static constexpr int kOpcodeLsb = 56;    // [63:56]
+  static constexpr int kFieldBits = 16;    // every field below is 16 bits wide
+  static constexpr int kCountLsb = 0;      // [15:0]  payload words; SPAN: length
+  static constexpr int kMidLsb = 16;       // [31:16] TRIANGLE yo, SPAN x0, TABLE base,
+                                           //         MATERIAL gate-only light mask
+  static constexpr int kHighLsb = 32;      // [47:32] TRIANGLE xo, SPAN y
+  static constexpr int kSpanLastBit = 55;  // SPAN: last span of its scanline
   static constexpr uint64_t kFieldMask = 0xFFFF;
 
   uint64_t bits = 0;
@@ -47,7 +47,8 @@ struct CommandWord {
   constexpr uint32_t material_gate_only() const { return field(kMidLsb); }
 
   // Header words. Fields are masked to 16 bits; range checks are the stream validator's job.
-  static constexpr CommandWord header(Opcode op, uint64_t count, uint64_t mid = 0, uint64_t high = 0) {
+  static constexpr CommandWord header(Opcode op, uint64_t count, uint64_t mid = 0,
+                                      uint64_t high = 0) {
     return {static_cast<uint64_t>(op) << kOpcodeLsb | (high & kFieldMask) << kHighLsb |
             (mid & kFieldMask) << kMidLsb | (count & kFieldMask) << kCountLsb};
   }
@@ -63,11 +64,15 @@ struct CommandWord {
     if (last) w.bits |= uint64_t{1} << kSpanLastBit;
     return w;
   }
-  static constexpr CommandWord table(uint32_t base, uint64_t count) { return header(Opcode::kTable, count, base); }
+  static constexpr CommandWord table(uint32_t base, uint64_t count) {
+    return header(Opcode::kTable, count, base);
+  }
   static constexpr CommandWord end_frame() { return header(Opcode::kEndFrame, 0); }
 
  private:
-  constexpr unsigned field(int lsb) const { return static_cast<unsigned>((bits >> lsb) & kFieldMask); }
+  constexpr unsigned field(int lsb) const {
+    return static_cast<unsigned>((bits >> lsb) & kFieldMask);
+  }
 };
 
 }  // namespace shadesim

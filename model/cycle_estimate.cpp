@@ -36,7 +36,8 @@ class SpanPipe {
     std::array<Cycle, CycleEstimate::kSetupStages + 1> s;
     // A queued span enters s1 the cycle after it was queued, once s1 is free.
     s[0] = queued_ ? std::max(taken + 1, prev_[1]) : taken;
-    for (int i = 1; i < CycleEstimate::kSetupStages; ++i) s[i] = std::max(s[i - 1] + 1, prev_[i + 1]);
+    for (int i = 1; i < CycleEstimate::kSetupStages; ++i)
+      s[i] = std::max(s[i - 1] + 1, prev_[i + 1]);
     // The engines load once s3 holds the span and they idle or emit their last beat.
     s[CycleEstimate::kSetupStages] = std::max(s[CycleEstimate::kSetupStages - 1] + 1, last_emit_);
     const Cycle first = std::max(s[CycleEstimate::kSetupStages] + 1, last_emit_ + interval_);
@@ -99,13 +100,16 @@ class BreakdownRecorder {
 
   // From cycle `from` on, the port does `category`'s work (until the next call).
   void port(Cycle from, CycleModel::Category category) {
-    if (port_.empty() || port_.back().second != category) port_.push_back({from, category});  // else it goes on
+    if (port_.empty() || port_.back().second != category)
+      port_.push_back({from, category});  // else it goes on
   }
   // A span's first and last emit.
   void span(Cycle first, Cycle last) {
     const Cycle b = first + busy_from_, e = last + busy_to_;  // [b, e)
-    if (!busy_.empty() && b <= busy_.back().second) busy_.back().second = std::max(busy_.back().second, e);
-    else busy_.push_back({b, e});
+    if (!busy_.empty() && b <= busy_.back().second)
+      busy_.back().second = std::max(busy_.back().second, e);
+    else
+      busy_.push_back({b, e});
   }
 
   // beats: the pixel beats that left (pixels with one lane).
@@ -119,19 +123,33 @@ class BreakdownRecorder {
     size_t j = 0;
     uint64_t below = 0;  // busy cycles in the intervals before j
     const auto busy_below = [&](Cycle x) {
-      while (j < busy_.size() && busy_[j].second <= x) below += static_cast<uint64_t>(busy_[j].second - busy_[j].first), ++j;
-      return below + (j < busy_.size() && busy_[j].first < x ? static_cast<uint64_t>(x - busy_[j].first) : 0);
+      while (j < busy_.size() && busy_[j].second <= x)
+        below += static_cast<uint64_t>(busy_[j].second - busy_[j].first), ++j;
+      return below + (j < busy_.size() && busy_[j].first < x
+                          ? static_cast<uint64_t>(x - busy_[j].first)
+                          : 0);
     };
     const auto charge = [&](CycleModel::Category c, Cycle from, Cycle to) {
       from = std::clamp<Cycle>(from, 0, total);
       to = std::clamp<Cycle>(to, from, total);
-      const uint64_t bubbles = static_cast<uint64_t>(to - from) - (busy_below(to) - busy_below(from));
+      const uint64_t bubbles =
+          static_cast<uint64_t>(to - from) - (busy_below(to) - busy_below(from));
       switch (c) {
-        case CycleModel::Category::kCommandGap: b.command_gap += bubbles; break;
-        case CycleModel::Category::kMaterial: b.material += bubbles; break;
-        case CycleModel::Category::kTable: b.table += bubbles; break;
-        case CycleModel::Category::kCommandWords: b.command_words += bubbles; break;
-        default: b.setup_load += bubbles; break;
+        case CycleModel::Category::kCommandGap:
+          b.command_gap += bubbles;
+          break;
+        case CycleModel::Category::kMaterial:
+          b.material += bubbles;
+          break;
+        case CycleModel::Category::kTable:
+          b.table += bubbles;
+          break;
+        case CycleModel::Category::kCommandWords:
+          b.command_words += bubbles;
+          break;
+        default:
+          b.setup_load += bubbles;
+          break;
       }
     };
     charge(CycleModel::Category::kSetupLoad, 0, shift_);
@@ -150,10 +168,14 @@ class BreakdownRecorder {
 
 CycleModel::Category header_category(Opcode op) {
   switch (op) {
-    case Opcode::kMaterial: return CycleModel::Category::kMaterial;
-    case Opcode::kTable: return CycleModel::Category::kTable;
-    case Opcode::kSpan: return CycleModel::Category::kSetupLoad;
-    default: return CycleModel::Category::kCommandWords;
+    case Opcode::kMaterial:
+      return CycleModel::Category::kMaterial;
+    case Opcode::kTable:
+      return CycleModel::Category::kTable;
+    case Opcode::kSpan:
+      return CycleModel::Category::kSetupLoad;
+    default:
+      return CycleModel::Category::kCommandWords;
   }
 }
 
@@ -161,7 +183,8 @@ std::string at_word(uint64_t i) { return "CycleEstimate: word " + std::to_string
 
 }  // namespace
 
-CycleEstimate::CycleEstimate(CycleConfig unit) : unit_(unit), span_latency_(CycleModel(unit).span_latency()) {}
+CycleEstimate::CycleEstimate(CycleConfig unit)
+    : unit_(unit), span_latency_(CycleModel(unit).span_latency()) {}
 
 CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool with_breakdown) const {
   std::optional<BreakdownRecorder> rec;
@@ -210,8 +233,10 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
         // Two buffers: no span of the bank it switches to in flight.
         if (mat_banked) return mat_leave[static_cast<size_t>(1 - mat_wr)];
         return pipe.empty();
-      case Opcode::kTable: return pipe.empty();
-      default: return 0;
+      case Opcode::kTable:
+        return pipe.empty();
+      default:
+        return 0;
     }
   };
 
@@ -229,7 +254,9 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
     uint64_t payload = 0;  // words after the header item
     bool tri_payload = false;
     switch (op) {
-      case Opcode::kNop: w = beat_end(w); break;
+      case Opcode::kNop:
+        w = beat_end(w);
+        break;
       case Opcode::kTriangle: {
         const uint64_t count = word.count();
         const uint64_t with_header = std::min<uint64_t>(count, beat_end(w) - w - 1);
@@ -258,18 +285,22 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
         for (uint64_t k = 0; k < n; ++k) {
           const CommandWord s = word_at(w + k);
           const uint64_t len = static_cast<uint64_t>(s.span_length());
-          if (len == 0) throw std::invalid_argument(at_word(w + k) + "SPAN of length 0 (lengths are >= 1)");
+          if (len == 0)
+            throw std::invalid_argument(at_word(w + k) + "SPAN of length 0 (lengths are >= 1)");
           const Cycle leave = pipe.add(c, len);
           mat_leave[static_cast<size_t>(mat_wr)] = leave;
           if (rec) rec->span(pipe.first_emit(), pipe.last_emit());
           if (queued) bank_free[static_cast<size_t>(wr_bank)] = pipe.last_entry();
           r.pixels += len;
           pixel_beats += beats(len, static_cast<uint64_t>(unit_.lanes));
-          if (s.span_last()) r.scanlines.push_back({s.span_y(), static_cast<uint64_t>(leave), s.span_x0() + s.span_length() - 1});
+          if (s.span_last())
+            r.scanlines.push_back(
+                {s.span_y(), static_cast<uint64_t>(leave), s.span_x0() + s.span_length() - 1});
           if (tri) {
             ++tri->spans;
             tri->pixels += len;
-            tri->engine_cycles += beats(len, static_cast<uint64_t>(unit_.lanes)) * static_cast<uint64_t>(interval);
+            tri->engine_cycles +=
+                beats(len, static_cast<uint64_t>(unit_.lanes)) * static_cast<uint64_t>(interval);
           }
         }
         if (tri) ++tri->decoder_cycles;
@@ -282,10 +313,13 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
         w += 1;
         payload = word.count();
         break;
-      default: w += 1; break;
+      default:
+        w += 1;
+        break;
     }
     if (w + payload > padded) {
-      throw std::invalid_argument(at_word(w - 1) + "the command's payload runs " + std::to_string(w + payload - padded) +
+      throw std::invalid_argument(at_word(w - 1) + "the command's payload runs " +
+                                  std::to_string(w + payload - padded) +
                                   " word(s) past the end of the stream");
     }
     if (payload == 0) continue;
@@ -321,7 +355,8 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
       if (nop == Opcode::kSpan) --tri->decoder_cycles;  // same item, same triangle
     }
   }
-  r.cycles = static_cast<uint64_t>(std::max(last_item + 1, pipe.spans() ? pipe.last_leave() + 1 : 0));
+  r.cycles =
+      static_cast<uint64_t>(std::max(last_item + 1, pipe.spans() ? pipe.last_leave() + 1 : 0));
   if (rec) {
     rec->port(last_item + 1, CycleModel::Category::kCommandGap);  // no beat left to offer
     r.breakdown = rec->finish(static_cast<Cycle>(r.cycles), pixel_beats);

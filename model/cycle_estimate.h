@@ -1,8 +1,8 @@
 // CycleEstimate: CycleModel's results for a whole stream with no input gaps and no
 // back-pressure, computed in closed form per decoder item and per span instead of clock by clock.
-// Exactly equal to run_cycle_model(words, Stimulus{}, unit) (sim/harness/cycle_run.h) in cycles, pixels, words, beats and
-// every scanline's completion cycle (tests/cycle_estimate_test.cpp checks it), and on request
-// its breakdown.
+// Exactly equal to run_cycle_model(words, Stimulus{}, unit) (sim/harness/cycle_run.h) in cycles,
+// pixels, words, beats and every scanline's completion cycle (tests/cycle_estimate_test.cpp checks
+// it), and on request its breakdown.
 //
 // The spec is CycleModel::clock(). With cmd_valid high until the last beat and pix_ready always
 // high, the pix register always advances, so every stage is an elastic pipeline stage and each
@@ -81,7 +81,7 @@ struct CycleEstimateRun {
   uint64_t words = 0;
   uint64_t beats = 0;
   std::vector<ScanlineDone> scanlines;
-  std::vector<TriangleCost> triangles;  // in stream order
+  std::vector<TriangleCost> triangles;      // in stream order
   std::optional<CycleBreakdown> breakdown;  // with run(words, true)
 };
 
@@ -91,7 +91,9 @@ class CycleEstimate {
   // takes from CycleModel): the setup stages between the span queue and the engines (s1..s3 in
   // rtl/shade_unit.sv), and the engine beats a span of `len` pixels takes: ceil(len / lanes).
   static constexpr int kSetupStages = 3;  // lane_fanout is combinational: no stage of its own
-  static constexpr uint64_t beats(uint64_t len, uint64_t lanes) { return (len + lanes - 1) / lanes; }
+  static constexpr uint64_t beats(uint64_t len, uint64_t lanes) {
+    return (len + lanes - 1) / lanes;
+  }
 
   // Accepts exactly the units CycleModel accepts (its constructor is the check).
   explicit CycleEstimate(CycleConfig unit);

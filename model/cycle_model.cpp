@@ -19,14 +19,22 @@ CycleConfig CycleConfig::of(const UnitConfig& config) {
 
 std::string to_string(CycleModel::Category c) {
   switch (c) {
-    case CycleModel::Category::kPixel: return "pixel";
-    case CycleModel::Category::kBackPressure: return "back_pressure";
-    case CycleModel::Category::kUnitStall: return "unit_stall";
-    case CycleModel::Category::kCommandGap: return "command_gap";
-    case CycleModel::Category::kMaterial: return "material";
-    case CycleModel::Category::kTable: return "table";
-    case CycleModel::Category::kCommandWords: return "command_words";
-    case CycleModel::Category::kSetupLoad: return "setup_load";
+    case CycleModel::Category::kPixel:
+      return "pixel";
+    case CycleModel::Category::kBackPressure:
+      return "back_pressure";
+    case CycleModel::Category::kUnitStall:
+      return "unit_stall";
+    case CycleModel::Category::kCommandGap:
+      return "command_gap";
+    case CycleModel::Category::kMaterial:
+      return "material";
+    case CycleModel::Category::kTable:
+      return "table";
+    case CycleModel::Category::kCommandWords:
+      return "command_words";
+    case CycleModel::Category::kSetupLoad:
+      return "setup_load";
   }
   return "?";
 }
@@ -61,24 +69,30 @@ CycleModel::CycleModel(CycleConfig unit)
                                 std::to_string(unit.material_buffers));
   }
   if (unit.lanes != 1 && unit.lanes != 2 && unit.lanes != 4) {
-    throw std::invalid_argument("CycleModel: lanes must be 1, 2 or 4, got " + std::to_string(unit.lanes));
+    throw std::invalid_argument("CycleModel: lanes must be 1, 2 or 4, got " +
+                                std::to_string(unit.lanes));
   }
   if (unit.tri_queue < 1 || unit.tri_queue > 8) {
-    throw std::invalid_argument("CycleModel: tri_queue must be 1..8, got " + std::to_string(unit.tri_queue));
+    throw std::invalid_argument("CycleModel: tri_queue must be 1..8, got " +
+                                std::to_string(unit.tri_queue));
   }
   sq_.resize(static_cast<size_t>(unit.span_queue()));
   bank_spans_.assign(static_cast<size_t>(unit.tri_queue), 0);
   const SlotTiming& timing = unit.slot;
-  if (unit.port_words != 1 && unit.port_words != 2 && unit.port_words != 4 && unit.port_words != 8) {
-    throw std::invalid_argument("CycleModel: port_words must be 1, 2, 4 or 8, got " + std::to_string(unit.port_words));
+  if (unit.port_words != 1 && unit.port_words != 2 && unit.port_words != 4 &&
+      unit.port_words != 8) {
+    throw std::invalid_argument("CycleModel: port_words must be 1, 2, 4 or 8, got " +
+                                std::to_string(unit.port_words));
   }
   if (timing.latency < 0 || timing.interval < 1) {
-    throw std::invalid_argument("CycleModel: slot latency must be >= 0 and interval >= 1, got latency " +
-                                std::to_string(timing.latency) + ", interval " + std::to_string(timing.interval));
+    throw std::invalid_argument(
+        "CycleModel: slot latency must be >= 0 and interval >= 1, got latency " +
+        std::to_string(timing.latency) + ", interval " + std::to_string(timing.interval));
   }
   if (timing.interval > 1 && timing.latency != timing.interval) {
-    throw std::invalid_argument("CycleModel: an iterative slot (interval " + std::to_string(timing.interval) +
-                                ") must have latency == interval, got latency " + std::to_string(timing.latency));
+    throw std::invalid_argument(
+        "CycleModel: an iterative slot (interval " + std::to_string(timing.interval) +
+        ") must have latency == interval, got latency " + std::to_string(timing.latency));
   }
   if (!iterative()) dl_.resize(static_cast<size_t>(timing.latency));
   // Before the first cycle the port was "doing" nothing the pipe waited for: the first

@@ -11,10 +11,11 @@
 // register, counted per bank), with tri_queue > 1 a span queue whose spans carry their
 // triangle's coefficient bank (a TRIANGLE waits until no queued span reads the bank it
 // loads), three span-setup stages s1..s3 with valid bits, the
-// engines' run state (run, rem: pixels left, `lanes` of them per beat), the specular slot's timing (a LATENCY-deep delay line for a
-// pipelined unit, one in-flight pixel and a busy count for an iterative one), and the pix output
-// register with advance = !valid || ready. The pix register holds a beat: up to `lanes` pixels
-// of one span (lane j = pixel x + j), one beat per cycle at most.
+// engines' run state (run, rem: pixels left, `lanes` of them per beat), the specular slot's timing
+// (a LATENCY-deep delay line for a pipelined unit, one in-flight pixel and a busy count for an
+// iterative one), and the pix output register with advance = !valid || ready. The pix register
+// holds a beat: up to `lanes` pixels of one span (lane j = pixel x + j), one beat per cycle at
+// most.
 #pragma once
 
 #include <algorithm>
@@ -43,9 +44,9 @@ struct SlotTiming {
 // (the control the RTL builds from UnitConfig; the datapath widths do not matter here).
 struct CycleConfig {
   SlotTiming slot;
-  int port_words = 1;  // UnitConfig::port_words
-  int tri_queue = 1;   // UnitConfig::tri_queue
-  int lanes = 1;       // UnitConfig::lanes: pixels per beat
+  int port_words = 1;        // UnitConfig::port_words
+  int tri_queue = 1;         // UnitConfig::tri_queue
+  int lanes = 1;             // UnitConfig::lanes: pixels per beat
   int material_buffers = 1;  // UnitConfig::material_buffers
 
   CycleConfig() = default;
@@ -119,17 +120,24 @@ class CycleModel {
  public:
   // The category a cycle is charged to (see CycleBreakdown).
   enum class Category : uint8_t {
-    kPixel, kBackPressure, kUnitStall, kCommandGap, kMaterial, kTable, kCommandWords, kSetupLoad
+    kPixel,
+    kBackPressure,
+    kUnitStall,
+    kCommandGap,
+    kMaterial,
+    kTable,
+    kCommandWords,
+    kSetupLoad
   };
 
   // What happened on one clock edge.
   struct Edge {
-    bool cmd_ready = false;  // combinational, before the edge
-    bool cmd_fire = false;   // the beat on the port was accepted on this edge
-    bool pix_fire = false;   // a pixel beat left on this edge
-    bool pix_eor = false;    // ... holding its span's end-of-row pixel (its last)
+    bool cmd_ready = false;    // combinational, before the edge
+    bool cmd_fire = false;     // the beat on the port was accepted on this edge
+    bool pix_fire = false;     // a pixel beat left on this edge
+    bool pix_eor = false;      // ... holding its span's end-of-row pixel (its last)
     int pix_x = 0, pix_y = 0;  // lane 0's pixel
-    int pix_count = 0;       // pixels in the beat: lanes 0 .. pix_count-1 valid
+    int pix_count = 0;         // pixels in the beat: lanes 0 .. pix_count-1 valid
     Category category = Category::kSetupLoad;
   };
 
@@ -142,7 +150,9 @@ class CycleModel {
   // the state by one clock.
   Edge clock(bool cmd_valid, const uint64_t* beat, bool pix_ready);
   // A one-word port.
-  Edge clock(bool cmd_valid, uint64_t cmd_word, bool pix_ready) { return clock(cmd_valid, &cmd_word, pix_ready); }
+  Edge clock(bool cmd_valid, uint64_t cmd_word, bool pix_ready) {
+    return clock(cmd_valid, &cmd_word, pix_ready);
+  }
 
   // Nothing in flight, no pixel waiting, and no beat half taken apart.
   bool idle() const { return !in_payload_ && pos_ == 0 && datapath_empty() && !pix_.valid; }
@@ -165,8 +175,8 @@ class CycleModel {
     bool valid = false;
     int x = 0, y = 0;  // lane 0's pixel
     bool eor = false;
-    int count = 0;  // valid lanes
-    int mat = 0;    // material bank of its span
+    int count = 0;          // valid lanes
+    int mat = 0;            // material bank of its span
     bool span_end = false;  // the span's last beat: its bank's count drops when it leaves the slot
   };
   enum class Payload { kSkip, kMaterial, kTriangle, kTable };
@@ -241,20 +251,28 @@ inline bool CycleModel::slot_empty() const {
   return true;
 }
 
-inline CycleModel::Category CycleModel::port_category(bool cmd_valid, bool header, CommandWord word) const {
+inline CycleModel::Category CycleModel::port_category(bool cmd_valid, bool header,
+                                                      CommandWord word) const {
   if (!cmd_valid) return Category::kCommandGap;
   if (!header) {
     switch (pay_op_) {
-      case Payload::kMaterial: return Category::kMaterial;
-      case Payload::kTable: return Category::kTable;
-      default: return Category::kCommandWords;
+      case Payload::kMaterial:
+        return Category::kMaterial;
+      case Payload::kTable:
+        return Category::kTable;
+      default:
+        return Category::kCommandWords;
     }
   }
   switch (static_cast<Opcode>(word.opcode())) {
-    case Opcode::kMaterial: return Category::kMaterial;
-    case Opcode::kTable: return Category::kTable;
-    case Opcode::kSpan: return Category::kSetupLoad;
-    default: return Category::kCommandWords;
+    case Opcode::kMaterial:
+      return Category::kMaterial;
+    case Opcode::kTable:
+      return Category::kTable;
+    case Opcode::kSpan:
+      return Category::kSetupLoad;
+    default:
+      return Category::kCommandWords;
   }
 }
 
@@ -283,7 +301,8 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   const bool tri_payload = in_payload_ && pay_op_ == Payload::kTriangle;
   const unsigned tail = tri_payload ? std::min(pay_rem, beat_left) : 0;
   const unsigned hdr_pos = pos_ + tail;
-  const bool hdr_here = (!in_payload_ || (tri_payload && pay_rem <= beat_left)) && hdr_pos < port_words_;
+  const bool hdr_here =
+      (!in_payload_ || (tri_payload && pay_rem <= beat_left)) && hdr_pos < port_words_;
   const CommandWord word{beat[hdr_here ? hdr_pos : pos_]};
   const Opcode op = static_cast<Opcode>(word.opcode());
   const unsigned count = word.count();
@@ -308,7 +327,8 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   // that writes its triangle's last words.
   if (op == Opcode::kSpan) hdr_ready = queued() ? sq_count_ < sq_.size() : s1_free && tail == 0;
   // A TRIANGLE loads the next bank once no queued span needs that bank's coefficients.
-  if (op == Opcode::kTriangle && queued()) hdr_ready = bank_spans_[static_cast<size_t>(next_bank)] == 0;
+  if (op == Opcode::kTriangle && queued())
+    hdr_ready = bank_spans_[static_cast<size_t>(next_bank)] == 0;
   const bool take_hdr = hdr_here && hdr_ready;
   const unsigned n = tail + (take_hdr ? hdr_n : 0) + (in_payload_ && !tri_payload ? 1 : 0);
   const bool item_fire = cmd_valid && n > 0;
@@ -340,7 +360,8 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   if (++history_pos_ == port_history_.size()) history_pos_ = 0;
 
   // ---- the edge: engines -> slot -> pix register ----
-  const Pix from_engines{run_, x_, y_, last_ && last_pix, static_cast<int>(std::min(rem_, lanes_)), mat_, last_pix};
+  const Pix from_engines{
+      run_, x_, y_, last_ && last_pix, static_cast<int>(std::min(rem_, lanes_)), mat_, last_pix};
   bool to_pix = false;  // pix_ takes the slot's output on this edge
   if (iterative()) {
     if (adv && !busy) {
@@ -350,8 +371,10 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
     } else if (adv) {
       pix_.valid = false;
     }
-    if (emit) busy_ = timing_.interval - 1;
-    else if (busy_ > 0) --busy_;
+    if (emit)
+      busy_ = timing_.interval - 1;
+    else if (busy_ > 0)
+      --busy_;
   } else if (adv) {
     to_pix = true;
     if (dl_.empty()) {
@@ -377,10 +400,14 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
     rem_ -= lanes_;  // wraps after the last beat, as the RTL's rem_q; reloaded before use
     x_ += static_cast<int>(lanes_);
   }
-  if (s2_move) s_[2] = s_[1];
-  else if (load_eng) s_[2].valid = false;
-  if (s1_move) s_[1] = s_[0];
-  else if (s2_move) s_[1].valid = false;
+  if (s2_move)
+    s_[2] = s_[1];
+  else if (load_eng)
+    s_[2].valid = false;
+  if (s1_move)
+    s_[1] = s_[0];
+  else if (s2_move)
+    s_[1].valid = false;
   Span header_span;
   header_span.valid = true;
   header_span.y = word.span_y();
@@ -390,8 +417,10 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   header_span.mat = mat_wr_;
   if (span_fire) mat_spans_[mat_wr_] += static_cast<int>(hdr_n);
   if (!queued()) {
-    if (span_fire) s_[0] = header_span;
-    else if (s1_move) s_[0].valid = false;
+    if (span_fire)
+      s_[0] = header_span;
+    else if (s1_move)
+      s_[0].valid = false;
   } else {
     if (sq_pop) {
       const QueuedSpan& head = sq_[sq_head_];
@@ -407,7 +436,8 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
         const CommandWord w{beat[hdr_pos + k]};
         size_t tail = sq_head_ + sq_count_;
         if (tail >= sq_.size()) tail -= sq_.size();
-        sq_[tail] = {Span{true, w.span_y(), w.span_x0(), w.span_length(), w.span_last(), mat_wr_}, wr_bank_};
+        sq_[tail] = {Span{true, w.span_y(), w.span_x0(), w.span_length(), w.span_last(), mat_wr_},
+                     wr_bank_};
         ++bank_spans_[static_cast<size_t>(wr_bank_)];
         ++sq_count_;
       }
@@ -432,8 +462,14 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
         pay_idx_ = hdr_n - 1;
         in_payload_ = count > hdr_n - 1;
         break;
-      case Opcode::kTable: pay_op_ = Payload::kTable; in_payload_ = count != 0; break;
-      default: pay_op_ = Payload::kSkip; in_payload_ = false; break;
+      case Opcode::kTable:
+        pay_op_ = Payload::kTable;
+        in_payload_ = count != 0;
+        break;
+      default:
+        pay_op_ = Payload::kSkip;
+        in_payload_ = false;
+        break;
     }
   } else if (pay_fire) {
     const unsigned taken = tri_payload ? tail : 1;

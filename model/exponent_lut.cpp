@@ -16,8 +16,8 @@ ExponentLut::ExponentLut(const LutConfig& config, const FixedFormat& series, con
   address_.wl = config.addr_bits + config.interp_bits;
   address_.iwl = config.addr_bits;
   address_.is_signed = false;
-  address_.quant = config.index == LutIndex::kTruncate ? Quantization::kTruncate
-                                                       : Quantization::kRoundNearest;
+  address_.quant =
+      config.index == LutIndex::kTruncate ? Quantization::kTruncate : Quantization::kRoundNearest;
   address_.overflow = Overflow::kSaturate;
   table_.assign(static_cast<size_t>(entries()), 0);
 }
@@ -42,8 +42,8 @@ void ExponentLut::load_table(const TableCmd& t) {
     if (t.entries[k] < 0 || t.entries[k] >= limit) {
       throw std::invalid_argument("lut: TABLE entry at address " + std::to_string(addr) + " is " +
                                   std::to_string(t.entries[k]) + "; expected 0.." +
-                                  std::to_string(limit - 1) + " (B = " +
-                                  std::to_string(config_.entry_bits) + " bits)");
+                                  std::to_string(limit - 1) +
+                                  " (B = " + std::to_string(config_.entry_bits) + " bits)");
     }
     table_[addr] = t.entries[k];
   }

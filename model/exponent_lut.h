@@ -59,7 +59,9 @@ class ExponentLut {
   static double sample_argument(const LutConfig& c, int i);
 
   // --- cost ---
-  static int64_t table_bits(const LutConfig& c) { return (int64_t{1} << c.addr_bits) * c.entry_bits; }
+  static int64_t table_bits(const LutConfig& c) {
+    return (int64_t{1} << c.addr_bits) * c.entry_bits;
+  }
   static int multipliers(const LutConfig& c) { return c.interp_bits > 0 ? 1 : 0; }
   static int latency(const LutConfig& c) { return c.interp_bits > 0 ? 3 : 2; }
   static int cycles_per_pixel(const LutConfig&) { return 1; }

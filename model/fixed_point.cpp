@@ -92,12 +92,18 @@ FixedFormat parse_fixed_format(const std::string& text, const std::string& what)
   }
   while (!suffix.empty()) {
     const auto next = suffix.find(':', 1);
-    const std::string tok = suffix.substr(1, next == std::string::npos ? std::string::npos : next - 1);
-    if (tok == "trn") f.quant = Quantization::kTruncate;
-    else if (tok == "rnd") f.quant = Quantization::kRoundNearest;
-    else if (tok == "sat") f.overflow = Overflow::kSaturate;
-    else if (tok == "wrap") f.overflow = Overflow::kWrap;
-    else return fail();
+    const std::string tok =
+        suffix.substr(1, next == std::string::npos ? std::string::npos : next - 1);
+    if (tok == "trn")
+      f.quant = Quantization::kTruncate;
+    else if (tok == "rnd")
+      f.quant = Quantization::kRoundNearest;
+    else if (tok == "sat")
+      f.overflow = Overflow::kSaturate;
+    else if (tok == "wrap")
+      f.overflow = Overflow::kWrap;
+    else
+      return fail();
     suffix = next == std::string::npos ? std::string() : suffix.substr(next);
   }
   f.validate(what);

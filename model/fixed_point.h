@@ -56,7 +56,9 @@ struct RawOverflow {
     return static_cast<int64_t>(raw);
   }
   template <typename Int>
-  constexpr int64_t fit(Int raw) const { return wraps ? wrap(raw) : saturate(raw); }
+  constexpr int64_t fit(Int raw) const {
+    return wraps ? wrap(raw) : saturate(raw);
+  }
 };
 
 struct FixedFormat {
@@ -109,11 +111,17 @@ constexpr RawOverflow FixedFormat::raw_overflow() const {
           overflow == Overflow::kWrap};
 }
 template <typename Int>
-constexpr int64_t FixedFormat::wrap(Int raw) const { return raw_overflow().wrap(raw); }
+constexpr int64_t FixedFormat::wrap(Int raw) const {
+  return raw_overflow().wrap(raw);
+}
 template <typename Int>
-constexpr int64_t FixedFormat::saturate(Int raw) const { return raw_overflow().saturate(raw); }
+constexpr int64_t FixedFormat::saturate(Int raw) const {
+  return raw_overflow().saturate(raw);
+}
 template <typename Int>
-constexpr int64_t FixedFormat::fit(Int raw) const { return raw_overflow().fit(raw); }
+constexpr int64_t FixedFormat::fit(Int raw) const {
+  return raw_overflow().fit(raw);
+}
 
 // Parse "s4.28", "u1.16", "s4.28:rnd", "u1.16:trn:wrap". Throws std::invalid_argument naming
 // `what` and the text on malformed input.

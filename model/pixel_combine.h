@@ -55,8 +55,7 @@ class PixelCombine {
   // diffuse[l * channels + c], spec[l], ambient[c], spec_colour[l * channels + c]; gate_only:
   // the MATERIAL's mask (bit l: light l's diffuse series gate only, not added).
   std::array<uint16_t, kMaxChannels> operator()(const int64_t* diffuse, const int64_t* spec,
-                                                const int64_t* ambient,
-                                                const int64_t* spec_colour,
+                                                const int64_t* ambient, const int64_t* spec_colour,
                                                 uint32_t gate_only) const {
     std::array<bool, kMaxLights> lit{};
     for (int l = 0; l < lights_; ++l) lit[static_cast<size_t>(l)] = gate(diffuse, l);

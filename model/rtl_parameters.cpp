@@ -39,7 +39,8 @@ std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u, const I
   if (u.material_buffers != 1) p.push_back({"MATERIAL_BUFFERS", u.material_buffers});
   // Narrowed coefficient terms (coef packing); shade_unit's defaults are COEF_WL.
   if (!u.coef_term_iwl.empty()) {
-    for (int t = 0; t < 6; ++t) p.push_back({"COEF_T" + std::to_string(t) + "_WL", u.coef_term_bits(t)});
+    for (int t = 0; t < 6; ++t)
+      p.push_back({"COEF_T" + std::to_string(t) + "_WL", u.coef_term_bits(t)});
   }
   // Only the selected unit's parameters: the others keep shade_unit's defaults, so two configs
   // that differ in an unused unit's widths map to the same build. The ideal unit has no output

@@ -44,8 +44,8 @@ int64_t SchlickDivider::evaluate(int64_t num_raw, int64_t den_raw) const {
   if (num_op == 0) return 0;
   if (num_op >= den_op) return out_.quantize(1, 0);
   // 2. DIVIDE
-  const uint64_t q = divide(static_cast<uint64_t>(num_op), static_cast<uint64_t>(den_op),
-                            config_.quotient_bits);
+  const uint64_t q =
+      divide(static_cast<uint64_t>(num_op), static_cast<uint64_t>(den_op), config_.quotient_bits);
   // 3. OUTPUT
   return out_.quantize(static_cast<Int128>(q), config_.quotient_bits);
 }

@@ -17,7 +17,8 @@ ShadeUnit::ShadeUnit(const UnitConfig& config)
       specular_(config),
       combine_(config),
       fanout_(config.series, config.lanes),
-      lanes_(static_cast<size_t>(config.lanes), SeriesBank(config.series, config.series_per_triangle())),
+      lanes_(static_cast<size_t>(config.lanes),
+             SeriesBank(config.series, config.series_per_triangle())),
       ambient_(static_cast<size_t>(config.channels), 0),
       spec_colour_(static_cast<size_t>(config.lights * config.channels), 0),
       spec_(static_cast<size_t>(config.lights), 0) {}

@@ -72,7 +72,8 @@ void ShadeUnit::consume(const Command& cmd, Sink&& sink) {
     const int n_lanes = fanout_.lanes();
     const int n_series = lanes_.front().size();
     for (int i = 0; i < n_series; ++i) {
-      const SeriesStart start = span_setup_(&triangle_.coef[static_cast<size_t>(i) * kTermsPerSeries], dx, dy);
+      const SeriesStart start =
+          span_setup_(&triangle_.coef[static_cast<size_t>(i) * kTermsPerSeries], dx, dy);
       if (n_lanes == 1) {
         lanes_.front().load(i, start);
       } else {
@@ -103,7 +104,8 @@ void ShadeUnit::consume(const Command& cmd, Sink&& sink) {
     } else {
       for (int32_t first = 0; first < s->length; first += n_lanes) {
         const int valid = std::min<int32_t>(n_lanes, s->length - first);
-        for (int j = 0; j < valid; ++j) shade(lanes_[static_cast<size_t>(j)].values(), first + j, j);
+        for (int j = 0; j < valid; ++j)
+          shade(lanes_[static_cast<size_t>(j)].values(), first + j, j);
         for (SeriesBank& bank : lanes_) bank.step();
       }
     }

@@ -20,13 +20,18 @@ std::string to_string(LutAddressing v) {
 }
 std::string to_string(FitObjective v) {
   switch (v) {
-    case FitObjective::kNone: return "none";
-    case FitObjective::kEpicentre: return "epicentre";
-    case FitObjective::kAbsolute: return "absolute";
+    case FitObjective::kNone:
+      return "none";
+    case FitObjective::kEpicentre:
+      return "epicentre";
+    case FitObjective::kAbsolute:
+      return "absolute";
   }
   return "?";
 }
-std::string to_string(UnitTiming v) { return v == UnitTiming::kPipelined ? "pipelined" : "iterative"; }
+std::string to_string(UnitTiming v) {
+  return v == UnitTiming::kPipelined ? "pipelined" : "iterative";
+}
 
 namespace {
 template <typename E, size_t N>
@@ -68,7 +73,8 @@ void SpecularConfig::validate() const {
   const SpecularUnitDescriptor& unit = specular_unit(kind);
   for (const SpecularField& f : unit.fields) {
     const int v = f.get(*this);
-    if (!f.in_range(v)) fail(unit.field_name(f), "must be " + f.expected() + ", got " + f.text(*this));
+    if (!f.in_range(v))
+      fail(unit.field_name(f), "must be " + f.expected() + ", got " + f.text(*this));
   }
   if (unit.check != nullptr) {
     try {

@@ -30,9 +30,9 @@ enum class LutIndex { kTruncate, kNearest };
 enum class LutAddressing { kPerExponent, kShared };
 // How setup fits a free per-exponent parameter (W_m's zeta, Schlick's n', the shared LUT's k).
 enum class FitObjective {
-  kNone,        // the paper's choice: zeta = n/m, n' = n, k = n
-  kEpicentre,   // minimise the max relative error where t^n >= 0.5
-  kAbsolute,    // minimise the max absolute error over t in [0, 1]
+  kNone,       // the paper's choice: zeta = n/m, n' = n, k = n
+  kEpicentre,  // minimise the max relative error where t^n >= 0.5
+  kAbsolute,   // minimise the max absolute error over t in [0, 1]
 };
 enum class UnitTiming {
   kPipelined,  // one pixel per cycle; one hardware stage per step

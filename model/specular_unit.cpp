@@ -10,10 +10,17 @@ SpecularUnit::SpecularUnit(const UnitConfig& config)
   config.specular.validate();
   const SpecularConfig& s = config.specular;
   switch (kind_) {
-    case SpecularUnitKind::kLut: lut_.emplace(s.lut, config.series, s.out); break;
-    case SpecularUnitKind::kSchlick: schlick_.emplace(s.schlick, config.series, s.out); break;
-    case SpecularUnitKind::kWpow: wpow_.emplace(s.wpow, config.series, s.out); break;
-    case SpecularUnitKind::kIdeal: break;
+    case SpecularUnitKind::kLut:
+      lut_.emplace(s.lut, config.series, s.out);
+      break;
+    case SpecularUnitKind::kSchlick:
+      schlick_.emplace(s.schlick, config.series, s.out);
+      break;
+    case SpecularUnitKind::kWpow:
+      wpow_.emplace(s.wpow, config.series, s.out);
+      break;
+    case SpecularUnitKind::kIdeal:
+      break;
   }
 }
 

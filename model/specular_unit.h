@@ -31,11 +31,15 @@ class SpecularUnit {
   // series[0 .. series_per_light-1]: this light's specular series values (series format raw).
   int64_t evaluate(const int64_t* series) const {
     switch (kind_) {
-      case SpecularUnitKind::kLut: return lut_->evaluate(series[0]);
-      case SpecularUnitKind::kSchlick: return schlick_->evaluate(series[0], series[1]);
-      case SpecularUnitKind::kWpow: return wpow_->evaluate(series[0]);
+      case SpecularUnitKind::kLut:
+        return lut_->evaluate(series[0]);
+      case SpecularUnitKind::kSchlick:
+        return schlick_->evaluate(series[0], series[1]);
+      case SpecularUnitKind::kWpow:
+        return wpow_->evaluate(series[0]);
       case SpecularUnitKind::kIdeal:
-      default: return ideal_(series[0]);
+      default:
+        return ideal_(series[0]);
     }
   }
 

@@ -14,9 +14,11 @@ namespace shadesim {
 namespace {
 
 // An enum field's code is its Verilog code (rtl/shade_unit.sv's parameter comments).
-static_assert(static_cast<int>(LutIndex::kTruncate) == 0 && static_cast<int>(LutIndex::kNearest) == 1,
+static_assert(static_cast<int>(LutIndex::kTruncate) == 0 &&
+                  static_cast<int>(LutIndex::kNearest) == 1,
               "LUT_INDEX: 0 truncate, 1 nearest");
-static_assert(static_cast<int>(UnitTiming::kPipelined) == 0 && static_cast<int>(UnitTiming::kIterative) == 1,
+static_assert(static_cast<int>(UnitTiming::kPipelined) == 0 &&
+                  static_cast<int>(UnitTiming::kIterative) == 1,
               "SCHLICK_TIMING / WPOW_TIMING: 0 pipelined, 1 iterative");
 
 // Accessors of SpecularConfig::*Unit.*Member as an int.
@@ -44,21 +46,32 @@ using S = SchlickConfig;
 using W = WpowConfig;
 
 std::string timing_tag(UnitTiming t) { return t == UnitTiming::kIterative ? " iter" : " pipe"; }
-std::string fit_tag(FitObjective f) { return f == FitObjective::kNone ? "" : " fit=" + to_string(f); }
+std::string fit_tag(FitObjective f) {
+  return f == FitObjective::kNone ? "" : " fit=" + to_string(f);
+}
 
 std::vector<SpecularUnitDescriptor> make_table() {
   std::vector<SpecularUnitDescriptor> t;
-  t.push_back({SpecularUnitKind::kIdeal, "ideal", 0, false, 1, {},
+  t.push_back({SpecularUnitKind::kIdeal,
+               "ideal",
+               0,
+               false,
+               1,
+               {},
                [](const SpecularConfig&) { return 0; },
                [](const SpecularConfig&) { return 1; },
                [](const SpecularConfig&) { return SpecularCost{}; },
                [](const SpecularConfig&) { return std::string(); },
                [](const SpecularConfig&, int) { return 0.0; }});
   t.push_back(
-      {SpecularUnitKind::kLut, "lut", 1, true, 1,
+      {SpecularUnitKind::kLut,
+       "lut",
+       1,
+       true,
+       1,
        {
-           {"addr_bits", "--lut-addr-bits", "LUT: address bits A (2^A entries)", "LUT_ADDR_BITS",
-            1, 20, false, nullptr, get<kLut, &L::addr_bits>, set<kLut, &L::addr_bits>, 4,
+           {"addr_bits", "--lut-addr-bits", "LUT: address bits A (2^A entries)", "LUT_ADDR_BITS", 1,
+            20, false, nullptr, get<kLut, &L::addr_bits>, set<kLut, &L::addr_bits>, 4,
             [](int v) { return std::min(v + 2, 20); }},
            {"entry_bits", "--lut-entry-bits", "LUT: entry bits B", "LUT_ENTRY_BITS", 1, 32, false,
             nullptr, get<kLut, &L::entry_bits>, set<kLut, &L::entry_bits>, 4,
@@ -68,9 +81,9 @@ std::vector<SpecularUnitDescriptor> make_table() {
             set<kLut, &L::interp_bits>, 0, [](int v) { return std::max(v, 4); }},
            {"index", "--lut-index", "LUT: address rounding", "LUT_INDEX", 0, 1, false,
             name_of<LutIndex>, get<kLut, &L::index>, set<kLut, &L::index>},
-           {"addressing", "--lut-addressing", "LUT: a table per exponent (reloaded per material) or one shared",
-            "", 0, 1, false, name_of<LutAddressing>, get<kLut, &L::addressing>,
-            set<kLut, &L::addressing>},
+           {"addressing", "--lut-addressing",
+            "LUT: a table per exponent (reloaded per material) or one shared", "", 0, 1, false,
+            name_of<LutAddressing>, get<kLut, &L::addressing>, set<kLut, &L::addressing>},
            {"shared_range_log2", "--lut-shared-range-log2",
             "LUT, shared table: log2 of the range U of u = k (1 - t) it spans", "", 0, 6, false,
             nullptr, get<kLut, &L::shared_range_log2>, set<kLut, &L::shared_range_log2>},
@@ -95,10 +108,12 @@ std::vector<SpecularUnitDescriptor> make_table() {
        [](const SpecularConfig& c) {
          const LutConfig& l = c.lut;
          std::ostringstream os;
-         os << (l.addressing == LutAddressing::kShared ? " shared" : " per-n") << " A=" << l.addr_bits
-            << " B=" << l.entry_bits << (l.index == LutIndex::kTruncate ? " trn" : " near");
+         os << (l.addressing == LutAddressing::kShared ? " shared" : " per-n")
+            << " A=" << l.addr_bits << " B=" << l.entry_bits
+            << (l.index == LutIndex::kTruncate ? " trn" : " near");
          if (l.interp_bits > 0) os << " F=" << l.interp_bits;
-         if (l.addressing == LutAddressing::kShared) os << " U=2^" << l.shared_range_log2 << fit_tag(l.fit);
+         if (l.addressing == LutAddressing::kShared)
+           os << " U=2^" << l.shared_range_log2 << fit_tag(l.fit);
          return os.str();
        },
        [](const SpecularConfig& c, int series_wl) {
@@ -109,10 +124,15 @@ std::vector<SpecularUnitDescriptor> make_table() {
        },
        [](const SpecularConfig& c) {
          if (c.lut.interp_bits > 0 && c.lut.addr_bits < 2)
-           throw std::invalid_argument("lut.addr_bits must be >= 2 with interpolation (two entries per interval)");
+           throw std::invalid_argument(
+               "lut.addr_bits must be >= 2 with interpolation (two entries per interval)");
        }});
   t.push_back(
-      {SpecularUnitKind::kSchlick, "schlick", 2, true, 2,  // numerator and denominator series
+      {SpecularUnitKind::kSchlick,
+       "schlick",
+       2,
+       true,
+       2,  // numerator and denominator series
        {
            {"quotient_bits", "--schlick-quotient-bits",
             "Schlick: quotient bits Q (divider iterations)", "SCHLICK_QUOTIENT_BITS", 1, 32, false,
@@ -150,40 +170,45 @@ std::vector<SpecularUnitDescriptor> make_table() {
          return static_cast<double>(d.quotient_bits * d.operand_bits) *
                 (d.timing == UnitTiming::kIterative ? 1.0 : static_cast<double>(d.quotient_bits));
        }});
-  t.push_back(
-      {SpecularUnitKind::kWpow, "wpow", 3, true, 1,
-       {
-           {"max_m", "--wpow-m", "W_m: m (4, 8 or 16)", "WPOW_MAX_M", 1, 32, true, nullptr,
-            get<kWpow, &W::max_m>, set<kWpow, &W::max_m>},
-           {"base_bits", "--wpow-bits", "W_m: fraction bits B of the base and squares",
-            "WPOW_BASE_BITS", 2, 30, false, nullptr, get<kWpow, &W::base_bits>,
-            set<kWpow, &W::base_bits>, 6, [](int v) { return std::min(v + 4, 30); }},
-           {"timing", "--wpow-timing", "W_m: pipelined = 1 cycle/pixel, iterative = log2(m) + 1", "WPOW_TIMING", 0, 1, false,
-            name_of<UnitTiming>, get<kWpow, &W::timing>, set<kWpow, &W::timing>},
-           {"fit", "--fit", kFitHelp, "", 0, kFitHi, false, name_of<FitObjective>,
-            get<kWpow, &W::fit>, set<kWpow, &W::fit>},
-       },
-       [](const SpecularConfig& c) { return WpowUnit::latency(c.wpow); },
-       [](const SpecularConfig& c) { return WpowUnit::cycles_per_pixel(c.wpow); },
-       [](const SpecularConfig& c) {
-         SpecularCost k;
-         k.multipliers = WpowUnit::multipliers(c.wpow);
-         const double b = c.wpow.base_bits + 1;
-         k.area = kFullAdderArea * k.multipliers * b * b / 2.0;  // a squarer is about half a multiplier
-         return k;
-       },
-       [](const SpecularConfig& c) {
-         std::ostringstream os;
-         os << " m=" << c.wpow.max_m << " B=" << c.wpow.base_bits << timing_tag(c.wpow.timing)
-            << fit_tag(c.wpow.fit);
-         return os.str();
-       },
-       [](const SpecularConfig& c, int series_wl) {
-         // B x B squarers, one (iterative) or log2(m) (pipelined), plus the base stage.
-         const double b = c.wpow.base_bits;
-         const double k = WpowUnit::stages(c.wpow);
-         return b * b * (c.wpow.timing == UnitTiming::kIterative ? 1.0 : k) + b * series_wl;
-       }});
+  t.push_back({SpecularUnitKind::kWpow,
+               "wpow",
+               3,
+               true,
+               1,
+               {
+                   {"max_m", "--wpow-m", "W_m: m (4, 8 or 16)", "WPOW_MAX_M", 1, 32, true, nullptr,
+                    get<kWpow, &W::max_m>, set<kWpow, &W::max_m>},
+                   {"base_bits", "--wpow-bits", "W_m: fraction bits B of the base and squares",
+                    "WPOW_BASE_BITS", 2, 30, false, nullptr, get<kWpow, &W::base_bits>,
+                    set<kWpow, &W::base_bits>, 6, [](int v) { return std::min(v + 4, 30); }},
+                   {"timing", "--wpow-timing",
+                    "W_m: pipelined = 1 cycle/pixel, iterative = log2(m) + 1", "WPOW_TIMING", 0, 1,
+                    false, name_of<UnitTiming>, get<kWpow, &W::timing>, set<kWpow, &W::timing>},
+                   {"fit", "--fit", kFitHelp, "", 0, kFitHi, false, name_of<FitObjective>,
+                    get<kWpow, &W::fit>, set<kWpow, &W::fit>},
+               },
+               [](const SpecularConfig& c) { return WpowUnit::latency(c.wpow); },
+               [](const SpecularConfig& c) { return WpowUnit::cycles_per_pixel(c.wpow); },
+               [](const SpecularConfig& c) {
+                 SpecularCost k;
+                 k.multipliers = WpowUnit::multipliers(c.wpow);
+                 const double b = c.wpow.base_bits + 1;
+                 k.area = kFullAdderArea * k.multipliers * b * b /
+                          2.0;  // a squarer is about half a multiplier
+                 return k;
+               },
+               [](const SpecularConfig& c) {
+                 std::ostringstream os;
+                 os << " m=" << c.wpow.max_m << " B=" << c.wpow.base_bits
+                    << timing_tag(c.wpow.timing) << fit_tag(c.wpow.fit);
+                 return os.str();
+               },
+               [](const SpecularConfig& c, int series_wl) {
+                 // B x B squarers, one (iterative) or log2(m) (pipelined), plus the base stage.
+                 const double b = c.wpow.base_bits;
+                 const double k = WpowUnit::stages(c.wpow);
+                 return b * b * (c.wpow.timing == UnitTiming::kIterative ? 1.0 : k) + b * series_wl;
+               }});
   return t;
 }
 
@@ -222,7 +247,8 @@ int SpecularField::parse(const std::string& s, const std::string& what) const {
     used = 0;
   }
   if (used == 0 || used != s.size() || v < -1000000 || v > 1000000) {
-    throw std::invalid_argument(what + ": expected an integer (" + expected() + "), got '" + s + "'");
+    throw std::invalid_argument(what + ": expected an integer (" + expected() + "), got '" + s +
+                                "'");
   }
   return static_cast<int>(v);
 }
@@ -236,7 +262,8 @@ const SpecularUnitDescriptor& specular_unit(SpecularUnitKind kind) {
   for (const auto& u : specular_units()) {
     if (u.kind == kind) return u;
   }
-  throw std::logic_error("specular_unit: SpecularUnitKind " + std::to_string(static_cast<int>(kind)) +
+  throw std::logic_error("specular_unit: SpecularUnitKind " +
+                         std::to_string(static_cast<int>(kind)) +
                          " has no row in model/specular_units.cpp");
 }
 
@@ -265,7 +292,8 @@ SpecularConfig specular_config_of_parameters(const std::map<std::string, int64_t
     s.kind = u.kind;
     for (const SpecularField& f : u.fields) {
       if (*f.verilog == '\0') continue;
-      if (const auto it = params.find(f.verilog); it != params.end()) f.set(s, static_cast<int>(it->second));
+      if (const auto it = params.find(f.verilog); it != params.end())
+        f.set(s, static_cast<int>(it->second));
     }
     return s;
   }

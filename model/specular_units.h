@@ -65,10 +65,10 @@ constexpr double kFullAdderArea = 8.0;
 
 struct SpecularUnitDescriptor {
   SpecularUnitKind kind;
-  const char* name;       // to_string(kind): JSON "kind", --specular, spec-error --units
-  int verilog_kind;       // shade_unit's SPECULAR_KIND code
-  bool hardware;          // false for the ideal yardstick (no RTL, no cost)
-  int series_per_light;   // specular series per light the unit consumes
+  const char* name;      // to_string(kind): JSON "kind", --specular, spec-error --units
+  int verilog_kind;      // shade_unit's SPECULAR_KIND code
+  bool hardware;         // false for the ideal yardstick (no RTL, no cost)
+  int series_per_light;  // specular series per light the unit consumes
   std::vector<SpecularField> fields;
   int (*latency)(const SpecularConfig&);   // slot latency in cycles
   int (*interval)(const SpecularConfig&);  // cycles per pixel

@@ -7,14 +7,18 @@ namespace shadesim {
 
 void UnitConfig::validate() const {
   auto fail = [](const std::string& msg) { throw std::invalid_argument("unit config: " + msg); };
-  if (channels != 1 && channels != 3) fail("channels must be 1 or 3, got " + std::to_string(channels));
+  if (channels != 1 && channels != 3)
+    fail("channels must be 1 or 3, got " + std::to_string(channels));
   if (lights < 1 || lights > 8) fail("lights must be 1..8, got " + std::to_string(lights));
   if (xy_bits < 4 || xy_bits > 15) fail("xy_bits must be 4..15, got " + std::to_string(xy_bits));
-  if (out_bits < 1 || out_bits > 16) fail("out_bits must be 1..16, got " + std::to_string(out_bits));
+  if (out_bits < 1 || out_bits > 16)
+    fail("out_bits must be 1..16, got " + std::to_string(out_bits));
   if (port_words != 1 && port_words != 2 && port_words != 4 && port_words != 8)
     fail("port_words must be 1, 2, 4 or 8, got " + std::to_string(port_words));
-  if (tri_queue < 1 || tri_queue > 8) fail("tri_queue must be 1..8, got " + std::to_string(tri_queue));
-  if (lanes != 1 && lanes != 2 && lanes != 4) fail("lanes must be 1, 2 or 4, got " + std::to_string(lanes));
+  if (tri_queue < 1 || tri_queue > 8)
+    fail("tri_queue must be 1..8, got " + std::to_string(tri_queue));
+  if (lanes != 1 && lanes != 2 && lanes != 4)
+    fail("lanes must be 1, 2 or 4, got " + std::to_string(lanes));
   if (material_buffers != 1 && material_buffers != 2)
     fail("material_buffers must be 1 or 2, got " + std::to_string(material_buffers));
   coef.validate("unit config: coef");
@@ -58,8 +62,7 @@ FixedFormat UnitConfig::coef_term(int t) const {
 
 std::string UnitConfig::to_string() const {
   std::ostringstream os;
-  os << (channels == 1 ? "grey" : "rgb") << '/' << lights << "L coef=" << coef.to_string()
-     ;
+  os << (channels == 1 ? "grey" : "rgb") << '/' << lights << "L coef=" << coef.to_string();
   if (!coef_term_iwl.empty()) {
     os << " terms=";
     for (size_t t = 0; t < coef_term_iwl.size(); ++t) os << (t ? "," : "") << coef_term_iwl[t];

@@ -104,7 +104,9 @@ struct Fnv1a {
 };
 
 std::string find_program(const std::string& name, const std::string& package) {
-  auto executable = [](const fs::path& p) { return ::access(p.c_str(), X_OK) == 0 && fs::is_regular_file(p); };
+  auto executable = [](const fs::path& p) {
+    return ::access(p.c_str(), X_OK) == 0 && fs::is_regular_file(p);
+  };
   if (name.find('/') != std::string::npos) {
     if (executable(name)) return name;
   } else if (const char* path = std::getenv("PATH")) {
@@ -116,10 +118,9 @@ std::string find_program(const std::string& name, const std::string& package) {
       if (executable(p)) return p.string();
     }
   }
-  throw MissingToolError("'" + name + "' not found" +
-                         (name.find('/') != std::string::npos ? "" : " on PATH") +
-                         ": shadesim area needs it (Debian package " + package +
-                         "; scripts/setup installs it)");
+  throw MissingToolError(
+      "'" + name + "' not found" + (name.find('/') != std::string::npos ? "" : " on PATH") +
+      ": shadesim area needs it (Debian package " + package + "; scripts/setup installs it)");
 }
 
 std::string first_line(const std::string& s) {
@@ -152,7 +153,8 @@ void run_tool(const std::vector<std::string>& argv, const fs::path& log, const s
   while (job.wait_for(std::chrono::seconds(1)) != std::future_status::ready) {
     ++ticks;
     if (progress && (terminal || ticks % 30 == 0)) {
-      const auto s = std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now() - t0);
+      const auto s =
+          std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now() - t0);
       *progress << (terminal ? "\r" : "") << "[area] " << label << " ... " << s.count() << " s"
                 << (terminal ? " " : "\n") << std::flush;
     }
@@ -160,7 +162,8 @@ void run_tool(const std::vector<std::string>& argv, const fs::path& log, const s
   const ProcessResult r = job.get();
   if (progress) {
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    *progress << (terminal ? "\r" : "") << "[area] " << label << " done in " << std::fixed << std::setprecision(1) << s << " s\n"
+    *progress << (terminal ? "\r" : "") << "[area] " << label << " done in " << std::fixed
+              << std::setprecision(1) << s << " s\n"
               << std::flush;
   }
   if (r.exit_code != 0) {
@@ -171,15 +174,16 @@ void run_tool(const std::vector<std::string>& argv, const fs::path& log, const s
       tail = text.substr(from);
     } catch (const std::exception&) {
     }
-    throw std::runtime_error(label + " failed (exit " + std::to_string(r.exit_code) + "); log " + log.string() +
-                             (tail.empty() ? "" : ":\n..." + tail));
+    throw std::runtime_error(label + " failed (exit " + std::to_string(r.exit_code) + "); log " +
+                             log.string() + (tail.empty() ? "" : ":\n..." + tail));
   }
 }
 
-std::string yosys_script(const std::vector<fs::path>& files, const std::string& chparam, const char* flow,
-                         const fs::path& work) {
+std::string yosys_script(const std::vector<fs::path>& files, const std::string& chparam,
+                         const char* flow, const fs::path& work) {
   std::string body = flow;
-  for (size_t at; (at = body.find("@WORK@")) != std::string::npos;) body.replace(at, 6, work.string());
+  for (size_t at; (at = body.find("@WORK@")) != std::string::npos;)
+    body.replace(at, 6, work.string());
   std::string s = "read_verilog -sv";
   for (const auto& f : files) s += " " + f.string();
   s += "\n";
@@ -215,7 +219,8 @@ std::map<std::string, StatSection> read_stat_text(const fs::path& p) {
   static const std::regex header(R"(^=== (.+) ===\s*$)");
   static const std::regex cells(R"(^\s+Number of cells:\s+([0-9]+)\s*$)");
   static const std::regex type_line(R"(^\s+(\S+)\s+([0-9]+)\s*$)");
-  static const std::regex transistors(R"(^\s+Estimated number of transistors:\s+([0-9]+)(\+?)\s*$)");
+  static const std::regex transistors(
+      R"(^\s+Estimated number of transistors:\s+([0-9]+)(\+?)\s*$)");
   std::smatch m;
   for (std::string line; std::getline(is, line);) {
     if (std::regex_match(line, m, header)) {
@@ -257,12 +262,15 @@ int64_t flip_flops_of(const StatSection& s) {
 
 // Per-module rows from the kept-hierarchy stat: each module with its submodules folded in,
 // instance counts from the top down, then the top's own glue.
-void read_breakdown(const std::map<std::string, StatSection>& stat, const fs::path& p, AreaReport& r) {
+void read_breakdown(const std::map<std::string, StatSection>& stat, const fs::path& p,
+                    AreaReport& r) {
   struct Totals {
     int64_t cells = 0, transistors = 0, ffs = 0;
   };
   std::map<std::string, Totals> memo;
-  auto is_module = [&](const std::string& type) { return type != "design hierarchy" && stat.count(type) > 0; };
+  auto is_module = [&](const std::string& type) {
+    return type != "design hierarchy" && stat.count(type) > 0;
+  };
   std::function<Totals(const std::string&)> total = [&](const std::string& name) -> Totals {
     if (auto f = memo.find(name); f != memo.end()) return f->second;
     const StatSection& sec = stat.at(name);
@@ -283,23 +291,30 @@ void read_breakdown(const std::map<std::string, StatSection>& stat, const fs::pa
     if (!is_module(type)) continue;
     const Totals sub = total(type);
     glue_cells -= n;
-    r.modules.push_back({base_module_name(type), static_cast<int>(n), sub.cells, sub.transistors, sub.ffs});
+    r.modules.push_back(
+        {base_module_name(type), static_cast<int>(n), sub.cells, sub.transistors, sub.ffs});
   }
   r.modules.push_back({"shade_unit", 1, glue_cells, top.transistors, flip_flops_of(top)});
   r.breakdown_cells = 0;
   for (const auto& m : r.modules) r.breakdown_cells += m.cells();
-  if (auto h = stat.find("design hierarchy"); h != stat.end() && h->second.cells != r.breakdown_cells) {
-    throw std::runtime_error(p.string() + ": per-module cells sum to " + std::to_string(r.breakdown_cells) +
-                             ", Yosys's design total is " + std::to_string(h->second.cells));
+  if (auto h = stat.find("design hierarchy");
+      h != stat.end() && h->second.cells != r.breakdown_cells) {
+    throw std::runtime_error(p.string() + ": per-module cells sum to " +
+                             std::to_string(r.breakdown_cells) + ", Yosys's design total is " +
+                             std::to_string(h->second.cells));
   }
 }
 
 void read_ice40_stat(const StatSection& s, Ice40Area& a) {
   for (const auto& [type, n] : s.by_type) {
-    if (type == "SB_LUT4") a.lut4 += n;
-    else if (type.rfind("SB_DFF", 0) == 0) a.dff += n;
-    else if (type == "SB_CARRY") a.carry += n;
-    else if (type.rfind("SB_RAM40_4K", 0) == 0) a.ram4k += n;
+    if (type == "SB_LUT4")
+      a.lut4 += n;
+    else if (type.rfind("SB_DFF", 0) == 0)
+      a.dff += n;
+    else if (type == "SB_CARRY")
+      a.carry += n;
+    else if (type.rfind("SB_RAM40_4K", 0) == 0)
+      a.ram4k += n;
   }
 }
 
@@ -311,16 +326,18 @@ void check_series(AreaReport& r) {
   std::map<std::string, int64_t> p;
   for (const auto& v : r.parameters) p[v.name] = v.value;
   const int64_t kind = p.at("SPECULAR_KIND");
-  const int64_t expected = p.at("CHANNELS") * p.at("LIGHTS") + (kind == 0 ? 0 : p.at("LIGHTS") * (kind == 2 ? 2 : 1));
+  const int64_t expected =
+      p.at("CHANNELS") * p.at("LIGHTS") + (kind == 0 ? 0 : p.at("LIGHTS") * (kind == 2 ? 2 : 1));
   int64_t kept = 0;
   for (const auto& m : r.modules) {
     if (m.module == "span_setup") kept += m.instances;
   }
   r.warnings.clear();
   if (kept < expected) {
-    r.warnings.push_back("Yosys kept " + std::to_string(kept) + " of the " + std::to_string(expected) +
-                         " series (span_setup instances) this unit uses: the others did not reach an output "
-                         "in Yosys's elaboration, so these figures are understated");
+    r.warnings.push_back(
+        "Yosys kept " + std::to_string(kept) + " of the " + std::to_string(expected) +
+        " series (span_setup instances) this unit uses: the others did not reach an output "
+        "in Yosys's elaboration, so these figures are understated");
   }
 }
 
@@ -338,9 +355,10 @@ void check_fit(Ice40Area& a) {
   if (need > Ice40Area::kHx8kLogicCells) {
     a.fits_hx8k = false;
     os << "does not fit an iCE40 HX8K: needs at least " << thousands(need) << " logic cells ("
-       << (a.lut4 >= a.dff ? "LUT4s" : "DFFs") << "), the HX8K has " << thousands(Ice40Area::kHx8kLogicCells)
-       << " (" << thousands(need - Ice40Area::kHx8kLogicCells) << " over, " << std::fixed << std::setprecision(2)
-       << static_cast<double>(need) / Ice40Area::kHx8kLogicCells << "x)";
+       << (a.lut4 >= a.dff ? "LUT4s" : "DFFs") << "), the HX8K has "
+       << thousands(Ice40Area::kHx8kLogicCells) << " ("
+       << thousands(need - Ice40Area::kHx8kLogicCells) << " over, " << std::fixed
+       << std::setprecision(2) << static_cast<double>(need) / Ice40Area::kHx8kLogicCells << "x)";
   } else if (a.ram4k > Ice40Area::kHx8kRam4k) {
     a.fits_hx8k = false;
     os << "does not fit an iCE40 HX8K: needs " << a.ram4k << " RAM40_4K blocks, the HX8K has "
@@ -357,7 +375,8 @@ void check_fit(Ice40Area& a) {
 std::optional<double> read_fmax(const std::string& log) {
   static const std::regex re(R"(Max frequency for clock[^:]*:\s*([0-9.]+)\s*MHz)");
   std::optional<double> f;
-  for (auto it = std::sregex_iterator(log.begin(), log.end(), re); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(log.begin(), log.end(), re); it != std::sregex_iterator();
+       ++it) {
     f = std::stod((*it)[1].str());
   }
   return f;
@@ -382,8 +401,8 @@ std::string area_report_to_json(const AreaReport& r) {
                        {"cells", m.cells()},
                        {"transistors", m.transistors()}});
   }
-  Json ice40 = {{"lut4", r.ice40.lut4},          {"dff", r.ice40.dff},
-                {"carry", r.ice40.carry},        {"ram4k", r.ice40.ram4k},
+  Json ice40 = {{"lut4", r.ice40.lut4},           {"dff", r.ice40.dff},
+                {"carry", r.ice40.carry},         {"ram4k", r.ice40.ram4k},
                 {"fits_hx8k", r.ice40.fits_hx8k}, {"fit_note", r.ice40.fit_note},
                 {"pnr_note", r.ice40.pnr_note}};
   ice40["fmax_mhz"] = r.ice40.fmax_mhz ? Json(*r.ice40.fmax_mhz) : Json(nullptr);
@@ -420,8 +439,8 @@ AreaReport area_report_from_json(const std::string& text, const std::string& sou
     r.flip_flops = j.at("flip_flops");
     r.breakdown_cells = j.at("breakdown_cells");
     for (const auto& m : j.at("modules")) {
-      r.modules.push_back({m.at("module"), m.at("instances"), m.at("cells_each"), m.at("transistors_each"),
-                           m.at("flip_flops_each")});
+      r.modules.push_back({m.at("module"), m.at("instances"), m.at("cells_each"),
+                           m.at("transistors_each"), m.at("flip_flops_each")});
     }
     const Json& a = j.at("ice40");
     r.ice40.lut4 = a.at("lut4");
@@ -447,10 +466,12 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
   const std::string chparam = yosys_chparam_args(r.parameters);
   const std::string yosys = find_program(o.yosys, "yosys");
   const std::string nextpnr = o.place_and_route ? find_program(o.nextpnr, "nextpnr-ice40") : "";
-  const std::vector<fs::path> files = rtl_sources(o.rtl_dir.empty() ? SHADESIM_SOURCE_DIR "/rtl" : o.rtl_dir);
+  const std::vector<fs::path> files =
+      rtl_sources(o.rtl_dir.empty() ? SHADESIM_SOURCE_DIR "/rtl" : o.rtl_dir);
 
   r.yosys_version = first_line(run_process({yosys, "-V"}, "").output);
-  if (o.place_and_route) r.nextpnr_version = first_line(run_process({nextpnr, "--version"}, "").output);
+  if (o.place_and_route)
+    r.nextpnr_version = first_line(run_process({nextpnr, "--version"}, "").output);
 
   // Cache key: everything the figures depend on. The file names are in the script text.
   auto key_for = [&](bool breakdown, bool pnr, const std::string& nextpnr_version) {
@@ -482,7 +503,8 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
     std::string np_version = r.nextpnr_version;
     if (!o.place_and_route) {
       try {
-        np_version = first_line(run_process({find_program(o.nextpnr, "nextpnr-ice40"), "--version"}, "").output);
+        np_version = first_line(
+            run_process({find_program(o.nextpnr, "nextpnr-ice40"), "--version"}, "").output);
       } catch (const MissingToolError&) {
         // no nextpnr: only entries without place and route can be wanted
       }
@@ -504,7 +526,8 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
   }
 
   // A fresh work folder; kept when a tool fails (its logs say why), removed on success.
-  const fs::path work_root = o.cache_dir.empty() ? fs::temp_directory_path() : fs::path(o.cache_dir);
+  const fs::path work_root =
+      o.cache_dir.empty() ? fs::temp_directory_path() : fs::path(o.cache_dir);
   std::string tmpl = (work_root / ("work-" + r.key + "-XXXXXX")).string();
   if (!::mkdtemp(tmpl.data())) throw std::runtime_error(tmpl + ": cannot create a work folder");
   const fs::path work = tmpl;
@@ -513,11 +536,12 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
   struct rusage before {};
   ::getrusage(RUSAGE_CHILDREN, &before);
   // The syntheses are independent: run them side by side.
-  auto run_yosys = [&](const std::string& name, const char* flow, const std::string& label, std::ostream* progress) {
+  auto run_yosys = [&](const std::string& name, const char* flow, const std::string& label,
+                       std::ostream* progress) {
     const fs::path script = work / (name + ".ys");
     write_atomically(script, yosys_script(files, chparam, flow, work));
-    run_tool({yosys, "-q", "-l", (work / (name + ".log")).string(), script.string()}, work / (name + ".out"),
-             label, progress);
+    run_tool({yosys, "-q", "-l", (work / (name + ".log")).string(), script.string()},
+             work / (name + ".out"), label, progress);
   };
   // One progress line for all of them: which are still running and for how long.
   struct Job {
@@ -534,21 +558,24 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
                   })});
   if (o.breakdown) {
     jobs.push_back({"per-module synthesis", std::async(std::launch::async, [&] {
-                      run_yosys("breakdown", kBreakdownScript, "yosys per-module synthesis", nullptr);
+                      run_yosys("breakdown", kBreakdownScript, "yosys per-module synthesis",
+                                nullptr);
                     })});
   }
   const bool terminal = o.progress == &std::cerr && ::isatty(STDERR_FILENO);
   for (int ticks = 0;; ++ticks) {
     std::string running;
     for (auto& j : jobs) {
-      if (!j.finished && j.done.wait_for(std::chrono::seconds(0)) == std::future_status::ready) j.finished = true;
+      if (!j.finished && j.done.wait_for(std::chrono::seconds(0)) == std::future_status::ready)
+        j.finished = true;
       if (!j.finished) running += (running.empty() ? "" : ", ") + j.label;
     }
     if (running.empty()) break;
     if (o.progress && ticks > 0 && (terminal || ticks % 30 == 0)) {
-      const auto el = std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now() - t0);
-      *o.progress << (terminal ? "\r" : "") << "[area] yosys: " << running << " ... " << el.count() << " s"
-                  << (terminal ? "   " : "\n") << std::flush;
+      const auto el =
+          std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now() - t0);
+      *o.progress << (terminal ? "\r" : "") << "[area] yosys: " << running << " ... " << el.count()
+                  << " s" << (terminal ? "   " : "\n") << std::flush;
     }
     std::this_thread::sleep_for(std::chrono::seconds(1));
   }
@@ -562,9 +589,9 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
   }
   if (o.progress) {
     const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    *o.progress << (terminal ? "\r" : "") << "[area] yosys: " << (error ? "failed" : "done") << " after " << std::fixed
-                << std::setprecision(1) << el << " s" << (terminal ? "                                        " : "")
-                << "\n";
+    *o.progress << (terminal ? "\r" : "") << "[area] yosys: " << (error ? "failed" : "done")
+                << " after " << std::fixed << std::setprecision(1) << el << " s"
+                << (terminal ? "                                        " : "") << "\n";
   }
   if (error) std::rethrow_exception(error);
 
@@ -597,8 +624,8 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
     std::vector<std::string> argv = {nextpnr};
     std::istringstream args(kPnrArgs);
     for (std::string a; args >> a;) argv.push_back(a);
-    argv.insert(argv.end(), {"--json", (work / "ice40.json").string(), "--asc", (work / "ice40.asc").string(),
-                             "-l", (work / "pnr.log").string()});
+    argv.insert(argv.end(), {"--json", (work / "ice40.json").string(), "--asc",
+                             (work / "ice40.asc").string(), "-l", (work / "pnr.log").string()});
     try {
       run_tool(argv, work / "pnr.out", "nextpnr-ice40 place and route (HX8K)", o.progress);
       r.ice40.fmax_mhz = read_fmax(read_text(work / "pnr.log"));
@@ -607,7 +634,8 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
       // A failed placement (no room once packed, too many I/O) is a finding about the design.
       keep_work = true;
       r.ice40.fits_hx8k = false;
-      r.ice40.fit_note = "does not fit an iCE40 HX8K: nextpnr-ice40 failed (log " + (work / "pnr.log").string() + ")";
+      r.ice40.fit_note = "does not fit an iCE40 HX8K: nextpnr-ice40 failed (log " +
+                         (work / "pnr.log").string() + ")";
       r.ice40.pnr_note = "no Fmax: " + first_line(e.what());
     }
   }
@@ -645,7 +673,8 @@ ParamMap param_map(const std::vector<VerilogParameter>& ps) {
 
 int64_t get(const ParamMap& p, const char* name) {
   const auto it = p.find(name);
-  if (it == p.end()) throw std::runtime_error(std::string("area estimate: parameter ") + name + " missing");
+  if (it == p.end())
+    throw std::runtime_error(std::string("area estimate: parameter ") + name + " missing");
   return it->second;
 }
 
@@ -670,10 +699,14 @@ int64_t instances_of(const std::string& module, const ParamMap& p) {
 
 // Structural size of one instance: what its cells grow with (the RTL's widths, see area.h).
 double size_of(const std::string& module, const ParamMap& p) {
-  const double c = static_cast<double>(get(p, "COEF_WL")), ci = static_cast<double>(get(p, "COEF_IWL"));
-  const double s = static_cast<double>(get(p, "SERIES_WL")), si = static_cast<double>(get(p, "SERIES_IWL"));
-  const double ch = static_cast<double>(get(p, "CHANNELS")), l = static_cast<double>(get(p, "LIGHTS"));
-  const double so = static_cast<double>(get(p, "SPECULAR_OUT_WL")), sc = static_cast<double>(get(p, "SPEC_COLOUR_WL"));
+  const double c = static_cast<double>(get(p, "COEF_WL")),
+               ci = static_cast<double>(get(p, "COEF_IWL"));
+  const double s = static_cast<double>(get(p, "SERIES_WL")),
+               si = static_cast<double>(get(p, "SERIES_IWL"));
+  const double ch = static_cast<double>(get(p, "CHANNELS")),
+               l = static_cast<double>(get(p, "LIGHTS"));
+  const double so = static_cast<double>(get(p, "SPECULAR_OUT_WL")),
+               sc = static_cast<double>(get(p, "SPEC_COLOUR_WL"));
   if (module == "span_setup") {
     // Seven coefficient x offset products and three offset squares, each exact at its full
     // width with sign-extended operands; with a wrapping series only the low w bits (up to the
@@ -706,8 +739,8 @@ double size_of(const std::string& module, const ParamMap& p) {
 }  // namespace
 
 std::string AreaEstimate::label() const {
-  return "estimate (scaled from Yosys run " + anchor_key + ", " + std::to_string(differing_parameters) +
-         " parameter(s) differ)";
+  return "estimate (scaled from Yosys run " + anchor_key + ", " +
+         std::to_string(differing_parameters) + " parameter(s) differ)";
 }
 
 AreaEstimate estimate_area(const UnitConfig& unit, const std::vector<AreaReport>& anchors) {
@@ -716,7 +749,8 @@ AreaEstimate estimate_area(const UnitConfig& unit, const std::vector<AreaReport>
   int best_diff = 0;
   for (const auto& a : anchors) {
     // Only complete measurements: a breakdown, and no series lost by Yosys (check_series).
-    if (a.modules.empty() || a.cells == 0 || a.breakdown_cells == 0 || !a.warnings.empty()) continue;
+    if (a.modules.empty() || a.cells == 0 || a.breakdown_cells == 0 || !a.warnings.empty())
+      continue;
     const ParamMap ap = param_map(a.parameters);
     if (get(ap, "SPECULAR_KIND") != get(target, "SPECULAR_KIND")) continue;
     int diff = 0;
@@ -730,21 +764,25 @@ AreaEstimate estimate_area(const UnitConfig& unit, const std::vector<AreaReport>
     }
   }
   if (!best) {
-    throw std::runtime_error("area estimate: no measured anchor with this specular unit (" +
-                             std::string(to_string(unit.specular.kind)) +
-                             ") and a per-module breakdown; run `shadesim area --config` on one first");
+    throw std::runtime_error(
+        "area estimate: no measured anchor with this specular unit (" +
+        std::string(to_string(unit.specular.kind)) +
+        ") and a per-module breakdown; run `shadesim area --config` on one first");
   }
   const ParamMap ap = param_map(best->parameters);
   double kept = 0;
   for (const auto& m : best->modules) {
     const double anchor_size = size_of(m.module, ap);
     const double ratio = anchor_size > 0 ? size_of(m.module, target) / anchor_size : 0.0;
-    kept += static_cast<double>(m.cells_each) * ratio * static_cast<double>(instances_of(m.module, target));
+    kept += static_cast<double>(m.cells_each) * ratio *
+            static_cast<double>(instances_of(m.module, target));
   }
-  const double flat = kept * static_cast<double>(best->cells) / static_cast<double>(best->breakdown_cells);
+  const double flat =
+      kept * static_cast<double>(best->cells) / static_cast<double>(best->breakdown_cells);
   AreaEstimate e;
   e.cells = static_cast<int64_t>(std::llround(flat));
-  e.lut4 = static_cast<int64_t>(std::llround(flat * static_cast<double>(best->ice40.lut4) / static_cast<double>(best->cells)));
+  e.lut4 = static_cast<int64_t>(std::llround(flat * static_cast<double>(best->ice40.lut4) /
+                                             static_cast<double>(best->cells)));
   e.anchor_key = best->key;
   e.differing_parameters = best_diff;
   return e;

@@ -4,8 +4,9 @@
 // The parameters come only from shade_unit_parameters() (model/rtl_parameters.h), passed to
 // Yosys with yosys_chparam_args(). Three flows run on the same parameters:
 //   flat      read all rtl/*.sv (sorted by name: ABC's result depends on the netlist's order, by
-//             about 0.5 % in cells, so the order is fixed); chparam; synth -flatten; abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX;
-//             stat -tech cmos: the unit's generic cells, transistor estimate, flip-flops.
+//             about 0.5 % in cells, so the order is fixed); chparam; synth -flatten; abc -g
+//             AND,NAND,OR,NOR,XOR,XNOR,MUX; stat -tech cmos: the unit's generic cells, transistor
+//             estimate, flip-flops.
 //   breakdown the same with the datapath modules kept (keep_hierarchy): per-module cells.
 //   ice40     synth_ice40 (flattened): SB_LUT4, SB_DFF*, SB_CARRY, SB_RAM40_4K counts.
 //   pnr       nextpnr-ice40 --hx8k on the synth_ice40 netlist: Fmax of clk_i. Skipped (and said
@@ -54,9 +55,9 @@ struct AreaOptions {
 
 // One module of the hierarchical generic synthesis.
 struct ModuleArea {
-  std::string module;        // RTL module name (span_setup, series_engine, ..., shade_unit)
-  int instances = 0;         // instances in the design
-  int64_t cells_each = 0;    // generic cells of one instance, its submodules included
+  std::string module;            // RTL module name (span_setup, series_engine, ..., shade_unit)
+  int instances = 0;             // instances in the design
+  int64_t cells_each = 0;        // generic cells of one instance, its submodules included
   int64_t transistors_each = 0;  // stat -tech cmos estimate of one instance
   int64_t flip_flops_each = 0;
   int64_t cells() const { return cells_each * instances; }
@@ -67,10 +68,10 @@ struct Ice40Area {
   int64_t lut4 = 0, dff = 0, carry = 0, ram4k = 0;
   static constexpr int64_t kHx8kLogicCells = 7680;
   static constexpr int64_t kHx8kRam4k = 32;
-  bool fits_hx8k = false;              // false: see fit_note
-  std::string fit_note;                // plain words: fits, or by how much it does not
-  std::optional<double> fmax_mhz;      // nextpnr-ice40's post-route Fmax of clk_i
-  std::string pnr_note;                // why there is no Fmax (no fit, --no-pnr, nextpnr failed)
+  bool fits_hx8k = false;          // false: see fit_note
+  std::string fit_note;            // plain words: fits, or by how much it does not
+  std::optional<double> fmax_mhz;  // nextpnr-ice40's post-route Fmax of clk_i
+  std::string pnr_note;            // why there is no Fmax (no fit, --no-pnr, nextpnr failed)
 };
 
 struct AreaReport {
@@ -111,9 +112,9 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& options);
 // the cells. Throws std::runtime_error when no anchor has the
 // unit's specular kind (run unit_area on one such configuration first).
 struct AreaEstimate {
-  int64_t cells = 0;         // estimated flat generic cells
-  int64_t lut4 = 0;          // estimated iCE40 LUT4s
-  std::string anchor_key;    // the measured report it was scaled from
+  int64_t cells = 0;       // estimated flat generic cells
+  int64_t lut4 = 0;        // estimated iCE40 LUT4s
+  std::string anchor_key;  // the measured report it was scaled from
   int differing_parameters = 0;
   std::string label() const;  // "estimate (scaled from Yosys run KEY, N parameters differ)"
 };

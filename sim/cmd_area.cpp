@@ -10,8 +10,8 @@
 #include <stdexcept>
 
 #include "host/frame.h"
-#include "model/command_stream.h"
 #include "host/scene_config.h"
+#include "model/command_stream.h"
 #include "model/unit_config_file.h"
 #include "sim/area.h"
 #include "sim/commands.h"
@@ -47,32 +47,37 @@ std::string grouped(int64_t v) {
   return (v < 0 ? "-" : "") + s;
 }
 
-void print_report(std::ostream& os, const std::string& source, const UnitConfig& unit, const AreaReport& r) {
+void print_report(std::ostream& os, const std::string& source, const UnitConfig& unit,
+                  const AreaReport& r) {
   os << "unit         " << unit.to_string() << "  (from " << source << ")\n"
-     << "yosys        " << r.yosys_version << (r.from_cache ? "  [cached " + r.key + "]" : "  [key " + r.key + "]")
-     << "\n\n"
+     << "yosys        " << r.yosys_version
+     << (r.from_cache ? "  [cached " + r.key + "]" : "  [key " + r.key + "]") << "\n\n"
      << "generic synthesis (synth -flatten; abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX; stat -tech cmos)\n"
-     << "  cells        " << std::setw(10) << grouped(r.cells) << "   2-input gates, MUXes and flip-flops\n"
-     << "  transistors  " << std::setw(10) << grouped(r.transistors) << "   CMOS estimate (stat -tech cmos)"
-     << (r.transistors_partial ? "; flip-flops not included (Yosys has no CMOS cost for them)" : "") << "\n"
+     << "  cells        " << std::setw(10) << grouped(r.cells)
+     << "   2-input gates, MUXes and flip-flops\n"
+     << "  transistors  " << std::setw(10) << grouped(r.transistors)
+     << "   CMOS estimate (stat -tech cmos)"
+     << (r.transistors_partial ? "; flip-flops not included (Yosys has no CMOS cost for them)" : "")
+     << "\n"
      << "  flip-flops   " << std::setw(10) << grouped(r.flip_flops) << "\n\n";
   if (!r.modules.empty()) {
     os << "where the area goes (same flow, datapath modules kept: " << grouped(r.breakdown_cells)
        << " cells; more than flat, as\n"
        << "Yosys cannot drop logic across a kept boundary; each row includes its submodules)\n"
-       << "  " << std::left << std::setw(16) << "module" << std::right << std::setw(5) << "inst" << std::setw(11)
-       << "cells each" << std::setw(11) << "cells" << std::setw(8) << "share" << std::setw(13) << "transistors"
-       << std::setw(8) << "FFs" << '\n';
+       << "  " << std::left << std::setw(16) << "module" << std::right << std::setw(5) << "inst"
+       << std::setw(11) << "cells each" << std::setw(11) << "cells" << std::setw(8) << "share"
+       << std::setw(13) << "transistors" << std::setw(8) << "FFs" << '\n';
   }
   for (const auto& m : r.modules) {
-    const double pct = r.breakdown_cells
-                           ? 100.0 * static_cast<double>(m.cells()) / static_cast<double>(r.breakdown_cells)
-                           : 0.0;
+    const double pct = r.breakdown_cells ? 100.0 * static_cast<double>(m.cells()) /
+                                               static_cast<double>(r.breakdown_cells)
+                                         : 0.0;
     const std::string name = m.module == "shade_unit" ? "shade_unit glue" : m.module;
-    os << "  " << std::left << std::setw(16) << name << std::right << std::setw(5) << m.instances << std::setw(11)
-       << grouped(m.cells_each) << std::setw(11) << grouped(m.cells()) << std::setw(7) << std::fixed
-       << std::setprecision(1) << pct << "%" << std::setw(13) << grouped(m.transistors()) << std::setw(8)
-       << grouped(m.flip_flops_each * m.instances) << '\n';
+    os << "  " << std::left << std::setw(16) << name << std::right << std::setw(5) << m.instances
+       << std::setw(11) << grouped(m.cells_each) << std::setw(11) << grouped(m.cells())
+       << std::setw(7) << std::fixed << std::setprecision(1) << pct << "%" << std::setw(13)
+       << grouped(m.transistors()) << std::setw(8) << grouped(m.flip_flops_each * m.instances)
+       << '\n';
   }
   os << "\niCE40 (synth_ice40)\n"
      << "  LUT4         " << std::setw(10) << grouped(r.ice40.lut4) << '\n'
@@ -88,7 +93,8 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
   }
   for (const auto& w : r.warnings) os << "\nWARNING      " << w << '\n';
   os << "\ntime         " << std::setprecision(1) << r.seconds << " s wall, " << r.cpu_seconds
-     << " s CPU of Yosys and nextpnr" << (r.from_cache ? " when measured (this run: a cache hit)" : "") << '\n';
+     << " s CPU of Yosys and nextpnr"
+     << (r.from_cache ? " when measured (this run: a cache hit)" : "") << '\n';
 }
 
 // The fast estimate (sim/area.h) of this unit from the OTHER measured units in the cache,
@@ -99,7 +105,8 @@ void print_estimate_check(std::ostream& os, const UnitConfig& unit, const AreaRe
   for (auto& a : load_area_reports(cache_dir)) {
     bool same = a.parameters.size() == measured.parameters.size();
     for (size_t i = 0; same && i < a.parameters.size(); ++i) {
-      same = a.parameters[i].name == measured.parameters[i].name && a.parameters[i].value == measured.parameters[i].value;
+      same = a.parameters[i].name == measured.parameters[i].name &&
+             a.parameters[i].value == measured.parameters[i].value;
     }
     if (!same) others.push_back(std::move(a));
   }
@@ -110,7 +117,8 @@ void print_estimate_check(std::ostream& os, const UnitConfig& unit, const AreaRe
                                             static_cast<double>(measured.cells)
                                       : 0.0;
     os << grouped(e.cells) << " cells, " << grouped(e.lut4) << " LUT4: " << e.label() << "; "
-       << std::showpos << std::setprecision(1) << err << std::noshowpos << " % against this measurement\n";
+       << std::showpos << std::setprecision(1) << err << std::noshowpos
+       << " % against this measurement\n";
   } catch (const std::exception& ex) {
     os << "- (" << ex.what() << ")\n";
   }
@@ -149,29 +157,37 @@ void register_area(CLI::App& app, int& exit_code) {
       "  transistors  Yosys's CMOS estimate of those cells (stat -tech cmos; flip-flops have no\n"
       "               CMOS cost in Yosys and are not included)\n"
       "  flip-flops   the flip-flops among them\n"
-      "  per module   cells per instance of span_setup, series_engine, specular_unit, pixel_combine\n"
+      "  per module   cells per instance of span_setup, series_engine, specular_unit, "
+      "pixel_combine\n"
       "               and shade_unit's own glue (decoder, registers, control), from the same flow\n"
-      "               with those modules kept: read the shares (the kept total exceeds the flat one)\n"
+      "               with those modules kept: read the shares (the kept total exceeds the flat "
+      "one)\n"
       "  iCE40        SB_LUT4 / SB_DFF* / SB_CARRY / SB_RAM40_4K counts from synth_ice40, whether\n"
-      "               that fits an HX8K (7,680 logic cells), and where it does, Fmax of clk_i from\n"
+      "               that fits an HX8K (7,680 logic cells), and where it does, Fmax of clk_i "
+      "from\n"
       "               nextpnr-ice40 place and route\n"
       "  estimate     the fast estimate (what explore shows for unsynthesised width points): this\n"
-      "               unit scaled from the nearest OTHER measured unit in the cache, and its error\n"
+      "               unit scaled from the nearest OTHER measured unit in the cache, and its "
+      "error\n"
       "               against this measurement\n"
-      "Results are cached per configuration (key: parameters, RTL sources, tool versions, scripts).\n"
+      "Results are cached per configuration (key: parameters, RTL sources, tool versions, "
+      "scripts).\n"
       "A cold run takes minutes (several Yosys runs side by side); a cache hit is instant.");
   auto* config = sub->add_option("--config", o->config_path,
                                  "unit configuration JSON (the command stream header's format)");
-  auto* scene = sub->add_option("scene", o->scene, "scene JSON file: measure the unit it is shaded on")
-                    ->check(CLI::ExistingFile);
+  auto* scene =
+      sub->add_option("scene", o->scene, "scene JSON file: measure the unit it is shaded on")
+          ->check(CLI::ExistingFile);
   config->excludes(scene);
   scene->excludes(config);
   sub->add_option("--cache", o->cache_dir, "cache folder for results")->capture_default_str();
   sub->add_option("--json", o->json_path, "also write the report as JSON");
-  sub->add_flag("--no-pnr", o->no_pnr, "skip nextpnr-ice40 place and route (no Fmax; much quicker)");
+  sub->add_flag("--no-pnr", o->no_pnr,
+                "skip nextpnr-ice40 place and route (no Fmax; much quicker)");
   sub->callback([o, &exit_code]() {
     if (o->config_path.empty() && o->scene.empty()) {
-      throw std::invalid_argument("area: give --config FILE.json or a SCENE (see shadesim area --help)");
+      throw std::invalid_argument(
+          "area: give --config FILE.json or a SCENE (see shadesim area --help)");
     }
     exit_code = run_area(*o);
   });

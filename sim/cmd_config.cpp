@@ -43,9 +43,10 @@ SceneResult shade(const std::string& path, const UnitConfig& config, const Deriv
   fo.max_depth = d.max_depth;
   const PreparedFrame f = prepare_frame(path, fo);
   const auto pixels = ShadeUnit(f.config).run(f.encoded.stream);
-  const ReferenceImage ref = render_reference(f.setup.triangles, f.visibility, f.scene, f.config.channels);
-  const ErrorMap err = compare_to_reference(pixels, ref.values, f.visibility.owner, f.scene.width, f.scene.height,
-                                            f.config.channels, f.config.out_bits);
+  const ReferenceImage ref =
+      render_reference(f.setup.triangles, f.visibility, f.scene, f.config.channels);
+  const ErrorMap err = compare_to_reference(pixels, ref.values, f.visibility.owner, f.scene.width,
+                                            f.scene.height, f.config.channels, f.config.out_bits);
   return {path, err.stats};
 }
 
@@ -65,63 +66,78 @@ int run_config(const ConfigOptions& o) {
 
   std::cout << "unit         " << cfg.to_string() << "\n\n";
   size_t width = 0;
-  for (const auto& r : derived.reasons) width = std::max(width, r.field.size() + r.value.size() + 3);
+  for (const auto& r : derived.reasons)
+    width = std::max(width, r.field.size() + r.value.size() + 3);
   for (const auto& r : derived.reasons) {
-    std::cout << "  " << std::left << std::setw(static_cast<int>(width)) << (r.field + " = " + r.value) << "  "
-              << r.reason << '\n';
+    std::cout << "  " << std::left << std::setw(static_cast<int>(width))
+              << (r.field + " = " + r.value) << "  " << r.reason << '\n';
   }
-  std::cout << "\nerror on this unit (8-bit codes vs the reference rounded by the same rule; real = before "
+  std::cout << "\nerror on this unit (8-bit codes vs the reference rounded by the same rule; real "
+               "= before "
                "rounding the reference)\n";
   nlohmann::json scenes = nlohmann::json::array();
-  const bool substituted = load_scene(o.scenes.front()).materials.front().unit == SpecularUnitKind::kIdeal &&
-                           cfg.specular.kind != SpecularUnitKind::kIdeal;
+  const bool substituted =
+      load_scene(o.scenes.front()).materials.front().unit == SpecularUnitKind::kIdeal &&
+      cfg.specular.kind != SpecularUnitKind::kIdeal;
   for (const auto& path : o.scenes) {
     const SceneResult r = shade(path, cfg, d);
     const ErrorStats& e = r.error;
     std::cout << "  " << path << ": max " << e.max_code_lsb << " LSB, mean " << std::setprecision(4)
               << e.mean_code_lsb << " LSB, PSNR "
-              << (std::isinf(e.psnr_db) ? std::string("inf") : std::to_string(e.psnr_db).substr(0, 5) + " dB")
-              << ", max real " << std::setprecision(3) << e.max_real_lsb << " LSB, " << e.pixels_over_1lsb
-              << " of " << e.pixels << " pixels off by more than 1\n";
+              << (std::isinf(e.psnr_db) ? std::string("inf")
+                                        : std::to_string(e.psnr_db).substr(0, 5) + " dB")
+              << ", max real " << std::setprecision(3) << e.max_real_lsb << " LSB, "
+              << e.pixels_over_1lsb << " of " << e.pixels << " pixels off by more than 1\n";
     nlohmann::json yardstick = nullptr;
     if (substituted) {
       // The same widths with the exact-pow yardstick: what of the error is the substitute unit's.
       UnitConfig ideal = cfg;
       ideal.specular.kind = SpecularUnitKind::kIdeal;
       const ErrorStats y = shade(path, ideal, d).error;
-      std::cout << "    with ideal (exact pow, not hardware) on the same widths: max " << y.max_code_lsb
-                << " LSB, max real " << std::setprecision(3) << y.max_real_lsb << " LSB\n";
+      std::cout << "    with ideal (exact pow, not hardware) on the same widths: max "
+                << y.max_code_lsb << " LSB, max real " << std::setprecision(3) << y.max_real_lsb
+                << " LSB\n";
       if (y.max_code_lsb < e.max_code_lsb) {
         std::cout << "    the difference is the " << to_string(cfg.specular.kind)
-                  << " unit's own approximation of t^n, not the widths' (see shadesim spec-error, --fit)\n";
+                  << " unit's own approximation of t^n, not the widths' (see shadesim spec-error, "
+                     "--fit)\n";
       }
       yardstick = {{"max_code_lsb", y.max_code_lsb}, {"max_real_lsb", y.max_real_lsb}};
     }
-    scenes.push_back({{"scene", path},
-                      {"with_ideal_specular", yardstick},
-                      {"pixels", e.pixels},
-                      {"max_code_lsb", e.max_code_lsb},
-                      {"mean_code_lsb", e.mean_code_lsb},
-                      {"psnr_db", std::isinf(e.psnr_db) ? nlohmann::json(nullptr) : nlohmann::json(e.psnr_db)},
-                      {"max_real_lsb", e.max_real_lsb},
-                      {"pixels_over_1lsb", e.pixels_over_1lsb}});
+    scenes.push_back(
+        {{"scene", path},
+         {"with_ideal_specular", yardstick},
+         {"pixels", e.pixels},
+         {"max_code_lsb", e.max_code_lsb},
+         {"mean_code_lsb", e.mean_code_lsb},
+         {"psnr_db", std::isinf(e.psnr_db) ? nlohmann::json(nullptr) : nlohmann::json(e.psnr_db)},
+         {"max_real_lsb", e.max_real_lsb},
+         {"pixels_over_1lsb", e.pixels_over_1lsb}});
   }
   if (!o.json_path.empty()) {
     // The UnitConfig's own fields (load_unit_config and --config read them), and beside them the
     // "derivation" annotation, which the loader ignores.
     nlohmann::json j = nlohmann::json::parse(config_to_json(cfg));
     nlohmann::json reasons = nlohmann::json::array();
-    for (const auto& r : derived.reasons) reasons.push_back({{"field", r.field}, {"value", r.value}, {"reason", r.reason}});
+    for (const auto& r : derived.reasons)
+      reasons.push_back({{"field", r.field}, {"value", r.value}, {"reason", r.reason}});
     const ConfigMeasurements& m = derived.measured;
     j["derivation"] = {{"scenes", o.scenes},
                        {"reasons", reasons},
-                       {"measured", {{"budget_lsb", m.budget_lsb}, {"max_width", m.max_width},
-                                     {"max_height", m.max_height}, {"longest_span", m.longest_span},
-                                     {"max_offset", m.max_offset}, {"max_monomial_sum", m.max_monomial_sum},
-                                     {"series_min", m.series_min}, {"series_max", m.series_max},
-                                     {"difference_max", m.difference_max}, {"coef_max", m.coef_max},
-                                     {"gain", m.gain}, {"drift_share_lsb", m.drift_share_lsb},
-                                     {"coef_share_lsb", m.coef_share_lsb}}},
+                       {"measured",
+                        {{"budget_lsb", m.budget_lsb},
+                         {"max_width", m.max_width},
+                         {"max_height", m.max_height},
+                         {"longest_span", m.longest_span},
+                         {"max_offset", m.max_offset},
+                         {"max_monomial_sum", m.max_monomial_sum},
+                         {"series_min", m.series_min},
+                         {"series_max", m.series_max},
+                         {"difference_max", m.difference_max},
+                         {"coef_max", m.coef_max},
+                         {"gain", m.gain},
+                         {"drift_share_lsb", m.drift_share_lsb},
+                         {"coef_share_lsb", m.coef_share_lsb}}},
                        {"error", scenes}};
     std::ofstream os(o.json_path);
     if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
@@ -138,7 +154,8 @@ void register_config(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<ConfigOptions>();
   CLI::App* sub = app.add_subcommand(
       "config",
-      "Derive the smallest unit that shades the scene(s) within the error budget, print every field\n"
+      "Derive the smallest unit that shades the scene(s) within the error budget, print every "
+      "field\n"
       "with how it was derived (with the measured numbers), and the error the bit-accurate model\n"
       "reaches on each scene with it. --json writes a UnitConfig file for --config.\n"
       "Rules:\n"
@@ -150,11 +167,15 @@ void register_config(CLI::App& app, int& exit_code) {
       "  xy_bits      enough unsigned bits for the largest image width and height (at least 4)\n"
       "  series       integer bits: the fewest (>= 2) holding every series value at every pixel\n"
       "               (measured on a trial unit that loses nothing); fraction bits F: the proven\n"
-      "               drift bound over the longest span L, 2^-F (1 + L(L-1)/2) (half with rounding),\n"
+      "               drift bound over the longest span L, 2^-F (1 + L(L-1)/2) (half with "
+      "rounding),\n"
       "               times the gain G of the series into one output channel, <= budget/4 LSB\n"
-      "  coef         integer bits: wrapping, the series' (exact modulo 2^iwl: span setup multiplies\n"
-      "               coefficients only by integers); fraction bits: coefficient rounding 2^-(F+1)\n"
-      "               times the largest 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 of a pixel from its triangle's\n"
+      "  coef         integer bits: wrapping, the series' (exact modulo 2^iwl: span setup "
+      "multiplies\n"
+      "               coefficients only by integers); fraction bits: coefficient rounding "
+      "2^-(F+1)\n"
+      "               times the largest 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 of a pixel from its "
+      "triangle's\n"
       "               origin, times G, <= budget/4 LSB\n"
       "  coef_term_iwl  coefficient packing: T0 keeps coef's integer bits (it wraps); T1..T5 the\n"
       "               fewest saturating integer bits holding every measured |T_t| + 1 LSB\n"
@@ -165,22 +186,29 @@ void register_config(CLI::App& app, int& exit_code) {
       "  slope from t^n's <= n on [0, 1] through setup's pre-scaling. The Taylor error keeps the\n"
       "  whole budget in setup; the fixed-point error adds at most half of it.");
   sub->add_option("scenes", o->scenes, "scene JSON files")->required()->check(CLI::ExistingFile);
-  sub->add_option("--budget", o->budget_lsb,
-                  "error budget in output LSBs (default: the smallest error_budget_lsb of the scenes)")
+  sub->add_option(
+         "--budget", o->budget_lsb,
+         "error budget in output LSBs (default: the smallest error_budget_lsb of the scenes)")
       ->check(CLI::PositiveNumber);
-  sub->add_option("--out-bits", o->out_bits, "output bits per channel")->check(CLI::Range(1, 16))->capture_default_str();
+  sub->add_option("--out-bits", o->out_bits, "output bits per channel")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
   sub->add_option("--port-words", o->port_words,
                   "command port width of the unit (64-bit words per handshake; throughput only)")
-      ->check(CLI::IsMember({1, 2, 4, 8}))->capture_default_str();
-  sub->add_option("--tri-queue", o->tri_queue, "triangle queue depth of the unit (throughput only)")
-      ->check(CLI::Range(1, 8))->capture_default_str();
-  sub->add_option("--ideal-unit", o->ideal_unit,
-                  "hardware unit for scenes that name ideal: wpow (W_16 B=16 pipelined), lut or schlick\n"
-                  "(their default widths), or ideal to keep the yardstick (no RTL)")
+      ->check(CLI::IsMember({1, 2, 4, 8}))
       ->capture_default_str();
-  sub->add_option("--json", o->json_path,
-                  "write the UnitConfig JSON (loadable by --config) with a \"derivation\" block: reasons, "
-                  "measurements, errors");
+  sub->add_option("--tri-queue", o->tri_queue, "triangle queue depth of the unit (throughput only)")
+      ->check(CLI::Range(1, 8))
+      ->capture_default_str();
+  sub->add_option(
+         "--ideal-unit", o->ideal_unit,
+         "hardware unit for scenes that name ideal: wpow (W_16 B=16 pipelined), lut or schlick\n"
+         "(their default widths), or ideal to keep the yardstick (no RTL)")
+      ->capture_default_str();
+  sub->add_option(
+      "--json", o->json_path,
+      "write the UnitConfig JSON (loadable by --config) with a \"derivation\" block: reasons, "
+      "measurements, errors");
   sub->callback([o, &exit_code]() { exit_code = run_config(*o); });
 }
 

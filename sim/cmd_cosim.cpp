@@ -62,8 +62,10 @@ void list_named(bool json) {
       if (b.faults.lsb_row >= 0) faults["lsb_row"] = b.faults.lsb_row;
       if (b.faults.stall_row >= 0) faults["stall_row"] = b.faults.stall_row;
       if (b.faults.hang_row >= 0) faults["hang_row"] = b.faults.hang_row;
-      all.push_back({{"name", b.name}, {"unit", nlohmann::json::parse(config_to_json(b.unit))},
-                     {"faults", faults}, {"backends", b.backends}});
+      all.push_back({{"name", b.name},
+                     {"unit", nlohmann::json::parse(config_to_json(b.unit))},
+                     {"faults", faults},
+                     {"backends", b.backends}});
     }
     std::cout << all.dump(2) << '\n';
     return;
@@ -71,8 +73,8 @@ void list_named(bool json) {
   for (const auto& b : builds) {
     std::string backends;
     for (const auto& s : b.backends) backends += (backends.empty() ? "" : ",") + s;
-    std::cout << std::left << std::setw(18) << b.name << std::setw(13) << backends << b.unit.to_string()
-              << fault_text(b.faults) << '\n';
+    std::cout << std::left << std::setw(18) << b.name << std::setw(13) << backends
+              << b.unit.to_string() << fault_text(b.faults) << '\n';
   }
 }
 
@@ -89,11 +91,13 @@ int run_cosim(const CosimOptions& o, std::vector<std::string> passthrough) {
     build.name = "stream";
     build.unit = CommandStream::load(o.stream).config;  // CommandStreamError names the file
   } else {
-    throw std::invalid_argument("cosim: name the unit with --config NAME|FILE.json (see --list), or "
-                                "replay a --stream, whose header names it");
+    throw std::invalid_argument(
+        "cosim: name the unit with --config NAME|FILE.json (see --list), or "
+        "replay a --stream, whose header names it");
   }
   if (!o.waves.empty()) {
-    if (backend != CosimBackend::kCpp) throw std::invalid_argument("--waves: only the cpp backend traces");
+    if (backend != CosimBackend::kCpp)
+      throw std::invalid_argument("--waves: only the cpp backend traces");
     backend = CosimBackend::kCppTrace;
   }
   RtlBuildOptions bo;
@@ -101,7 +105,8 @@ int run_cosim(const CosimOptions& o, std::vector<std::string> passthrough) {
   bo.make_jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   bo.coverage = !o.coverage.empty();
   if (bo.coverage && backend == CosimBackend::kCppTrace) {
-    throw std::invalid_argument("--coverage and --waves: a traced build has no coverage; run them one at a time");
+    throw std::invalid_argument(
+        "--coverage and --waves: a traced build has no coverage; run them one at a time");
   }
   const RtlBuildResult r = ensure_rtl_build(build, backend, bo);
   const fs::path cache(o.cache.empty() ? default_rtl_cache_dir() : o.cache);
@@ -163,10 +168,12 @@ int run_rtl_build(const RtlBuildCliOptions& o) {
     }
   }
   if (o.print_key) {
-    for (const auto& it : items) std::cout << rtl_build_key(it.config, it.backend, o.coverage) << '\n';
+    for (const auto& it : items)
+      std::cout << rtl_build_key(it.config, it.backend, o.coverage) << '\n';
     return 0;
   }
-  const int workers = std::max(1, o.jobs > 0 ? o.jobs : static_cast<int>(std::thread::hardware_concurrency()));
+  const int workers =
+      std::max(1, o.jobs > 0 ? o.jobs : static_cast<int>(std::thread::hardware_concurrency()));
   std::atomic<size_t> next{0};
   std::mutex m;
   size_t done = 0;
@@ -184,8 +191,9 @@ int run_rtl_build(const RtlBuildCliOptions& o) {
         items[i].result = e.what();
       }
       std::lock_guard<std::mutex> lock(m);
-      std::cerr << "rtl build: [" << ++done << "/" << items.size() << "] " << items[i].config.name << " ("
-                << to_string(items[i].backend) << ") " << (items[i].failed ? "FAILED" : "ready") << std::endl;
+      std::cerr << "rtl build: [" << ++done << "/" << items.size() << "] " << items[i].config.name
+                << " (" << to_string(items[i].backend) << ") "
+                << (items[i].failed ? "FAILED" : "ready") << std::endl;
     }
   };
   std::vector<std::thread> pool;
@@ -193,8 +201,8 @@ int run_rtl_build(const RtlBuildCliOptions& o) {
   for (auto& t : pool) t.join();
   int failed = 0;
   for (const auto& it : items) {
-    std::cout << std::left << std::setw(17) << it.config.name << ' ' << std::setw(9) << to_string(it.backend)
-              << ' ' << (it.failed ? "FAILED: " : "") << it.result << '\n';
+    std::cout << std::left << std::setw(17) << it.config.name << ' ' << std::setw(9)
+              << to_string(it.backend) << ' ' << (it.failed ? "FAILED: " : "") << it.result << '\n';
     failed += it.failed ? 1 : 0;
   }
   return failed == 0 ? 0 : 1;
@@ -206,21 +214,28 @@ void register_cosim(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<CosimOptions>();
   CLI::App* sub = app.add_subcommand(
       "cosim",
-      "Co-simulate one unit configuration: the Verilated RTL against the bit-accurate model (every\n"
-      "pixel) and the cycle model (every scanline's cycle). The RTL is Verilated on demand into the\n"
+      "Co-simulate one unit configuration: the Verilated RTL against the bit-accurate model "
+      "(every\n"
+      "pixel) and the cycle model (every scanline's cycle). The RTL is Verilated on demand into "
+      "the\n"
       "build cache the first time a configuration is needed, and reused after that. Options not\n"
       "listed here go to the co-simulation itself: --scenario mixed|long|short|slow|maxbp|switch|\n"
-      "tiny|edge|all, --seed, --runs, --gap-pct, --max-gap, --stall-pct, --expect-mismatch KIND:Y,\n"
-      "--save-dir, --json FILE, --min-spec-pct, --rows (run with any unit and --help to see them).");
+      "tiny|edge|all, --seed, --runs, --gap-pct, --max-gap, --stall-pct, --expect-mismatch "
+      "KIND:Y,\n"
+      "--save-dir, --json FILE, --min-spec-pct, --rows (run with any unit and --help to see "
+      "them).");
   sub->add_option("--backend", o->backend, "cpp (Verilator C++) or systemc (Verilator in SystemC)")
       ->capture_default_str();
   sub->add_option("--config", o->config, "a named build (see --list) or a UnitConfig FILE.json");
-  sub->add_option("--stream", o->stream, "replay a saved command stream (text form; its header names the unit)");
-  sub->add_option("--waves", o->waves, "on a mismatch, write an FST of the cycles around it (cpp backend)");
+  sub->add_option("--stream", o->stream,
+                  "replay a saved command stream (text form; its header names the unit)");
+  sub->add_option("--waves", o->waves,
+                  "on a mismatch, write an FST of the cycles around it (cpp backend)");
   sub->add_option("--cache", o->cache, "build cache folder (default: <build>/rtl-cache)");
-  sub->add_option("--coverage", o->coverage,
-                  "run the covered build (line, toggle, user cover points) and write its Verilator\n"
-                  "coverage to FILE.dat, pass or fail (several runs: FILE_<i>.dat)");
+  sub->add_option(
+      "--coverage", o->coverage,
+      "run the covered build (line, toggle, user cover points) and write its Verilator\n"
+      "coverage to FILE.dat, pass or fail (several runs: FILE_<i>.dat)");
   sub->add_flag("--list", o->list, "list the named builds (sim/harness/builds.json)");
   sub->add_flag("--list-json", o->list_json, "with --list: as JSON");
   sub->allow_extras();
@@ -245,15 +260,21 @@ void register_cosim(CLI::App& app, int& exit_code) {
       "rtl-build",
       "Verilate and compile co-simulation executables into the build cache ahead of time (the\n"
       "commands that need one build it on demand anyway). Prints each executable's path.");
-  build->add_option("--config", b->configs, "named builds or UnitConfig FILE.json files")->delimiter(',');
-  build->add_flag("--all", b->all, "every named build in sim/harness/builds.json, on its own backends");
-  build->add_option("--backends", b->backends, "cpp, systemc, cpp_trace (default: each build's own)")->delimiter(',');
+  build->add_option("--config", b->configs, "named builds or UnitConfig FILE.json files")
+      ->delimiter(',');
+  build->add_flag("--all", b->all,
+                  "every named build in sim/harness/builds.json, on its own backends");
+  build
+      ->add_option("--backends", b->backends, "cpp, systemc, cpp_trace (default: each build's own)")
+      ->delimiter(',');
   build->add_option("--cache", b->cache, "build cache folder (default: <build>/rtl-cache)");
-  build->add_option("-j,--jobs", b->jobs, "builds at once (default: hardware threads)")->check(CLI::NonNegativeNumber);
+  build->add_option("-j,--jobs", b->jobs, "builds at once (default: hardware threads)")
+      ->check(CLI::NonNegativeNumber);
   build->add_flag("--coverage", b->coverage, "the covered builds (what regress --coverage runs)");
   build->add_flag("--print-key", b->print_key, "print each build's cache key and build nothing");
   build->add_flag("--print-source-dir", b->print_source_dir, "print the checkout the builds read");
-  build->add_flag("--print-rtl-sources", b->print_rtl_sources, "print shade_unit's sources, leaves first");
+  build->add_flag("--print-rtl-sources", b->print_rtl_sources,
+                  "print shade_unit's sources, leaves first");
   build->callback([b, &exit_code]() { exit_code = run_rtl_build(*b); });
 
   auto p = std::make_shared<std::pair<std::string, std::string>>("", "verilator");
@@ -274,7 +295,8 @@ void register_cosim(CLI::App& app, int& exit_code) {
     } else if (p->second == "yosys") {
       std::cout << yosys_chparam_args(list) << '\n';
     } else {
-      throw std::invalid_argument("--tool '" + p->second + "': expected verilator, iverilog or yosys");
+      throw std::invalid_argument("--tool '" + p->second +
+                                  "': expected verilator, iverilog or yosys");
     }
     exit_code = 0;
   });

@@ -12,12 +12,12 @@
 #include <nlohmann/json.hpp>
 
 #include "host/frame.h"
+#include "model/coef_packing.h"
 #include "model/cycle_estimate.h"
 #include "model/cycle_model.h"
 #include "sim/commands.h"
-#include "sim/harness/cycle_run.h"
-#include "model/coef_packing.h"
 #include "sim/config_option.h"
+#include "sim/harness/cycle_run.h"
 #include "sim/width_options.h"
 
 namespace shadesim {
@@ -75,18 +75,22 @@ struct TriangleSummary {
 
 // The first difference between the estimate and the clocked run, or "" when they agree.
 std::string disagreement(const CycleEstimateRun& e, const CycleRun& c) {
-  if (e.cycles != c.cycles) return "cycles " + std::to_string(e.cycles) + " vs " + std::to_string(c.cycles);
+  if (e.cycles != c.cycles)
+    return "cycles " + std::to_string(e.cycles) + " vs " + std::to_string(c.cycles);
   if (e.breakdown) {
     const auto a = e.breakdown->rows(), b = c.breakdown.rows();
     for (size_t i = 0; i < a.size(); ++i) {
       if (a[i].cycles != b[i].cycles) {
-        return std::string("breakdown ") + a[i].name + " " + std::to_string(a[i].cycles) + " vs " + std::to_string(b[i].cycles);
+        return std::string("breakdown ") + a[i].name + " " + std::to_string(a[i].cycles) + " vs " +
+               std::to_string(b[i].cycles);
       }
     }
   }
-  if (e.pixels != c.pixels) return "pixels " + std::to_string(e.pixels) + " vs " + std::to_string(c.pixels);
+  if (e.pixels != c.pixels)
+    return "pixels " + std::to_string(e.pixels) + " vs " + std::to_string(c.pixels);
   if (e.scanlines.size() != c.scanlines.size()) {
-    return "scanlines " + std::to_string(e.scanlines.size()) + " vs " + std::to_string(c.scanlines.size());
+    return "scanlines " + std::to_string(e.scanlines.size()) + " vs " +
+           std::to_string(c.scanlines.size());
   }
   for (size_t i = 0; i < e.scanlines.size(); ++i) {
     if (e.scanlines[i].cycle != c.scanlines[i].cycle || e.scanlines[i].y != c.scanlines[i].y) {
@@ -98,8 +102,14 @@ std::string disagreement(const CycleEstimateRun& e, const CycleRun& c) {
 }
 
 nlohmann::json cost_json(const TriangleCost& t) {
-  return {{"index", t.index}, {"xo", t.xo}, {"yo", t.yo}, {"words", t.words}, {"spans", t.spans},
-          {"pixels", t.pixels}, {"decoder_cycles", t.decoder_cycles}, {"engine_cycles", t.engine_cycles},
+  return {{"index", t.index},
+          {"xo", t.xo},
+          {"yo", t.yo},
+          {"words", t.words},
+          {"spans", t.spans},
+          {"pixels", t.pixels},
+          {"decoder_cycles", t.decoder_cycles},
+          {"engine_cycles", t.engine_cycles},
           {"setup_bound", t.setup_bound()}};
 }
 
@@ -144,7 +154,8 @@ int run_cycles(const CyclesOptions& o) {
   }
   const auto t0 = std::chrono::steady_clock::now();
   const PreparedFrame frame = prepare_frame_on(o.scene, fo, o.config_path);
-  const double host_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double host_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   Stimulus stim;
   stim.seed = o.seed;
@@ -160,7 +171,8 @@ int run_cycles(const CyclesOptions& o) {
   const CycleEstimate estimate(unit_timing);
   const auto t1 = std::chrono::steady_clock::now();
   const CycleEstimateRun est = estimate.run(words, no_stimulus);
-  const double estimate_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  const double estimate_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   // The clocked model: every figure under gaps or back-pressure, and the check on request.
   const bool clocked = o.clocked || !no_stimulus;
   CycleRun run;
@@ -172,8 +184,9 @@ int run_cycles(const CyclesOptions& o) {
     if (no_stimulus) {
       const std::string diff = disagreement(est, run);
       if (!diff.empty()) {
-        throw std::logic_error("the closed-form cycle estimate disagrees with the clocked cycle model on " + o.scene +
-                               ": " + diff + " (estimate vs clocked); please report it");
+        throw std::logic_error(
+            "the closed-form cycle estimate disagrees with the clocked cycle model on " + o.scene +
+            ": " + diff + " (estimate vs clocked); please report it");
       }
     }
   } else {
@@ -186,11 +199,11 @@ int run_cycles(const CyclesOptions& o) {
   // What the triangle queue hid: the same stream and stimulus on the same unit with one bank.
   CycleConfig one_bank = unit_timing;
   one_bank.tri_queue = 1;
-  const uint64_t cycles_one_bank =
-      unit_timing.tri_queue == 1 ? run.cycles
-      : no_stimulus              ? CycleEstimate(one_bank).run(words).cycles
-                                 : run_cycle_model(words, stim, one_bank).cycles;
-  const int64_t queue_hid = static_cast<int64_t>(cycles_one_bank) - static_cast<int64_t>(run.cycles);
+  const uint64_t cycles_one_bank = unit_timing.tri_queue == 1 ? run.cycles
+                                   : no_stimulus ? CycleEstimate(one_bank).run(words).cycles
+                                                 : run_cycle_model(words, stim, one_bank).cycles;
+  const int64_t queue_hid =
+      static_cast<int64_t>(cycles_one_bank) - static_cast<int64_t>(run.cycles);
   const TriangleSummary tris(est.triangles, o.worst);
   // Words per triangle by series (model/command_stream.h: a header, then T0..T5 per series).
   // A triangle's words: the header and the packed coefficients (model/coef_packing.h), whose
@@ -208,8 +221,10 @@ int run_cycles(const CyclesOptions& o) {
   const int specular_bits = series_bits * frame.config.specular_series();
   const int unpacked_words = kTermsPerSeries * frame.config.series_per_triangle();
 
-  const double cpp = run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;
-  std::cout << "scene        " << o.scene << " (" << frame.scene.width << "x" << frame.scene.height << ")\n"
+  const double cpp =
+      run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;
+  std::cout << "scene        " << o.scene << " (" << frame.scene.width << "x" << frame.scene.height
+            << ")\n"
             << "unit         " << frame.config.to_string() << "\n"
             << "specular     " << frame.config.specular.describe() << ": latency " << timing.latency
             << ", " << timing.interval << " cycle(s) per pixel\n"
@@ -217,80 +232,100 @@ int run_cycles(const CyclesOptions& o) {
             << unit_timing.tri_queue << " (span queue " << unit_timing.span_queue() << "), "
             << unit_timing.lanes << " pixel lane(s), " << unit_timing.material_buffers
             << " material buffer(s)\n"
-            << "stimulus     seed " << o.seed << ", input gaps " << o.gap_pct << "% (max " << o.max_gap
-            << "), back-pressure " << o.stall_pct << "%\n"
-            << "stream       " << words.size() << " words: " << frame.encoded.stats.triangles << " tri, "
-            << frame.encoded.stats.spans << " spans, " << frame.encoded.stats.materials << " material loads, "
-            << frame.encoded.stats.table_words << " table words\n"
+            << "stimulus     seed " << o.seed << ", input gaps " << o.gap_pct << "% (max "
+            << o.max_gap << "), back-pressure " << o.stall_pct << "%\n"
+            << "stream       " << words.size() << " words: " << frame.encoded.stats.triangles
+            << " tri, " << frame.encoded.stats.spans << " spans, " << frame.encoded.stats.materials
+            << " material loads, " << frame.encoded.stats.table_words << " table words\n"
             << "triangle     " << 1 + layout.words << " words: 1 header + " << layout.words
             << " payload (one coefficient a word: " << unpacked_words << ") holding "
             << diffuse_bits + specular_bits << " coefficient bits: diffuse " << diffuse_bits << " ("
             << frame.config.diffuse_series() << " series), specular " << specular_bits << " ("
             << frame.config.specular_series() << " series); T0..T5 " << term_bits << " bits\n"
             << "pixels       " << run.pixels
-            << (unit_timing.lanes > 1 ? " in " + std::to_string(run.breakdown.pixel) + " beats of up to " +
-                                            std::to_string(unit_timing.lanes) + " (lanes within a span)"
-                                      : std::string())
+            << (unit_timing.lanes > 1
+                    ? " in " + std::to_string(run.breakdown.pixel) + " beats of up to " +
+                          std::to_string(unit_timing.lanes) + " (lanes within a span)"
+                    : std::string())
             << "\n"
             << "cycles       " << run.cycles << "  (" << std::fixed << std::setprecision(3) << cpp
             << " cycles per pixel)\n"
-            << "queue        " << queue_hid << " cycles hidden by the triangle queue (tri_queue 1: "
-            << cycles_one_bank << ")\n"
-            << "triangles    " << est.triangles.size() << " (no gaps, no back-pressure): " << tris.setup_bound
-            << " setup-bound (" << std::setprecision(1) << tris.share(tris.setup_bound) << " %), " << tris.fill_bound
-            << " fill-bound (" << tris.share(tris.fill_bound) << " %); setup-bound: more decoder cycles for its\n"
+            << "queue        " << queue_hid
+            << " cycles hidden by the triangle queue (tri_queue 1: " << cycles_one_bank << ")\n"
+            << "triangles    " << est.triangles.size()
+            << " (no gaps, no back-pressure): " << tris.setup_bound << " setup-bound ("
+            << std::setprecision(1) << tris.share(tris.setup_bound) << " %), " << tris.fill_bound
+            << " fill-bound (" << tris.share(tris.fill_bound)
+            << " %); setup-bound: more decoder cycles for its\n"
             << "             words than engine cycles for its pixels. The setup-bound ones need "
             << tris.setup_bound_excess << " decoder cycles more than their pixels.\n";
   if (!tris.worst.empty()) {
     std::cout << "worst setup-bound triangles (decoder cycles - engine cycles):\n";
     for (const TriangleCost& t : tris.worst) {
-      std::cout << "  #" << t.index << " origin (" << t.xo << ", " << t.yo << "): " << t.words << " words, "
-                << t.spans << " spans, " << t.pixels << " px: " << t.decoder_cycles << " decoder cycles, "
-                << t.engine_cycles << " engine cycles (+" << t.decoder_cycles - t.engine_cycles << ")\n";
+      std::cout << "  #" << t.index << " origin (" << t.xo << ", " << t.yo << "): " << t.words
+                << " words, " << t.spans << " spans, " << t.pixels << " px: " << t.decoder_cycles
+                << " decoder cycles, " << t.engine_cycles << " engine cycles (+"
+                << t.decoder_cycles - t.engine_cycles << ")\n";
     }
   }
   nlohmann::json rows = nlohmann::json::array();
   std::cout << "\nbreakdown    (every cycle charged to one reason; the rows sum to the total)\n";
   for (const auto& r : run.breakdown.rows()) {
-    const double pct = run.cycles ? 100.0 * static_cast<double>(r.cycles) / static_cast<double>(run.cycles) : 0.0;
-    std::cout << "  " << std::left << std::setw(15) << r.name << std::right << std::setw(12) << r.cycles
-              << std::setw(8) << std::setprecision(1) << pct << " %  " << r.meaning << '\n';
-    rows.push_back({{"name", r.name}, {"cycles", r.cycles}, {"percent", pct}, {"meaning", r.meaning}});
+    const double pct =
+        run.cycles ? 100.0 * static_cast<double>(r.cycles) / static_cast<double>(run.cycles) : 0.0;
+    std::cout << "  " << std::left << std::setw(15) << r.name << std::right << std::setw(12)
+              << r.cycles << std::setw(8) << std::setprecision(1) << pct << " %  " << r.meaning
+              << '\n';
+    rows.push_back(
+        {{"name", r.name}, {"cycles", r.cycles}, {"percent", pct}, {"meaning", r.meaning}});
   }
-  const auto rate = [&](double s) { return s > 0 ? static_cast<double>(run.cycles) / s / 1e6 : 0.0; };
-  std::cout << "\ntime         host " << std::setprecision(3) << host_s << " s, closed-form estimate " << estimate_s
-            << " s (" << std::setprecision(1) << rate(estimate_s) << " M cycles/s)";
+  const auto rate = [&](double s) {
+    return s > 0 ? static_cast<double>(run.cycles) / s / 1e6 : 0.0;
+  };
+  std::cout << "\ntime         host " << std::setprecision(3) << host_s
+            << " s, closed-form estimate " << estimate_s << " s (" << std::setprecision(1)
+            << rate(estimate_s) << " M cycles/s)";
   if (clocked) {
-    std::cout << ", clocked cycle model " << std::setprecision(3) << model_s << " s (" << std::setprecision(1)
-              << rate(model_s) << " M cycles/s)";
+    std::cout << ", clocked cycle model " << std::setprecision(3) << model_s << " s ("
+              << std::setprecision(1) << rate(model_s) << " M cycles/s)";
     if (no_stimulus) std::cout << "; the two agree";
   }
   std::cout << "\n";
   if (!o.json_path.empty()) {
-    nlohmann::json j = {{"scene", o.scene},
-                        {"config", nlohmann::json::parse(config_to_json(frame.config))},
-                        {"slot", {{"latency", timing.latency}, {"interval", timing.interval}}},
-                        {"stimulus", {{"seed", o.seed}, {"gap_pct", o.gap_pct}, {"max_gap", o.max_gap}, {"stall_pct", o.stall_pct}}},
-                        {"words", words.size()},
-                        {"beats", run.beats},
-                        {"triangle_words", {{"header", 1}, {"payload", layout.words},
-                                            {"unpacked_payload", unpacked_words},
-                                            {"total", 1 + layout.words},
-                                            {"diffuse_bits", diffuse_bits}, {"specular_bits", specular_bits},
-                                            {"term_bits", term_bits_json}}},
-                        {"material_buffers", unit_timing.material_buffers},
-                        {"queue_hidden_cycles", queue_hid},
-                        {"cycles_tri_queue_1", cycles_one_bank},
-                        {"pixels", run.pixels},
-                        {"pixel_beats", run.breakdown.pixel},
-                        {"cycles", run.cycles},
-                        {"cycles_per_pixel", cpp},
-                        {"figures_from", no_stimulus ? "closed-form estimate" : "clocked cycle model"},
-                        {"clocked_check", no_stimulus && clocked},
-                        {"triangles", triangles_json(est.triangles, tris)},
-                        {"breakdown", rows},
-                        {"seconds", {{"host", host_s}, {"estimate", estimate_s},
-                                     {"cycle_model", clocked ? nlohmann::json(model_s) : nlohmann::json(nullptr)}}}};
+    nlohmann::json j = {
+        {"scene", o.scene},
+        {"config", nlohmann::json::parse(config_to_json(frame.config))},
+        {"slot", {{"latency", timing.latency}, {"interval", timing.interval}}},
+        {"stimulus",
+         {{"seed", o.seed},
+          {"gap_pct", o.gap_pct},
+          {"max_gap", o.max_gap},
+          {"stall_pct", o.stall_pct}}},
+        {"words", words.size()},
+        {"beats", run.beats},
+        {"triangle_words",
+         {{"header", 1},
+          {"payload", layout.words},
+          {"unpacked_payload", unpacked_words},
+          {"total", 1 + layout.words},
+          {"diffuse_bits", diffuse_bits},
+          {"specular_bits", specular_bits},
+          {"term_bits", term_bits_json}}},
+        {"material_buffers", unit_timing.material_buffers},
+        {"queue_hidden_cycles", queue_hid},
+        {"cycles_tri_queue_1", cycles_one_bank},
+        {"pixels", run.pixels},
+        {"pixel_beats", run.breakdown.pixel},
+        {"cycles", run.cycles},
+        {"cycles_per_pixel", cpp},
+        {"figures_from", no_stimulus ? "closed-form estimate" : "clocked cycle model"},
+        {"clocked_check", no_stimulus && clocked},
+        {"triangles", triangles_json(est.triangles, tris)},
+        {"breakdown", rows},
+        {"seconds",
+         {{"host", host_s},
+          {"estimate", estimate_s},
+          {"cycle_model", clocked ? nlohmann::json(model_s) : nlohmann::json(nullptr)}}}};
     std::ofstream os(o.json_path);
     if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
     os << j.dump(2) << '\n';
@@ -304,48 +339,69 @@ void register_cycles(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<CyclesOptions>();
   CLI::App* sub = app.add_subcommand(
       "cycles",
-      "Estimate cycles per pixel for a scene from the cycle model alone (the RTL's control, clock by\n"
+      "Estimate cycles per pixel for a scene from the cycle model alone (the RTL's control, clock "
+      "by\n"
       "clock, without its datapath: exact to the cycle, far faster than co-simulation), with a\n"
       "breakdown of where the cycles go: pixels, span setup, unit stalls, table reloads, material\n"
-      "drains, command words and gaps, back-pressure. With no gaps and no back-pressure (the default)\n"
-      "every figure, the breakdown included, comes from a closed-form recurrence over commands and\n"
-      "spans (model/cycle_estimate.h), equal to the clocked model's (--clocked runs both and checks).\n"
+      "drains, command words and gaps, back-pressure. With no gaps and no back-pressure (the "
+      "default)\n"
+      "every figure, the breakdown included, comes from a closed-form recurrence over commands "
+      "and\n"
+      "spans (model/cycle_estimate.h), equal to the clocked model's (--clocked runs both and "
+      "checks).\n"
       "Per triangle: its decoder cycles are the cycles on which the decoder takes its words (the\n"
-      "TRIANGLE header, its coefficient words, the SPAN headers up to the next TRIANGLE; one item a\n"
+      "TRIANGLE header, its coefficient words, the SPAN headers up to the next TRIANGLE; one item "
+      "a\n"
       "cycle, waiting not counted); its engine cycles are its pixels' beats x the specular slot's\n"
-      "interval. It is setup-bound if its decoder cycles exceed its engine cycles, else fill-bound.");
+      "interval. It is setup-bound if its decoder cycles exceed its engine cycles, else "
+      "fill-bound.");
   sub->add_option("scene", o->scene, "scene JSON file")->required()->check(CLI::ExistingFile);
-  sub->add_option("--specular", o->specular, "specular unit: ideal|lut|schlick|wpow (default: the scene's)");
-  sub->add_option("--channels", o->channels, "build with this many channels (default: what the scene needs)")
+  sub->add_option("--specular", o->specular,
+                  "specular unit: ideal|lut|schlick|wpow (default: the scene's)");
+  sub->add_option("--channels", o->channels,
+                  "build with this many channels (default: what the scene needs)")
       ->check(CLI::IsMember({1, 3}));
-  sub->add_option("--lights", o->lights, "build with series for this many lights (default: the scene's)")
+  sub->add_option("--lights", o->lights,
+                  "build with series for this many lights (default: the scene's)")
       ->check(CLI::Range(1, 8));
-  sub->add_option("--port-words", o->port_words,
-                  "command port width: 64-bit words per handshake (default 1, or the --config file's;\n"
-                  "given, it overrides the file's)")
+  sub->add_option(
+         "--port-words", o->port_words,
+         "command port width: 64-bit words per handshake (default 1, or the --config file's;\n"
+         "given, it overrides the file's)")
       ->check(CLI::IsMember({1, 2, 4, 8}));
-  sub->add_option("--tri-queue", o->tri_queue,
-                  "triangle queue depth: coefficient banks; > 1 adds a span queue (default 1, or the\n"
-                  "--config file's; given, it overrides the file's)")
+  sub->add_option(
+         "--tri-queue", o->tri_queue,
+         "triangle queue depth: coefficient banks; > 1 adds a span queue (default 1, or the\n"
+         "--config file's; given, it overrides the file's)")
       ->check(CLI::Range(1, 8));
-  sub->add_option("--lanes", o->lanes,
-                  "pixel lanes: pixels of one span per clock (k-step forward differences, lane j at\n"
-                  "x0 + j; default 1, or the --config file's; given, it overrides the file's)")
+  sub->add_option(
+         "--lanes", o->lanes,
+         "pixel lanes: pixels of one span per clock (k-step forward differences, lane j at\n"
+         "x0 + j; default 1, or the --config file's; given, it overrides the file's)")
       ->check(CLI::IsMember({1, 2, 4}));
-  sub->add_option("--material-buffers", o->material_buffers,
-                  "material buffers: 2 loads a MATERIAL into the bank no span in flight reads, so it\n"
-                  "does not drain the datapath (a TABLE still does); default 1, or the --config file's;\n"
-                  "given, it overrides the file's")
+  sub->add_option(
+         "--material-buffers", o->material_buffers,
+         "material buffers: 2 loads a MATERIAL into the bank no span in flight reads, so it\n"
+         "does not drain the datapath (a TABLE still does); default 1, or the --config file's;\n"
+         "given, it overrides the file's")
       ->check(CLI::IsMember({1, 2}));
   sub->add_option("--seed", o->seed, "stimulus seed")->capture_default_str();
-  sub->add_option("--gap-pct", o->gap_pct, "chance of idle cycles before a command word")->check(CLI::Range(0, 100))->capture_default_str();
-  sub->add_option("--max-gap", o->max_gap, "longest idle gap in cycles")->check(CLI::Range(1, 100000))->capture_default_str();
-  sub->add_option("--stall-pct", o->stall_pct, "chance of output back-pressure per cycle")->check(CLI::Range(0, 99))->capture_default_str();
+  sub->add_option("--gap-pct", o->gap_pct, "chance of idle cycles before a command word")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  sub->add_option("--max-gap", o->max_gap, "longest idle gap in cycles")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  sub->add_option("--stall-pct", o->stall_pct, "chance of output back-pressure per cycle")
+      ->check(CLI::Range(0, 99))
+      ->capture_default_str();
   sub->add_option("--json", o->json_path, "write the figures as JSON");
-  sub->add_flag("--clocked", o->clocked,
-                "also run the clocked cycle model when there are no gaps or back-pressure, and fail if the\n"
-                "closed form disagrees with it (with gaps or back-pressure it is the only one that runs)");
-  sub->add_option("--worst", o->worst, "setup-bound triangles to list, worst first")->check(CLI::Range(0, 1000000))
+  sub->add_flag(
+      "--clocked", o->clocked,
+      "also run the clocked cycle model when there are no gaps or back-pressure, and fail if the\n"
+      "closed form disagrees with it (with gaps or back-pressure it is the only one that runs)");
+  sub->add_option("--worst", o->worst, "setup-bound triangles to list, worst first")
+      ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   add_width_options(*sub, o->widths);
   add_config_option(*sub, o->config_path, {"--specular", "--channels", "--lights"});

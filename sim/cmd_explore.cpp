@@ -58,7 +58,8 @@ AreaFunction area_model(const UnitConfig& start, const std::string& cache_dir) {
     }
   });
   if (!have_anchor) {
-    std::cerr << "explore: no measured " << to_string(start.specular.kind) << " unit in " << cache_dir
+    std::cerr << "explore: no measured " << to_string(start.specular.kind) << " unit in "
+              << cache_dir
               << " to scale areas from: synthesising the start with Yosys once (minutes; cached)\n";
     AreaOptions ao;
     ao.cache_dir = cache_dir;
@@ -101,11 +102,13 @@ struct Verification {
 // --emit-jobs: the regress runs --verify would do, one command per line (regress --emit-jobs
 // writes them, so a line is the same as any regress job line), each point's results into
 // <out>/verify/<point>/ for `shadesim merge`.
-void emit_verify_jobs(const std::vector<PointToVerify>& points, const std::vector<std::string>& scenes,
-                      const std::string& out_dir, const std::string& jobs_file) {
+void emit_verify_jobs(const std::vector<PointToVerify>& points,
+                      const std::vector<std::string>& scenes, const std::string& out_dir,
+                      const std::string& jobs_file) {
   std::error_code ec;
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (ec) throw std::runtime_error("--emit-jobs: cannot find the shadesim executable: " + ec.message());
+  if (ec)
+    throw std::runtime_error("--emit-jobs: cannot find the shadesim executable: " + ec.message());
   std::ofstream all(jobs_file);
   if (!all) throw std::runtime_error("--emit-jobs " + jobs_file + ": cannot open for writing");
   size_t lines = 0;
@@ -116,9 +119,11 @@ void emit_verify_jobs(const std::vector<PointToVerify>& points, const std::vecto
     const std::string part = (dir / "jobs.txt").string(), log = (dir / "emit.log").string();
     std::vector<std::string> args = {self.string(), "regress"};
     args.insert(args.end(), scenes.begin(), scenes.end());
-    args.insert(args.end(), {"--config", p.config_file, "--out", dir.string(), "--emit-jobs", part});
+    args.insert(args.end(),
+                {"--config", p.config_file, "--out", dir.string(), "--emit-jobs", part});
     if (run_process(args, log).exit_code != 0) {
-      throw std::runtime_error("--emit-jobs: shadesim regress --emit-jobs for " + p.name + " failed (log: " + log + ")");
+      throw std::runtime_error("--emit-jobs: shadesim regress --emit-jobs for " + p.name +
+                               " failed (log: " + log + ")");
     }
     std::ifstream is(part);
     for (std::string line; std::getline(is, line);) {
@@ -133,10 +138,12 @@ void emit_verify_jobs(const std::vector<PointToVerify>& points, const std::vecto
 }
 
 std::vector<Verification> verify_in_rtl(const std::vector<PointToVerify>& points,
-                                        const std::vector<std::string>& scenes, const std::string& out_dir) {
+                                        const std::vector<std::string>& scenes,
+                                        const std::string& out_dir) {
   std::error_code ec;
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (ec) throw std::runtime_error("--verify: cannot find the shadesim executable: " + ec.message());
+  if (ec)
+    throw std::runtime_error("--verify: cannot find the shadesim executable: " + ec.message());
   std::vector<Verification> out;
   for (const auto& p : points) {
     Verification v;
@@ -164,7 +171,8 @@ std::vector<Verification> verify_in_rtl(const std::vector<PointToVerify>& points
       v.errors = j.value("errors", 0L);
       v.skipped = j.value("skipped", 0L);
     }
-    v.verified = r.exit_code == 0 && v.passed > 0 && v.mismatched == 0 && v.errors == 0 && v.skipped == 0;
+    v.verified =
+        r.exit_code == 0 && v.passed > 0 && v.mismatched == 0 && v.errors == 0 && v.skipped == 0;
     out.push_back(v);
   }
   return out;
@@ -187,12 +195,15 @@ class ProgressBar {
     if (done != total && now - last_draw_ < std::chrono::milliseconds(100)) return;
     last_draw_ = now;
     const double elapsed = std::chrono::duration<double>(now - phase_start_).count();
-    const double eta = done ? elapsed / static_cast<double>(done) * static_cast<double>(total - done) : 0.0;
+    const double eta =
+        done ? elapsed / static_cast<double>(done) * static_cast<double>(total - done) : 0.0;
     constexpr int kWidth = 30;
     const int filled = total ? static_cast<int>(kWidth * done / total) : kWidth;
-    std::cerr << "\r" << std::left << std::setw(14) << phase << " [" << std::string(static_cast<size_t>(filled), '#')
-              << std::string(static_cast<size_t>(kWidth - filled), '.') << "] " << done << "/" << total << "  ETA "
-              << std::fixed << std::setprecision(1) << eta << " s   " << std::flush;
+    std::cerr << "\r" << std::left << std::setw(14) << phase << " ["
+              << std::string(static_cast<size_t>(filled), '#')
+              << std::string(static_cast<size_t>(kWidth - filled), '.') << "] " << done << "/"
+              << total << "  ETA " << std::fixed << std::setprecision(1) << eta << " s   "
+              << std::flush;
     if (done == total) std::cerr << "\r" << std::string(80, ' ') << "\r" << std::flush;
   }
 
@@ -224,14 +235,17 @@ std::string per_channel_mean(const ErrorStats& e, int channels) {
 }
 
 double over_1lsb_pct(const ErrorStats& e) {
-  return e.pixels ? 100.0 * static_cast<double>(e.pixels_over_1lsb) / static_cast<double>(e.pixels) : 0.0;
+  return e.pixels ? 100.0 * static_cast<double>(e.pixels_over_1lsb) / static_cast<double>(e.pixels)
+                  : 0.0;
 }
 
-nlohmann::json psnr_json(double db) { return std::isinf(db) ? nlohmann::json(nullptr) : nlohmann::json(db); }
+nlohmann::json psnr_json(double db) {
+  return std::isinf(db) ? nlohmann::json(nullptr) : nlohmann::json(db);
+}
 
 nlohmann::json point_json(const ExplorePoint& p, std::size_t index, int channels) {
-  nlohmann::json j = {{"index", index}, {"phase", p.phase}, {"stage", p.stage}, {"knob", p.knob},
-                      {"value", p.value}, {"valid", p.valid}};
+  nlohmann::json j = {{"index", index}, {"phase", p.phase}, {"stage", p.stage},
+                      {"knob", p.knob}, {"value", p.value}, {"valid", p.valid}};
   if (!p.valid) {
     j["invalid_reason"] = p.invalid_reason;
     return j;
@@ -245,10 +259,14 @@ nlohmann::json point_json(const ExplorePoint& p, std::size_t index, int channels
   }
   j["config"] = nlohmann::json::parse(config_to_json(p.config));
   j["config_text"] = p.config.to_string();
-  j["error"] = {{"max_code_lsb", e.max_code_lsb}, {"max_code_lsb_per_channel", max_ch},
-                {"mean_code_lsb", e.mean_code_lsb}, {"mean_code_lsb_per_channel", mean_ch},
-                {"psnr_db", psnr_json(e.psnr_db)}, {"max_real_lsb", e.max_real_lsb},
-                {"pixels", e.pixels}, {"pixels_over_1lsb", e.pixels_over_1lsb},
+  j["error"] = {{"max_code_lsb", e.max_code_lsb},
+                {"max_code_lsb_per_channel", max_ch},
+                {"mean_code_lsb", e.mean_code_lsb},
+                {"mean_code_lsb_per_channel", mean_ch},
+                {"psnr_db", psnr_json(e.psnr_db)},
+                {"max_real_lsb", e.max_real_lsb},
+                {"pixels", e.pixels},
+                {"pixels_over_1lsb", e.pixels_over_1lsb},
                 {"pct_over_1lsb", over_1lsb_pct(e)}};
   j["cycles"] = p.figures.cycles;
   j["pixels"] = p.figures.pixels;
@@ -262,11 +280,16 @@ nlohmann::json point_json(const ExplorePoint& p, std::size_t index, int channels
   return j;
 }
 
-nlohmann::json part_json(const ErrorPart& p) { return {{"max_lsb", p.max_lsb}, {"mean_lsb", p.mean_lsb}}; }
+nlohmann::json part_json(const ErrorPart& p) {
+  return {{"max_lsb", p.max_lsb}, {"mean_lsb", p.mean_lsb}};
+}
 
 nlohmann::json budget_json(const ErrorBudget& b) {
-  return {{"scene", b.scene}, {"function", part_json(b.function)}, {"taylor", part_json(b.taylor)},
-          {"quantization", part_json(b.quantization)}, {"total", part_json(b.total)}};
+  return {{"scene", b.scene},
+          {"function", part_json(b.function)},
+          {"taylor", part_json(b.taylor)},
+          {"quantization", part_json(b.quantization)},
+          {"total", part_json(b.total)}};
 }
 
 // A CSV field in double quotes, inner quotes doubled (RFC 4180).
@@ -287,69 +310,81 @@ void write_csv(const std::string& path, const ExploreResult& r, int channels) {
   for (std::size_t i = 0; i < r.points.size(); ++i) {
     const ExplorePoint& p = r.points[i];
     const ErrorStats& e = p.figures.error;
-    os << i << ',' << csv_quote(p.phase) << ',' << csv_quote(p.stage) << ',' << csv_quote(p.knob) << ','
-       << csv_quote(p.value) << ',' << (p.valid ? 1 : 0) << ','
+    os << i << ',' << csv_quote(p.phase) << ',' << csv_quote(p.stage) << ',' << csv_quote(p.knob)
+       << ',' << csv_quote(p.value) << ',' << (p.valid ? 1 : 0) << ','
        << csv_quote(p.valid ? p.config.to_string() : p.invalid_reason);
     if (!p.valid) {
-      os << std::string(static_cast<size_t>(2 * channels + 10), ',') << (r.chosen == i ? 1 : 0) << '\n';
+      os << std::string(static_cast<size_t>(2 * channels + 10), ',') << (r.chosen == i ? 1 : 0)
+         << '\n';
       continue;
     }
     os << ',' << e.max_code_lsb;
     for (int c = 0; c < channels; ++c) os << ',' << e.max_code_lsb_channel[static_cast<size_t>(c)];
     os << ',' << e.mean_code_lsb;
     for (int c = 0; c < channels; ++c) os << ',' << e.mean_code_lsb_channel[static_cast<size_t>(c)];
-    os << ',' << (std::isinf(e.psnr_db) ? std::string("inf") : std::to_string(e.psnr_db)) << ',' << e.max_real_lsb
-       << ',' << over_1lsb_pct(e) << ',' << p.figures.cycles_per_pixel << ',' << p.figures.area.cells << ','
-       << (p.meets_budget ? 1 : 0) << ',' << (p.pareto ? 1 : 0) << ',' << (r.chosen == i ? 1 : 0) << '\n';
+    os << ',' << (std::isinf(e.psnr_db) ? std::string("inf") : std::to_string(e.psnr_db)) << ','
+       << e.max_real_lsb << ',' << over_1lsb_pct(e) << ',' << p.figures.cycles_per_pixel << ','
+       << p.figures.area.cells << ',' << (p.meets_budget ? 1 : 0) << ',' << (p.pareto ? 1 : 0)
+       << ',' << (r.chosen == i ? 1 : 0) << '\n';
   }
 }
 
 void print_table(std::ostream& os, const std::vector<const ExplorePoint*>& rows, int channels,
                  const std::optional<std::size_t>& chosen, const std::vector<ExplorePoint>& all) {
-  os << std::left << std::setw(12) << "phase" << std::setw(22) << "knob" << std::setw(8) << "value" << std::right
-     << std::setw(10) << "max LSB" << std::setw(channels == 1 ? 9 : 23) << "mean LSB" << std::setw(9) << "PSNR dB"
-     << std::setw(8) << ">1LSB%" << std::setw(8) << "cyc/px" << std::setw(9) << "area" << "  budget\n";
+  os << std::left << std::setw(12) << "phase" << std::setw(22) << "knob" << std::setw(8) << "value"
+     << std::right << std::setw(10) << "max LSB" << std::setw(channels == 1 ? 9 : 23) << "mean LSB"
+     << std::setw(9) << "PSNR dB" << std::setw(8) << ">1LSB%" << std::setw(8) << "cyc/px"
+     << std::setw(9) << "area"
+     << "  budget\n";
   for (const ExplorePoint* p : rows) {
     const bool is_chosen = chosen && &all[*chosen] == p;
-    os << std::left << std::setw(12) << p->phase << std::setw(22) << (p->knob.empty() ? "-" : p->knob) << std::setw(8)
-       << (p->value.empty() ? "-" : p->value);
+    os << std::left << std::setw(12) << p->phase << std::setw(22)
+       << (p->knob.empty() ? "-" : p->knob) << std::setw(8) << (p->value.empty() ? "-" : p->value);
     if (!p->valid) {
       os << "invalid: " << p->invalid_reason << '\n';
       continue;
     }
     const ErrorStats& e = p->figures.error;
     std::ostringstream psnr;
-    if (std::isinf(e.psnr_db)) psnr << "inf";
-    else psnr << std::fixed << std::setprecision(1) << e.psnr_db;
-    os << std::right << std::setw(10) << per_channel_max(e, channels) << std::setw(channels == 1 ? 9 : 23)
-       << per_channel_mean(e, channels) << std::setw(9) << psnr.str() << std::setw(8) << std::fixed
-       << std::setprecision(2) << over_1lsb_pct(e) << std::setw(8) << std::setprecision(3)
-       << p->figures.cycles_per_pixel << std::setw(9) << std::setprecision(0) << p->figures.area.cells << "  "
-       << (p->meets_budget ? "ok" : "over") << (p->pareto ? " pareto" : "") << (is_chosen ? " CHOSEN" : "") << '\n';
+    if (std::isinf(e.psnr_db))
+      psnr << "inf";
+    else
+      psnr << std::fixed << std::setprecision(1) << e.psnr_db;
+    os << std::right << std::setw(10) << per_channel_max(e, channels)
+       << std::setw(channels == 1 ? 9 : 23) << per_channel_mean(e, channels) << std::setw(9)
+       << psnr.str() << std::setw(8) << std::fixed << std::setprecision(2) << over_1lsb_pct(e)
+       << std::setw(8) << std::setprecision(3) << p->figures.cycles_per_pixel << std::setw(9)
+       << std::setprecision(0) << p->figures.area.cells << "  " << (p->meets_budget ? "ok" : "over")
+       << (p->pareto ? " pareto" : "") << (is_chosen ? " CHOSEN" : "") << '\n';
   }
 }
 
 void print_budget(std::ostream& os, const ErrorBudget& b, const std::string& what) {
   os << std::fixed << std::setprecision(3);
-  os << "error by source, " << what << ", " << b.scene << " (output LSBs before rounding; max / mean)\n"
-     << "  (1) shading function  " << std::setw(8) << b.function.max_lsb << " / " << std::setprecision(4)
-     << b.function.mean_lsb << std::setprecision(3)
+  os << "error by source, " << what << ", " << b.scene
+     << " (output LSBs before rounding; max / mean)\n"
+     << "  (1) shading function  " << std::setw(8) << b.function.max_lsb << " / "
+     << std::setprecision(4) << b.function.mean_lsb << std::setprecision(3)
      << "   unit's function in double vs exact pow: change the unit or its fit, not a width\n"
-     << "  (2) Taylor truncation " << std::setw(8) << b.taylor.max_lsb << " / " << std::setprecision(4)
-     << b.taylor.mean_lsb << std::setprecision(3)
-     << "   quadratics vs exact cosines: the setup budget (--setup-budget) subdivides, widths cannot\n"
-     << "  (3) quantization      " << std::setw(8) << b.quantization.max_lsb << " / " << std::setprecision(4)
-     << b.quantization.mean_lsb << std::setprecision(3)
+     << "  (2) Taylor truncation " << std::setw(8) << b.taylor.max_lsb << " / "
+     << std::setprecision(4) << b.taylor.mean_lsb << std::setprecision(3)
+     << "   quadratics vs exact cosines: the setup budget (--setup-budget) subdivides, widths "
+        "cannot\n"
+     << "  (3) quantization      " << std::setw(8) << b.quantization.max_lsb << " / "
+     << std::setprecision(4) << b.quantization.mean_lsb << std::setprecision(3)
      << "   bit-accurate model vs the same quadratics and function in double: the widths, incl.\n"
-     << "                                             output rounding (<= 0.5 LSB unless out_bits grows)\n"
-     << "  total                 " << std::setw(8) << b.total.max_lsb << " / " << std::setprecision(4)
-     << b.total.mean_lsb << std::setprecision(3) << "   model vs reference; per pixel <= (1) + (2) + (3)\n";
+     << "                                             output rounding (<= 0.5 LSB unless out_bits "
+        "grows)\n"
+     << "  total                 " << std::setw(8) << b.total.max_lsb << " / "
+     << std::setprecision(4) << b.total.mean_lsb << std::setprecision(3)
+     << "   model vs reference; per pixel <= (1) + (2) + (3)\n";
 }
 
 int run_explore(const ExploreCliOptions& o) {
-  const std::filesystem::path out_dir =
-      o.out_dir.empty() ? std::filesystem::path("out") / "explore" / std::filesystem::path(o.scenes.front()).stem()
-                        : std::filesystem::path(o.out_dir);
+  const std::filesystem::path out_dir = o.out_dir.empty()
+                                            ? std::filesystem::path("out") / "explore" /
+                                                  std::filesystem::path(o.scenes.front()).stem()
+                                            : std::filesystem::path(o.out_dir);
   const auto t0 = std::chrono::steady_clock::now();
   // The start: a given config file, else the scenes' own smallest configuration.
   UnitConfig start;
@@ -373,7 +408,8 @@ int run_explore(const ExploreCliOptions& o) {
   std::optional<double> setup_budget;
   if (!std::isnan(o.setup_budget_lsb)) setup_budget = o.setup_budget_lsb;
   ExploreScenes scenes(o.scenes, start, setup_budget, o.max_depth);
-  const double host_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double host_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   ExploreOptions eo;
   eo.budget_lsb = o.budget_lsb;
@@ -382,7 +418,8 @@ int run_explore(const ExploreCliOptions& o) {
   const AreaFunction area = area_model(start, o.area_cache);
   const auto t1 = std::chrono::steady_clock::now();
   const ExploreResult r = explore(scenes, start, area, eo, std::ref(bar));
-  const double sweep_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  const double sweep_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
 
   std::vector<ErrorBudget> chosen_budget, start_budget;
   for (std::size_t s = 0; s < o.scenes.size(); ++s) {
@@ -414,7 +451,8 @@ int run_explore(const ExploreCliOptions& o) {
     for (const auto& s : o.scenes) std::cout << s << ' ';
     std::cout << "\nstart        " << start.to_string() << "\n             from " << start_source
               << "\nbudget       max " << o.budget_lsb
-              << " LSB (output codes vs the reference rounded by the same rule, every pixel and channel)\n"
+              << " LSB (output codes vs the reference rounded by the same rule, every pixel and "
+                 "channel)\n"
               << "area         " << area_metric << "\n\n";
     std::vector<const ExplorePoint*> rows;
     for (const auto& p : r.points) rows.push_back(&p);
@@ -433,11 +471,13 @@ int run_explore(const ExploreCliOptions& o) {
     std::cout << '\n';
     if (r.chosen) {
       const ExplorePoint& c = r.points[*r.chosen];
-      std::cout << "chosen       " << c.config.to_string() << "\n             " << c.config.specular.describe()
-                << ", spec_colour " << c.config.spec_colour.to_string() << "\n             max "
-                << c.figures.error.max_code_lsb << " LSB, mean " << std::setprecision(4) << c.figures.error.mean_code_lsb
-                << ", " << std::setprecision(3) << c.figures.cycles_per_pixel << " cycles/pixel, area "
-                << std::setprecision(0) << c.figures.area.cells << " (start " << r.points[r.start_index].figures.area.cells
+      std::cout << "chosen       " << c.config.to_string() << "\n             "
+                << c.config.specular.describe() << ", spec_colour "
+                << c.config.spec_colour.to_string() << "\n             max "
+                << c.figures.error.max_code_lsb << " LSB, mean " << std::setprecision(4)
+                << c.figures.error.mean_code_lsb << ", " << std::setprecision(3)
+                << c.figures.cycles_per_pixel << " cycles/pixel, area " << std::setprecision(0)
+                << c.figures.area.cells << " (start " << r.points[r.start_index].figures.area.cells
                 << ")\n\n";
       for (const auto& b : chosen_budget) print_budget(std::cout, b, "chosen point");
     } else {
@@ -446,9 +486,11 @@ int run_explore(const ExploreCliOptions& o) {
         // Widths move only the quantization part; the rest is there at any width.
         const double fixed = b.function.max_lsb + b.taylor.max_lsb;
         if (fixed > o.budget_lsb) {
-          std::cout << "             " << b.scene << ": the shading function (" << std::setprecision(3)
-                    << b.function.max_lsb << " LSB) and the Taylor truncation (" << b.taylor.max_lsb
-                    << " LSB) are there at any width - no width can fix them; change the specular unit or\n"
+          std::cout << "             " << b.scene << ": the shading function ("
+                    << std::setprecision(3) << b.function.max_lsb
+                    << " LSB) and the Taylor truncation (" << b.taylor.max_lsb
+                    << " LSB) are there at any width - no width can fix them; change the specular "
+                       "unit or\n"
                     << "             its fit (function), or lower --setup-budget (Taylor)\n";
         }
       }
@@ -458,8 +500,9 @@ int run_explore(const ExploreCliOptions& o) {
     std::cout << "\nconfigs      " << (out_dir / "start.json").string()
               << (r.chosen ? ", " + (out_dir / "chosen.json").string() : std::string())
               << ", pareto_<point>.json for the front (in " << out_dir.string() << ")\n"
-              << "time         host setup " << std::setprecision(2) << host_s << " s, " << r.points.size()
-              << " points in " << sweep_s << " s on " << o.jobs << " thread(s)\n";
+              << "time         host setup " << std::setprecision(2) << host_s << " s, "
+              << r.points.size() << " points in " << sweep_s << " s on " << o.jobs
+              << " thread(s)\n";
     if (!o.json_path.empty()) std::cout << "plot         scripts/plot " << o.json_path << "\n";
   }
 
@@ -478,45 +521,53 @@ int run_explore(const ExploreCliOptions& o) {
     for (const auto& v : verified) {
       std::cout << "verified     " << v.name << ": "
                 << (v.verified ? "yes - bit- and cycle-exact in RTL" : "NO") << " (" << v.passed
-                << " runs passed, " << v.mismatched << " mismatched, " << v.errors << " error(s), " << v.skipped
-                << " skipped; both backends, every scene; " << v.report << ")\n";
+                << " runs passed, " << v.mismatched << " mismatched, " << v.errors << " error(s), "
+                << v.skipped << " skipped; both backends, every scene; " << v.report << ")\n";
     }
   }
 
   if (!o.json_path.empty()) {
     nlohmann::json points = nlohmann::json::array();
-    for (std::size_t i = 0; i < r.points.size(); ++i) points.push_back(point_json(r.points[i], i, channels));
+    for (std::size_t i = 0; i < r.points.size(); ++i)
+      points.push_back(point_json(r.points[i], i, channels));
     nlohmann::json cb = nlohmann::json::array(), sb = nlohmann::json::array();
     for (const auto& b : chosen_budget) cb.push_back(budget_json(b));
     for (const auto& b : start_budget) sb.push_back(budget_json(b));
-    nlohmann::json j = {{"kind", "explore"},
-                        {"scenes", o.scenes},
-                        {"budget_lsb", o.budget_lsb},
-                        {"area_metric", area_metric},
-                        {"start", nlohmann::json::parse(config_to_json(start))},
-                        {"start_source", start_source},
-                        {"start_index", r.start_index},
-                        {"chosen_index", r.chosen ? nlohmann::json(*r.chosen) : nlohmann::json(nullptr)},
-                        {"points", points},
-                        {"search_log", r.log},
-                        {"error_budget", {{"chosen", cb}, {"start", sb}}},
-                        {"config_files", nlohmann::json::array()},
-                        {"seconds", {{"host_setup", host_s}, {"sweep", sweep_s}}},
-                        {"jobs", o.jobs}};
-    for (const auto& v : to_verify) j["config_files"].push_back({{"name", v.name}, {"file", v.config_file}});
+    nlohmann::json j = {
+        {"kind", "explore"},
+        {"scenes", o.scenes},
+        {"budget_lsb", o.budget_lsb},
+        {"area_metric", area_metric},
+        {"start", nlohmann::json::parse(config_to_json(start))},
+        {"start_source", start_source},
+        {"start_index", r.start_index},
+        {"chosen_index", r.chosen ? nlohmann::json(*r.chosen) : nlohmann::json(nullptr)},
+        {"points", points},
+        {"search_log", r.log},
+        {"error_budget", {{"chosen", cb}, {"start", sb}}},
+        {"config_files", nlohmann::json::array()},
+        {"seconds", {{"host_setup", host_s}, {"sweep", sweep_s}}},
+        {"jobs", o.jobs}};
+    for (const auto& v : to_verify)
+      j["config_files"].push_back({{"name", v.name}, {"file", v.config_file}});
     j["verification"] = nlohmann::json::array();
     for (const auto& v : verified) {
-      j["verification"].push_back({{"name", v.name}, {"verified", v.verified}, {"passed", v.passed},
-                                   {"mismatched", v.mismatched}, {"errors", v.errors}, {"skipped", v.skipped},
-                                   {"regress_json", v.report}, {"log", v.log}});
+      j["verification"].push_back({{"name", v.name},
+                                   {"verified", v.verified},
+                                   {"passed", v.passed},
+                                   {"mismatched", v.mismatched},
+                                   {"errors", v.errors},
+                                   {"skipped", v.skipped},
+                                   {"regress_json", v.report},
+                                   {"log", v.log}});
     }
     std::ofstream os(o.json_path);
     if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
     os << j.dump(2) << '\n';
   }
   if (!o.csv_path.empty()) write_csv(o.csv_path, r, channels);
-  const bool all_verified =
-      std::all_of(verified.begin(), verified.end(), [](const Verification& v) { return v.verified; });
+  const bool all_verified = std::all_of(verified.begin(), verified.end(),
+                                        [](const Verification& v) { return v.verified; });
   return r.chosen && all_verified ? 0 : 1;
 }
 
@@ -530,7 +581,8 @@ void register_explore(CLI::App& app, int& exit_code) {
       "error budget. Every point: error against the double reference (max and mean LSB per\n"
       "channel, PSNR, % of pixels more than 1 LSB off), cycles per pixel (cycle model) and area\n"
       "(generic cells: shadesim area's estimate, a Yosys-measured unit of the same specular kind\n"
-      "scaled module by module; with none in --area-cache the start is synthesised once, minutes).\n"
+      "scaled module by module; with none in --area-cache the start is synthesised once, "
+      "minutes).\n"
       "Host setup (projection, Taylor setup, visibility, reference) is done once per scene and\n"
       "output width; a point only re-quantizes the stream and re-runs the model.\n"
       "\n"
@@ -550,37 +602,52 @@ void register_explore(CLI::App& app, int& exit_code) {
       "exact pow, (2) Taylor truncation, (3) fixed-point quantization; widths fix only (3).\n"
       "Exit status 0 when a point meets the budget, 1 when none does, 2 on bad input.");
   sub->add_option("scenes", o->scenes, "scene JSON file(s); one unit must serve them all")
-      ->required()->check(CLI::ExistingFile);
+      ->required()
+      ->check(CLI::ExistingFile);
   sub->add_option("--budget", o->budget_lsb, "error budget: max LSB off, every pixel and channel")
-      ->check(CLI::NonNegativeNumber)->capture_default_str();
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   sub->add_option("--setup-budget", o->setup_budget_lsb,
                   "Taylor error budget per triangle in output LSBs (default: the scene's, else 1)")
       ->check(CLI::PositiveNumber);
   sub->add_option("--max-depth", o->max_depth, "subdivision depth limit per triangle")
-      ->check(CLI::Range(0, 16))->capture_default_str();
-  sub->add_option("--config", o->config_path,
-                  "start from this UnitConfig JSON file (default: the scenes' own configuration, as\n"
-                  "shadesim config derives it)");
+      ->check(CLI::Range(0, 16))
+      ->capture_default_str();
+  sub->add_option(
+      "--config", o->config_path,
+      "start from this UnitConfig JSON file (default: the scenes' own configuration, as\n"
+      "shadesim config derives it)");
   sub->add_option("--out-bits", o->out_bits, "output bits per channel for the derived start")
-      ->check(CLI::Range(1, 16))->capture_default_str()->excludes("--config");
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str()
+      ->excludes("--config");
   sub->add_option("--specular", o->specular,
                   "specular unit: ideal|lut|schlick|wpow, replacing the start's (its widths stay)");
-  sub->add_option("-j,--jobs", o->jobs, "threads evaluating points")->check(CLI::Range(1, 64))->capture_default_str();
-  sub->add_option("--json", o->json_path, "write every point, the search and the error split as JSON (scripts/plot draws it)");
+  sub->add_option("-j,--jobs", o->jobs, "threads evaluating points")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  sub->add_option(
+      "--json", o->json_path,
+      "write every point, the search and the error split as JSON (scripts/plot draws it)");
   sub->add_option("--csv", o->csv_path, "write every point as CSV");
   sub->add_option("-o,--out", o->out_dir,
                   "folder for the config files: start.json, chosen.json, pareto_<point>.json\n"
                   "(default out/explore/<first scene>)");
-  sub->add_option("--area-cache", o->area_cache,
-                  "shadesim area's cache: the measured units the area estimate scales from (the start\n"
-                  "is synthesised into it once when no unit with its specular kind is there)")
+  sub->add_option(
+         "--area-cache", o->area_cache,
+         "shadesim area's cache: the measured units the area estimate scales from (the start\n"
+         "is synthesised into it once when no unit with its specular kind is there)")
       ->capture_default_str();
-  sub->add_flag("--verify", o->verify,
-                "co-simulate the chosen point on every scene in RTL, both backends (shadesim regress with\n"
-                "--config; its RTL is Verilated on demand) and mark it verified: 0 pixel, 0 cycle mismatches");
-  sub->add_option("--emit-jobs", o->emit_jobs,
-                  "write the regress runs --verify would do into FILE, one shell command per line (for GNU\n"
-                  "parallel or a batch system; README \"Regression on many machines\") instead of running them");
+  sub->add_flag(
+      "--verify", o->verify,
+      "co-simulate the chosen point on every scene in RTL, both backends (shadesim regress with\n"
+      "--config; its RTL is Verilated on demand) and mark it verified: 0 pixel, 0 cycle "
+      "mismatches");
+  sub->add_option(
+      "--emit-jobs", o->emit_jobs,
+      "write the regress runs --verify would do into FILE, one shell command per line (for GNU\n"
+      "parallel or a batch system; README \"Regression on many machines\") instead of running "
+      "them");
   sub->add_flag("-q,--quiet", o->quiet, "print nothing (use with --json / --csv)");
   sub->callback([o, &exit_code]() { exit_code = run_explore(*o); });
 }

@@ -42,15 +42,16 @@ std::vector<fs::path> json_files(const fs::path& dir) {
 
 int run_merge(const MergeOptions& o) {
   std::vector<std::string> problems;
-  std::map<std::string, Planned> planned;       // id -> the first plan naming it
-  std::map<std::string, RunRecord> found;       // id -> its record
-  std::map<std::string, std::string> found_at;  // id -> its run.json
+  std::map<std::string, Planned> planned;         // id -> the first plan naming it
+  std::map<std::string, RunRecord> found;         // id -> its record
+  std::map<std::string, std::string> found_at;    // id -> its run.json
   std::map<std::string, std::string> unfinished;  // id -> a run folder without run.json
   for (const auto& d : o.dirs) {
     const fs::path dir(d);
     if (!fs::is_directory(dir)) throw std::invalid_argument("merge: " + d + ": no such folder");
     if (!fs::is_directory(dir / "plans") && !fs::is_directory(dir / "runs")) {
-      throw std::invalid_argument("merge: " + d + ": not a regress output folder (it has neither plans/ nor runs/)");
+      throw std::invalid_argument(
+          "merge: " + d + ": not a regress output folder (it has neither plans/ nor runs/)");
     }
     for (const auto& f : json_files(dir / "plans")) {
       try {
@@ -60,7 +61,8 @@ int run_merge(const MergeOptions& o) {
           throw std::runtime_error(f.string() + ": expected a regress plan with a runs array");
         }
         for (size_t i = 0; i < j.at("runs").size(); ++i) {
-          const RunSpec s = spec_from_json(j.at("runs")[i], f.string() + ": runs[" + std::to_string(i) + "]");
+          const RunSpec s =
+              spec_from_json(j.at("runs")[i], f.string() + ": runs[" + std::to_string(i) + "]");
           planned.emplace(s.id(), Planned{s, f.string()});
         }
       } catch (const nlohmann::json::exception& e) {
@@ -91,11 +93,13 @@ int run_merge(const MergeOptions& o) {
         continue;
       }
       if (r.spec.id() != id) {
-        problems.push_back("result " + file.string() + " is of run " + r.spec.id() + ", not of its folder's " + id);
+        problems.push_back("result " + file.string() + " is of run " + r.spec.id() +
+                           ", not of its folder's " + id);
         continue;
       }
       if (found_at.count(id)) {
-        problems.push_back("duplicate run " + id + ": " + found_at.at(id) + " and " + file.string() + " (the first is reported)");
+        problems.push_back("duplicate run " + id + ": " + found_at.at(id) + " and " +
+                           file.string() + " (the first is reported)");
         continue;
       }
       found_at.emplace(id, file.string());
@@ -113,9 +117,10 @@ int run_merge(const MergeOptions& o) {
     r.scene_name = fs::path(p.spec.scene).stem().string();
     r.status = "missing";
     const auto u = unfinished.find(id);
-    r.message = "planned in " + p.plan + ", but no folder holds its result: " +
-                (u != unfinished.end() ? u->second + " has no run.json (started, never finished: killed?)"
-                                       : std::string("never started"));
+    r.message =
+        "planned in " + p.plan + ", but no folder holds its result: " +
+        (u != unfinished.end() ? u->second + " has no run.json (started, never finished: killed?)"
+                               : std::string("never started"));
     if (u != unfinished.end()) r.dir = u->second;
     missing.push_back(id);
     records.push_back(r);
@@ -124,9 +129,10 @@ int run_merge(const MergeOptions& o) {
   check_backends_agree(records);
   print_run_table(records);
   const RunCounts c = count_runs(records);
-  std::cout << "\nmerge: " << records.size() << " run(s) from " << o.dirs.size() << " folder(s): " << c.passed
-            << " passed, " << c.mismatched << " mismatched, " << c.hangs << " hung, " << c.timeouts << " timed out, "
-            << c.errors << " error(s), " << c.skipped << " skipped, " << c.missing << " missing\n";
+  std::cout << "\nmerge: " << records.size() << " run(s) from " << o.dirs.size()
+            << " folder(s): " << c.passed << " passed, " << c.mismatched << " mismatched, "
+            << c.hangs << " hung, " << c.timeouts << " timed out, " << c.errors << " error(s), "
+            << c.skipped << " skipped, " << c.missing << " missing\n";
   for (const auto& r : records) {
     if (r.status != "pass" && r.status != "skipped") {
       std::cout << "  " << r.status << ": " << r.spec.id() << ": " << r.message
@@ -138,7 +144,8 @@ int run_merge(const MergeOptions& o) {
   for (const auto& [id, r] : found) {
     if (!planned.empty() && !planned.count(id)) {
       std::cout << "  note: " << id << " (" << found_at.at(id)
-                << ") is in no plan of these folders: an earlier regress into the same folder? It is reported.\n";
+                << ") is in no plan of these folders: an earlier regress into the same folder? It "
+                   "is reported.\n";
     }
   }
   if (!o.junit_path.empty()) write_junit_report(o.junit_path, records);
@@ -151,7 +158,8 @@ int run_merge(const MergeOptions& o) {
     return 1;
   }
   if (!problems.empty() || c.failed()) {
-    std::cout << "merge: FAIL" << (missing.empty() ? "" : ": " + std::to_string(missing.size()) + " run(s) missing")
+    std::cout << "merge: FAIL"
+              << (missing.empty() ? "" : ": " + std::to_string(missing.size()) + " run(s) missing")
               << '\n';
     return 1;
   }
@@ -164,13 +172,17 @@ void register_merge(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<MergeOptions>();
   CLI::App* sub = app.add_subcommand(
       "merge",
-      "Merge the results that `shadesim regress` runs wrote into one or more output folders (shards,\n"
+      "Merge the results that `shadesim regress` runs wrote into one or more output folders "
+      "(shards,\n"
       "job lines of --emit-jobs, resumed runs) into the summary table, JSON and JUnit one regress\n"
       "writes. Exits 1 when a run the folders' plans name has no result (named, with whether it\n"
-      "started), when a run is in two folders, when a result file cannot be read (named), and on any\n"
+      "started), when a run is in two folders, when a result file cannot be read (named), and on "
+      "any\n"
       "mismatch, hang, timeout or error; 0 only when the whole regression is there and passed.");
-  sub->add_option("dirs", o->dirs, "regress output folders (each with plans/ and runs/)")->required();
-  sub->add_option("--json", o->json_path, "write every run's figures as JSON (the format of regress --json)");
+  sub->add_option("dirs", o->dirs, "regress output folders (each with plans/ and runs/)")
+      ->required();
+  sub->add_option("--json", o->json_path,
+                  "write every run's figures as JSON (the format of regress --json)");
   sub->add_option("--junit", o->junit_path, "write JUnit XML for CI");
   sub->callback([o, &exit_code]() { exit_code = run_merge(*o); });
 }

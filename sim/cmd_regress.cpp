@@ -57,11 +57,12 @@ struct RegressOptions {
   std::string emit_jobs;  // FILE: write one command per run instead of running
   std::string resume;     // DIR: run what DIR's plans name and DIR has no result for
   double timeout = 1800;  // seconds per run; 0: none
-  uint64_t watchdog = 0;  // cycles without pix_valid_o that count as a hang; 0: the harness's default
+  uint64_t watchdog =
+      0;  // cycles without pix_valid_o that count as a hang; 0: the harness's default
   bool waves = false;
   bool list = false;
-  bool coverage = false;      // covered builds; merge and report RTL coverage
-  double coverage_min = -1;   // --coverage-min PCT: exit 1 below this rtl/ line coverage
+  bool coverage = false;     // covered builds; merge and report RTL coverage
+  double coverage_min = -1;  // --coverage-min PCT: exit 1 below this rtl/ line coverage
 };
 
 struct Shard {
@@ -94,7 +95,10 @@ struct RunSettings {
 };
 
 nlohmann::json settings_json(const RunSettings& s) {
-  return {{"gap_pct", s.gap_pct}, {"max_gap", s.max_gap}, {"stall_pct", s.stall_pct}, {"timeout", s.timeout},
+  return {{"gap_pct", s.gap_pct},
+          {"max_gap", s.max_gap},
+          {"stall_pct", s.stall_pct},
+          {"timeout", s.timeout},
           {"watchdog", s.watchdog}};
 }
 
@@ -141,7 +145,8 @@ RtlConfig resolve_config(const RunSpec& s, const fs::path& base) {
 bool has_highlights(const CommandStream& stream) {
   for (const auto& cmd : stream.commands) {
     if (const auto* m = std::get_if<MaterialCmd>(&cmd)) {
-      for (auto v : m->spec_colour) if (v != 0) return true;
+      for (auto v : m->spec_colour)
+        if (v != 0) return true;
     }
   }
   return false;
@@ -152,7 +157,8 @@ std::vector<std::string> default_scenes() {
   fs::path dir = "scenes";
   if (!fs::is_directory(dir)) dir = fs::path(source_dir()) / "scenes";
   if (!fs::is_directory(dir)) {
-    throw std::invalid_argument("regress: no scene files given, and neither ./scenes nor " + dir.string() +
+    throw std::invalid_argument("regress: no scene files given, and neither ./scenes nor " +
+                                dir.string() +
                                 " exists; name scene files, or run from the project folder");
   }
   std::vector<std::string> scenes;
@@ -160,14 +166,16 @@ std::vector<std::string> default_scenes() {
     if (e.path().extension() == ".json") scenes.push_back(e.path().string());
   }
   std::sort(scenes.begin(), scenes.end());
-  if (scenes.empty()) throw std::invalid_argument("regress: no scenes given and none in " + dir.string());
+  if (scenes.empty())
+    throw std::invalid_argument("regress: no scenes given and none in " + dir.string());
   return scenes;
 }
 
 // The whole job list, before any host work: scenes x configurations x backends. Each scene and
 // configuration gets the next seed (both backends the same one), so a run's seed depends only on
 // its place in this list, never on what another run found.
-std::vector<RunSpec> full_run_list(const RegressOptions& o, const std::vector<std::string>& scenes) {
+std::vector<RunSpec> full_run_list(const RegressOptions& o,
+                                   const std::vector<std::string>& scenes) {
   std::vector<std::pair<std::string, std::string>> configs;  // kind, name
   for (const auto& name : o.configs) {
     named_build(named_builds_path(), name);  // an unknown name fails here, listing the names
@@ -192,16 +200,20 @@ std::vector<RunSpec> full_run_list(const RegressOptions& o, const std::vector<st
 
 // What a regress process was asked to run, written into OUT/plans/ before it runs anything:
 // merge compares it with the results to name what is missing; --resume runs the rest of it.
-void write_plan(const fs::path& out, const std::string& name, const RunSettings& settings, const std::string& shard,
-                const std::vector<RunSpec>& all, const std::vector<RunSpec>& selected) {
+void write_plan(const fs::path& out, const std::string& name, const RunSettings& settings,
+                const std::string& shard, const std::vector<RunSpec>& all,
+                const std::vector<RunSpec>& selected) {
   nlohmann::json runs = nlohmann::json::array(), ids = nlohmann::json::array();
   for (const auto& s : all) runs.push_back(spec_json(s));
   for (const auto& s : selected) ids.push_back(s.id());
   // Relative scene and config paths are relative to the folder regress ran in: --resume from
   // anywhere finds them there.
-  const nlohmann::json plan = {{"tool", "shadesim regress"}, {"shard", shard.empty() ? nlohmann::json() : nlohmann::json(shard)},
-                               {"cwd", fs::current_path().string()}, {"settings", settings_json(settings)},
-                               {"runs", runs}, {"selected", ids}};
+  const nlohmann::json plan = {{"tool", "shadesim regress"},
+                               {"shard", shard.empty() ? nlohmann::json() : nlohmann::json(shard)},
+                               {"cwd", fs::current_path().string()},
+                               {"settings", settings_json(settings)},
+                               {"runs", runs},
+                               {"selected", ids}};
   write_file_atomically((out / "plans" / (name + ".json")).string(), plan.dump(2) + '\n');
 }
 
@@ -213,9 +225,11 @@ struct LoadedPlans {
 
 // --resume DIR: the runs DIR's plans selected, with their settings (which must agree).
 LoadedPlans load_plans(const fs::path& dir) {
-  if (!fs::is_directory(dir)) throw std::invalid_argument("--resume " + dir.string() + ": no such folder");
+  if (!fs::is_directory(dir))
+    throw std::invalid_argument("--resume " + dir.string() + ": no such folder");
   if (!fs::is_directory(dir / "plans")) {
-    throw std::invalid_argument("--resume " + dir.string() + ": not a regress output folder (it has no plans/ folder)");
+    throw std::invalid_argument("--resume " + dir.string() +
+                                ": not a regress output folder (it has no plans/ folder)");
   }
   LoadedPlans lp;
   std::string settings_from;
@@ -225,7 +239,8 @@ LoadedPlans load_plans(const fs::path& dir) {
     if (e.path().extension() == ".json") files.push_back(e.path());
   }
   std::sort(files.begin(), files.end());
-  if (files.empty()) throw std::invalid_argument("--resume " + dir.string() + ": plans/ holds no plan (*.json)");
+  if (files.empty())
+    throw std::invalid_argument("--resume " + dir.string() + ": plans/ holds no plan (*.json)");
   for (const auto& f : files) {
     nlohmann::json j;
     try {
@@ -234,8 +249,10 @@ LoadedPlans load_plans(const fs::path& dir) {
     } catch (const nlohmann::json::exception& e) {
       throw std::invalid_argument(f.string() + ": not valid JSON (" + e.what() + ")");
     }
-    if (!j.is_object() || !j.contains("settings") || !j.contains("runs") || !j.contains("selected")) {
-      throw std::invalid_argument(f.string() + ": expected a regress plan with settings, runs and selected");
+    if (!j.is_object() || !j.contains("settings") || !j.contains("runs") ||
+        !j.contains("selected")) {
+      throw std::invalid_argument(f.string() +
+                                  ": expected a regress plan with settings, runs and selected");
     }
     RunSettings s;
     try {
@@ -253,17 +270,20 @@ LoadedPlans load_plans(const fs::path& dir) {
       if (j.contains("cwd") && j.at("cwd").is_string()) lp.base = j.at("cwd").get<std::string>();
       settings_from = f.string();
     } else if (settings_json(s) != settings_json(lp.settings)) {
-      throw std::invalid_argument(f.string() + ": its settings " + settings_json(s).dump() + " differ from " +
-                                  settings_from + "'s " + settings_json(lp.settings).dump());
+      throw std::invalid_argument(f.string() + ": its settings " + settings_json(s).dump() +
+                                  " differ from " + settings_from + "'s " +
+                                  settings_json(lp.settings).dump());
     }
     std::map<std::string, RunSpec> by_id;
     for (size_t i = 0; i < j.at("runs").size(); ++i) {
-      const RunSpec spec = spec_from_json(j.at("runs")[i], f.string() + ": runs[" + std::to_string(i) + "]");
+      const RunSpec spec =
+          spec_from_json(j.at("runs")[i], f.string() + ": runs[" + std::to_string(i) + "]");
       by_id[spec.id()] = spec;
     }
     for (const auto& id : j.at("selected")) {
       const auto it = by_id.find(id.is_string() ? id.get<std::string>() : std::string());
-      if (it == by_id.end()) throw std::invalid_argument(f.string() + ": selected run " + id.dump() + " is not in runs");
+      if (it == by_id.end())
+        throw std::invalid_argument(f.string() + ": selected run " + id.dump() + " is not in runs");
       if (seen.insert(it->first).second) lp.selected.push_back(it->second);
     }
   }
@@ -278,8 +298,10 @@ std::string number_text(double v) {
 }
 
 std::string shell_quote(const std::string& s) {
-  if (!s.empty() && s.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./:=,+-@%") ==
-                        std::string::npos) {
+  if (!s.empty() &&
+      s.find_first_not_of(
+          "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./:=,+-@%") ==
+          std::string::npos) {
     return s;
   }
   std::string q = "'";
@@ -292,7 +314,8 @@ std::string shell_quote(const std::string& s) {
 std::string self_path() {
   std::error_code ec;
   const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (ec) throw std::runtime_error("--emit-jobs: cannot find the shadesim executable: " + ec.message());
+  if (ec)
+    throw std::runtime_error("--emit-jobs: cannot find the shadesim executable: " + ec.message());
   const fs::path rel = fs::relative(self, fs::current_path(), ec);
   if (!ec && !rel.empty() && *rel.begin() != "..") return rel.string();
   return self.string();
@@ -308,10 +331,11 @@ void emit_jobs(const RegressOptions& o, const RunSettings& settings, const fs::p
     std::vector<std::string> a = {"cd", fs::current_path().string(), "&&", exe, "regress", s.scene};
     if (s.config_kind == "named") a.insert(a.end(), {"--configs", s.config});
     if (s.config_kind == "file") a.insert(a.end(), {"--config", s.config});
-    a.insert(a.end(), {"--backends", s.backend, "--seed", std::to_string(s.seed),
-                       "--gap-pct", std::to_string(settings.gap_pct), "--max-gap", std::to_string(settings.max_gap),
-                       "--stall-pct", std::to_string(settings.stall_pct), "--timeout", number_text(settings.timeout),
-                       "--jobs", "1", "--out", out.string()});
+    a.insert(a.end(),
+             {"--backends", s.backend, "--seed", std::to_string(s.seed), "--gap-pct",
+              std::to_string(settings.gap_pct), "--max-gap", std::to_string(settings.max_gap),
+              "--stall-pct", std::to_string(settings.stall_pct), "--timeout",
+              number_text(settings.timeout), "--jobs", "1", "--out", out.string()});
     if (settings.watchdog > 0) a.insert(a.end(), {"--watchdog", std::to_string(settings.watchdog)});
     if (!o.cache.empty()) a.insert(a.end(), {"--cache", o.cache});
     if (o.waves) a.push_back("--waves");
@@ -326,14 +350,17 @@ void emit_jobs(const RegressOptions& o, const RunSettings& settings, const fs::p
   if (!os) throw std::runtime_error("--emit-jobs " + o.emit_jobs + ": write failed");
   // Every line's run is planned, so merge names a line that never ran.
   write_plan(out, "emitted", settings, "", all, selected);
-  std::cout << "regress: wrote " << selected.size() << " job line(s) to " << o.emit_jobs << " (results into "
-            << (out / "runs").string() << "/<scene>__<config>__<backend>__seed<S>/)\n"
+  std::cout << "regress: wrote " << selected.size() << " job line(s) to " << o.emit_jobs
+            << " (results into " << (out / "runs").string()
+            << "/<scene>__<config>__<backend>__seed<S>/)\n"
             << "  run them:  parallel -j 8 < " << o.emit_jobs << "\n"
-            << "  then:      shadesim merge " << out.string() << " --json merged.json --junit merged.xml\n";
+            << "  then:      shadesim merge " << out.string()
+            << " --json merged.json --junit merged.xml\n";
 }
 
 void save_record(const Job& j) {
-  write_file_atomically((fs::path(j.rec.dir) / "run.json").string(), record_json(j.rec).dump(2) + '\n');
+  write_file_atomically((fs::path(j.rec.dir) / "run.json").string(),
+                        record_json(j.rec).dump(2) + '\n');
 }
 
 // The replay command for a run the harness gave none for (a timeout, a crash).
@@ -341,8 +368,8 @@ std::string replay_command(const Job& j, const RunSettings& settings) {
   std::string cmd = "shadesim cosim --backend " + j.spec.backend;
   if (j.spec.config_kind != "own") cmd += " --config " + j.spec.config;
   cmd += " --stream " + j.rec.stream + " --seed " + std::to_string(j.spec.seed) + " --gap-pct " +
-         std::to_string(settings.gap_pct) + " --max-gap " + std::to_string(settings.max_gap) + " --stall-pct " +
-         std::to_string(settings.stall_pct);
+         std::to_string(settings.gap_pct) + " --max-gap " + std::to_string(settings.max_gap) +
+         " --stall-pct " + std::to_string(settings.stall_pct);
   if (settings.watchdog > 0) cmd += " --watchdog " + std::to_string(settings.watchdog);
   return cmd;
 }
@@ -351,7 +378,8 @@ std::string replay_command(const Job& j, const RunSettings& settings) {
 // and configuration at a time (mesh import limits the process's address space while it runs, so
 // it is not done on several threads at once). A run the scene does not fit is skipped, one the
 // host cannot prepare is an error; either is recorded at once.
-std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& out, const fs::path& base) {
+std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& out,
+                           const fs::path& base) {
   std::vector<Job> jobs;
   std::map<std::string, size_t> first_of_pair;  // scene + config -> its first job
   for (const auto& spec : specs) {
@@ -392,16 +420,19 @@ std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& ou
         try {
           const PreparedFrame f = prepare_frame(from_base(base, spec.scene), fo);
           j.rec.pixels = f.encoded.stats.pixels;
-          if (j.build.unit.specular.kind == SpecularUnitKind::kIdeal && has_highlights(f.encoded.stream)) {
+          if (j.build.unit.specular.kind == SpecularUnitKind::kIdeal &&
+              has_highlights(f.encoded.stream)) {
             j.rec.status = "skipped";
-            j.rec.message = "configuration " + spec.config +
-                            " has no specular hardware (the ideal unit's RTL slot outputs 0) and the scene has "
-                            "highlights: its pixels cannot match the model";
+            j.rec.message =
+                "configuration " + spec.config +
+                " has no specular hardware (the ideal unit's RTL slot outputs 0) and the scene has "
+                "highlights: its pixels cannot match the model";
           } else {
             f.encoded.stream.save(j.rec.stream);
           }
         } catch (const std::invalid_argument& e) {
-          j.rec.status = "skipped";  // the scene needs more than this build has (lights, channels, coordinates)
+          j.rec.status = "skipped";  // the scene needs more than this build has (lights, channels,
+                                     // coordinates)
           j.rec.message = e.what();
         }
       } catch (const std::exception& e) {
@@ -449,7 +480,8 @@ void build_all(std::vector<Job>& jobs, const RegressOptions& o, int workers) {
             << (o.cache.empty() ? default_rtl_cache_dir() : o.cache) << ")" << std::endl;
   parallel_for(needs.size(), workers, [&](size_t i) {
     try {
-      needs[i].executable = ensure_rtl_build(needs[i].build, needs[i].backend, build_options(o)).executable;
+      needs[i].executable =
+          ensure_rtl_build(needs[i].build, needs[i].backend, build_options(o)).executable;
     } catch (const std::exception& e) {
       needs[i].error = e.what();
     }
@@ -457,7 +489,8 @@ void build_all(std::vector<Job>& jobs, const RegressOptions& o, int workers) {
   for (auto& j : jobs) {
     if (j.rec.status != "pending") continue;
     const std::string key = rtl_build_key(j.build, parse_cosim_backend(j.spec.backend), o.coverage);
-    const auto it = std::find_if(needs.begin(), needs.end(), [&](const Need& n) { return n.key == key; });
+    const auto it =
+        std::find_if(needs.begin(), needs.end(), [&](const Need& n) { return n.key == key; });
     if (!it->error.empty()) {
       j.rec.status = "error";
       j.rec.message = "RTL build failed: " + it->error;
@@ -487,15 +520,24 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
   fs::remove(result_path);  // a resumed run must not read the result of an earlier attempt
   rec.log = (dir / "cosim.log").string();
   std::vector<std::string> args = {job.executable,
-                                   "--unit", job.unit_path,
-                                   "--config", job.spec.config,
-                                   "--stream", rec.stream,
-                                   "--seed", std::to_string(job.spec.seed),
-                                   "--gap-pct", std::to_string(settings.gap_pct),
-                                   "--max-gap", std::to_string(settings.max_gap),
-                                   "--stall-pct", std::to_string(settings.stall_pct),
-                                   "--save-dir", (dir / "failing").string()};
-  if (settings.watchdog > 0) args.insert(args.end(), {"--watchdog", std::to_string(settings.watchdog)});
+                                   "--unit",
+                                   job.unit_path,
+                                   "--config",
+                                   job.spec.config,
+                                   "--stream",
+                                   rec.stream,
+                                   "--seed",
+                                   std::to_string(job.spec.seed),
+                                   "--gap-pct",
+                                   std::to_string(settings.gap_pct),
+                                   "--max-gap",
+                                   std::to_string(settings.max_gap),
+                                   "--stall-pct",
+                                   std::to_string(settings.stall_pct),
+                                   "--save-dir",
+                                   (dir / "failing").string()};
+  if (settings.watchdog > 0)
+    args.insert(args.end(), {"--watchdog", std::to_string(settings.watchdog)});
   if (o.coverage) {
     // Written by the run itself, pass or fail; a resumed run must not keep an earlier attempt's.
     const fs::path dat = dir / "coverage.dat";
@@ -511,7 +553,8 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
   if (r.timed_out) {
     rec.status = "timeout";
     rec.seconds = wall;
-    rec.message = "killed after " + number_text(settings.timeout) + " s (--timeout); log: " + rec.log;
+    rec.message =
+        "killed after " + number_text(settings.timeout) + " s (--timeout); log: " + rec.log;
     rec.replay = replay_command(job, settings);
     return;
   }
@@ -537,7 +580,8 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
     if (o.waves && job.spec.backend == "cpp") {
       const fs::path fst = dir / "waves.fst";
       RtlBuildOptions traced = build_options(o);
-      traced.coverage = false;  // the traced re-run only draws the window; its coverage is the run's
+      traced.coverage =
+          false;  // the traced re-run only draws the window; its coverage is the run's
       args[0] = ensure_rtl_build(job.build, CosimBackend::kCppTrace, traced).executable;
       const auto cov = std::find(args.begin(), args.end(), "--coverage");
       if (cov != args.end()) args.erase(cov, cov + 2);
@@ -557,7 +601,8 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
   while (std::getline(log, line)) {
     if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
   }
-  rec.message = "co-simulation exited with " + std::to_string(r.exit_code) + ": " + last + " (log: " + rec.log + ")";
+  rec.message = "co-simulation exited with " + std::to_string(r.exit_code) + ": " + last +
+                " (log: " + rec.log + ")";
 }
 
 std::string fmt(double v, int precision) {
@@ -568,7 +613,8 @@ std::string fmt(double v, int precision) {
 
 // Runs the pending jobs; each writes its record the moment it ends, so a killed regression keeps
 // every finished run.
-void run_jobs(std::vector<Job>& jobs, const RegressOptions& o, const RunSettings& settings, int workers) {
+void run_jobs(std::vector<Job>& jobs, const RegressOptions& o, const RunSettings& settings,
+              int workers) {
   std::atomic<size_t> done{0};
   std::mutex print_mutex;
   parallel_for(jobs.size(), workers, [&](size_t i) {
@@ -590,9 +636,10 @@ void run_jobs(std::vector<Job>& jobs, const RegressOptions& o, const RunSettings
     const size_t n = ++done;
     const RunRecord& r = j.rec;
     std::lock_guard<std::mutex> lock(print_mutex);
-    std::cout << "[" << n << "/" << jobs.size() << "] " << r.spec.id() << ": " << r.status << ", " << r.cycles
-              << " cycles, " << fmt(r.seconds, 2) << " s";
-    if (r.status != "pass") std::cout << "\n    " << r.message << (r.replay.empty() ? "" : "\n    replay: " + r.replay);
+    std::cout << "[" << n << "/" << jobs.size() << "] " << r.spec.id() << ": " << r.status << ", "
+              << r.cycles << " cycles, " << fmt(r.seconds, 2) << " s";
+    if (r.status != "pass")
+      std::cout << "\n    " << r.message << (r.replay.empty() ? "" : "\n    replay: " + r.replay);
     if (!r.waves.empty()) std::cout << "\n    waves: " << r.waves;
     std::cout << std::endl;
   });
@@ -602,8 +649,8 @@ void list_named_builds() {
   for (const auto& c : load_named_builds(named_builds_path())) {
     std::string backends;
     for (const auto& b : c.backends) backends += (backends.empty() ? "" : ",") + b;
-    std::cout << std::left << std::setw(18) << c.name << std::setw(13) << backends << c.unit.to_string()
-              << (c.faults.any() ? "  (injected fault)" : "") << '\n';
+    std::cout << std::left << std::setw(18) << c.name << std::setw(13) << backends
+              << c.unit.to_string() << (c.faults.any() ? "  (injected fault)" : "") << '\n';
   }
 }
 
@@ -623,8 +670,9 @@ struct Selection {
 Selection select_resumed(const RegressOptions& o) {
   if (!o.scenes.empty() || !o.configs.empty() || !o.config_files.empty() || !o.shard.empty() ||
       !o.emit_jobs.empty()) {
-    throw std::invalid_argument("--resume " + o.resume + " takes its runs and settings from " + o.resume +
-                                "/plans/; give no scenes, --configs, --config, --shard or --emit-jobs with it");
+    throw std::invalid_argument(
+        "--resume " + o.resume + " takes its runs and settings from " + o.resume +
+        "/plans/; give no scenes, --configs, --config, --shard or --emit-jobs with it");
   }
   Selection sel;
   sel.out = o.resume;
@@ -646,8 +694,8 @@ Selection select_resumed(const RegressOptions& o) {
     }
     sel.selected.push_back(spec);
   }
-  std::cout << "regress: resuming " << sel.out.string() << ": " << sel.earlier.size() << " run(s) already there, "
-            << sel.selected.size() << " to run" << std::endl;
+  std::cout << "regress: resuming " << sel.out.string() << ": " << sel.earlier.size()
+            << " run(s) already there, " << sel.selected.size() << " to run" << std::endl;
   return sel;
 }
 
@@ -660,7 +708,8 @@ Selection select_planned(const RegressOptions& o) {
   sel.all = full_run_list(o, sel.scenes);
   const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
   for (size_t i = 0; i < sel.all.size(); ++i) {
-    if (static_cast<int>(i % static_cast<size_t>(shard.count)) == shard.index - 1) sel.selected.push_back(sel.all[i]);
+    if (static_cast<int>(i % static_cast<size_t>(shard.count)) == shard.index - 1)
+      sel.selected.push_back(sel.all[i]);
   }
   return sel;
 }
@@ -676,23 +725,28 @@ void write_and_announce_plan(const RegressOptions& o, const Selection& sel) {
   const bool own = o.configs.empty() && o.config_files.empty();
   std::cout << "regress: seed " << o.seed << ", " << sel.scenes.size() << " scene(s) x "
             << (own ? std::string("its own configuration")
-                    : std::to_string(o.configs.size() + o.config_files.size()) + " configuration(s)")
+                    : std::to_string(o.configs.size() + o.config_files.size()) +
+                          " configuration(s)")
             << " x " << o.backends.size() << " backend(s)"
-            << (o.shard.empty() ? "" : "; shard " + o.shard + ": " + std::to_string(sel.selected.size()) + " of " +
-                                           std::to_string(sel.all.size()) + " run(s)")
+            << (o.shard.empty()
+                    ? ""
+                    : "; shard " + o.shard + ": " + std::to_string(sel.selected.size()) + " of " +
+                          std::to_string(sel.all.size()) + " run(s)")
             << std::endl;
 }
 
 void print_settings(const Selection& sel, bool coverage) {
   const RunSettings& s = sel.settings;
-  std::cout << "regress: stimulus gap " << s.gap_pct << "% (max " << s.max_gap << "), back-pressure " << s.stall_pct
-            << "%; per-run timeout " << (s.timeout > 0 ? number_text(s.timeout) + " s" : std::string("none"))
-            << (coverage ? "; covered builds (line, toggle, user cover points)" : "") << "; results in "
-            << (sel.out / "runs").string() << std::endl;
+  std::cout << "regress: stimulus gap " << s.gap_pct << "% (max " << s.max_gap
+            << "), back-pressure " << s.stall_pct << "%; per-run timeout "
+            << (s.timeout > 0 ? number_text(s.timeout) + " s" : std::string("none"))
+            << (coverage ? "; covered builds (line, toggle, user cover points)" : "")
+            << "; results in " << (sel.out / "runs").string() << std::endl;
 }
 
 // Every run's record, the earlier ones (--resume) first, in job-list order.
-std::vector<RunRecord> collect_records(const std::vector<RunRecord>& earlier, const std::vector<Job>& jobs) {
+std::vector<RunRecord> collect_records(const std::vector<RunRecord>& earlier,
+                                       const std::vector<Job>& jobs) {
   std::vector<RunRecord> records = earlier;
   for (const auto& j : jobs) records.push_back(j.rec);
   sort_records(records);
@@ -701,18 +755,22 @@ std::vector<RunRecord> collect_records(const std::vector<RunRecord>& earlier, co
 }
 
 // The table, the counts and the --junit / --json files.
-RunCounts report_runs(const std::vector<RunRecord>& records, const RegressOptions& o, double wall, int workers) {
+RunCounts report_runs(const std::vector<RunRecord>& records, const RegressOptions& o, double wall,
+                      int workers) {
   print_run_table(records);
   const RunCounts c = count_runs(records);
-  std::cout << "\nregress: " << c.passed << " passed, " << c.mismatched << " mismatched, " << c.hangs << " hung, "
-            << c.timeouts << " timed out, " << c.errors << " error(s), " << c.skipped
-            << " skipped (the scene does not fit the configuration) in " << fmt(wall, 1) << " s with " << workers
-            << " job(s)\n";
+  std::cout << "\nregress: " << c.passed << " passed, " << c.mismatched << " mismatched, "
+            << c.hangs << " hung, " << c.timeouts << " timed out, " << c.errors << " error(s), "
+            << c.skipped << " skipped (the scene does not fit the configuration) in "
+            << fmt(wall, 1) << " s with " << workers << " job(s)\n";
   for (const auto& r : records) {
-    if (r.status == "skipped") std::cout << "  skipped " << r.scene_name << " x " << r.spec.config << ": " << r.message << '\n';
+    if (r.status == "skipped")
+      std::cout << "  skipped " << r.scene_name << " x " << r.spec.config << ": " << r.message
+                << '\n';
   }
   if (!o.junit_path.empty()) write_junit_report(o.junit_path, records);
-  if (!o.json_path.empty()) write_json_report(o.json_path, records, {{"seed", o.seed}, {"wall_seconds", wall}});
+  if (!o.json_path.empty())
+    write_json_report(o.json_path, records, {{"seed", o.seed}, {"wall_seconds", wall}});
   return c;
 }
 
@@ -724,9 +782,11 @@ std::string percent(int hit, int total) {
 // lcov, annotated sources), prints line and toggle coverage per file, the uncovered lines of
 // rtl/, the user cover points and the exclusions. Returns whether rtl/ line coverage meets
 // --coverage-min (true without one).
-bool report_coverage(const std::vector<RunRecord>& records, const fs::path& out, const RegressOptions& o) {
+bool report_coverage(const std::vector<RunRecord>& records, const fs::path& out,
+                     const RegressOptions& o) {
   std::vector<std::string> dats;
-  std::vector<std::string> without;  // runs that ran and left no coverage (killed, crashed, plain build)
+  std::vector<std::string>
+      without;  // runs that ran and left no coverage (killed, crashed, plain build)
   for (const auto& r : records) {
     const fs::path dat = fs::path(r.dir) / "coverage.dat";
     if (!r.dir.empty() && fs::exists(dat)) {
@@ -735,7 +795,8 @@ bool report_coverage(const std::vector<RunRecord>& records, const fs::path& out,
       without.push_back(r.spec.id() + " (" + r.status + ")");
     }
   }
-  for (const auto& w : without) std::cout << "regress: coverage: no coverage file from run " << w << '\n';
+  for (const auto& w : without)
+    std::cout << "regress: coverage: no coverage file from run " << w << '\n';
   const fs::path dir = out / "coverage";
   fs::create_directories(dir);
   const fs::path rtl_dir = fs::path(source_dir()) / "rtl";
@@ -744,24 +805,28 @@ bool report_coverage(const std::vector<RunRecord>& records, const fs::path& out,
   {
     std::ofstream ex(dir / "exclusions.txt");
     for (const auto& e : exclusions) {
-      ex << fs::relative(e.file, source_dir()).string() << ':' << e.first_line << '-' << e.last_line << ": "
-         << e.reason << '\n';
+      ex << fs::relative(e.file, source_dir()).string() << ':' << e.first_line << '-' << e.last_line
+         << ": " << e.reason << '\n';
     }
   }
   if (dats.empty()) {
     std::cout << "regress: coverage: FAIL: no run wrote a coverage file\n";
     return false;
   }
-  const fs::path merged = dir / "merged.dat", info = dir / "coverage.info", annotated = dir / "annotated";
+  const fs::path merged = dir / "merged.dat", info = dir / "coverage.info",
+                 annotated = dir / "annotated";
   merge_coverage(dats, merged.string(), info.string(), annotated.string());
   const CoverageSummary sum = summarize_coverage(merged.string(), rtl_dir.string(), rtl_files);
 
-  std::cout << "\nregress: coverage of " << dats.size() << " run(s), merged into " << merged.string() << '\n'
-            << "  " << std::left << std::setw(28) << "file" << std::right << std::setw(8) << "lines" << std::setw(10)
-            << "line %" << std::setw(10) << "toggles" << std::setw(10) << "toggle %" << '\n';
+  std::cout << "\nregress: coverage of " << dats.size() << " run(s), merged into "
+            << merged.string() << '\n'
+            << "  " << std::left << std::setw(28) << "file" << std::right << std::setw(8) << "lines"
+            << std::setw(10) << "line %" << std::setw(10) << "toggles" << std::setw(10)
+            << "toggle %" << '\n';
   for (const auto& f : sum.files) {
-    std::cout << "  " << std::left << std::setw(28) << fs::relative(f.path, source_dir()).string() << std::right
-              << std::setw(8) << (std::to_string(f.lines_hit) + "/" + std::to_string(f.lines)) << std::setw(10)
+    std::cout << "  " << std::left << std::setw(28) << fs::relative(f.path, source_dir()).string()
+              << std::right << std::setw(8)
+              << (std::to_string(f.lines_hit) + "/" + std::to_string(f.lines)) << std::setw(10)
               << percent(f.lines_hit, f.lines) << std::setw(10)
               << (std::to_string(f.toggles_hit) + "/" + std::to_string(f.toggles)) << std::setw(10)
               << percent(f.toggles_hit, f.toggles) << '\n';
@@ -769,11 +834,11 @@ bool report_coverage(const std::vector<RunRecord>& records, const fs::path& out,
   std::cout << "  " << std::left << std::setw(28) << "rtl/ (total)" << std::right << std::setw(8)
             << (std::to_string(sum.lines_hit) + "/" + std::to_string(sum.lines)) << std::setw(10)
             << percent(sum.lines_hit, sum.lines) << std::setw(10)
-            << (std::to_string(sum.toggles_hit) + "/" + std::to_string(sum.toggles)) << std::setw(10)
-            << percent(sum.toggles_hit, sum.toggles) << '\n';
+            << (std::to_string(sum.toggles_hit) + "/" + std::to_string(sum.toggles))
+            << std::setw(10) << percent(sum.toggles_hit, sum.toggles) << '\n';
   for (const auto& f : sum.files_without_points) {
-    std::cout << "  no points (a package, or not elaborated by any run; not counted): " << fs::relative(f, source_dir()).string()
-              << '\n';
+    std::cout << "  no points (a package, or not elaborated by any run; not counted): "
+              << fs::relative(f, source_dir()).string() << '\n';
   }
   for (const auto& f : sum.files) {
     if (f.uncovered_lines.empty() || fs::path(f.path).parent_path() != rtl_dir) continue;
@@ -783,7 +848,9 @@ bool report_coverage(const std::vector<RunRecord>& records, const fs::path& out,
     for (int l : f.uncovered_lines) {
       const std::string code = l >= 1 && static_cast<size_t>(l) <= text.size() ? text[l - 1] : "";
       std::cout << "  uncovered " << fs::relative(f.path, source_dir()).string() << ':' << l << ": "
-                << code.substr(code.find_first_not_of(" \t") == std::string::npos ? 0 : code.find_first_not_of(" \t"))
+                << code.substr(code.find_first_not_of(" \t") == std::string::npos
+                                   ? 0
+                                   : code.find_first_not_of(" \t"))
                 << '\n';
     }
   }
@@ -791,26 +858,30 @@ bool report_coverage(const std::vector<RunRecord>& records, const fs::path& out,
   for (const auto& u : sum.user) user_hit += u.count > 0;
   std::cout << "  user cover points: " << user_hit << " of " << sum.user.size() << " hit\n";
   for (const auto& u : sum.user) {
-    std::cout << "    " << (u.count > 0 ? "hit    " : "MISSED ") << std::left << std::setw(30) << u.name << std::right
-              << std::setw(10) << u.count << "  " << fs::relative(u.file, source_dir()).string() << ':' << u.line
-              << '\n';
+    std::cout << "    " << (u.count > 0 ? "hit    " : "MISSED ") << std::left << std::setw(30)
+              << u.name << std::right << std::setw(10) << u.count << "  "
+              << fs::relative(u.file, source_dir()).string() << ':' << u.line << '\n';
   }
-  std::cout << "  exclusions (" << exclusions.size() << ", the RTL's coverage_off pragmas): "
-            << (dir / "exclusions.txt").string() << '\n'
-            << "  lcov: " << info.string() << "; annotated sources (%000000: never run): " << annotated.string()
-            << '\n';
-  std::ofstream(dir / "summary.json")
-      << nlohmann::json{{"runs", dats.size()}, {"rtl_lines", sum.lines}, {"rtl_lines_hit", sum.lines_hit},
-                        {"rtl_line_pct", sum.line_pct()}, {"rtl_toggles", sum.toggles},
-                        {"rtl_toggles_hit", sum.toggles_hit}, {"rtl_toggle_pct", sum.toggle_pct()},
-                        {"user_points", sum.user.size()}, {"user_points_hit", user_hit}}
-             .dump(2)
-      << '\n';
+  std::cout << "  exclusions (" << exclusions.size()
+            << ", the RTL's coverage_off pragmas): " << (dir / "exclusions.txt").string() << '\n'
+            << "  lcov: " << info.string()
+            << "; annotated sources (%000000: never run): " << annotated.string() << '\n';
+  std::ofstream(dir / "summary.json") << nlohmann::json{{"runs", dats.size()},
+                                                        {"rtl_lines", sum.lines},
+                                                        {"rtl_lines_hit", sum.lines_hit},
+                                                        {"rtl_line_pct", sum.line_pct()},
+                                                        {"rtl_toggles", sum.toggles},
+                                                        {"rtl_toggles_hit", sum.toggles_hit},
+                                                        {"rtl_toggle_pct", sum.toggle_pct()},
+                                                        {"user_points", sum.user.size()},
+                                                        {"user_points_hit", user_hit}}
+                                             .dump(2)
+                                      << '\n';
   if (o.coverage_min < 0) return true;
   const bool met = sum.lines > 0 && sum.line_pct() >= o.coverage_min;
   std::cout << "regress: coverage: rtl/ line coverage " << fmt(sum.line_pct(), 2) << " % "
-            << (met ? ">= " : "is below ") << "--coverage-min " << number_text(o.coverage_min) << " %"
-            << (met ? "" : ": FAIL") << '\n';
+            << (met ? ">= " : "is below ") << "--coverage-min " << number_text(o.coverage_min)
+            << " %" << (met ? "" : ": FAIL") << '\n';
   return met;
 }
 
@@ -821,9 +892,11 @@ int run_regress(const RegressOptions& o) {
     return 0;
   }
   for (const auto& b : o.backends) {
-    if (b != "cpp" && b != "systemc") throw std::invalid_argument("--backends: '" + b + "': expected cpp or systemc");
+    if (b != "cpp" && b != "systemc")
+      throw std::invalid_argument("--backends: '" + b + "': expected cpp or systemc");
   }
-  const int workers = std::max(1, o.jobs > 0 ? o.jobs : static_cast<int>(std::thread::hardware_concurrency()));
+  const int workers =
+      std::max(1, o.jobs > 0 ? o.jobs : static_cast<int>(std::thread::hardware_concurrency()));
 
   // Select configurations and scenes; a new plan is written down (or handed out as job lines).
   const Selection sel = o.resume.empty() ? select_planned(o) : select_resumed(o);
@@ -861,58 +934,88 @@ void register_regress(CLI::App& app, int& exit_code) {
       "regress",
       "RTL regression, the main job: every scene x configuration x backend (Verilator C++ and\n"
       "Verilator-in-SystemC). By default each scene runs on its own configuration - the smallest\n"
-      "unit that shades it (channels and lights as it needs; a scene naming the `ideal` unit, which\n"
-      "has no hardware, gets the W_16 unit; `shadesim config --help` states each rule). --configs runs\n"
+      "unit that shades it (channels and lights as it needs; a scene naming the `ideal` unit, "
+      "which\n"
+      "has no hardware, gets the W_16 unit; `shadesim config --help` states each rule). --configs "
+      "runs\n"
       "named builds (sim/harness/builds.json,\n"
-      "see --list), --config any UnitConfig FILE.json. The RTL of each configuration is Verilated on\n"
-      "demand into the build cache. Each run compares every pixel bit for bit with the bit-accurate\n"
-      "model and every scanline's completion cycle with the cycle model, under seeded input gaps and\n"
-      "output back-pressure. Exits 1 on any mismatch, hang, timeout or error (naming it, with a replay\n"
+      "see --list), --config any UnitConfig FILE.json. The RTL of each configuration is Verilated "
+      "on\n"
+      "demand into the build cache. Each run compares every pixel bit for bit with the "
+      "bit-accurate\n"
+      "model and every scanline's completion cycle with the cycle model, under seeded input gaps "
+      "and\n"
+      "output back-pressure. Exits 1 on any mismatch, hang, timeout or error (naming it, with a "
+      "replay\n"
       "command) and when no run was executed.\n"
       "\n"
       "Many machines: each run writes OUT/runs/<scene>__<config>__<backend>__seed<S>/run.json the\n"
       "moment it ends. --shard I/N runs every N-th run of the job list (Slurm: --shard\n"
       "$SLURM_ARRAY_TASK_ID/N), --emit-jobs FILE writes one command per run for GNU parallel,\n"
-      "--resume OUT runs what OUT's plan has no result for, and `shadesim merge OUT...` reports the\n"
+      "--resume OUT runs what OUT's plan has no result for, and `shadesim merge OUT...` reports "
+      "the\n"
       "whole regression.");
-  sub->add_option("scenes", o->scenes, "scene files (default: scenes/*.json)")->check(CLI::ExistingFile);
+  sub->add_option("scenes", o->scenes, "scene files (default: scenes/*.json)")
+      ->check(CLI::ExistingFile);
   sub->add_option("--configs", o->configs, "named builds to run every scene on (see --list)")
-      ->delimiter(',')->allow_extra_args(false);
-  sub->add_option("--config", o->config_files, "a UnitConfig FILE.json to run every scene on (repeatable)")
+      ->delimiter(',')
+      ->allow_extra_args(false);
+  sub->add_option("--config", o->config_files,
+                  "a UnitConfig FILE.json to run every scene on (repeatable)")
       ->allow_extra_args(false);
   sub->add_option("--backends", o->backends, "cpp, systemc or both (comma-separated)")
-      ->delimiter(',')->allow_extra_args(false)->capture_default_str();
-  sub->add_option("--seed", o->seed,
-                  "seed of the first scene x configuration; each next one gets the next seed (printed on every run)")
+      ->delimiter(',')
+      ->allow_extra_args(false)
       ->capture_default_str();
-  sub->add_option("-j,--jobs", o->jobs, "parallel builds and co-simulations (default: hardware threads)")
+  sub->add_option("--seed", o->seed,
+                  "seed of the first scene x configuration; each next one gets the next seed "
+                  "(printed on every run)")
+      ->capture_default_str();
+  sub->add_option("-j,--jobs", o->jobs,
+                  "parallel builds and co-simulations (default: hardware threads)")
       ->check(CLI::NonNegativeNumber);
-  sub->add_option("--gap-pct", o->gap_pct, "chance of idle cycles before a command word")->check(CLI::Range(0, 100))->capture_default_str();
-  sub->add_option("--max-gap", o->max_gap, "longest idle gap in cycles")->check(CLI::Range(1, 100000))->capture_default_str();
-  sub->add_option("--stall-pct", o->stall_pct, "chance of output back-pressure per cycle")->check(CLI::Range(0, 99))->capture_default_str();
-  sub->add_option("-o,--out", o->out_dir, "where plans and each run's folder (stream, logs, result) go")->capture_default_str();
+  sub->add_option("--gap-pct", o->gap_pct, "chance of idle cycles before a command word")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  sub->add_option("--max-gap", o->max_gap, "longest idle gap in cycles")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  sub->add_option("--stall-pct", o->stall_pct, "chance of output back-pressure per cycle")
+      ->check(CLI::Range(0, 99))
+      ->capture_default_str();
+  sub->add_option("-o,--out", o->out_dir,
+                  "where plans and each run's folder (stream, logs, result) go")
+      ->capture_default_str();
   sub->add_option("--junit", o->junit_path, "write JUnit XML for CI");
   sub->add_option("--json", o->json_path, "write every run's figures as JSON");
   sub->add_option("--cache", o->cache, "RTL build cache folder (default: <build>/rtl-cache)");
   sub->add_option("--shard", o->shard,
-                  "I/N: run only the I-th of N equal shards of the job list (runs I, I+N, I+2N, ...; 1 <= I <= N)");
-  sub->add_option("--emit-jobs", o->emit_jobs,
-                  "write one self-contained shell command per run into FILE (for GNU parallel, a batch\n"
-                  "system) instead of running; each writes into --out");
-  sub->add_option("--resume", o->resume,
-                  "DIR: a regress output folder; run the runs its plans name that have no result there yet\n"
-                  "(and those that ended in an error), with the settings they were planned with");
-  sub->add_option("--timeout", o->timeout, "seconds a run may take before it is killed and reported as a timeout (0: none)")
-      ->check(CLI::NonNegativeNumber)->capture_default_str();
-  sub->add_option("--watchdog", o->watchdog,
-                  "cycles without pix_valid_o, while pixels are still expected, that count as a hang\n"
-                  "(default 0: the cycle model's longest pixel-less stretch of each stream + 1000)");
-  sub->add_flag("--waves", o->waves, "on a mismatch, re-run the C++ backend with FST tracing of the window around it");
+                  "I/N: run only the I-th of N equal shards of the job list (runs I, I+N, I+2N, "
+                  "...; 1 <= I <= N)");
+  sub->add_option(
+      "--emit-jobs", o->emit_jobs,
+      "write one self-contained shell command per run into FILE (for GNU parallel, a batch\n"
+      "system) instead of running; each writes into --out");
+  sub->add_option(
+      "--resume", o->resume,
+      "DIR: a regress output folder; run the runs its plans name that have no result there yet\n"
+      "(and those that ended in an error), with the settings they were planned with");
+  sub->add_option("--timeout", o->timeout,
+                  "seconds a run may take before it is killed and reported as a timeout (0: none)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sub->add_option(
+      "--watchdog", o->watchdog,
+      "cycles without pix_valid_o, while pixels are still expected, that count as a hang\n"
+      "(default 0: the cycle model's longest pixel-less stretch of each stream + 1000)");
+  sub->add_flag("--waves", o->waves,
+                "on a mismatch, re-run the C++ backend with FST tracing of the window around it");
   sub->add_flag("--list", o->list, "list the named builds and exit");
-  sub->add_flag("--coverage", o->coverage,
-                "run covered builds (Verilator line, toggle and user cover points) and merge their\n"
-                "coverage into OUT/coverage/: per-file line and toggle table, uncovered rtl/ lines, lcov\n"
-                "coverage.info, annotated sources; exclusions are the RTL's coverage_off pragmas");
+  sub->add_flag(
+      "--coverage", o->coverage,
+      "run covered builds (Verilator line, toggle and user cover points) and merge their\n"
+      "coverage into OUT/coverage/: per-file line and toggle table, uncovered rtl/ lines, lcov\n"
+      "coverage.info, annotated sources; exclusions are the RTL's coverage_off pragmas");
   sub->add_option("--coverage-min", o->coverage_min,
                   "PCT: with --coverage (implied), exit 1 when rtl/ line coverage is below PCT")
       ->check(CLI::Range(0.0, 100.0));

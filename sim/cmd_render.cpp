@@ -38,13 +38,16 @@ struct RenderOptions {
   bool all_units = false;
 };
 
-Image model_image(const std::vector<PixelOut>& pixels, int width, int height, int channels, int out_bits) {
+Image model_image(const std::vector<PixelOut>& pixels, int width, int height, int channels,
+                  int out_bits) {
   Image img(width, height, channels);
   const int shift = out_bits > 8 ? out_bits - 8 : 0;
   for (const auto& p : pixels) {
     for (int c = 0; c < channels; ++c) {
-      img.pixels[(static_cast<size_t>(p.y) * static_cast<size_t>(width) + p.x) * static_cast<size_t>(channels) +
-                 static_cast<size_t>(c)] = static_cast<uint8_t>(p.colour[static_cast<size_t>(c)] >> shift);
+      img.pixels[(static_cast<size_t>(p.y) * static_cast<size_t>(width) + p.x) *
+                     static_cast<size_t>(channels) +
+                 static_cast<size_t>(c)] =
+          static_cast<uint8_t>(p.colour[static_cast<size_t>(c)] >> shift);
     }
   }
   return img;
@@ -108,18 +111,22 @@ int run_render(const RenderOptions& o) {
   for (const auto& cmd : frame.encoded.stream.commands) {
     unit.consume(cmd, [&pixels](const PixelOut& p) { pixels.push_back(p); });
   }
-  const double model_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double model_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   const auto t1 = std::chrono::steady_clock::now();
-  const ReferenceImage ref = render_reference(frame.setup.triangles, frame.visibility, scene, cfg.channels);
-  const double reference_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  const ReferenceImage ref =
+      render_reference(frame.setup.triangles, frame.visibility, scene, cfg.channels);
+  const double reference_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
 
   const ErrorMap err = compare_to_reference(pixels, ref.values, frame.visibility.owner, scene.width,
                                             scene.height, cfg.channels, cfg.out_bits);
 
   // Images: model, reference, error heat map, and the three side by side.
   const std::filesystem::path out_dir = output_dir(o);
-  const Image model_png = model_image(pixels, scene.width, scene.height, cfg.channels, cfg.out_bits);
+  const Image model_png =
+      model_image(pixels, scene.width, scene.height, cfg.channels, cfg.out_bits);
   Image ref_png(scene.width, scene.height, cfg.channels);
   ref_png.pixels = reference_codes(ref.values, cfg.out_bits);
   const Image heat = error_heat_map(err.per_pixel_lsb, scene.width, scene.height, o.heat_scale_lsb);
@@ -131,17 +138,20 @@ int run_render(const RenderOptions& o) {
 
   const auto& st = frame.setup.stats;
   const auto& es = err.stats;
-  const std::string unit_label = cfg.specular.describe() +
-                                 (cfg.specular.kind == SpecularUnitKind::kIdeal ? " (exact pow of the fixed-point t; not hardware)" : "");
+  const std::string unit_label =
+      cfg.specular.describe() + (cfg.specular.kind == SpecularUnitKind::kIdeal
+                                     ? " (exact pow of the fixed-point t; not hardware)"
+                                     : "");
   if (!o.quiet) {
     std::cout << "scene        " << o.scene << "  (" << scene.width << "x" << scene.height << ", "
-              << scene.lights.size() << " light(s), eye " << (scene.eye_at_infinity ? "at infinity" : "finite") << ")\n"
+              << scene.lights.size() << " light(s), eye "
+              << (scene.eye_at_infinity ? "at infinity" : "finite") << ")\n"
               << "unit         " << cfg.to_string() << "\n"
               << "specular     " << unit_label << "\n"
-              << "triangles    " << frame.project.triangles_in << " in mesh, " << frame.project.emitted
-              << " after culling; " << st.triangles_out << " after setup (" << st.inputs_split
-              << " split, " << st.splits << " splits, " << st.over_budget << " over budget at depth "
-              << fo.max_depth << ")\n"
+              << "triangles    " << frame.project.triangles_in << " in mesh, "
+              << frame.project.emitted << " after culling; " << st.triangles_out << " after setup ("
+              << st.inputs_split << " split, " << st.splits << " splits, " << st.over_budget
+              << " over budget at depth " << fo.max_depth << ")\n"
               << "culled       " << frame.project.culled_back_face << " back-facing, "
               << frame.project.culled_near << " wholly nearer than the near plane, "
               << frame.project.dropped_out_of_range << " beyond the screen coordinate range\n"
@@ -149,22 +159,25 @@ int run_render(const RenderOptions& o) {
               << " crossing the near plane, clipped into " << frame.project.clipped_pieces
               << " triangle(s) before culling\n"
               << "cosine       " << specular_models(scene) << "\n"
-              << "stream       " << frame.encoded.stats.triangles << " tri, " << frame.encoded.stats.spans
-              << " spans, " << frame.encoded.stats.materials << " material loads, "
-              << frame.encoded.stats.words << " words\n"
+              << "stream       " << frame.encoded.stats.triangles << " tri, "
+              << frame.encoded.stats.spans << " spans, " << frame.encoded.stats.materials
+              << " material loads, " << frame.encoded.stats.words << " words\n"
               << "pixels       " << es.pixels << " shaded\n"
-              << "error        max " << es.max_code_lsb << " LSB (8-bit codes vs rounded reference), mean "
-              << std::setprecision(4) << es.mean_code_lsb << " LSB, PSNR " << format_db(es.psnr_db) << "\n"
+              << "error        max " << es.max_code_lsb
+              << " LSB (8-bit codes vs rounded reference), mean " << std::setprecision(4)
+              << es.mean_code_lsb << " LSB, PSNR " << format_db(es.psnr_db) << "\n"
               << "             max " << std::setprecision(3) << es.max_real_lsb
-              << " LSB before rounding the reference; " << es.pixels_over_1lsb << " pixel(s) off by more than 1\n"
+              << " LSB before rounding the reference; " << es.pixels_over_1lsb
+              << " pixel(s) off by more than 1\n"
               << "setup budget " << (fo.budget_lsb ? *fo.budget_lsb : scene.error_budget_lsb)
-              << " LSB Taylor error per triangle; worst measured " << std::setprecision(3) << st.worst_error_lsb << " LSB\n"
-              << "time         setup " << std::setprecision(3) << frame.timings.setup_s << " s, visibility "
-              << frame.timings.visibility_s << " s, model " << model_s << " s ("
-              << std::setprecision(3) << (model_s > 0 ? es.pixels / model_s / 1e6 : 0) << " Mpixel/s), reference "
-              << reference_s << " s\n"
-              << "images       " << (out_dir / "compare.png").string() << " (model | reference | error, full scale "
-              << o.heat_scale_lsb << " LSB)\n";
+              << " LSB Taylor error per triangle; worst measured " << std::setprecision(3)
+              << st.worst_error_lsb << " LSB\n"
+              << "time         setup " << std::setprecision(3) << frame.timings.setup_s
+              << " s, visibility " << frame.timings.visibility_s << " s, model " << model_s
+              << " s (" << std::setprecision(3) << (model_s > 0 ? es.pixels / model_s / 1e6 : 0)
+              << " Mpixel/s), reference " << reference_s << " s\n"
+              << "images       " << (out_dir / "compare.png").string()
+              << " (model | reference | error, full scale " << o.heat_scale_lsb << " LSB)\n";
     if (frame.encoded.stats.narrow_terms_saturated > 0) {
       std::cout << "warning      " << frame.encoded.stats.narrow_terms_saturated
                 << " Taylor coefficient(s) saturated their term's narrowed format (coef_term_iwl);"
@@ -189,9 +202,12 @@ int run_render(const RenderOptions& o) {
     j["height"] = scene.height;
     j["config"] = nlohmann::json::parse(config_to_json(cfg));
     j["specular_unit"] = unit_label;
-    j["triangles"] = {{"mesh", frame.project.triangles_in}, {"projected", frame.project.emitted},
-                      {"after_setup", st.triangles_out}, {"inputs_split", st.inputs_split},
-                      {"splits", st.splits}, {"over_budget", st.over_budget},
+    j["triangles"] = {{"mesh", frame.project.triangles_in},
+                      {"projected", frame.project.emitted},
+                      {"after_setup", st.triangles_out},
+                      {"inputs_split", st.inputs_split},
+                      {"splits", st.splits},
+                      {"over_budget", st.over_budget},
                       {"worst_setup_error_lsb", st.worst_error_lsb},
                       {"culled_back_face", frame.project.culled_back_face},
                       {"culled_near", frame.project.culled_near},
@@ -201,20 +217,30 @@ int run_render(const RenderOptions& o) {
     nlohmann::json models = nlohmann::json::object();
     for (const Material& m : scene.materials) models[m.name] = to_string(m.specular_model);
     j["specular_model"] = models;
-    j["stream"] = {{"triangles", frame.encoded.stats.triangles}, {"spans", frame.encoded.stats.spans},
-                   {"materials", frame.encoded.stats.materials}, {"words", frame.encoded.stats.words},
+    j["stream"] = {{"triangles", frame.encoded.stats.triangles},
+                   {"spans", frame.encoded.stats.spans},
+                   {"materials", frame.encoded.stats.materials},
+                   {"words", frame.encoded.stats.words},
                    {"coefficients_out_of_range", frame.encoded.stats.coefficients_out_of_range}};
     j["pixels"] = es.pixels;
-    j["error"] = {{"max_code_lsb", es.max_code_lsb}, {"mean_code_lsb", es.mean_code_lsb},
-                  {"psnr_db", std::isinf(es.psnr_db) ? nlohmann::json(nullptr) : nlohmann::json(es.psnr_db)},
-                  {"max_real_lsb", es.max_real_lsb}, {"pixels_over_1lsb", es.pixels_over_1lsb},
-                  {"metric", "output codes vs reference rounded by the same rule; real: before rounding the reference"}};
-    j["time_s"] = {{"load", frame.timings.load_s}, {"project", frame.timings.project_s},
-                   {"setup", frame.timings.setup_s}, {"visibility", frame.timings.visibility_s},
-                   {"encode", frame.timings.encode_s}, {"model", model_s}, {"reference", reference_s}};
+    j["error"] = {
+        {"max_code_lsb", es.max_code_lsb},
+        {"mean_code_lsb", es.mean_code_lsb},
+        {"psnr_db", std::isinf(es.psnr_db) ? nlohmann::json(nullptr) : nlohmann::json(es.psnr_db)},
+        {"max_real_lsb", es.max_real_lsb},
+        {"pixels_over_1lsb", es.pixels_over_1lsb},
+        {"metric",
+         "output codes vs reference rounded by the same rule; real: before rounding the "
+         "reference"}};
+    j["time_s"] = {{"load", frame.timings.load_s},     {"project", frame.timings.project_s},
+                   {"setup", frame.timings.setup_s},   {"visibility", frame.timings.visibility_s},
+                   {"encode", frame.timings.encode_s}, {"model", model_s},
+                   {"reference", reference_s}};
     j["model_mpixel_per_s"] = model_s > 0 ? es.pixels / model_s / 1e6 : 0.0;
-    j["images"] = {{"model", (out_dir / "model.png").string()}, {"reference", (out_dir / "reference.png").string()},
-                   {"error", (out_dir / "error.png").string()}, {"compare", (out_dir / "compare.png").string()}};
+    j["images"] = {{"model", (out_dir / "model.png").string()},
+                   {"reference", (out_dir / "reference.png").string()},
+                   {"error", (out_dir / "error.png").string()},
+                   {"compare", (out_dir / "compare.png").string()}};
     std::ofstream os(o.json_path);
     if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
     os << j.dump(2) << '\n';
@@ -232,41 +258,53 @@ int run_all_units(const RenderOptions& o) {
   nlohmann::json units = nlohmann::json::array();
   if (!o.quiet) {
     std::cout << std::left << std::setw(9) << "unit" << std::setw(9) << "max LSB" << std::setw(11)
-              << "mean LSB" << std::setw(18) << "PSNR" << "configuration\n";
+              << "mean LSB" << std::setw(18) << "PSNR"
+              << "configuration\n";
   }
   for (const SpecularUnitDescriptor& unit : specular_units()) {  // model/specular_units.h
     const SpecularUnitKind kind = unit.kind;
     fo.specular_override = kind;
     const PreparedFrame frame = prepare_frame(o.scene, fo);
     const auto pixels = ShadeUnit(frame.config).run(frame.encoded.stream);
-    const ReferenceImage ref = render_reference(frame.setup.triangles, frame.visibility, frame.scene, frame.config.channels);
-    const ErrorMap err = compare_to_reference(pixels, ref.values, frame.visibility.owner, frame.scene.width,
-                                              frame.scene.height, frame.config.channels, frame.config.out_bits);
+    const ReferenceImage ref = render_reference(frame.setup.triangles, frame.visibility,
+                                                frame.scene, frame.config.channels);
+    const ErrorMap err =
+        compare_to_reference(pixels, ref.values, frame.visibility.owner, frame.scene.width,
+                             frame.scene.height, frame.config.channels, frame.config.out_bits);
     if (images.empty()) {
       Image ref_png(frame.scene.width, frame.scene.height, frame.config.channels);
       ref_png.pixels = reference_codes(ref.values, frame.config.out_bits);
       images.push_back(ref_png);
     }
-    images.push_back(model_image(pixels, frame.scene.width, frame.scene.height, frame.config.channels, frame.config.out_bits));
-    heats.push_back(error_heat_map(err.per_pixel_lsb, frame.scene.width, frame.scene.height, o.heat_scale_lsb));
+    images.push_back(model_image(pixels, frame.scene.width, frame.scene.height,
+                                 frame.config.channels, frame.config.out_bits));
+    heats.push_back(
+        error_heat_map(err.per_pixel_lsb, frame.scene.width, frame.scene.height, o.heat_scale_lsb));
     const auto& e = err.stats;
     const std::string description = frame.config.specular.describe();
     if (!o.quiet) {
-      std::cout << std::left << std::setw(9) << to_string(kind) << std::setw(9) << e.max_code_lsb << std::setw(11)
-                << std::setprecision(4) << e.mean_code_lsb << std::setw(18) << format_db(e.psnr_db)
-                << description << (unit.hardware ? "" : " (exact pow; not hardware)") << "\n";
+      std::cout << std::left << std::setw(9) << to_string(kind) << std::setw(9) << e.max_code_lsb
+                << std::setw(11) << std::setprecision(4) << e.mean_code_lsb << std::setw(18)
+                << format_db(e.psnr_db) << description
+                << (unit.hardware ? "" : " (exact pow; not hardware)") << "\n";
     }
-    units.push_back({{"unit", to_string(kind)}, {"configuration", description},
-                     {"max_code_lsb", e.max_code_lsb}, {"mean_code_lsb", e.mean_code_lsb},
-                     {"psnr_db", std::isinf(e.psnr_db) ? nlohmann::json(nullptr) : nlohmann::json(e.psnr_db)},
-                     {"max_real_lsb", e.max_real_lsb}, {"table_load_cycles", frame.encoded.stats.table_load_cycles},
-                     {"stream_words", frame.encoded.stats.words}});
+    units.push_back(
+        {{"unit", to_string(kind)},
+         {"configuration", description},
+         {"max_code_lsb", e.max_code_lsb},
+         {"mean_code_lsb", e.mean_code_lsb},
+         {"psnr_db", std::isinf(e.psnr_db) ? nlohmann::json(nullptr) : nlohmann::json(e.psnr_db)},
+         {"max_real_lsb", e.max_real_lsb},
+         {"table_load_cycles", frame.encoded.stats.table_load_cycles},
+         {"stream_words", frame.encoded.stats.words}});
   }
   write_png((out_dir / "units.png").string(), hstack(images, 4));
   write_png((out_dir / "units_error.png").string(), hstack(heats, 4));
   if (!o.quiet) {
-    std::cout << "images   " << (out_dir / "units.png").string() << " (reference | ideal | lut | schlick | wpow)\n"
-              << "         " << (out_dir / "units_error.png").string() << " (error heat maps, same order without the reference; full scale "
+    std::cout << "images   " << (out_dir / "units.png").string()
+              << " (reference | ideal | lut | schlick | wpow)\n"
+              << "         " << (out_dir / "units_error.png").string()
+              << " (error heat maps, same order without the reference; full scale "
               << o.heat_scale_lsb << " LSB)\n";
   }
   if (!o.json_path.empty()) {
@@ -286,18 +324,24 @@ void register_render(CLI::App& app, int& exit_code) {
       "Shade a scene through the bit-accurate model and the double-precision reference; write\n"
       "model.png, reference.png, error.png (heat map) and compare.png, and print the error\n"
       "(max/mean LSB, PSNR) beside the cost (triangles split, stream words, model speed).");
-  sub->add_option("scene", opts->scene, "scene JSON file (see scenes/)")->required()->check(CLI::ExistingFile);
+  sub->add_option("scene", opts->scene, "scene JSON file (see scenes/)")
+      ->required()
+      ->check(CLI::ExistingFile);
   sub->add_option("-o,--out", opts->out_dir, "output directory (default out/<scene name>)");
   sub->add_option("--json", opts->json_path, "write the figures as JSON to this file");
-  sub->add_option("--save-stream", opts->stream_path, "save the command stream (text form) for replay");
+  sub->add_option("--save-stream", opts->stream_path,
+                  "save the command stream (text form) for replay");
   sub->add_option("--budget", opts->budget_lsb,
                   "Taylor error budget per triangle in output LSBs (default: the scene's, else 1)")
       ->check(CLI::PositiveNumber);
   sub->add_option("--max-depth", opts->max_depth, "subdivision depth limit per triangle")
-      ->check(CLI::Range(0, 16))->capture_default_str();
-  sub->add_option("--specular", opts->specular, "override the specular unit: ideal|lut|schlick|wpow");
+      ->check(CLI::Range(0, 16))
+      ->capture_default_str();
+  sub->add_option("--specular", opts->specular,
+                  "override the specular unit: ideal|lut|schlick|wpow");
   sub->add_option("--heat-scale", opts->heat_scale_lsb, "error heat map full scale in LSBs")
-      ->check(CLI::PositiveNumber)->capture_default_str();
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   sub->add_flag("-q,--quiet", opts->quiet, "print nothing (use with --json)");
   sub->add_flag("--all-units", opts->all_units,
                 "render with every specular unit (ideal, lut, schlick, wpow) and write units.png:\n"
@@ -305,7 +349,9 @@ void register_render(CLI::App& app, int& exit_code) {
       ->excludes("--specular");
   add_width_options(*sub, opts->widths);
   add_config_option(*sub, opts->config_path, {"--specular", "--all-units"});
-  sub->callback([opts, &exit_code]() { exit_code = opts->all_units ? run_all_units(*opts) : run_render(*opts); });
+  sub->callback([opts, &exit_code]() {
+    exit_code = opts->all_units ? run_all_units(*opts) : run_render(*opts);
+  });
 }
 
 }  // namespace shadesim

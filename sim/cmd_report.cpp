@@ -45,7 +45,8 @@ std::vector<std::string> parse_steps(const std::string& list) {
   std::string s;
   while (std::getline(ss, s, ',')) {
     if (std::find(kSteps.begin(), kSteps.end(), s) == kSteps.end()) {
-      throw std::invalid_argument("--run: '" + s + "': expected all, or a comma list of render, cycles, "
+      throw std::invalid_argument("--run: '" + s +
+                                  "': expected all, or a comma list of render, cycles, "
                                   "spec-error, explore, regress");
     }
     steps.push_back(s);
@@ -56,8 +57,9 @@ std::vector<std::string> parse_steps(const std::string& list) {
 std::vector<std::string> shipped_scenes() {
   const fs::path dir = "scenes";
   if (!fs::is_directory(dir)) {
-    throw std::invalid_argument("--run: no ./scenes folder here; run from the project folder (the shipped "
-                                "scenes are its scenes/*.json)");
+    throw std::invalid_argument(
+        "--run: no ./scenes folder here; run from the project folder (the shipped "
+        "scenes are its scenes/*.json)");
   }
   std::vector<std::string> scenes;
   for (const auto& e : fs::directory_iterator(dir)) {
@@ -81,7 +83,8 @@ std::vector<std::string> run_steps(const std::vector<std::string>& steps, const 
     std::cout << "report: running " << label << " (log " << log.string() << ")" << std::endl;
     args.insert(args.begin(), self);
     const ProcessResult r = run_process(args, log.string());
-    notes.push_back(label + ": " + (r.exit_code == 0 ? "ok" : "exited with " + std::to_string(r.exit_code)) +
+    notes.push_back(label + ": " +
+                    (r.exit_code == 0 ? "ok" : "exited with " + std::to_string(r.exit_code)) +
                     " (log " + log.string() + ")");
     if (r.exit_code != 0) std::cout << "report: " << notes.back() << '\n';
   };
@@ -92,21 +95,25 @@ std::vector<std::string> run_steps(const std::vector<std::string>& steps, const 
         const fs::path dir = out / name;
         fs::create_directories(dir);
         if (step == "render") {
-          run("render-" + name, {"render", s, "--out", dir.string(), "--json", (dir / "render.json").string(), "-q"});
+          run("render-" + name,
+              {"render", s, "--out", dir.string(), "--json", (dir / "render.json").string(), "-q"});
         } else {
           run("cycles-" + name, {"cycles", s, "--json", (dir / "cycles.json").string()});
         }
       }
     } else if (step == "spec-error") {
       fs::create_directories(out / "spec-error");
-      run("spec-error", {"spec-error", "--json", (out / "spec-error" / "spec-error.json").string()});
+      run("spec-error",
+          {"spec-error", "--json", (out / "spec-error" / "spec-error.json").string()});
     } else if (step == "explore") {
       fs::create_directories(out / "explore");
-      run("explore-sphere", {"explore", "scenes/sphere.json", "--out", (out / "explore" / "sphere").string(),
-                             "--json", (out / "explore" / "sphere.json").string(), "-q"});
+      run("explore-sphere",
+          {"explore", "scenes/sphere.json", "--out", (out / "explore" / "sphere").string(),
+           "--json", (out / "explore" / "sphere.json").string(), "-q"});
     } else if (step == "regress") {
       run("regress", {"regress", "--out", (out / "regress").string(), "--junit",
-                      (out / "regress" / "junit.xml").string(), "--json", (out / "regress" / "regress.json").string()});
+                      (out / "regress" / "junit.xml").string(), "--json",
+                      (out / "regress" / "regress.json").string()});
     }
   }
   return notes;
@@ -122,12 +129,15 @@ std::vector<ReportPlot> draw_plots(const ReportInputs& inputs, const fs::path& o
                        : in.kind == ReportKind::kExplore ? "explore"
                                                          : nullptr;
     if (!kind) continue;
-    ReportPlot p{in.path, (out_dir / (std::string(kind) + "-" + std::to_string(++index) + ".png")).string(), ""};
+    ReportPlot p{in.path,
+                 (out_dir / (std::string(kind) + "-" + std::to_string(++index) + ".png")).string(),
+                 ""};
     try {
       const ProcessResult r = run_process({plot, "--kind", kind, in.path, "-o", p.png_path}, "");
       if (r.exit_code != 0) {
         const std::string o = r.output.substr(0, r.output.find_last_not_of("\r\n ") + 1);
-        p.error = "exited with " + std::to_string(r.exit_code) + ": " + o.substr(o.find_last_of('\n') + 1);
+        p.error = "exited with " + std::to_string(r.exit_code) + ": " +
+                  o.substr(o.find_last_of('\n') + 1);
       }
     } catch (const std::runtime_error& e) {
       p.error = e.what();
@@ -141,13 +151,17 @@ int run_report(const ReportOptions& o) {
   const fs::path out_dir = o.out_dir;
   ReportPage page;
   if (!o.run.empty()) page.run_notes = run_steps(parse_steps(o.run), out_dir / "logs");
-  page.inputs = find_report_inputs(o.inputs.empty() ? std::vector<std::string>{kDefaultInputs} : o.inputs);
+  page.inputs =
+      find_report_inputs(o.inputs.empty() ? std::vector<std::string>{kDefaultInputs} : o.inputs);
   if (o.inputs.empty() && page.inputs.inputs.empty()) {
     page.inputs.problems.push_back(
-        {kDefaultInputs, "nothing to report: produce the inputs with `shadesim report --run all` from the project "
-                         "folder (or scripts/render and scripts/run), or name report files and folders", false});
+        {kDefaultInputs,
+         "nothing to report: produce the inputs with `shadesim report --run all` from the project "
+         "folder (or scripts/render and scripts/run), or name report files and folders",
+         false});
   }
-  fs::create_directories(out_dir);  // after reading: the default out/report must not make out/ look present
+  fs::create_directories(
+      out_dir);  // after reading: the default out/report must not make out/ look present
   page.plots = draw_plots(page.inputs, out_dir);
   page.tools = find_tool_versions();
   page.generated = utc_now();
@@ -158,17 +172,23 @@ int run_report(const ReportOptions& o) {
   os << report_html(page);
   if (!os) throw std::runtime_error(html.string() + ": write failed");
 
-  for (const auto& in : page.inputs.inputs) std::cout << "report: read " << in.path << " (" << writer_of(in.kind) << ")\n";
-  for (const auto& p : page.inputs.problems) std::cout << "report: problem: " << p.path << ": " << p.message << '\n';
+  for (const auto& in : page.inputs.inputs)
+    std::cout << "report: read " << in.path << " (" << writer_of(in.kind) << ")\n";
+  for (const auto& p : page.inputs.problems)
+    std::cout << "report: problem: " << p.path << ": " << p.message << '\n';
   for (const auto& p : page.plots) {
-    if (!p.error.empty()) std::cout << "report: problem: scripts/plot " << p.input_path << ": " << p.error << '\n';
+    if (!p.error.empty())
+      std::cout << "report: problem: scripts/plot " << p.input_path << ": " << p.error << '\n';
   }
-  const bool run_failed = std::any_of(page.run_notes.begin(), page.run_notes.end(),
-                                      [](const std::string& n) { return n.find(": exited with ") != std::string::npos; });
-  const bool plot_failed = std::any_of(page.plots.begin(), page.plots.end(), [](const ReportPlot& p) { return !p.error.empty(); });
-  std::cout << "report: wrote " << html.string() << " (" << page.inputs.inputs.size() << " input(s), "
-            << page.inputs.problems.size() << " problem(s)";
-  if (!page.inputs.ignored.empty()) std::cout << ", " << page.inputs.ignored.size() << " non-report file(s) ignored";
+  const bool run_failed = std::any_of(
+      page.run_notes.begin(), page.run_notes.end(),
+      [](const std::string& n) { return n.find(": exited with ") != std::string::npos; });
+  const bool plot_failed = std::any_of(page.plots.begin(), page.plots.end(),
+                                       [](const ReportPlot& p) { return !p.error.empty(); });
+  std::cout << "report: wrote " << html.string() << " (" << page.inputs.inputs.size()
+            << " input(s), " << page.inputs.problems.size() << " problem(s)";
+  if (!page.inputs.ignored.empty())
+    std::cout << ", " << page.inputs.ignored.size() << " non-report file(s) ignored";
   std::cout << ")\n";
   return page.inputs.problems.empty() && !run_failed && !plot_failed ? 0 : 1;
 }
@@ -179,21 +199,28 @@ void register_report(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<ReportOptions>();
   CLI::App* sub = app.add_subcommand(
       "report",
-      "Write one self-contained HTML page (OUT/index.html; images embedded, nothing fetched) from the\n"
+      "Write one self-contained HTML page (OUT/index.html; images embedded, nothing fetched) from "
+      "the\n"
       "JSON the other commands write: per scene the model, reference and error images (render\n"
-      "--json), the specular Pareto plot (spec-error --json) and the width Pareto (explore --json)\n"
-      "drawn by scripts/plot, the cycles-per-pixel breakdown (cycles --json), the regression table\n"
+      "--json), the specular Pareto plot (spec-error --json) and the width Pareto (explore "
+      "--json)\n"
+      "drawn by scripts/plot, the cycles-per-pixel breakdown (cycles --json), the regression "
+      "table\n"
       "with each failure's replay command (regress --json), and the tool versions. Each JSON is\n"
       "recognised by its keys. A section without input says so. Exits 1 when a named input is\n"
       "missing or malformed, a plot or a --run step failed (the page is written anyway).");
-  sub->add_option("inputs", o->inputs,
-                  "report JSON files, or folders holding them (read with the folders one level down);\n"
-                  "default: out (where scripts/render, scripts/run and --run write)");
-  sub->add_option("-o,--out", o->out_dir, "folder of the page (index.html) and its plots")->capture_default_str();
-  sub->add_option("--run", o->run,
-                  "first produce the inputs on the shipped scenes (run from the project folder), into out/:\n"
-                  "all, or a comma list of render, cycles (every scenes/*.json), spec-error, explore\n"
-                  "(scenes/sphere.json), regress (needs Verilator; minutes the first time)")
+  sub->add_option(
+      "inputs", o->inputs,
+      "report JSON files, or folders holding them (read with the folders one level down);\n"
+      "default: out (where scripts/render, scripts/run and --run write)");
+  sub->add_option("-o,--out", o->out_dir, "folder of the page (index.html) and its plots")
+      ->capture_default_str();
+  sub->add_option(
+         "--run", o->run,
+         "first produce the inputs on the shipped scenes (run from the project folder), into "
+         "out/:\n"
+         "all, or a comma list of render, cycles (every scenes/*.json), spec-error, explore\n"
+         "(scenes/sphere.json), regress (needs Verilator; minutes the first time)")
       ->excludes("inputs");
   sub->callback([o, &exit_code]() { exit_code = run_report(*o); });
 }

@@ -67,7 +67,8 @@ std::vector<Candidate> builtin_candidates() {
       s.lut.addr_bits = a;
       s.lut.entry_bits = 16;
       s.lut.fit = f;
-      add("lut-exp A" + std::to_string(a) + " B16" + (f == FitObjective::kNone ? " k=n" : " k=fit"), s);
+      add("lut-exp A" + std::to_string(a) + " B16" + (f == FitObjective::kNone ? " k=n" : " k=fit"),
+          s);
     }
   }
   for (int q : {8, 12, 16}) {
@@ -102,7 +103,8 @@ std::vector<Candidate> builtin_candidates() {
     SpecularConfig s;
     s.kind = SpecularUnitKind::kWpow;
     s.wpow.fit = f;
-    add(std::string("wpow m16 B16 pipe z=fit-") + (f == FitObjective::kEpicentre ? "epi" : "abs"), s);
+    add(std::string("wpow m16 B16 pipe z=fit-") + (f == FitObjective::kEpicentre ? "epi" : "abs"),
+        s);
   }
   {
     SpecularConfig s;
@@ -174,7 +176,8 @@ std::vector<bool> pareto_front(const std::vector<Result>& rs) {
   for (size_t i = 0; i < rs.size(); ++i)
     for (size_t j = 0; j < rs.size(); ++j) {
       if (i == j) continue;
-      const bool no_worse = at_cost(rs[j]) <= at_cost(rs[i]) && plot_error(rs[j]) <= plot_error(rs[i]);
+      const bool no_worse =
+          at_cost(rs[j]) <= at_cost(rs[i]) && plot_error(rs[j]) <= plot_error(rs[i]);
       const bool better = at_cost(rs[j]) < at_cost(rs[i]) || plot_error(rs[j]) < plot_error(rs[i]);
       if (no_worse && better) front[i] = false;
     }
@@ -185,9 +188,11 @@ std::vector<bool> pareto_front(const std::vector<Result>& rs) {
 // JSON this run wrote.
 void write_plot(const std::string& png_path, const std::string& json_path) {
   const std::string plot = (std::filesystem::path(source_dir()) / "scripts" / "plot").string();
-  const ProcessResult r = run_process({plot, "--kind", "spec-error", json_path, "-o", png_path}, "");
+  const ProcessResult r =
+      run_process({plot, "--kind", "spec-error", json_path, "-o", png_path}, "");
   if (r.exit_code != 0) {
-    throw std::runtime_error("--plot: scripts/plot failed (exit " + std::to_string(r.exit_code) + "): " + r.output);
+    throw std::runtime_error("--plot: scripts/plot failed (exit " + std::to_string(r.exit_code) +
+                             "): " + r.output);
   }
 }
 
@@ -208,9 +213,11 @@ void print_table(std::ostream& os, const std::vector<Result>& rs, const std::str
   os << "Specular units against exact t^n, n " << range << " (worst over n; n where it occurs)\n"
      << "  epi%   = max relative error where t^n >= 0.5 (epicentre)\n"
      << "  bloom% = max relative error where 2^-8 <= t^n < 0.5 (blooming zone, q = 8)\n"
-     << "  absLSB = max |unit - t^n| over t in [0,1], 8-bit LSBs; n<=1% = largest n of the run with\n"
+     << "  absLSB = max |unit - t^n| over t in [0,1], 8-bit LSBs; n<=1% = largest n of the run "
+        "with\n"
      << "           every exponent up to it within 2.56 LSB (1 % of full scale)\n"
-     << "  area   = proxy: ROM bit 1, full-adder bit 8; cyc/px = cycles per pixel; lat = latency\n\n";
+     << "  area   = proxy: ROM bit 1, full-adder bit 8; cyc/px = cycles per pixel; lat = "
+        "latency\n\n";
   os << std::left << std::setw(4) << "#" << std::setw(30) << "unit" << std::right << std::setw(9)
      << "epi%" << std::setw(7) << "@n" << std::setw(10) << "bloom%" << std::setw(7) << "@n"
      << std::setw(9) << "absLSB" << std::setw(7) << "@n" << std::setw(8) << "n<=1%" << std::setw(10)
@@ -220,14 +227,14 @@ void print_table(std::ostream& os, const std::vector<Result>& rs, const std::str
   for (size_t i = 0; i < rs.size(); ++i) {
     const Result& r = rs[i];
     os << std::left << std::setw(4) << (std::to_string(i + 1) + (front[i] ? "*" : ""))
-       << std::setw(30) << r.cand.name << std::right << std::setw(9) << fmt(100 * r.worst.epi_rel, 3)
-       << std::setw(7) << exp_label(r.worst_epi_n) << std::setw(10) << fmt(100 * r.worst.bloom_rel, 1)
-       << std::setw(7) << exp_label(r.worst_bloom_n) << std::setw(9) << fmt(r.worst.abs_lsb, 2)
-       << std::setw(7) << exp_label(r.worst_abs_n) << std::setw(8) << exp_label(r.n_within_1pct)
-       << std::setw(10) << r.cost.table_bits << std::setw(5) << r.cost.multipliers << std::setw(5)
-       << r.cost.divider_iterations << std::setw(7) << r.cost.cycles_per_pixel << std::setw(5)
-       << r.cost.latency << std::setw(8) << r.cost.reload_cycles << std::setw(9)
-       << fmt(r.cost.area, 0) << '\n';
+       << std::setw(30) << r.cand.name << std::right << std::setw(9)
+       << fmt(100 * r.worst.epi_rel, 3) << std::setw(7) << exp_label(r.worst_epi_n) << std::setw(10)
+       << fmt(100 * r.worst.bloom_rel, 1) << std::setw(7) << exp_label(r.worst_bloom_n)
+       << std::setw(9) << fmt(r.worst.abs_lsb, 2) << std::setw(7) << exp_label(r.worst_abs_n)
+       << std::setw(8) << exp_label(r.n_within_1pct) << std::setw(10) << r.cost.table_bits
+       << std::setw(5) << r.cost.multipliers << std::setw(5) << r.cost.divider_iterations
+       << std::setw(7) << r.cost.cycles_per_pixel << std::setw(5) << r.cost.latency << std::setw(8)
+       << r.cost.reload_cycles << std::setw(9) << fmt(r.cost.area, 0) << '\n';
   }
   os << "  (* = on the Pareto front of worst absLSB against area x cycles/pixel)\n";
 }
@@ -235,7 +242,10 @@ void print_table(std::ostream& os, const std::vector<Result>& rs, const std::str
 struct PaperFigures {
   int bishop_exact_1k, bishop_exact_8k, bishop_closed_1k, bishop_closed_8k, bishop_round_1k,
       bishop_round_8k;
-  struct Row { std::string name; double paper_before, paper_after, ours_before, ours_after; };
+  struct Row {
+    std::string name;
+    double paper_before, paper_after, ours_before, ours_after;
+  };
   std::vector<Row> romanyuk;
   double w16_fit_epi;
 };
@@ -248,8 +258,15 @@ PaperFigures paper_figures() {
   p.bishop_closed_8k = bishop_n_max_closed_form(8192, 0.01);
   p.bishop_round_1k = bishop_n_max(1024, 0.01, false);
   p.bishop_round_8k = bishop_n_max(8192, 0.01, false);
-  struct Spec { std::string name; int m; double before, after; };
-  const Spec specs[] = {{"W4", 4, 8.0, 35.2}, {"W8", 8, 3.8, 16.2}, {"W16", 16, 1.0, 7.6}, {"Schlick", 0, 22.4, 98.2}};
+  struct Spec {
+    std::string name;
+    int m;
+    double before, after;
+  };
+  const Spec specs[] = {{"W4", 4, 8.0, 35.2},
+                        {"W8", 8, 3.8, 16.2},
+                        {"W16", 16, 1.0, 7.6},
+                        {"Schlick", 0, 22.4, 98.2}};
   for (const Spec& s : specs) {
     SpecErrors worst;
     for (int n = 16; n <= 1000; ++n) {
@@ -274,12 +291,16 @@ void print_paper(std::ostream& os, const PaperFigures& p) {
   os << "\nBishop & Weimer: largest n within 1 % with a table of N one-byte entries\n"
      << "  metric: nearest-entry indexing of t (entries at cell centres), max absolute error\n"
      << "  against full scale 1, all t in [0,1]; closed form floor(ln 0.99 / ln(1 - 1/(2N)))\n"
-     << "                     paper   ours (exact entries)  closed form  ours (entries rounded to 8 bits)\n"
+     << "                     paper   ours (exact entries)  closed form  ours (entries rounded to "
+        "8 bits)\n"
      << "  1 KiB (N = 1024)    20      " << std::setw(4) << p.bishop_exact_1k << "                 "
-     << std::setw(4) << p.bishop_closed_1k << "         " << std::setw(4) << p.bishop_round_1k << '\n'
+     << std::setw(4) << p.bishop_closed_1k << "         " << std::setw(4) << p.bishop_round_1k
+     << '\n'
      << "  8 KiB (N = 8192)   164      " << std::setw(4) << p.bishop_exact_8k << "                 "
-     << std::setw(4) << p.bishop_closed_8k << "         " << std::setw(4) << p.bishop_round_8k << '\n'
-     << "  The paper's figures hold only with exact entries; real 8-bit entries (e / 256, round to\n"
+     << std::setw(4) << p.bishop_closed_8k << "         " << std::setw(4) << p.bishop_round_8k
+     << '\n'
+     << "  The paper's figures hold only with exact entries; real 8-bit entries (e / 256, round "
+        "to\n"
      << "  nearest, saturating at 255) lose the 1 % budget sooner.\n";
   os << "\nRomanyuk et al., Table 1: max relative error before / after the cusp point, in %\n"
      << "  ours: double precision, zeta = n/m, integer n in [16, 1000]; 'before' = epicentre\n"
@@ -291,9 +312,11 @@ void print_paper(std::ostream& os, const PaperFigures& p) {
        << fmt(r.paper_after, 1) << std::setw(12) << fmt(r.ours_after, 1) << '\n';
   }
   os << "  The table does NOT reproduce: our epicentre figures differ from the paper's (W16 "
-     << fmt(p.romanyuk[2].ours_before, 2) << " vs 1.0, Schlick " << fmt(p.romanyuk[3].ours_before, 1)
+     << fmt(p.romanyuk[2].ours_before, 2) << " vs 1.0, Schlick "
+     << fmt(p.romanyuk[3].ours_before, 1)
      << " vs 22.4),\n  and in the blooming zone W_m reaches zero while t^n >= 2^-8 (100 % for W4),"
-     << " Schlick's\n  slow tail gives errors far above 100 %. We report what this metric measures and"
+     << " Schlick's\n  slow tail gives errors far above 100 %. We report what this metric measures "
+        "and"
      << " do not tune it.\n"
      << "  W16 with zeta fitted per exponent for the epicentre (n in [16, 1000] step 8): "
      << fmt(100 * p.w16_fit_epi, 2) << " %\n";
@@ -307,14 +330,16 @@ void run(const std::string& exponents_text, const std::string& units, int points
   std::vector<Candidate> cands;
   for (const Candidate& c : builtin_candidates()) {
     const std::string kind = to_string(c.spec.kind);
-    if (units == "all" || ("," + units + ",").find("," + kind + ",") != std::string::npos) cands.push_back(c);
+    if (units == "all" || ("," + units + ",").find("," + kind + ",") != std::string::npos)
+      cands.push_back(c);
   }
-  for (std::stringstream ss(units); ;) {
+  for (std::stringstream ss(units);;) {
     std::string u;
     if (!std::getline(ss, u, ',')) break;
     const SpecularUnitDescriptor* d = find_specular_unit(u);
     if (u != "all" && (d == nullptr || !d->hardware))
-      throw std::invalid_argument("--units: unknown unit '" + u + "'; expected all or a comma list of " +
+      throw std::invalid_argument("--units: unknown unit '" + u +
+                                  "'; expected all or a comma list of " +
                                   specular_unit_names(true));
   }
   if (cands.empty()) throw std::invalid_argument("--units: no configuration selected");
@@ -344,26 +369,32 @@ void run(const std::string& exponents_text, const std::string& units, int points
       const auto now = std::chrono::steady_clock::now();
       if (now - last > std::chrono::seconds(2)) {
         last = now;
-        std::cerr << "spec-error: " << done << "/" << total << " (" << c.name << ", n = " << n << ")\n";
+        std::cerr << "spec-error: " << done << "/" << total << " (" << c.name << ", n = " << n
+                  << ")\n";
       }
     }
     results.push_back(std::move(r));
   }
-  const std::string range = exponents.size() == 1 ? exp_label(exponents[0])
-                                                  : "in [" + exp_label(*std::min_element(exponents.begin(), exponents.end())) +
-                                                        ", " + exp_label(*std::max_element(exponents.begin(), exponents.end())) +
-                                                        "] (" + std::to_string(exponents.size()) + " values)";
+  const std::string range =
+      exponents.size() == 1
+          ? exp_label(exponents[0])
+          : "in [" + exp_label(*std::min_element(exponents.begin(), exponents.end())) + ", " +
+                exp_label(*std::max_element(exponents.begin(), exponents.end())) + "] (" +
+                std::to_string(exponents.size()) + " values)";
   print_table(std::cout, results, range);
   PaperFigures papers{};
   if (!no_papers) {
     papers = paper_figures();
     print_paper(std::cout, papers);
   }
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double secs =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::cout << "\n(" << total << " unit x exponent runs, " << fmt(secs, 1) << " s)\n";
 
   // --plot draws from the JSON: without --json it goes beside the PNG.
-  const std::string json_out = !json_path.empty() ? json_path : plot_path.empty() ? "" : plot_path + ".json";
+  const std::string json_out = !json_path.empty()  ? json_path
+                               : plot_path.empty() ? ""
+                                                   : plot_path + ".json";
   if (!json_out.empty()) {
     nlohmann::json j;
     j["exponents"] = exponents;
@@ -375,27 +406,40 @@ void run(const std::string& exponents_text, const std::string& units, int points
     for (size_t i = 0; i < results.size(); ++i) {
       const Result& r = results[i];
       nlohmann::json per_n = nlohmann::json::array();
-      for (const auto& [n, e] : r.per_n) per_n.push_back({{"n", n}, {"epi_rel", e.epi_rel}, {"bloom_rel", e.bloom_rel}, {"abs_lsb", e.abs_lsb}});
-      j["units"].push_back({{"name", r.cand.name}, {"config", r.cand.spec.describe()},
-                            {"epi_rel", r.worst.epi_rel}, {"epi_rel_n", r.worst_epi_n},
-                            {"bloom_rel", r.worst.bloom_rel}, {"bloom_rel_n", r.worst_bloom_n},
-                            {"abs_lsb", r.worst.abs_lsb}, {"abs_lsb_n", r.worst_abs_n},
+      for (const auto& [n, e] : r.per_n)
+        per_n.push_back(
+            {{"n", n}, {"epi_rel", e.epi_rel}, {"bloom_rel", e.bloom_rel}, {"abs_lsb", e.abs_lsb}});
+      j["units"].push_back({{"name", r.cand.name},
+                            {"config", r.cand.spec.describe()},
+                            {"epi_rel", r.worst.epi_rel},
+                            {"epi_rel_n", r.worst_epi_n},
+                            {"bloom_rel", r.worst.bloom_rel},
+                            {"bloom_rel_n", r.worst_bloom_n},
+                            {"abs_lsb", r.worst.abs_lsb},
+                            {"abs_lsb_n", r.worst_abs_n},
                             {"n_within_1pct", r.n_within_1pct},
-                            {"table_bits", r.cost.table_bits}, {"multipliers", r.cost.multipliers},
+                            {"table_bits", r.cost.table_bits},
+                            {"multipliers", r.cost.multipliers},
                             {"divider_iterations", r.cost.divider_iterations},
-                            {"cycles_per_pixel", r.cost.cycles_per_pixel}, {"latency", r.cost.latency},
-                            {"reload_cycles", r.cost.reload_cycles}, {"area", r.cost.area},
-                            {"pareto", static_cast<bool>(front[i])}, {"per_n", per_n}});
+                            {"cycles_per_pixel", r.cost.cycles_per_pixel},
+                            {"latency", r.cost.latency},
+                            {"reload_cycles", r.cost.reload_cycles},
+                            {"area", r.cost.area},
+                            {"pareto", static_cast<bool>(front[i])},
+                            {"per_n", per_n}});
     }
     if (!no_papers) {
-      j["bishop"] = {{"metric", "nearest-entry (cell-centre) indexing, max abs error vs full scale, 1 %"},
-                     {"paper", {20, 164}},
-                     {"ours_exact_entries", {papers.bishop_exact_1k, papers.bishop_exact_8k}},
-                     {"closed_form", {papers.bishop_closed_1k, papers.bishop_closed_8k}},
-                     {"ours_8bit_entries", {papers.bishop_round_1k, papers.bishop_round_8k}}};
+      j["bishop"] = {
+          {"metric", "nearest-entry (cell-centre) indexing, max abs error vs full scale, 1 %"},
+          {"paper", {20, 164}},
+          {"ours_exact_entries", {papers.bishop_exact_1k, papers.bishop_exact_8k}},
+          {"closed_form", {papers.bishop_closed_1k, papers.bishop_closed_8k}},
+          {"ours_8bit_entries", {papers.bishop_round_1k, papers.bishop_round_8k}}};
       for (const auto& row : papers.romanyuk)
-        j["romanyuk_table1"].push_back({{"function", row.name}, {"paper_before_pct", row.paper_before},
-                                        {"ours_before_pct", row.ours_before}, {"paper_after_pct", row.paper_after},
+        j["romanyuk_table1"].push_back({{"function", row.name},
+                                        {"paper_before_pct", row.paper_before},
+                                        {"ours_before_pct", row.ours_before},
+                                        {"paper_after_pct", row.paper_after},
                                         {"ours_after_pct", row.ours_after}});
       j["w16_fitted_zeta_epi_pct"] = 100 * papers.w16_fit_epi;
     }
@@ -414,8 +458,9 @@ void run(const std::string& exponents_text, const std::string& units, int points
       for (const auto& [n, e] : r.per_n)
         os << '"' << r.cand.name << "\",\"" << r.cand.spec.describe() << "\"," << n << ','
            << e.epi_rel << ',' << e.bloom_rel << ',' << e.abs_lsb << ',' << r.cost.table_bits << ','
-           << r.cost.multipliers << ',' << r.cost.divider_iterations << ',' << r.cost.cycles_per_pixel
-           << ',' << r.cost.latency << ',' << r.cost.reload_cycles << ',' << r.cost.area << '\n';
+           << r.cost.multipliers << ',' << r.cost.divider_iterations << ','
+           << r.cost.cycles_per_pixel << ',' << r.cost.latency << ',' << r.cost.reload_cycles << ','
+           << r.cost.area << '\n';
     if (!os) throw std::runtime_error(csv_path + ": write failed (--csv)");
   }
   if (!plot_path.empty()) write_plot(plot_path, json_out);
@@ -439,14 +484,16 @@ void register_spec_error(CLI::App& app, int& exit_code) {
   auto opt = std::make_shared<Options>();
   cmd->add_option("--exponents", opt->exponents,
                   "exponents n: numbers, ranges a-b, a-b:step, comma-separated (default 1-1000)");
-  cmd->add_option("--units", opt->units, "all, or a comma list of " + specular_unit_names(true) + " (default all)");
+  cmd->add_option("--units", opt->units,
+                  "all, or a comma list of " + specular_unit_names(true) + " (default all)");
   cmd->add_option("--points", opt->points,
                   "sample points per zone (epicentre, blooming, [0,1]) per exponent (default 256)");
   cmd->add_option("--json", opt->json, "write the results as JSON");
   cmd->add_option("--csv", opt->csv, "write one row per unit and exponent as CSV");
-  cmd->add_option("--plot", opt->plot,
-                  "write a PNG of error against cost with the Pareto front (scripts/plot, matplotlib,\n"
-                  "from the --json report; without --json the report goes to PLOT.json)");
+  cmd->add_option(
+      "--plot", opt->plot,
+      "write a PNG of error against cost with the Pareto front (scripts/plot, matplotlib,\n"
+      "from the --json report; without --json the report goes to PLOT.json)");
   cmd->add_flag("--no-papers", opt->no_papers, "skip the Bishop and Romanyuk reproductions");
   cmd->callback([opt, &exit_code]() {
     run(opt->exponents, opt->units, opt->points, opt->json, opt->csv, opt->plot, opt->no_papers,

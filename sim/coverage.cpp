@@ -44,7 +44,8 @@ RawPoint parse_point(const std::string& line, const std::string& where) {
     if (sep == std::string::npos || (next != std::string::npos && sep > next)) {
       throw std::runtime_error(where + ": a field has no \\002 between its name and value");
     }
-    p.fields[key.substr(i + 1, sep - i - 1)] = key.substr(sep + 1, (next == std::string::npos ? key.size() : next) - sep - 1);
+    p.fields[key.substr(i + 1, sep - i - 1)] =
+        key.substr(sep + 1, (next == std::string::npos ? key.size() : next) - sep - 1);
     i = next == std::string::npos ? key.size() : next;
   }
   return p;
@@ -72,7 +73,8 @@ std::vector<int> line_list(const std::string& s, int fallback) {
 bool under(const std::string& file, const std::string& dir) {
   const std::string d = fs::path(dir).lexically_normal().string();
   const std::string f = fs::path(file).lexically_normal().string();
-  return f.size() > d.size() && f.compare(0, d.size(), d) == 0 && (f[d.size()] == '/' || d.back() == '/');
+  return f.size() > d.size() && f.compare(0, d.size(), d) == 0 &&
+         (f[d.size()] == '/' || d.back() == '/');
 }
 
 std::string trim(const std::string& s) {
@@ -85,7 +87,8 @@ std::string trim(const std::string& s) {
 void run_tool(const std::vector<std::string>& args, const std::string& what) {
   const ProcessResult r = run_process(args, "");
   if (r.exit_code != 0) {
-    throw std::runtime_error("coverage: " + what + " failed (exit " + std::to_string(r.exit_code) + "): " + r.output);
+    throw std::runtime_error("coverage: " + what + " failed (exit " + std::to_string(r.exit_code) +
+                             "): " + r.output);
   }
 }
 
@@ -114,7 +117,8 @@ CoverageSummary summarize_coverage(const std::string& dat_path, const std::strin
     try {
       lineno = p.fields.count("l") ? std::stoi(p.fields.at("l")) : 0;
     } catch (const std::logic_error&) {
-      throw std::runtime_error(dat_path + ":" + std::to_string(n) + ": the line field is not a number");
+      throw std::runtime_error(dat_path + ":" + std::to_string(n) +
+                               ": the line field is not a number");
     }
     const std::string type = page.substr(0, page.find('/'));
     if (type == "v_line" || type == "v_branch") {
@@ -141,8 +145,10 @@ CoverageSummary summarize_coverage(const std::string& dat_path, const std::strin
     f.path = file;
     for (const auto& [l, hit] : a.lines) {
       ++f.lines;
-      if (hit) ++f.lines_hit;
-      else f.uncovered_lines.push_back(l);
+      if (hit)
+        ++f.lines_hit;
+      else
+        f.uncovered_lines.push_back(l);
     }
     f.toggles = a.toggles;
     f.toggles_hit = a.toggles_hit;
@@ -182,31 +188,40 @@ std::vector<CoverageExclusion> list_exclusions(const std::vector<std::string>& f
       const bool off = line.find("verilator coverage_off") != std::string::npos;
       const bool on = line.find("verilator coverage_on") != std::string::npos;
       if (off) {
-        if (open) throw std::runtime_error(file + ":" + std::to_string(n) + ": coverage_off inside the region opened on line " + std::to_string(cur.first_line));
+        if (open)
+          throw std::runtime_error(file + ":" + std::to_string(n) +
+                                   ": coverage_off inside the region opened on line " +
+                                   std::to_string(cur.first_line));
         // The reason: the line comment after the pragma.
         const auto end = line.find("*/");
-        const auto slash = line.find("//", end == std::string::npos ? line.find("coverage_off") : end);
+        const auto slash =
+            line.find("//", end == std::string::npos ? line.find("coverage_off") : end);
         const std::string reason = slash == std::string::npos ? "" : trim(line.substr(slash + 2));
         if (reason.empty()) {
-          throw std::runtime_error(file + ":" + std::to_string(n) +
-                                   ": a coverage_off without a reason; write /* verilator coverage_off */ // why");
+          throw std::runtime_error(
+              file + ":" + std::to_string(n) +
+              ": a coverage_off without a reason; write /* verilator coverage_off */ // why");
         }
         cur = CoverageExclusion{file, n, n, reason};
         open = true;
       } else if (on) {
-        if (!open) throw std::runtime_error(file + ":" + std::to_string(n) + ": coverage_on with no coverage_off before it");
+        if (!open)
+          throw std::runtime_error(file + ":" + std::to_string(n) +
+                                   ": coverage_on with no coverage_off before it");
         cur.last_line = n;
         out.push_back(cur);
         open = false;
       }
     }
-    if (open) throw std::runtime_error(file + ":" + std::to_string(cur.first_line) + ": coverage_off is never switched back on");
+    if (open)
+      throw std::runtime_error(file + ":" + std::to_string(cur.first_line) +
+                               ": coverage_off is never switched back on");
   }
   return out;
 }
 
-void merge_coverage(const std::vector<std::string>& inputs, const std::string& merged, const std::string& info,
-                    const std::string& annotate_dir) {
+void merge_coverage(const std::vector<std::string>& inputs, const std::string& merged,
+                    const std::string& info, const std::string& annotate_dir) {
   if (inputs.empty()) throw std::runtime_error("coverage: no run wrote a coverage file");
   std::vector<std::string> args = {"verilator_coverage", "--write", merged};
   args.insert(args.end(), inputs.begin(), inputs.end());

@@ -1,5 +1,6 @@
-// RTL coverage of a regression: the runs' Verilator coverage files (covered builds, sim/rtl_build.h)
-// merged with verilator_coverage, summarized per source file and listed where uncovered.
+// RTL coverage of a regression: the runs' Verilator coverage files (covered builds,
+// sim/rtl_build.h) merged with verilator_coverage, summarized per source file and listed where
+// uncovered.
 //
 // What counts (Verilator 5.006's point types, each point a counter):
 //   line    the "line" and "branch" points of --coverage-line. A source line is code when some
@@ -34,8 +35,8 @@ struct CoverPoint {
 };
 
 struct CoverageSummary {
-  std::vector<CoverageFile> files;  // sorted by path
-  std::vector<CoverPoint> user;     // merged over instances, sorted by name
+  std::vector<CoverageFile> files;                // sorted by path
+  std::vector<CoverPoint> user;                   // merged over instances, sorted by name
   std::vector<std::string> files_without_points;  // rtl/ files no run elaborated
   int lines = 0, lines_hit = 0, toggles = 0, toggles_hit = 0;  // over `rtl_dir` only
   double line_pct() const { return lines ? 100.0 * lines_hit / lines : 0.0; }

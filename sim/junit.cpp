@@ -10,11 +10,21 @@ std::string xml_escape(const std::string& text) {
   out.reserve(text.size());
   for (const char ch : text) {
     switch (ch) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
       default:
         // Control characters other than tab/newline are not allowed in XML 1.0.
         if (static_cast<unsigned char>(ch) < 0x20 && ch != '\n' && ch != '\t' && ch != '\r') {
@@ -38,19 +48,20 @@ void write_junit(const std::string& path, const JUnitSuite& suite) {
   std::ofstream os(path);
   if (!os) throw std::runtime_error(path + ": cannot open for writing");
   os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-     << "<testsuites>\n<testsuite name=\"" << xml_escape(suite.name) << "\" tests=\"" << suite.cases.size()
-     << "\" failures=\"" << failures << "\" errors=\"0\" skipped=\"" << skipped << "\" time=\"" << total << "\">\n";
+     << "<testsuites>\n<testsuite name=\"" << xml_escape(suite.name) << "\" tests=\""
+     << suite.cases.size() << "\" failures=\"" << failures << "\" errors=\"0\" skipped=\""
+     << skipped << "\" time=\"" << total << "\">\n";
   for (const auto& c : suite.cases) {
-    os << "  <testcase classname=\"" << xml_escape(c.classname) << "\" name=\"" << xml_escape(c.name)
-       << "\" time=\"" << c.seconds << "\"";
+    os << "  <testcase classname=\"" << xml_escape(c.classname) << "\" name=\""
+       << xml_escape(c.name) << "\" time=\"" << c.seconds << "\"";
     if (c.failure.empty() && c.skipped.empty()) {
       os << "/>\n";
       continue;
     }
     os << ">\n";
     if (!c.failure.empty()) {
-      os << "    <failure message=\"" << xml_escape(c.failure.substr(0, c.failure.find('\n'))) << "\">"
-         << xml_escape(c.failure) << "</failure>\n";
+      os << "    <failure message=\"" << xml_escape(c.failure.substr(0, c.failure.find('\n')))
+         << "\">" << xml_escape(c.failure) << "</failure>\n";
     }
     if (!c.skipped.empty()) os << "    <skipped message=\"" << xml_escape(c.skipped) << "\"/>\n";
     os << "  </testcase>\n";

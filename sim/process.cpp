@@ -5,10 +5,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <csignal>
 #include <cerrno>
 #include <chrono>
-#include <thread>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -16,12 +15,14 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 extern char** environ;
 
 namespace shadesim {
 
-std::string find_program(const std::string& name, const std::string& package, const std::string& what) {
+std::string find_program(const std::string& name, const std::string& package,
+                         const std::string& what) {
   const char* path = std::getenv("PATH");
   std::stringstream dirs(path ? path : "/usr/bin:/bin");
   for (std::string dir; std::getline(dirs, dir, ':');) {
@@ -53,7 +54,8 @@ int wait_child(pid_t pid, double timeout_seconds, bool& timed_out) {
   for (;;) {
     const pid_t r = waitpid(pid, &status, WNOHANG);
     if (r == pid) return status;
-    if (r < 0 && errno != EINTR) throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
+    if (r < 0 && errno != EINTR)
+      throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
     const double elapsed = std::chrono::duration<double>(clock::now() - start).count();
     if (!timed_out && elapsed > timeout_seconds) {
       timed_out = true;
@@ -76,13 +78,15 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::strin
   if (path.empty()) {
     char tmpl[] = "/tmp/shadesim_out_XXXXXX";
     const int fd = mkstemp(tmpl);
-    if (fd < 0) throw std::runtime_error(std::string("run_process: mkstemp: ") + std::strerror(errno));
+    if (fd < 0)
+      throw std::runtime_error(std::string("run_process: mkstemp: ") + std::strerror(errno));
     close(fd);
     path = tmpl;
   }
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, path.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
   std::vector<char*> args;
@@ -96,7 +100,8 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::strin
   }
   ProcessResult r;
   const int status = wait_child(pid, timeout_seconds, r.timed_out);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  r.exit_code =
+      WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
   if (log_path.empty()) {
     std::ifstream is(path);
     std::stringstream ss;

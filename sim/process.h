@@ -7,9 +7,9 @@
 namespace shadesim {
 
 struct ProcessResult {
-  int exit_code = -1;  // the child's exit status; 128 + signal when it was killed
+  int exit_code = -1;      // the child's exit status; 128 + signal when it was killed
   bool timed_out = false;  // killed because it ran past the timeout
-  std::string output;  // stdout and stderr, when no log file was given
+  std::string output;      // stdout and stderr, when no log file was given
 };
 
 // Runs argv[0] with argv; stdout and stderr go to `log_path` (created/truncated), or are
@@ -23,6 +23,7 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::strin
 
 // The full path of a program on PATH, or a std::runtime_error "<what>: '<name>' not found on PATH"
 // naming the Debian package that provides it.
-std::string find_program(const std::string& name, const std::string& package, const std::string& what);
+std::string find_program(const std::string& name, const std::string& package,
+                         const std::string& what);
 
 }  // namespace shadesim

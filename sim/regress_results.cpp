@@ -33,33 +33,39 @@ std::string RunSpec::id() const {
 }
 
 nlohmann::json spec_json(const RunSpec& s) {
-  return {{"id", s.id()}, {"scene", s.scene}, {"config_kind", s.config_kind}, {"config", s.config},
-          {"backend", s.backend}, {"seed", s.seed}};
+  return {{"id", s.id()},       {"scene", s.scene},     {"config_kind", s.config_kind},
+          {"config", s.config}, {"backend", s.backend}, {"seed", s.seed}};
 }
 
 namespace {
 
 // A required field of the given JSON type, or an error naming where it is and what was expected.
 template <typename T>
-T required(const nlohmann::json& j, const char* key, const std::string& where, const char* expected) {
+T required(const nlohmann::json& j, const char* key, const std::string& where,
+           const char* expected) {
   if (!j.is_object()) throw std::runtime_error(where + ": expected a JSON object");
-  if (!j.contains(key)) throw std::runtime_error(where + ": field '" + key + "' is missing (expected " + expected + ")");
+  if (!j.contains(key))
+    throw std::runtime_error(where + ": field '" + key + "' is missing (expected " + expected +
+                             ")");
   try {
     return j.at(key).get<T>();
   } catch (const nlohmann::json::exception&) {
-    throw std::runtime_error(where + ": field '" + key + "' is " + j.at(key).dump() + ", expected " + expected);
+    throw std::runtime_error(where + ": field '" + key + "' is " + j.at(key).dump() +
+                             ", expected " + expected);
   }
 }
 
 // An optional field, `fallback` when absent or null; a present value of the wrong type is an error.
 template <typename T>
-T optional(const nlohmann::json& j, const char* key, T fallback, const std::string& where, const char* expected) {
+T optional(const nlohmann::json& j, const char* key, T fallback, const std::string& where,
+           const char* expected) {
   if (!j.contains(key) || j.at(key).is_null()) return fallback;
   return required<T>(j, key, where, expected);
 }
 
 const std::vector<std::string>& known_statuses() {
-  static const std::vector<std::string> s = {"pass", "mismatch", "hang", "timeout", "error", "skipped", "missing"};
+  static const std::vector<std::string> s = {"pass",  "mismatch", "hang",   "timeout",
+                                             "error", "skipped",  "missing"};
   return s;
 }
 
@@ -70,17 +76,19 @@ RunSpec spec_from_json(const nlohmann::json& j, const std::string& where) {
   s.scene = required<std::string>(j, "scene", where, "a scene path");
   s.config_kind = required<std::string>(j, "config_kind", where, "own, named or file");
   if (s.config_kind != "own" && s.config_kind != "named" && s.config_kind != "file") {
-    throw std::runtime_error(where + ": field 'config_kind' is '" + s.config_kind + "', expected own, named or file");
+    throw std::runtime_error(where + ": field 'config_kind' is '" + s.config_kind +
+                             "', expected own, named or file");
   }
   s.config = required<std::string>(j, "config", where, "a configuration name or file");
   s.backend = required<std::string>(j, "backend", where, "cpp or systemc");
   if (s.backend != "cpp" && s.backend != "systemc") {
-    throw std::runtime_error(where + ": field 'backend' is '" + s.backend + "', expected cpp or systemc");
+    throw std::runtime_error(where + ": field 'backend' is '" + s.backend +
+                             "', expected cpp or systemc");
   }
   s.seed = required<uint64_t>(j, "seed", where, "an unsigned seed");
   if (j.contains("id") && j.at("id") != s.id()) {
-    throw std::runtime_error(where + ": field 'id' is " + j.at("id").dump() + ", but scene, config, backend and seed make " +
-                             s.id());
+    throw std::runtime_error(where + ": field 'id' is " + j.at("id").dump() +
+                             ", but scene, config, backend and seed make " + s.id());
   }
   return s;
 }
@@ -93,7 +101,8 @@ nlohmann::json record_json(const RunRecord& r) {
   j["status"] = r.status;
   j["pixels"] = r.pixels;
   j["cycles"] = r.cycles;
-  j["cycles_per_pixel"] = r.pixels ? static_cast<double>(r.cycles) / static_cast<double>(r.pixels) : 0.0;
+  j["cycles_per_pixel"] =
+      r.pixels ? static_cast<double>(r.cycles) / static_cast<double>(r.pixels) : 0.0;
   j["seconds"] = r.seconds;
   j["cycles_per_second"] = r.cycles_per_second;
   j["message"] = r.message;
@@ -116,11 +125,14 @@ RunRecord read_run_record(const std::string& path) {
   }
   RunRecord r;
   r.spec = spec_from_json(j, path);
-  r.scene_name = optional<std::string>(j, "scene_name", fs::path(r.spec.scene).stem().string(), path, "a string");
+  r.scene_name = optional<std::string>(j, "scene_name", fs::path(r.spec.scene).stem().string(),
+                                       path, "a string");
   r.unit = j.contains("unit") ? j.at("unit") : nlohmann::json();
   r.unit_text = optional<std::string>(j, "unit_text", "", path, "a string");
-  r.status = required<std::string>(j, "status", path, "pass, mismatch, hang, timeout, error or skipped");
-  if (std::find(known_statuses().begin(), known_statuses().end(), r.status) == known_statuses().end()) {
+  r.status =
+      required<std::string>(j, "status", path, "pass, mismatch, hang, timeout, error or skipped");
+  if (std::find(known_statuses().begin(), known_statuses().end(), r.status) ==
+      known_statuses().end()) {
     throw std::runtime_error(path + ": field 'status' is '" + r.status +
                              "', expected pass, mismatch, hang, timeout, error or skipped");
   }
@@ -155,7 +167,8 @@ void write_file_atomically(const std::string& path, const std::string& text) {
   fs::rename(tmp, target, ec);
   if (ec) {
     fs::remove(tmp);
-    throw std::runtime_error(path + ": cannot rename the finished temp file into place: " + ec.message());
+    throw std::runtime_error(path +
+                             ": cannot rename the finished temp file into place: " + ec.message());
   }
 }
 
@@ -164,11 +177,12 @@ void check_backends_agree(std::vector<RunRecord>& records) {
     for (size_t b = a + 1; b < records.size(); ++b) {
       RunRecord& x = records[a];
       RunRecord& y = records[b];
-      if (x.spec.scene == y.spec.scene && x.spec.config == y.spec.config && x.spec.seed == y.spec.seed &&
-          x.status == "pass" && y.status == "pass" && x.cycles != y.cycles) {
+      if (x.spec.scene == y.spec.scene && x.spec.config == y.spec.config &&
+          x.spec.seed == y.spec.seed && x.status == "pass" && y.status == "pass" &&
+          x.cycles != y.cycles) {
         y.status = "mismatch";
-        y.message = "backends disagree: " + x.spec.backend + " " + std::to_string(x.cycles) + " cycles, " +
-                    y.spec.backend + " " + std::to_string(y.cycles);
+        y.message = "backends disagree: " + x.spec.backend + " " + std::to_string(x.cycles) +
+                    " cycles, " + y.spec.backend + " " + std::to_string(y.cycles);
       }
     }
   }
@@ -184,13 +198,20 @@ void sort_records(std::vector<RunRecord>& records) {
 RunCounts count_runs(const std::vector<RunRecord>& records) {
   RunCounts c;
   for (const auto& r : records) {
-    if (r.status == "pass") ++c.passed;
-    else if (r.status == "mismatch") ++c.mismatched;
-    else if (r.status == "hang") ++c.hangs;
-    else if (r.status == "timeout") ++c.timeouts;
-    else if (r.status == "skipped") ++c.skipped;
-    else if (r.status == "missing") ++c.missing;
-    else ++c.errors;
+    if (r.status == "pass")
+      ++c.passed;
+    else if (r.status == "mismatch")
+      ++c.mismatched;
+    else if (r.status == "hang")
+      ++c.hangs;
+    else if (r.status == "timeout")
+      ++c.timeouts;
+    else if (r.status == "skipped")
+      ++c.skipped;
+    else if (r.status == "missing")
+      ++c.missing;
+    else
+      ++c.errors;
   }
   return c;
 }
@@ -217,17 +238,20 @@ void print_run_table(const std::vector<RunRecord>& records) {
   const int ws = column_width(records, "scene", [](const RunRecord& r) { return r.scene_name; });
   const int wc = column_width(records, "config", [](const RunRecord& r) { return r.spec.config; });
   std::cout << '\n'
-            << std::left << std::setw(ws) << "scene" << std::setw(wc) << "config" << std::setw(9) << "backend"
-            << std::right << std::setw(6) << "seed" << std::setw(9) << "pixels" << std::setw(11) << "cycles"
-            << std::setw(8) << "cyc/px" << std::setw(10) << "result" << std::setw(9) << "wall s" << std::setw(11)
-            << "Mcycles/s" << '\n';
+            << std::left << std::setw(ws) << "scene" << std::setw(wc) << "config" << std::setw(9)
+            << "backend" << std::right << std::setw(6) << "seed" << std::setw(9) << "pixels"
+            << std::setw(11) << "cycles" << std::setw(8) << "cyc/px" << std::setw(10) << "result"
+            << std::setw(9) << "wall s" << std::setw(11) << "Mcycles/s" << '\n';
   for (const auto& r : records) {
     // Only a completed run has a cycle count; a mismatch stops the run where it is found.
     const bool complete = r.status == "pass";
-    std::cout << std::left << std::setw(ws) << r.scene_name << std::setw(wc) << r.spec.config << std::setw(9)
-              << r.spec.backend << std::right << std::setw(6) << r.spec.seed << std::setw(9) << r.pixels
-              << std::setw(11) << (complete ? std::to_string(r.cycles) : "-") << std::setw(8)
-              << (complete && r.pixels ? fmt(static_cast<double>(r.cycles) / static_cast<double>(r.pixels), 3) : "-")
+    std::cout << std::left << std::setw(ws) << r.scene_name << std::setw(wc) << r.spec.config
+              << std::setw(9) << r.spec.backend << std::right << std::setw(6) << r.spec.seed
+              << std::setw(9) << r.pixels << std::setw(11)
+              << (complete ? std::to_string(r.cycles) : "-") << std::setw(8)
+              << (complete && r.pixels
+                      ? fmt(static_cast<double>(r.cycles) / static_cast<double>(r.pixels), 3)
+                      : "-")
               << std::setw(10) << r.status << std::setw(9) << fmt(r.seconds, 2) << std::setw(11)
               << (complete ? fmt(r.cycles_per_second / 1e6, 2) : "-") << '\n';
   }
@@ -235,13 +259,15 @@ void print_run_table(const std::vector<RunRecord>& records) {
   std::vector<std::string> seen;
   std::cout << "\nconfigurations:\n";
   for (const auto& r : records) {
-    if (r.unit_text.empty() || std::find(seen.begin(), seen.end(), r.spec.config) != seen.end()) continue;
+    if (r.unit_text.empty() || std::find(seen.begin(), seen.end(), r.spec.config) != seen.end())
+      continue;
     seen.push_back(r.spec.config);
     std::cout << "  " << std::left << std::setw(wc) << r.spec.config << r.unit_text << '\n';
   }
 }
 
-void write_json_report(const std::string& path, const std::vector<RunRecord>& records, nlohmann::json extra) {
+void write_json_report(const std::string& path, const std::vector<RunRecord>& records,
+                       nlohmann::json extra) {
   const RunCounts c = count_runs(records);
   nlohmann::json all = nlohmann::json::array();
   for (const auto& r : records) all.push_back(record_json(r));

@@ -38,15 +38,15 @@ std::string file_label(const std::string& config);
 // scene does not fit the configuration) | missing (merge: planned, no result).
 struct RunRecord {
   RunSpec spec;
-  std::string scene_name;       // the scene's stem
-  std::string unit_text;        // the unit in one line, with its injected faults
-  nlohmann::json unit;          // config_to_json of the unit (null when it could not be made)
+  std::string scene_name;  // the scene's stem
+  std::string unit_text;   // the unit in one line, with its injected faults
+  nlohmann::json unit;     // config_to_json of the unit (null when it could not be made)
   std::string status = "pending";
   std::string message;
   std::string replay;
   uint64_t pixels = 0, cycles = 0;
   double seconds = 0, cycles_per_second = 0;
-  std::string dir;              // the run's folder
+  std::string dir;  // the run's folder
   std::string stream, log, waves;
 };
 
@@ -65,7 +65,9 @@ void sort_records(std::vector<RunRecord>& records);
 
 struct RunCounts {
   long passed = 0, mismatched = 0, hangs = 0, timeouts = 0, errors = 0, skipped = 0, missing = 0;
-  bool failed() const { return mismatched > 0 || hangs > 0 || timeouts > 0 || errors > 0 || missing > 0; }
+  bool failed() const {
+    return mismatched > 0 || hangs > 0 || timeouts > 0 || errors > 0 || missing > 0;
+  }
 };
 RunCounts count_runs(const std::vector<RunRecord>& records);
 
@@ -73,7 +75,8 @@ void print_run_table(const std::vector<RunRecord>& records);
 // {passed, mismatched, errors, skipped, hangs, timeouts, missing, seed?, jobs: [...]} plus `extra`;
 // mismatched counts hangs too, errors counts timeouts and missing runs (so a reader that knows
 // only the first four still sees every failure).
-void write_json_report(const std::string& path, const std::vector<RunRecord>& records, nlohmann::json extra);
+void write_json_report(const std::string& path, const std::vector<RunRecord>& records,
+                       nlohmann::json extra);
 void write_junit_report(const std::string& path, const std::vector<RunRecord>& records);
 
 }  // namespace shadesim

@@ -36,7 +36,8 @@ void read_file(const fs::path& path, bool named, ReportInputs& out) {
   try {
     doc = nlohmann::json::parse(is);
   } catch (const nlohmann::json::exception& e) {
-    out.problems.push_back({name, std::string("not valid JSON (") + e.what() + "); " + kExpected, named});
+    out.problems.push_back(
+        {name, std::string("not valid JSON (") + e.what() + "); " + kExpected, named});
     return;
   }
   const std::optional<ReportKind> kind = classify_report(doc);
@@ -54,12 +55,14 @@ void read_folder(const fs::path& dir, ReportInputs& out) {
   std::vector<fs::path> files;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
-    if (e.is_regular_file() && (e.path().extension() == ".json" || e.path().extension() == ".xml")) {
+    if (e.is_regular_file() &&
+        (e.path().extension() == ".json" || e.path().extension() == ".xml")) {
       files.push_back(e.path());
     } else if (e.is_directory()) {
       std::error_code sub_ec;
       for (const auto& f : fs::directory_iterator(e.path(), sub_ec)) {
-        if (f.is_regular_file() && (f.path().extension() == ".json" || f.path().extension() == ".xml")) {
+        if (f.is_regular_file() &&
+            (f.path().extension() == ".json" || f.path().extension() == ".xml")) {
           files.push_back(f.path());
         }
       }
@@ -73,8 +76,10 @@ void read_folder(const fs::path& dir, ReportInputs& out) {
   const size_t before = out.inputs.size();
   for (const auto& f : files) read_file(f, false, out);
   if (out.inputs.size() == before) {
-    out.problems.push_back({dir.string(), std::string("folder holds no report (") + kExpected +
-                                              ", in it or one folder down)", true});
+    out.problems.push_back(
+        {dir.string(),
+         std::string("folder holds no report (") + kExpected + ", in it or one folder down)",
+         true});
   }
 }
 
@@ -82,12 +87,18 @@ void read_folder(const fs::path& dir, ReportInputs& out) {
 
 const char* writer_of(ReportKind kind) {
   switch (kind) {
-    case ReportKind::kRender: return "render --json";
-    case ReportKind::kRenderUnits: return "render --all-units --json";
-    case ReportKind::kSpecError: return "spec-error --json";
-    case ReportKind::kExplore: return "explore --json";
-    case ReportKind::kCycles: return "cycles --json";
-    case ReportKind::kRegress: return "regress --json";
+    case ReportKind::kRender:
+      return "render --json";
+    case ReportKind::kRenderUnits:
+      return "render --all-units --json";
+    case ReportKind::kSpecError:
+      return "spec-error --json";
+    case ReportKind::kExplore:
+      return "explore --json";
+    case ReportKind::kCycles:
+      return "cycles --json";
+    case ReportKind::kRegress:
+      return "regress --json";
   }
   return "?";
 }
@@ -96,7 +107,8 @@ std::optional<ReportKind> classify_report(const nlohmann::json& doc) {
   using T = nlohmann::json::value_t;
   if (!doc.is_object()) return std::nullopt;
   if (doc.value("kind", std::string()) == "explore") return ReportKind::kExplore;
-  if (has(doc, "breakdown", T::array) && doc.contains("cycles_per_pixel")) return ReportKind::kCycles;
+  if (has(doc, "breakdown", T::array) && doc.contains("cycles_per_pixel"))
+    return ReportKind::kCycles;
   if (has(doc, "jobs", T::array) && doc.contains("passed")) return ReportKind::kRegress;
   if (has(doc, "exponents", T::array) && has(doc, "units", T::array)) return ReportKind::kSpecError;
   if (has(doc, "images", T::object) && has(doc, "error", T::object)) return ReportKind::kRender;
@@ -113,7 +125,8 @@ ReportInputs find_report_inputs(const std::vector<std::string>& paths) {
     } else if (fs::exists(p, ec)) {
       read_file(p, true, out);
     } else {
-      out.problems.push_back({p, std::string("does not exist (") + kExpected + ", or a folder of them)", true});
+      out.problems.push_back(
+          {p, std::string("does not exist (") + kExpected + ", or a folder of them)", true});
     }
   }
   std::stable_sort(out.inputs.begin(), out.inputs.end(),

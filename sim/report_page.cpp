@@ -37,7 +37,8 @@ std::string text(const json& v) {
     }
     return os.str();
   }
-  if (v.is_array() && std::none_of(v.begin(), v.end(), [](const json& e) { return e.is_structured(); })) {
+  if (v.is_array() &&
+      std::none_of(v.begin(), v.end(), [](const json& e) { return e.is_structured(); })) {
     std::string joined;
     for (const auto& e : v) joined += (joined.empty() ? "" : ", ") + text(e);
     return joined.empty() ? "(none)" : joined;
@@ -94,12 +95,13 @@ std::string locate(const std::string& named, const std::string& report_path) {
 }
 
 std::string source(const ReportInput& in) {
-  return "<p class=\"source\">from <code>" + esc(in.path) + "</code> (" + writer_of(in.kind) + ")</p>\n";
+  return "<p class=\"source\">from <code>" + esc(in.path) + "</code> (" + writer_of(in.kind) +
+         ")</p>\n";
 }
 
 std::string none(ReportKind kind, const std::string& recipe) {
-  return "<p class=\"missing\">No input: no " + std::string(writer_of(kind)) + " file was given or found. " +
-         recipe + "</p>\n";
+  return "<p class=\"missing\">No input: no " + std::string(writer_of(kind)) +
+         " file was given or found. " + recipe + "</p>\n";
 }
 
 const ReportPlot* plot_of(const ReportPage& page, const std::string& path) {
@@ -112,12 +114,14 @@ const ReportPlot* plot_of(const ReportPage& page, const std::string& path) {
 std::string plot(const ReportPage& page, const ReportInput& in, const std::string& alt) {
   const ReportPlot* p = plot_of(page, in.path);
   if (!p) return "<p class=\"missing\">no plot was drawn for " + esc(in.path) + "</p>\n";
-  if (!p->error.empty()) return "<p class=\"missing\">scripts/plot " + esc(in.path) + ": " + esc(p->error) + "</p>\n";
+  if (!p->error.empty())
+    return "<p class=\"missing\">scripts/plot " + esc(in.path) + ": " + esc(p->error) + "</p>\n";
   return image(p->png_path, alt) + "\n";
 }
 
 // A table of the rows of an array of objects: the given columns, or every key the rows have.
-std::string table(const json& rows, std::vector<std::pair<std::string, std::string>> columns, size_t limit = 200) {
+std::string table(const json& rows, std::vector<std::pair<std::string, std::string>> columns,
+                  size_t limit = 200) {
   if (!rows.is_array() || rows.empty()) return "<p class=\"missing\">(no rows)</p>\n";
   if (columns.empty()) {
     for (const auto& r : rows) {
@@ -136,20 +140,24 @@ std::string table(const json& rows, std::vector<std::pair<std::string, std::stri
   for (const auto& r : rows) {
     if (n++ == limit) break;
     h += "<tr>";
-    for (const auto& c : columns) h += cell(r.is_object() && r.contains(c.first) ? r[c.first] : json(nullptr));
+    for (const auto& c : columns)
+      h += cell(r.is_object() && r.contains(c.first) ? r[c.first] : json(nullptr));
     h += "</tr>\n";
   }
   h += "</table>\n";
-  if (rows.size() > limit) h += "<p>(" + std::to_string(rows.size() - limit) + " more rows not shown)</p>\n";
+  if (rows.size() > limit)
+    h += "<p>(" + std::to_string(rows.size() - limit) + " more rows not shown)</p>\n";
   return h;
 }
 
 // Key/value rows of an object's scalars (nested objects flattened to a.b).
-void flatten(const json& obj, const std::string& prefix, std::vector<std::pair<std::string, json>>& out) {
+void flatten(const json& obj, const std::string& prefix,
+             std::vector<std::pair<std::string, json>>& out) {
   for (const auto& [k, v] : obj.items()) {
     if (v.is_object()) {
       flatten(v, prefix + k + ".", out);
-    } else if (!v.is_array() || std::none_of(v.begin(), v.end(), [](const json& e) { return e.is_structured(); })) {
+    } else if (!v.is_array() ||
+               std::none_of(v.begin(), v.end(), [](const json& e) { return e.is_structured(); })) {
       out.emplace_back(prefix + k, v);
     }
   }
@@ -170,43 +178,57 @@ std::string render_section(const ReportInput& in) {
   const json& d = in.doc;
   std::string h = "<h3>" + esc(scene_name(d)) + "</h3>\n" + source(in);
   const json compare = at(d, {"images", "compare"});
-  h += compare.is_string() ? image(locate(compare.get<std::string>(), in.path),
-                                   scene_name(d) + ": model | reference | error")
-                           : "<p class=\"missing\">" + esc(in.path) + ": no images.compare (expected the path of render's compare.png)</p>";
+  h += compare.is_string()
+           ? image(locate(compare.get<std::string>(), in.path),
+                   scene_name(d) + ": model | reference | error")
+           : "<p class=\"missing\">" + esc(in.path) +
+                 ": no images.compare (expected the path of render's compare.png)</p>";
   h += "<p class=\"caption\">model | reference | error heat map</p>\n";
-  h += key_values({{"image", json(text(at(d, {"width"})) + "x" + text(at(d, {"height"})))},
-                   {"specular unit", at(d, {"specular_unit"})},
-                   {"pixels", at(d, {"pixels"})},
-                   {"triangles (mesh / after setup)",
-                    json(text(at(d, {"triangles", "mesh"})) + " / " + text(at(d, {"triangles", "after_setup"})))},
-                   {"clipped at the near plane", at(d, {"triangles", "clipped_near"})},
-                   {"max error (LSB, codes)", at(d, {"error", "max_code_lsb"})},
-                   {"mean error (LSB)", at(d, {"error", "mean_code_lsb"})},
-                   {"PSNR (dB)", at(d, {"error", "psnr_db"})},
-                   {"max error before rounding (LSB)", at(d, {"error", "max_real_lsb"})},
-                   {"pixels more than 1 LSB off", at(d, {"error", "pixels_over_1lsb"})},
-                   {"stream words", at(d, {"stream", "words"})}});
+  h += key_values(
+      {{"image", json(text(at(d, {"width"})) + "x" + text(at(d, {"height"})))},
+       {"specular unit", at(d, {"specular_unit"})},
+       {"pixels", at(d, {"pixels"})},
+       {"triangles (mesh / after setup)", json(text(at(d, {"triangles", "mesh"})) + " / " +
+                                               text(at(d, {"triangles", "after_setup"})))},
+       {"clipped at the near plane", at(d, {"triangles", "clipped_near"})},
+       {"max error (LSB, codes)", at(d, {"error", "max_code_lsb"})},
+       {"mean error (LSB)", at(d, {"error", "mean_code_lsb"})},
+       {"PSNR (dB)", at(d, {"error", "psnr_db"})},
+       {"max error before rounding (LSB)", at(d, {"error", "max_real_lsb"})},
+       {"pixels more than 1 LSB off", at(d, {"error", "pixels_over_1lsb"})},
+       {"stream words", at(d, {"stream", "words"})}});
   return h;
 }
 
 std::string render_units_section(const ReportInput& in) {
   return "<h3>" + esc(scene_name(in.doc)) + ": every specular unit</h3>\n" + source(in) +
-         table(in.doc["units"], {{"unit", "unit"}, {"configuration", "configuration"},
-                                 {"max_code_lsb", "max LSB"}, {"mean_code_lsb", "mean LSB"},
-                                 {"psnr_db", "PSNR dB"}, {"table_load_cycles", "table load cycles"}});
+         table(in.doc["units"], {{"unit", "unit"},
+                                 {"configuration", "configuration"},
+                                 {"max_code_lsb", "max LSB"},
+                                 {"mean_code_lsb", "mean LSB"},
+                                 {"psnr_db", "PSNR dB"},
+                                 {"table_load_cycles", "table load cycles"}});
 }
 
 std::string spec_error_section(const ReportPage& page, const ReportInput& in) {
   const json ex = in.doc["exponents"];
-  std::string range = ex.empty() ? "none" : text(ex.front()) + " .. " + text(ex.back()) + " (" +
-                                                std::to_string(ex.size()) + " values)";
+  std::string range = ex.empty() ? "none"
+                                 : text(ex.front()) + " .. " + text(ex.back()) + " (" +
+                                       std::to_string(ex.size()) + " values)";
   return source(in) + "<p>exponents " + esc(range) + "</p>\n" +
          plot(page, in, "specular units: worst error against cost, Pareto front ringed") +
-         table(in.doc["units"], {{"name", "unit"}, {"config", "configuration"}, {"epi_rel", "epicentre rel."},
-                                 {"bloom_rel", "blooming rel."}, {"abs_lsb", "max abs LSB"},
-                                 {"n_within_1pct", "n within 1 %"}, {"table_bits", "table bits"},
-                                 {"multipliers", "multipliers"}, {"cycles_per_pixel", "cycles/px"},
-                                 {"latency", "latency"}, {"area", "area proxy"}, {"pareto", "Pareto"}});
+         table(in.doc["units"], {{"name", "unit"},
+                                 {"config", "configuration"},
+                                 {"epi_rel", "epicentre rel."},
+                                 {"bloom_rel", "blooming rel."},
+                                 {"abs_lsb", "max abs LSB"},
+                                 {"n_within_1pct", "n within 1 %"},
+                                 {"table_bits", "table bits"},
+                                 {"multipliers", "multipliers"},
+                                 {"cycles_per_pixel", "cycles/px"},
+                                 {"latency", "latency"},
+                                 {"area", "area proxy"},
+                                 {"pareto", "Pareto"}});
 }
 
 std::string explore_section(const ReportPage& page, const ReportInput& in) {
@@ -223,16 +245,25 @@ std::string explore_section(const ReportPage& page, const ReportInput& in) {
   for (const auto& [label, index] : {std::pair<const char*, json>{"start", at(d, {"start_index"})},
                                      {"chosen", at(d, {"chosen_index"})}}) {
     const json p = point(index);
-    rows.push_back({{"point", label}, {"config", at(p, {"config_text"})},
-                    {"max", at(p, {"error", "max_code_lsb"})}, {"mean", at(p, {"error", "mean_code_lsb"})},
-                    {"area", at(p, {"area"})}, {"cpp", at(p, {"cycles_per_pixel"})}});
+    rows.push_back({{"point", label},
+                    {"config", at(p, {"config_text"})},
+                    {"max", at(p, {"error", "max_code_lsb"})},
+                    {"mean", at(p, {"error", "mean_code_lsb"})},
+                    {"area", at(p, {"area"})},
+                    {"cpp", at(p, {"cycles_per_pixel"})}});
   }
   return source(in) +
-         key_values({{"scenes", at(d, {"scenes"})}, {"budget (LSB)", at(d, {"budget_lsb"})},
-                     {"points", json(points.is_array() ? points.size() : 0)}, {"area metric", at(d, {"area_metric"})}}) +
+         key_values({{"scenes", at(d, {"scenes"})},
+                     {"budget (LSB)", at(d, {"budget_lsb"})},
+                     {"points", json(points.is_array() ? points.size() : 0)},
+                     {"area metric", at(d, {"area_metric"})}}) +
          plot(page, in, "explore: error against area and cycles per pixel") +
-         table(rows, {{"point", "point"}, {"config", "configuration"}, {"max", "max LSB"},
-                      {"mean", "mean LSB"}, {"area", "area"}, {"cpp", "cycles/px"}});
+         table(rows, {{"point", "point"},
+                      {"config", "configuration"},
+                      {"max", "max LSB"},
+                      {"mean", "mean LSB"},
+                      {"area", "area"},
+                      {"cpp", "cycles/px"}});
 }
 
 // Every key cycles writes, whatever it is: the breakdown as its table, other lists of rows
@@ -253,7 +284,8 @@ std::string cycles_section(const ReportInput& in) {
     }
   }
   h += "<h4>breakdown</h4>\n" +
-       table(d["breakdown"], {{"name", "reason"}, {"cycles", "cycles"}, {"percent", "%"}, {"meaning", "meaning"}});
+       table(d["breakdown"],
+             {{"name", "reason"}, {"cycles", "cycles"}, {"percent", "%"}, {"meaning", "meaning"}});
   h += tables + "<h4>figures</h4>\n" + key_values(figures);
   return h;
 }
@@ -261,16 +293,19 @@ std::string cycles_section(const ReportInput& in) {
 // One row per cycles input: cycles per pixel and each breakdown reason's share, side by side.
 std::string cycles_summary(const ReportPage& page) {
   json rows = json::array();
-  std::vector<std::pair<std::string, std::string>> columns = {{"scene", "scene"}, {"cycles_per_pixel", "cycles/px"}};
+  std::vector<std::pair<std::string, std::string>> columns = {{"scene", "scene"},
+                                                              {"cycles_per_pixel", "cycles/px"}};
   for (const auto& in : page.inputs.inputs) {
     if (in.kind != ReportKind::kCycles) continue;
-    json row = {{"scene", scene_name(in.doc)}, {"cycles_per_pixel", at(in.doc, {"cycles_per_pixel"})}};
+    json row = {{"scene", scene_name(in.doc)},
+                {"cycles_per_pixel", at(in.doc, {"cycles_per_pixel"})}};
     for (const auto& r : in.doc["breakdown"]) {
       const json name = at(r, {"name"});
       if (!name.is_string()) continue;
       const std::string key = name.get<std::string>();
       row[key] = at(r, {"percent"});
-      if (std::none_of(columns.begin(), columns.end(), [&](const auto& c) { return c.first == key; })) {
+      if (std::none_of(columns.begin(), columns.end(),
+                       [&](const auto& c) { return c.first == key; })) {
         columns.emplace_back(key, key + " %");
       }
     }
@@ -282,53 +317,68 @@ std::string cycles_summary(const ReportPage& page) {
 
 std::string regress_section(const ReportInput& in) {
   const json& d = in.doc;
-  std::string h = source(in) +
-                  key_values({{"passed", at(d, {"passed"})}, {"mismatched", at(d, {"mismatched"})},
-                              {"errors", at(d, {"errors"})}, {"skipped", at(d, {"skipped"})},
-                              {"seed", at(d, {"seed"})}, {"wall seconds", at(d, {"wall_seconds"})}});
+  std::string h = source(in) + key_values({{"passed", at(d, {"passed"})},
+                                           {"mismatched", at(d, {"mismatched"})},
+                                           {"errors", at(d, {"errors"})},
+                                           {"skipped", at(d, {"skipped"})},
+                                           {"seed", at(d, {"seed"})},
+                                           {"wall seconds", at(d, {"wall_seconds"})}});
   json rows = json::array();
   std::string failures;
   for (const auto& j : d["jobs"]) {
     if (!j.is_object()) continue;
     json row = j;
     const json scene = at(j, {"scene"});
-    row["scene"] = scene.is_string() ? json(fs::path(scene.get<std::string>()).stem().string()) : scene;
+    row["scene"] =
+        scene.is_string() ? json(fs::path(scene.get<std::string>()).stem().string()) : scene;
     rows.push_back(row);
     const std::string status = text(at(j, {"status"}));
     if (status == "mismatch" || status == "error") {
       const std::string replay = text(at(j, {"replay"}));
-      failures += "<li><b>" + esc(text(row["scene"]) + " x " + text(at(j, {"config"})) + " (" +
-                                  text(at(j, {"backend"})) + "): " + status) +
+      failures += "<li><b>" +
+                  esc(text(row["scene"]) + " x " + text(at(j, {"config"})) + " (" +
+                      text(at(j, {"backend"})) + "): " + status) +
                   "</b> " + esc(text(at(j, {"message"}))) + "<br>replay: " +
-                  (replay == "-" || replay.empty() ? "<i>none recorded (see the log: " + esc(text(at(j, {"log"}))) + ")</i>"
-                                                   : "<code>" + esc(replay) + "</code>") +
+                  (replay == "-" || replay.empty()
+                       ? "<i>none recorded (see the log: " + esc(text(at(j, {"log"}))) + ")</i>"
+                       : "<code>" + esc(replay) + "</code>") +
                   "</li>\n";
     }
   }
-  h += table(rows, {{"scene", "scene"}, {"config", "config"}, {"backend", "backend"}, {"status", "result"},
-                    {"pixels", "pixels"}, {"cycles", "cycles"}, {"cycles_per_pixel", "cycles/px"},
-                    {"seconds", "wall s"}, {"message", "message"}});
-  h += failures.empty() ? "<p>No failures.</p>\n" : "<h4>failures and their replay commands</h4>\n<ul>" + failures + "</ul>\n";
+  h += table(rows, {{"scene", "scene"},
+                    {"config", "config"},
+                    {"backend", "backend"},
+                    {"status", "result"},
+                    {"pixels", "pixels"},
+                    {"cycles", "cycles"},
+                    {"cycles_per_pixel", "cycles/px"},
+                    {"seconds", "wall s"},
+                    {"message", "message"}});
+  h += failures.empty()
+           ? "<p>No failures.</p>\n"
+           : "<h4>failures and their replay commands</h4>\n<ul>" + failures + "</ul>\n";
   return h;
 }
 
 std::string section(const std::string& title, const std::string& body) {
   std::string id;
-  for (char c : title) id += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::tolower(c)) : '-';
+  for (char c : title)
+    id += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::tolower(c)) : '-';
   return "<section id=\"" + id + "\">\n<h2>" + esc(title) + "</h2>\n" + body + "</section>\n";
 }
 
 // One kind's inputs, each guarded: a file with the right keys but odd contents says so.
 template <typename F>
-std::string kind_body(const ReportPage& page, std::initializer_list<ReportKind> kinds, const std::string& recipe, F body) {
+std::string kind_body(const ReportPage& page, std::initializer_list<ReportKind> kinds,
+                      const std::string& recipe, F body) {
   std::string h;
   for (const auto& in : page.inputs.inputs) {
     if (std::find(kinds.begin(), kinds.end(), in.kind) == kinds.end()) continue;
     try {
       h += body(in);
     } catch (const std::exception& e) {
-      h += "<p class=\"problem\">" + esc(in.path) + ": unexpected contents for " + writer_of(in.kind) + " (" +
-           esc(e.what()) + ")</p>\n";
+      h += "<p class=\"problem\">" + esc(in.path) + ": unexpected contents for " +
+           writer_of(in.kind) + " (" + esc(e.what()) + ")</p>\n";
     }
   }
   return h.empty() ? none(*kinds.begin(), recipe) : h;
@@ -339,15 +389,20 @@ const char* kStyle =
     "table{border-collapse:collapse;margin:.5em 0 1em}td,th{border:1px solid #bbb;padding:2px 8px;"
     "text-align:left;font-size:90%}th{background:#eee}table.kv th{width:18em}"
     "img{max-width:100%;border:1px solid #ccc;image-rendering:pixelated}"
-    ".missing{color:#865;font-style:italic}.problem{color:#b00}.source,.caption{color:#666;font-size:85%}"
+    ".missing{color:#865;font-style:italic}.problem{color:#b00}.source,.caption{color:#666;font-"
+    "size:85%}"
     "code{background:#f4f4f4;padding:1px 3px}section{margin-bottom:2em}";
 
 }  // namespace
 
 const std::vector<std::string>& report_sections() {
-  static const std::vector<std::string> titles = {
-      "Inputs", "Scenes: model, reference, error", "Specular units: error against cost",
-      "Width exploration", "Cycles per pixel", "Regression", "Tool versions"};
+  static const std::vector<std::string> titles = {"Inputs",
+                                                  "Scenes: model, reference, error",
+                                                  "Specular units: error against cost",
+                                                  "Width exploration",
+                                                  "Cycles per pixel",
+                                                  "Regression",
+                                                  "Tool versions"};
   return titles;
 }
 
@@ -362,7 +417,8 @@ std::string report_html(const ReportPage& page) {
   if (!page.inputs.problems.empty()) {
     inputs += "<h4>problems</h4><ul>";
     for (const auto& p : page.inputs.problems) {
-      inputs += "<li class=\"problem\"><code>" + esc(p.path) + "</code>: " + esc(p.message) + "</li>";
+      inputs +=
+          "<li class=\"problem\"><code>" + esc(p.path) + "</code>: " + esc(p.message) + "</li>";
     }
     inputs += "</ul>\n";
   }
@@ -374,39 +430,55 @@ std::string report_html(const ReportPage& page) {
   if (!page.inputs.ignored.empty()) {
     inputs += "<details><summary>" + std::to_string(page.inputs.ignored.size()) +
               " file(s) found in the folders but not reports</summary><ul>";
-    for (const auto& p : page.inputs.ignored) inputs += "<li><code>" + esc(p.path) + "</code>: " + esc(p.message) + "</li>";
+    for (const auto& p : page.inputs.ignored)
+      inputs += "<li><code>" + esc(p.path) + "</code>: " + esc(p.message) + "</li>";
     inputs += "</ul></details>\n";
   }
 
   std::string tools = "<table class=\"kv\">";
-  for (const auto& tv : page.tools) tools += "<tr><th>" + esc(tv.tool) + "</th><td>" + esc(tv.version) + "</td></tr>";
+  for (const auto& tv : page.tools)
+    tools += "<tr><th>" + esc(tv.tool) + "</th><td>" + esc(tv.version) + "</td></tr>";
   tools += "</table>\n";
 
-  std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
-                  "<title>shadesim report</title>\n<style>" + std::string(kStyle) + "</style></head><body>\n"
-                  "<h1>shadesim report</h1>\n<p>Generated " + esc(page.generated) +
-                  " by <code>shadesim report</code> from the JSON the other commands write.</p>\n";
+  std::string h =
+      "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
+      "<title>shadesim report</title>\n<style>" +
+      std::string(kStyle) +
+      "</style></head><body>\n"
+      "<h1>shadesim report</h1>\n<p>Generated " +
+      esc(page.generated) +
+      " by <code>shadesim report</code> from the JSON the other commands write.</p>\n";
   h += section(t[0], inputs);
   h += section(t[1], kind_body(page, {ReportKind::kRender, ReportKind::kRenderUnits},
                                "<code>scripts/render</code> writes out/&lt;scene&gt;/render.json.",
                                [](const ReportInput& in) {
-                                 return in.kind == ReportKind::kRender ? render_section(in) : render_units_section(in);
+                                 return in.kind == ReportKind::kRender ? render_section(in)
+                                                                       : render_units_section(in);
                                }));
-  h += section(t[2], kind_body(page, {ReportKind::kSpecError},
-                               "<code>shadesim spec-error --json out/spec-error/spec-error.json</code> writes one.",
-                               [&](const ReportInput& in) { return spec_error_section(page, in); }));
+  h += section(
+      t[2],
+      kind_body(
+          page, {ReportKind::kSpecError},
+          "<code>shadesim spec-error --json out/spec-error/spec-error.json</code> writes one.",
+          [&](const ReportInput& in) { return spec_error_section(page, in); }));
   h += section(t[3], kind_body(page, {ReportKind::kExplore},
-                               "<code>shadesim explore scenes/sphere.json --json out/explore/sphere.json</code> writes one.",
+                               "<code>shadesim explore scenes/sphere.json --json "
+                               "out/explore/sphere.json</code> writes one.",
                                [&](const ReportInput& in) { return explore_section(page, in); }));
   std::string summary;
   try {
     summary = cycles_summary(page);
   } catch (const std::exception& e) {
-    summary = "<p class=\"problem\">cycles summary: unexpected contents (" + esc(e.what()) + ")</p>\n";
+    summary =
+        "<p class=\"problem\">cycles summary: unexpected contents (" + esc(e.what()) + ")</p>\n";
   }
-  h += section(t[4], summary + kind_body(page, {ReportKind::kCycles},
-                               "<code>shadesim cycles SCENE --json out/&lt;scene&gt;/cycles.json</code> writes one.",
-                               [](const ReportInput& in) { return cycles_section(in); }));
+  h += section(
+      t[4],
+      summary +
+          kind_body(
+              page, {ReportKind::kCycles},
+              "<code>shadesim cycles SCENE --json out/&lt;scene&gt;/cycles.json</code> writes one.",
+              [](const ReportInput& in) { return cycles_section(in); }));
   h += section(t[5], kind_body(page, {ReportKind::kRegress},
                                "<code>scripts/run</code> writes out/regress/regress.json.",
                                [](const ReportInput& in) { return regress_section(in); }));

@@ -73,9 +73,10 @@ std::vector<fs::path> rtl_sources() {
   const char* other = std::getenv("SHADESIM_RTL_DIR");
   const fs::path rtl = other && *other ? fs::path(other) : fs::path(source_dir()) / "rtl";
   std::vector<fs::path> out;
-  for (const char* f : {"shade_pkg.sv", "fixed_round.sv", "fixed_sat.sv", "span_setup.sv", "series_engine.sv",
-                        "lane_fanout.sv", "pixel_combine.sv", "exponent_lut.sv", "schlick_divider.sv", "wpow_unit.sv",
-                        "specular_unit.sv", "shade_unit.sv"}) {
+  for (const char* f :
+       {"shade_pkg.sv", "fixed_round.sv", "fixed_sat.sv", "span_setup.sv", "series_engine.sv",
+        "lane_fanout.sv", "pixel_combine.sv", "exponent_lut.sv", "schlick_divider.sv",
+        "wpow_unit.sv", "specular_unit.sv", "shade_unit.sv"}) {
     out.push_back(rtl / f);
   }
   return out;
@@ -132,8 +133,8 @@ std::string inputs_digest() {
   for (const auto& p : harness_libraries()) inputs.push_back(p);
   for (const auto& p : inputs) {
     if (!fs::exists(p)) {
-      throw std::runtime_error("rtl build: " + p.string() + " is missing; build the project first " +
-                               "(scripts/build)");
+      throw std::runtime_error("rtl build: " + p.string() +
+                               " is missing; build the project first " + "(scripts/build)");
     }
     h.add(p.filename().string());
     h.add(read_file(p));
@@ -141,7 +142,8 @@ std::string inputs_digest() {
   return h.hex();
 }
 
-std::string key_of(const RtlConfig& build, CosimBackend backend, const Tools& tools, bool coverage) {
+std::string key_of(const RtlConfig& build, CosimBackend backend, const Tools& tools,
+                   bool coverage) {
   static const std::string inputs = inputs_digest();
   Hasher h;
   // Only covered builds hash this, so the keys of plain builds (and their cache) stay as they were.
@@ -206,19 +208,20 @@ fs::path build_into(const fs::path& work, const RtlConfig& build, CosimBackend b
   {
     std::ofstream h(work / "cosim_build.h");
     h << generated_header(build, backend);
-    if (!h) throw std::runtime_error("rtl build: cannot write " + (work / "cosim_build.h").string());
+    if (!h)
+      throw std::runtime_error("rtl build: cannot write " + (work / "cosim_build.h").string());
   }
   std::string cflags = "-std=c++17 -O2 -I" + src.string() + " -I" + work.string();
   std::string ldflags = "-pthread";
-  std::vector<std::string> args = {tools.verilator,
-                                   backend == CosimBackend::kSystemC ? "--sc" : "--cc",
-                                   "--exe", "--build", "-j", std::to_string(std::max(1, make_jobs)),
-                                   "--top-module", "shade_unit", "--prefix", "Vshade_unit",
-                                   "-Mdir", (work / "obj").string(), "-o", "cosim",
-                                   "-O3", "--x-assign", "fast", "--x-initial", "fast",
-                                   // The generated makefile's default is -Os.
-                                   "-MAKEFLAGS", "OPT_FAST=-O2 OPT_GLOBAL=-O2 OPT_SLOW=-O1" +
-                                       (tools.ccache.empty() ? std::string() : " OBJCACHE=" + tools.ccache)};
+  std::vector<std::string> args = {
+      tools.verilator, backend == CosimBackend::kSystemC ? "--sc" : "--cc", "--exe", "--build",
+      "-j", std::to_string(std::max(1, make_jobs)), "--top-module", "shade_unit", "--prefix",
+      "Vshade_unit", "-Mdir", (work / "obj").string(), "-o", "cosim", "-O3", "--x-assign", "fast",
+      "--x-initial", "fast",
+      // The generated makefile's default is -Os.
+      "-MAKEFLAGS",
+      "OPT_FAST=-O2 OPT_GLOBAL=-O2 OPT_SLOW=-O1" +
+          (tools.ccache.empty() ? std::string() : " OBJCACHE=" + tools.ccache)};
   if (backend == CosimBackend::kSystemC) cflags += " -DSHADESIM_COSIM_SYSTEMC=1";
   if (backend == CosimBackend::kCppTrace) {
     args.push_back("--trace-fst");
@@ -244,9 +247,10 @@ fs::path build_into(const fs::path& work, const RtlConfig& build, CosimBackend b
     std::ifstream is(log);
     std::vector<std::string> lines;
     for (std::string line; std::getline(is, line);) lines.push_back(line);
-    for (size_t i = lines.size() > 12 ? lines.size() - 12 : 0; i < lines.size(); ++i) tail += "\n  " + lines[i];
-    throw std::runtime_error("rtl build: Verilator/compiler failed (exit " + std::to_string(r.exit_code) +
-                             "); log " + log.string() + ":" + tail);
+    for (size_t i = lines.size() > 12 ? lines.size() - 12 : 0; i < lines.size(); ++i)
+      tail += "\n  " + lines[i];
+    throw std::runtime_error("rtl build: Verilator/compiler failed (exit " +
+                             std::to_string(r.exit_code) + "); log " + log.string() + ":" + tail);
   }
   return exe;
 }
@@ -255,9 +259,12 @@ fs::path build_into(const fs::path& work, const RtlConfig& build, CosimBackend b
 
 std::string to_string(CosimBackend b) {
   switch (b) {
-    case CosimBackend::kCpp: return "cpp";
-    case CosimBackend::kSystemC: return "systemc";
-    case CosimBackend::kCppTrace: return "cpp_trace";
+    case CosimBackend::kCpp:
+      return "cpp";
+    case CosimBackend::kSystemC:
+      return "systemc";
+    case CosimBackend::kCppTrace:
+      return "cpp_trace";
   }
   return "?";
 }
@@ -284,7 +291,9 @@ std::string named_builds_path() {
   return (fs::path(source_dir()) / "sim" / "harness" / "builds.json").string();
 }
 
-std::string default_rtl_cache_dir() { return (fs::path(SHADESIM_BINARY_DIR) / "rtl-cache").string(); }
+std::string default_rtl_cache_dir() {
+  return (fs::path(SHADESIM_BINARY_DIR) / "rtl-cache").string();
+}
 
 std::string rtl_build_key(const RtlConfig& build, CosimBackend backend, bool coverage) {
   return key_of(build, backend, find_tools(), coverage);
@@ -334,8 +343,9 @@ RtlBuildResult ensure_rtl_build(const RtlConfig& build, CosimBackend backend,
 
   if (!o.quiet) {
     std::cerr << "rtl build: Verilating " << build.name << " [" << build.unit.to_string()
-              << fault_text(build.faults) << "] for the " << to_string(backend)
-              << " backend" << (o.coverage ? " with coverage" : "") << " into " << final_dir.string() << " (about a minute)..." << std::endl;
+              << fault_text(build.faults) << "] for the " << to_string(backend) << " backend"
+              << (o.coverage ? " with coverage" : "") << " into " << final_dir.string()
+              << " (about a minute)..." << std::endl;
   }
   // Folders of builds that were killed: nobody else works on this key while we hold the lock.
   for (const auto& e : fs::directory_iterator(cache)) {
@@ -352,7 +362,8 @@ RtlBuildResult ensure_rtl_build(const RtlConfig& build, CosimBackend backend,
   } catch (...) {
     fs::create_directories(cache / "failed");
     std::error_code ec;
-    fs::copy_file(log, cache / "failed" / (stem + ".log"), fs::copy_options::overwrite_existing, ec);
+    fs::copy_file(log, cache / "failed" / (stem + ".log"), fs::copy_options::overwrite_existing,
+                  ec);
     fs::remove_all(work, ec);
     throw;
   }
@@ -361,13 +372,14 @@ RtlBuildResult ensure_rtl_build(const RtlConfig& build, CosimBackend backend,
   if (ec) {
     // Another process (without a working lock) finished first: keep its copy.
     fs::remove_all(work, ec);
-    if (!fs::exists(exe)) throw std::runtime_error("rtl build: cannot move the build into " + final_dir.string());
+    if (!fs::exists(exe))
+      throw std::runtime_error("rtl build: cannot move the build into " + final_dir.string());
   }
   r.built = true;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!o.quiet) {
-    std::cerr << "rtl build: " << build.name << " (" << to_string(backend) << (o.coverage ? ", coverage" : "")
-              << ") built in "
+    std::cerr << "rtl build: " << build.name << " (" << to_string(backend)
+              << (o.coverage ? ", coverage" : "") << ") built in "
               << static_cast<int>(r.seconds + 0.5) << " s" << std::endl;
   }
   return r;

@@ -3,9 +3,9 @@
 //
 // The cache key is a hash of everything the executable is made from: shade_unit's parameters
 // (model/rtl_parameters.h), the backend, the contents of the RTL, of the harness sources and
-// headers, of the model headers and of the prebuilt model and harness libraries it links, the compiler's
-// and Verilator's versions and the build flags. A changed input is a new key; an old entry is
-// never rebuilt in place.
+// headers, of the model headers and of the prebuilt model and harness libraries it links, the
+// compiler's and Verilator's versions and the build flags. A changed input is a new key; an old
+// entry is never rebuilt in place.
 //
 // Concurrency: a build holds an exclusive lock on <key>.lock (flock) while it works in a
 // private temporary folder, which it renames into place when the executable is complete. A

@@ -19,7 +19,8 @@ std::string first_line(const std::vector<std::string>& argv) {
     return "not found";
   }
   if (r.exit_code == 127) return "not found";
-  if (r.exit_code != 0) return "not found (" + argv[1] + " exited with " + std::to_string(r.exit_code) + ")";
+  if (r.exit_code != 0)
+    return "not found (" + argv[1] + " exited with " + std::to_string(r.exit_code) + ")";
   static const std::regex version(R"(\d\.\d)");
   std::istringstream lines(r.output);
   std::string line, first;
@@ -50,7 +51,8 @@ std::vector<ToolVersion> find_tool_versions() {
       {"systemc", first_line(on_path({"pkg-config", "--modversion", "systemc"}))},
       {"python3 + matplotlib (scripts/plot's /usr/bin/python3)",
        first_line(on_path({"/usr/bin/python3", "-c",
-                           "import sys, matplotlib; print(sys.version.split()[0], 'matplotlib', matplotlib.__version__)"}))},
+                           "import sys, matplotlib; print(sys.version.split()[0], 'matplotlib', "
+                           "matplotlib.__version__)"}))},
       {"chromium", first_line(on_path({"chromium", "--version"}))},
       {"shadesim built with", std::string("C++ ") + __VERSION__},
   };

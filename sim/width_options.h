@@ -62,17 +62,31 @@ struct WidthOptions {
 };
 
 // The option groups add_width_options fills (--config excludes every option in them).
-constexpr const char* kWidthGroup = "Widths (s|u<integer bits incl. sign>.<fraction bits>[:trn|:rnd][:sat|:wrap])";
-constexpr const char* kUnitWidthGroup = "Specular unit widths (see shadesim spec-error for their error and cost)";
+constexpr const char* kWidthGroup =
+    "Widths (s|u<integer bits incl. sign>.<fraction bits>[:trn|:rnd][:sat|:wrap])";
+constexpr const char* kUnitWidthGroup =
+    "Specular unit widths (see shadesim spec-error for their error and cost)";
 
 inline void add_width_options(CLI::App& sub, WidthOptions& w) {
   const char* group = kWidthGroup;
-  sub.add_option("--coef", w.coef, "triangle Taylor coefficient format")->capture_default_str()->group(group);
-  sub.add_option("--series", w.series, "forward-difference accumulator format")->capture_default_str()->group(group);
-  sub.add_option("--spec-colour", w.spec_colour, "specular colour format")->capture_default_str()->group(group);
-  sub.add_option("--spec-out", w.spec_out, "specular unit output format")->capture_default_str()->group(group);
-  sub.add_option("--out-bits", w.out_bits, "output bits per channel")->capture_default_str()->group(group);
-  sub.add_option("--xy-bits", w.xy_bits, "screen coordinate bits")->capture_default_str()->group(group);
+  sub.add_option("--coef", w.coef, "triangle Taylor coefficient format")
+      ->capture_default_str()
+      ->group(group);
+  sub.add_option("--series", w.series, "forward-difference accumulator format")
+      ->capture_default_str()
+      ->group(group);
+  sub.add_option("--spec-colour", w.spec_colour, "specular colour format")
+      ->capture_default_str()
+      ->group(group);
+  sub.add_option("--spec-out", w.spec_out, "specular unit output format")
+      ->capture_default_str()
+      ->group(group);
+  sub.add_option("--out-bits", w.out_bits, "output bits per channel")
+      ->capture_default_str()
+      ->group(group);
+  sub.add_option("--xy-bits", w.xy_bits, "screen coordinate bits")
+      ->capture_default_str()
+      ->group(group);
   // One option per distinct flag of the unit table; an option that several units share (--fit)
   // comes after the units' own ones.
   std::vector<const SpecularField*> own, shared;
@@ -85,7 +99,8 @@ inline void add_width_options(CLI::App& sub, WidthOptions& w) {
   for (const SpecularField* f : own) {
     if (uses[f->cli] > 1) shared.push_back(f);
   }
-  own.erase(std::remove_if(own.begin(), own.end(), [&](const SpecularField* f) { return uses[f->cli] > 1; }),
+  own.erase(std::remove_if(own.begin(), own.end(),
+                           [&](const SpecularField* f) { return uses[f->cli] > 1; }),
             own.end());
   own.insert(own.end(), shared.begin(), shared.end());
   for (const SpecularField* f : own) {

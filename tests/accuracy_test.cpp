@@ -25,8 +25,8 @@ ErrorStats render(const std::string& scene, std::optional<SpecularUnitKind> unit
   ShadeUnit model(f.config);
   const auto pixels = model.run(f.encoded.stream);
   const auto ref = render_reference(f.setup.triangles, f.visibility, f.scene, f.config.channels);
-  return compare_to_reference(pixels, ref.values, f.visibility.owner, f.scene.width,
-                              f.scene.height, f.config.channels, f.config.out_bits)
+  return compare_to_reference(pixels, ref.values, f.visibility.owner, f.scene.width, f.scene.height,
+                              f.config.channels, f.config.out_bits)
       .stats;
 }
 

@@ -72,13 +72,16 @@ TEST(Area, CellCountEqualsADirectYosysRunAndTheCacheIsReused) {
   write(dir / "direct.ys", "read_verilog -sv" + files + "\nchparam " + kSmallChparam +
                                " shade_unit\nsynth -flatten -top shade_unit\n"
                                "abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX\nopt_clean\n"
-                               "tee -o " + (dir / "direct_stat.txt").string() + " stat\n");
+                               "tee -o " +
+                               (dir / "direct_stat.txt").string() + " stat\n");
   auto direct = std::async(std::launch::async, [&] {
-    return run_shell(yosys + " -q -l " + (dir / "direct.log").string() + " " + (dir / "direct.ys").string());
+    return run_shell(yosys + " -q -l " + (dir / "direct.log").string() + " " +
+                     (dir / "direct.ys").string());
   });
   const std::string cache = (dir / "cache").string();
-  const Result area = run_shell(shadesim() + "area --config " + (dir / "small.json").string() + " --no-pnr --cache " +
-                                cache + " --json " + (dir / "area.json").string());
+  const Result area =
+      run_shell(shadesim() + "area --config " + (dir / "small.json").string() +
+                " --no-pnr --cache " + cache + " --json " + (dir / "area.json").string());
   const Result yr = direct.get();
   ASSERT_EQ(yr.status, 0) << yr.output;
   ASSERT_EQ(area.status, 0) << area.output;
@@ -88,7 +91,8 @@ TEST(Area, CellCountEqualsADirectYosysRunAndTheCacheIsReused) {
   ss << stat.rdbuf();
   std::smatch m;
   const std::string stat_text = ss.str();
-  ASSERT_TRUE(std::regex_search(stat_text, m, std::regex(R"(Number of cells:\s+([0-9]+))"))) << stat_text;
+  ASSERT_TRUE(std::regex_search(stat_text, m, std::regex(R"(Number of cells:\s+([0-9]+))")))
+      << stat_text;
   const long direct_cells = std::stol(m[1].str());
 
   std::ifstream js(dir / "area.json");
@@ -111,8 +115,9 @@ TEST(Area, CellCountEqualsADirectYosysRunAndTheCacheIsReused) {
                             " -V; fi\necho 'fake yosys: synthesis requested' >&2\nexit 3\n");
   fs::permissions(fake / "yosys", fs::perms::owner_all);
   const std::string env = "PATH=" + fake.string() + ":\"$PATH\"";
-  const Result again = run_shell(shadesim(env) + "area --config " + (dir / "small.json").string() +
-                                 " --no-pnr --cache " + cache + " --json " + (dir / "again.json").string());
+  const Result again =
+      run_shell(shadesim(env) + "area --config " + (dir / "small.json").string() +
+                " --no-pnr --cache " + cache + " --json " + (dir / "again.json").string());
   ASSERT_EQ(again.status, 0) << again.output;
   std::ifstream js2(dir / "again.json");
   const auto j2 = nlohmann::json::parse(js2);
@@ -123,8 +128,8 @@ TEST(Area, CellCountEqualsADirectYosysRunAndTheCacheIsReused) {
   std::string changed = kSmallConfig;
   changed.replace(changed.find("\"out_bits\":4"), 12, "\"out_bits\":3");
   write(dir / "changed.json", changed);
-  const Result miss =
-      run_shell(shadesim(env) + "area --config " + (dir / "changed.json").string() + " --no-pnr --cache " + cache);
+  const Result miss = run_shell(shadesim(env) + "area --config " + (dir / "changed.json").string() +
+                                " --no-pnr --cache " + cache);
   EXPECT_NE(miss.status, 0) << miss.output;
   EXPECT_NE(miss.output.find("failed"), std::string::npos) << miss.output;
   EXPECT_EQ(miss.output.find("cache hit"), std::string::npos) << miss.output;
@@ -150,8 +155,9 @@ TEST(Area, BadInputGivesAClearError) {
   EXPECT_NE(syntax.output.find("broken.json"), std::string::npos) << syntax.output;
 
   write(dir / "small.json", kSmallConfig);
-  const Result no_tool = run_shell(shadesim("PATH=/nonexistent") + "area --config " + (dir / "small.json").string() +
-                                   " --cache " + (dir / "cache").string());
+  const Result no_tool =
+      run_shell(shadesim("PATH=/nonexistent") + "area --config " + (dir / "small.json").string() +
+                " --cache " + (dir / "cache").string());
   EXPECT_EQ(no_tool.status, 2) << no_tool.output;
   EXPECT_NE(no_tool.output.find("'yosys' not found"), std::string::npos) << no_tool.output;
   EXPECT_NE(no_tool.output.find("Debian package yosys"), std::string::npos) << no_tool.output;
@@ -159,5 +165,4 @@ TEST(Area, BadInputGivesAClearError) {
 }
 
 }  // namespace
-}  // namespace shadesim#include "tests/support/cli_run.h"
-
+}  // namespace shadesim

@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "tests/support/cli_run.h"
 #include "host/image.h"
+#include "tests/support/cli_run.h"
 
 namespace shadesim {
 namespace {
@@ -24,7 +24,8 @@ TEST(Cli, RenderWritesImagesAndJsonFigures) {
                        (dir / "r.json").string() + " --save-stream " + (dir / "s.cmd").string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("PSNR"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("ideal (exact pow"), std::string::npos) << "the ideal unit must be labelled";
+  EXPECT_NE(r.output.find("ideal (exact pow"), std::string::npos)
+      << "the ideal unit must be labelled";
   std::ifstream js(dir / "r.json");
   const auto j = nlohmann::json::parse(js);
   EXPECT_LE(j["error"]["max_code_lsb"].get<int>(), 1);
@@ -70,8 +71,8 @@ TEST(Cli, RenderReportsNearPlaneClippingAndTheSpecularModel) {
 
 TEST(Cli, AllUnitsWritesTheHighlightStripAndOneLinePerUnit) {
   const auto dir = temp_dir("units");
-  const Result r = run("render " + kScenes + "specular.json --all-units --out " + dir.string() + " --json " +
-                       (dir / "u.json").string());
+  const Result r = run("render " + kScenes + "specular.json --all-units --out " + dir.string() +
+                       " --json " + (dir / "u.json").string());
   ASSERT_EQ(r.status, 0) << r.output;
   std::ifstream js(dir / "u.json");
   const auto j = nlohmann::json::parse(js);
@@ -96,7 +97,8 @@ nlohmann::json run_json(const std::string& args, const std::filesystem::path& js
 TEST(Cli, CyclesBreakdownPartitionsTheRunAndShowsBackPressure) {
   const auto dir = temp_dir("cycles");
   const auto free_run = run_json("cycles " + kScenes + "sphere.json", dir / "a.json");
-  const auto pressed = run_json("cycles " + kScenes + "sphere.json --stall-pct 50 --seed 3", dir / "b.json");
+  const auto pressed =
+      run_json("cycles " + kScenes + "sphere.json --stall-pct 50 --seed 3", dir / "b.json");
   for (const auto* j : {&free_run, &pressed}) {
     uint64_t sum = 0, pixel_row = 0;
     for (const auto& row : (*j)["breakdown"]) {
@@ -122,11 +124,13 @@ TEST(Cli, CyclesEstimateEqualsTheRtlOnTheSameSceneAndStimulus) {
   // back-pressure: the cycle counts must be equal, not close.
   const auto dir = temp_dir("cycles_rtl");
   const std::string stim = " --gap-pct 20 --max-gap 8 --stall-pct 20 --seed 7";
-  const auto estimate = run_json("cycles " + kScenes + "sphere.json --channels 1 --lights 1 --coef s4.32:rnd" + stim,
-                                 dir / "c.json");
-  const auto regress = run_json("regress " + kScenes + "sphere.json --configs grey_s428w --backends cpp --out " +
-                                    (dir / "reg").string() + stim,
-                                dir / "r.json");
+  const auto estimate =
+      run_json("cycles " + kScenes + "sphere.json --channels 1 --lights 1 --coef s4.32:rnd" + stim,
+               dir / "c.json");
+  const auto regress =
+      run_json("regress " + kScenes + "sphere.json --configs grey_s428w --backends cpp --out " +
+                   (dir / "reg").string() + stim,
+               dir / "r.json");
   ASSERT_EQ(regress["jobs"].size(), 1u);
   EXPECT_EQ(regress["jobs"][0]["status"], "pass") << regress.dump(2);
   EXPECT_EQ(regress["jobs"][0]["cycles"].get<uint64_t>(), estimate["cycles"].get<uint64_t>());
@@ -143,9 +147,12 @@ void expect_error(const std::string& args, const std::string& needle) {
 TEST(Cli, CyclesClosedFormEqualsClockedAndClassifiesEveryTriangle) {
   const auto dir = temp_dir("cycles_closed_form");
   const std::string knobs = " --port-words 4 --tri-queue 2";
-  const auto fast = run_json("cycles " + kScenes + "sphere.json" + knobs + " --worst 3", dir / "a.json");
-  const auto both = run_json("cycles " + kScenes + "sphere.json" + knobs + " --clocked", dir / "b.json");
-  const auto pressed = run_json("cycles " + kScenes + "sphere.json" + knobs + " --stall-pct 1", dir / "c.json");
+  const auto fast =
+      run_json("cycles " + kScenes + "sphere.json" + knobs + " --worst 3", dir / "a.json");
+  const auto both =
+      run_json("cycles " + kScenes + "sphere.json" + knobs + " --clocked", dir / "b.json");
+  const auto pressed =
+      run_json("cycles " + kScenes + "sphere.json" + knobs + " --stall-pct 1", dir / "c.json");
   EXPECT_EQ(fast["figures_from"], "closed-form estimate");
   EXPECT_FALSE(fast["clocked_check"].get<bool>());
   EXPECT_TRUE(both["clocked_check"].get<bool>());
@@ -158,7 +165,8 @@ TEST(Cli, CyclesClosedFormEqualsClockedAndClassifiesEveryTriangle) {
   EXPECT_GT(pressed["cycles"].get<uint64_t>(), fast["cycles"].get<uint64_t>());
   EXPECT_EQ(pressed["pixels"], fast["pixels"]);
   const auto& t = fast["triangles"];
-  EXPECT_EQ(t["setup_bound"].get<size_t>() + t["fill_bound"].get<size_t>(), t["count"].get<size_t>());
+  EXPECT_EQ(t["setup_bound"].get<size_t>() + t["fill_bound"].get<size_t>(),
+            t["count"].get<size_t>());
   EXPECT_EQ(t["each"].size(), t["count"].get<size_t>());
   uint64_t setup_bound = 0, pixels_seen = 0;
   for (const auto& e : t["each"]) setup_bound += e[1].get<uint64_t>() > e[2].get<uint64_t>();
@@ -175,7 +183,8 @@ TEST(Cli, CyclesClosedFormEqualsClockedAndClassifiesEveryTriangle) {
 TEST(Cli, SpecErrorPlotIsMatplotlibsPngOfItsJson) {
   const auto dir = temp_dir("spec_plot");
   const auto png = dir / "spec.png";
-  const Result r = run("spec-error --units wpow --exponents 16,64 --points 16 --no-papers --plot " + png.string());
+  const Result r = run("spec-error --units wpow --exponents 16,64 --points 16 --no-papers --plot " +
+                       png.string());
   ASSERT_EQ(r.status, 0) << r.output;
   // The report it was drawn from sits beside it, and the PNG is a real image of some size.
   EXPECT_TRUE(std::filesystem::exists(dir / "spec.png.json"));
@@ -203,7 +212,8 @@ TEST(Cli, ConfigDerivesAUnitThatRenderAndCyclesUseWithConfig) {
   const std::string cfg = (dir / "sphere_unit.json").string();
   const Result r = run("config " + kScenes + "sphere.json --json " + cfg);
   ASSERT_EQ(r.status, 0) << r.output;
-  for (const char* field : {"channels = 1", "lights = 1", "xy_bits = 8", "series = ", "coef = ", "specular = wpow"}) {
+  for (const char* field :
+       {"channels = 1", "lights = 1", "xy_bits = 8", "series = ", "coef = ", "specular = wpow"}) {
     EXPECT_NE(r.output.find(field), std::string::npos) << field << "\n" << r.output;
   }
   EXPECT_NE(r.output.find("scenes/sphere.json: max 1 LSB"), std::string::npos) << r.output;
@@ -213,9 +223,9 @@ TEST(Cli, ConfigDerivesAUnitThatRenderAndCyclesUseWithConfig) {
   EXPECT_EQ(j["specular"]["kind"], "wpow");
   EXPECT_EQ(j["derivation"]["error"][0]["max_code_lsb"], 1);
   // The file is the unit: render and cycles shade on exactly it.
-  const auto rendered = run_json("render " + kScenes + "sphere.json -q --out " + (dir / "r").string() +
-                                     " --config " + cfg,
-                                 dir / "r.json");
+  const auto rendered = run_json(
+      "render " + kScenes + "sphere.json -q --out " + (dir / "r").string() + " --config " + cfg,
+      dir / "r.json");
   EXPECT_EQ(rendered["config"]["series"], j["series"]);
   EXPECT_EQ(rendered["config"]["coef"], j["coef"]);
   EXPECT_EQ(rendered["config"]["specular"]["kind"], "wpow");
@@ -224,7 +234,8 @@ TEST(Cli, ConfigDerivesAUnitThatRenderAndCyclesUseWithConfig) {
   EXPECT_EQ(cycles["config"]["xy_bits"], 8);
   EXPECT_EQ(cycles["slot"]["latency"], 5);  // W_16 pipelined: the README's timing table
   // Without --config the defaults stay what the README's figures use.
-  const auto plain = run_json("render " + kScenes + "sphere.json -q --out " + (dir / "p").string(), dir / "p.json");
+  const auto plain = run_json("render " + kScenes + "sphere.json -q --out " + (dir / "p").string(),
+                              dir / "p.json");
   EXPECT_EQ(plain["config"]["series"], "s4.28:wrap");
   EXPECT_EQ(plain["config"]["specular"]["kind"], "ideal");
   std::filesystem::remove_all(dir);
@@ -235,8 +246,11 @@ TEST(Cli, ConfigAndConfigFileErrorsNameTheProblem) {
   const std::string grey = (dir / "grey.json").string();
   std::ofstream(grey) << R"({"channels": 1, "lights": 2, "xy_bits": 9})";
   // A scene that needs more than the file gives: the field and the file are named.
-  expect_error("render " + kScenes + "multi.json --out " + (dir / "o").string() + " --config " + grey, "channels = 3");
-  expect_error("render " + kScenes + "multi.json --out " + (dir / "o").string() + " --config " + grey, grey);
+  expect_error(
+      "render " + kScenes + "multi.json --out " + (dir / "o").string() + " --config " + grey,
+      "channels = 3");
+  expect_error(
+      "render " + kScenes + "multi.json --out " + (dir / "o").string() + " --config " + grey, grey);
   const std::string small = (dir / "small.json").string();
   std::ofstream(small) << R"({"xy_bits": 8})";
   expect_error("cycles " + kScenes + "torus.json --config " + small, "xy_bits >= 9");
@@ -246,18 +260,23 @@ TEST(Cli, ConfigAndConfigFileErrorsNameTheProblem) {
   // Bad files: typo, wrong type, syntax error with line and column.
   const std::string typo = (dir / "typo.json").string();
   std::ofstream(typo) << R"({"seris": "s4.30"})";
-  expect_error("render " + kScenes + "sphere.json --out " + (dir / "o").string() + " --config " + typo, "seris: unknown field");
+  expect_error(
+      "render " + kScenes + "sphere.json --out " + (dir / "o").string() + " --config " + typo,
+      "seris: unknown field");
   const std::string type = (dir / "type.json").string();
   std::ofstream(type) << R"({"specular": {"wpow": {"max_m": "16"}}})";
-  expect_error("cycles " + kScenes + "sphere.json --config " + type, "specular.wpow.max_m: expected an integer");
+  expect_error("cycles " + kScenes + "sphere.json --config " + type,
+               "specular.wpow.max_m: expected an integer");
   const std::string syntax = (dir / "syntax.json").string();
   std::ofstream(syntax) << "{\n  \"lights\": 1\n  \"channels\": 1\n}\n";
   // The missing comma is found on line 3 when the string "channels" (columns 3-12) ends.
   expect_error("cycles " + kScenes + "sphere.json --config " + syntax, "syntax.json:3:12:");
   // --config fixes the unit: width options and structure overrides are refused beside it.
-  expect_error("render " + kScenes + "sphere.json --config " + grey + " --series s4.30", "excludes");
+  expect_error("render " + kScenes + "sphere.json --config " + grey + " --series s4.30",
+               "excludes");
   expect_error("cycles " + kScenes + "sphere.json --config " + grey + " --lights 2", "excludes");
-  expect_error("render " + kScenes + "sphere.json --config " + (dir / "absent.json").string(), "absent.json");
+  expect_error("render " + kScenes + "sphere.json --config " + (dir / "absent.json").string(),
+               "absent.json");
   // config itself: scenes naming different units, a bad budget, a missing scene.
   auto sphere = nlohmann::json::parse(std::ifstream(kScenes + "sphere.json"));
   sphere["materials"][0]["unit"] = "lut";
@@ -274,8 +293,8 @@ TEST(Cli, ConfigAndConfigFileErrorsNameTheProblem) {
 TEST(Cli, ConfigHelpStatesEachRule) {
   const Result r = run("config --help");
   EXPECT_EQ(r.status, 0);
-  for (const char* rule : {"channels", "lights", "xy_bits", "1 + L(L-1)/2", "modulo 2^iwl", "dx^2", "out_bits",
-                           "ideal", "W_16 B=16 pipelined"}) {
+  for (const char* rule : {"channels", "lights", "xy_bits", "1 + L(L-1)/2", "modulo 2^iwl", "dx^2",
+                           "out_bits", "ideal", "W_16 B=16 pipelined"}) {
     EXPECT_NE(r.output.find(rule), std::string::npos) << rule << "\n" << r.output;
   }
 }

@@ -1,11 +1,12 @@
 // Command stream: binary and text round trips, and clear errors on malformed streams.
+#include "model/command_stream.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
 #include <sstream>
 
 #include "model/coef_packing.h"
-#include "model/command_stream.h"
 
 namespace shadesim {
 namespace {
@@ -22,8 +23,10 @@ CommandStream sample_stream(const UnitConfig& c, uint64_t seed) {
   CommandStream cs;
   cs.config = c;
   MaterialCmd m;
-  for (int i = 0; i < c.channels; ++i) m.ambient.push_back(static_cast<int64_t>(rng() % 1000000) - 500000);
-  for (int i = 0; i < c.lights * c.channels; ++i) m.spec_colour.push_back(static_cast<int64_t>(rng() % 4096));
+  for (int i = 0; i < c.channels; ++i)
+    m.ambient.push_back(static_cast<int64_t>(rng() % 1000000) - 500000);
+  for (int i = 0; i < c.lights * c.channels; ++i)
+    m.spec_colour.push_back(static_cast<int64_t>(rng() % 4096));
   m.exponent = int64_t{37} << kExponentFracBits;
   m.unit_params = {1, -2, 3};
   m.gate_only = 2;  // light 1's diffuse series gates only
@@ -86,7 +89,8 @@ TEST(CommandStream, MaterialGateOnlyMaskIsHeaderBits31To16) {
   EXPECT_EQ((w[0] >> 16) & 0xFFFF, 5u);
   EXPECT_EQ(w[0] & 0xFFFF, 5u);  // 1 ambient + 3 spec_colour + exponent
   // A bit beyond the unit's lights is an error naming the field.
-  const std::vector<uint64_t> bad = {(uint64_t{0x01} << 56) | (uint64_t{8} << 16) | 5, 0, 0, 0, 0, 0};
+  const std::vector<uint64_t> bad = {
+      (uint64_t{0x01} << 56) | (uint64_t{8} << 16) | 5, 0, 0, 0, 0, 0};
   try {
     CommandStream::decode(bad, cs.config, "dump.bin");
     FAIL();
@@ -160,7 +164,8 @@ TEST(CommandStream, BinaryErrorsNameWordIndex) {
     CommandStream::decode(words, c, "dump.bin");
     FAIL();
   } catch (const CommandStreamError& e) {
-    EXPECT_NE(std::string(e.what()).find("word 1: unknown opcode 0x7e"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("word 1: unknown opcode 0x7e"), std::string::npos)
+        << e.what();
   }
 }
 
@@ -203,8 +208,8 @@ TEST(CommandStream, ThroughputStructureRoundTripsAndDefaults) {
   EXPECT_EQ(old.tri_queue, 1);
   EXPECT_EQ(old.lanes, 1);
   EXPECT_EQ(old.material_buffers, 1);
-  for (const char* bad : {R"("port_words":3)", R"("port_words":2.5)", R"("tri_queue":0)", R"("tri_queue":9)",
-                          R"("lanes":3)", R"("lanes":0)", R"("lanes":8)"}) {
+  for (const char* bad : {R"("port_words":3)", R"("port_words":2.5)", R"("tri_queue":0)",
+                          R"("tri_queue":9)", R"("lanes":3)", R"("lanes":0)", R"("lanes":8)"}) {
     std::string json = config_to_json(UnitConfig{});
     const std::string key = std::string(bad).substr(0, std::string(bad).find(':'));
     const size_t at = json.find(key);
@@ -215,7 +220,8 @@ TEST(CommandStream, ThroughputStructureRoundTripsAndDefaults) {
       config_from_json(json, "bad: ");
       ADD_FAILURE() << "accepted " << bad;
     } catch (const CommandStreamError& e) {
-      EXPECT_NE(std::string(e.what()).find(key.substr(1, key.size() - 2)), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(key.substr(1, key.size() - 2)), std::string::npos)
+          << e.what();
     }
   }
 }
@@ -234,8 +240,9 @@ TEST(CoefPacking, LayoutFillsWordsWithoutStraddling) {
   // the 4 bits left, so word 2 takes T2..T5 at lsb 0, 16, 31, 45.
   const CoefLayout l = CoefLayout::of(packed_grey());
   ASSERT_EQ(l.slots.size(), 12u);
-  const std::vector<std::pair<int, int>> want = {{0, 0},  {0, 17}, {0, 33}, {0, 49}, {1, 0},  {1, 14},
-                                                 {1, 27}, {1, 44}, {2, 0},  {2, 16}, {2, 31}, {2, 45}};
+  const std::vector<std::pair<int, int>> want = {{0, 0}, {0, 17}, {0, 33}, {0, 49},
+                                                 {1, 0}, {1, 14}, {1, 27}, {1, 44},
+                                                 {2, 0}, {2, 16}, {2, 31}, {2, 45}};
   for (size_t i = 0; i < want.size(); ++i) {
     EXPECT_EQ(l.slots[i].word, want[i].first) << i;
     EXPECT_EQ(l.slots[i].lsb, want[i].second) << i;
@@ -280,7 +287,8 @@ TEST(CoefPacking, PackedStreamRoundTripsAtEveryTermsLimits) {
     CommandStream::decode(bad, c, "<test>");
     ADD_FAILURE() << "accepted a 12-word triangle in a 3-word layout";
   } catch (const CommandStreamError& e) {
-    EXPECT_NE(std::string(e.what()).find("expected 3 payload words"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("expected 3 payload words"), std::string::npos)
+        << e.what();
   }
 }
 

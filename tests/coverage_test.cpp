@@ -15,10 +15,10 @@ namespace {
 namespace fs = std::filesystem;
 
 // One point as Verilator 5 writes it: C '\001f\002file\001l\002line...' count.
-std::string point(const std::string& file, int line, const std::string& page, const std::string& comment,
-                  const std::string& lines_covered, long long count) {
-  std::string key = std::string("\001f\002") + file + "\001l\002" + std::to_string(line) + "\001n\0023\001page\002" +
-                    page + "\001o\002" + comment;
+std::string point(const std::string& file, int line, const std::string& page,
+                  const std::string& comment, const std::string& lines_covered, long long count) {
+  std::string key = std::string("\001f\002") + file + "\001l\002" + std::to_string(line) +
+                    "\001n\0023\001page\002" + page + "\001o\002" + comment;
   if (!lines_covered.empty()) key += "\001S\002" + lines_covered;
   key += "\001h\002TOP.shade_unit";
   return "C '" + key + "' " + std::to_string(count) + "\n";
@@ -26,7 +26,8 @@ std::string point(const std::string& file, int line, const std::string& page, co
 
 class CoverageTest : public ::testing::Test {
  protected:
-  fs::path dir = fs::temp_directory_path() / ("shadesim_coverage_test_" + std::to_string(::getpid()));
+  fs::path dir =
+      fs::temp_directory_path() / ("shadesim_coverage_test_" + std::to_string(::getpid()));
   void SetUp() override { fs::create_directories(dir / "rtl"); }
   void TearDown() override { fs::remove_all(dir); }
   std::string write(const std::string& name, const std::string& text) {
@@ -39,18 +40,23 @@ class CoverageTest : public ::testing::Test {
 TEST_F(CoverageTest, CountsLinesTogglesAndUserPointsPerFile) {
   const std::string a = (dir / "rtl" / "a.sv").string(), b = (dir / "rtl" / "b.sv").string();
   const std::string other = (dir / "cover.sv").string();
-  const std::string dat = write("cov.dat", std::string("# SystemC::Coverage-3\n") +
-      // a.sv: a block over lines 10-12 run, an if-branch on 11 never taken (11 stays covered:
-      // the block naming it ran), an else on 14 never taken, a branch on 20-21 taken.
-      point(a, 10, "v_line/a", "block", "10-12", 7) + point(a, 11, "v_branch/a", "if", "11", 0) +
-      point(a, 14, "v_branch/a", "else", "14", 0) + point(a, 20, "v_branch/a", "if", "20-21", 3) +
-      point(a, 5, "v_toggle/a", "x[0]", "", 2) + point(a, 5, "v_toggle/a", "x[1]", "", 0) +
-      // b.sv: one line, run; three toggles, two toggled.
-      point(b, 3, "v_line/b", "block", "3", 1) + point(b, 4, "v_toggle/b", "y", "", 1) +
-      point(b, 4, "v_toggle/b", "z", "", 9) + point(b, 4, "v_toggle/b", "w", "", 0) +
-      // Outside rtl/: counted in its own row, not in the total; user points merge by name.
-      point(other, 8, "v_line/c", "block", "8", 0) + point(other, 30, "v_user/c", "cov_edge", "", 2) +
-      point(other, 30, "v_user/c", "cov_edge", "", 3) + point(other, 31, "v_user/c", "cov_never", "", 0));
+  const std::string dat = write(
+      "cov.dat",
+      std::string("# SystemC::Coverage-3\n") +
+          // a.sv: a block over lines 10-12 run, an if-branch on 11 never taken (11 stays covered:
+          // the block naming it ran), an else on 14 never taken, a branch on 20-21 taken.
+          point(a, 10, "v_line/a", "block", "10-12", 7) +
+          point(a, 11, "v_branch/a", "if", "11", 0) + point(a, 14, "v_branch/a", "else", "14", 0) +
+          point(a, 20, "v_branch/a", "if", "20-21", 3) + point(a, 5, "v_toggle/a", "x[0]", "", 2) +
+          point(a, 5, "v_toggle/a", "x[1]", "", 0) +
+          // b.sv: one line, run; three toggles, two toggled.
+          point(b, 3, "v_line/b", "block", "3", 1) + point(b, 4, "v_toggle/b", "y", "", 1) +
+          point(b, 4, "v_toggle/b", "z", "", 9) + point(b, 4, "v_toggle/b", "w", "", 0) +
+          // Outside rtl/: counted in its own row, not in the total; user points merge by name.
+          point(other, 8, "v_line/c", "block", "8", 0) +
+          point(other, 30, "v_user/c", "cov_edge", "", 2) +
+          point(other, 30, "v_user/c", "cov_edge", "", 3) +
+          point(other, 31, "v_user/c", "cov_never", "", 0));
   const std::string missing = (dir / "rtl" / "never.sv").string();
   const CoverageSummary s = summarize_coverage(dat, (dir / "rtl").string(), {a, b, missing});
   ASSERT_EQ(s.files.size(), 3u);
@@ -85,12 +91,13 @@ TEST_F(CoverageTest, NamesTheLineOfAMalformedPoint) {
 }
 
 TEST_F(CoverageTest, ReadsExclusionsWithTheirReasons) {
-  const std::string f = write("rtl/x.sv",
-                              "module x;\n"
-                              "  /* verilator coverage_off */  // parameter checks: never fail in a legal build\n"
-                              "  initial if (0) $fatal(1, \"no\");\n"
-                              "  /* verilator coverage_on */\n"
-                              "endmodule\n");
+  const std::string f =
+      write("rtl/x.sv",
+            "module x;\n"
+            "  /* verilator coverage_off */  // parameter checks: never fail in a legal build\n"
+            "  initial if (0) $fatal(1, \"no\");\n"
+            "  /* verilator coverage_on */\n"
+            "endmodule\n");
   const auto ex = list_exclusions({f});
   ASSERT_EQ(ex.size(), 1u);
   EXPECT_EQ(ex[0].first_line, 2);
@@ -99,9 +106,12 @@ TEST_F(CoverageTest, ReadsExclusionsWithTheirReasons) {
 }
 
 TEST_F(CoverageTest, RefusesAnExclusionWithoutAReasonOrAnEnd) {
-  const std::string bare = write("rtl/bare.sv", "module y;\n  /* verilator coverage_off */\n  /* verilator coverage_on */\nendmodule\n");
+  const std::string bare = write(
+      "rtl/bare.sv",
+      "module y;\n  /* verilator coverage_off */\n  /* verilator coverage_on */\nendmodule\n");
   EXPECT_THROW(list_exclusions({bare}), std::runtime_error);
-  const std::string open = write("rtl/open.sv", "module z;\n  /* verilator coverage_off */  // why\nendmodule\n");
+  const std::string open =
+      write("rtl/open.sv", "module z;\n  /* verilator coverage_off */  // why\nendmodule\n");
   try {
     list_exclusions({open});
     FAIL() << "expected an error";

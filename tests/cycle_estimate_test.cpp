@@ -1,7 +1,9 @@
 // CycleEstimate (closed form) against run_cycle_model (the clocked CycleModel, the spec) with no
-// gaps and no back-pressure: cycles, pixels, words, beats and every scanline's completion cycle equal, on
-// every shipped and hard scene (each on its own configuration, then on a grid of port widths,
-// queue depths and slot timings) and on random streams with MATERIAL and TABLE commands.
+// gaps and no back-pressure: cycles, pixels, words, beats and every scanline's completion cycle
+// equal, on every shipped and hard scene (each on its own configuration, then on a grid of port
+// widths, queue depths and slot timings) and on random streams with MATERIAL and TABLE commands.
+#include "model/cycle_estimate.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -11,7 +13,6 @@
 
 #include "host/frame.h"
 #include "host/scene_config.h"
-#include "model/cycle_estimate.h"
 #include "model/cycle_model.h"
 #include "sim/harness/cycle_run.h"
 #include "sim/harness/random_stream.h"
@@ -23,9 +24,10 @@ namespace {
 const std::vector<SlotTiming> kSlots = {{0, 1}, {2, 1}, {5, 1}, {2, 2}, {5, 5}, {17, 17}};
 
 std::string describe(const CycleConfig& u) {
-  return "port_words " + std::to_string(u.port_words) + ", tri_queue " + std::to_string(u.tri_queue) +
-         ", lanes " + std::to_string(u.lanes) + ", material_buffers " + std::to_string(u.material_buffers) +
-         ", slot latency " + std::to_string(u.slot.latency) + " interval " + std::to_string(u.slot.interval);
+  return "port_words " + std::to_string(u.port_words) + ", tri_queue " +
+         std::to_string(u.tri_queue) + ", lanes " + std::to_string(u.lanes) +
+         ", material_buffers " + std::to_string(u.material_buffers) + ", slot latency " +
+         std::to_string(u.slot.latency) + " interval " + std::to_string(u.slot.interval);
 }
 
 // The unit with this many material buffers.
@@ -35,7 +37,8 @@ CycleConfig buffered(CycleConfig u, int material_buffers) {
 }
 
 // Every figure the two share; returns the number of scanlines compared.
-size_t expect_same(const std::vector<uint64_t>& words, const CycleConfig& unit, const std::string& what) {
+size_t expect_same(const std::vector<uint64_t>& words, const CycleConfig& unit,
+                   const std::string& what) {
   const CycleRun clocked = run_cycle_model(words, Stimulus{}, unit);
   const CycleEstimateRun fast = CycleEstimate(unit).run(words, true);
   const std::string where = what + " on " + describe(unit);
@@ -46,7 +49,8 @@ size_t expect_same(const std::vector<uint64_t>& words, const CycleConfig& unit, 
   EXPECT_EQ(fast.scanlines.size(), clocked.scanlines.size()) << where;
   if (fast.breakdown) {
     const auto a = fast.breakdown->rows(), b = clocked.breakdown.rows();
-    for (size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i].cycles, b[i].cycles) << where << ": breakdown " << a[i].name;
+    for (size_t i = 0; i < a.size(); ++i)
+      EXPECT_EQ(a[i].cycles, b[i].cycles) << where << ": breakdown " << a[i].name;
   } else {
     ADD_FAILURE() << where << ": no breakdown";
   }
@@ -55,8 +59,9 @@ size_t expect_same(const std::vector<uint64_t>& words, const CycleConfig& unit, 
     const ScanlineDone& a = fast.scanlines[i];
     const ScanlineDone& b = clocked.scanlines[i];
     if (a.y != b.y || a.cycle != b.cycle || a.x != b.x) {
-      ADD_FAILURE() << where << ": scanline #" << i << " estimate y " << a.y << " x " << a.x << " cycle " << a.cycle
-                    << ", clocked y " << b.y << " x " << b.x << " cycle " << b.cycle;
+      ADD_FAILURE() << where << ": scanline #" << i << " estimate y " << a.y << " x " << a.x
+                    << " cycle " << a.cycle << ", clocked y " << b.y << " x " << b.x << " cycle "
+                    << b.cycle;
       break;
     }
   }
@@ -66,7 +71,8 @@ size_t expect_same(const std::vector<uint64_t>& words, const CycleConfig& unit, 
 std::vector<std::string> scenes() {
   std::vector<std::string> paths;
   for (const char* dir : {"/scenes", "/scenes/hard"}) {
-    for (const auto& e : std::filesystem::directory_iterator(std::string(SHADESIM_SOURCE_DIR) + dir)) {
+    for (const auto& e :
+         std::filesystem::directory_iterator(std::string(SHADESIM_SOURCE_DIR) + dir)) {
       if (e.path().extension() == ".json") paths.push_back(e.path().string());
     }
   }
@@ -87,10 +93,13 @@ TEST_P(SceneStreams, EqualsClockedModelOnOwnConfigAndKnobGrid) {
 
   // Its own configuration as derived (port 4, queue 2, its specular unit's timing).
   for (int mb : {1, 2}) {
-    EXPECT_GT(expect_same(words, buffered(CycleConfig::of(f.config), mb), scene + " (own configuration)"), 0u);
+    EXPECT_GT(
+        expect_same(words, buffered(CycleConfig::of(f.config), mb), scene + " (own configuration)"),
+        0u);
     for (int port : {1, 2, 4, 8}) {
       for (int queue : {1, 2, 3}) {
-        for (const SlotTiming& slot : kSlots) expect_same(words, buffered(CycleConfig(slot, port, queue), mb), scene);
+        for (const SlotTiming& slot : kSlots)
+          expect_same(words, buffered(CycleConfig(slot, port, queue), mb), scene);
       }
     }
     for (int lanes : {2, 4}) {
@@ -134,7 +143,8 @@ TEST(CycleEstimate, EqualsClockedModelOnRandomStreams) {
           tables += std::holds_alternative<TableCmd>(c);
         }
         const std::vector<uint64_t> words = s.encode();
-        const std::string what = "random " + name + " seed " + std::to_string(seed) + " unit " + std::to_string(u);
+        const std::string what =
+            "random " + name + " seed " + std::to_string(seed) + " unit " + std::to_string(u);
         if (name == "switch") {
           const CycleConfig unit(SlotTiming{2, 1}, 4, 2);
           cycles_one_buffer += CycleEstimate(buffered(unit, 1)).run(words).cycles;
@@ -143,11 +153,13 @@ TEST(CycleEstimate, EqualsClockedModelOnRandomStreams) {
         for (int mb : {1, 2}) {
           for (int port : {1, 2, 4, 8}) {
             for (int queue : {1, 2, 3}) {
-              for (const SlotTiming& slot : kSlots) expect_same(words, buffered(CycleConfig(slot, port, queue), mb), what);
+              for (const SlotTiming& slot : kSlots)
+                expect_same(words, buffered(CycleConfig(slot, port, queue), mb), what);
             }
           }
           for (int lanes : {2, 4}) {
-            for (const SlotTiming& slot : kSlots) expect_same(words, buffered(CycleConfig(slot, 4, 2, lanes), mb), what);
+            for (const SlotTiming& slot : kSlots)
+              expect_same(words, buffered(CycleConfig(slot, 4, 2, lanes), mb), what);
           }
         }
       }
@@ -173,8 +185,8 @@ TEST(CycleEstimate, OneSpanTakesSpanLatencyPlusItsPixels) {
   // each pixel leaves latency + 1 later; the run ends the cycle after the last one.
   for (int latency : {0, 2, 5}) {
     for (int len : {1, 7}) {
-      const CycleEstimateRun r =
-          CycleEstimate(SlotTiming{latency, 1}).run(words_of({CommandWord::span(3, 10, len, true)}));
+      const CycleEstimateRun r = CycleEstimate(SlotTiming{latency, 1})
+                                     .run(words_of({CommandWord::span(3, 10, len, true)}));
       ASSERT_EQ(r.scanlines.size(), 1u);
       EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(4 + len - 1 + latency + 1));
       EXPECT_EQ(r.scanlines[0].x, 10 + len - 1);
@@ -190,7 +202,8 @@ TEST(CycleEstimate, IterativeSlotEmitsOnePixelPerInterval) {
   // Interval q: the len pixels are emitted q cycles apart from cycle 4; the last leaves q + 1
   // after its emit.
   const int q = 5, len = 4;
-  const CycleEstimateRun r = CycleEstimate(SlotTiming{q, q}).run(words_of({CommandWord::span(0, 0, len, true)}));
+  const CycleEstimateRun r =
+      CycleEstimate(SlotTiming{q, q}).run(words_of({CommandWord::span(0, 0, len, true)}));
   ASSERT_EQ(r.scanlines.size(), 1u);
   EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(4 + (len - 1) * q + q + 1));
 }
@@ -198,8 +211,9 @@ TEST(CycleEstimate, IterativeSlotEmitsOnePixelPerInterval) {
 TEST(CycleEstimate, MaterialWaitsForTheLastPixel) {
   // SPAN (pixel leaves on 5), MATERIAL header on 5 (datapath empty), its 2 payload words on 6
   // and 7, the next SPAN on 8: its pixel leaves on 13.
-  const std::vector<uint64_t> w = words_of({CommandWord::span(0, 0, 1, true), CommandWord::material(2), CommandWord{0},
-                                            CommandWord{0}, CommandWord::span(1, 0, 1, true)});
+  const std::vector<uint64_t> w =
+      words_of({CommandWord::span(0, 0, 1, true), CommandWord::material(2), CommandWord{0},
+                CommandWord{0}, CommandWord::span(1, 0, 1, true)});
   const CycleEstimateRun r = CycleEstimate(CycleConfig{}).run(w);
   ASSERT_EQ(r.scanlines.size(), 2u);
   EXPECT_EQ(r.scanlines[0].cycle, 5u);
@@ -248,9 +262,11 @@ TEST(CycleEstimate, ClassifiesTrianglesBySetupAndFill) {
 }
 
 TEST(CycleEstimate, RejectsStreamsTheClockedModelCouldNotFinish) {
-  EXPECT_THROW(CycleEstimate(CycleConfig{}).run(words_of({CommandWord::triangle(0, 0, 6), CommandWord{0}})),
+  EXPECT_THROW(
+      CycleEstimate(CycleConfig{}).run(words_of({CommandWord::triangle(0, 0, 6), CommandWord{0}})),
+      std::invalid_argument);
+  EXPECT_THROW(CycleEstimate(CycleConfig{}).run(words_of({CommandWord::span(0, 0, 0, true)})),
                std::invalid_argument);
-  EXPECT_THROW(CycleEstimate(CycleConfig{}).run(words_of({CommandWord::span(0, 0, 0, true)})), std::invalid_argument);
   EXPECT_THROW(CycleEstimate(CycleConfig(SlotTiming{}, 3, 1)), std::invalid_argument);
 }
 

@@ -1,17 +1,18 @@
 // CycleModel on its own, against closed forms derived from the documented pipeline
-// (README, "RTL and co-simulation"): a SPAN header accepted on cycle t has its pixel k leave on cycle t + 5 + k
-// (so a span of length L ends on t + 4 + L)
-// when nothing stalls; back-to-back spans leave no bubble; MATERIAL waits for an empty
-// datapath; pixels leave only on cycles where pix_ready is high. A pipelined specular slot of
-// latency L adds L to every pixel; an iterative one of interval Q has pixel k leave on
-// t + 5 + Q (k + 1). The cycle breakdown is checked against hand-counted schedules.
+// (README, "RTL and co-simulation"): a SPAN header accepted on cycle t has its pixel k leave on
+// cycle t + 5 + k (so a span of length L ends on t + 4 + L) when nothing stalls; back-to-back spans
+// leave no bubble; MATERIAL waits for an empty datapath; pixels leave only on cycles where
+// pix_ready is high. A pipelined specular slot of latency L adds L to every pixel; an iterative one
+// of interval Q has pixel k leave on t + 5 + Q (k + 1). The cycle breakdown is checked against
+// hand-counted schedules.
+#include "model/cycle_model.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
 #include <stdexcept>
 
 #include "model/command_stream.h"
-#include "model/cycle_model.h"
 #include "sim/harness/cycle_run.h"
 
 namespace shadesim {
@@ -58,7 +59,8 @@ TEST(CycleModel, SingleSpanLatencyIsFiveCycles) {
 TEST(CycleModel, BackToBackSpansLeaveNoBubble) {
   for (int l1 : {1, 2, 5}) {
     for (int l2 : {1, 3}) {
-      const CycleRun r = run_cycle_model(words({span(0, 0, l1, true), span(1, 0, l2, true)}), Stimulus{});
+      const CycleRun r =
+          run_cycle_model(words({span(0, 0, l1, true), span(1, 0, l2, true)}), Stimulus{});
       ASSERT_EQ(r.scanlines.size(), 2u);
       EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(l1 + 4));
       EXPECT_EQ(r.scanlines[1].cycle, static_cast<uint64_t>(l1 + l2 + 4)) << l1 << "," << l2;
@@ -71,7 +73,8 @@ TEST(CycleModel, MaterialWaitsForEmptyDatapath) {
   m.ambient = {0};
   m.spec_colour = {0};
   m.exponent = 1;  // header count 3
-  const CycleRun r = run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{});
+  const CycleRun r =
+      run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{});
   ASSERT_EQ(r.scanlines.size(), 2u);
   EXPECT_EQ(r.scanlines[0].cycle, 14u);
   // Last pixel handed over on cycle 13; MATERIAL accepted on 14, payload 15..17, SPAN on 18.
@@ -89,15 +92,16 @@ TEST(CycleModel, TwoMaterialBuffersRemoveTheDrain) {
   two.material_buffers = 2;
   // SPAN 0 (bank 0) on 0, its pixels leave on 5..14. MATERIAL (to bank 1) on 1, payload 2..4,
   // SPAN 1 on 5: its pixel right behind span 0's, on 15.
-  CycleRun r = run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{}, two);
+  CycleRun r =
+      run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{}, two);
   ASSERT_EQ(r.scanlines.size(), 2u);
   EXPECT_EQ(r.scanlines[0].cycle, 14u);
   EXPECT_EQ(r.scanlines[1].cycle, 15u);
   EXPECT_EQ(r.cycles, 16u);
   // A second MATERIAL (back to bank 0) waits 6..13: span 0's last pixel leaves the slot on the
   // edge of 13. Accepted on 14, payload 15..17, SPAN 2 on 18, its pixel on 23 (as one buffer).
-  r = run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true), m, span(2, 0, 1, true)}), Stimulus{},
-                      two);
+  r = run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true), m, span(2, 0, 1, true)}),
+                      Stimulus{}, two);
   ASSERT_EQ(r.scanlines.size(), 3u);
   EXPECT_EQ(r.scanlines[1].cycle, 15u);
   EXPECT_EQ(r.scanlines[2].cycle, 23u);
@@ -175,11 +179,12 @@ TEST(CycleModel, CountsPixelsAndScanlines) {
 TEST(CycleModel, PipelinedSlotAddsItsLatencyToEveryPixel) {
   for (int lat : {1, 3, 6}) {
     for (int len : {1, 4}) {
-      const CycleRun r =
-          run_cycle_model(words({span(0, 0, len, true), span(1, 0, 3, true)}), Stimulus{}, SlotTiming{lat, 1});
+      const CycleRun r = run_cycle_model(words({span(0, 0, len, true), span(1, 0, 3, true)}),
+                                         Stimulus{}, SlotTiming{lat, 1});
       ASSERT_EQ(r.scanlines.size(), 2u);
       EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(len + 4 + lat)) << lat << "," << len;
-      EXPECT_EQ(r.scanlines[1].cycle, static_cast<uint64_t>(len + 3 + 4 + lat)) << lat << "," << len;
+      EXPECT_EQ(r.scanlines[1].cycle, static_cast<uint64_t>(len + 3 + 4 + lat))
+          << lat << "," << len;
     }
   }
 }
@@ -188,8 +193,8 @@ TEST(CycleModel, IterativeSlotTakesItsIntervalPerPixel) {
   for (int q : {2, 5, 16}) {
     for (int a : {1, 3}) {
       const int b = 2;
-      const CycleRun r =
-          run_cycle_model(words({span(0, 0, a, true), span(1, 0, b, true)}), Stimulus{}, SlotTiming{q, q});
+      const CycleRun r = run_cycle_model(words({span(0, 0, a, true), span(1, 0, b, true)}),
+                                         Stimulus{}, SlotTiming{q, q});
       ASSERT_EQ(r.scanlines.size(), 2u);
       EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(5 + q * a)) << q << "," << a;
       EXPECT_EQ(r.scanlines[1].cycle, static_cast<uint64_t>(5 + q * (a + b))) << q << "," << a;
@@ -203,8 +208,8 @@ TEST(CycleModel, MaterialDrainIncludesTheSlot) {
   m.spec_colour = {0};
   m.exponent = 1;  // header count 3
   for (int lat : {0, 2, 7}) {
-    const CycleRun r =
-        run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{}, SlotTiming{lat, 1});
+    const CycleRun r = run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}),
+                                       Stimulus{}, SlotTiming{lat, 1});
     ASSERT_EQ(r.scanlines.size(), 2u);
     // Last pixel leaves on 14 + lat; MATERIAL accepted then, payload 3 words, SPAN 4 cycles
     // after it, its pixel 5 + lat cycles later.
@@ -298,7 +303,8 @@ TEST(CommandPort, OneSpanPerCycleAndPaddingInOneCycle) {
   for (int y = 0; y < 5; ++y) cmds.push_back(span(y, 0, 1, true));
   const CycleRun r = run_cycle_model(words(cmds), Stimulus{}, port(8));
   ASSERT_EQ(r.scanlines.size(), 5u);
-  for (int y = 0; y < 5; ++y) EXPECT_EQ(r.scanlines[static_cast<size_t>(y)].cycle, static_cast<uint64_t>(y + 5));
+  for (int y = 0; y < 5; ++y)
+    EXPECT_EQ(r.scanlines[static_cast<size_t>(y)].cycle, static_cast<uint64_t>(y + 5));
   EXPECT_EQ(r.beats, 1u);
   EXPECT_EQ(r.cycles, 10u);
 }
@@ -345,8 +351,8 @@ TEST(CommandPort, GapsComeBeforeBeats) {
   Stimulus s;
   s.gap_pct = 100;
   s.max_gap = 1;
-  const CycleRun r =
-      run_cycle_model(words({span(0, 0, 1, true), span(1, 0, 1, true), span(2, 0, 1, true)}), s, port(2));
+  const CycleRun r = run_cycle_model(
+      words({span(0, 0, 1, true), span(1, 0, 1, true), span(2, 0, 1, true)}), s, port(2));
   ASSERT_EQ(r.scanlines.size(), 3u);
   EXPECT_EQ(r.scanlines[0].cycle, 1u + 5u);
   EXPECT_EQ(r.scanlines[1].cycle, 2u + 5u);
@@ -359,7 +365,8 @@ TEST(TriangleQueue, SpanQueueAddsOneRegister) {
   // tri_queue 2: a SPAN accepted on t enters setup stage 1 from the queue on t + 1, so a span
   // of len ends on t + 5 + len (one more than without a queue).
   for (int len : {1, 5}) {
-    const CycleRun r = run_cycle_model(words({span(0, 0, len, true)}), Stimulus{}, CycleConfig(SlotTiming{}, 1, 2));
+    const CycleRun r = run_cycle_model(words({span(0, 0, len, true)}), Stimulus{},
+                                       CycleConfig(SlotTiming{}, 1, 2));
     ASSERT_EQ(r.scanlines.size(), 1u);
     EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(5 + len)) << len;
   }
@@ -392,7 +399,8 @@ TEST(TriangleQueue, PortRunsAheadOfTheEngines) {
 }
 
 TEST(TriangleQueue, RejectsOtherDepths) {
-  for (int q : {0, 9}) EXPECT_THROW(CycleModel(CycleConfig(SlotTiming{}, 1, q)), std::invalid_argument) << q;
+  for (int q : {0, 9})
+    EXPECT_THROW(CycleModel(CycleConfig(SlotTiming{}, 1, q)), std::invalid_argument) << q;
 }
 
 TEST(CommandPort, RejectsOtherWidths) {
@@ -404,12 +412,15 @@ TEST(CommandPort, RejectsOtherWidths) {
 TEST(CycleBreakdown, SingleSpanIsFillThenPixels) {
   for (int lat : {0, 3}) {
     const int len = 9;
-    const CycleRun r = run_cycle_model(words({span(0, 0, len, true)}), Stimulus{}, SlotTiming{lat, 1});
+    const CycleRun r =
+        run_cycle_model(words({span(0, 0, len, true)}), Stimulus{}, SlotTiming{lat, 1});
     const CycleBreakdown& b = r.breakdown;
     EXPECT_EQ(b.pixel, static_cast<uint64_t>(len));
     EXPECT_EQ(b.setup_load, static_cast<uint64_t>(5 + lat));
     EXPECT_EQ(b.total(), r.cycles);
-    EXPECT_EQ(b.back_pressure + b.unit_stall + b.command_gap + b.material + b.table + b.command_words, 0u);
+    EXPECT_EQ(
+        b.back_pressure + b.unit_stall + b.command_gap + b.material + b.table + b.command_words,
+        0u);
   }
 }
 
@@ -418,7 +429,8 @@ TEST(CycleBreakdown, MaterialSwitchCostsItsWordsAndARefill) {
   m.ambient = {0};
   m.spec_colour = {0};
   m.exponent = 1;  // header + 3 payload words
-  const CycleRun r = run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{});
+  const CycleRun r =
+      run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{});
   const CycleBreakdown& b = r.breakdown;
   EXPECT_EQ(r.cycles, 24u);
   EXPECT_EQ(b.pixel, 11u);
@@ -469,7 +481,8 @@ TEST(CycleBreakdown, TableWaitsForTheDatapathAndIsCharged) {
   TableCmd t;
   t.base = 0;
   t.entries.assign(20, 0);
-  const CycleRun r = run_cycle_model(words({span(0, 0, 2, true), t, span(1, 0, 2, true)}), Stimulus{});
+  const CycleRun r =
+      run_cycle_model(words({span(0, 0, 2, true), t, span(1, 0, 2, true)}), Stimulus{});
   const CycleBreakdown& b = r.breakdown;
   // SPAN 0 on 0 (pixels 5, 6; engines empty from 6); the TABLE header waits 1..5, is accepted
   // on 6, its 20 words take 7..26; SPAN 1 on 27 (pixels 32, 33).
@@ -493,10 +506,18 @@ TEST(CycleBreakdown, BackPressureCountsCyclesAPixelWaited) {
     const auto e = m.clock(d.valid(), d.word(), c % 3 == 0);
     d.clock(e.cmd_fire);
     switch (e.category) {
-      case CycleModel::Category::kPixel: ++pixel; break;
-      case CycleModel::Category::kBackPressure: ++bp; break;
-      case CycleModel::Category::kSetupLoad: ++fill; break;
-      default: ++other; break;
+      case CycleModel::Category::kPixel:
+        ++pixel;
+        break;
+      case CycleModel::Category::kBackPressure:
+        ++bp;
+        break;
+      case CycleModel::Category::kSetupLoad:
+        ++fill;
+        break;
+      default:
+        ++other;
+        break;
     }
   }
   EXPECT_TRUE(m.idle());
@@ -553,7 +574,8 @@ TEST(CycleBreakdown, PartitionsRandomRuns) {
     s.max_gap = 1 + static_cast<int>(rng() % 8);
     s.stall_pct = static_cast<int>(rng() % 60);
     const int q = static_cast<int>(rng() % 4);
-    const SlotTiming timing = q >= 2 ? SlotTiming{q, q} : SlotTiming{static_cast<int>(rng() % 5), 1};
+    const SlotTiming timing =
+        q >= 2 ? SlotTiming{q, q} : SlotTiming{static_cast<int>(rng() % 5), 1};
     const int port_words = 1 << (rng() % 4);
     const int tri_queue = 1 + static_cast<int>(rng() % 3);
     const CycleRun r = run_cycle_model(words(cmds), s, CycleConfig(timing, port_words, tri_queue));
@@ -694,9 +716,10 @@ TEST(PixelLanes, BreakdownPartitionsRandomRuns) {
     s.max_gap = 1 + static_cast<int>(rng() % 6);
     s.stall_pct = static_cast<int>(rng() % 50);
     const int q = static_cast<int>(rng() % 4);
-    const SlotTiming timing = q >= 2 ? SlotTiming{q, q} : SlotTiming{static_cast<int>(rng() % 5), 1};
-    const CycleRun r =
-        run_cycle_model(words(cmds), s, CycleConfig(timing, 1 << (rng() % 4), 1 + static_cast<int>(rng() % 3), k));
+    const SlotTiming timing =
+        q >= 2 ? SlotTiming{q, q} : SlotTiming{static_cast<int>(rng() % 5), 1};
+    const CycleRun r = run_cycle_model(
+        words(cmds), s, CycleConfig(timing, 1 << (rng() % 4), 1 + static_cast<int>(rng() % 3), k));
     EXPECT_EQ(r.breakdown.total(), r.cycles) << "trial " << trial;
     EXPECT_EQ(r.breakdown.pixel, beats) << "trial " << trial;
     EXPECT_EQ(r.pixels, pixels) << "trial " << trial;

@@ -64,8 +64,8 @@ TEST(EdgeStimulus, OutputClampsAtBothEnds) {
     bool negative_ambient = false;
     for (const Command& cmd : stream.commands) {
       if (const auto* m = std::get_if<MaterialCmd>(&cmd)) {
-        negative_ambient = negative_ambient ||
-                           std::any_of(m->ambient.begin(), m->ambient.end(), [](int64_t a) { return a < 0; });
+        negative_ambient = negative_ambient || std::any_of(m->ambient.begin(), m->ambient.end(),
+                                                           [](int64_t a) { return a < 0; });
       }
     }
     ShadeUnit model(unit);
@@ -119,7 +119,8 @@ TEST(EdgeStimulus, FullRangeOfUnitParameters) {
         }
       }
     }
-    EXPECT_TRUE(shifts.front() && shifts.back()) << name << ": shifts 0 and " << fs << " not both used";
+    EXPECT_TRUE(shifts.front() && shifts.back())
+        << name << ": shifts 0 and " << fs << " not both used";
     EXPECT_GE(std::count(shifts.begin(), shifts.end(), true), fs * 3 / 4) << name;
     EXPECT_TRUE(fractional) << name;
     EXPECT_TRUE(spec_colour) << name;
@@ -148,14 +149,16 @@ TEST(EdgeStimulus, SpecularTermShowsInHardwareBuilds) {
       const CommandStream stream = edge_stream(unit, 21);
       CommandStream dark = stream;
       for (Command& cmd : dark.commands) {
-        if (auto* m = std::get_if<MaterialCmd>(&cmd)) std::fill(m->spec_colour.begin(), m->spec_colour.end(), 0);
+        if (auto* m = std::get_if<MaterialCmd>(&cmd))
+          std::fill(m->spec_colour.begin(), m->spec_colour.end(), 0);
       }
       ShadeUnit lit_model(unit), dark_model(unit);
       const std::vector<PixelOut> lit = lit_model.run(stream), unlit = dark_model.run(dark);
       size_t changed = 0;
       for (size_t i = 0; i < lit.size(); ++i) changed += lit[i].colour != unlit[i].colour;
       const double pct = 100.0 * static_cast<double>(changed) / static_cast<double>(lit.size());
-      std::printf("%s%s: specular changes %.1f%% of %zu pixels\n", name, grey ? " grey1L" : "", pct, lit.size());
+      std::printf("%s%s: specular changes %.1f%% of %zu pixels\n", name, grey ? " grey1L" : "", pct,
+                  lit.size());
       EXPECT_GE(pct, grey ? 10.0 : 25.0) << name << (grey ? " grey1L" : "");
     }
   }

@@ -21,8 +21,8 @@ void check_scene(const std::string& name, const UnitConfig& base) {
   const UnitConfig& cfg = f.config;
   const SpanSetup setup(cfg.coef, cfg.series);
   SeriesBank bank(cfg.series, cfg.series_per_triangle());
-  const double coef_half_lsb = std::ldexp(cfg.coef.quant == Quantization::kRoundNearest ? 0.5 : 1.0,
-                                          -cfg.coef.frac_bits());
+  const double coef_half_lsb =
+      std::ldexp(cfg.coef.quant == Quantization::kRoundNearest ? 0.5 : 1.0, -cfg.coef.frac_bits());
   const double series_lsb = std::ldexp(1.0, -cfg.series.frac_bits());
   const double drift_unit = cfg.series.quant == Quantization::kRoundNearest ? 0.5 : 1.0;
 
@@ -41,24 +41,27 @@ void check_scene(const std::string& name, const UnitConfig& base) {
     const TriangleSeries& series = f.setup.series[vs.triangle];
     const Material& m = f.scene.materials[static_cast<size_t>(st.material)];
     for (int i = 0; i < bank.size(); ++i) {
-      bank.load(i, setup(&tri->coef[static_cast<size_t>(i) * kTermsPerSeries], s->x0 - tri->xo, s->y - tri->yo));
+      bank.load(i, setup(&tri->coef[static_cast<size_t>(i) * kTermsPerSeries], s->x0 - tri->xo,
+                         s->y - tri->yo));
     }
     for (int k = 0; k < s->length; ++k) {
       const double px = s->x0 + k + 0.5, py = s->y + 0.5;
       const double dx = s->x0 + k - tri->xo, dy = s->y - tri->yo;
       // Rounded coefficients times their monomials, plus truncation drift after k steps.
-      const double coef_bound =
-          coef_half_lsb * (1 + std::fabs(dx) + std::fabs(dy) + dx * dx + std::fabs(dx * dy) + dy * dy);
+      const double coef_bound = coef_half_lsb * (1 + std::fabs(dx) + std::fabs(dy) + dx * dx +
+                                                 std::fabs(dx * dy) + dy * dy);
       const double drift_bound = drift_unit * series_lsb * (1.0 + k + k * (k - 1) / 2.0);
       const double bound = (coef_bound + drift_bound) * 1.000001 + 1e-12;  // + double rounding
       int idx = 0;
       for (int l = 0; l < cfg.lights; ++l) {
         const double t = series.diffuse[static_cast<size_t>(l)].eval(px, py);
         for (int c = 0; c < cfg.channels; ++c, ++idx) {
-          const double scale = channel(m.diffuse, c) * channel(f.scene.lights[static_cast<size_t>(l)].colour, c);
+          const double scale =
+              channel(m.diffuse, c) * channel(f.scene.lights[static_cast<size_t>(l)].colour, c);
           const double got = cfg.series.to_double(bank.values()[idx]);
           const double err = std::fabs(got - scale * t);
-          ASSERT_LE(err, bound) << name << " tri " << vs.triangle << " pixel (" << px << "," << py << ")";
+          ASSERT_LE(err, bound) << name << " tri " << vs.triangle << " pixel (" << px << "," << py
+                                << ")";
           worst_ratio = std::max(worst_ratio, err / bound);
         }
       }
@@ -90,29 +93,36 @@ TEST(Encode, GreyOneLightSceneOnALargerFixedUnitShadesTheSame) {
   // A fixed RTL build (RGB, two lights) must give a grey one-light scene the same pixels in every
   // channel as the unit sized for it: the extra light's series are zero.
   FrameOptions small;
-  const PreparedFrame a = prepare_frame(std::string(SHADESIM_SOURCE_DIR) + "/scenes/sphere.json", small);
+  const PreparedFrame a =
+      prepare_frame(std::string(SHADESIM_SOURCE_DIR) + "/scenes/sphere.json", small);
   FrameOptions big;
   big.fixed_unit = true;
   big.base.channels = 3;
   big.base.lights = 2;
-  const PreparedFrame b = prepare_frame(std::string(SHADESIM_SOURCE_DIR) + "/scenes/sphere.json", big);
+  const PreparedFrame b =
+      prepare_frame(std::string(SHADESIM_SOURCE_DIR) + "/scenes/sphere.json", big);
   const auto pa = ShadeUnit(a.config).run(a.encoded.stream);
   const auto pb = ShadeUnit(b.config).run(b.encoded.stream);
   ASSERT_EQ(pa.size(), pb.size());
   for (size_t i = 0; i < pa.size(); ++i) {
     ASSERT_EQ(pa[i].x, pb[i].x);
-    for (int c = 0; c < 3; ++c) ASSERT_EQ(pb[i].colour[static_cast<size_t>(c)], pa[i].colour[0]) << i;
+    for (int c = 0; c < 3; ++c)
+      ASSERT_EQ(pb[i].colour[static_cast<size_t>(c)], pa[i].colour[0]) << i;
   }
   // And a scene that needs more than the unit has is refused with a reason.
   FrameOptions tiny;
   tiny.fixed_unit = true;  // grey, one light
-  EXPECT_THROW(prepare_frame(std::string(SHADESIM_SOURCE_DIR) + "/scenes/multi.json", tiny), std::invalid_argument);
+  EXPECT_THROW(prepare_frame(std::string(SHADESIM_SOURCE_DIR) + "/scenes/multi.json", tiny),
+               std::invalid_argument);
 }
 
 TEST(Encode, GreySceneUsesOneChannelAndRgbSceneThree) {
   FrameOptions o;
-  EXPECT_EQ(prepare_frame(std::string(SHADESIM_SOURCE_DIR) + "/scenes/sphere.json", o).config.channels, 1);
-  EXPECT_EQ(prepare_frame(std::string(SHADESIM_SOURCE_DIR) + "/scenes/multi.json", o).config.channels, 3);
+  EXPECT_EQ(
+      prepare_frame(std::string(SHADESIM_SOURCE_DIR) + "/scenes/sphere.json", o).config.channels,
+      1);
+  EXPECT_EQ(
+      prepare_frame(std::string(SHADESIM_SOURCE_DIR) + "/scenes/multi.json", o).config.channels, 3);
 }
 
 }  // namespace

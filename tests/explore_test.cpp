@@ -1,6 +1,8 @@
 // shadesim explore: the sweep finds narrower widths within the budget (checked by an
 // independent render of the chosen point), the error split by source bounds the total and agrees
 // with independent double computations, the JSON/CSV outputs are well formed, bad input errors.
+#include "host/explore.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -11,9 +13,6 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "tests/support/render_at.h"
-#include "tests/support/cli_run.h"
-#include "host/explore.h"
 #include "host/frame.h"
 #include "host/metrics.h"
 #include "host/reference.h"
@@ -21,6 +20,8 @@
 #include "model/command_stream.h"
 #include "model/shade_unit.h"
 #include "model/unit_config_file.h"
+#include "tests/support/cli_run.h"
+#include "tests/support/render_at.h"
 
 namespace shadesim {
 namespace {
@@ -30,10 +31,10 @@ const std::string kScenes = std::string(SHADESIM_SOURCE_DIR) + "/scenes/";
 // The tests need an order on configurations, not an area: the total of the swept word lengths.
 AreaFunction width_sum() {
   return [](const UnitConfig& c) {
-    return AreaFigure{static_cast<double>(c.coef.wl + c.series.wl + c.spec_colour.wl + c.specular.out.wl +
-                                          c.specular.wpow.base_bits + c.out_bits),
-                      0.0,
-                      "test: sum of word lengths"};
+    return AreaFigure{
+        static_cast<double>(c.coef.wl + c.series.wl + c.spec_colour.wl + c.specular.out.wl +
+                            c.specular.wpow.base_bits + c.out_bits),
+        0.0, "test: sum of word lengths"};
   };
 }
 
@@ -47,13 +48,15 @@ TEST(Explore, SphereFindsANarrowerPointWithinOneLsbCheckedByAnIndependentRender)
   ASSERT_TRUE(r.chosen.has_value());
   const UnitConfig& c = r.points[*r.chosen].config;
   const UnitConfig defaults;
-  const bool narrower = c.coef.frac_bits() < defaults.coef.frac_bits() || c.coef.iwl < defaults.coef.iwl ||
-                        c.series.frac_bits() < defaults.series.frac_bits() || c.series.iwl < defaults.series.iwl ||
-                        c.spec_colour.frac_bits() < defaults.spec_colour.frac_bits() ||
-                        c.specular.out.frac_bits() < defaults.specular.out.frac_bits();
+  const bool narrower =
+      c.coef.frac_bits() < defaults.coef.frac_bits() || c.coef.iwl < defaults.coef.iwl ||
+      c.series.frac_bits() < defaults.series.frac_bits() || c.series.iwl < defaults.series.iwl ||
+      c.spec_colour.frac_bits() < defaults.spec_colour.frac_bits() ||
+      c.specular.out.frac_bits() < defaults.specular.out.frac_bits();
   EXPECT_TRUE(narrower) << c.to_string();
   // Narrower than the start too: the search did something.
-  EXPECT_LT(c.coef.wl + c.series.wl, start.coef.wl + start.series.wl) << c.to_string() << " vs " << start.to_string();
+  EXPECT_LT(c.coef.wl + c.series.wl, start.coef.wl + start.series.wl)
+      << c.to_string() << " vs " << start.to_string();
   const ErrorStats e = render_at(scene, c);
   EXPECT_LE(e.max_code_lsb, 1) << c.to_string();
   EXPECT_EQ(e.pixels_over_1lsb, 0u);
@@ -116,8 +119,11 @@ TEST(Explore, ErrorBudgetSplitsAndBoundsTheTotal) {
     ExploreScenes scenes({scene}, c, std::nullopt, 12);
     const ErrorBudget b = error_budget(scenes, 0, c);
     // Per pixel total <= function + taylor + quantization, so the maxima and means bound it too.
-    EXPECT_LE(b.total.max_lsb, b.function.max_lsb + b.taylor.max_lsb + b.quantization.max_lsb + 1e-9) << c.to_string();
-    EXPECT_LE(b.total.mean_lsb, b.function.mean_lsb + b.taylor.mean_lsb + b.quantization.mean_lsb + 1e-9);
+    EXPECT_LE(b.total.max_lsb,
+              b.function.max_lsb + b.taylor.max_lsb + b.quantization.max_lsb + 1e-9)
+        << c.to_string();
+    EXPECT_LE(b.total.mean_lsb,
+              b.function.mean_lsb + b.taylor.mean_lsb + b.quantization.mean_lsb + 1e-9);
     // The total is the real error the comparison against the reference reports.
     const ErrorStats e = render_at(scene, c);
     EXPECT_NEAR(b.total.max_lsb, e.max_real_lsb, 1e-9);
@@ -130,7 +136,8 @@ TEST(Explore, ErrorBudgetSplitsAndBoundsTheTotal) {
     } else {
       // W_16 against t^n: bounded by ks * light colour * its worst |W(t) - t^n| over [0, 1].
       const Material& m = f.scene.materials.front();
-      const double bound = m.specular.x * f.scene.lights.front().colour.x * wpow_worst_abs(m.exponent, 16) * 256.0;
+      const double bound =
+          m.specular.x * f.scene.lights.front().colour.x * wpow_worst_abs(m.exponent, 16) * 256.0;
       EXPECT_GT(b.function.max_lsb, 0.25) << "the highlight shows W_16's lobe";
       EXPECT_LE(b.function.max_lsb, bound * 1.001 + 1e-9);
     }
@@ -191,7 +198,9 @@ TEST(Explore, BadOptionsAreErrors) {
 
 // ---------------------------------------------------------------- the CLI
 
-std::filesystem::path temp_dir(const std::string& name) { return shadesim::temp_dir("explore", name); }
+std::filesystem::path temp_dir(const std::string& name) {
+  return shadesim::temp_dir("explore", name);
+}
 
 // RFC 4180 fields of one line (quoted fields may hold commas and doubled quotes).
 std::vector<std::string> csv_fields(const std::string& line) {
@@ -200,9 +209,12 @@ std::vector<std::string> csv_fields(const std::string& line) {
   for (size_t i = 0; i < line.size(); ++i) {
     const char c = line[i];
     if (quoted) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') f.back() += '"', ++i;
-      else if (c == '"') quoted = false;
-      else f.back() += c;
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"')
+        f.back() += '"', ++i;
+      else if (c == '"')
+        quoted = false;
+      else
+        f.back() += c;
     } else if (c == '"') {
       quoted = true;
     } else if (c == ',') {
@@ -217,8 +229,9 @@ std::vector<std::string> csv_fields(const std::string& line) {
 
 TEST(ExploreCli, JsonAndCsvAreWellFormedAndAgree) {
   const auto dir = temp_dir("out");
-  const Result r = run("explore " + kScenes + "sphere.json --budget 1 --json " + (dir / "e.json").string() + " --csv " +
-                       (dir / "e.csv").string() + " --out " + dir.string());
+  const Result r =
+      run("explore " + kScenes + "sphere.json --budget 1 --json " + (dir / "e.json").string() +
+          " --csv " + (dir / "e.csv").string() + " --out " + dir.string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("Pareto front"), std::string::npos);
   EXPECT_NE(r.output.find("(3) quantization"), std::string::npos);
@@ -284,7 +297,8 @@ TEST(ExploreCli, BadInputIsAClearError) {
   EXPECT_NE(r.output.find("--budget"), std::string::npos) << r.output;
 
   { std::ofstream(dir / "cfg.json") << "{\"series\": \"s4.28\", \"seriess\": 1}"; }
-  r = run("explore " + kScenes + "sphere.json --config " + (dir / "cfg.json").string() + " --out " + dir.string());
+  r = run("explore " + kScenes + "sphere.json --config " + (dir / "cfg.json").string() + " --out " +
+          dir.string());
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("seriess"), std::string::npos) << r.output;
 

@@ -1,5 +1,7 @@
 // ExponentLut against double precision: exhaustive sweeps at small widths, a derived error bound
 // against t^n at production widths, the table ends, the hex file and bad TABLE commands.
+#include "model/exponent_lut.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +10,6 @@
 #include <string>
 
 #include "host/specular_setup.h"
-#include "model/exponent_lut.h"
 #include "model/specular_unit.h"
 
 namespace shadesim {
@@ -138,7 +139,7 @@ TEST(ExponentLut, InterpolationReachesLastEntryAtOne) {
   EXPECT_EQ(at(1.0), 15.0);
   EXPECT_EQ(at(2.0), 15.0);  // saturated address: pair (e3, e3)
   EXPECT_EQ(at(0.0), 0.0);
-  EXPECT_EQ(at(0.5), 6.0);   // address 1.5: halfway between 4 and 8
+  EXPECT_EQ(at(0.5), 6.0);  // address 1.5: halfway between 4 and 8
 }
 
 TEST(ExponentLut, RejectsBadTableCommands) {
@@ -210,8 +211,9 @@ TEST(ExponentLut, SharedExpTableEpicentreBound) {
   cfg.specular.lut.entry_bits = 16;
   for (double n : {64.0, 1000.0}) {
     const double s = 1.0 - std::pow(0.5, 1.0 / n);
-    const double bound = (std::exp(n * (s + s * s / 2 + s * s * s / 2)) - std::exp(n * s)) / std::exp(n * s) +
-                         16.0 / (2 * 4095) * 1.01 + std::ldexp(1.0, -14);
+    const double bound =
+        (std::exp(n * (s + s * s / 2 + s * s * s / 2)) - std::exp(n * s)) / std::exp(n * s) +
+        16.0 / (2 * 4095) * 1.01 + std::ldexp(1.0, -14);
     EXPECT_LE(measure_unit(cfg, n, 1024).epi_rel, bound) << "n " << n;
   }
 }

@@ -1,13 +1,12 @@
 // FixedFormat's quantization and overflow rules against SystemC's sc_fix (IEEE 1666) as oracle.
 #define SC_INCLUDE_FX
-#include <systemc>
+#include "model/fixed_point.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
-
-#include "model/fixed_point.h"
+#include <systemc>
 
 namespace shadesim {
 namespace {
@@ -15,7 +14,9 @@ namespace {
 sc_dt::sc_q_mode to_sc(Quantization q) {
   return q == Quantization::kTruncate ? sc_dt::SC_TRN : sc_dt::SC_RND;
 }
-sc_dt::sc_o_mode to_sc(Overflow o) { return o == Overflow::kSaturate ? sc_dt::SC_SAT : sc_dt::SC_WRAP; }
+sc_dt::sc_o_mode to_sc(Overflow o) {
+  return o == Overflow::kSaturate ? sc_dt::SC_SAT : sc_dt::SC_WRAP;
+}
 
 // The raw integer sc_fix holds, read back through its double value (exact for wl <= 53).
 int64_t sc_raw(double x, const FixedFormat& f) {
@@ -48,7 +49,9 @@ TEST_P(FixedVsScFix, FromDoubleMatchesAllRules) {
       std::uniform_real_distribution<double> dist(-range, range);
       for (int i = 0; i < 4000; ++i) {
         double x = dist(rng);
-        if (i % 7 == 0) x = std::ldexp(std::round(std::ldexp(x, f.frac_bits() + 1)), -(f.frac_bits() + 1));  // exact ties
+        if (i % 7 == 0)
+          x = std::ldexp(std::round(std::ldexp(x, f.frac_bits() + 1)),
+                         -(f.frac_bits() + 1));  // exact ties
         ASSERT_EQ(f.from_double(x), sc_raw(x, f)) << f.to_string() << " x=" << x;
       }
     }
@@ -58,7 +61,8 @@ TEST_P(FixedVsScFix, FromDoubleMatchesAllRules) {
 INSTANTIATE_TEST_SUITE_P(Formats, FixedVsScFix,
                          ::testing::Values(Case{8, 1, true}, Case{8, 0, false}, Case{12, 4, true},
                                            Case{17, 1, false}, Case{32, 4, true}, Case{36, 4, true},
-                                           Case{20, 8, false}, Case{6, 6, true}, Case{10, -2, true}));
+                                           Case{20, 8, false}, Case{6, 6, true},
+                                           Case{10, -2, true}));
 
 TEST(FixedPoint, QuantizeRawMatchesScFixOnShiftedIntegers) {
   // quantize(raw, src_frac) is what the datapaths call; check it against sc_fix on values that
@@ -83,8 +87,9 @@ TEST(FixedPoint, RawOverflowHelpersMatchScFix) {
   // path), against sc_fix fed the exact value raw * 2^-frac: every raw in [-4 2^wl, 4 2^wl) for
   // narrow formats, random raws up to 2^52 for wide ones (exact in a double), signed and unsigned.
   std::mt19937_64 rng(5);
-  for (const Case c : {Case{5, 2, true}, Case{5, 2, false}, Case{8, 8, true}, Case{1, 1, false},
-                       Case{12, -3, true}, Case{32, 4, true}, Case{36, 4, true}, Case{40, 3, false}}) {
+  for (const Case c :
+       {Case{5, 2, true}, Case{5, 2, false}, Case{8, 8, true}, Case{1, 1, false},
+        Case{12, -3, true}, Case{32, 4, true}, Case{36, 4, true}, Case{40, 3, false}}) {
     for (auto o : {Overflow::kSaturate, Overflow::kWrap}) {
       const FixedFormat f{c.wl, c.iwl, c.is_signed, Quantization::kTruncate, o};
       auto check = [&](int64_t raw) {
@@ -109,7 +114,8 @@ TEST(FixedPoint, RawOverflowHelpersMatchScFix) {
   // 2^wl, brought into [-2^(wl-1), 2^(wl-1))), saturate clamps.
   const FixedFormat w{36, 4, true, Quantization::kTruncate, Overflow::kWrap};
   const FixedFormat s{36, 4, true, Quantization::kTruncate, Overflow::kSaturate};
-  for (const Int128 big : {(Int128{1} << 100) + 12345, -(Int128{1} << 90) - 7, (Int128{3} << 70) - 1}) {
+  for (const Int128 big :
+       {(Int128{1} << 100) + 12345, -(Int128{1} << 90) - 7, (Int128{3} << 70) - 1}) {
     const Int128 m = Int128{1} << 36;
     const Int128 low = ((big % m) + m) % m;
     const int64_t want = static_cast<int64_t>(low >= m / 2 ? low - m : low);

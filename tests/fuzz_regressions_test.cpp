@@ -2,7 +2,6 @@
 // the product's readers in the normal build: each must end in the reader's documented error,
 // with a message that names the file.
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <algorithm>
@@ -29,7 +28,8 @@ std::string read_bytes(const fs::path& path) {
 
 std::vector<fs::path> inputs_of(const std::string& harness) {
   std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(kRegressions / harness)) files.push_back(entry.path());
+  for (const auto& entry : fs::directory_iterator(kRegressions / harness))
+    files.push_back(entry.path());
   std::sort(files.begin(), files.end());
   return files;
 }
@@ -54,7 +54,8 @@ std::string load_error(const fs::path& file) {
 }
 
 TEST(FuzzRegressions, EveryMeshInputIsASceneErrorNamingTheFile) {
-  const fs::path dir = fs::temp_directory_path() / ("shadesim-fuzz-regress-" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("shadesim-fuzz-regress-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::vector<fs::path> inputs = inputs_of("mesh");
   ASSERT_GE(inputs.size(), 2u);
@@ -70,7 +71,8 @@ TEST(FuzzRegressions, EveryMeshInputIsASceneErrorNamingTheFile) {
 // The RAW file of assimp-testmodels that kills Debian's assimp in post-processing: the crash is
 // the import child's, and the message says so.
 TEST(FuzzRegressions, AssimpCrashIsReportedNotFatal) {
-  const fs::path dir = fs::temp_directory_path() / ("shadesim-fuzz-crash-" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("shadesim-fuzz-crash-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path file = mesh_file_of(kRegressions / "mesh/assimp_raw_postprocess_segv.raw.in", dir);
   const std::string message = load_error(file);
@@ -80,13 +82,15 @@ TEST(FuzzRegressions, AssimpCrashIsReportedNotFatal) {
 
 // A scene that names the crashing mesh reports it at the object's "file" field.
 TEST(FuzzRegressions, SceneWithCrashingMeshNamesTheField) {
-  const fs::path dir = fs::temp_directory_path() / ("shadesim-fuzz-scene-" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("shadesim-fuzz-scene-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path mesh = mesh_file_of(kRegressions / "mesh/assimp_raw_postprocess_segv.raw.in", dir);
   const fs::path scene = dir / "scene.json";
   std::ofstream(scene) << R"({"image": {"width": 8, "height": 8}, "camera": {},
     "lights": [{"direction": [0, 0, 1]}], "materials": [{"name": "m"}],
-    "objects": [{"type": "mesh", "material": "m", "file": ")" << mesh.filename().string() << R"("}]})";
+    "objects": [{"type": "mesh", "material": "m", "file": ")"
+                       << mesh.filename().string() << R"("}]})";
   try {
     load_scene(scene.string());
     ADD_FAILURE() << "expected a SceneError";

@@ -74,7 +74,8 @@ Mismatch compare(const CommandStream& stream, const UnitConfig& model_config) {
     ++m.compared;
     bool same = model[i].x == gold[i].x && model[i].y == gold[i].y &&
                 model[i].end_of_row == gold[i].end_of_row;
-    for (int c = 0; c < stream.config.channels; ++c) same = same && model[i].colour[c] == gold[i].colour[c];
+    for (int c = 0; c < stream.config.channels; ++c)
+      same = same && model[i].colour[c] == gold[i].colour[c];
     if (!same) {
       if (m.differing++ == 0) {
         m.first = "pixel " + std::to_string(i) + " (" + std::to_string(gold[i].x) + "," +

@@ -93,7 +93,8 @@ double fixed_point_bound_lsb(const PreparedFrame& f) {
     if (const auto* t = std::get_if<TriangleCmd>(&cmd)) tri = *t;
     if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
       const double dy = std::abs(s->y - tri.yo);
-      const double dx = std::max(std::abs(s->x0 - tri.xo), std::abs(s->x0 + s->length - 1 - tri.xo));
+      const double dx =
+          std::max(std::abs(s->x0 - tri.xo), std::abs(s->x0 + s->length - 1 - tri.xo));
       const double k = s->length - 1;
       const double coef = coef_half_ulp * (1 + dx + dy) * (1 + dx + dy);
       const double drift = series_step * (1 + k + k * (k - 1) / 2);
@@ -172,7 +173,8 @@ TEST(HardScenes, LongSpanHas2048PixelSpansAndStaysWithinTheDerivedDriftBound) {
 TEST(HardScenes, SinglePixelsIsMostlyOnePixelSpansWithinOneLsb) {
   const Rendered r = render(hard_scene("single_pixels.json"));
   const auto spans = commands_of<SpanCmd>(r.frame.encoded.stream);
-  const auto ones = std::count_if(spans.begin(), spans.end(), [](const SpanCmd& s) { return s.length == 1; });
+  const auto ones =
+      std::count_if(spans.begin(), spans.end(), [](const SpanCmd& s) { return s.length == 1; });
   EXPECT_GT(ones, 2000);
   EXPECT_GT(static_cast<double>(ones), 0.9 * static_cast<double>(spans.size()));
   // Back-to-back TRI, SPAN, TRI, SPAN: triangles that own exactly one pixel.
@@ -217,7 +219,8 @@ TEST(HardScenes, MaterialSwitchSwitchesOnEveryObjectWithinOneLsb) {
   // 144 spheres, consecutive ones always of different materials, all visible.
   EXPECT_GE(materials.size(), 144u);
   for (size_t i = 1; i < materials.size(); ++i) {
-    EXPECT_NE(materials[i].exponent, materials[i - 1].exponent) << "MATERIAL " << i << " is no switch";
+    EXPECT_NE(materials[i].exponent, materials[i - 1].exponent)
+        << "MATERIAL " << i << " is no switch";
   }
   const double bound = total_bound_lsb(r.frame);
   report("material_switch", r, bound);
@@ -234,7 +237,8 @@ TEST(HardScenes, MaterialSwitchSwitchesOnEveryObjectWithinOneLsb) {
     if (!std::holds_alternative<MaterialCmd>(cmds[i])) continue;
     ++switches;
     ASSERT_LT(i + 1, cmds.size());
-    EXPECT_TRUE(std::holds_alternative<TableCmd>(cmds[i + 1])) << "MATERIAL at " << i << " without a table";
+    EXPECT_TRUE(std::holds_alternative<TableCmd>(cmds[i + 1]))
+        << "MATERIAL at " << i << " without a table";
   }
   EXPECT_GE(switches, 144u);
   EXPECT_EQ(l.error.pixels, r.error.pixels);
@@ -247,7 +251,8 @@ std::vector<int64_t> specular_slopes(const PreparedFrame& f) {
   const int first = f.config.diffuse_series() * kTermsPerSeries;
   for (const TriangleCmd& t : commands_of<TriangleCmd>(f.encoded.stream)) {
     for (int s = 0; s < f.config.specular_series(); ++s)
-      for (int k = 1; k < kTermsPerSeries; ++k) out.push_back(t.coef[first + s * kTermsPerSeries + k]);
+      for (int k = 1; k < kTermsPerSeries; ++k)
+        out.push_back(t.coef[first + s * kTermsPerSeries + k]);
   }
   return out;
 }
@@ -256,7 +261,8 @@ TEST(HardScenes, FiniteEyeSpecularVariesAcrossAFlatPlane) {
   const Rendered r = render(hard_scene("finite_eye_plane.json"));
   ASSERT_FALSE(r.frame.scene.eye_at_infinity);
   const auto slopes = specular_slopes(r.frame);
-  const auto varying = std::count_if(slopes.begin(), slopes.end(), [](int64_t v) { return v != 0; });
+  const auto varying =
+      std::count_if(slopes.begin(), slopes.end(), [](int64_t v) { return v != 0; });
   EXPECT_GT(varying, static_cast<long>(slopes.size() / 2));
   // A visible highlight: the reference spans most of the output range over the plane.
   double lo = 1, hi = 0;
@@ -416,7 +422,8 @@ TerminatorCompare compare_terminator(const Rendered& r) {
   auto comp = [](const Vec3& v, int ch) { return ch == 0 ? v.x : ch == 1 ? v.y : v.z; };
   std::vector<int> model(sc.width * sc.height * 3, -1);
   for (const PixelOut& p : r.pixels) {
-    for (int ch = 0; ch < f.config.channels; ++ch) model[(p.y * sc.width + p.x) * 3 + ch] = p.colour[ch];
+    for (int ch = 0; ch < f.config.channels; ++ch)
+      model[(p.y * sc.width + p.x) * 3 + ch] = p.colour[ch];
   }
   TerminatorCompare out;
   for (int py = 0; py < sc.height; ++py) {
@@ -453,9 +460,11 @@ TerminatorCompare compare_terminator(const Rendered& r) {
   }
   std::cout << "terminator (" << f.config.to_string() << "): " << out.compared
             << " pixels compared; model within " << out.model_max << ", reference within "
-            << out.reference_max << " codes of the gated closed form; the ungated one differs by up to "
-            << out.ungated_max << " (" << out.gate_visible << " pixels by more than 2), from the model by up to "
-            << out.model_vs_ungated_max << "\n";
+            << out.reference_max
+            << " codes of the gated closed form; the ungated one differs by up to "
+            << out.ungated_max << " (" << out.gate_visible
+            << " pixels by more than 2), from the model by up to " << out.model_vs_ungated_max
+            << "\n";
   return out;
 }
 
@@ -471,7 +480,8 @@ TEST(HardScenes, TerminatorHasNoHighlightWhereNDotLIsNotPositive) {
   EXPECT_GT(c.model_vs_ungated_max, 15);
   EXPECT_GT(c.gate_visible, c.compared / 50);
   // The gate-only mask is for materials without diffuse colour, not this one.
-  for (const MaterialCmd& m : commands_of<MaterialCmd>(r.frame.encoded.stream)) EXPECT_EQ(m.gate_only, 0u);
+  for (const MaterialCmd& m : commands_of<MaterialCmd>(r.frame.encoded.stream))
+    EXPECT_EQ(m.gate_only, 0u);
 }
 
 TEST(HardScenes, TerminatorGateHoldsWithAZeroDiffuseChannel) {
@@ -482,9 +492,11 @@ TEST(HardScenes, TerminatorGateHoldsWithAZeroDiffuseChannel) {
   ASSERT_EQ(r.frame.config.channels, 3);
   ASSERT_EQ(r.frame.scene.materials[0].diffuse.y, 0.0);
   for (const TriangleCmd& t : commands_of<TriangleCmd>(r.frame.encoded.stream)) {
-    for (int k = 0; k < kTermsPerSeries; ++k) ASSERT_EQ(t.coef[kTermsPerSeries + k], 0) << "green diffuse";
+    for (int k = 0; k < kTermsPerSeries; ++k)
+      ASSERT_EQ(t.coef[kTermsPerSeries + k], 0) << "green diffuse";
   }
-  for (const MaterialCmd& m : commands_of<MaterialCmd>(r.frame.encoded.stream)) EXPECT_EQ(m.gate_only, 0u);
+  for (const MaterialCmd& m : commands_of<MaterialCmd>(r.frame.encoded.stream))
+    EXPECT_EQ(m.gate_only, 0u);
   const TerminatorCompare c = compare_terminator(r);
   EXPECT_LE(c.model_max, 1);
   EXPECT_LE(c.reference_max, 1);
@@ -512,7 +524,8 @@ TEST(HardScenes, TerminatorGateHoldsWithoutAnyDiffuseColour) {
   const std::vector<PixelOut> wrong = ShadeUnit(r.frame.config).run(cleared);
   ASSERT_EQ(wrong.size(), r.pixels.size());
   int most = 0;
-  for (size_t i = 0; i < wrong.size(); ++i) most = std::max(most, std::abs(wrong[i].colour[0] - r.pixels[i].colour[0]));
+  for (size_t i = 0; i < wrong.size(); ++i)
+    most = std::max(most, std::abs(wrong[i].colour[0] - r.pixels[i].colour[0]));
   EXPECT_GT(most, 100);
 }
 

@@ -1,4 +1,7 @@
-// PNG round trips through libpng, error heat-map colours at the documented stops, side-by-side strips.
+// PNG round trips through libpng, error heat-map colours at the documented stops, side-by-side
+// strips.
+#include "host/image.h"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -9,15 +12,15 @@
 #include <random>
 #include <stdexcept>
 
-#include "host/image.h"
-
 namespace shadesim {
 namespace {
 
 namespace fs = std::filesystem;
 
 std::string temp_path(const std::string& name) {
-  return (fs::temp_directory_path() / ("shadesim_image_test_" + std::to_string(::getpid()) + "_" + name)).string();
+  return (fs::temp_directory_path() /
+          ("shadesim_image_test_" + std::to_string(::getpid()) + "_" + name))
+      .string();
 }
 
 Image random_image(int w, int h, int channels, unsigned seed) {
@@ -78,18 +81,18 @@ TEST(HeatMap, EndpointsAndStops) {
   const Image im = error_heat_map(errors, 8, 1, 3.0);
   ASSERT_EQ(im.channels, 3);
   using C = std::array<int, 3>;
-  EXPECT_EQ(rgb(im, 0, 0), (C{0, 0, 0}));        // exactly zero: black
-  EXPECT_EQ(rgb(im, 1, 0), (C{0, 0, 255}));      // just above zero: blue
-  EXPECT_EQ(rgb(im, 2, 0), (C{0, 255, 0}));      // a third of full scale: green
-  EXPECT_EQ(rgb(im, 3, 0), (C{255, 255, 0}));    // two thirds: yellow
-  EXPECT_EQ(rgb(im, 4, 0), (C{255, 0, 0}));      // full scale: red
-  EXPECT_EQ(rgb(im, 5, 0), (C{255, 0, 0}));      // beyond: still red
-  const C grey = rgb(im, 6, 0);                  // not covered: dark grey
+  EXPECT_EQ(rgb(im, 0, 0), (C{0, 0, 0}));      // exactly zero: black
+  EXPECT_EQ(rgb(im, 1, 0), (C{0, 0, 255}));    // just above zero: blue
+  EXPECT_EQ(rgb(im, 2, 0), (C{0, 255, 0}));    // a third of full scale: green
+  EXPECT_EQ(rgb(im, 3, 0), (C{255, 255, 0}));  // two thirds: yellow
+  EXPECT_EQ(rgb(im, 4, 0), (C{255, 0, 0}));    // full scale: red
+  EXPECT_EQ(rgb(im, 5, 0), (C{255, 0, 0}));    // beyond: still red
+  const C grey = rgb(im, 6, 0);                // not covered: dark grey
   EXPECT_EQ(grey[0], grey[1]);
   EXPECT_EQ(grey[1], grey[2]);
   EXPECT_GT(grey[0], 0);
   EXPECT_LT(grey[0], 96);
-  EXPECT_EQ(rgb(im, 7, 0), (C{255, 0, 0}));      // the sign is ignored
+  EXPECT_EQ(rgb(im, 7, 0), (C{255, 0, 0}));  // the sign is ignored
 }
 
 TEST(HeatMap, RampIsMonotoneInTheHueOrder) {
@@ -107,7 +110,8 @@ TEST(Hstack, PromotesGreyPadsAndSeparates) {
   Image grey(2, 3, 1);
   for (size_t i = 0; i < grey.pixels.size(); ++i) grey.pixels[i] = static_cast<uint8_t>(10 + i);
   Image colour(3, 1, 3);
-  for (size_t i = 0; i < colour.pixels.size(); ++i) colour.pixels[i] = static_cast<uint8_t>(100 + i);
+  for (size_t i = 0; i < colour.pixels.size(); ++i)
+    colour.pixels[i] = static_cast<uint8_t>(100 + i);
   const Image out = hstack({grey, colour}, 1);
   ASSERT_EQ(out.width, 2 + 1 + 3);
   ASSERT_EQ(out.height, 3);

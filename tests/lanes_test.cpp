@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <random>
-#include <variant>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "host/frame.h"
@@ -67,7 +67,8 @@ TEST(LaneFanout, StartsAreTheExactKStepDifferencesFittedOnce) {
           const SeriesStart got = fanout(s, j);
           EXPECT_EQ(got.v, fit(p[j], f)) << fmt << " K=" << k << " j=" << j;
           EXPECT_EQ(got.d, fit(p[j + k] - p[j], f)) << fmt << " K=" << k << " j=" << j;
-          EXPECT_EQ(got.d2, fit(p[j + 2 * k] - 2 * p[j + k] + p[j], f)) << fmt << " K=" << k << " j=" << j;
+          EXPECT_EQ(got.d2, fit(p[j + 2 * k] - 2 * p[j + k] + p[j], f))
+              << fmt << " K=" << k << " j=" << j;
         }
       }
     }
@@ -93,7 +94,8 @@ TEST(LaneFanout, WrappingLanesEqualTheOneLaneEngine) {
           SeriesEngine lane(f);
           lane.load(fanout(s, j));
           for (int i = j; i < len; i += k, lane.step()) {
-            ASSERT_EQ(lane.value(), want[static_cast<size_t>(i)]) << fmt << " K=" << k << " lane " << j << " pixel " << i;
+            ASSERT_EQ(lane.value(), want[static_cast<size_t>(i)])
+                << fmt << " K=" << k << " lane " << j << " pixel " << i;
           }
         }
       }
@@ -128,7 +130,8 @@ void expect_same_pixels(const PreparedFrame& f, const std::string& what) {
     for (size_t i = 0; i < one.size(); ++i) {
       const PixelOut &a = one[i], &b = many[i];
       ASSERT_TRUE(a.x == b.x && a.y == b.y && a.colour == b.colour && a.end_of_row == b.end_of_row)
-          << what << ": pixel " << i << " (x=" << a.x << " y=" << a.y << ") differs with " << k << " lanes";
+          << what << ": pixel " << i << " (x=" << a.x << " y=" << a.y << ") differs with " << k
+          << " lanes";
       ASSERT_EQ(a.lane, 0) << what;
       ASSERT_EQ(b.lane, lane[i]) << what << ": pixel " << i;
     }
@@ -151,7 +154,8 @@ TEST(PixelLanes, WrapLanesEqualOneLaneOnLongSpans) {
   FrameOptions o;
   o.base.series = parse_fixed_format("s2.20:wrap", "test");
   o.base.coef = parse_fixed_format("s2.28:rnd:wrap", "test");
-  const PreparedFrame f = prepare_frame(std::string(SHADESIM_SOURCE_DIR) + "/scenes/hard/long_span.json", o);
+  const PreparedFrame f =
+      prepare_frame(std::string(SHADESIM_SOURCE_DIR) + "/scenes/hard/long_span.json", o);
   expect_same_pixels(f, "long_span");
 }
 

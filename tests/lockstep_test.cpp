@@ -64,7 +64,8 @@ Outcome run(const CosimJob& job, const Faults& faults = {}) {
       colour = pixels[next].colour[0];
       next += static_cast<size_t>(e.pix_count);
       r.last_pixel_cycle = cycle;
-      if (next == pixels.size() && faults.extra_pixel_after) extra_on = cycle + *faults.extra_pixel_after;
+      if (next == pixels.size() && faults.extra_pixel_after)
+        extra_on = cycle + *faults.extra_pixel_after;
     } else if (extra_on && cycle == *extra_on) {
       s.pix_valid = true;
       s.pix_x = 1;
@@ -86,8 +87,8 @@ Outcome run(const CosimJob& job, const Faults& faults = {}) {
 TEST(Lockstep, AFaithfulDutPassesAndThePipelineIsDrained) {
   const CosimJob job = short_job();
   const Outcome r = run(job);
-  ASSERT_TRUE(r.result.passed()) << to_string(r.result.first.kind) << ": " << r.result.first.expected << " / "
-                                 << r.result.first.got;
+  ASSERT_TRUE(r.result.passed()) << to_string(r.result.first.kind) << ": "
+                                 << r.result.first.expected << " / " << r.result.first.got;
   const std::vector<PixelOut> pixels = ShadeUnit(job.config.unit).run(job.stream);
   EXPECT_EQ(r.result.pixels, pixels.size());
   EXPECT_EQ(r.result.scanlines, 12u);
@@ -119,8 +120,10 @@ TEST(Lockstep, CmdReadyIsComparedOnIdleCyclesToo) {
   ASSERT_FALSE(r.result.passed());
   EXPECT_EQ(r.result.first.kind, Mismatch::Kind::kReady);
   EXPECT_EQ(r.result.first.cycle, faithful.idle_cycle);
-  EXPECT_EQ(r.result.first.got, std::string("cmd_ready_o ") + (faithful.idle_ready ? "0" : "1") + " (RTL)");
-  EXPECT_NE(r.result.first.expected.find("cmd_valid_i 0"), std::string::npos) << r.result.first.expected;
+  EXPECT_EQ(r.result.first.got,
+            std::string("cmd_ready_o ") + (faithful.idle_ready ? "0" : "1") + " (RTL)");
+  EXPECT_NE(r.result.first.expected.find("cmd_valid_i 0"), std::string::npos)
+      << r.result.first.expected;
 }
 
 }  // namespace

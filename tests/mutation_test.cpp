@@ -52,12 +52,44 @@ void write_file(const std::string& path, const std::string& text) {
 
 // Tokens that break naive number handling: out of range for double, int64, int32, uint16;
 // NaN and infinity spellings; signs; forms JSON or istream do not accept; non-numbers.
-const std::vector<std::string> kNastyTokens = {
-    "1e308", "-1e308", "1e999", "-1e999", "NaN", "nan", "inf", "-inf", "Infinity", "-1", "0", "-0",
-    "1e-320", "9223372036854775807", "9223372036854775808", "-9223372036854775809",
-    "18446744073709551616", "2147483647", "2147483648", "-2147483649", "4294967296",
-    "4294967297", "65535", "65536", "1.5", "0x10", "1e5", "", "--1", "+1", "007", "null", "true",
-    "\"x\"", "[]", "{}", "|", "#"};
+const std::vector<std::string> kNastyTokens = {"1e308",
+                                               "-1e308",
+                                               "1e999",
+                                               "-1e999",
+                                               "NaN",
+                                               "nan",
+                                               "inf",
+                                               "-inf",
+                                               "Infinity",
+                                               "-1",
+                                               "0",
+                                               "-0",
+                                               "1e-320",
+                                               "9223372036854775807",
+                                               "9223372036854775808",
+                                               "-9223372036854775809",
+                                               "18446744073709551616",
+                                               "2147483647",
+                                               "2147483648",
+                                               "-2147483649",
+                                               "4294967296",
+                                               "4294967297",
+                                               "65535",
+                                               "65536",
+                                               "1.5",
+                                               "0x10",
+                                               "1e5",
+                                               "",
+                                               "--1",
+                                               "+1",
+                                               "007",
+                                               "null",
+                                               "true",
+                                               "\"x\"",
+                                               "[]",
+                                               "{}",
+                                               "|",
+                                               "#"};
 
 // Deterministic mutations; every call draws from the one seeded engine, so mutant i of a run is
 // reproducible from the seed alone.
@@ -65,7 +97,9 @@ class Mutator {
  public:
   explicit Mutator(uint64_t seed) : rng_(seed) {}
 
-  size_t below(size_t n) { return n == 0 ? 0 : std::uniform_int_distribution<size_t>(0, n - 1)(rng_); }
+  size_t below(size_t n) {
+    return n == 0 ? 0 : std::uniform_int_distribution<size_t>(0, n - 1)(rng_);
+  }
 
   // 1 to 3 random text mutations; `what` describes them for the report.
   std::string mutate_text(std::string s, std::string* what) {
@@ -107,7 +141,8 @@ class Mutator {
     auto digit = [&](size_t k) { return k < s.size() && s[k] >= '0' && s[k] <= '9'; };
     while (i < s.size()) {
       const bool starts = digit(i) || (s[i] == '-' && digit(i + 1));
-      const bool inside_word = i > 0 && (std::isalnum(static_cast<unsigned char>(s[i - 1])) || s[i - 1] == '.');
+      const bool inside_word =
+          i > 0 && (std::isalnum(static_cast<unsigned char>(s[i - 1])) || s[i - 1] == '.');
       if (!starts || inside_word) {
         ++i;
         continue;
@@ -147,7 +182,8 @@ class Mutator {
     switch (below(10)) {
       case 0: {
         const char c = static_cast<char>(below(256));
-        *what += " byte@" + std::to_string(pos) + "=" + std::to_string(static_cast<unsigned char>(c));
+        *what +=
+            " byte@" + std::to_string(pos) + "=" + std::to_string(static_cast<unsigned char>(c));
         std::string t = s;
         t[pos] = c;
         return t;
@@ -199,8 +235,8 @@ class Mutator {
     }
   }
 
-  std::vector<uint64_t> mutate_words_once(std::vector<uint64_t> w, const std::vector<size_t>& headers,
-                                          std::string* what) {
+  std::vector<uint64_t> mutate_words_once(std::vector<uint64_t> w,
+                                          const std::vector<size_t>& headers, std::string* what) {
     if (w.empty()) return w;
     const size_t pos = below(w.size());
     switch (below(9)) {
@@ -263,17 +299,21 @@ struct Tally {
   size_t loaded = 0, rejected = 0;
   std::vector<std::string> problems;
 
-  void problem(const std::string& input, size_t i, const std::string& what, const std::string& message) {
+  void problem(const std::string& input, size_t i, const std::string& what,
+               const std::string& message) {
     problems.push_back(input + " mutant " + std::to_string(i) + " [" + what + " ]: " + message);
   }
 };
 
-std::string short_message(const std::string& m) { return m.size() > 300 ? m.substr(0, 300) + "..." : m; }
+std::string short_message(const std::string& m) {
+  return m.size() > 300 ? m.substr(0, 300) + "..." : m;
+}
 
 // Runs `load`; the only acceptable exception is `Error` whose message contains `source`.
 template <typename Error>
 bool loads_or_rejects_cleanly(const std::function<void()>& load, const std::string& source,
-                              const std::string& input, size_t i, const std::string& what, Tally& tally) {
+                              const std::string& input, size_t i, const std::string& what,
+                              Tally& tally) {
   try {
     load();
     ++tally.loaded;
@@ -281,14 +321,18 @@ bool loads_or_rejects_cleanly(const std::function<void()>& load, const std::stri
   } catch (const Error& e) {
     ++tally.rejected;
     // SHADESIM_MUTATION_VERBOSE=1 prints every rejection, to read the messages a user would get.
-    if (std::getenv("SHADESIM_MUTATION_VERBOSE")) std::cout << input << " " << i << ": " << e.what() << "\n";
+    if (std::getenv("SHADESIM_MUTATION_VERBOSE"))
+      std::cout << input << " " << i << ": " << e.what() << "\n";
     if (std::string(e.what()).find(source) == std::string::npos) {
-      tally.problem(input, i, what, "message does not name the source '" + source + "': " + short_message(e.what()));
+      tally.problem(
+          input, i, what,
+          "message does not name the source '" + source + "': " + short_message(e.what()));
     }
   } catch (const std::exception& e) {
     ++tally.rejected;
-    tally.problem(input, i, what, std::string("threw ") + typeid(e).name() + " instead of " +
-                                      typeid(Error).name() + ": " + short_message(e.what()));
+    tally.problem(input, i, what,
+                  std::string("threw ") + typeid(e).name() + " instead of " + typeid(Error).name() +
+                      ": " + short_message(e.what()));
   }
   return false;
 }
@@ -324,9 +368,11 @@ bool has_assimp_models() { return fs::exists("/usr/share/assimp/models/BLEND/Suz
 std::string mutant_dir() {
   const std::string dir = testing::TempDir() + "shadesim_mutants/";
   fs::create_directories(dir);
-  for (const auto& entry : fs::directory_iterator(std::string(SHADESIM_SOURCE_DIR) + "/scenes/hard")) {
+  for (const auto& entry :
+       fs::directory_iterator(std::string(SHADESIM_SOURCE_DIR) + "/scenes/hard")) {
     if (entry.path().extension() == ".obj") {
-      fs::copy_file(entry.path(), dir + entry.path().filename().string(), fs::copy_options::overwrite_existing);
+      fs::copy_file(entry.path(), dir + entry.path().filename().string(),
+                    fs::copy_options::overwrite_existing);
     }
   }
   return dir;
@@ -358,7 +404,8 @@ TEST(Mutation, MeshFileLoadsOrThrowsSceneErrorNamingTheFile) {
   Mutator mutator(kSeed + 1);
   Tally tally;
   const std::string dir = mutant_dir();
-  const std::string text = read_file(std::string(SHADESIM_SOURCE_DIR) + "/scenes/hard/long_span_tri.obj");
+  const std::string text =
+      read_file(std::string(SHADESIM_SOURCE_DIR) + "/scenes/hard/long_span_tri.obj");
   const std::string path = dir + "mutant.obj";
   for (size_t i = 0; i < 300; ++i) {
     std::string what;
@@ -371,7 +418,8 @@ TEST(Mutation, MeshFileLoadsOrThrowsSceneErrorNamingTheFile) {
             if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
               throw std::logic_error("loaded a non-finite position");
           for (const Vec3& n : m.normals)
-            if (!(std::fabs(length(n) - 1) < 1e-9)) throw std::logic_error("loaded a non-unit normal");
+            if (!(std::fabs(length(n) - 1) < 1e-9))
+              throw std::logic_error("loaded a non-unit normal");
           for (const auto& t : m.triangles)
             for (uint32_t k : t)
               if (k >= m.positions.size()) throw std::logic_error("loaded an index out of range");
@@ -408,7 +456,8 @@ std::vector<SeedStream> seed_streams() {
     if (kind == SpecularUnitKind::kLut) o.base.specular.lut.addr_bits = 6;  // short TABLE lines
     out.push_back({"specular/" + to_string(kind), prepare_frame(spec, o).encoded.stream});
   }
-  out.push_back({"multi/rgb", prepare_frame(small("multi.json", 24, 16), FrameOptions{}).encoded.stream});
+  out.push_back(
+      {"multi/rgb", prepare_frame(small("multi.json", 24, 16), FrameOptions{}).encoded.stream});
   return out;
 }
 
@@ -466,8 +515,9 @@ void run_loaded(const CommandStream& s, const std::string& input, size_t i, cons
     if (const auto* span = std::get_if<SpanCmd>(&c)) {
       pixels += span->length;
       if (int64_t{span->x0} + span->length - 1 > xy_max) {
-        tally.problem(input, i, what, "validated span ends past the screen: x0=" + std::to_string(span->x0) +
-                                          " length=" + std::to_string(span->length));
+        tally.problem(input, i, what,
+                      "validated span ends past the screen: x0=" + std::to_string(span->x0) +
+                          " length=" + std::to_string(span->length));
         return;
       }
     }
@@ -479,7 +529,8 @@ void run_loaded(const CommandStream& s, const std::string& input, size_t i, cons
   } catch (const CommandStreamError&) {
   } catch (const std::invalid_argument&) {
   } catch (const std::exception& e) {
-    tally.problem(input, i, what, std::string("model threw ") + typeid(e).name() + ": " + short_message(e.what()));
+    tally.problem(input, i, what,
+                  std::string("model threw ") + typeid(e).name() + ": " + short_message(e.what()));
   }
 }
 
@@ -521,10 +572,13 @@ TEST(Mutation, CommandStreamTextLoadsFaithfullyOrThrowsNamingTheSource) {
       }
       // A loaded stream re-encodes to binary and decodes to the same commands.
       try {
-        const CommandStream again = CommandStream::decode(loaded.encode(), loaded.config, "<re-encoded>");
-        if (to_text(again) != to_text(loaded)) tally.problem(seed.name, i, what, "binary round trip changed the stream");
+        const CommandStream again =
+            CommandStream::decode(loaded.encode(), loaded.config, "<re-encoded>");
+        if (to_text(again) != to_text(loaded))
+          tally.problem(seed.name, i, what, "binary round trip changed the stream");
       } catch (const std::exception& e) {
-        tally.problem(seed.name, i, what, std::string("binary round trip threw: ") + short_message(e.what()));
+        tally.problem(seed.name, i, what,
+                      std::string("binary round trip threw: ") + short_message(e.what()));
       }
       run_loaded(loaded, seed.name, i, what, tally);
     }
@@ -557,16 +611,19 @@ TEST(Mutation, CommandStreamBinaryDecodesOrThrowsNamingTheSource) {
       const std::vector<uint64_t> mutant = mutator.mutate_words(words, headers, &what);
       CommandStream loaded;
       const bool ok = loads_or_rejects_cleanly<CommandStreamError>(
-          [&] { loaded = CommandStream::decode(mutant, seed.stream.config, "<binary>"); }, "<binary>",
-          seed.name, i, what, tally);
+          [&] { loaded = CommandStream::decode(mutant, seed.stream.config, "<binary>"); },
+          "<binary>", seed.name, i, what, tally);
       if (!ok) continue;
       // Decoding is a function of the words: re-encoding and decoding again changes nothing.
       // (Reserved header bits are ignored, so the words themselves need not come back.)
       try {
-        const CommandStream again = CommandStream::decode(loaded.encode(), loaded.config, "<re-encoded>");
-        if (to_text(again) != to_text(loaded)) tally.problem(seed.name, i, what, "re-encoding changed the stream");
+        const CommandStream again =
+            CommandStream::decode(loaded.encode(), loaded.config, "<re-encoded>");
+        if (to_text(again) != to_text(loaded))
+          tally.problem(seed.name, i, what, "re-encoding changed the stream");
       } catch (const std::exception& e) {
-        tally.problem(seed.name, i, what, std::string("re-encoding threw: ") + short_message(e.what()));
+        tally.problem(seed.name, i, what,
+                      std::string("re-encoding threw: ") + short_message(e.what()));
       }
       run_loaded(loaded, seed.name, i, what, tally);
     }
@@ -576,11 +633,13 @@ TEST(Mutation, CommandStreamBinaryDecodesOrThrowsNamingTheSource) {
 
 // Numeric leaves of `said` (a mutant config) that `held` (config_to_json of what loaded) does not
 // hold as the same number (12.9 read as 12, 4294967297 as 1, true as 1), as a problem.
-std::string config_mismatch(const nlohmann::json& said, const nlohmann::json& held, const std::string& path) {
+std::string config_mismatch(const nlohmann::json& said, const nlohmann::json& held,
+                            const std::string& path) {
   if (said.is_object()) {
     for (const auto& item : said.items()) {
       if (!held.is_object() || !held.contains(item.key())) continue;  // unknown keys are ignored
-      const std::string m = config_mismatch(item.value(), held.at(item.key()), path + "." + item.key());
+      const std::string m =
+          config_mismatch(item.value(), held.at(item.key()), path + "." + item.key());
       if (!m.empty()) return m;
     }
     return "";
@@ -600,12 +659,14 @@ TEST(Mutation, StreamHeaderConfigLoadsFaithfullyOrThrowsNamingTheSource) {
       const std::string mutant = mutator.mutate_text(json, &what);
       const std::string source = "config-mutant-" + std::to_string(i) + ": ";
       UnitConfig loaded;
-      if (!loads_or_rejects_cleanly<CommandStreamError>([&] { loaded = config_from_json(mutant, source); },
-                                                        source, seed.name, i, what, tally))
+      if (!loads_or_rejects_cleanly<CommandStreamError>(
+              [&] { loaded = config_from_json(mutant, source); }, source, seed.name, i, what,
+              tally))
         continue;
-      const std::string m = config_mismatch(nlohmann::json::parse(mutant),
-                                            nlohmann::json::parse(config_to_json(loaded)), "config");
-      if (!m.empty()) tally.problem(seed.name, i, what, "loaded config differs from the text: " + m);
+      const std::string m = config_mismatch(
+          nlohmann::json::parse(mutant), nlohmann::json::parse(config_to_json(loaded)), "config");
+      if (!m.empty())
+        tally.problem(seed.name, i, what, "loaded config differs from the text: " + m);
     }
   }
   expect_no_problems("config_from_json", tally);
@@ -639,9 +700,11 @@ TEST(Mutation, SceneValuesThatLoadGoThroughThePipelineOrThrowDocumentedErrors) {
         const PreparedFrame f = prepare_frame(path, o);
         ShadeUnit unit(f.config);
         const auto pixels = unit.run(f.encoded.stream);
-        const auto ref = render_reference(f.setup.triangles, f.visibility, f.scene, f.config.channels);
+        const auto ref =
+            render_reference(f.setup.triangles, f.visibility, f.scene, f.config.channels);
         for (double v : ref.values)
-          if (!(v >= 0 && v <= 1)) throw std::logic_error("reference value outside [0, 1]: " + std::to_string(v));
+          if (!(v >= 0 && v <= 1))
+            throw std::logic_error("reference value outside [0, 1]: " + std::to_string(v));
         ++tally.loaded;
         (void)pixels;
       } catch (const SceneError&) {
@@ -650,7 +713,9 @@ TEST(Mutation, SceneValuesThatLoadGoThroughThePipelineOrThrowDocumentedErrors) {
         ++tally.rejected;
       } catch (const std::exception& e) {
         ++tally.rejected;
-        tally.problem(name, i, what, std::string("pipeline threw ") + typeid(e).name() + ": " + short_message(e.what()));
+        tally.problem(
+            name, i, what,
+            std::string("pipeline threw ") + typeid(e).name() + ": " + short_message(e.what()));
       }
     }
   }
@@ -673,8 +738,9 @@ CommandStream read_one_line(const std::string& line) {
 
 TEST(Mutation, TextReaderRejectsIntegersThatDoNotFitTheirField) {
   // Each used to load as its 32-bit truncation: x0 0, y 0, length 1, xo 1, table base 0.
-  for (const char* line : {"span 0 4294967296 5", "span 4294967296 0 5", "span 0 0 4294967297",
-                           "tri 4294967297 0 | 0 0 0 0 0 0 | 0 0 0 0 0 0", "table 4294967296 1 2"}) {
+  for (const char* line :
+       {"span 0 4294967296 5", "span 4294967296 0 5", "span 0 0 4294967297",
+        "tri 4294967297 0 | 0 0 0 0 0 0 | 0 0 0 0 0 0", "table 4294967296 1 2"}) {
     EXPECT_THROW(read_one_line(line), CommandStreamError) << line;
   }
 }
@@ -687,9 +753,9 @@ TEST(Mutation, ConfigHeaderRejectsNumbersThatAreNotInts) {
     t.replace(t.find(from), from.size(), to);
     return t;
   };
-  for (const std::string& bad : {with("\"channels\":1", "\"channels\":4294967297"),
-                                 with("\"xy_bits\":12", "\"xy_bits\":12.9"),
-                                 with("\"out_bits\":8", "\"out_bits\":true")}) {
+  for (const std::string& bad :
+       {with("\"channels\":1", "\"channels\":4294967297"),
+        with("\"xy_bits\":12", "\"xy_bits\":12.9"), with("\"out_bits\":8", "\"out_bits\":true")}) {
     EXPECT_THROW(config_from_json(bad, "repro: "), CommandStreamError) << bad;
   }
 }

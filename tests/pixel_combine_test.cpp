@@ -2,12 +2,12 @@
 // the documented output rule: code = clamp(floor(x * 2^out_bits + 1/2), 0, 2^out_bits - 1).
 // The specular gate as documented: light l's specular term counts only where the sum of its
 // channels' diffuse values is > 0; a gate-only light's diffuse values are not added.
+#include "model/pixel_combine.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
-
-#include "model/pixel_combine.h"
 
 namespace shadesim {
 namespace {
@@ -47,7 +47,8 @@ TEST(PixelCombine, MatchesDoubleSumAndOutputRule) {
         for (int k = 0; k < 3; ++k) nl += c.series.to_double(diffuse[l * 3 + k]);
         const bool lit = nl > 0.0;
         // s * k has 16 + 12 = 28 fraction bits = the series' own: no rounding.
-        if (lit) x += c.specular.out.to_double(spec[l]) * c.spec_colour.to_double(colour[l * 3 + ch]);
+        if (lit)
+          x += c.specular.out.to_double(spec[l]) * c.spec_colour.to_double(colour[l * 3 + ch]);
       }
       const double code = std::clamp(std::floor(x * 256.0 + 0.5), 0.0, 255.0);
       ASSERT_EQ(out[ch], code) << "x=" << x << " lsb=" << series_lsb;
@@ -72,12 +73,12 @@ TEST(PixelCombine, SpecularOnlyWhereSomeDiffuseIsPositive) {
   const int64_t ambient = 0;
   const int64_t behind = c.series.from_double(-0.001), zero = 0, lit = 1;  // lit: one LSB
   EXPECT_EQ(combine(&behind, &spec, &ambient, &colour, 0)[0], 0);
-  EXPECT_EQ(combine(&zero, &spec, &ambient, &colour, 0)[0], 0);     // N.L = 0 is not lit
-  EXPECT_EQ(combine(&lit, &spec, &ambient, &colour, 0)[0], 64);     // 0.25 * 256
+  EXPECT_EQ(combine(&zero, &spec, &ambient, &colour, 0)[0], 0);  // N.L = 0 is not lit
+  EXPECT_EQ(combine(&lit, &spec, &ambient, &colour, 0)[0], 64);  // 0.25 * 256
   // Gate only: the diffuse value opens the gate and is not added.
   const int64_t half = c.series.from_double(0.5);
   EXPECT_EQ(combine(&half, &spec, &ambient, &colour, 1)[0], 64);
-  EXPECT_EQ(combine(&half, &spec, &ambient, &colour, 0)[0], 192);   // (0.5 + 0.25) * 256
+  EXPECT_EQ(combine(&half, &spec, &ambient, &colour, 0)[0], 192);  // (0.5 + 0.25) * 256
   EXPECT_EQ(combine(&behind, &spec, &ambient, &colour, 1)[0], 0);
 }
 
@@ -94,9 +95,9 @@ TEST(PixelCombine, GateIsTheSignOfTheLightsChannelSum) {
   const int64_t k = c.spec_colour.from_double(0.5);
   const int64_t colour[6] = {k, k, k, k, k, k};
   const auto out = combine(diffuse, spec, ambient, colour, 0);
-  EXPECT_EQ(out[0], 64);        // light 0's specular only: 0.25
+  EXPECT_EQ(out[0], 64);  // light 0's specular only: 0.25
   EXPECT_EQ(out[1], 64);
-  EXPECT_EQ(out[2], 64 + 64);   // + blue diffuse 0.25
+  EXPECT_EQ(out[2], 64 + 64);  // + blue diffuse 0.25
   // Channels that disagree near the terminator: the sum decides (a small scale's rounding
   // cannot open the gate on its own).
   const int64_t mixed[6] = {1, -one, -one, 0, 0, 0};

@@ -1,6 +1,9 @@
-// Rasterization and visibility: the top-left rule on hand-worked cases, agreement with a brute-force
-// point-in-triangle reference, exact partition under midpoint subdivision, closed meshes shaded
-// exactly once, z-buffer ownership, span structure, and projection against closed-form cameras.
+// Rasterization and visibility: the top-left rule on hand-worked cases, agreement with a
+// brute-force point-in-triangle reference, exact partition under midpoint subdivision, closed
+// meshes shaded exactly once, z-buffer ownership, span structure, and projection against
+// closed-form cameras.
+#include "host/raster.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,17 +13,23 @@
 #include <vector>
 
 #include "host/mesh.h"
-#include "host/raster.h"
 #include "host/scene.h"
 
 namespace shadesim {
 namespace {
 
-ScreenTriangle tri(double x0, double y0, double x1, double y1, double x2, double y2, double z = 0.5) {
+ScreenTriangle tri(double x0, double y0, double x1, double y1, double x2, double y2,
+                   double z = 0.5) {
   ScreenTriangle t;
-  t.v[0].x = x0; t.v[0].y = y0; t.v[0].z = z;
-  t.v[1].x = x1; t.v[1].y = y1; t.v[1].z = z;
-  t.v[2].x = x2; t.v[2].y = y2; t.v[2].z = z;
+  t.v[0].x = x0;
+  t.v[0].y = y0;
+  t.v[0].z = z;
+  t.v[1].x = x1;
+  t.v[1].y = y1;
+  t.v[1].z = z;
+  t.v[2].x = x2;
+  t.v[2].y = y2;
+  t.v[2].z = z;
   return t;
 }
 
@@ -33,7 +42,9 @@ std::vector<int> coverage(const std::vector<ScreenTriangle>& tris, int w, int h)
   return count;
 }
 
-std::vector<int> coverage(const ScreenTriangle& t, int w, int h) { return coverage(std::vector<ScreenTriangle>{t}, w, h); }
+std::vector<int> coverage(const ScreenTriangle& t, int w, int h) {
+  return coverage(std::vector<ScreenTriangle>{t}, w, h);
+}
 
 // Independent reference: the top-left rule is "the pixel centre, nudged right by an infinitesimal
 // e1 and down by a far smaller e2, lies strictly inside". For an edge function E (positive inside)
@@ -41,7 +52,10 @@ std::vector<int> coverage(const ScreenTriangle& t, int w, int h) { return covera
 // g.x, else of g.y. Evaluated in double, exact for coordinates on a coarse grid.
 bool reference_covers(const ScreenTriangle& t, double cx, double cy) {
   double x[3], y[3];
-  for (int i = 0; i < 3; ++i) { x[i] = t.v[i].x; y[i] = t.v[i].y; }
+  for (int i = 0; i < 3; ++i) {
+    x[i] = t.v[i].x;
+    y[i] = t.v[i].y;
+  }
   const double area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
   if (area == 0) return false;
   const double s = area > 0 ? 1 : -1;  // orient so the interior is positive
@@ -60,7 +74,8 @@ TEST(TopLeft, RightTriangleWithEdgesThroughCentres) {
   // x + y = 5 has the interior above-left: a right edge, excluded. So pixels px + py <= 3.
   const std::vector<int> c = coverage(tri(0.5, 0.5, 4.5, 0.5, 0.5, 4.5), 8, 8);
   for (int py = 0; py < 8; ++py)
-    for (int px = 0; px < 8; ++px) EXPECT_EQ(c[py * 8 + px], px + py <= 3 ? 1 : 0) << px << "," << py;
+    for (int px = 0; px < 8; ++px)
+      EXPECT_EQ(c[py * 8 + px], px + py <= 3 ? 1 : 0) << px << "," << py;
 }
 
 TEST(TopLeft, ComplementaryTriangleTakesTheDiagonal) {
@@ -121,8 +136,8 @@ TEST(Coverage, MatchesBruteForceReferenceOnRandomTriangles) {
   std::uniform_int_distribution<int> coord(-8, 4 * 40 + 8);
   const int w = 40, h = 40;
   for (int n = 0; n < 400; ++n) {
-    const ScreenTriangle t = tri(coord(rng) / 4.0, coord(rng) / 4.0, coord(rng) / 4.0, coord(rng) / 4.0,
-                                 coord(rng) / 4.0, coord(rng) / 4.0);
+    const ScreenTriangle t = tri(coord(rng) / 4.0, coord(rng) / 4.0, coord(rng) / 4.0,
+                                 coord(rng) / 4.0, coord(rng) / 4.0, coord(rng) / 4.0);
     const std::vector<int> c = coverage(t, w, h);
     for (int py = 0; py < h; ++py)
       for (int px = 0; px < w; ++px)
@@ -136,9 +151,11 @@ TEST(Coverage, AreaOfBigTriangleMatchesAnalyticArea) {
   const std::vector<int> c = coverage(t, 1024, 1024);
   double count = 0;
   for (int v : c) count += v;
-  const double area = 0.5 * std::fabs((980.5 - 12.3125) * (1010.5 - 40.75) - (103.25 - 40.75) * (300.0078125 - 12.3125));
+  const double area = 0.5 * std::fabs((980.5 - 12.3125) * (1010.5 - 40.75) -
+                                      (103.25 - 40.75) * (300.0078125 - 12.3125));
   // Boundary pixels are the only ones that can disagree: fewer than the perimeter (+ corners).
-  const double perimeter = std::hypot(980.5 - 12.3125, 103.25 - 40.75) + std::hypot(300.0078125 - 980.5, 1010.5 - 103.25) +
+  const double perimeter = std::hypot(980.5 - 12.3125, 103.25 - 40.75) +
+                           std::hypot(300.0078125 - 980.5, 1010.5 - 103.25) +
                            std::hypot(12.3125 - 300.0078125, 40.75 - 1010.5);
   EXPECT_NEAR(count, area, perimeter + 4) << "area " << area;
   EXPECT_NEAR(count / area, 1.0, 0.001);
@@ -253,7 +270,8 @@ TEST(ClosedMesh, SphereFrontFacesCoverSilhouetteExactlyOnce) {
       }
       if (first < 0) continue;
       ++covered_rows_count;
-      for (int x = first; x <= last; ++x) ASSERT_EQ(c[y * s.width + x], 1) << "hole at " << x << "," << y;
+      for (int x = first; x <= last; ++x)
+        ASSERT_EQ(c[y * s.width + x], 1) << "hole at " << x << "," << y;
     }
     EXPECT_GT(covered_rows_count, 40);
     EXPECT_EQ(stats.clipped_near, 0);
@@ -288,8 +306,9 @@ TEST(Visibility, NearerWinsAndTiesGoToLowerIndex) {
   const ScreenTriangle big_far = tri(0, 0, 16, 0, 0, 16, 0.8);
   const ScreenTriangle small_near = tri(2, 2, 10, 2, 2, 10, 0.2);
   for (int order = 0; order < 2; ++order) {
-    const std::vector<ScreenTriangle> tris =
-        order == 0 ? std::vector<ScreenTriangle>{big_far, small_near} : std::vector<ScreenTriangle>{small_near, big_far};
+    const std::vector<ScreenTriangle> tris = order == 0
+                                                 ? std::vector<ScreenTriangle>{big_far, small_near}
+                                                 : std::vector<ScreenTriangle>{small_near, big_far};
     const int near_index = order == 0 ? 1 : 0;
     const Visibility v = resolve_visibility(tris, 16, 16);
     EXPECT_EQ(v.owner[3 * 16 + 3], near_index);
@@ -332,14 +351,16 @@ void check_spans(const Visibility& v, size_t triangle_count) {
   for (size_t i = 1; i < v.spans.size(); ++i) {
     const Span& a = v.spans[i - 1];
     const Span& b = v.spans[i];
-    const bool ordered = a.triangle < b.triangle ||
-                         (a.triangle == b.triangle && (a.y < b.y || (a.y == b.y && a.x0 + a.length < b.x0)));
+    const bool ordered =
+        a.triangle < b.triangle ||
+        (a.triangle == b.triangle && (a.y < b.y || (a.y == b.y && a.x0 + a.length < b.x0)));
     ASSERT_TRUE(ordered) << "span " << i;
   }
   // last_in_row: exactly the last span of each row in stream order.
   std::map<int, size_t> last;
   for (size_t i = 0; i < v.spans.size(); ++i) last[v.spans[i].y] = i;
-  for (size_t i = 0; i < v.spans.size(); ++i) ASSERT_EQ(v.spans[i].last_in_row, last[v.spans[i].y] == i) << i;
+  for (size_t i = 0; i < v.spans.size(); ++i)
+    ASSERT_EQ(v.spans[i].last_in_row, last[v.spans[i].y] == i) << i;
 }
 
 TEST(Spans, ReconstructOwnerBufferAndFollowStreamOrder) {
@@ -348,8 +369,8 @@ TEST(Spans, ReconstructOwnerBufferAndFollowStreamOrder) {
   std::uniform_real_distribution<double> depth(0, 1);
   std::vector<ScreenTriangle> tris;
   for (int n = 0; n < 200; ++n) {
-    tris.push_back(tri(coord(rng) / 256.0, coord(rng) / 256.0, coord(rng) / 256.0, coord(rng) / 256.0,
-                       coord(rng) / 256.0, coord(rng) / 256.0, depth(rng)));
+    tris.push_back(tri(coord(rng) / 256.0, coord(rng) / 256.0, coord(rng) / 256.0,
+                       coord(rng) / 256.0, coord(rng) / 256.0, coord(rng) / 256.0, depth(rng)));
   }
   const Visibility v = resolve_visibility(tris, 96, 80);
   EXPECT_EQ(v.width, 96);

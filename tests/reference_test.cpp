@@ -1,10 +1,11 @@
 // Float reference: closed-form Lambert and Blinn values at known normals, clamping, background,
 // and agreement with the affine fields the Taylor series expand.
+#include "host/reference.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "host/reference.h"
 #include "host/shading_field.h"
 
 namespace shadesim {
@@ -96,7 +97,8 @@ TEST(Reference, FlatTriangleIsClosedFormPhongBlinnEverywhere) {
 ScreenTriangle centred_triangle(Vec3 mean, Vec3 d0, Vec3 d1, Vec3 e_mean, Vec3 e0, Vec3 e1) {
   const double cx = 20.5, cy = 15.5;
   ScreenTriangle t;
-  t.v = {vert(cx - 9, cy - 6, mean + d0, e_mean + e0), vert(cx + 12, cy - 3, mean + d1, e_mean + e1),
+  t.v = {vert(cx - 9, cy - 6, mean + d0, e_mean + e0),
+         vert(cx + 12, cy - 3, mean + d1, e_mean + e1),
          vert(cx - 3, cy + 9, mean - d0 - d1, e_mean - e0 - e1)};
   return t;
 }

@@ -48,7 +48,8 @@ TEST(Render, NarrowSeriesWidthShowsUpAsError) {
 }
 
 TEST(Render, RealMeshSliversAreExactThroughWrappingCoefficients) {
-  SHADESIM_NEEDS_TEST_FILE(std::filesystem::path("/usr/share/assimp/models/BLEND/Suzanne_248.blend"));
+  SHADESIM_NEEDS_TEST_FILE(
+      std::filesystem::path("/usr/share/assimp/models/BLEND/Suzanne_248.blend"));
   // Setup keeps the Taylor error under 1 LSB; fixed-point error is far smaller, so the real
   // error stays under 1 LSB and the rounded codes differ by at most 1.
   EncodeStats wrapped;
@@ -65,13 +66,15 @@ TEST(Render, RealMeshSliversAreExactThroughWrappingCoefficients) {
 }
 
 TEST(Render, EveryShippedSceneWithEveryUnitShadesEachVisiblePixelOnce) {
-  for (const auto& entry : std::filesystem::directory_iterator(std::string(SHADESIM_SOURCE_DIR) + "/scenes")) {
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(SHADESIM_SOURCE_DIR) + "/scenes")) {
     if (entry.path().extension() != ".json") continue;
     if (entry.path().filename() == "suzanne.json") {
-      SHADESIM_NEEDS_TEST_FILE(std::filesystem::path("/usr/share/assimp/models/BLEND/Suzanne_248.blend"));
+      SHADESIM_NEEDS_TEST_FILE(
+          std::filesystem::path("/usr/share/assimp/models/BLEND/Suzanne_248.blend"));
     }
-    for (const auto unit : {SpecularUnitKind::kIdeal, SpecularUnitKind::kLut, SpecularUnitKind::kSchlick,
-                            SpecularUnitKind::kWpow}) {
+    for (const auto unit : {SpecularUnitKind::kIdeal, SpecularUnitKind::kLut,
+                            SpecularUnitKind::kSchlick, SpecularUnitKind::kWpow}) {
       SCOPED_TRACE(entry.path().string() + " with " + to_string(unit));
       const ErrorStats e = render(entry.path().filename().string(), UnitConfig{}, nullptr, unit);
       EXPECT_GT(e.pixels, 1000u);

@@ -24,12 +24,12 @@ TEST(RtlParameters, DefaultUnitMapsToItsWidthsAndCodes) {
   // UnitConfig's defaults: coef s4.32, series s4.28 truncate + wrap, spec colour u1.12,
   // specular out u1.16, 8-bit output, 12-bit coordinates, ideal unit, one-word port.
   const std::map<std::string, int64_t> want = {
-      {"CHANNELS", 1},        {"LIGHTS", 1},         {"XY_BITS", 12},
-      {"COEF_WL", 36},        {"COEF_IWL", 4},       {"SERIES_WL", 32},
-      {"SERIES_IWL", 4},      {"SERIES_QUANT", 0},   {"SERIES_OVERFLOW", 1},
-      {"SPEC_COLOUR_WL", 13}, {"SPEC_COLOUR_IWL", 1}, {"OUT_BITS", 8},
+      {"CHANNELS", 1},        {"LIGHTS", 1},           {"XY_BITS", 12},
+      {"COEF_WL", 36},        {"COEF_IWL", 4},         {"SERIES_WL", 32},
+      {"SERIES_IWL", 4},      {"SERIES_QUANT", 0},     {"SERIES_OVERFLOW", 1},
+      {"SPEC_COLOUR_WL", 13}, {"SPEC_COLOUR_IWL", 1},  {"OUT_BITS", 8},
       {"SPECULAR_KIND", 0},   {"SPECULAR_OUT_WL", 17}, {"SPECULAR_OUT_IWL", 1},
-      {"PORT_WORDS", 1},      {"TRI_QUEUE", 1},      {"LANES", 1}};
+      {"PORT_WORDS", 1},      {"TRI_QUEUE", 1},        {"LANES", 1}};
   EXPECT_EQ(m, want);
 }
 
@@ -79,7 +79,9 @@ TEST(RtlParameters, MaterialBuffersMapOnlyWhenTwo) {
     shade_unit_parameters(u);
     FAIL() << "material_buffers 3 accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("material_buffers must be 1 or 2, got 3"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("material_buffers must be 1 or 2, got 3"),
+              std::string::npos)
+        << e.what();
   }
 }
 

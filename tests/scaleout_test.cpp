@@ -44,13 +44,15 @@ Result in_source(const std::string& cmd) { return run_shell("cd " + kSource + " 
 
 size_t count_lines_matching(const std::string& text, const std::string& pattern) {
   const std::regex re(pattern);
-  return static_cast<size_t>(std::distance(std::sregex_iterator(text.begin(), text.end(), re), std::sregex_iterator()));
+  return static_cast<size_t>(
+      std::distance(std::sregex_iterator(text.begin(), text.end(), re), std::sregex_iterator()));
 }
 
 // A run's figures without what differs between two sessions of the same run: wall time, speed,
 // and where its files are.
 nlohmann::json comparable(nlohmann::json job) {
-  for (const char* k : {"seconds", "cycles_per_second", "dir", "stream", "log", "waves", "replay"}) job.erase(k);
+  for (const char* k : {"seconds", "cycles_per_second", "dir", "stream", "log", "waves", "replay"})
+    job.erase(k);
   return job;
 }
 
@@ -59,7 +61,11 @@ nlohmann::json comparable(nlohmann::json job) {
 nlohmann::json spec(const std::string& scene, const std::string& backend, int seed) {
   const std::string stem = fs::path(scene).stem().string();
   return {{"id", stem + "__own_" + stem + "__" + backend + "__seed" + std::to_string(seed)},
-          {"scene", scene}, {"config_kind", "own"}, {"config", "own:" + stem}, {"backend", backend}, {"seed", seed}};
+          {"scene", scene},
+          {"config_kind", "own"},
+          {"config", "own:" + stem},
+          {"backend", backend},
+          {"seed", seed}};
 }
 
 nlohmann::json passed_record(const nlohmann::json& s, uint64_t pixels, uint64_t cycles) {
@@ -70,26 +76,35 @@ nlohmann::json passed_record(const nlohmann::json& s, uint64_t pixels, uint64_t 
   return r;
 }
 
-void write_plan(const fs::path& dir, const std::string& name, const std::vector<nlohmann::json>& runs) {
+void write_plan(const fs::path& dir, const std::string& name,
+                const std::vector<nlohmann::json>& runs) {
   nlohmann::json ids = nlohmann::json::array();
   for (const auto& r : runs) ids.push_back(r["id"]);
-  write_text(dir / "plans" / (name + ".json"),
-             nlohmann::json{{"tool", "shadesim regress"}, {"shard", nullptr},
-                            {"settings", {{"gap_pct", 20}, {"max_gap", 8}, {"stall_pct", 20}, {"timeout", 1800},
-                                          {"watchdog", 0}}},
-                            {"runs", runs}, {"selected", ids}}
-                 .dump());
+  write_text(dir / "plans" / (name + ".json"), nlohmann::json{{"tool", "shadesim regress"},
+                                                              {"shard", nullptr},
+                                                              {"settings",
+                                                               {{"gap_pct", 20},
+                                                                {"max_gap", 8},
+                                                                {"stall_pct", 20},
+                                                                {"timeout", 1800},
+                                                                {"watchdog", 0}}},
+                                                              {"runs", runs},
+                                                              {"selected", ids}}
+                                                   .dump());
 }
 
 TEST(Merge, NamesMissingRunsAndFailsThenPassesWhenTheyArrive) {
   const fs::path d = temp_dir("scaleout", "merge_missing");
   const auto a = spec("scenes/a.json", "cpp", 1), b = spec("scenes/b.json", "cpp", 2);
   write_plan(d / "one", "all", {a, b});
-  write_text(d / "one" / "runs" / a["id"].get<std::string>() / "run.json", passed_record(a, 10, 30).dump());
-  fs::create_directories(d / "one" / "runs" / b["id"].get<std::string>());  // started, never finished
+  write_text(d / "one" / "runs" / a["id"].get<std::string>() / "run.json",
+             passed_record(a, 10, 30).dump());
+  fs::create_directories(d / "one" / "runs" /
+                         b["id"].get<std::string>());  // started, never finished
   Result r = run(("merge " + (d / "one").string() + " --json " + (d / "m.json").string()));
   EXPECT_EQ(r.status, 1) << r.output;
-  EXPECT_NE(r.output.find(b["id"].get<std::string>() + ": planned in"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(b["id"].get<std::string>() + ": planned in"), std::string::npos)
+      << r.output;
   EXPECT_NE(r.output.find("started, never finished"), std::string::npos) << r.output;
   const auto m = read_json(d / "m.json");
   EXPECT_EQ(m["missing_runs"], nlohmann::json::array({b["id"]}));
@@ -97,9 +112,10 @@ TEST(Merge, NamesMissingRunsAndFailsThenPassesWhenTheyArrive) {
   EXPECT_EQ(m["missing"], 1);
 
   // The missing run arrives in a second folder: the merge of both is whole.
-  write_text(d / "two" / "runs" / b["id"].get<std::string>() / "run.json", passed_record(b, 5, 9).dump());
-  r = run("merge " + (d / "one").string() + " " + (d / "two").string() + " --json " + (d / "m2.json").string() +
-          " --junit " + (d / "m2.xml").string());
+  write_text(d / "two" / "runs" / b["id"].get<std::string>() / "run.json",
+             passed_record(b, 5, 9).dump());
+  r = run("merge " + (d / "one").string() + " " + (d / "two").string() + " --json " +
+          (d / "m2.json").string() + " --junit " + (d / "m2.xml").string());
   EXPECT_EQ(r.status, 0) << r.output;
   const auto m2 = read_json(d / "m2.json");
   ASSERT_EQ(m2["jobs"].size(), 2u);
@@ -107,17 +123,21 @@ TEST(Merge, NamesMissingRunsAndFailsThenPassesWhenTheyArrive) {
   EXPECT_EQ(m2["missing"], 0);
 
   // The same run in two folders is a duplicate, named.
-  write_text(d / "three" / "runs" / b["id"].get<std::string>() / "run.json", passed_record(b, 5, 9).dump());
-  r = run("merge " + (d / "one").string() + " " + (d / "two").string() + " " + (d / "three").string());
+  write_text(d / "three" / "runs" / b["id"].get<std::string>() / "run.json",
+             passed_record(b, 5, 9).dump());
+  r = run("merge " + (d / "one").string() + " " + (d / "two").string() + " " +
+          (d / "three").string());
   EXPECT_EQ(r.status, 1) << r.output;
-  EXPECT_NE(r.output.find("duplicate run " + b["id"].get<std::string>()), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("duplicate run " + b["id"].get<std::string>()), std::string::npos)
+      << r.output;
 }
 
 TEST(Merge, RefusesBadFoldersAndNamesMalformedResultFiles) {
   const fs::path d = temp_dir("scaleout", "merge_bad");
   Result r = run("merge " + (d / "nowhere").string());
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.output.find((d / "nowhere").string() + ": no such folder"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find((d / "nowhere").string() + ": no such folder"), std::string::npos)
+      << r.output;
   r = run("merge " + d.string());
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("not a regress output folder"), std::string::npos) << r.output;
@@ -133,7 +153,8 @@ TEST(Merge, RefusesBadFoldersAndNamesMalformedResultFiles) {
   r = run("merge " + (d / "out").string());
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find(bad.string() + ": not valid JSON"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find(typed.string() + ": field 'cycles' is \"many\", expected an unsigned cycle count"),
+  EXPECT_NE(r.output.find(typed.string() +
+                          ": field 'cycles' is \"many\", expected an unsigned cycle count"),
             std::string::npos)
       << r.output;
 }
@@ -142,7 +163,9 @@ TEST(Regress, RefusesBadShardsAndResumeFolders) {
   for (const std::string s : {"0/3", "4/3", "3", "a/b", "2/0", "1/3x"}) {
     const Result r = in_source(kShadesim + " regress --shard " + s + " --out /tmp/shadesim_never");
     EXPECT_EQ(r.status, 2) << s << ": " << r.output;
-    EXPECT_NE(r.output.find("--shard '" + s + "': expected I/N with 1 <= I <= N"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("--shard '" + s + "': expected I/N with 1 <= I <= N"),
+              std::string::npos)
+        << r.output;
   }
   const fs::path d = temp_dir("scaleout", "resume_bad");
   Result r = run("regress --resume " + (d / "none").string());
@@ -155,18 +178,26 @@ TEST(Regress, RefusesBadShardsAndResumeFolders) {
 
 TEST(Regress, EmitsOneSelfContainedLinePerRunNamingSceneConfigBackendSeed) {
   const fs::path d = temp_dir("scaleout", "emit");
-  const Result r = in_source(kShadesim + " regress scenes/sphere.json scenes/torus.json --configs lut_d,wpow16_n"
-                             " --seed 7 --emit-jobs " + (d / "jobs.txt").string() + " --out " + (d / "out").string());
+  const Result r =
+      in_source(kShadesim +
+                " regress scenes/sphere.json scenes/torus.json --configs lut_d,wpow16_n"
+                " --seed 7 --emit-jobs " +
+                (d / "jobs.txt").string() + " --out " + (d / "out").string());
   ASSERT_EQ(r.status, 0) << r.output;
   std::ifstream is(d / "jobs.txt");
   std::vector<std::string> lines;
   for (std::string l; std::getline(is, l);) lines.push_back(l);
   // 2 scenes x 2 configurations x 2 backends; each scene x configuration the next seed.
   ASSERT_EQ(lines.size(), 8u);
-  EXPECT_NE(lines[0].find("scenes/sphere.json --configs lut_d --backends cpp --seed 7"), std::string::npos) << lines[0];
-  EXPECT_NE(lines[1].find("scenes/sphere.json --configs lut_d --backends systemc --seed 7"), std::string::npos);
-  EXPECT_NE(lines[2].find("scenes/sphere.json --configs wpow16_n --backends cpp --seed 8"), std::string::npos);
-  EXPECT_NE(lines[7].find("scenes/torus.json --configs wpow16_n --backends systemc --seed 10"), std::string::npos);
+  EXPECT_NE(lines[0].find("scenes/sphere.json --configs lut_d --backends cpp --seed 7"),
+            std::string::npos)
+      << lines[0];
+  EXPECT_NE(lines[1].find("scenes/sphere.json --configs lut_d --backends systemc --seed 7"),
+            std::string::npos);
+  EXPECT_NE(lines[2].find("scenes/sphere.json --configs wpow16_n --backends cpp --seed 8"),
+            std::string::npos);
+  EXPECT_NE(lines[7].find("scenes/torus.json --configs wpow16_n --backends systemc --seed 10"),
+            std::string::npos);
   for (const auto& l : lines) {
     EXPECT_EQ(l.rfind("cd " + kSource + " && ", 0), 0u) << l;
     EXPECT_NE(l.find("--out " + (d / "out").string()), std::string::npos) << l;
@@ -181,16 +212,20 @@ TEST(Explore, EmitsTheRunsOfItsVerificationAsRegressJobLines) {
   // The model-only search, then the chosen point's regress runs as lines instead of in RTL (the
   // area estimate's anchor is synthesised into the build's area cache once, as explore_test does).
   const fs::path d = temp_dir("scaleout", "explore_emit");
-  const Result r = in_source(kShadesim + " explore scenes/sphere.json --budget 1 --area-cache " + SHADESIM_BINARY_DIR +
-                             "/area-cache --out " + (d / "ex").string() + " --emit-jobs " + (d / "jobs.txt").string());
+  const Result r = in_source(kShadesim + " explore scenes/sphere.json --budget 1 --area-cache " +
+                             SHADESIM_BINARY_DIR + "/area-cache --out " + (d / "ex").string() +
+                             " --emit-jobs " + (d / "jobs.txt").string());
   ASSERT_EQ(r.status, 0) << r.output;
   std::ifstream is(d / "jobs.txt");
   std::vector<std::string> lines;
   for (std::string l; std::getline(is, l);) lines.push_back(l);
   ASSERT_EQ(lines.size(), 2u);  // one scene x the chosen point x 2 backends
-  const std::string chosen = (d / "ex" / "chosen.json").string(), out = (d / "ex" / "verify" / "chosen").string();
-  EXPECT_NE(lines[0].find("regress scenes/sphere.json --config " + chosen + " --backends cpp --seed 1"),
-            std::string::npos) << lines[0];
+  const std::string chosen = (d / "ex" / "chosen.json").string(),
+                    out = (d / "ex" / "verify" / "chosen").string();
+  EXPECT_NE(
+      lines[0].find("regress scenes/sphere.json --config " + chosen + " --backends cpp --seed 1"),
+      std::string::npos)
+      << lines[0];
   EXPECT_NE(lines[1].find("--backends systemc"), std::string::npos) << lines[1];
   EXPECT_NE(lines[0].find("--out " + out), std::string::npos) << lines[0];
   EXPECT_TRUE(fs::exists(d / "ex" / "verify" / "chosen" / "plans" / "emitted.json"));
@@ -201,26 +236,29 @@ TEST(Explore, EmitsTheRunsOfItsVerificationAsRegressJobLines) {
 TEST(Scaleout, ThreeShardsThroughGnuParallelMergeToTheUnshardedRun) {
   const fs::path d = temp_dir("scaleout", "shards");
   const std::string common = " --cache " + kCache + " -j 1";
-  Result r = in_source("nice -n 10 " + kShadesim + " regress" + common + " --out " + (d / "full").string() +
-                       " --json " + (d / "full.json").string());
+  Result r = in_source("nice -n 10 " + kShadesim + " regress" + common + " --out " +
+                       (d / "full").string() + " --json " + (d / "full.json").string());
   ASSERT_EQ(r.status, 0) << r.output;
-  r = in_source("nice -n 10 parallel -j 3 " + kShadesim + " regress" + common + " --shard {}/3 --out " +
-                (d / "shard{}").string() + " ::: 1 2 3");
+  r = in_source("nice -n 10 parallel -j 3 " + kShadesim + " regress" + common +
+                " --shard {}/3 --out " + (d / "shard{}").string() + " ::: 1 2 3");
   ASSERT_EQ(r.status, 0) << r.output;
-  r = run("merge " + (d / "shard1").string() + " " + (d / "shard2").string() + " " + (d / "shard3").string() +
-          " --json " + (d / "merged.json").string() + " --junit " + (d / "merged.xml").string());
+  r = run("merge " + (d / "shard1").string() + " " + (d / "shard2").string() + " " +
+          (d / "shard3").string() + " --json " + (d / "merged.json").string() + " --junit " +
+          (d / "merged.xml").string());
   ASSERT_EQ(r.status, 0) << r.output;
 
   const auto full = read_json(d / "full.json"), merged = read_json(d / "merged.json");
   // The default regression: every shipped scene on its own configuration x 2 backends.
   size_t scenes = 0;
-  for (const auto& e : fs::directory_iterator(kSource + "/scenes")) scenes += e.path().extension() == ".json";
+  for (const auto& e : fs::directory_iterator(kSource + "/scenes"))
+    scenes += e.path().extension() == ".json";
   ASSERT_EQ(full["jobs"].size(), 2 * scenes);
   ASSERT_EQ(merged["jobs"].size(), full["jobs"].size());
   for (size_t i = 0; i < full["jobs"].size(); ++i) {
     EXPECT_EQ(comparable(merged["jobs"][i]), comparable(full["jobs"][i])) << "run " << i;
   }
-  for (const char* k : {"passed", "mismatched", "errors", "skipped", "hangs", "timeouts", "missing"}) {
+  for (const char* k :
+       {"passed", "mismatched", "errors", "skipped", "hangs", "timeouts", "missing"}) {
     EXPECT_EQ(merged[k], full[k]) << k;
   }
   EXPECT_EQ(merged["passed"], 2 * scenes);
@@ -241,12 +279,14 @@ TEST(Scaleout, ThreeShardsThroughGnuParallelMergeToTheUnshardedRun) {
 // Starts a shard in the background, stops it once its first run's record is there (SIGSTOP, so no
 // later record can be written), then kills it. Returns the records it left.
 size_t run_and_kill_after_first_record(const std::string& cmd, const fs::path& out) {
-  const Result started = in_source("(" + cmd + " > " + (out.string() + ".log") + " 2>&1 & echo $!)");
+  const Result started =
+      in_source("(" + cmd + " > " + (out.string() + ".log") + " 2>&1 & echo $!)");
   const pid_t pid = static_cast<pid_t>(std::stol(started.output));
   const auto records = [&]() {
     size_t n = 0;
     if (fs::is_directory(out / "runs")) {
-      for (const auto& e : fs::directory_iterator(out / "runs")) n += fs::exists(e.path() / "run.json");
+      for (const auto& e : fs::directory_iterator(out / "runs"))
+        n += fs::exists(e.path() / "run.json");
     }
     return n;
   };
@@ -261,7 +301,8 @@ size_t run_and_kill_after_first_record(const std::string& cmd, const fs::path& o
 }
 
 TEST(Scaleout, AKilledShardIsNamedByMergeAndResumeCompletesIt) {
-  const std::string scenes = " scenes/specular.json scenes/sphere.json scenes/torus.json --backends cpp";
+  const std::string scenes =
+      " scenes/specular.json scenes/sphere.json scenes/torus.json --backends cpp";
   // Long runs (90 % back-pressure) so the shard is caught between its runs.
   const std::string common = scenes + " --stall-pct 90 --cache " + kCache + " -j 1";
   fs::path d;
@@ -269,22 +310,27 @@ TEST(Scaleout, AKilledShardIsNamedByMergeAndResumeCompletesIt) {
   // The kill lands after the first record; if the shard raced past it, try again in a fresh folder.
   for (int attempt = 0; attempt < 3 && left != 1; ++attempt) {
     d = temp_dir("scaleout", "kill" + std::to_string(attempt));
-    left = run_and_kill_after_first_record(kShadesim + " regress" + common + " --shard 1/2 --out " +
-                                               (d / "s1").string(),
-                                           d / "s1");
+    left = run_and_kill_after_first_record(
+        kShadesim + " regress" + common + " --shard 1/2 --out " + (d / "s1").string(), d / "s1");
   }
   ASSERT_EQ(left, 1u) << "the killed shard (2 runs) should have left exactly its first record";
-  Result r = in_source(kShadesim + " regress" + common + " --shard 2/2 --out " + (d / "s2").string());
+  Result r =
+      in_source(kShadesim + " regress" + common + " --shard 2/2 --out " + (d / "s2").string());
   ASSERT_EQ(r.status, 0) << r.output;
 
-  // The job list is specular (seed 1), sphere (2), torus (3); shard 1 of 2 holds specular and torus.
-  const std::set<std::string> shard1 = {"specular__own_specular__cpp__seed1", "torus__own_torus__cpp__seed3"};
-  r = run("merge " + (d / "s1").string() + " " + (d / "s2").string() + " --json " + (d / "m.json").string());
+  // The job list is specular (seed 1), sphere (2), torus (3); shard 1 of 2 holds specular and
+  // torus.
+  const std::set<std::string> shard1 = {"specular__own_specular__cpp__seed1",
+                                        "torus__own_torus__cpp__seed3"};
+  r = run("merge " + (d / "s1").string() + " " + (d / "s2").string() + " --json " +
+          (d / "m.json").string());
   EXPECT_EQ(r.status, 1) << r.output;
   const auto m = read_json(d / "m.json");
   ASSERT_EQ(m["missing_runs"].size(), 1u) << r.output;
   EXPECT_TRUE(shard1.count(m["missing_runs"][0].get<std::string>())) << m["missing_runs"];
-  EXPECT_NE(r.output.find(m["missing_runs"][0].get<std::string>() + ": planned in"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(m["missing_runs"][0].get<std::string>() + ": planned in"),
+            std::string::npos)
+      << r.output;
   EXPECT_EQ(m["passed"], 2);
 
   const auto first = fs::last_write_time(d / "s1" / "runs" / *shard1.begin() / "run.json");
@@ -292,9 +338,11 @@ TEST(Scaleout, AKilledShardIsNamedByMergeAndResumeCompletesIt) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("1 run(s) already there, 1 to run"), std::string::npos) << r.output;
   if (m["missing_runs"][0] != *shard1.begin()) {
-    EXPECT_EQ(fs::last_write_time(d / "s1" / "runs" / *shard1.begin() / "run.json"), first) << "a finished run was run again";
+    EXPECT_EQ(fs::last_write_time(d / "s1" / "runs" / *shard1.begin() / "run.json"), first)
+        << "a finished run was run again";
   }
-  r = run("merge " + (d / "s1").string() + " " + (d / "s2").string() + " --json " + (d / "m2.json").string());
+  r = run("merge " + (d / "s1").string() + " " + (d / "s2").string() + " --json " +
+          (d / "m2.json").string());
   EXPECT_EQ(r.status, 0) << r.output;
   const auto m2 = read_json(d / "m2.json");
   EXPECT_EQ(m2["passed"], 3);
@@ -305,8 +353,10 @@ TEST(Scaleout, TheWatchdogReportsAnRtlThatStopsEmittingAsAHangWithAReplay) {
   const fs::path d = temp_dir("scaleout", "hang");
   // fault_hang never lets its engines take a span of row 100: no pixel leaves after row 99.
   const uint64_t limit = 300;
-  Result r = run("cosim --backend cpp --cache " + kCache + " --config fault_hang --scenario short --seed 3 --stall-pct 0"
-                 " --watchdog " + std::to_string(limit) + " --save-dir " + d.string() + " --json " +
+  Result r = run("cosim --backend cpp --cache " + kCache +
+                 " --config fault_hang --scenario short --seed 3 --stall-pct 0"
+                 " --watchdog " +
+                 std::to_string(limit) + " --save-dir " + d.string() + " --json " +
                  (d / "hang.json").string());
   ASSERT_EQ(r.status, 1) << r.output;
   const auto j = read_json(d / "hang.json");
@@ -316,7 +366,8 @@ TEST(Scaleout, TheWatchdogReportsAnRtlThatStopsEmittingAsAHangWithAReplay) {
   // limit's worth of cycles without pix_valid_o.
   const uint64_t last_pixel = j["cycles"].get<uint64_t>() - 1;
   EXPECT_EQ(j["first_mismatch"]["cycle"].get<uint64_t>(), last_pixel + limit + 1);
-  EXPECT_NE(j["first_mismatch"]["message"].get<std::string>().find("no pix_valid_o for " + std::to_string(limit + 1)),
+  EXPECT_NE(j["first_mismatch"]["message"].get<std::string>().find("no pix_valid_o for " +
+                                                                   std::to_string(limit + 1)),
             std::string::npos);
   ASSERT_TRUE(j["replay"].is_string());
   const std::string replay = j["replay"];
@@ -328,33 +379,39 @@ TEST(Scaleout, TheWatchdogReportsAnRtlThatStopsEmittingAsAHangWithAReplay) {
   EXPECT_NE(r.output.find("HANG: hang in configuration fault_hang"), std::string::npos) << r.output;
 
   // Under regress with the default limit: status hang, a replay line, and the regression fails.
-  r = in_source(kShadesim + " regress scenes/sphere.json --configs fault_hang --backends cpp --cache " + kCache +
-                " --out " + (d / "regress").string() + " --json " + (d / "regress.json").string());
+  r = in_source(
+      kShadesim + " regress scenes/sphere.json --configs fault_hang --backends cpp --cache " +
+      kCache + " --out " + (d / "regress").string() + " --json " + (d / "regress.json").string());
   EXPECT_EQ(r.status, 1) << r.output;
   const auto reg = read_json(d / "regress.json");
   ASSERT_EQ(reg["jobs"].size(), 1u);
   EXPECT_EQ(reg["jobs"][0]["status"], "hang") << reg.dump(2);
   EXPECT_EQ(reg["hangs"], 1);
-  EXPECT_NE(reg["jobs"][0]["replay"].get<std::string>().find("--config fault_hang"), std::string::npos);
+  EXPECT_NE(reg["jobs"][0]["replay"].get<std::string>().find("--config fault_hang"),
+            std::string::npos);
   EXPECT_NE(r.output.find("replay: shadesim cosim"), std::string::npos) << r.output;
 }
 
 TEST(Scaleout, ARunPastItsTimeoutIsKilledAndReportedWithAReplay) {
   const fs::path d = temp_dir("scaleout", "timeout");
-  const Result r = in_source(kShadesim + " regress scenes/sphere.json --backends cpp --stall-pct 99 --timeout 0.05"
-                             " --cache " + kCache + " --out " + (d / "out").string() + " --json " +
-                             (d / "r.json").string());
+  const Result r =
+      in_source(kShadesim +
+                " regress scenes/sphere.json --backends cpp --stall-pct 99 --timeout 0.05"
+                " --cache " +
+                kCache + " --out " + (d / "out").string() + " --json " + (d / "r.json").string());
   EXPECT_EQ(r.status, 1) << r.output;
   const auto j = read_json(d / "r.json");
   ASSERT_EQ(j["jobs"].size(), 1u);
   EXPECT_EQ(j["jobs"][0]["status"], "timeout") << j.dump(2);
   EXPECT_EQ(j["timeouts"], 1);
-  EXPECT_NE(j["jobs"][0]["message"].get<std::string>().find("killed after 0.05 s"), std::string::npos);
+  EXPECT_NE(j["jobs"][0]["message"].get<std::string>().find("killed after 0.05 s"),
+            std::string::npos);
   EXPECT_NE(j["jobs"][0]["replay"].get<std::string>().find("--stall-pct 99"), std::string::npos);
   // Its record was written as it ended: merge sees the timeout, not a missing run.
   const Result m = run("merge " + (d / "out").string());
   EXPECT_EQ(m.status, 1);
-  EXPECT_NE(m.output.find("timeout: sphere__own_sphere__cpp__seed1"), std::string::npos) << m.output;
+  EXPECT_NE(m.output.find("timeout: sphere__own_sphere__cpp__seed1"), std::string::npos)
+      << m.output;
 }
 
 #endif  // SHADESIM_HAVE_RTL

@@ -2,26 +2,29 @@
 // computed here independently (image sizes and lights read from the scene JSON, the longest span
 // and pixel offsets walked from the host's own visibility and stream, the drift bound's closed
 // form), and the derived unit shades the scenes within the budget.
+#include "host/scene_config.h"
+
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
-#include "tests/support/render_at.h"
 #include "host/frame.h"
 #include "host/metrics.h"
 #include "host/reference.h"
-#include "host/scene_config.h"
 #include "model/shade_unit.h"
+#include "tests/support/render_at.h"
 
 namespace shadesim {
 namespace {
 
-std::string scene(const std::string& name) { return std::string(SHADESIM_SOURCE_DIR) + "/scenes/" + name; }
+std::string scene(const std::string& name) {
+  return std::string(SHADESIM_SOURCE_DIR) + "/scenes/" + name;
+}
 
 nlohmann::json scene_json(const std::string& path) {
   std::ifstream is(path);
@@ -38,7 +41,9 @@ int xy_bits_for(int size) {
 // The closed-form F: F >= log2(G (1 + L(L-1)/2) 2^out / share), share in output LSBs.
 int closed_form_series_frac(int L, double gain, double share_lsb, int out_bits) {
   const double steps = 1.0 + 0.5 * L * (L - 1.0);
-  return std::max(out_bits, static_cast<int>(std::ceil(std::log2(gain * steps * std::ldexp(1.0, out_bits) / share_lsb))));
+  return std::max(
+      out_bits,
+      static_cast<int>(std::ceil(std::log2(gain * steps * std::ldexp(1.0, out_bits) / share_lsb))));
 }
 
 // Longest span, from the host's visibility (not from the stream derive_config walks).
@@ -74,8 +79,8 @@ const FieldReason& reason_of(const DerivedConfig& d, const std::string& field) {
 }
 
 TEST(SceneConfig, StructureAndXyBitsFollowTheSceneJson) {
-  for (const char* name : {"sphere.json", "torus.json", "multi.json", "specular.json", "suzanne.json",
-                           "hard/long_span.json"}) {
+  for (const char* name : {"sphere.json", "torus.json", "multi.json", "specular.json",
+                           "suzanne.json", "hard/long_span.json"}) {
     const std::string path = scene(name);
     const auto j = scene_json(path);
     const DerivedConfig d = derive_config({path}, DeriveOptions{});
@@ -84,8 +89,8 @@ TEST(SceneConfig, StructureAndXyBitsFollowTheSceneJson) {
     EXPECT_EQ(d.config.lights, static_cast<int>(j["lights"].size())) << name;
     EXPECT_EQ(d.config.out_bits, 8) << name;
     // Every reason is there and says something.
-    for (const char* field : {"budget", "channels", "lights", "xy_bits", "coef", "series", "spec_colour",
-                              "out_bits", "specular"}) {
+    for (const char* field : {"budget", "channels", "lights", "xy_bits", "coef", "series",
+                              "spec_colour", "out_bits", "specular"}) {
       EXPECT_FALSE(reason_of(d, field).reason.empty()) << name << " " << field;
     }
   }
@@ -113,13 +118,15 @@ TEST(SceneConfig, IdealBecomesTheStatedHardwareUnit) {
   EXPECT_NE(why.find("not hardware"), std::string::npos) << why;
   DeriveOptions lut;
   lut.ideal_substitute.kind = SpecularUnitKind::kLut;
-  EXPECT_EQ(derive_config({scene("specular.json")}, lut).config.specular.kind, SpecularUnitKind::kLut);
+  EXPECT_EQ(derive_config({scene("specular.json")}, lut).config.specular.kind,
+            SpecularUnitKind::kLut);
 }
 
 class SceneConfigFiles : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() / ("shadesim_scene_config_" + std::to_string(getpid()));
+    dir_ = std::filesystem::temp_directory_path() /
+           ("shadesim_scene_config_" + std::to_string(getpid()));
     std::filesystem::create_directories(dir_);
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
@@ -160,7 +167,8 @@ TEST(SceneConfig, SeriesAndCoefficientBitsFollowTheClosedFormsOnADiffuseScene) {
   // Coefficients round (:rnd): 2^-(F+1) S <= 0.25 * 2^-8.
   const double S = max_monomial_sum(path);
   EXPECT_DOUBLE_EQ(d.measured.max_monomial_sum, S);
-  EXPECT_EQ(d.config.coef.frac_bits(), static_cast<int>(std::ceil(std::log2(S * 256 / 0.25))) - 1) << "S = " << S;
+  EXPECT_EQ(d.config.coef.frac_bits(), static_cast<int>(std::ceil(std::log2(S * 256 / 0.25))) - 1)
+      << "S = " << S;
   // Wrapping coefficients need exactly the series' integer bits.
   EXPECT_EQ(d.config.coef.overflow, Overflow::kWrap);
   EXPECT_EQ(d.config.coef.iwl, d.config.series.iwl);
@@ -185,7 +193,8 @@ TEST(SceneConfig, LongSpanIsWithinOneLsbOnItsOwnConfiguration) {
   EXPECT_NEAR(d.measured.gain, gain, 1e-9);
   const double budget = j["error_budget_lsb"];
   EXPECT_EQ(d.config.series.frac_bits(), closed_form_series_frac(L, gain, budget / 4, 8));
-  EXPECT_GE(d.config.series.frac_bits(), 30) << "the drift bound (README \"Checked numerical facts\"): F >= 30 for L = 2048";
+  EXPECT_GE(d.config.series.frac_bits(), 30)
+      << "the drift bound (README \"Checked numerical facts\"): F >= 30 for L = 2048";
   const ErrorStats e = render_at(path, d.config);
   EXPECT_LE(e.max_code_lsb, 1) << d.config.to_string();
   EXPECT_EQ(e.pixels_over_1lsb, 0u);
@@ -193,7 +202,8 @@ TEST(SceneConfig, LongSpanIsWithinOneLsbOnItsOwnConfiguration) {
 
 TEST(SceneConfig, ShippedScenesShadeOnTheirConfigurationAsWellAsOnTheDefaults) {
   // The derived widths add no error beyond the default widths': same unit, compare max codes.
-  for (const char* name : {"sphere.json", "torus.json", "multi.json", "specular.json", "suzanne.json"}) {
+  for (const char* name :
+       {"sphere.json", "torus.json", "multi.json", "specular.json", "suzanne.json"}) {
     const std::string path = scene(name);
     const DerivedConfig d = derive_config({path}, {});
     UnitConfig defaults;
@@ -202,7 +212,8 @@ TEST(SceneConfig, ShippedScenesShadeOnTheirConfigurationAsWellAsOnTheDefaults) {
     defaults.specular = d.config.specular;
     const ErrorStats on_derived = render_at(path, d.config);
     const ErrorStats on_defaults = render_at(path, defaults);
-    EXPECT_LE(on_derived.max_code_lsb, on_defaults.max_code_lsb) << name << ": " << d.config.to_string();
+    EXPECT_LE(on_derived.max_code_lsb, on_defaults.max_code_lsb)
+        << name << ": " << d.config.to_string();
     // And with the exact-pow yardstick on the same widths, within one code of the reference.
     UnitConfig ideal = d.config;
     ideal.specular.kind = SpecularUnitKind::kIdeal;

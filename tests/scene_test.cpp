@@ -1,6 +1,8 @@
 // Scene files and meshes: shipped scenes load, procedural shapes are closed and correctly wound
 // with analytic normals, transforms treat normals by the inverse transpose, and every kind of bad
 // input ends in a SceneError that names the file, the field and what was expected.
+#include "host/scene.h"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -16,7 +18,6 @@
 #include <utility>
 
 #include "host/mesh.h"
-#include "host/scene.h"
 #include "tests/support/test_data.h"
 
 namespace shadesim {
@@ -74,7 +75,8 @@ void expect_closed_and_consistent(const Mesh& mesh) {
   std::vector<int> canon(mesh.positions.size());
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
     const Vec3& p = mesh.positions[i];
-    canon[i] = id_of.emplace(std::make_tuple(p.x, p.y, p.z), static_cast<int>(id_of.size())).first->second;
+    canon[i] =
+        id_of.emplace(std::make_tuple(p.x, p.y, p.z), static_cast<int>(id_of.size())).first->second;
   }
   std::map<std::pair<int, int>, int> directed;
   for (const auto& t : mesh.triangles)
@@ -112,7 +114,8 @@ TEST(Shapes, SphereIsClosedOutwardWithRadialNormals) {
     EXPECT_LT(max_abs_diff(m.normals[i], m.positions[i] / r), 1e-12);
   }
   // Euler characteristic of a sphere: V - E + F = 2.
-  EXPECT_EQ(static_cast<int64_t>(m.positions.size()) - 3 * static_cast<int64_t>(m.triangles.size()) / 2 +
+  EXPECT_EQ(static_cast<int64_t>(m.positions.size()) -
+                3 * static_cast<int64_t>(m.triangles.size()) / 2 +
                 static_cast<int64_t>(m.triangles.size()),
             2);
 }
@@ -130,7 +133,8 @@ TEST(Shapes, TorusIsClosedOutwardWithTubeNormals) {
     EXPECT_LT(max_abs_diff(m.normals[i], (p - ring_point) / small), 1e-12);
   }
   // Genus one: V - E + F = 0.
-  EXPECT_EQ(static_cast<int64_t>(m.positions.size()) - static_cast<int64_t>(m.triangles.size()) / 2, 0);
+  EXPECT_EQ(static_cast<int64_t>(m.positions.size()) - static_cast<int64_t>(m.triangles.size()) / 2,
+            0);
 }
 
 TEST(Shapes, CylinderHasFlatCapsAndRadialSides) {
@@ -276,11 +280,10 @@ TEST(MeshFiles, ObjWithoutNormalsGetsSmoothNormals) {
   expect_unit_normals(m);
   // Smooth normal at each corner: the normalised sum of its three faces' unit normals.
   const Vec3 nx{-1, 0, 0}, ny{0, -1, 0}, nz{0, 0, -1}, slope = Vec3{1, 1, 1} / std::sqrt(3.0);
-  const std::vector<std::pair<Vec3, Vec3>> expected = {
-      {{0, 0, 0}, normalize(nx + ny + nz)},
-      {{1, 0, 0}, normalize(ny + nz + slope)},
-      {{0, 1, 0}, normalize(nx + nz + slope)},
-      {{0, 0, 1}, normalize(nx + ny + slope)}};
+  const std::vector<std::pair<Vec3, Vec3>> expected = {{{0, 0, 0}, normalize(nx + ny + nz)},
+                                                       {{1, 0, 0}, normalize(ny + nz + slope)},
+                                                       {{0, 1, 0}, normalize(nx + nz + slope)},
+                                                       {{0, 0, 1}, normalize(nx + ny + slope)}};
   int matched = 0;
   for (size_t i = 0; i < m.positions.size(); ++i) {
     for (const auto& [position, normal] : expected) {
@@ -293,7 +296,8 @@ TEST(MeshFiles, ObjWithoutNormalsGetsSmoothNormals) {
   EXPECT_EQ(matched, static_cast<int>(m.positions.size()));
   // Faces keep the file's counter-clockwise-from-outside order.
   for (const auto& t : m.triangles) {
-    const Vec3 face = cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
+    const Vec3 face =
+        cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
     const Vec3 centroid = (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) / 3.0;
     EXPECT_GT(dot(face, centroid - Vec3{0.25, 0.25, 0.25}), 0.0);
   }
@@ -347,7 +351,8 @@ TEST(MeshFiles, MissingFileAndNoTriangles) {
   std::string message = scene_error([&] { load_mesh_file(missing); });
   EXPECT_NE(message.find(missing), std::string::npos) << message;
   EXPECT_NE(message.find("cannot open"), std::string::npos) << message;
-  const std::string points = dir.write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1\np 2\nl 1 3\n");
+  const std::string points =
+      dir.write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1\np 2\nl 1 3\n");
   message = scene_error([&] { load_mesh_file(points); });
   EXPECT_NE(message.find(points), std::string::npos) << message;
   EXPECT_NE(message.find("triangle"), std::string::npos) << message;
@@ -414,53 +419,108 @@ TEST(SceneErrors, EveryBadFieldNamesFileFieldAndExpectation) {
       {"height too big", [](json& j) { j["image"]["height"] = 5000; }, "image.height", "[1, 4096]"},
       {"width fractional", [](json& j) { j["image"]["width"] = 10.5; }, "image.width", "integer"},
       {"width string", [](json& j) { j["image"]["width"] = "64"; }, "image.width", "got string"},
-      {"typo in image", [](json& j) { j["image"]["widht"] = 3; }, "image.widht", "accepted: width, height"},
+      {"typo in image", [](json& j) { j["image"]["widht"] = 3; }, "image.widht",
+       "accepted: width, height"},
       {"typo at top", [](json& j) { j["light"] = json::array(); }, "light", "accepted:"},
-      {"camera type", [](json& j) { j["camera"]["type"] = "fisheye"; }, "camera.type", "orthographic"},
+      {"camera type", [](json& j) { j["camera"]["type"] = "fisheye"; }, "camera.type",
+       "orthographic"},
       {"fov out of range", [](json& j) { j["camera"]["fov_y"] = 180; }, "camera.fov_y", "[1, 179]"},
-      {"ortho with fov", [](json& j) { j["camera"]["type"] = "orthographic"; }, "camera.fov_y", "accepted:"},
-      {"up parallel", [](json& j) { j["camera"]["up"] = {0, 0, 1}; }, "camera.up", "parallel"},
-      {"position short", [](json& j) { j["camera"]["position"] = {0, 0}; }, "camera.position", "array of 3"},
-      {"target equals position", [](json& j) { j["camera"]["target"] = {0, 0, 5}; }, "camera.target", "distinct"},
+      {"ortho with fov", [](json& j) { j["camera"]["type"] = "orthographic"; }, "camera.fov_y",
+       "accepted:"},
+      {"up parallel",
+       [](json& j) {
+         j["camera"]["up"] = {0, 0, 1};
+       },
+       "camera.up", "parallel"},
+      {"position short",
+       [](json& j) {
+         j["camera"]["position"] = {0, 0};
+       },
+       "camera.position", "array of 3"},
+      {"target equals position",
+       [](json& j) {
+         j["camera"]["target"] = {0, 0, 5};
+       },
+       "camera.target", "distinct"},
       {"no lights", [](json& j) { j["lights"] = json::array(); }, "lights", "non-empty array"},
-      {"zero light direction", [](json& j) { j["lights"][0]["direction"] = {0, 0, 0}; },
+      {"zero light direction",
+       [](json& j) {
+         j["lights"][0]["direction"] = {0, 0, 0};
+       },
        "lights[0].direction", "non-zero"},
-      {"negative colour", [](json& j) { j["lights"][0]["colour"] = {1, -0.5, 1}; }, "lights[0].colour", ">= 0"},
-      {"light colour word", [](json& j) { j["lights"][0]["colour"] = "white"; }, "lights[0].colour", "got string"},
+      {"negative colour",
+       [](json& j) {
+         j["lights"][0]["colour"] = {1, -0.5, 1};
+       },
+       "lights[0].colour", ">= 0"},
+      {"light colour word", [](json& j) { j["lights"][0]["colour"] = "white"; }, "lights[0].colour",
+       "got string"},
       {"eye", [](json& j) { j["eye"] = "near"; }, "eye", "\"infinite\" or \"finite\""},
       {"budget", [](json& j) { j["error_budget_lsb"] = 0; }, "error_budget_lsb", "positive"},
       {"ambient negative", [](json& j) { j["ambient_light"] = -1; }, "ambient_light", ">= 0"},
       {"no materials", [](json& j) { j.erase("materials"); }, "materials", "missing"},
-      {"exponent zero", [](json& j) { j["materials"][0]["exponent"] = 0.5; }, "materials[0].exponent", "[1, 1000]"},
-      {"exponent big", [](json& j) { j["materials"][0]["exponent"] = 1001; }, "materials[0].exponent", "[1, 1000]"},
-      {"unknown unit", [](json& j) { j["materials"][0]["unit"] = "magic"; }, "materials[0].unit", "magic"},
-      {"material typo", [](json& j) { j["materials"][1]["difuse"] = 0.3; }, "materials[1].difuse", "accepted:"},
-      {"material no name", [](json& j) { j["materials"][1].erase("name"); }, "materials[1].name", "string"},
-      {"duplicate material", [](json& j) { j["materials"][1]["name"] = "m"; }, "materials[1].name", "unique"},
-      {"diffuse two", [](json& j) { j["materials"][0]["diffuse"] = {0.1, 0.2}; }, "materials[0].diffuse", "[r, g, b]"},
+      {"exponent zero", [](json& j) { j["materials"][0]["exponent"] = 0.5; },
+       "materials[0].exponent", "[1, 1000]"},
+      {"exponent big", [](json& j) { j["materials"][0]["exponent"] = 1001; },
+       "materials[0].exponent", "[1, 1000]"},
+      {"unknown unit", [](json& j) { j["materials"][0]["unit"] = "magic"; }, "materials[0].unit",
+       "magic"},
+      {"material typo", [](json& j) { j["materials"][1]["difuse"] = 0.3; }, "materials[1].difuse",
+       "accepted:"},
+      {"material no name", [](json& j) { j["materials"][1].erase("name"); }, "materials[1].name",
+       "string"},
+      {"duplicate material", [](json& j) { j["materials"][1]["name"] = "m"; }, "materials[1].name",
+       "unique"},
+      {"diffuse two",
+       [](json& j) {
+         j["materials"][0]["diffuse"] = {0.1, 0.2};
+       },
+       "materials[0].diffuse", "[r, g, b]"},
       {"no objects", [](json& j) { j["objects"] = json::array(); }, "objects", "non-empty"},
-      {"object type", [](json& j) { j["objects"][1]["type"] = "cube"; }, "objects[1].type", "sphere"},
-      {"unknown material", [](json& j) { j["objects"][1]["material"] = "gold"; }, "objects[1].material",
-       "\"m\", \"n\""},
-      {"sphere with size", [](json& j) { j["objects"][0]["size"] = 2; }, "objects[0].size", "accepted:"},
-      {"radius negative", [](json& j) { j["objects"][0]["radius"] = -1; }, "objects[0].radius", "positive"},
-      {"tessellation low", [](json& j) { j["objects"][0]["tessellation"] = 2; }, "objects[0].tessellation",
-       "[3, 1024]"},
+      {"object type", [](json& j) { j["objects"][1]["type"] = "cube"; }, "objects[1].type",
+       "sphere"},
+      {"unknown material", [](json& j) { j["objects"][1]["material"] = "gold"; },
+       "objects[1].material", "\"m\", \"n\""},
+      {"sphere with size", [](json& j) { j["objects"][0]["size"] = 2; }, "objects[0].size",
+       "accepted:"},
+      {"radius negative", [](json& j) { j["objects"][0]["radius"] = -1; }, "objects[0].radius",
+       "positive"},
+      {"tessellation low", [](json& j) { j["objects"][0]["tessellation"] = 2; },
+       "objects[0].tessellation", "[3, 1024]"},
       {"tessellation huge", [](json& j) { j["objects"][0]["tessellation"] = 100000; },
        "objects[0].tessellation", "[3, 1024]"},
       {"plane tessellation zero", [](json& j) { j["objects"][1]["tessellation"] = 0; },
        "objects[1].tessellation", "[1, 1024]"},
-      {"scale zero", [](json& j) { j["objects"][0]["transform"] = {{"scale", 0}}; }, "objects[0].transform.scale",
-       "non-zero"},
-      {"rotate typo", [](json& j) { j["objects"][0]["transform"] = {{"rotate", {1, 2, 3}}}; },
+      {"scale zero",
+       [](json& j) {
+         j["objects"][0]["transform"] = {{"scale", 0}};
+       },
+       "objects[0].transform.scale", "non-zero"},
+      {"rotate typo",
+       [](json& j) {
+         j["objects"][0]["transform"] = {{"rotate", {1, 2, 3}}};
+       },
        "objects[0].transform.rotate", "rotate_deg"},
-      {"translate nan-ish", [](json& j) { j["objects"][0]["transform"] = {{"translate", {1, "x", 3}}}; },
+      {"translate nan-ish",
+       [](json& j) {
+         j["objects"][0]["transform"] = {{"translate", {1, "x", 3}}};
+       },
        "objects[0].transform.translate[1]", "finite number"},
-      {"mesh without file", [](json& j) { j["objects"][1] = {{"type", "mesh"}, {"material", "m"}}; },
+      {"mesh without file",
+       [](json& j) {
+         j["objects"][1] = {{"type", "mesh"}, {"material", "m"}};
+       },
        "objects[1].file", "missing"},
-      {"mesh missing file", [](json& j) { j["objects"][1] = {{"type", "mesh"}, {"material", "m"}, {"file", "no.obj"}}; },
+      {"mesh missing file",
+       [](json& j) {
+         j["objects"][1] = {{"type", "mesh"}, {"material", "m"}, {"file", "no.obj"}};
+       },
        "objects[1].file", "cannot open"},
-      {"objects not array", [](json& j) { j["objects"] = {{"type", "sphere"}}; }, "objects", "array"},
+      {"objects not array",
+       [](json& j) {
+         j["objects"] = {{"type", "sphere"}};
+       },
+       "objects", "array"},
       {"root not object", [](json& j) { j = json::array(); }, "(top level)", "expected an object"},
       {"specular model", [](json& j) { j["specular_model"] = "cook-torrance"; }, "specular_model",
        "\"phong\" or \"blinn\""},
@@ -494,11 +554,13 @@ TEST(SceneErrors, NumberBeyondDoubleRangeIsASceneErrorWithItsPosition) {
   // nlohmann reports "1e999" as out_of_range (no position), not as a parse error; found by
   // mutation_test. The 1e999 on line 3 starts at column 14.
   TempDir dir;
-  const std::string file = dir.write("overflow.json", "{\n  \"image\": {\n    \"width\": 1e999}\n}\n");
+  const std::string file =
+      dir.write("overflow.json", "{\n  \"image\": {\n    \"width\": 1e999}\n}\n");
   const std::string message = scene_error([&] { load_scene(file); });
   EXPECT_EQ(message.rfind(file + ":3:14: malformed JSON: number overflow", 0), 0u) << message;
   const std::string negative = dir.write("negative.json", "[-1e999]");
-  EXPECT_EQ(scene_error([&] { load_scene(negative); }).rfind(negative + ":1:2: malformed JSON", 0), 0u);
+  EXPECT_EQ(scene_error([&] { load_scene(negative); }).rfind(negative + ":1:2: malformed JSON", 0),
+            0u);
 }
 
 TEST(SceneErrors, TruncatedAndGarbageFiles) {
@@ -516,7 +578,8 @@ TEST(SceneErrors, TruncatedAndGarbageFiles) {
   const std::string file = dir.write("garbage.json", garbage);
   EXPECT_NE(scene_error([&] { load_scene(file); }).find("malformed JSON"), std::string::npos);
   const std::string missing = dir.path() + "/absent.json";
-  EXPECT_NE(scene_error([&] { load_scene(missing); }).find(missing + ": cannot open"), std::string::npos);
+  EXPECT_NE(scene_error([&] { load_scene(missing); }).find(missing + ": cannot open"),
+            std::string::npos);
 }
 
 TEST(SceneErrors, InvalidMeshInSceneNamesBothFiles) {
@@ -536,7 +599,9 @@ TEST(SceneFiles, RelativeMeshPathResolvesAgainstSceneDirectory) {
   fs::create_directories(dir.path() + "/meshes");
   dir.write("meshes/tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   json j = valid_scene();
-  j["objects"][1] = {{"type", "mesh"}, {"material", "n"}, {"file", "meshes/tri.obj"},
+  j["objects"][1] = {{"type", "mesh"},
+                     {"material", "n"},
+                     {"file", "meshes/tri.obj"},
                      {"transform", {{"translate", {0, 0, 1}}, {"scale", 2}}}};
   const Scene s = load_scene(dir.write("rel.json", j.dump()));
   const Mesh& m = s.objects.at(1).mesh;

@@ -1,11 +1,12 @@
 // SchlickDivider against integer division and double precision: the bit-serial divider over all
 // operand pairs at small widths, a derived bound against t / (n - n t + t), and the clamps.
+#include "model/schlick_divider.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "host/specular_setup.h"
-#include "model/schlick_divider.h"
 #include "model/specular_unit.h"
 
 namespace shadesim {
@@ -26,7 +27,8 @@ struct Harness {
   UnitConfig cfg;
   SpecularSeriesPlan plan;
   SpecularUnit unit;
-  Harness(const SchlickConfig& s, double n) : cfg(make(s)), plan(plan_specular(cfg, n)), unit(cfg) {}
+  Harness(const SchlickConfig& s, double n)
+      : cfg(make(s)), plan(plan_specular(cfg, n)), unit(cfg) {}
   static UnitConfig make(const SchlickConfig& s) {
     UnitConfig c;
     c.specular.kind = SpecularUnitKind::kSchlick;
@@ -35,7 +37,8 @@ struct Harness {
   }
   double at(double t) const {
     int64_t v[2];
-    for (int i = 0; i < 2; ++i) v[i] = cfg.series.from_double(plan.affine[i].first * t + plan.affine[i].second);
+    for (int i = 0; i < 2; ++i)
+      v[i] = cfg.series.from_double(plan.affine[i].first * t + plan.affine[i].second);
     return cfg.specular.out.to_double(unit.evaluate(v));
   }
 };
@@ -58,7 +61,8 @@ TEST(SchlickDivider, WithinDerivedBoundOfDouble) {
           const double exact = t / (n - n * t + t);
           const double bound = exact * (e / num + e / den) / (1 - e / den) + std::ldexp(1.0, -q) +
                                std::ldexp(1.0, -16);
-          ASSERT_LE(std::fabs(h.at(t) - exact), bound) << "t " << t << " n " << n << " Q " << q << " D " << d;
+          ASSERT_LE(std::fabs(h.at(t) - exact), bound)
+              << "t " << t << " n " << n << " Q " << q << " D " << d;
         }
       }
     }
@@ -84,9 +88,9 @@ TEST(SchlickDivider, DenominatorTowardZeroAndDirectOperands) {
   s.operand_bits = 8;
   SchlickDivider div(s, series, out);
   const int64_t one = int64_t{1} << 28;
-  EXPECT_EQ(div.evaluate(one / 4, 0), int64_t{1} << 16);        // den == 0
-  EXPECT_EQ(div.evaluate(one / 4, -5), int64_t{1} << 16);       // den < 0
-  EXPECT_EQ(div.evaluate(1, 1), 0);                              // both below the operand LSB
+  EXPECT_EQ(div.evaluate(one / 4, 0), int64_t{1} << 16);          // den == 0
+  EXPECT_EQ(div.evaluate(one / 4, -5), int64_t{1} << 16);         // den < 0
+  EXPECT_EQ(div.evaluate(1, 1), 0);                               // both below the operand LSB
   EXPECT_EQ(div.evaluate(one >> 6, one >> 7), int64_t{1} << 16);  // quotient 2 >= 1
   EXPECT_EQ(div.evaluate(one >> 7, one >> 6), int64_t{1} << 15);  // 1/2 exactly (2 / 4 LSBs)
   EXPECT_EQ(div.evaluate(one >> 9, one >> 6), 0);                 // numerator below the LSB
@@ -124,9 +128,11 @@ TEST(SchlickDivider, SmallestWidths) {
 TEST(SchlickDivider, FittedExponentHalvesAbsoluteError) {
   double paper = 0, fitted = 0;
   for (double n : {16.0, 100.0, 1000.0}) {
-    paper = std::max(paper, measure_errors(n, [&](double t) { return schlick_float(t, n); }).abs_lsb);
+    paper =
+        std::max(paper, measure_errors(n, [&](double t) { return schlick_float(t, n); }).abs_lsb);
     const double np = fit_schlick_n(n, FitObjective::kAbsolute);
-    fitted = std::max(fitted, measure_errors(n, [&](double t) { return schlick_float(t, np); }).abs_lsb);
+    fitted =
+        std::max(fitted, measure_errors(n, [&](double t) { return schlick_float(t, np); }).abs_lsb);
   }
   EXPECT_NEAR(paper, 52.0, 1.0);
   EXPECT_LT(fitted, 0.6 * paper);

@@ -40,7 +40,8 @@ const std::vector<uint64_t> kModelCycles = {100, 101, 102, 104, 105};
 
 // Feeds the cycle model's beats (one pixel each) on kModelCycles and the RTL's pixels `rtl` on
 // `rtl_cycles`, in cycle order, the RTL's first on a shared cycle.
-void feed(Scoreboard& board, const std::vector<PixelOut>& rtl, const std::vector<uint64_t>& rtl_cycles,
+void feed(Scoreboard& board, const std::vector<PixelOut>& rtl,
+          const std::vector<uint64_t>& rtl_cycles,
           const std::vector<PixelOut>& model = two_rows()) {
   size_t r = 0, m = 0;
   while (r < rtl.size() || m < model.size()) {
@@ -58,7 +59,8 @@ void feed(Scoreboard& board, const std::vector<PixelOut>& rtl, const std::vector
 TEST(Scoreboard, AFaithfulRunPasses) {
   Scoreboard board(two_rows(), kChannels);
   feed(board, two_rows(), kModelCycles);
-  EXPECT_FALSE(board.failed()) << board.first_mismatch().expected << " / " << board.first_mismatch().got;
+  EXPECT_FALSE(board.failed()) << board.first_mismatch().expected << " / "
+                               << board.first_mismatch().got;
   EXPECT_TRUE(board.complete());
   EXPECT_EQ(board.pixels_checked(), 5u);
   EXPECT_EQ(board.scanlines_checked(), 2u);
@@ -110,8 +112,9 @@ TEST(Scoreboard, AChannelTwoErrorFromThePortsIsAPixelMismatch) {
     board.model_beat(kModelCycles[k], want[k].x, want[k].y, 1, want[k].end_of_row);
     const uint64_t blue = k == 1 ? 0 : want[k].colour[2];  // pixel 1's blue is lost
     const uint64_t bus = want[k].colour[0] | uint64_t{want[k].colour[1]} << 8 | blue << 16;
-    score_beat(board, want[k].x, want[k].y, 1, want[k].end_of_row,
-               [bus](int lsb, int width) { return port_bits(bus, lsb, width); }, cfg, kModelCycles[k]);
+    score_beat(
+        board, want[k].x, want[k].y, 1, want[k].end_of_row,
+        [bus](int lsb, int width) { return port_bits(bus, lsb, width); }, cfg, kModelCycles[k]);
   }
   ASSERT_TRUE(board.failed());
   EXPECT_EQ(board.first_mismatch().kind, Kind::kPixel);
@@ -268,7 +271,8 @@ TEST(Scoreboard, AReadyMismatchIsReportedWithThePort) {
   EXPECT_EQ(m.y, 5);
   EXPECT_EQ(m.x, 4);
   EXPECT_EQ(m.expected,
-            "cmd_ready_o 1 (cycle model), beat 41 of 90 on the port (cmd_valid_i 1, word 0 0x0300000000000007)");
+            "cmd_ready_o 1 (cycle model), beat 41 of 90 on the port (cmd_valid_i 1, word 0 "
+            "0x0300000000000007)");
   EXPECT_EQ(m.got, "cmd_ready_o 0 (RTL)");
 }
 
@@ -282,9 +286,10 @@ TEST(Scoreboard, AReadyMismatchWhileIdleIsReportedToo) {
   board.cmd_ready(7, true, false, port);
   ASSERT_FALSE(board.passed());
   EXPECT_EQ(board.first_mismatch().kind, Kind::kReady);
-  EXPECT_EQ(board.first_mismatch().expected,
-            "cmd_ready_o 0 (cycle model), idle before beat 3 of 90 on the port (cmd_valid_i 0, word 0 "
-            "0x00000000000000ff)");
+  EXPECT_EQ(
+      board.first_mismatch().expected,
+      "cmd_ready_o 0 (cycle model), idle before beat 3 of 90 on the port (cmd_valid_i 0, word 0 "
+      "0x00000000000000ff)");
   EXPECT_EQ(board.first_mismatch().got, "cmd_ready_o 1 (RTL)");
 }
 
@@ -305,7 +310,8 @@ TEST(Scoreboard, APixelSideMismatchAfterAReadyMismatchIsReportedWithIt) {
   EXPECT_EQ(m.x, 4);
   EXPECT_EQ(m.cycle, 104u);
   EXPECT_EQ(m.before,
-            "cmd_ready_o differed first, on cycle 101: expected cmd_ready_o 1 (cycle model), beat 12 of 40 "
+            "cmd_ready_o differed first, on cycle 101: expected cmd_ready_o 1 (cycle model), beat "
+            "12 of 40 "
             "on the port (cmd_valid_i 1, word 0 0x0000000000000010), got cmd_ready_o 0 (RTL)");
 }
 
@@ -344,11 +350,15 @@ TEST(Scoreboard, AWrongPixelInLaneThreeIsReported) {
   board.model_beat(50, 8, 2, 4, true);
   // The bus: lane j at bits [24 j, 24 j + 24), channel c at 8 c within it.
   std::vector<uint64_t> lanes;
-  for (const PixelOut& p : want) lanes.push_back(p.colour[0] | uint64_t{p.colour[1]} << 8 | uint64_t{p.colour[2]} << 16);
+  for (const PixelOut& p : want)
+    lanes.push_back(p.colour[0] | uint64_t{p.colour[1]} << 8 | uint64_t{p.colour[2]} << 16);
   lanes[3] += uint64_t{1} << 8;
-  score_beat(board, 8, 2, 0xF, true,
-             [&lanes](int lsb, int width) { return port_bits(lanes[static_cast<size_t>(lsb / 24)], lsb % 24, width); },
-             cfg, 50);
+  score_beat(
+      board, 8, 2, 0xF, true,
+      [&lanes](int lsb, int width) {
+        return port_bits(lanes[static_cast<size_t>(lsb / 24)], lsb % 24, width);
+      },
+      cfg, 50);
   ASSERT_TRUE(board.failed());
   const Mismatch m = board.first_mismatch();
   EXPECT_EQ(m.kind, Kind::kPixel);

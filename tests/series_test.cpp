@@ -1,12 +1,11 @@
 // SpanSetup + SeriesEngine against direct evaluation of the quantized quadratic, and the drift
 // bound 2^-F (1 + L(L-1)/2) of README "Checked numerical facts", on spans up to 2048 pixels.
 #define SC_INCLUDE_FX
-#include <systemc>
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
+#include <systemc>
 
 #include "model/series_engine.h"
 #include "model/span_setup.h"
@@ -35,7 +34,8 @@ Drift run_span(const FixedFormat& coef, const FixedFormat& series, const int64_t
   const int shift = coef.frac_bits() - series.frac_bits();
   for (int k = 0; k < len; ++k) {
     const double exact_lsb = std::ldexp(static_cast<double>(direct(t, dx + k, dy)), -shift);
-    drift.worst_lsb = std::max(drift.worst_lsb, std::fabs(static_cast<double>(engine.value()) - exact_lsb));
+    drift.worst_lsb =
+        std::max(drift.worst_lsb, std::fabs(static_cast<double>(engine.value()) - exact_lsb));
     engine.step();
   }
   return drift;
@@ -47,7 +47,7 @@ Drift run_span(const FixedFormat& coef, const FixedFormat& series, const int64_t
 void random_coefficients(std::mt19937_64& rng, const FixedFormat& coef, int len, int64_t* t) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const double l = len + 64;
-  const double vals[6] = {0.5 + 0.4 * u(rng), 0.5 * u(rng) / l, 0.5 * u(rng) / l,
+  const double vals[6] = {0.5 + 0.4 * u(rng),     0.5 * u(rng) / l,       0.5 * u(rng) / l,
                           0.5 * u(rng) / (l * l), 0.5 * u(rng) / (l * l), 0.5 * u(rng) / (l * l)};
   for (int i = 0; i < 6; ++i) t[i] = coef.from_double(vals[i]);
 }
@@ -73,7 +73,8 @@ TEST_P(DriftBound, ForwardDifferencesStayWithinProvenBound) {
   const FixedFormat series{32, 4, true, quant, Overflow::kWrap};
   // Truncation: each of v, d, d2 is low by [0, 1) LSB, so after k steps the error is below
   // 1 + k + k(k-1)/2 = 1 + (k+1)k/2 <= 1 + L(L-1)/2 LSB for k <= L-1. Round-to-nearest halves it.
-  const double bound = (1.0 + len * (len - 1) / 2.0) * (quant == Quantization::kTruncate ? 1.0 : 0.5);
+  const double bound =
+      (1.0 + len * (len - 1) / 2.0) * (quant == Quantization::kTruncate ? 1.0 : 0.5);
   std::mt19937_64 rng(static_cast<uint64_t>(len) * 31 + static_cast<int>(quant));
   double worst = 0;
   for (int trial = 0; trial < 100; ++trial) {
@@ -87,10 +88,10 @@ TEST_P(DriftBound, ForwardDifferencesStayWithinProvenBound) {
   if (len >= 64) EXPECT_GT(worst, 4.0) << "L=" << len;
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Lengths, DriftBound,
-    ::testing::Combine(::testing::Values(1, 2, 64, 256, 1024, 2048),
-                       ::testing::Values(Quantization::kTruncate, Quantization::kRoundNearest)));
+INSTANTIATE_TEST_SUITE_P(Lengths, DriftBound,
+                         ::testing::Combine(::testing::Values(1, 2, 64, 256, 1024, 2048),
+                                            ::testing::Values(Quantization::kTruncate,
+                                                              Quantization::kRoundNearest)));
 
 TEST(Series, DesignBriefFractionBitsKeepDriftUnderHalfAnEightBitStep) {
   // F >= 20, 24, 28, 30 for L = 64, 256, 1024, 2048 (truncation): bound * 2^-F <= 2^-9.
@@ -144,7 +145,8 @@ TEST(Series, BankAndEnginesStepAsScFixAdders) {
         const SeriesStart& w = want[static_cast<size_t>(i)];
         ASSERT_EQ(bank.values()[i], w.v) << "step " << k << " series " << i;
         ASSERT_EQ(engines[static_cast<size_t>(i)].value(), w.v) << "step " << k << " series " << i;
-        ASSERT_EQ(engines[static_cast<size_t>(i)].state().d, w.d) << "step " << k << " series " << i;
+        ASSERT_EQ(engines[static_cast<size_t>(i)].state().d, w.d)
+            << "step " << k << " series " << i;
       }
       bank.step();
       for (auto& e : engines) e.step();

@@ -95,8 +95,9 @@ Brute brute_force_error(const ScreenTriangle& t, const TriangleSeries& s, const 
                          m.specular.x * std::pow(std::min(1.0, std::max(0.0, sp)), m.exponent);
         return std::min(1.0, std::max(0.0, c));
       };
-      const double err = std::fabs(colour(s.diffuse[0].eval(x, y), s.specular[0].eval(x, y)) -
-                                   colour(td, ts)) * 256.0;
+      const double err =
+          std::fabs(colour(s.diffuse[0].eval(x, y), s.specular[0].eval(x, y)) - colour(td, ts)) *
+          256.0;
       b.max_lsb = std::max(b.max_lsb, err);
     }
   }
@@ -145,7 +146,8 @@ TEST(Setup, SixtyDegreeTriangleExceedsBudgetUnsplitAndFitsAfterSubdivision) {
     area_sum += ((v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y));
   }
   const auto& v = t.v;
-  EXPECT_DOUBLE_EQ(area_sum, (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y));
+  EXPECT_DOUBLE_EQ(area_sum,
+                   (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y));
   // Closed triangles: pixels on shared edges count in both children.
   EXPECT_GE(pixels, brute_whole.pixels);
 }
@@ -160,7 +162,8 @@ TEST(Setup, SeventeenDegreeTriangleIsNearOneLsb) {
   for (int i = 0; i <= 8; ++i) {
     for (int j = 0; j < 16; ++j) {
       const double theta = i * (kPi / 2) / 8, phi = j * 2 * kPi / 16;
-      const Vec3 L{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+      const Vec3 L{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                   std::cos(theta)};
       const Scene scene = diffuse_scene(L);
       const double e = brute_force_error(t, setup_triangle(t, scene), scene).max_lsb;
       if (e > worst) {
@@ -169,8 +172,10 @@ TEST(Setup, SeventeenDegreeTriangleIsNearOneLsb) {
       }
     }
   }
-  std::printf("17 deg triangle (~160 px edges): worst unsplit error over 144 lights %.3f LSB, "
-              "light (%.3f, %.3f, %.3f)\n", worst, worst_light.x, worst_light.y, worst_light.z);
+  std::printf(
+      "17 deg triangle (~160 px edges): worst unsplit error over 144 lights %.3f LSB, "
+      "light (%.3f, %.3f, %.3f)\n",
+      worst, worst_light.x, worst_light.y, worst_light.z);
   EXPECT_GT(worst, 0.3);
   EXPECT_LT(worst, 3.0);
 }
@@ -188,7 +193,8 @@ TEST(Setup, SpecularHighExponentIsMeasuredAndSubdivided) {
   EXPECT_NEAR(measure_error_lsb(t, whole, scene, SetupOptions()), bw.max_lsb, 1e-9);
   Scene diffuse_only = scene;
   diffuse_only.materials[0].specular = {0, 0, 0};
-  const double diffuse_err = brute_force_error(t, setup_triangle(t, diffuse_only), diffuse_only).max_lsb;
+  const double diffuse_err =
+      brute_force_error(t, setup_triangle(t, diffuse_only), diffuse_only).max_lsb;
   std::printf("30 deg triangle, n = 100: unsplit %.2f LSB with specular, %.2f diffuse only\n",
               bw.max_lsb, diffuse_err);
   EXPECT_GT(bw.max_lsb, diffuse_err);  // pow amplifies the Taylor error of t_s
@@ -228,7 +234,8 @@ TEST(Setup, ChildrenCarryTheParentsField) {
 
 TEST(Setup, TriangleCoveringNoPixelCentreHasZeroError) {
   const auto n = cone_normals(1.2);
-  const ScreenTriangle t = tri(vert(10.6, 10.6, n[0]), vert(10.9, 10.6, n[1]), vert(10.6, 10.9, n[2]));
+  const ScreenTriangle t =
+      tri(vert(10.6, 10.6, n[0]), vert(10.9, 10.6, n[1]), vert(10.6, 10.9, n[2]));
   const Scene scene = diffuse_scene({0.3, -0.2, 1.0});
   const SetupResult r = subdivide_and_setup({t}, scene, SetupOptions());
   EXPECT_EQ(r.stats.splits, 0u);
@@ -301,11 +308,12 @@ void run_sphere(int cells, double exponent) {
   const auto t0 = std::chrono::steady_clock::now();
   const SetupResult r = subdivide_and_setup(tris, scene, SetupOptions());
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("sphere 1024^2, %dx%d cells, n = %g: %zu in, %zu out, %zu splits (%zu inputs split), "
-              "%zu over budget, worst %.3f LSB, depth %d, %.2f s\n",
-              cells, cells, exponent, r.stats.triangles_in, r.stats.triangles_out, r.stats.splits,
-              r.stats.inputs_split, r.stats.over_budget, r.stats.worst_error_lsb,
-              r.stats.max_depth_reached, secs);
+  std::printf(
+      "sphere 1024^2, %dx%d cells, n = %g: %zu in, %zu out, %zu splits (%zu inputs split), "
+      "%zu over budget, worst %.3f LSB, depth %d, %.2f s\n",
+      cells, cells, exponent, r.stats.triangles_in, r.stats.triangles_out, r.stats.splits,
+      r.stats.inputs_split, r.stats.over_budget, r.stats.worst_error_lsb, r.stats.max_depth_reached,
+      secs);
   EXPECT_EQ(r.stats.triangles_in, tris.size());
   EXPECT_EQ(r.stats.triangles_out, tris.size() + r.stats.splits);
   EXPECT_EQ(r.stats.over_budget, 0u);

@@ -46,7 +46,8 @@ TEST(SpecError, PlansMapTheSeriesAsDocumented) {
   const double k = std::ldexp(1.0, static_cast<int>(w.unit_params[0]));
   for (double t : {-1.0, 0.0, 0.5, 0.99, 1.0}) {
     EXPECT_NEAR((w.affine[0].first * t + w.affine[0].second) * k, zeta * (t - 1) + 1, 1e-9);
-    EXPECT_LE(std::fabs(w.affine[0].first * t + w.affine[0].second), 4.0);  // fits s4.28 with margin
+    EXPECT_LE(std::fabs(w.affine[0].first * t + w.affine[0].second),
+              4.0);  // fits s4.28 with margin
   }
   EXPECT_EQ(w.unit_params[1], 4);
 

@@ -68,9 +68,10 @@ std::string json_value(const SpecularField& f, int v) {
 }
 
 // {"specular": {"kind": UNIT, UNIT: {KEY: VALUE}}}
-std::string overlay(const SpecularUnitDescriptor& u, const SpecularField& f, const std::string& value) {
-  return std::string(R"({"specular": {"kind": ")") + u.name + R"(", ")" + u.name + R"(": {")" + f.key +
-         R"(": )" + value + "}}}";
+std::string overlay(const SpecularUnitDescriptor& u, const SpecularField& f,
+                    const std::string& value) {
+  return std::string(R"({"specular": {"kind": ")") + u.name + R"(", ")" + u.name + R"(": {")" +
+         f.key + R"(": )" + value + "}}}";
 }
 
 // The error message of overlay_unit_config on `json` ("" if it does not throw).
@@ -122,7 +123,8 @@ TEST(SpecularUnits, EveryKindHasOneRowWithUniqueNames) {
         EXPECT_TRUE(verilog.insert(f.verilog).second) << f.verilog << " twice";
       }
       EXPECT_LE(f.lo, f.hi) << u.field_name(f);
-      EXPECT_TRUE(f.in_range(f.get(SpecularConfig{}))) << u.field_name(f) << "'s default is out of range";
+      EXPECT_TRUE(f.in_range(f.get(SpecularConfig{})))
+          << u.field_name(f) << "'s default is out of range";
     }
   }
   EXPECT_EQ(specular_units().size(), 4u);
@@ -139,10 +141,13 @@ TEST(SpecularUnits, EveryFieldRoundTripsThroughJson) {
       f.set(c.specular, v);
       // Written by config_to_json, read back both as a stream header and as a config file.
       const std::string json = config_to_json(c);
-      EXPECT_EQ(f.get(config_from_json(json, "test: ").specular), v) << u.field_name(f) << " in " << json;
-      EXPECT_EQ(f.get(overlay_unit_config(json, UnitConfig{}, "test.json").specular), v) << u.field_name(f);
+      EXPECT_EQ(f.get(config_from_json(json, "test: ").specular), v)
+          << u.field_name(f) << " in " << json;
+      EXPECT_EQ(f.get(overlay_unit_config(json, UnitConfig{}, "test.json").specular), v)
+          << u.field_name(f);
       // Hand-written: only this field.
-      const UnitConfig d = overlay_unit_config(overlay(u, f, json_value(f, v)), UnitConfig{}, "test.json");
+      const UnitConfig d =
+          overlay_unit_config(overlay(u, f, json_value(f, v)), UnitConfig{}, "test.json");
       EXPECT_EQ(f.get(d.specular), v) << u.field_name(f);
       EXPECT_EQ(d.specular.kind, u.kind);
     }
@@ -169,13 +174,15 @@ TEST(SpecularUnits, JsonRefusesOutOfRangeNamingTheField) {
     }
   }
   // A rule across fields (the LUT's check): interpolation needs two entries.
-  const std::string lut = overlay_error(R"({"specular": {"kind": "lut", "lut": {"addr_bits": 1, "interp_bits": 2}}})");
+  const std::string lut =
+      overlay_error(R"({"specular": {"kind": "lut", "lut": {"addr_bits": 1, "interp_bits": 2}}})");
   EXPECT_NE(lut.find("lut.addr_bits must be >= 2 with interpolation"), std::string::npos) << lut;
   EXPECT_EQ(overlay_error(R"({"specular": {"kind": "lut", "lut": {"addr_bits": 1}}})"), "");
   // Unknown keys list the table's keys.
   const std::string msg = overlay_error(R"({"specular": {"wpow": {"m": 4}}})");
-  EXPECT_NE(msg.find("specular.wpow.m: unknown field; expected one of max_m, base_bits, timing, fit"),
-            std::string::npos)
+  EXPECT_NE(
+      msg.find("specular.wpow.m: unknown field; expected one of max_m, base_bits, timing, fit"),
+      std::string::npos)
       << msg;
 }
 
@@ -194,15 +201,15 @@ TEST(SpecularUnits, EveryFieldHasACommandLineOptionThatSetsIt) {
       EXPECT_EQ(f.get(c.specular), v) << f.cli;
       // Out of range: refused naming the option.
       const std::vector<std::string> bad =
-          f.is_enum() ? std::vector<std::string>{"no-such-value"}
-                      : [&] {
-                          std::vector<std::string> b = {"x7"};
-                          for (int x : rejected_values(f)) b.push_back(std::to_string(x));
-                          return b;
-                        }();
+          f.is_enum() ? std::vector<std::string>{"no-such-value"} : [&] {
+            std::vector<std::string> b = {"x7"};
+            for (int x : rejected_values(f)) b.push_back(std::to_string(x));
+            return b;
+          }();
       for (const std::string& value : bad) {
         const std::string msg = cli_error({f.cli, value});
-        EXPECT_NE(msg.find(f.cli), std::string::npos) << f.cli << " " << value << " -> '" << msg << "'";
+        EXPECT_NE(msg.find(f.cli), std::string::npos)
+            << f.cli << " " << value << " -> '" << msg << "'";
       }
     }
   }
@@ -223,7 +230,8 @@ TEST(SpecularUnits, EveryFieldHasACommandLineOptionThatSetsIt) {
     }
   }
   // The options the README and the tests use by name.
-  const UnitConfig d = parse_cli({"--lut-addr-bits", "12", "--wpow-m", "8", "--schlick-timing", "pipelined"});
+  const UnitConfig d =
+      parse_cli({"--lut-addr-bits", "12", "--wpow-m", "8", "--schlick-timing", "pipelined"});
   EXPECT_EQ(d.specular.lut.addr_bits, 12);
   EXPECT_EQ(d.specular.wpow.max_m, 8);
   EXPECT_EQ(d.specular.schlick.timing, UnitTiming::kPipelined);
@@ -276,9 +284,11 @@ TEST(SpecularUnits, VerilogNamesAndDefaultsAreShadeUnitsOwn) {
   EXPECT_EQ(sv.at("SCHLICK_OPERAND_BITS"), "24");
   EXPECT_EQ(sv.at("WPOW_TIMING"), "0");
   const std::map<std::string, int64_t> rtl_defaults = {
-      {"LUT_ADDR_BITS", 10}, {"LUT_ENTRY_BITS", 8}, {"LUT_INTERP_BITS", 0}, {"LUT_INDEX", 0},
-      {"SCHLICK_QUOTIENT_BITS", 16}, {"SCHLICK_OPERAND_BITS", 24}, {"SCHLICK_TIMING", 1},
-      {"WPOW_MAX_M", 16}, {"WPOW_BASE_BITS", 16}, {"WPOW_TIMING", 0}};
+      {"LUT_ADDR_BITS", 10},         {"LUT_ENTRY_BITS", 8},
+      {"LUT_INTERP_BITS", 0},        {"LUT_INDEX", 0},
+      {"SCHLICK_QUOTIENT_BITS", 16}, {"SCHLICK_OPERAND_BITS", 24},
+      {"SCHLICK_TIMING", 1},         {"WPOW_MAX_M", 16},
+      {"WPOW_BASE_BITS", 16},        {"WPOW_TIMING", 0}};
   std::set<std::string> in_table;
   for (const SpecularUnitDescriptor& u : specular_units()) {
     const auto p = as_map(shade_unit_parameters(on(u)));
@@ -297,7 +307,8 @@ TEST(SpecularUnits, VerilogNamesAndDefaultsAreShadeUnitsOwn) {
   // Every unit parameter of shade_unit has its row.
   for (const auto& [name, value] : sv) {
     if (std::regex_match(name, std::regex("(LUT|SCHLICK|WPOW)_\\w+"))) {
-      EXPECT_EQ(in_table.count(name), 1u) << name << " of rtl/shade_unit.sv has no row in the table";
+      EXPECT_EQ(in_table.count(name), 1u)
+          << name << " of rtl/shade_unit.sv has no row in the table";
     }
   }
   EXPECT_EQ(in_table.size(), rtl_defaults.size());

@@ -1,6 +1,8 @@
 // Taylor coefficients by automatic differentiation, checked against Bishop & Weimer's closed forms
 // (with the errata in README "Checked numerical facts") and against central finite differences
 // of the exact shading functions.
+#include "host/taylor.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +10,6 @@
 #include <random>
 
 #include "host/shading_field.h"
-#include "host/taylor.h"
 
 namespace shadesim {
 namespace {
@@ -17,7 +18,9 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 struct Rng {
   std::mt19937_64 gen{0x5eed2024u};
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(gen); }
+  double uniform(double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(gen);
+  }
   Vec3 vec(double r) { return {uniform(-r, r), uniform(-r, r), uniform(-r, r)}; }
 };
 
@@ -27,7 +30,7 @@ struct FieldCase {
   AffineField abs;
   Vec3 A, B, C;  // N(xc + x', yc + y') = A x' + B y' + C
   double xc, yc;
-  double rate;   // (|A| + |B|) / |C|: relative change per pixel
+  double rate;  // (|A| + |B|) / |C|: relative change per pixel
 };
 
 FieldCase random_field(Rng& rng, Vec3 centre_value, double rate) {
@@ -254,8 +257,8 @@ double phong_closed_form(Vec3 n, Vec3 L, Vec3 V) {
 TEST(PhongClosedForm, ExactFunctionsMatchTwoNlNvOverNnMinusLvAtSamplePoints) {
   Rng rng;
   for (int trial = 0; trial < 200; ++trial) {
-    const FieldCase fc = random_field(rng, normalize(rng.vec(1)) * rng.uniform(0.5, 2.0),
-                                      rng.uniform(0.002, 0.2));
+    const FieldCase fc =
+        random_field(rng, normalize(rng.vec(1)) * rng.uniform(0.5, 2.0), rng.uniform(0.002, 0.2));
     const Vec3 L = normalize(rng.vec(1)), V = normalize(rng.vec(1));
     const AffineField E{rng.vec(0.01), rng.vec(0.01), rng.vec(2) + Vec3{0, 0, 3}};
     for (int k = 0; k < 10; ++k) {
@@ -379,9 +382,15 @@ TEST(Quadratic, EvalUsesBishopOrder) {
 
 TEST(AffineField, InterpolatesVerticesAndRejectsDegenerate) {
   std::array<ScreenVertex, 3> v;
-  v[0].x = 10; v[0].y = 5;  v[0].normal = {0, 0, 1};
-  v[1].x = 40; v[1].y = 9;  v[1].normal = {0.5, 0, 1};
-  v[2].x = 22; v[2].y = 37; v[2].normal = {0, -0.25, 2};
+  v[0].x = 10;
+  v[0].y = 5;
+  v[0].normal = {0, 0, 1};
+  v[1].x = 40;
+  v[1].y = 9;
+  v[1].normal = {0.5, 0, 1};
+  v[2].x = 22;
+  v[2].y = 37;
+  v[2].normal = {0, -0.25, 2};
   const auto f = affine_field(v, &ScreenVertex::normal);
   ASSERT_TRUE(f.has_value());
   for (const auto& vx : v) {
@@ -390,7 +399,8 @@ TEST(AffineField, InterpolatesVerticesAndRejectsDegenerate) {
     EXPECT_NEAR(got.y, vx.normal.y, 1e-14);
     EXPECT_NEAR(got.z, vx.normal.z, 1e-14);
   }
-  v[2].x = 70; v[2].y = 13;  // on the line through v0 and v1
+  v[2].x = 70;
+  v[2].y = 13;  // on the line through v0 and v1
   EXPECT_FALSE(affine_field(v, &ScreenVertex::normal).has_value());
   v[2].x = std::nan("");
   EXPECT_FALSE(affine_field(v, &ScreenVertex::normal).has_value());

@@ -1,13 +1,14 @@
 // load_unit_config: a UnitConfig JSON file over a base config, with errors naming the file and
 // the field (or the line and column of a JSON syntax error).
+#include "model/unit_config_file.h"
+
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include "model/command_stream.h"
-#include "model/unit_config_file.h"
 
 namespace shadesim {
 namespace {
@@ -15,7 +16,8 @@ namespace {
 class UnitConfigFile : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() / ("shadesim_unit_config_" + std::to_string(getpid()));
+    dir_ = std::filesystem::temp_directory_path() /
+           ("shadesim_unit_config_" + std::to_string(getpid()));
     std::filesystem::create_directories(dir_);
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
@@ -54,7 +56,8 @@ TEST_F(UnitConfigFile, FullRoundTripThroughConfigToJson) {
   c.out_bits = 10;
   c.specular.kind = SpecularUnitKind::kSchlick;
   c.specular.out = FixedFormat{14, 2, false, Quantization::kRoundNearest, Overflow::kSaturate};
-  c.specular.lut = {7, 9, 3, LutIndex::kNearest, LutAddressing::kShared, 5, FitObjective::kAbsolute};
+  c.specular.lut = {
+      7, 9, 3, LutIndex::kNearest, LutAddressing::kShared, 5, FitObjective::kAbsolute};
   c.specular.schlick = {13, 20, UnitTiming::kPipelined, FitObjective::kEpicentre};
   c.specular.wpow = {8, 12, UnitTiming::kIterative, FitObjective::kAbsolute};
   const UnitConfig d = load_unit_config(write("full.json", config_to_json(c)));
@@ -150,7 +153,8 @@ TEST_F(UnitConfigFile, ContradictoryFieldsAreRejectedByValidate) {
 
 TEST_F(UnitConfigFile, SyntaxErrorNamesLineAndColumn) {
   // '@' is the 13th character of line 3.
-  const std::string msg = error_of("{\n  \"channels\": 3,\n  \"lights\": @,\n  \"xy_bits\": 11\n}\n");
+  const std::string msg =
+      error_of("{\n  \"channels\": 3,\n  \"lights\": @,\n  \"xy_bits\": 11\n}\n");
   EXPECT_NE(msg.find("bad.json:3:13:"), std::string::npos) << msg;
   EXPECT_NE(msg.find("JSON syntax error"), std::string::npos) << msg;
   // A missing closing brace: the error is at the end of the input, line 2.

@@ -1,13 +1,14 @@
 // WpowUnit against double precision: an exhaustive sweep at small widths, a derived bound
 // against the float W_m, the clamp at and below W_m's zero, t beyond [0, 1], small n, and the
 // W16 epicentre figures of README "Checked numerical facts" (float, n in [16, 1000]).
+#include "model/wpow_unit.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "host/specular_setup.h"
 #include "model/specular_unit.h"
-#include "model/wpow_unit.h"
 
 namespace shadesim {
 namespace {
@@ -126,8 +127,8 @@ TEST(WpowUnit, SmallExponentsPickAnExactOrSmallerM) {
   EXPECT_EQ(half.plan.effective_m, 1);
   for (int i = 0; i <= 100; ++i) {
     const double t = i / 100.0;
-    EXPECT_NEAR(one.at(t), t, 3e-5);       // W_1 with zeta = 1 is t
-    EXPECT_NEAR(two.at(t), t * t, 6e-5);   // W_2 with zeta = 1 is t^2
+    EXPECT_NEAR(one.at(t), t, 3e-5);      // W_1 with zeta = 1 is t
+    EXPECT_NEAR(two.at(t), t * t, 6e-5);  // W_2 with zeta = 1 is t^2
   }
   EXPECT_EQ(WpowUnit::multipliers(w), 4);
   w.timing = UnitTiming::kIterative;
@@ -148,11 +149,13 @@ TEST(WpowUnit, RejectsBadParams) {
 TEST(WpowUnit, W16EpicentreFiguresInFloat) {
   double paper = 0, fitted = 0;
   for (int n = 16; n <= 1000; ++n) {
-    paper = std::max(paper, measure_errors(n, [&](double t) { return wpow_float(t, n / 16.0, 16); }).epi_rel);
+    paper = std::max(
+        paper, measure_errors(n, [&](double t) { return wpow_float(t, n / 16.0, 16); }).epi_rel);
   }
   for (int n = 16; n <= 1000; n += 3) {
     const double z = fit_wpow_zeta(n, 16, FitObjective::kEpicentre);
-    fitted = std::max(fitted, measure_errors(n, [&](double t) { return wpow_float(t, z, 16); }).epi_rel);
+    fitted =
+        std::max(fitted, measure_errors(n, [&](double t) { return wpow_float(t, z, 16); }).epi_rel);
   }
   EXPECT_NEAR(paper, 0.0151, 0.0005);
   EXPECT_LT(fitted, 0.003);

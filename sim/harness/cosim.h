@@ -121,8 +121,8 @@ inline Prepared prepare(const CosimJob& job) {
   const PixelTiming timing =
       predict_pixel_timing(p.words, job.stim, CycleConfig::of(job.config.unit));
   p.cycle_limit = timing.cycles + kCycleLimitMargin;
-  p.watchdog_cycles = job.watchdog_cycles > 0 ? job.watchdog_cycles
-                                              : timing.longest_quiet + kWatchdogMargin;
+  p.watchdog_cycles =
+      job.watchdog_cycles > 0 ? job.watchdog_cycles : timing.longest_quiet + kWatchdogMargin;
   return p;
 }
 

@@ -29,7 +29,8 @@ shadesim::CosimExecutable this_build() {
   exe.one_job_per_process = true;
   exe.run = [](const shadesim::CosimJob& job, const shadesim::WaveWindow* waves) {
     if (waves) {
-      throw std::invalid_argument("waveforms need the trace-enabled C++ build (shadesim cosim --waves)");
+      throw std::invalid_argument(
+          "waveforms need the trace-enabled C++ build (shadesim cosim --waves)");
     }
     return shadesim::run_verilated_systemc<Vshade_unit>(job);
   };

@@ -17,8 +17,8 @@
 namespace shadesim {
 
 struct CosimExecutable {
-  std::string backend;  // "cpp" or "systemc", as reports name it
-  std::string command;  // the shadesim command line that runs this build (replay lines, errors)
+  std::string backend;   // "cpp" or "systemc", as reports name it
+  std::string command;   // the shadesim command line that runs this build (replay lines, errors)
   bool traced = false;   // Verilated with FST tracing (--waves)
   bool covered = false;  // Verilated with line/toggle/user coverage (--coverage)
   // The SystemC kernel elaborates once per process: one job per run.

@@ -24,7 +24,8 @@
 //    first_mismatch: null | {kind, scanline, y, x, expected, got, cycle, message},
 //      kind: pixel | cycle | ready | extra-pixel | hang | timeout (sim/harness/cosim.h says each),
 //      before: null | an earlier ready mismatch this one follows from,
-//    saved_stream: null | path, replay: null | command line, waves: null | {path, first_cycle, last_cycle}}
+//    saved_stream: null | path, replay: null | command line, waves: null | {path, first_cycle,
+//    last_cycle}}
 // On bad input (exit 2) the file holds {"passed": false, "error": message} when it can be written.
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -71,7 +72,7 @@ std::string parameter_text(const std::vector<VerilogParameter>& params) {
 // The kinds --expect-mismatch accepts (a deliberate fault may show as any of them).
 constexpr Mismatch::Kind kExpectableKinds[] = {Mismatch::Kind::kPixel, Mismatch::Kind::kCycle,
                                                Mismatch::Kind::kReady, Mismatch::Kind::kExtraPixel,
-                                               Mismatch::Kind::kHang, Mismatch::Kind::kTimeout};
+                                               Mismatch::Kind::kHang,  Mismatch::Kind::kTimeout};
 
 struct Options {
   std::string config = "custom";  // the build's name, for reports
@@ -88,7 +89,8 @@ struct Options {
   std::string waves_path;
   uint64_t waves_before = 200, waves_after = 16;
   double min_spec_pct = 0;
-  uint64_t watchdog = 0;  // cycles without pix_valid_o that count as a hang; 0: from the cycle model
+  uint64_t watchdog =
+      0;  // cycles without pix_valid_o that count as a hang; 0: from the cycle model
   std::string coverage_path;  // covered builds: FILE.dat (several jobs: FILE_<i>.dat)
   bool list = false;
 };
@@ -106,13 +108,13 @@ std::string mismatch_message(const Mismatch& m, const RtlConfig& c) {
   std::ostringstream os;
   if (m.kind == Mismatch::Kind::kHang) {
     os << "hang in configuration " << c.name << " [" << c.unit.to_string() << fault_text(c.faults)
-       << "]: " << m.got << ", at cycle " << m.cycle << ", while expecting " << m.expected << " (scanline "
-       << m.scanline << ")";
+       << "]: " << m.got << ", at cycle " << m.cycle << ", while expecting " << m.expected
+       << " (scanline " << m.scanline << ")";
     return os.str();
   }
   os << to_string(m.kind) << " mismatch in configuration " << c.name << " [" << c.unit.to_string()
-     << fault_text(c.faults) << "]: scanline " << m.scanline << " (y=" << m.y << "), x=" << m.x << ", cycle "
-     << m.cycle << ": expected " << m.expected << ", got " << m.got;
+     << fault_text(c.faults) << "]: scanline " << m.scanline << " (y=" << m.y << "), x=" << m.x
+     << ", cycle " << m.cycle << ": expected " << m.expected << ", got " << m.got;
   if (!m.before.empty()) os << " (" << m.before << ")";
   return os.str();
 }
@@ -148,22 +150,31 @@ nlohmann::json outcome_json(const Outcome& o, const CosimExecutable& exe) {
   j["scanlines"] = r.scanlines;
   j["seconds"] = r.seconds;
   j["cycles_per_second"] = r.seconds > 0 ? static_cast<double>(r.cycles) / r.seconds : 0.0;
-  j["spec_affected_pixels"] = o.spec_affected >= 0 ? nlohmann::json(o.spec_affected) : nlohmann::json(nullptr);
+  j["spec_affected_pixels"] =
+      o.spec_affected >= 0 ? nlohmann::json(o.spec_affected) : nlohmann::json(nullptr);
   if (r.passed()) {
     j["first_mismatch"] = nullptr;
   } else {
     const Mismatch& m = r.first;
-    j["first_mismatch"] = {{"kind", to_string(m.kind)}, {"scanline", m.scanline}, {"y", m.y}, {"x", m.x},
-                           {"expected", m.expected}, {"got", m.got}, {"cycle", m.cycle},
-                           {"before", m.before.empty() ? nlohmann::json(nullptr) : nlohmann::json(m.before)},
-                           {"message", mismatch_message(m, o.job.config)}};
+    j["first_mismatch"] = {
+        {"kind", to_string(m.kind)},
+        {"scanline", m.scanline},
+        {"y", m.y},
+        {"x", m.x},
+        {"expected", m.expected},
+        {"got", m.got},
+        {"cycle", m.cycle},
+        {"before", m.before.empty() ? nlohmann::json(nullptr) : nlohmann::json(m.before)},
+        {"message", mismatch_message(m, o.job.config)}};
   }
-  j["saved_stream"] = o.saved_stream.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.saved_stream);
+  j["saved_stream"] =
+      o.saved_stream.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.saved_stream);
   j["replay"] = o.replay.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.replay);
   if (o.waves.path.empty()) {
     j["waves"] = nullptr;
   } else {
-    j["waves"] = {{"path", o.waves.path}, {"first_cycle", o.waves.first}, {"last_cycle", o.waves.last}};
+    j["waves"] = {
+        {"path", o.waves.path}, {"first_cycle", o.waves.first}, {"last_cycle", o.waves.last}};
   }
   return j;
 }
@@ -174,9 +185,11 @@ void set_coverage_paths(std::vector<CosimJob>& jobs, const std::string& path) {
   if (path.empty()) return;
   const std::filesystem::path p(path);
   for (size_t i = 0; i < jobs.size(); ++i) {
-    jobs[i].coverage_path = jobs.size() == 1 ? path
-                                             : (p.parent_path() / (p.stem().string() + "_" + std::to_string(i) +
-                                                                   p.extension().string())).string();
+    jobs[i].coverage_path =
+        jobs.size() == 1 ? path
+                         : (p.parent_path() /
+                            (p.stem().string() + "_" + std::to_string(i) + p.extension().string()))
+                               .string();
   }
 }
 
@@ -201,7 +214,8 @@ std::vector<CosimJob> make_jobs(const Options& o, const RtlConfig& build) {
     }
     if (config_to_json(job.stream.config) != config_to_json(build.unit)) {
       throw InputError(o.stream_path + ": stream configuration " + job.stream.config.to_string() +
-                       " differs from --config " + build.name + " (" + build.unit.to_string() + ")");
+                       " differs from --config " + build.name + " (" + build.unit.to_string() +
+                       ")");
     }
     job.stim = apply_overrides(Stimulus{}, o.seed);
     job.watchdog_cycles = o.watchdog;
@@ -305,30 +319,34 @@ void check_run_options(const Options& o, const std::vector<CosimJob>& jobs,
     throw InputError("--coverage needs a covered build (shadesim regress --coverage picks it)");
   }
   if (!o.waves_path.empty() && !exe.traced) {
-    throw InputError("--waves needs the trace-enabled build, which `shadesim cosim --waves FILE` picks");
+    throw InputError(
+        "--waves needs the trace-enabled build, which `shadesim cosim --waves FILE` picks");
   }
   if (exe.one_job_per_process && jobs.size() != 1) {
-    throw InputError("the SystemC kernel elaborates once per process, so this backend runs one job; got " +
-                     std::to_string(jobs.size()) + " (use one --scenario and --runs 1)");
+    throw InputError(
+        "the SystemC kernel elaborates once per process, so this backend runs one job; got " +
+        std::to_string(jobs.size()) + " (use one --scenario and --runs 1)");
   }
   if (!o.waves_path.empty() && jobs.size() != 1) {
-    throw InputError("--waves writes one file: run one job (one --scenario or --stream, --runs 1); got " +
-                     std::to_string(jobs.size()));
+    throw InputError(
+        "--waves writes one file: run one job (one --scenario or --stream, --runs 1); got " +
+        std::to_string(jobs.size()));
   }
 }
 
 // The one-line summary of a run.
 void print_run_line(const CosimJob& job, const CosimResult& r, const CosimExecutable& exe) {
   char line[512];
-  std::snprintf(line, sizeof line,
-                "%-8s %-12s %-7s seed=%-6llu pixels=%-7llu scanlines=%-5llu cycles=%-8llu "
-                "cyc/px=%.3f wall=%.3fs %.2f Mcycles/s  %s",
-                exe.backend.c_str(), job.config.name.c_str(), job.scenario.c_str(),
-                static_cast<unsigned long long>(job.stim.seed), static_cast<unsigned long long>(r.pixels),
-                static_cast<unsigned long long>(r.scanlines), static_cast<unsigned long long>(r.cycles),
-                r.pixels ? static_cast<double>(r.cycles) / static_cast<double>(r.pixels) : 0.0, r.seconds,
-                r.seconds > 0 ? static_cast<double>(r.cycles) / r.seconds / 1e6 : 0.0,
-                r.passed() ? "PASS" : "MISMATCH");
+  std::snprintf(
+      line, sizeof line,
+      "%-8s %-12s %-7s seed=%-6llu pixels=%-7llu scanlines=%-5llu cycles=%-8llu "
+      "cyc/px=%.3f wall=%.3fs %.2f Mcycles/s  %s",
+      exe.backend.c_str(), job.config.name.c_str(), job.scenario.c_str(),
+      static_cast<unsigned long long>(job.stim.seed), static_cast<unsigned long long>(r.pixels),
+      static_cast<unsigned long long>(r.scanlines), static_cast<unsigned long long>(r.cycles),
+      r.pixels ? static_cast<double>(r.cycles) / static_cast<double>(r.pixels) : 0.0, r.seconds,
+      r.seconds > 0 ? static_cast<double>(r.cycles) / r.seconds / 1e6 : 0.0,
+      r.passed() ? "PASS" : "MISMATCH");
   std::cout << line << '\n';
 }
 
@@ -338,7 +356,8 @@ void print_run_line(const CosimJob& job, const CosimResult& r, const CosimExecut
 uint64_t specular_affected_pixels(const CosimJob& job, const std::vector<PixelOut>& expected) {
   CommandStream dark = job.stream;
   for (auto& cmd : dark.commands) {
-    if (auto* m = std::get_if<MaterialCmd>(&cmd)) std::fill(m->spec_colour.begin(), m->spec_colour.end(), 0);
+    if (auto* m = std::get_if<MaterialCmd>(&cmd))
+      std::fill(m->spec_colour.begin(), m->spec_colour.end(), 0);
   }
   const std::vector<PixelOut> plain = ShadeUnit(job.config.unit).run(dark);
   uint64_t n = 0;
@@ -359,12 +378,14 @@ bool check_specular_share(Outcome& out, const Options& o) {
   if (out.job.config.unit.specular.kind == SpecularUnitKind::kIdeal) return true;
   const std::vector<PixelOut> expected = ShadeUnit(out.job.config.unit).run(out.job.stream);
   out.spec_affected = static_cast<int64_t>(specular_affected_pixels(out.job, expected));
-  const double pct = expected.empty() ? 0.0 : 100.0 * static_cast<double>(out.spec_affected) /
-                                                  static_cast<double>(expected.size());
-  std::printf("  specular term changes %lld of %zu pixels (%.1f%%)\n", static_cast<long long>(out.spec_affected),
-              expected.size(), pct);
+  const double pct = expected.empty() ? 0.0
+                                      : 100.0 * static_cast<double>(out.spec_affected) /
+                                            static_cast<double>(expected.size());
+  std::printf("  specular term changes %lld of %zu pixels (%.1f%%)\n",
+              static_cast<long long>(out.spec_affected), expected.size(), pct);
   if (pct >= o.min_spec_pct) return true;
-  std::printf("  FAIL: fewer than --min-spec-pct %.1f%% of the pixels exercise the specular unit\n", o.min_spec_pct);
+  std::printf("  FAIL: fewer than --min-spec-pct %.1f%% of the pixels exercise the specular unit\n",
+              o.min_spec_pct);
   return false;
 }
 
@@ -377,7 +398,8 @@ std::string replay_line(const CosimJob& job, const std::string& stream_path, con
   const InjectedFaults& f = job.config.faults;
   const bool faulty = f.lsb_row >= 0 || f.stall_row >= 0 || f.hang_row >= 0;
   return exe.command + (faulty ? " --config " + job.config.name : "") + " --stream " + stream_path +
-         ' ' + job.stim.to_args() + (o.watchdog > 0 ? " --watchdog " + std::to_string(o.watchdog) : "");
+         ' ' + job.stim.to_args() +
+         (o.watchdog > 0 ? " --watchdog " + std::to_string(o.watchdog) : "");
 }
 
 // A failed run: its stream saved into --save-dir, the replay command (Outcome::saved_stream,
@@ -401,7 +423,8 @@ void print_mismatch(const Outcome& out) {
   if (m.kind == Mismatch::Kind::kHang) std::cout << "  HANG: " << mismatch_message(m, c) << '\n';
   std::cout << "  first mismatch (" << to_string(m.kind) << "): configuration " << c.name << " ["
             << c.unit.to_string() << fault_text(c.faults) << "]\n"
-            << "    scanline " << m.scanline << " (y=" << m.y << "), x=" << m.x << ", cycle " << m.cycle << '\n'
+            << "    scanline " << m.scanline << " (y=" << m.y << "), x=" << m.x << ", cycle "
+            << m.cycle << '\n'
             << "    expected " << m.expected << '\n'
             << "    got      " << m.got << '\n'
             << (m.before.empty() ? "" : "    before it: " + m.before + "\n")
@@ -421,12 +444,12 @@ void write_waveform(Outcome& out, const Options& o, const CosimExecutable& exe) 
   if (!parent.empty()) std::filesystem::create_directories(parent);
   const CosimResult again = exe.run(out.job, &w);
   if (again.first.kind != m.kind || again.first.cycle != m.cycle) {
-    std::cout << "    WARNING: the traced re-run mismatched differently (" << to_string(again.first.kind)
-              << " at cycle " << again.first.cycle << ")\n";
+    std::cout << "    WARNING: the traced re-run mismatched differently ("
+              << to_string(again.first.kind) << " at cycle " << again.first.cycle << ")\n";
   }
   out.waves = w;
-  std::cout << "    waves: " << w.path << " (cycles " << w.first << ".." << w.last << ", time = "
-            << kWaveUnitsPerCycle << " x (cycle + " << kResetCycles << "))\n";
+  std::cout << "    waves: " << w.path << " (cycles " << w.first << ".." << w.last
+            << ", time = " << kWaveUnitsPerCycle << " x (cycle + " << kResetCycles << "))\n";
 }
 
 void write_results_json(const std::string& path, const std::vector<Outcome>& outcomes,
@@ -469,8 +492,9 @@ int run_all(const Options& o, const CosimExecutable& exe) {
     outcomes.push_back(out);
     if (expect.active()) {
       const bool as_expected = expect.met_by(out.result.first);
-      std::cout << (as_expected ? "  the deliberate fault was caught where expected\n"
-                                : "  FAIL: expected the first mismatch to be " + expect.text + "\n");
+      std::cout << (as_expected
+                        ? "  the deliberate fault was caught where expected\n"
+                        : "  FAIL: expected the first mismatch to be " + expect.text + "\n");
       write_results_json(o.json_path, outcomes, exe);
       return as_expected ? 0 : 1;
     }
@@ -491,8 +515,10 @@ void print_list(bool json, const CosimExecutable& exe) {
   }
   nlohmann::json p = nlohmann::json::object();
   for (const auto& v : params) p[v.name] = v.value;
-  std::cout << nlohmann::json{{"backend", exe.backend}, {"traced", exe.traced},
-                              {"covered", exe.covered}, {"parameters", p},
+  std::cout << nlohmann::json{{"backend", exe.backend},
+                              {"traced", exe.traced},
+                              {"covered", exe.covered},
+                              {"parameters", p},
                               {"faults", faults_json(built_faults(exe))}}
                    .dump(2)
             << '\n';
@@ -507,33 +533,47 @@ int cosim_main(int argc, char** argv, const CosimExecutable& exe) {
   bool list_json = false;
   app.add_option("--unit", o.unit_path, "the unit (UnitConfig JSON) this build simulates");
   app.add_option("--config", o.config, "the build's name, for reports")->capture_default_str();
-  app.add_flag("--list", o.list, "print the parameters this executable was Verilated with (--json: as JSON)");
-  app.add_option("--scenario", o.scenario, "mixed, long, short, slow, maxbp, switch, tiny, edge, or all");
+  app.add_flag("--list", o.list,
+               "print the parameters this executable was Verilated with (--json: as JSON)");
+  app.add_option("--scenario", o.scenario,
+                 "mixed, long, short, slow, maxbp, switch, tiny, edge, or all");
   app.add_option("--stream", o.stream_path, "replay a saved command stream (text form)");
   app.add_option("--seed", o.seed, "seed of the stream and of the stimulus (printed on every run)");
-  app.add_option("--rows", o.rows, "override: scanlines per generated stream (for benchmarks)")->check(CLI::Range(1, 32768));
+  app.add_option("--rows", o.rows, "override: scanlines per generated stream (for benchmarks)")
+      ->check(CLI::Range(1, 32768));
   app.add_option("--runs", o.runs, "consecutive seeds per scenario")->check(CLI::PositiveNumber);
-  app.add_option("--gap-pct", o.gap_pct, "override: chance of idle cycles before a command word")->check(CLI::Range(0, 100));
-  app.add_option("--max-gap", o.max_gap, "override: longest idle gap")->check(CLI::Range(1, 100000));
-  app.add_option("--stall-pct", o.stall_pct, "override: chance of pix_ready low per cycle")->check(CLI::Range(0, 99));
+  app.add_option("--gap-pct", o.gap_pct, "override: chance of idle cycles before a command word")
+      ->check(CLI::Range(0, 100));
+  app.add_option("--max-gap", o.max_gap, "override: longest idle gap")
+      ->check(CLI::Range(1, 100000));
+  app.add_option("--stall-pct", o.stall_pct, "override: chance of pix_ready low per cycle")
+      ->check(CLI::Range(0, 99));
   app.add_option("--expect-mismatch", o.expect,
-                 "KIND:Y - succeed only if the first mismatch is KIND (pixel|cycle|ready|extra-pixel|hang|timeout) "
+                 "KIND:Y - succeed only if the first mismatch is KIND "
+                 "(pixel|cycle|ready|extra-pixel|hang|timeout) "
                  "at scanline y=Y");
   app.add_option("--save-dir", o.save_dir, "where a failing run's command stream is saved");
-  auto* json_opt = app.add_option("--json", o.json_path, "write each run's result as JSON to this file")
-                       ->expected(0, 1);
-  app.add_option("--waves", o.waves_path,
-                 "on a mismatch, re-run with tracing and write an FST of the cycles around it (traced build)");
-  app.add_option("--min-spec-pct", o.min_spec_pct,
-                 "fail a run where the specular term changes fewer than this percentage of the pixels")
+  auto* json_opt =
+      app.add_option("--json", o.json_path, "write each run's result as JSON to this file")
+          ->expected(0, 1);
+  app.add_option(
+      "--waves", o.waves_path,
+      "on a mismatch, re-run with tracing and write an FST of the cycles around it (traced build)");
+  app.add_option(
+         "--min-spec-pct", o.min_spec_pct,
+         "fail a run where the specular term changes fewer than this percentage of the pixels")
       ->check(CLI::Range(0.0, 100.0));
-  app.add_option("--watchdog", o.watchdog,
-                 "cycles without pix_valid_o, while pixels are still expected, that count as a hang "
-                 "(default 0: the cycle model's longest pixel-less stretch on this stream + 1000)");
-  app.add_option("--coverage", o.coverage_path,
-                 "write the run's line/toggle/user coverage to FILE.dat, pass or fail (covered build)");
-  app.add_option("--waves-before", o.waves_before, "cycles before the mismatch in the waveform")->capture_default_str();
-  app.add_option("--waves-after", o.waves_after, "cycles after the mismatch in the waveform")->capture_default_str();
+  app.add_option(
+      "--watchdog", o.watchdog,
+      "cycles without pix_valid_o, while pixels are still expected, that count as a hang "
+      "(default 0: the cycle model's longest pixel-less stretch on this stream + 1000)");
+  app.add_option(
+      "--coverage", o.coverage_path,
+      "write the run's line/toggle/user coverage to FILE.dat, pass or fail (covered build)");
+  app.add_option("--waves-before", o.waves_before, "cycles before the mismatch in the waveform")
+      ->capture_default_str();
+  app.add_option("--waves-after", o.waves_after, "cycles after the mismatch in the waveform")
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -543,14 +583,16 @@ int cosim_main(int argc, char** argv, const CosimExecutable& exe) {
   list_json = json_opt->count() > 0;
   if (o.list) {
     if (list_json && !o.json_path.empty()) {
-      std::cerr << exe.command << ": error: --list --json prints to stdout; it takes no file name\n";
+      std::cerr << exe.command
+                << ": error: --list --json prints to stdout; it takes no file name\n";
       return 2;
     }
     print_list(list_json, exe);
     return 0;
   }
   if (list_json && o.json_path.empty()) {
-    std::cerr << exe.command << ": error: --json needs a file name (only --list --json prints to stdout)\n";
+    std::cerr << exe.command
+              << ": error: --json needs a file name (only --list --json prints to stdout)\n";
     return 2;
   }
   try {

@@ -31,7 +31,9 @@ inline void put_beat(VlWide<N>& port, const uint64_t* beat, int port_words) {
 // The configuration's port width must be the Verilated one.
 inline bool port_fits(const QData&, int port_words) { return port_words == 1; }
 template <std::size_t N>
-inline bool port_fits(const VlWide<N>&, int port_words) { return N == 2 * static_cast<std::size_t>(port_words); }
+inline bool port_fits(const VlWide<N>&, int port_words) {
+  return N == 2 * static_cast<std::size_t>(port_words);
+}
 
 // Bits [lsb, lsb + width) (width <= 64) of a Verilated output: a plain integer up to 64 bits, a
 // VlWide of 32-bit words above (pix_colour_o with several lanes).
@@ -60,12 +62,15 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
   if (waves) context.traceEverOn(true);
 #else
   if (waves) {
-    throw std::invalid_argument("waveforms need the trace-enabled build (shadesim cosim --waves picks it); this one has no tracing");
+    throw std::invalid_argument(
+        "waveforms need the trace-enabled build (shadesim cosim --waves picks it); this one has no "
+        "tracing");
   }
 #endif
   V top(&context);
   if (!port_fits(top.cmd_data_i, cfg.port_words)) {
-    throw std::invalid_argument("configuration " + job.config.name + ": port_words " + std::to_string(cfg.port_words) +
+    throw std::invalid_argument("configuration " + job.config.name + ": port_words " +
+                                std::to_string(cfg.port_words) +
                                 " differs from the Verilated cmd_data_i width");
   }
 #ifdef SHADESIM_COSIM_TRACE
@@ -73,7 +78,8 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
     fst = std::make_unique<VerilatedFstC>();
     top.trace(fst.get(), 99);
     fst->open(waves->path.c_str());
-    if (!fst->isOpen()) throw std::runtime_error(waves->path + ": cannot open for writing the waveform");
+    if (!fst->isOpen())
+      throw std::runtime_error(waves->path + ": cannot open for writing the waveform");
   }
   // Dumps the state at `units` (time stamp) when `cycle` is inside the window.
   auto dump = [&](uint64_t cycle, uint64_t units) {
@@ -95,7 +101,9 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
   }
   top.rst_ni = 1;
 
-  const auto colour_bits = [&top](int lsb, int width) { return out_bits_of(top.pix_colour_o, lsb, width); };
+  const auto colour_bits = [&top](int lsb, int width) {
+    return out_bits_of(top.pix_colour_o, lsb, width);
+  };
   for (uint64_t cycle = 0;; ++cycle) {
     const Lockstep::Drive& in = lockstep.drive(cycle);
     top.cmd_valid_i = in.cmd_valid;

@@ -13,7 +13,8 @@ namespace shadesim {
 inline std::array<uint64_t, 8> idle_noise(const Stimulus& stim, uint64_t cycle) {
   std::array<uint64_t, 8> words{};
   for (size_t k = 0; k < words.size(); ++k) {
-    words[k] = splitmix64((stim.seed ^ 0x5EEDC0DE1D1E0000ull) * 0xD1342543DE82EF95ull + 8 * cycle + k);
+    words[k] =
+        splitmix64((stim.seed ^ 0x5EEDC0DE1D1E0000ull) * 0xD1342543DE82EF95ull + 8 * cycle + k);
   }
   return words;
 }

@@ -16,31 +16,61 @@ Scenario scenario_by_name(const std::string& name) {
   Scenario s;
   s.name = name;
   if (name == "mixed") {
-    s.stim.gap_pct = 30; s.stim.max_gap = 6; s.stim.stall_pct = 30;
+    s.stim.gap_pct = 30;
+    s.stim.max_gap = 6;
+    s.stim.stall_pct = 30;
   } else if (name == "long") {
-    s.shape.rows = 6; s.shape.full_rows = true; s.shape.p_new_triangle = 1.0;
-    s.stim.gap_pct = 10; s.stim.max_gap = 3; s.stim.stall_pct = 10;
+    s.shape.rows = 6;
+    s.shape.full_rows = true;
+    s.shape.p_new_triangle = 1.0;
+    s.stim.gap_pct = 10;
+    s.stim.max_gap = 3;
+    s.stim.stall_pct = 10;
   } else if (name == "short") {
-    s.shape.rows = 200; s.shape.max_spans_per_row = 8; s.shape.min_len = 1; s.shape.max_len = 3;
-    s.shape.p_new_triangle = 0.2; s.shape.p_material = 0.01;
+    s.shape.rows = 200;
+    s.shape.max_spans_per_row = 8;
+    s.shape.min_len = 1;
+    s.shape.max_len = 3;
+    s.shape.p_new_triangle = 0.2;
+    s.shape.p_material = 0.01;
   } else if (name == "slow") {
-    s.shape.rows = 16; s.shape.max_len = 50;
-    s.stim.gap_pct = 100; s.stim.max_gap = 40;
+    s.shape.rows = 16;
+    s.shape.max_len = 50;
+    s.stim.gap_pct = 100;
+    s.stim.max_gap = 40;
   } else if (name == "maxbp") {
-    s.shape.rows = 16; s.shape.max_len = 100;
+    s.shape.rows = 16;
+    s.shape.max_len = 100;
     s.stim.stall_pct = 90;
   } else if (name == "switch") {
-    s.shape.rows = 32; s.shape.max_len = 30; s.shape.p_material = 0.5;
-    s.stim.gap_pct = 20; s.stim.max_gap = 4; s.stim.stall_pct = 20;
+    s.shape.rows = 32;
+    s.shape.max_len = 30;
+    s.shape.p_material = 0.5;
+    s.stim.gap_pct = 20;
+    s.stim.max_gap = 4;
+    s.stim.stall_pct = 20;
   } else if (name == "tiny") {
     // About 10,000 small triangles: every span gets its own, 1..4 pixels long.
-    s.shape.rows = 2200; s.shape.max_spans_per_row = 8; s.shape.min_len = 1; s.shape.max_len = 4;
-    s.shape.p_new_triangle = 1.0; s.shape.p_material = 0.002;
-    s.stim.gap_pct = 5; s.stim.max_gap = 3; s.stim.stall_pct = 10;
+    s.shape.rows = 2200;
+    s.shape.max_spans_per_row = 8;
+    s.shape.min_len = 1;
+    s.shape.max_len = 4;
+    s.shape.p_new_triangle = 1.0;
+    s.shape.p_material = 0.002;
+    s.stim.gap_pct = 5;
+    s.stim.max_gap = 3;
+    s.stim.stall_pct = 10;
   } else if (name == "edge") {
-    s.shape.rows = 8; s.shape.frames = 3; s.shape.edge = true; s.shape.max_spans_per_row = 4;
-    s.shape.max_len = 64; s.shape.p_material = 0.15; s.shape.p_wild = 0.1;
-    s.stim.gap_pct = 20; s.stim.max_gap = 4; s.stim.stall_pct = 30;
+    s.shape.rows = 8;
+    s.shape.frames = 3;
+    s.shape.edge = true;
+    s.shape.max_spans_per_row = 4;
+    s.shape.max_len = 64;
+    s.shape.p_material = 0.15;
+    s.shape.p_wild = 0.1;
+    s.stim.gap_pct = 20;
+    s.stim.max_gap = 4;
+    s.stim.stall_pct = 30;
   } else {
     std::string all;
     for (const auto& n : scenario_names()) all += (all.empty() ? "" : ", ") + n;
@@ -51,7 +81,9 @@ Scenario scenario_by_name(const std::string& name) {
 
 CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, uint64_t seed) {
   std::mt19937_64 rng(seed);
-  auto uni = [&rng](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  auto uni = [&rng](double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+  };
   auto irange = [&rng](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
   auto chance = [&](double p) { return uni(0.0, 1.0) < p; };
   // The MATERIAL's gate-only mask has a generator of its own, so every other field of a seed's
@@ -110,7 +142,8 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
     if (shape.edge) {
       m.exponent = static_cast<int64_t>(rng() % (int64_t{1000} << kExponentFracBits)) + 1;
     }
-    const int max_shift = shape.edge ? config.series.frac_bits() : std::min(4, config.series.frac_bits());
+    const int max_shift =
+        shape.edge ? config.series.frac_bits() : std::min(4, config.series.frac_bits());
     if (spec.kind == SpecularUnitKind::kLut && chance(0.5)) {
       m.unit_params = {irange(0, max_shift)};
     } else if (spec.kind == SpecularUnitKind::kWpow && chance(0.5)) {
@@ -138,8 +171,8 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
       const double base = has_spec_hw && s < config.diffuse_series() ? 0.5 / config.lights : 1.0;
       const double g = slope(s);
       double terms[kTermsPerSeries] = {uni(diffuse_lo(s), 1.2) * base, uni(-1, 1) / 256 * g,
-                                       uni(-1, 1) / 256 * g, uni(-1, 1) / 16384 * g,
-                                       uni(-1, 1) / 16384 * g, uni(-1, 1) / 16384 * g};
+                                       uni(-1, 1) / 256 * g,           uni(-1, 1) / 16384 * g,
+                                       uni(-1, 1) / 16384 * g,         uni(-1, 1) / 16384 * g};
       const int kind = irange(0, 9);
       if (kind == 7) {
         terms[0] = uni(1.0, 3.0);
@@ -175,11 +208,15 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
       // term shows in the bits: diffuse terms scaled down by the light count.
       const double base = has_spec_hw && s < config.diffuse_series() ? 0.5 / config.lights : 1.0;
       const double g = slope(s) * k;
-      const double terms[kTermsPerSeries] = {
-          uni(diffuse_lo(s), 1.2) * base * k,    uni(-1, 1) / 256 * g,          uni(-1, 1) / 256 * g,
-          uni(-1, 1) / 16384 * g,       uni(-1, 1) / 16384 * g,        uni(-1, 1) / 16384 * g};
+      const double terms[kTermsPerSeries] = {uni(diffuse_lo(s), 1.2) * base * k,
+                                             uni(-1, 1) / 256 * g,
+                                             uni(-1, 1) / 256 * g,
+                                             uni(-1, 1) / 16384 * g,
+                                             uni(-1, 1) / 16384 * g,
+                                             uni(-1, 1) / 16384 * g};
       // A narrowed term (coef_term_iwl) saturates: wild values reach its limits.
-      for (int k = 0; k < kTermsPerSeries; ++k) t.coef.push_back(config.coef_term(k).from_double(terms[k]));
+      for (int k = 0; k < kTermsPerSeries; ++k)
+        t.coef.push_back(config.coef_term(k).from_double(terms[k]));
     }
     cs.commands.emplace_back(t);
   };

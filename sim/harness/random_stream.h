@@ -16,15 +16,15 @@
 namespace shadesim {
 
 struct StreamShape {
-  int rows = 32;                // scanlines in the frame
+  int rows = 32;  // scanlines in the frame
   int max_spans_per_row = 4;
   int min_len = 1, max_len = 200;
   bool full_rows = false;       // one span covering the whole row
   double p_new_triangle = 0.6;  // per span
   double p_material = 0.08;     // per span (a TABLE load precedes it with p_table)
   double p_table = 0.5;
-  double p_wild = 0.05;         // per triangle: coefficients/origins that overflow the series
-  int frames = 1;               // frames of `rows` scanlines, each closed by END_FRAME
+  double p_wild = 0.05;  // per triangle: coefficients/origins that overflow the series
+  int frames = 1;        // frames of `rows` scanlines, each closed by END_FRAME
   // The corners of the value space (scenario "edge"): spans at the right and bottom screen
   // edges and across the full width 2^xy_bits, negative ambient (totals below 0) and large
   // diffuse terms (totals above 1), series that leave the series format (saturating in :sat

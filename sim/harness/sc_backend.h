@@ -23,7 +23,8 @@ constexpr double kScPeriodNs = 10.0;
 
 // Posedge index of the current time; posedge kResetCycles is cycle 0.
 inline int64_t sc_cycle_now() {
-  return static_cast<int64_t>(sc_core::sc_time_stamp() / sc_core::sc_time(kScPeriodNs, sc_core::SC_NS)) -
+  return static_cast<int64_t>(sc_core::sc_time_stamp() /
+                              sc_core::sc_time(kScPeriodNs, sc_core::SC_NS)) -
          kResetCycles;
 }
 
@@ -40,11 +41,15 @@ inline void to_port(sc_dt::sc_bv<W>& port, const uint64_t* beat, int port_words)
 }
 inline bool port_fits(const uint64_t&, int port_words) { return port_words == 1; }
 template <int W>
-inline bool port_fits(const sc_dt::sc_bv<W>&, int port_words) { return W == 64 * port_words; }
+inline bool port_fits(const sc_dt::sc_bv<W>&, int port_words) {
+  return W == 64 * port_words;
+}
 
 // Bits [lsb, lsb + width) (width <= 64) of an output port's value: an integer up to 64 bits,
 // sc_bv above (pix_colour_o with several lanes).
-inline uint64_t out_bits_of(uint64_t port, int lsb, int width) { return port_bits(port, lsb, width); }
+inline uint64_t out_bits_of(uint64_t port, int lsb, int width) {
+  return port_bits(port, lsb, width);
+}
 template <int W>
 inline uint64_t out_bits_of(const sc_dt::sc_bv<W>& port, int lsb, int width) {
   return port.range(lsb + width - 1, lsb).to_uint64();
@@ -88,7 +93,9 @@ struct ScLockstep : sc_core::sc_module {
       out.pix_mask = static_cast<uint64_t>(pix_mask.read());
       out.pix_eor = pix_eor.read();
       const CT& colour = pix_colour.read();
-      const auto colour_bits = [&colour](int lsb, int width) { return out_bits_of(colour, lsb, width); };
+      const auto colour_bits = [&colour](int lsb, int width) {
+        return out_bits_of(colour, lsb, width);
+      };
       if (!lockstep_.edge(static_cast<uint64_t>(cycle), out, colour_bits)) {
         sc_core::sc_stop();
         return;
@@ -127,7 +134,8 @@ CosimResult run_verilated_systemc(const CosimJob& job) {
   sc_core::sc_signal<bool> rst_n("rst_n"), cmd_valid("cmd_valid"), cmd_ready("cmd_ready");
   sc_core::sc_signal<DT> cmd_data("cmd_data");
   if (!port_fits(DT{}, cfg.port_words)) {
-    throw std::invalid_argument("configuration " + job.config.name + ": port_words " + std::to_string(cfg.port_words) +
+    throw std::invalid_argument("configuration " + job.config.name + ": port_words " +
+                                std::to_string(cfg.port_words) +
                                 " differs from the Verilated cmd_data_i width");
   }
   sc_core::sc_signal<XT> pix_x("pix_x"), pix_y("pix_y");
@@ -169,7 +177,8 @@ CosimResult run_verilated_systemc(const CosimJob& job) {
       lockstep.result(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 #ifdef SHADESIM_COSIM_COVERAGE
   // The counters live in the model (counted into the thread's context): write them while it exists.
-  if (!job.coverage_path.empty()) Verilated::threadContextp()->coveragep()->write(job.coverage_path.c_str());
+  if (!job.coverage_path.empty())
+    Verilated::threadContextp()->coveragep()->write(job.coverage_path.c_str());
 #endif
   return r;
 }

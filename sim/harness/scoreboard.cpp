@@ -8,13 +8,20 @@ namespace shadesim {
 
 std::string to_string(Mismatch::Kind kind) {
   switch (kind) {
-    case Mismatch::Kind::kNone: return "none";
-    case Mismatch::Kind::kPixel: return "pixel";
-    case Mismatch::Kind::kCycle: return "cycle";
-    case Mismatch::Kind::kReady: return "ready";
-    case Mismatch::Kind::kExtraPixel: return "extra-pixel";
-    case Mismatch::Kind::kTimeout: return "timeout";
-    case Mismatch::Kind::kHang: return "hang";
+    case Mismatch::Kind::kNone:
+      return "none";
+    case Mismatch::Kind::kPixel:
+      return "pixel";
+    case Mismatch::Kind::kCycle:
+      return "cycle";
+    case Mismatch::Kind::kReady:
+      return "ready";
+    case Mismatch::Kind::kExtraPixel:
+      return "extra-pixel";
+    case Mismatch::Kind::kTimeout:
+      return "timeout";
+    case Mismatch::Kind::kHang:
+      return "hang";
   }
   return "?";
 }
@@ -48,8 +55,8 @@ Mismatch Scoreboard::first_mismatch() const {
   if (!failed()) return ready_;
   Mismatch m = first_;
   if (ready_.kind != Mismatch::Kind::kNone && ready_.cycle <= m.cycle) {
-    m.before = "cmd_ready_o differed first, on cycle " + std::to_string(ready_.cycle) + ": expected " +
-               ready_.expected + ", got " + ready_.got;
+    m.before = "cmd_ready_o differed first, on cycle " + std::to_string(ready_.cycle) +
+               ": expected " + ready_.expected + ", got " + ready_.got;
   }
   return m;
 }
@@ -115,8 +122,8 @@ void Scoreboard::model_disagrees(uint64_t cycle, int x, int y, int lane, bool eo
   m.x = x;
   m.y = y;
   m.expected = model_next_ < expected_.size()
-                   ? "pixel " + std::to_string(model_next_) + " " + describe(expected_[model_next_]) +
-                         " (bit-accurate model)"
+                   ? "pixel " + std::to_string(model_next_) + " " +
+                         describe(expected_[model_next_]) + " (bit-accurate model)"
                    : "no more pixels (bit-accurate model)";
   m.got = "the cycle model's pixel (x=" + std::to_string(x) + " y=" + std::to_string(y) +
           (eor ? " eor" : "") + (lanes_ > 1 ? " lane=" + std::to_string(lane) : "") +
@@ -191,8 +198,10 @@ void Scoreboard::timeout(uint64_t cycle) {
     m.expected = std::to_string(expected_.size()) + " pixel exits from the cycle model";
   }
   m.got = "nothing (" + std::to_string(rtl_exit_.size()) + " RTL / " +
-          std::to_string(model_exit_.size()) + " cycle-model exit cycles not yet paired; the cycle "
-          "model sent " + std::to_string(model_next_) + " pixels)";
+          std::to_string(model_exit_.size()) +
+          " cycle-model exit cycles not yet paired; the cycle "
+          "model sent " +
+          std::to_string(model_next_) + " pixels)";
   m.cycle = cycle;
   fail(m);
 }

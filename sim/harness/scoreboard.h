@@ -54,9 +54,9 @@ std::string to_string(Mismatch::Kind kind);
 // The command port on one cycle, for the context of a ready mismatch.
 struct CommandPortState {
   bool valid = false;
-  size_t beat = 0;       // index of the beat on the port (beats accepted so far)
-  size_t beats = 0;      // beats in the stream
-  uint64_t word0 = 0;    // word 0 of what is on cmd_data_i
+  size_t beat = 0;     // index of the beat on the port (beats accepted so far)
+  size_t beats = 0;    // beats in the stream
+  uint64_t word0 = 0;  // word 0 of what is on cmd_data_i
 };
 
 class Scoreboard {
@@ -221,8 +221,8 @@ class Scoreboard {
   int scanline_ = 0;       // scanline of expected_[next_]
   uint64_t rows_compared_ = 0;
   ExitQueue rtl_exit_, model_exit_;  // exit cycles of pixels the other side has not sent yet
-  Mismatch first_;  // the pixel side's first mismatch
-  Mismatch ready_;  // the first ready mismatch
+  Mismatch first_;                   // the pixel side's first mismatch
+  Mismatch ready_;                   // the first ready mismatch
   uint64_t cycles_ = 0;
 };
 

@@ -21,9 +21,9 @@ constexpr uint64_t splitmix64(uint64_t x) {
 
 struct Stimulus {
   uint64_t seed = 1;
-  int gap_pct = 0;     // chance (percent) that a command word is preceded by idle cycles
-  int max_gap = 1;     // idle cycles are uniform in 1..max_gap
-  int stall_pct = 0;   // chance (percent) that pix_ready is low on a cycle
+  int gap_pct = 0;    // chance (percent) that a command word is preceded by idle cycles
+  int max_gap = 1;    // idle cycles are uniform in 1..max_gap
+  int stall_pct = 0;  // chance (percent) that pix_ready is low on a cycle
 
   // Idle cycles before word `index` is offered (after word index-1 was accepted).
   int gap_before(size_t index) const {
@@ -60,7 +60,8 @@ class CommandDriver {
     // The last beat, padded, kept apart so that beat() is always port_words readable words.
     last_beat_.assign(port_words_, 0);
     if (beats_ > 0) {
-      for (size_t i = (beats_ - 1) * port_words_; i < words.size(); ++i) last_beat_[i % port_words_] = words[i];
+      for (size_t i = (beats_ - 1) * port_words_; i < words.size(); ++i)
+        last_beat_[i % port_words_] = words[i];
     }
   }
 

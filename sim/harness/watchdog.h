@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "model/cycle_model.h"
-#include "sim/harness/stimulus.h"
 #include "sim/harness/scoreboard.h"
+#include "sim/harness/stimulus.h"
 
 namespace shadesim {
 

@@ -51,7 +51,8 @@ void fuzz_binary(const UnitConfig& config, const uint8_t* data, size_t size) {
     // Header bits outside the documented fields are ignored (and encode writes them 0), so the
     // re-encoded stream has the same words in number and must decode to itself.
     const std::vector<uint64_t> encoded = stream.encode();
-    if (encoded.size() != words.size()) shadesim::fuzz::fail("decode then encode changed the length");
+    if (encoded.size() != words.size())
+      shadesim::fuzz::fail("decode then encode changed the length");
     if (CommandStream::decode(encoded, config, "<re-encoded>").encode() != encoded) {
       shadesim::fuzz::fail("decode of the re-encoded stream differs");
     }

@@ -2,14 +2,14 @@
 // "<extension>\n<file bytes>": assimp picks its importer by the extension first, so the
 // extension is part of what is fuzzed. Every input must give a mesh whose triangles index its
 // vertices and whose normals are unit length, or throw SceneError with a message.
+#include <pthread.h>
+#include <sanitizer/common_interface_defs.h>
+
 #include <cctype>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
-
-#include <pthread.h>
-#include <sanitizer/common_interface_defs.h>
 
 #include "host/mesh.h"
 #include "tests/fuzz/fuzz_support.h"

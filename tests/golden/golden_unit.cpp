@@ -1,11 +1,10 @@
 #include "tests/golden/golden_unit.h"
 
 #define SC_INCLUDE_FX
-#include <systemc>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <systemc>
 
 namespace shadesim::golden {
 namespace {
@@ -88,7 +87,7 @@ int64_t specular(const UnitConfig& c, const State& st, const int64_t* series) {
       const int b_frac = s.wpow.base_bits;
       const FixedFormat base = unsigned_format(b_frac + 1, 1, Quantization::kTruncate);
       int64_t b = sc_quantize(series[0], fs - shift, base);  // x * 2^shift, into u1.B
-      b = std::min(b, int64_t{1} << b_frac);                  // clamp to 1
+      b = std::min(b, int64_t{1} << b_frac);                 // clamp to 1
       for (int k = 0; k < squarings; ++k) b = sc_quantize(Int128{b} * b, 2 * b_frac, base);
       return sc_quantize(b, b_frac, s.out);
     }
@@ -96,7 +95,8 @@ int64_t specular(const UnitConfig& c, const State& st, const int64_t* series) {
       const int64_t num = series[0], den = series[1];
       if (num <= 0) return 0;
       if (den <= 0) return sc_quantize(1, 0, s.out);
-      const FixedFormat operand = unsigned_format(s.schlick.operand_bits + 2, 2, Quantization::kTruncate);
+      const FixedFormat operand =
+          unsigned_format(s.schlick.operand_bits + 2, 2, Quantization::kTruncate);
       const int64_t n = sc_quantize(num, fs, operand), d = sc_quantize(den, fs, operand);
       if (n == 0) return 0;
       if (n >= d) return sc_quantize(1, 0, s.out);
@@ -193,7 +193,8 @@ std::vector<Pixel> shade(const CommandStream& stream) {
       // wrap every lane's value is the closed form below, whatever K.
       const int lanes = c.lanes;
       const Int128 kl = lanes;
-      std::vector<std::vector<int64_t>> lane_v(static_cast<size_t>(lanes), std::vector<int64_t>(series_count));
+      std::vector<std::vector<int64_t>> lane_v(static_cast<size_t>(lanes),
+                                               std::vector<int64_t>(series_count));
       std::vector<std::vector<int64_t>> lane_d = lane_v;
       std::vector<int64_t> lane_d2(series_count);
       for (int i = 0; i < series_count; ++i) {
@@ -201,7 +202,8 @@ std::vector<Pixel> shade(const CommandStream& stream) {
         for (int j = 0; j < lanes; ++j) {
           const Int128 jj = j;
           lane_v[j][i] = sc_quantize(v0[i] + jj * d0[i] + jj * (jj - 1) / 2 * d2[i], fs, c.series);
-          lane_d[j][i] = sc_quantize(kl * d0[i] + (kl * jj + kl * (kl - 1) / 2) * d2[i], fs, c.series);
+          lane_d[j][i] =
+              sc_quantize(kl * d0[i] + (kl * jj + kl * (kl - 1) / 2) * d2[i], fs, c.series);
         }
       }
       std::vector<int64_t> values(series_count);
@@ -223,7 +225,8 @@ std::vector<Pixel> shade(const CommandStream& stream) {
         for (int ch = 0; ch < c.channels; ++ch) {
           Int128 sum = st.ambient[ch];
           for (int l = 0; l < c.lights; ++l) {
-            if ((st.gate_only & (1u << l)) == 0) sum += std::max<int64_t>(0, values[l * c.channels + ch]);
+            if ((st.gate_only & (1u << l)) == 0)
+              sum += std::max<int64_t>(0, values[l * c.channels + ch]);
             // The gate (model/pixel_combine.h): specular only where light l's channels' diffuse
             // values sum to more than 0.
             Int128 n_dot_l = 0;

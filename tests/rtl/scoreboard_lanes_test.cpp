@@ -57,8 +57,10 @@ Scoreboard run(const std::vector<PixelOut>& want, const std::vector<Beat>& beats
   cycle = 0;
   for (const Beat& b : beats) {
     const uint64_t x = static_cast<uint64_t>(b.x);
-    score_beat(board, x, 4, b.mask, b.eor,
-               [x](int lsb, int width) { return ((x + static_cast<uint64_t>(lsb / width)) & 0xff); }, c, cycle);
+    score_beat(
+        board, x, 4, b.mask, b.eor,
+        [x](int lsb, int width) { return ((x + static_cast<uint64_t>(lsb / width)) & 0xff); }, c,
+        cycle);
     ++cycle;
   }
   return board;
@@ -94,7 +96,8 @@ TEST(ScoreboardLanes, MasksThatAreNotLanesZeroToNAreMismatches) {
     const Scoreboard b = run(row({{10, 5}}, 4), {{10, mask, false}});
     ASSERT_TRUE(b.failed()) << mask;
     EXPECT_EQ(b.pixels_checked(), 0u) << mask;
-    EXPECT_NE(b.first_mismatch().got.find("lane mask"), std::string::npos) << b.first_mismatch().got;
+    EXPECT_NE(b.first_mismatch().got.find("lane mask"), std::string::npos)
+        << b.first_mismatch().got;
   }
 }
 

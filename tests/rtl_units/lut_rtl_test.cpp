@@ -1,11 +1,10 @@
 // rtl/exponent_lut.sv against ExponentLut: every output bit, latency 2 (3 with interpolation),
 // tables loaded through the cfg port (TABLE words) and from a $readmemh file.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
-
-#include <unistd.h>
 
 #include "model/exponent_lut.h"
 #include "tests/rtl_units/rtl_unit_driver.h"
@@ -47,7 +46,8 @@ void load_random_table(V& dut, ExponentLut& model, const LutConfig& c, std::mt19
   t.entries.front() = top;
   t.entries.back() = 0;
   model.load_table(t);
-  for (size_t i = 0; i < t.entries.size(); ++i) send_cfg(dut, true, static_cast<uint32_t>(i), t.entries[i]);
+  for (size_t i = 0; i < t.entries.size(); ++i)
+    send_cfg(dut, true, static_cast<uint32_t>(i), t.entries[i]);
 }
 
 // Runs one material: exponent word (resets shift), optionally a shift word, then the inputs.
@@ -114,17 +114,19 @@ void exhaustive_lut(const std::string& name) {
                                      ExponentLut::latency(c), shift % 2 ? 100 : 70);
     EXPECT_EQ(mm.count, 0) << name << " shift " << shift << ": first mismatch " << mm.first;
   }
-  const Mismatch mm = run_material(dut, model, series, 0, false, inputs, rng,
-                                   ExponentLut::latency(c), 80);
+  const Mismatch mm =
+      run_material(dut, model, series, 0, false, inputs, rng, ExponentLut::latency(c), 80);
   EXPECT_EQ(mm.count, 0) << name << " default shift: first mismatch " << mm.first;
   // A second table (a material switch), loaded over the first.
   load_random_table(dut, model, c, rng);
-  const Mismatch mm2 = run_material(dut, model, series, 1, true, inputs, rng,
-                                    ExponentLut::latency(c), 90);
+  const Mismatch mm2 =
+      run_material(dut, model, series, 1, true, inputs, rng, ExponentLut::latency(c), 90);
   EXPECT_EQ(mm2.count, 0) << name << " second table: first mismatch " << mm2.first;
 }
 
-TEST(ExponentLutRtl, SmallestWidthsExhaustiveEveryShift) { exhaustive_lut<Vlut_small>("lut_small"); }
+TEST(ExponentLutRtl, SmallestWidthsExhaustiveEveryShift) {
+  exhaustive_lut<Vlut_small>("lut_small");
+}
 
 TEST(ExponentLutRtl, InterpolationNearestRoundedOutputExhaustive) {
   exhaustive_lut<Vlut_interp>("lut_interp");
@@ -148,8 +150,8 @@ TEST(ExponentLutRtl, TableFromReadmemhFileThenTableCommands) {
   std::remove(SHADESIM_RTL_UNITS_TABLE_FILE);
   const std::vector<int64_t> inputs = random_values(series, rng, 20000);
   for (int shift : {0, 3, series.frac_bits()}) {
-    const Mismatch mm = run_material(dut, model, series, shift, true, inputs, rng,
-                                     ExponentLut::latency(c), 75);
+    const Mismatch mm =
+        run_material(dut, model, series, shift, true, inputs, rng, ExponentLut::latency(c), 75);
     EXPECT_EQ(mm.count, 0) << "file table, shift " << shift << ": first mismatch " << mm.first;
   }
   // A per-exponent reload over the file's contents, then entries at both ends only.
@@ -165,7 +167,8 @@ TEST(ExponentLutRtl, TableFromReadmemhFileThenTableCommands) {
   send_cfg(dut, true, ends.base, 254);
   // An address past the table is ignored by the RTL (the model rejects it).
   send_cfg(dut, true, static_cast<uint32_t>(model.entries()), 3);
-  const Mismatch mm = run_material(dut, model, series, 2, true, inputs, rng, ExponentLut::latency(c), 100);
+  const Mismatch mm =
+      run_material(dut, model, series, 2, true, inputs, rng, ExponentLut::latency(c), 100);
   EXPECT_EQ(mm.count, 0) << "reloaded table: first mismatch " << mm.first;
 }
 

@@ -69,13 +69,15 @@ inline FixedFormat out_format(const Params& p, const std::string& prefix) {
     const auto it = p.find(prefix + k);
     return it == p.end() ? 0 : it->second;
   };
-  return FixedFormat{static_cast<int>(get(p, prefix + "WL")), static_cast<int>(get(p, prefix + "IWL")),
-                     false, opt("QUANT") ? Quantization::kRoundNearest : Quantization::kTruncate,
+  return FixedFormat{static_cast<int>(get(p, prefix + "WL")),
+                     static_cast<int>(get(p, prefix + "IWL")), false,
+                     opt("QUANT") ? Quantization::kRoundNearest : Quantization::kTruncate,
                      opt("OVERFLOW") ? Overflow::kWrap : Overflow::kSaturate};
 }
 
 inline uint64_t to_bits(int64_t raw, int wl) {
-  return wl >= 64 ? static_cast<uint64_t>(raw) : static_cast<uint64_t>(raw) & ((uint64_t{1} << wl) - 1);
+  return wl >= 64 ? static_cast<uint64_t>(raw)
+                  : static_cast<uint64_t>(raw) & ((uint64_t{1} << wl) - 1);
 }
 
 // Hard-case raw series values for a format: 0, +-1 LSB, the extremes, t = +-1 and its neighbours,
@@ -143,7 +145,8 @@ struct UnitRun {
       set_input(k);
       dut.en_i = en;
       dut.eval();
-      if (busy()) mismatch->add("busy_o high in a pipelined unit at cycle " + std::to_string(cycles));
+      if (busy())
+        mismatch->add("busy_o high in a pipelined unit at cycle " + std::to_string(cycles));
       if (static_cast<int>(hist.size()) >= latency) {
         const int64_t j = hist[hist.size() - static_cast<size_t>(latency)];
         if (j >= 0) {
@@ -201,7 +204,8 @@ struct UnitRun {
         const int64_t got = static_cast<int64_t>(dut.spec_o);
         if (want != got) {
           mismatch->add(describe(k) + ": expected " + std::to_string(want) + ", got " +
-                        std::to_string(got) + " (" + std::to_string(h) + " cycles after start + LATENCY)");
+                        std::to_string(got) + " (" + std::to_string(h) +
+                        " cycles after start + LATENCY)");
         }
         if (h < hold) {
           clock_edge(dut);

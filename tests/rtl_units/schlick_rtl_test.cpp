@@ -32,8 +32,8 @@ std::vector<Pair> all_pairs(const FixedFormat& f) {
 // Hard cases: every pairing of hard series values, operands around den (quotient just below,
 // at and above 1), denominators below one operand LSB (aligned to 0), and random pairs with
 // num < den (the usual case) and anywhere.
-std::vector<Pair> hard_and_random_pairs(const FixedFormat& f, int operand_bits, std::mt19937_64& rng,
-                                        int n_random) {
+std::vector<Pair> hard_and_random_pairs(const FixedFormat& f, int operand_bits,
+                                        std::mt19937_64& rng, int n_random) {
   std::vector<Pair> v;
   const std::vector<int64_t> hard = hard_series(f);
   for (int64_t a : hard)
@@ -76,7 +76,8 @@ void check_divider(const std::string& name, const std::vector<Pair>& inputs, std
     dut.den_i = to_bits(x.second, series.wl);
   };
   run.expected = [&](int64_t k) {
-    return model.evaluate(inputs[static_cast<size_t>(k)].first, inputs[static_cast<size_t>(k)].second);
+    return model.evaluate(inputs[static_cast<size_t>(k)].first,
+                          inputs[static_cast<size_t>(k)].second);
   };
   run.describe = [&](int64_t k) {
     return name + " num " + std::to_string(inputs[static_cast<size_t>(k)].first) + " den " +
@@ -116,7 +117,8 @@ TEST(SchlickDividerRtl, DefaultWidthsIterativeHardAndRandom) {
   const Params p = config_params("schlick_iter");
   check_divider<Vschlick_iter>(
       "schlick_iter",
-      hard_and_random_pairs(series_format(p), static_cast<int>(get(p, "OPERAND_BITS")), rng, 20000), rng);
+      hard_and_random_pairs(series_format(p), static_cast<int>(get(p, "OPERAND_BITS")), rng, 20000),
+      rng);
 }
 
 TEST(SchlickDividerRtl, LongPipelineRoundedOutputHardAndRandom) {
@@ -124,7 +126,8 @@ TEST(SchlickDividerRtl, LongPipelineRoundedOutputHardAndRandom) {
   const Params p = config_params("schlick_pipe");
   check_divider<Vschlick_pipe>(
       "schlick_pipe",
-      hard_and_random_pairs(series_format(p), static_cast<int>(get(p, "OPERAND_BITS")), rng, 50000), rng);
+      hard_and_random_pairs(series_format(p), static_cast<int>(get(p, "OPERAND_BITS")), rng, 50000),
+      rng);
 }
 
 }  // namespace

@@ -37,17 +37,25 @@ UnitConfig slot_config(const Params& p) {
 // The model's declared timing for the selected unit.
 int latency_of(const SpecularConfig& s) {
   switch (s.kind) {
-    case SpecularUnitKind::kLut: return ExponentLut::latency(s.lut);
-    case SpecularUnitKind::kSchlick: return SchlickDivider::latency(s.schlick);
-    case SpecularUnitKind::kWpow: return WpowUnit::latency(s.wpow);
-    case SpecularUnitKind::kIdeal: default: return 0;
+    case SpecularUnitKind::kLut:
+      return ExponentLut::latency(s.lut);
+    case SpecularUnitKind::kSchlick:
+      return SchlickDivider::latency(s.schlick);
+    case SpecularUnitKind::kWpow:
+      return WpowUnit::latency(s.wpow);
+    case SpecularUnitKind::kIdeal:
+    default:
+      return 0;
   }
 }
 int interval_of(const SpecularConfig& s) {
   switch (s.kind) {
-    case SpecularUnitKind::kSchlick: return SchlickDivider::cycles_per_pixel(s.schlick);
-    case SpecularUnitKind::kWpow: return WpowUnit::cycles_per_pixel(s.wpow);
-    default: return 1;
+    case SpecularUnitKind::kSchlick:
+      return SchlickDivider::cycles_per_pixel(s.schlick);
+    case SpecularUnitKind::kWpow:
+      return WpowUnit::cycles_per_pixel(s.wpow);
+    default:
+      return 1;
   }
 }
 
@@ -66,7 +74,8 @@ void send_cfg(V& dut, bool table, uint32_t addr, int64_t data) {
 // A material as the shade unit forwards it: exponent, then unit_params; then its TABLE
 // commands (the per-exponent reload), split into two commands at a random base.
 template <class V>
-void load_material(V& dut, SpecularUnit& model, const UnitConfig& u, std::mt19937_64& rng, int round) {
+void load_material(V& dut, SpecularUnit& model, const UnitConfig& u, std::mt19937_64& rng,
+                   int round) {
   MaterialCmd m;
   m.ambient.assign(1, 0);
   m.spec_colour.assign(1, 0);
@@ -93,7 +102,8 @@ void load_material(V& dut, SpecularUnit& model, const UnitConfig& u, std::mt1993
   lo.base = 0;
   hi.base = split;
   for (int i = 0; i < entries; ++i) {
-    (static_cast<uint32_t>(i) < split ? lo : hi).entries.push_back(static_cast<int64_t>(rng() % static_cast<uint64_t>(top)));
+    (static_cast<uint32_t>(i) < split ? lo : hi)
+        .entries.push_back(static_cast<int64_t>(rng() % static_cast<uint64_t>(top)));
   }
   // Load the high part first: the base must be honoured, not the arrival order.
   for (const TableCmd* t : {&hi, &lo}) {
@@ -127,13 +137,15 @@ void check_slot(const std::string& name) {
     std::vector<std::vector<int64_t>> inputs;
     for (int64_t h : hard)
       for (int64_t h2 : {h, one, one / 2, int64_t{1}}) inputs.push_back({h, h2});
-    for (int i = 0; i < 3000; ++i) inputs.push_back({near(rng), i % 4 ? near(rng) + one / 2 : any(rng)});
+    for (int i = 0; i < 3000; ++i)
+      inputs.push_back({near(rng), i % 4 ? near(rng) + one / 2 : any(rng)});
     Mismatch mm;
     UnitRun<V> run{dut, latency, rng};
     run.set_input = [&](int64_t k) {
       uint64_t bits = 0;
       for (int s = 0; s < spl; ++s) {
-        const int64_t raw = k >= 0 ? inputs[static_cast<size_t>(k)][static_cast<size_t>(s)] : static_cast<int64_t>(rng());
+        const int64_t raw = k >= 0 ? inputs[static_cast<size_t>(k)][static_cast<size_t>(s)]
+                                   : static_cast<int64_t>(rng());
         bits |= to_bits(raw, series.wl) << (s * series.wl);
       }
       dut.series_i = bits;
@@ -167,7 +179,9 @@ void check_slot(const std::string& name) {
 }
 
 TEST(SpecularSlotRtl, LutInterpolatedCfgMapping) { check_slot<Vslot_lut>("slot_lut"); }
-TEST(SpecularSlotRtl, SchlickIterativeSeriesOrderAndBusy) { check_slot<Vslot_schlick>("slot_schlick"); }
+TEST(SpecularSlotRtl, SchlickIterativeSeriesOrderAndBusy) {
+  check_slot<Vslot_schlick>("slot_schlick");
+}
 TEST(SpecularSlotRtl, WpowIterativeParamsAndBusy) { check_slot<Vslot_wpow>("slot_wpow"); }
 TEST(SpecularSlotRtl, IdealIsZero) { check_slot<Vslot_ideal>("slot_ideal"); }
 

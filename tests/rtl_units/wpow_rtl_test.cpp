@@ -33,8 +33,8 @@ void send_param(V& dut, uint32_t addr, int64_t data) {
 
 // Series values whose base (series << shift, B fraction bits) lands on 0, 1 and their
 // neighbours, for this shift; then the generic hard cases and random values near [0, 1].
-std::vector<int64_t> wpow_inputs(const FixedFormat& f, int shift, int base_bits, std::mt19937_64& rng,
-                                 int n_random) {
+std::vector<int64_t> wpow_inputs(const FixedFormat& f, int shift, int base_bits,
+                                 std::mt19937_64& rng, int n_random) {
   std::vector<int64_t> v = hard_series(f);
   const int src = f.frac_bits() - shift;  // fraction bits of the shifted series
   const int64_t lsb = src > base_bits ? int64_t{1} << (src - base_bits) : 1;
@@ -116,8 +116,12 @@ void check_wpow(const std::string& name, bool exhaustive, int n_random) {
   }
 }
 
-TEST(WpowUnitRtl, M4SmallestPipelinedExhaustive) { check_wpow<Vwpow_small_pipe>("wpow_small_pipe", true, 0); }
-TEST(WpowUnitRtl, M4SmallestIterativeExhaustive) { check_wpow<Vwpow_small_iter>("wpow_small_iter", true, 0); }
+TEST(WpowUnitRtl, M4SmallestPipelinedExhaustive) {
+  check_wpow<Vwpow_small_pipe>("wpow_small_pipe", true, 0);
+}
+TEST(WpowUnitRtl, M4SmallestIterativeExhaustive) {
+  check_wpow<Vwpow_small_iter>("wpow_small_iter", true, 0);
+}
 TEST(WpowUnitRtl, M1NoSquarerExhaustive) { check_wpow<Vwpow_m1>("wpow_m1", true, 0); }
 TEST(WpowUnitRtl, W16PipelinedHardAndRandom) { check_wpow<Vwpow_w16>("wpow_w16", false, 4000); }
 TEST(WpowUnitRtl, M32IterativeRoundedOutputHardAndRandom) {

@@ -18,7 +18,8 @@ inline ErrorStats render_at(const std::string& scene, const UnitConfig& config) 
   o.fixed_unit = true;
   const PreparedFrame f = prepare_frame(scene, o);
   const auto pixels = ShadeUnit(f.config).run(f.encoded.stream);
-  const ReferenceImage ref = render_reference(f.setup.triangles, f.visibility, f.scene, f.config.channels);
+  const ReferenceImage ref =
+      render_reference(f.setup.triangles, f.visibility, f.scene, f.config.channels);
   return compare_to_reference(pixels, ref.values, f.visibility.owner, f.scene.width, f.scene.height,
                               f.config.channels, f.config.out_bits)
       .stats;

@@ -9,12 +9,12 @@
 
 // Use as the first statement of a test body.
 #if SHADESIM_TEST_DATA_OPTIONAL
-#define SHADESIM_NEEDS_TEST_FILE(path)                                                         \
-  if (!std::filesystem::exists(path))                                                          \
-  GTEST_SKIP() << (path) << " is absent (Debian package assimp-testmodels not installed; "     \
+#define SHADESIM_NEEDS_TEST_FILE(path)                                                     \
+  if (!std::filesystem::exists(path))                                                      \
+  GTEST_SKIP() << (path) << " is absent (Debian package assimp-testmodels not installed; " \
                << "allowed by SHADESIM_ALLOW_MISSING_TOOLS)"
 #else
-#define SHADESIM_NEEDS_TEST_FILE(path)                                                         \
-  if (!std::filesystem::exists(path))                                                          \
+#define SHADESIM_NEEDS_TEST_FILE(path) \
+  if (!std::filesystem::exists(path))  \
   FAIL() << (path) << " is absent: install Debian's assimp-testmodels (scripts/setup does)"
 #endif
