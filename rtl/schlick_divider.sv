@@ -102,10 +102,11 @@ module schlick_divider #(
   if (TIMING == 0) begin : g_pipelined
     // Stage k holds the quotient's top k + 1 bits and its class; the remainder and divisor are
     // registered only into the stages that still divide (k < Q - 1).
-    // q_q and cls_q packed: Icarus 11 left the last stage of these unpacked arrays X (every
-    // quotient out of the pipelined divider X), though the remainders were known.
-    logic [Q-1:0][Q-1:0] q_q;
-    logic [Q-1:0][1:0]   cls_q;  // cls_e per stage
+    // q_q and cls_q as flat vectors, stage k at [k*Q +: Q] / [2k +: 2]: Icarus 11 left the last
+    // stage of unpacked arrays X here (every quotient X), and Yosys 0.23 cannot parse a
+    // multi-dimensional packed array.
+    logic [Q*Q-1:0] q_q;
+    logic [2*Q-1:0] cls_q;  // a cls_e per stage
     logic [OpW:0]        step  [Q];  // step[k]: what stage k computes ({remainder, bit})
     if (Q > 1) begin : g_carry
       logic [OpW-1:0] r_q   [Q-1];
@@ -129,16 +130,16 @@ module schlick_divider #(
     end
     always_ff @(posedge clk_i) begin
       if (en_i) begin
-        q_q[0]   <= Q'(step[0][0]);
-        cls_q[0] <= cls_d;
+        q_q[0 +: Q]   <= Q'(step[0][0]);
+        cls_q[0 +: 2] <= cls_d;
         for (int k = 1; k < Q; k++) begin
-          q_q[k]   <= (q_q[k-1] << 1) | Q'(step[k][0]);
-          cls_q[k] <= cls_q[k-1];
+          q_q[k*Q +: Q]   <= (q_q[(k-1)*Q +: Q] << 1) | Q'(step[k][0]);
+          cls_q[2*k +: 2] <= cls_q[2*(k-1) +: 2];
         end
       end
     end
-    assign q_out   = q_q[Q-1];
-    assign cls_out = cls_q[Q-1];
+    assign q_out   = q_q[(Q-1)*Q +: Q];
+    assign cls_out = cls_q[2*(Q-1) +: 2];
     assign busy_o  = 1'b0;
     // The pipelined stages hold no state that needs a reset (every stage is overwritten on the
     // advance before its output is used); the last step's remainder is not a quotient bit.

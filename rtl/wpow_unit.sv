@@ -128,17 +128,19 @@ module wpow_unit #(
   logic [BW-1:0] b_out;
 
   if (TIMING == 0 || K == 0) begin : g_pipelined
-    // Packed: Icarus 11 left the last stage of these unpacked arrays X (every pipelined W_m
-    // colour X), as it did schlick_divider's.
-    logic [K:0][BW-1:0] b_q;   // b_q[0]: base; b_q[k]: after stage k
-    logic [K:0]         bk_q;  // the bank of the pixel in b_q[k]
+    // Flat vectors, stage k at [k*BW +: BW] / [k]: Icarus 11 left the last stage of unpacked
+    // arrays X here (every pipelined W_m colour X), and Yosys 0.23 cannot parse a
+    // multi-dimensional packed array.
+    logic [(K+1)*BW-1:0] b_q;   // stage 0: base; stage k: after squaring step k
+    logic [K:0]          bk_q;  // the bank of the pixel in stage k
     always_ff @(posedge clk_i) begin
       if (en_i) begin
-        b_q[0]  <= base_d;
+        b_q[0 +: BW] <= base_d;
         bk_q[0] <= in_bank;
         for (int k = 1; k <= K; k++) begin
           // Stage k squares iff k > K - s, i.e. s >= K - k + 1.
-          b_q[k]  <= sq_q[bk_q[k-1]] >= SqW'(K - k + 1) ? square(b_q[k-1]) : b_q[k-1];
+          b_q[k*BW +: BW] <= sq_q[bk_q[k-1]] >= SqW'(K - k + 1) ? square(b_q[(k-1)*BW +: BW])
+                                                              : b_q[(k-1)*BW +: BW];
           bk_q[k] <= bk_q[k-1];
         end
       end
@@ -147,7 +149,7 @@ module wpow_unit #(
     logic unused_last_bank;  // the last stage's bank: nothing after it reads a parameter
     assign unused_last_bank = bk_q[K];
     // verilator lint_on UNUSEDSIGNAL
-    assign b_out  = b_q[K];
+    assign b_out  = b_q[K*BW +: BW];
     assign busy_o = 1'b0;
   end else begin : g_iterative
     localparam int CntW = $clog2(K + 1);
