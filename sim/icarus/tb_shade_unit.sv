@@ -8,7 +8,7 @@
 //              [+pixels=/abs/out.txt]
 //
 // Stimulus: the Verilator harness's, from the schedule files icarus_stream_tool export writes
-// (the generator has one home, model/stimulus.h and sim/harness/idle_noise.h): +gaps= gives the
+// (the generator has one home, sim/harness/stimulus.h and sim/harness/idle_noise.h): +gaps= gives the
 // idle cycles before each beat is offered (CommandDriver: valid stays high until the beat is
 // taken), +cycles= per cycle pix_ready and the random words on cmd_data while cmd_valid is low.
 // Both are read as the run goes, one entry per beat / per cycle. Without them: no gaps, pix_ready
