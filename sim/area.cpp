@@ -46,8 +46,12 @@ constexpr const char* kFlatScript =
 // Breakdown: the same flow with the datapath modules kept as modules (their fixed_round /
 // fixed_sat helpers are flattened into them), so stat says where the area goes. Across a kept
 // boundary Yosys cannot drop unread logic, so this total is at least the flat one.
+// `rename -top`: when hierarchy re-derives the chparam'd top (a submodule's ports became known
+// only after its own derivation, as pixel_combine's gate_only_i), the top is left as
+// $paramod...\shade_unit and `-top shade_unit` below would not find it.
 constexpr const char* kBreakdownScript =
     "hierarchy -top shade_unit\n"
+    "rename -top shade_unit\n"
     "setattr -mod -set keep_hierarchy 1 *span_setup *series_engine *specular_unit *pixel_combine\n"
     "synth -flatten -top shade_unit\n"
     "abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX\n"
