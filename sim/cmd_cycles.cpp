@@ -18,6 +18,7 @@
 #include "sim/commands.h"
 #include "sim/config_option.h"
 #include "sim/harness/cycle_run.h"
+#include "sim/stimulus_options.h"
 #include "sim/width_options.h"
 
 namespace shadesim {
@@ -386,15 +387,7 @@ void register_cycles(CLI::App& app, int& exit_code) {
          "given, it overrides the file's")
       ->check(CLI::IsMember({1, 2}));
   sub->add_option("--seed", o->seed, "stimulus seed")->capture_default_str();
-  sub->add_option("--gap-pct", o->gap_pct, "chance of idle cycles before a command word")
-      ->check(CLI::Range(0, 100))
-      ->capture_default_str();
-  sub->add_option("--max-gap", o->max_gap, "longest idle gap in cycles")
-      ->check(CLI::Range(1, 100000))
-      ->capture_default_str();
-  sub->add_option("--stall-pct", o->stall_pct, "chance of output back-pressure per cycle")
-      ->check(CLI::Range(0, 99))
-      ->capture_default_str();
+  add_stimulus_options(sub, o->gap_pct, o->max_gap, o->stall_pct);
   sub->add_option("--json", o->json_path, "write the figures as JSON");
   sub->add_flag(
       "--clocked", o->clocked,

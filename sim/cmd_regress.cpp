@@ -35,6 +35,7 @@
 #include "sim/process.h"
 #include "sim/regress_results.h"
 #include "sim/rtl_build.h"
+#include "sim/stimulus_options.h"
 
 namespace shadesim {
 namespace {
@@ -974,15 +975,7 @@ void register_regress(CLI::App& app, int& exit_code) {
   sub->add_option("-j,--jobs", o->jobs,
                   "parallel builds and co-simulations (default: hardware threads)")
       ->check(CLI::NonNegativeNumber);
-  sub->add_option("--gap-pct", o->gap_pct, "chance of idle cycles before a command word")
-      ->check(CLI::Range(0, 100))
-      ->capture_default_str();
-  sub->add_option("--max-gap", o->max_gap, "longest idle gap in cycles")
-      ->check(CLI::Range(1, 100000))
-      ->capture_default_str();
-  sub->add_option("--stall-pct", o->stall_pct, "chance of output back-pressure per cycle")
-      ->check(CLI::Range(0, 99))
-      ->capture_default_str();
+  add_stimulus_options(sub, o->gap_pct, o->max_gap, o->stall_pct);
   sub->add_option("-o,--out", o->out_dir,
                   "where plans and each run's folder (stream, logs, result) go")
       ->capture_default_str();
