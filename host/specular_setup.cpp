@@ -161,12 +161,13 @@ std::vector<int64_t> lut_entries(const LutConfig& c, double n) {
   return e;
 }
 
-std::vector<TableCmd> to_table_commands(const std::vector<int64_t>& entries) {
+std::vector<TableCmd> to_table_commands(const std::vector<int64_t>& entries, bool per_material) {
   constexpr size_t kMaxPerCommand = 65535;
   std::vector<TableCmd> cmds;
   for (size_t base = 0; base < entries.size(); base += kMaxPerCommand) {
     TableCmd t;
     t.base = static_cast<uint32_t>(base);
+    t.per_material = per_material;
     const size_t end = std::min(entries.size(), base + kMaxPerCommand);
     t.entries.assign(entries.begin() + static_cast<long>(base),
                      entries.begin() + static_cast<long>(end));
@@ -188,7 +189,7 @@ SpecularSeriesPlan plan_specular(const UnitConfig& config, double n) {
       if (s.lut.addressing == LutAddressing::kPerExponent) {
         p.affine = {{d, 0.0}};
         p.unit_params = {0};
-        p.tables = to_table_commands(lut_entries(s.lut, n));
+        p.tables = to_table_commands(lut_entries(s.lut, n), /*per_material=*/true);
         p.load_cycles = ExponentLut::reload_cycles(s.lut);
       } else {
         const double k = fit_exp_k(n, s.lut.fit);

@@ -83,7 +83,10 @@ std::vector<TableCmd> shared_lut_tables(const UnitConfig& config);
 // Table contents: entry i = round(f(v_i) * 2^B), saturated to 2^B - 1, f = v^n (per exponent)
 // or exp(-U v) (shared, n ignored). Split into TABLE commands of at most 65535 entries.
 std::vector<int64_t> lut_entries(const LutConfig& c, double n);
-std::vector<TableCmd> to_table_commands(const std::vector<int64_t>& entries);
+// per_material: the table belongs to one material (a per-exponent LUT's reload after its
+// MATERIAL; TableCmd::per_material).
+std::vector<TableCmd> to_table_commands(const std::vector<int64_t>& entries,
+                                        bool per_material = false);
 
 // Smallest shift >= 0 that fits the affine map into the series format (see above).
 int series_shift(const FixedFormat& series, double scale, double offset);

@@ -120,7 +120,7 @@ std::vector<uint64_t> CommandStream::encode() const {
     } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
       words.push_back(CommandWord::span(s->y, s->x0, s->length, s->last_in_row).bits);
     } else if (const auto* tb = std::get_if<TableCmd>(&cmd)) {
-      words.push_back(CommandWord::table(tb->base, tb->entries.size()).bits);
+      words.push_back(CommandWord::table(tb->base, tb->entries.size(), tb->per_material).bits);
       for (auto v : tb->entries) words.push_back(static_cast<uint64_t>(v));
     } else {
       words.push_back(CommandWord::end_frame().bits);
@@ -198,6 +198,7 @@ CommandStream CommandStream::decode(const std::vector<uint64_t>& words, const Un
       case Opcode::kTable: {
         TableCmd tb;
         tb.base = h.table_base();
+        tb.per_material = h.table_per_material();
         tb.entries = take(count, at);
         cs.commands.emplace_back(std::move(tb));
         break;
@@ -245,7 +246,7 @@ void CommandStream::write_text(std::ostream& os) const {
     } else if (const auto* tb = std::get_if<TableCmd>(&cmd)) {
       os << "table " << tb->base;
       list(tb->entries);
-      os << '\n';
+      os << (tb->per_material ? " material" : "") << '\n';
     } else {
       os << "end\n";
     }
@@ -366,7 +367,15 @@ CommandStream CommandStream::read_text(std::istream& is, const std::string& sour
       tb.base = static_cast<uint32_t>(read_int("base", 0, kField16));
       std::string kw;
       tb.entries = read_list(&kw);
-      if (!kw.empty()) throw CommandStreamError(loc + "table: expected integers, got '" + kw + "'");
+      if (kw == "material") {
+        tb.per_material = true;
+        std::string rest;
+        if (ls >> rest)
+          throw CommandStreamError(loc + "table: expected nothing after 'material', got '" + rest +
+                                   "'");
+      } else if (!kw.empty()) {
+        throw CommandStreamError(loc + "table: expected integers or 'material', got '" + kw + "'");
+      }
       cs.commands.emplace_back(std::move(tb));
     } else if (op == "end") {
       cs.commands.emplace_back(EndFrameCmd{});

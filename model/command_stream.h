@@ -19,7 +19,12 @@
 //                  T0 + T1*dy + T2*dx + T3*dy^2 + T4*dx*dy + T5*dx^2.
 //   SPAN      0x03 header[55] = last span of its scanline in this frame, header[47:32] = y,
 //                  header[31:16] = x0, header[15:0] = length (>= 1). No payload.
-//   TABLE     0x04 header[31:16] = base address, header[15:0] = entries; payload one entry/word.
+//   TABLE     0x04 header[55] = per-material table, header[31:16] = base address,
+//                  header[15:0] = entries; payload one entry/word. A per-material table belongs
+//                  to the latest MATERIAL (a per-exponent LUT's reload): with material_buffers 2
+//                  each material bank has its own table and a per-material TABLE writes the
+//                  bank of the latest MATERIAL only; any other TABLE writes every bank. With one
+//                  buffer there is one table and the bit changes nothing.
 //   END_FRAME 0x0F no payload.
 //
 // Command port of P = UnitConfig::port_words words (1, 2, 4 or 8) per handshake: the driver cuts
@@ -40,7 +45,9 @@
 // span setup (or for room in the span queue, UnitConfig::tri_queue > 1) and, without a span
 // queue, never goes with its triangle's tail (its setup reads the coefficients as it is
 // taken); a TRIANGLE waits for a free coefficient bank; MATERIAL and TABLE wait for an empty
-// datapath. With P = 1 a beat is one word and every item one word.
+// datapath (with material_buffers 2 a MATERIAL waits only until no span of the bank it switches
+// to is in flight, and a per-material TABLE until no span of the latest MATERIAL's bank is). With P
+// = 1 a beat is one word and every item one word.
 //
 // Text form: one command per line, '#' starts a comment, a first line
 // "shadesim-commands 1 <config json>" carries the unit configuration so a saved stream replays
@@ -49,7 +56,7 @@
 //     (gate_only written when not 0; absent means 0)
 //   tri XO YO | T0 T1 T2 T3 T4 T5 | T0 ... (one group per series)
 //   span Y X0 LEN [last]
-//   table BASE E0 E1 ...
+//   table BASE E0 E1 ... [material]   (material: a per-material table)
 //   end
 #pragma once
 
@@ -88,6 +95,7 @@ struct SpanCmd {
 struct TableCmd {
   uint32_t base = 0;
   std::vector<int64_t> entries;
+  bool per_material = false;  // header[55]: the table of the latest MATERIAL (see above)
 };
 
 struct EndFrameCmd {};

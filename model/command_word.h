@@ -18,13 +18,14 @@ enum class Opcode : uint8_t {
 };
 
 struct CommandWord {
-  static constexpr int kOpcodeLsb = 56;    // [63:56]
-  static constexpr int kFieldBits = 16;    // every field below is 16 bits wide
-  static constexpr int kCountLsb = 0;      // [15:0]  payload words; SPAN: length
-  static constexpr int kMidLsb = 16;       // [31:16] TRIANGLE yo, SPAN x0, TABLE base,
-                                           //         MATERIAL gate-only light mask
-  static constexpr int kHighLsb = 32;      // [47:32] TRIANGLE xo, SPAN y
-  static constexpr int kSpanLastBit = 55;  // SPAN: last span of its scanline
+  static constexpr int kOpcodeLsb = 56;            // [63:56]
+  static constexpr int kFieldBits = 16;            // every field below is 16 bits wide
+  static constexpr int kCountLsb = 0;              // [15:0]  payload words; SPAN: length
+  static constexpr int kMidLsb = 16;               // [31:16] TRIANGLE yo, SPAN x0, TABLE base,
+                                                   //         MATERIAL gate-only light mask
+  static constexpr int kHighLsb = 32;              // [47:32] TRIANGLE xo, SPAN y
+  static constexpr int kSpanLastBit = 55;          // SPAN: last span of its scanline
+  static constexpr int kTablePerMaterialBit = 55;  // TABLE: the table of the latest MATERIAL
   static constexpr uint64_t kFieldMask = 0xFFFF;
 
   uint64_t bits = 0;
@@ -42,6 +43,7 @@ struct CommandWord {
   constexpr bool span_last() const { return ((bits >> kSpanLastBit) & 1) != 0; }
   // TABLE
   constexpr uint32_t table_base() const { return field(kMidLsb); }
+  constexpr bool table_per_material() const { return ((bits >> kTablePerMaterialBit) & 1) != 0; }
   // MATERIAL: bit l set = light l's first diffuse series carries N.L for the specular gate only
   // (the material has no diffuse colour for that light; model/pixel_combine.h has the rule).
   constexpr uint32_t material_gate_only() const { return field(kMidLsb); }
@@ -64,8 +66,10 @@ struct CommandWord {
     if (last) w.bits |= uint64_t{1} << kSpanLastBit;
     return w;
   }
-  static constexpr CommandWord table(uint32_t base, uint64_t count) {
-    return header(Opcode::kTable, count, base);
+  static constexpr CommandWord table(uint32_t base, uint64_t count, bool per_material = false) {
+    CommandWord w = header(Opcode::kTable, count, base);
+    if (per_material) w.bits |= uint64_t{1} << kTablePerMaterialBit;
+    return w;
   }
   static constexpr CommandWord end_frame() { return header(Opcode::kEndFrame, 0); }
 

@@ -217,8 +217,8 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
   TriangleCost* tri = nullptr;  // the latest TRIANGLE's: its SPANs follow it
 
   // The first cycle on which a header of this opcode may go (model/command_stream.h).
-  const auto ready = [&](Opcode op) -> Cycle {
-    switch (op) {
+  const auto ready = [&](const CommandWord& word) -> Cycle {
+    switch (static_cast<Opcode>(word.opcode())) {
       case Opcode::kSpan:
         // Without a queue: s1 free. With one: room, i.e. the span queue_size places earlier
         // has entered s1.
@@ -234,6 +234,8 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
         if (mat_banked) return mat_leave[static_cast<size_t>(1 - mat_wr)];
         return pipe.empty();
       case Opcode::kTable:
+        // Two buffers, a per-material table: no span of the latest MATERIAL's bank in flight.
+        if (mat_banked && word.table_per_material()) return mat_leave[static_cast<size_t>(mat_wr)];
         return pipe.empty();
       default:
         return 0;
@@ -247,7 +249,7 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
     // ---- the header at w: it goes on the first cycle >= t on which it may ----
     const CommandWord word = word_at(w);
     const Opcode op = static_cast<Opcode>(word.opcode());
-    const Cycle c = std::max(t, ready(op));
+    const Cycle c = std::max(t, ready(word));
     if (rec) rec->port(t, header_category(op));  // waiting for it, then taking it
     last_item = c;
     t = c + 1;
@@ -347,7 +349,7 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
     const CommandWord next = word_at(w);
     const Opcode nop = static_cast<Opcode>(next.opcode());
     // Without a queue a SPAN's setup reads the coefficients as it is taken: never with them.
-    const bool joins = !(nop == Opcode::kSpan && !queued) && ready(nop) <= tail_cycle;
+    const bool joins = !(nop == Opcode::kSpan && !queued) && ready(next) <= tail_cycle;
     if (joins) {
       // Take it on the tail's cycle: the header logic above runs with t = tail_cycle and the
       // item's cycle is already counted for this triangle.

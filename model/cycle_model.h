@@ -7,8 +7,9 @@
 // Mirrored structure (names as in the RTL): a command decoder (a beat of port_words words taken
 // apart one item per cycle, model/command_stream.h; headers, payload counting; MATERIAL and TABLE
 // wait for an empty datapath - with material_buffers 2 a MATERIAL waits only until no span of
-// the material bank it switches to is in flight: spans carry their material bank to the pix
-// register, counted per bank), with tri_queue > 1 a span queue whose spans carry their
+// the material bank it switches to is in flight, and a per-material TABLE until no span of the
+// latest MATERIAL's bank is: spans carry their material bank to the pix register, counted per
+// bank), with tri_queue > 1 a span queue whose spans carry their
 // triangle's coefficient bank (a TRIANGLE waits until no queued span reads the bank it
 // loads), three span-setup stages s1..s3 with valid bits, the
 // engines' run state (run, rem: pixels left, `lanes` of them per beat), the specular slot's timing
@@ -320,9 +321,12 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   }
   bool hdr_ready = true;
   // Only MATERIAL and TABLE headers wait for the empty datapath; the check walks the delay line.
-  // With two material buffers a MATERIAL waits only for the bank it switches to.
+  // With two material buffers a MATERIAL waits only for the bank it switches to, and a
+  // per-material TABLE (it writes the latest MATERIAL's bank only) for that bank.
   if (op == Opcode::kMaterial || op == Opcode::kTable) hdr_ready = datapath_empty();
   if (op == Opcode::kMaterial && mat_banked_) hdr_ready = mat_spans_[1 - mat_wr_] == 0;
+  if (op == Opcode::kTable && mat_banked_ && word.table_per_material())
+    hdr_ready = mat_spans_[mat_wr_] == 0;
   // Without a span queue a SPAN's setup reads the coefficients as it is taken: not on the edge
   // that writes its triangle's last words.
   if (op == Opcode::kSpan) hdr_ready = queued() ? sq_count_ < sq_.size() : s1_free && tail == 0;

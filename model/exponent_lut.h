@@ -22,6 +22,12 @@
 // Latency: 2 cycles (address, read) + 1 with interpolation; one pixel per cycle.
 // Table entries are loaded by TABLE commands (per-exponent: on every material switch, N words;
 // shared: once), and written by write_hex() as the $readmemh file the RTL loads.
+// Material banks (`banks` = UnitConfig::material_buffers, RTL BANKS): with 2 there are two
+// tables, as there are two shift registers. Each MATERIAL switches to the other bank
+// (next_material); a per-material TABLE (TableCmd::per_material) writes the current bank's
+// table, any other TABLE both; a pixel reads the table of the bank current when its span was
+// taken - in stream order, the current one. So a per-exponent reload after a MATERIAL loads
+// while the previous material's pixels still read the other table.
 #pragma once
 
 #include <cstdint>
@@ -36,10 +42,13 @@ namespace shadesim {
 
 class ExponentLut {
  public:
-  ExponentLut(const LutConfig& config, const FixedFormat& series, const FixedFormat& out);
+  ExponentLut(const LutConfig& config, const FixedFormat& series, const FixedFormat& out,
+              int banks = 1);
 
   // unit_params = [shift]; empty means shift 0. Throws std::invalid_argument when out of range.
   void load_params(const std::vector<int64_t>& unit_params);
+  // A MATERIAL: the next material's parameters and per-material table go to the other bank.
+  void next_material() { bank_ = (bank_ + 1) % static_cast<int>(tables_.size()); }
   // Writes entries base..base+size-1. Throws std::invalid_argument naming the address when an
   // entry is outside 0..2^B-1 or the address is past the table.
   void load_table(const TableCmd& t);
@@ -47,7 +56,8 @@ class ExponentLut {
   int64_t evaluate(int64_t series_raw) const;
 
   int entries() const { return 1 << config_.addr_bits; }
-  const std::vector<int64_t>& table() const { return table_; }
+  // The current bank's table.
+  const std::vector<int64_t>& table() const { return tables_[static_cast<size_t>(bank_)]; }
   // $readmemh text: one entry per line, ceil(B/4) hex digits. Throws std::runtime_error naming
   // the path when it cannot be written.
   void write_hex(const std::string& path) const;
@@ -75,8 +85,10 @@ class ExponentLut {
   FixedFormat series_;
   FixedFormat out_;
   FixedFormat address_;  // unsigned A.F, index rule, saturating
-  int shift_ = 0;
-  std::vector<int64_t> table_;
+  int shift_ = 0;        // the current bank's (the other bank's is never read again: MATERIAL
+                         // always loads the shift)
+  std::vector<std::vector<int64_t>> tables_;  // per material bank
+  int bank_ = 0;
 };
 
 }  // namespace shadesim

@@ -11,7 +11,7 @@ SpecularUnit::SpecularUnit(const UnitConfig& config)
   const SpecularConfig& s = config.specular;
   switch (kind_) {
     case SpecularUnitKind::kLut:
-      lut_.emplace(s.lut, config.series, s.out);
+      lut_.emplace(s.lut, config.series, s.out, config.material_buffers);
       break;
     case SpecularUnitKind::kSchlick:
       schlick_.emplace(s.schlick, config.series, s.out);
@@ -26,7 +26,10 @@ SpecularUnit::SpecularUnit(const UnitConfig& config)
 
 void SpecularUnit::load_material(const MaterialCmd& m) {
   ideal_.set_exponent(std::ldexp(static_cast<double>(m.exponent), -kExponentFracBits));
-  if (lut_) lut_->load_params(m.unit_params);
+  if (lut_) {
+    lut_->next_material();
+    lut_->load_params(m.unit_params);
+  }
   if (schlick_) schlick_->load_params(m.unit_params);
   if (wpow_) wpow_->load_params(m.unit_params);
 }

@@ -21,9 +21,10 @@
 //            unit_params mean shift 0), 1 = unit_params[0] = shift (0..fs, low bits taken).
 //   TABLE    (cfg_table_i = 1): cfg_addr_i = entry address (base + i), cfg_data_i[B-1:0] = entry;
 //            addresses >= 2^A are ignored (the model rejects them).
-// Material banks (BANKS = 2, shade_unit's MATERIAL_BUFFERS): the shift register is doubled;
-// MATERIAL words write bank cfg_bank_i, and ADDRESS reads the bank bank_i of the pixel on
-// series_i (the only stage that reads a per-material register). The table is one copy.
+// Material banks (BANKS = 2, shade_unit's MATERIAL_BUFFERS): the shift register and the table
+// are doubled. MATERIAL words write bank cfg_bank_i; TABLE entries write bank cfg_bank_i, or
+// every bank with cfg_all_banks_i (a TABLE that is not per-material). ADDRESS reads the shift
+// of the pixel's bank bank_i, and the bank travels with the address to READ.
 // TABLE_FILE: optional $readmemh file written by ExponentLut::write_hex (absolute path), loaded at
 // time 0; a missing file is a $fatal error, not $readmemh's warning.
 module exponent_lut #(
@@ -47,7 +48,8 @@ module exponent_lut #(
   input  logic [SERIES_WL-1:0]  series_i,
   input  logic                  bank_i,      // material bank of the pixel on series_i
   input  logic                  cfg_valid_i,
-  input  logic                  cfg_bank_i,  // material bank the MATERIAL words write
+  input  logic                  cfg_bank_i,  // material bank the MATERIAL / TABLE words write
+  input  logic                  cfg_all_banks_i,  // TABLE: write the entry into every bank
   input  logic                  cfg_table_i,
   input  logic [CFG_ADDR_W-1:0] cfg_addr_i,
   // verilator lint_off UNUSEDSIGNAL
@@ -69,16 +71,20 @@ module exponent_lut #(
   // ---- per-material parameter: the input shift, per bank ---------------------------------
   logic [ShiftW-1:0] shift_q [BANKS];
   logic              rd_bank, wr_bank;  // the banks read (ADDRESS) and written (cfg)
+  logic              bank_q;            // the bank of the pixel whose address is in a_q
+  logic              tbl_bank;          // the table READ reads
   if (BANKS > 1) begin : g_banks
-    assign rd_bank = bank_i;
-    assign wr_bank = cfg_bank_i;
+    assign rd_bank  = bank_i;
+    assign wr_bank  = cfg_bank_i;
+    assign tbl_bank = bank_q;
   end else begin : g_one_bank
     // verilator lint_off UNUSEDSIGNAL
     logic unused_bank;  // one bank: the tags are always 0
-    assign unused_bank = bank_i ^ cfg_bank_i;
+    assign unused_bank = bank_i ^ cfg_bank_i ^ cfg_all_banks_i ^ bank_q;
     // verilator lint_on UNUSEDSIGNAL
-    assign rd_bank = 1'b0;
-    assign wr_bank = 1'b0;
+    assign rd_bank  = 1'b0;
+    assign wr_bank  = 1'b0;
+    assign tbl_bank = 1'b0;
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -89,8 +95,7 @@ module exponent_lut #(
     end
   end
 
-  // ---- table RAM: written by TABLE words, two registered read ports -----------------------
-  logic [ENTRY_BITS-1:0] mem_q [Entries];
+  // ---- table RAM, one per bank: written by TABLE words, two registered read ports ----------
   logic                  tbl_we;
   logic [ADDR_BITS-1:0]  tbl_waddr;
   if (CFG_ADDR_W > ADDR_BITS) begin : g_wide_cfg
@@ -100,24 +105,32 @@ module exponent_lut #(
     assign tbl_we    = cfg_valid_i && cfg_table_i;
     assign tbl_waddr = ADDR_BITS'(cfg_addr_i);
   end
-  always_ff @(posedge clk_i) begin
-    if (tbl_we) mem_q[tbl_waddr] <= cfg_data_i[ENTRY_BITS-1:0];
-  end
-
-  if (TABLE_FILE != "") begin : g_init
-`ifndef SYNTHESIS
-    initial begin
-      int fd;
-      fd = $fopen(TABLE_FILE, "r");
-      if (fd == 0)
-        $fatal(1, "exponent_lut: cannot open TABLE_FILE '%s' (%s)", TABLE_FILE,
-               "ExponentLut::write_hex output expected");
-      $fclose(fd);
-      $readmemh(TABLE_FILE, mem_q);
+  logic [ADDR_BITS-1:0]          idx, idx1;  // READ's addresses (idx1 used with F > 0)
+  logic [BANKS*ENTRY_BITS-1:0]   rd0, rd1;   // bank b's entries at idx, idx1: [b*B +: B]
+  for (genvar b = 0; b < BANKS; b++) begin : g_table
+    logic [ENTRY_BITS-1:0] mem_q [Entries];
+    always_ff @(posedge clk_i) begin
+      if (tbl_we && (cfg_all_banks_i || wr_bank == 1'(b)))
+        mem_q[tbl_waddr] <= cfg_data_i[ENTRY_BITS-1:0];
     end
+    assign rd0[b*ENTRY_BITS +: ENTRY_BITS] = mem_q[idx];
+    assign rd1[b*ENTRY_BITS +: ENTRY_BITS] = mem_q[idx1];
+
+    if (TABLE_FILE != "") begin : g_init
+`ifndef SYNTHESIS
+      initial begin
+        int fd;
+        fd = $fopen(TABLE_FILE, "r");
+        if (fd == 0)
+          $fatal(1, "exponent_lut: cannot open TABLE_FILE '%s' (%s)", TABLE_FILE,
+                 "ExponentLut::write_hex output expected");
+        $fclose(fd);
+        $readmemh(TABLE_FILE, mem_q);
+      end
 `else
-    initial $readmemh(TABLE_FILE, mem_q);
+      initial $readmemh(TABLE_FILE, mem_q);
 `endif
+    end
   end
 
   // ---- 1. ADDRESS ------------------------------------------------------------------------------
@@ -130,27 +143,28 @@ module exponent_lut #(
   fixed_sat #(.IN_W(AdrRndW), .OUT_W(AW), .OUT_SIGNED(0), .WRAP(0))
     u_adr_sat (.in_i(a_rnd), .out_o(a_d));
   always_ff @(posedge clk_i) begin
-    if (en_i) a_q <= a_d;
+    if (en_i) begin
+      a_q    <= a_d;
+      bank_q <= rd_bank;
+    end
   end
 
   // ---- 2. READ, 3. INTERP --------------------------------------------------------------------
-  logic [ADDR_BITS-1:0]  idx;
   logic [ENTRY_BITS-1:0] e0_q;
   logic signed [VW-1:0]  v;  // the value OUTPUT quantizes, ENTRY_BITS + INTERP_BITS fraction bits
-  assign idx = a_q[AW-1:INTERP_BITS];
+  assign idx  = a_q[AW-1:INTERP_BITS];
+  assign idx1 = idx == ADDR_BITS'(Entries - 1) ? idx : idx + ADDR_BITS'(1);
   always_ff @(posedge clk_i) begin
-    if (en_i) e0_q <= mem_q[idx];
+    if (en_i) e0_q <= rd0[32'(tbl_bank) * ENTRY_BITS +: ENTRY_BITS];
   end
 
   if (INTERP_BITS > 0) begin : g_interp
-    logic [ADDR_BITS-1:0]    idx1;
     logic [ENTRY_BITS-1:0]   e1_q;
     logic [INTERP_BITS-1:0]  frac_q;
     logic signed [VW-1:0]    v_d, v_q;
-    assign idx1 = idx == ADDR_BITS'(Entries - 1) ? idx : idx + ADDR_BITS'(1);
     always_ff @(posedge clk_i) begin
       if (en_i) begin
-        e1_q   <= mem_q[idx1];
+        e1_q   <= rd1[32'(tbl_bank) * ENTRY_BITS +: ENTRY_BITS];
         frac_q <= a_q[INTERP_BITS-1:0];
       end
     end
@@ -167,6 +181,10 @@ module exponent_lut #(
     end
     assign v = v_q;
   end else begin : g_no_interp
+    // verilator lint_off UNUSEDSIGNAL
+    logic unused_rd1;  // no interpolation: the second read port is not used
+    assign unused_rd1 = ^rd1;
+    // verilator lint_on UNUSEDSIGNAL
     assign v = $signed(VW'(e0_q));
   end
 

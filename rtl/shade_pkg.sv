@@ -23,6 +23,7 @@ package shade_pkg;
   localparam int          GateOnlyLsb = MidLsb; // MATERIAL [31:16]: gate-only light mask
   localparam int          HighLsb     = 32;     // [47:32] TRIANGLE xo, SPAN y
   localparam int          SpanLastBit = 55;     // SPAN: last span of its scanline
+  localparam int          TableMatBit = 55;     // TABLE: the table of the latest MATERIAL
 
   // ---- coefficient packing (model/coef_packing.h, CoefLayout: the C++ twin) ------------------
   // A TRIANGLE's coefficients in stream order, coefficient j being term j % 6 of width w<term>;

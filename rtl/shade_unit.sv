@@ -18,7 +18,8 @@
 //                MATERIAL payload -> ambient / spec_colour registers and the specular slots,
 //                TABLE payload -> specular slots. MATERIAL waits until the datapath is empty;
 //                with MATERIAL_BUFFERS = 2 only until no span of the bank it switches to is in
-//                flight (each span carries its material bank down to the pix register).
+//                flight (each span carries its material bank down to the pix register), and a
+//                per-material TABLE until no span of the latest MATERIAL's bank is.
 //   span_setup   3 stages (products, sums, rounding) per series; a SPAN header enters stage 1
 //                whenever stage 1 is free, so setup overlaps the previous span's pixels.
 //   engines      series_engine per series and lane; loaded from stage 3 through lane_fanout
@@ -66,7 +67,9 @@ module shade_unit #(
   parameter int LANES            = 1,
   // Material buffers, 1 or 2 (UnitConfig::material_buffers): with 2 the per-material registers
   // (ambient, spec_colour, the specular unit's parameters) have two banks; a MATERIAL writes the
-  // one no span in flight reads. The LUT table is one copy: a TABLE still drains the datapath.
+  // one no span in flight reads. The LUT has a table per bank: a per-material TABLE (header
+  // bit TableMatBit, a per-exponent reload) writes the latest MATERIAL's bank and waits only
+  // until no span of that bank is in flight; any other TABLE writes both and drains.
   parameter int MATERIAL_BUFFERS = 1,
   // The specular unit's own parameters (specular_unit; model/specular_config.h field names
   // with the unit's prefix). Unused unless SPECULAR_KIND selects that unit.
@@ -180,6 +183,7 @@ module shade_unit #(
   logic mat_hdr_bank;       // bank a MATERIAL header taken now switches to
   assign mat_hdr_bank = MATERIAL_BUFFERS > 1 ? !mat_wr : 1'b0;
   logic mat_other_free;     // no span in flight reads the other bank
+  logic mat_cur_free;       // no span in flight reads bank mat_wr
   logic s1_src_mat;         // bank of the span entering setup stage 1
   logic mat_q;              // bank of the engines' span
   logic mat_leave;          // a span's last beat leaves the slot for the pix register ...
@@ -189,6 +193,7 @@ module shade_unit #(
   logic        in_payload_q;
   pay_e        pay_op_q;
   logic [15:0] pay_idx_q, pay_last_q, tbl_base_q;
+  logic        tbl_mat_q;  // the TABLE being loaded is per-material (writes bank mat_wr only)
   logic [7:0]  hdr_op;
   logic [15:0] hdr_count;
   logic        hdr_ready;
@@ -268,7 +273,8 @@ module shade_unit #(
   always_comb begin
     unique case (hdr_op)
       shade_pkg::OpMaterial: hdr_ready = MatBanked ? mat_other_free : datapath_empty;
-      shade_pkg::OpTable:    hdr_ready = datapath_empty;
+      shade_pkg::OpTable:    hdr_ready = MatBanked && cmd_word[shade_pkg::TableMatBit]
+                                         ? mat_cur_free : datapath_empty;
       // Without a span queue a SPAN's setup reads the coefficient registers as it is taken:
       // not on the edge that writes its triangle's last words.
       shade_pkg::OpSpan:     hdr_ready = Queued ? !sq_full : s1_free && tail_n == 16'd0;
@@ -298,12 +304,14 @@ module shade_unit #(
       pay_idx_q    <= 16'd0;
       pay_last_q   <= 16'd0;
       tbl_base_q   <= 16'd0;
+      tbl_mat_q    <= 1'b0;
     end else begin
       if (item_fire) pos_q <= beat_done ? '0 : PosW'(16'(pos_q) + item_n);
       if (hdr_fire) begin
         pay_idx_q  <= 16'd0;
         pay_last_q <= hdr_count - 16'd1;
         tbl_base_q <= cmd_word[shade_pkg::MidLsb +: shade_pkg::FieldW];
+        tbl_mat_q  <= cmd_word[shade_pkg::TableMatBit];
         unique case (hdr_op)
           shade_pkg::OpMaterial: begin
             pay_op_q     <= PayMaterial;
@@ -433,9 +441,10 @@ module shade_unit #(
 
   // Configuration words for the specular slots: MATERIAL exponent (index 0) and unit
   // parameters (1..), TABLE entries at base + index.
-  logic        cfg_valid, cfg_table;
+  logic        cfg_valid, cfg_table, cfg_all_banks;
   logic [15:0] cfg_addr;
-  assign cfg_table = pay_op_q == PayTable;
+  assign cfg_table     = pay_op_q == PayTable;
+  assign cfg_all_banks = cfg_table && !tbl_mat_q;  // a TABLE not per-material: every bank
   assign cfg_valid = pay_fire && (cfg_table ||
                      (pay_op_q == PayMaterial && pay_idx_q >= 16'(NMatFixed)));
   assign cfg_addr  = cfg_table ? tbl_base_q + pay_idx_q : pay_idx_q - 16'(NMatFixed);
@@ -573,6 +582,7 @@ module shade_unit #(
     logic [MatCntW-1:0]  mat_spans_q [2];  // per bank: spans taken, last beat not out of the slot
     assign mat_wr         = mat_wr_q;
     assign mat_other_free = mat_spans_q[!mat_wr_q] == '0;
+    assign mat_cur_free   = mat_spans_q[mat_wr_q] == '0;
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
         mat_wr_q       <= 1'b0;
@@ -600,6 +610,7 @@ module shade_unit #(
     // verilator lint_on UNUSEDSIGNAL
     assign mat_wr         = 1'b0;
     assign mat_other_free = 1'b1;
+    assign mat_cur_free   = 1'b1;
     assign mat_q          = 1'b0;
   end
 
@@ -740,7 +751,8 @@ module shade_unit #(
       .clk_i, .rst_ni, .en_i(slot_en),
       .series_i(eng_v[J*LaneSerW + (NDiff + L*SeriesPerLight)*SERIES_WL +:
                       SeriesPerLight*SERIES_WL]), .bank_i(mat_q),
-      .cfg_valid_i(cfg_valid), .cfg_bank_i(mat_wr), .cfg_table_i(cfg_table), .cfg_addr_i(cfg_addr),
+      .cfg_valid_i(cfg_valid), .cfg_bank_i(mat_wr), .cfg_all_banks_i(cfg_all_banks),
+      .cfg_table_i(cfg_table), .cfg_addr_i(cfg_addr),
       .cfg_data_i(cmd_word), .spec_o(spec[g*SPECULAR_OUT_WL +: SPECULAR_OUT_WL]),
       .busy_o(busy[g])
     );

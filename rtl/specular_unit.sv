@@ -20,7 +20,8 @@
 // The exponent word resets the unit parameters to their defaults (empty unit_params).
 // MATERIAL_BUFFERS = 2: the unit's per-material registers have two banks; cfg_bank_i is the bank
 // MATERIAL words write, bank_i the bank of the pixel on series_i (it travels with the pixel
-// through the unit's stages). Schlick has no per-material state.
+// through the unit's stages). Schlick has no per-material state. The LUT's table is per bank
+// too: TABLE entries write bank cfg_bank_i, or every bank when cfg_all_banks_i is high.
 module specular_unit #(
   // Each unit's parameters are unused when another unit is selected.
   // verilator lint_off UNUSEDPARAM
@@ -56,6 +57,7 @@ module specular_unit #(
   input  logic                                  bank_i,       // material bank of series_i
   input  logic                                  cfg_valid_i,
   input  logic                                  cfg_bank_i,   // material bank cfg writes
+  input  logic                                  cfg_all_banks_i,  // TABLE: write every bank
   input  logic                                  cfg_table_i,  // 1: TABLE entry, 0: MATERIAL word
   input  logic [15:0]                           cfg_addr_i,   // table address / material index
   input  logic [63:0]                           cfg_data_i,
@@ -71,7 +73,8 @@ module specular_unit #(
       .TABLE_FILE(LUT_TABLE_FILE)
     ) u_lut (
       .clk_i, .rst_ni, .en_i, .series_i(series_i[SERIES_WL-1:0]), .bank_i,
-      .cfg_valid_i, .cfg_bank_i, .cfg_table_i, .cfg_addr_i, .cfg_data_i, .spec_o
+      .cfg_valid_i, .cfg_bank_i, .cfg_all_banks_i, .cfg_table_i, .cfg_addr_i, .cfg_data_i,
+      .spec_o
     );
     assign busy_o = 1'b0;
     if (SERIES_PER_LIGHT > 1) begin : g_unused_series
@@ -94,7 +97,7 @@ module specular_unit #(
     // verilator lint_off UNUSEDSIGNAL
     logic unused_cfg;
     assign unused_cfg = cfg_valid_i ^ cfg_table_i ^ (^cfg_addr_i) ^ (^cfg_data_i) ^ bank_i ^
-                        cfg_bank_i;
+                        cfg_bank_i ^ cfg_all_banks_i;
     // verilator lint_on UNUSEDSIGNAL
   end else if (SPECULAR_KIND == shade_pkg::SpecWpow) begin : g_wpow
     wpow_unit #(
@@ -106,6 +109,10 @@ module specular_unit #(
       .clk_i, .rst_ni, .en_i, .series_i(series_i[SERIES_WL-1:0]), .bank_i,
       .cfg_valid_i, .cfg_bank_i, .cfg_table_i, .cfg_addr_i, .cfg_data_i, .spec_o, .busy_o
     );
+    // verilator lint_off UNUSEDSIGNAL
+    logic unused_all_banks;  // W_m has no table
+    assign unused_all_banks = cfg_all_banks_i;
+    // verilator lint_on UNUSEDSIGNAL
     if (SERIES_PER_LIGHT > 1) begin : g_unused_series
       // verilator lint_off UNUSEDSIGNAL
       logic unused_series;
@@ -116,7 +123,7 @@ module specular_unit #(
     // verilator lint_off UNUSEDSIGNAL
     logic unused_inputs;
     assign unused_inputs = clk_i ^ rst_ni ^ en_i ^ (^series_i) ^ cfg_valid_i ^ cfg_table_i ^
-                           (^cfg_addr_i) ^ (^cfg_data_i) ^ bank_i ^ cfg_bank_i;
+                           (^cfg_addr_i) ^ (^cfg_data_i) ^ bank_i ^ cfg_bank_i ^ cfg_all_banks_i;
     // verilator lint_on UNUSEDSIGNAL
     assign spec_o = '0;
     assign busy_o = 1'b0;

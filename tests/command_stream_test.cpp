@@ -111,6 +111,28 @@ TEST(CommandStream, HeaderWordLayoutMatchesDocumentation) {
   EXPECT_EQ(w[0] & 0xFFFF, 300u);
 }
 
+TEST(CommandStream, PerMaterialTableIsHeaderBit55AndRoundTrips) {
+  CommandStream cs;
+  cs.commands.emplace_back(TableCmd{3, {7, 8}, true});
+  cs.commands.emplace_back(TableCmd{4, {9}, false});
+  const auto w = cs.encode();
+  ASSERT_EQ(w.size(), 5u);
+  EXPECT_EQ(w[0] >> 56, 0x04u);
+  EXPECT_EQ((w[0] >> 55) & 1, 1u);
+  EXPECT_EQ((w[0] >> 16) & 0xFFFF, 3u);
+  EXPECT_EQ(w[0] & 0xFFFF, 2u);
+  EXPECT_EQ((w[3] >> 55) & 1, 0u);
+  const CommandStream back = CommandStream::decode(w, cs.config, "t.bin");
+  ASSERT_EQ(back.commands.size(), 2u);
+  EXPECT_TRUE(std::get<TableCmd>(back.commands[0]).per_material);
+  EXPECT_FALSE(std::get<TableCmd>(back.commands[1]).per_material);
+  std::stringstream text;
+  cs.write_text(text);
+  EXPECT_NE(text.str().find("table 3 7 8 material\n"), std::string::npos) << text.str();
+  const CommandStream again = CommandStream::read_text(text, "t.cmd");
+  EXPECT_EQ(again.encode(), w);
+}
+
 void expect_text_error(const std::string& body, const std::string& needle) {
   std::stringstream ss("shadesim-commands 1 " + config_to_json(UnitConfig{}) + "\n" + body);
   try {
@@ -137,6 +159,8 @@ TEST(CommandStream, TextErrorsNameLineAndExpectation) {
                     "material.gate_only = 2: expected a mask of the unit's 1 lights");
   expect_text_error("material ambient 1 spec_colour 1 exponent 5 params gate_only\n",
                     "expected an integer for gate_only");
+  expect_text_error("table 0 1 2 shared\n", "table: expected integers or 'material'");
+  expect_text_error("table 0 1 2 material 3\n", "expected nothing after 'material'");
 }
 
 TEST(CommandStream, MissingHeaderAndEmptyStreamAreErrors) {

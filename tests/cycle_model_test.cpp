@@ -82,7 +82,8 @@ TEST(CycleModel, MaterialWaitsForEmptyDatapath) {
 }
 
 // Two material buffers: the MATERIAL switches to the bank no span reads, so the drain is gone;
-// switching back waits for the first bank's span, and a TABLE still waits for the empty datapath.
+// switching back waits for the first bank's span, and a TABLE that is not per-material still
+// waits for the empty datapath.
 TEST(CycleModel, TwoMaterialBuffersRemoveTheDrain) {
   MaterialCmd m;
   m.ambient = {0};
@@ -122,6 +123,41 @@ TEST(CycleModel, TwoMaterialBuffersRemoveTheDrain) {
   CycleConfig three;
   three.material_buffers = 3;
   EXPECT_THROW(CycleModel{three}, std::invalid_argument);
+}
+
+// A per-material TABLE (a per-exponent reload) writes the bank of the latest MATERIAL: with two
+// buffers it waits only for that bank's spans, not for the empty datapath.
+TEST(CycleModel, PerMaterialTableLoadsTheNewBankWithoutADrain) {
+  MaterialCmd m;
+  m.ambient = {0};
+  m.spec_colour = {0};
+  m.exponent = 1;  // header count 3
+  TableCmd t;
+  t.base = 0;
+  t.entries.assign(2, 0);
+  t.per_material = true;
+  CycleConfig one, two;
+  two.material_buffers = 2;
+  // Two buffers: SPAN 0 (bank 0) on 0, pixels leave on 5..14. MATERIAL (to bank 1) on 1,
+  // payload 2..4; the TABLE header on 5 (no span of bank 1 in flight), words 6, 7; SPAN 1 on 8,
+  // its pixel right behind span 0's, on 15.
+  CycleRun r =
+      run_cycle_model(words({span(0, 0, 10, true), m, t, span(1, 0, 1, true)}), Stimulus{}, two);
+  ASSERT_EQ(r.scanlines.size(), 2u);
+  EXPECT_EQ(r.scanlines[1].cycle, 15u);
+  // One buffer: MATERIAL waits for the empty datapath (accepted on 14, payload 15..17), the
+  // TABLE header goes on 18, words 19, 20; SPAN 1 on 21, its pixel on 26.
+  r = run_cycle_model(words({span(0, 0, 10, true), m, t, span(1, 0, 1, true)}), Stimulus{}, one);
+  ASSERT_EQ(r.scanlines.size(), 2u);
+  EXPECT_EQ(r.scanlines[1].cycle, 26u);
+  // Two buffers, a span of bank 1 already in flight: SPAN 1 on 5, its pixel on 15 (it leaves
+  // the slot on the edge of 14); the TABLE header waits 6..14, goes on 15, words 16, 17; SPAN 2
+  // on 18, its pixel on 23.
+  r = run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true), t, span(2, 0, 1, true)}),
+                      Stimulus{}, two);
+  ASSERT_EQ(r.scanlines.size(), 3u);
+  EXPECT_EQ(r.scanlines[1].cycle, 15u);
+  EXPECT_EQ(r.scanlines[2].cycle, 23u);
 }
 
 TEST(CycleModel, TrianglePayloadTakesOneCyclePerWord) {

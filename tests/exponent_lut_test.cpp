@@ -158,6 +158,35 @@ TEST(ExponentLut, RejectsBadTableCommands) {
   EXPECT_THROW(lut.load_params({29}), std::invalid_argument);
 }
 
+// Two material banks (command_stream.h, TABLE): a MATERIAL switches bank, a per-material TABLE
+// writes the current bank's table only, any other TABLE both; a pixel reads the current one.
+TEST(ExponentLut, TwoBanksKeepAPerMaterialTableEach) {
+  LutConfig c;
+  c.addr_bits = 2;
+  c.entry_bits = 4;
+  const FixedFormat series{32, 4, true, Quantization::kTruncate, Overflow::kWrap};
+  const FixedFormat out{4, 0, false, Quantization::kTruncate, Overflow::kSaturate};  // u0.4
+  ExponentLut lut(c, series, out, 2);
+  lut.load_table(TableCmd{0, {1, 2, 3, 4}, false});
+  EXPECT_EQ(lut.table(), (std::vector<int64_t>{1, 2, 3, 4}));
+  lut.next_material();  // bank 1 got the shared entries too
+  EXPECT_EQ(lut.table(), (std::vector<int64_t>{1, 2, 3, 4}));
+  lut.load_table(TableCmd{1, {9, 10}, true});
+  EXPECT_EQ(lut.table(), (std::vector<int64_t>{1, 9, 10, 4}));
+  // t = 0.25 + 1/64 addresses entry 1 (truncate, 4 entries, shift 0): 9/16 in bank 1.
+  const int64_t x = series.from_double(0.25 + 1.0 / 64);
+  EXPECT_EQ(lut.evaluate(x), 9);
+  lut.next_material();  // back to bank 0: untouched by the per-material TABLE
+  EXPECT_EQ(lut.table(), (std::vector<int64_t>{1, 2, 3, 4}));
+  EXPECT_EQ(lut.evaluate(x), 2);
+  // One bank: the bit changes nothing.
+  ExponentLut one(c, series, out);
+  one.load_table(TableCmd{0, {1, 2, 3, 4}, true});
+  one.next_material();
+  EXPECT_EQ(one.table(), (std::vector<int64_t>{1, 2, 3, 4}));
+  EXPECT_THROW(ExponentLut(c, series, out, 3), std::invalid_argument);
+}
+
 TEST(ExponentLut, HexFileHoldsTheTable) {
   LutConfig c;
   c.addr_bits = 5;

@@ -101,9 +101,11 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
   const SpecularConfig& spec = config.specular;
   const bool has_spec_hw = spec.kind != SpecularUnitKind::kIdeal;
   const int lut_size = 1 << spec.lut.addr_bits;
-  auto lut_table = [&](int base, int n) {
+  // per_material: the table of the latest MATERIAL (with two material buffers its bank only).
+  auto lut_table = [&](int base, int n, bool per_material) {
     TableCmd t;
     t.base = static_cast<uint32_t>(base);
+    t.per_material = per_material;
     const uint64_t limit = uint64_t{1} << spec.lut.entry_bits;
     for (int i = 0; i < n; ++i) t.entries.push_back(static_cast<int64_t>(rng() % limit));
     cs.commands.emplace_back(t);
@@ -112,7 +114,7 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
     if (chance(shape.p_table)) {
       if (spec.kind == SpecularUnitKind::kLut) {
         const int n = std::min(irange(1, 8), lut_size);
-        lut_table(irange(0, lut_size - n), n);
+        lut_table(irange(0, lut_size - n), n, chance(0.5));
       } else {
         TableCmd t;  // ignored by units without a table
         t.base = static_cast<uint32_t>(irange(0, 1023));
@@ -151,6 +153,12 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
                        irange(0, WpowUnit::stages(spec.wpow))};
     }
     cs.commands.emplace_back(m);
+    // A per-material reload after the MATERIAL, as a per-exponent LUT's stream has: with two
+    // material buffers it loads the new bank while the old material's pixels still read theirs.
+    if (spec.kind == SpecularUnitKind::kLut && chance(shape.p_table)) {
+      const int n = std::min(irange(1, 8), lut_size);
+      lut_table(irange(0, lut_size - n), n, true);
+    }
   };
   // Edge triangles: per series one of four kinds - ordinary (most often, so the specular term
   // still shows in most pixels); a large value (totals above 1, the output saturates); a value
@@ -222,7 +230,7 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
   };
 
   // The LUT's RAM has no reset: load every entry before the first pixel.
-  if (spec.kind == SpecularUnitKind::kLut) lut_table(0, lut_size);
+  if (spec.kind == SpecularUnitKind::kLut) lut_table(0, lut_size, false);
   material();
   bool have_triangle = false;
   for (int frame = 0; frame < shape.frames; ++frame) {

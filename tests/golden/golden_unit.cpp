@@ -65,7 +65,10 @@ struct State {
   std::vector<int64_t> ambient, spec_colour, unit_params;
   uint32_t gate_only = 0;  // MATERIAL header: lights whose diffuse series only gates specular
   double exponent = 0;
-  std::vector<int64_t> table;
+  // The LUT's tables, one per material bank (command_stream.h, TABLE): each MATERIAL switches
+  // bank; a per-material TABLE writes the current bank's, any other TABLE every bank's.
+  std::vector<std::vector<int64_t>> tables;
+  size_t bank = 0;
   TriangleCmd triangle;
   bool have_material = false, have_triangle = false;
 };
@@ -113,11 +116,11 @@ int64_t specular(const UnitConfig& c, const State& st, const int64_t* series) {
       // The series x * 2^shift read as A.F: x's bits below the point moved up by A (+ shift).
       const int64_t a = sc_quantize(series[0], fs - shift - l.addr_bits, address);
       const int64_t idx = a >> l.interp_bits;
-      const int64_t e0 = st.table.at(static_cast<size_t>(idx));
+      const int64_t e0 = st.tables[st.bank].at(static_cast<size_t>(idx));
       if (l.interp_bits == 0) return sc_quantize(e0, l.entry_bits, s.out);
       const int64_t frac = a - (idx << l.interp_bits);
       const int64_t last = (int64_t{1} << l.addr_bits) - 1;
-      const int64_t e1 = st.table.at(static_cast<size_t>(std::min(idx + 1, last)));
+      const int64_t e1 = st.tables[st.bank].at(static_cast<size_t>(std::min(idx + 1, last)));
       const Int128 v = (Int128{e0} << l.interp_bits) + Int128{frac} * (e1 - e0);
       return sc_quantize(v, l.entry_bits + l.interp_bits, s.out);
     }
@@ -154,7 +157,8 @@ std::vector<Pixel> shade(const CommandStream& stream) {
   const int product_frac = c.specular.out.frac_bits() + c.spec_colour.frac_bits();
 
   State st;
-  st.table.assign(static_cast<size_t>(1) << c.specular.lut.addr_bits, 0);
+  st.tables.assign(static_cast<size_t>(c.material_buffers),
+                   std::vector<int64_t>(static_cast<size_t>(1) << c.specular.lut.addr_bits, 0));
   std::vector<Pixel> pixels;
   for (const Command& cmd : stream.commands) {
     if (const auto* m = std::get_if<MaterialCmd>(&cmd)) {
@@ -164,12 +168,17 @@ std::vector<Pixel> shade(const CommandStream& stream) {
       st.gate_only = m->gate_only;
       st.exponent = static_cast<double>(m->exponent) / 65536.0;  // u10.16
       st.have_material = true;
+      st.bank = (st.bank + 1) % st.tables.size();
     } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
       st.triangle = *t;
       st.have_triangle = true;
     } else if (const auto* tb = std::get_if<TableCmd>(&cmd)) {
       if (c.specular.kind == SpecularUnitKind::kLut) {
-        for (size_t k = 0; k < tb->entries.size(); ++k) st.table.at(tb->base + k) = tb->entries[k];
+        for (size_t b = 0; b < st.tables.size(); ++b) {
+          if (tb->per_material && b != st.bank) continue;
+          for (size_t k = 0; k < tb->entries.size(); ++k)
+            st.tables[b].at(tb->base + k) = tb->entries[k];
+        }
       }
     } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
       if (!st.have_material || !st.have_triangle) {
