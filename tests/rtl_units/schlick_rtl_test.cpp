@@ -12,12 +12,8 @@ namespace shadesim {
 namespace rtl_units {
 namespace {
 
-SchlickConfig schlick_config(const Params& p, const std::string& prefix = "") {
-  SchlickConfig c;
-  c.quotient_bits = static_cast<int>(get(p, prefix + "QUOTIENT_BITS"));
-  c.operand_bits = static_cast<int>(get(p, prefix + "OPERAND_BITS"));
-  c.timing = get(p, prefix + "TIMING") ? UnitTiming::kIterative : UnitTiming::kPipelined;
-  return c;
+SchlickConfig schlick_config(const Params& p) {
+  return unit_fields(p, SpecularUnitKind::kSchlick).schlick;
 }
 
 using Pair = std::pair<int64_t, int64_t>;
