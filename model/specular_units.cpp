@@ -13,13 +13,14 @@
 namespace shadesim {
 namespace {
 
-// An enum field's code is its Verilog code (rtl/shade_unit.sv's parameter comments).
+// An enum field's code is its value in its SPEC_PARAMS slot (the decode comments at the top of
+// rtl/exponent_lut.sv, schlick_divider.sv, wpow_unit.sv).
 static_assert(static_cast<int>(LutIndex::kTruncate) == 0 &&
                   static_cast<int>(LutIndex::kNearest) == 1,
-              "LUT_INDEX: 0 truncate, 1 nearest");
+              "exponent_lut INDEX: 0 truncate, 1 nearest");
 static_assert(static_cast<int>(UnitTiming::kPipelined) == 0 &&
                   static_cast<int>(UnitTiming::kIterative) == 1,
-              "SCHLICK_TIMING / WPOW_TIMING: 0 pipelined, 1 iterative");
+              "schlick_divider / wpow_unit TIMING: 0 pipelined, 1 iterative");
 
 // Accessors of SpecularConfig::*Unit.*Member as an int.
 template <auto Unit, auto Member>

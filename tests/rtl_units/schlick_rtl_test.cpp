@@ -113,8 +113,7 @@ TEST(SchlickDividerRtl, DefaultWidthsIterativeHardAndRandom) {
   const Params p = config_params("schlick_iter");
   check_divider<Vschlick_iter>(
       "schlick_iter",
-      hard_and_random_pairs(series_format(p), static_cast<int>(get(p, "OPERAND_BITS")), rng, 20000),
-      rng);
+      hard_and_random_pairs(series_format(p), schlick_config(p).operand_bits, rng, 20000), rng);
 }
 
 TEST(SchlickDividerRtl, LongPipelineRoundedOutputHardAndRandom) {
@@ -122,8 +121,7 @@ TEST(SchlickDividerRtl, LongPipelineRoundedOutputHardAndRandom) {
   const Params p = config_params("schlick_pipe");
   check_divider<Vschlick_pipe>(
       "schlick_pipe",
-      hard_and_random_pairs(series_format(p), static_cast<int>(get(p, "OPERAND_BITS")), rng, 50000),
-      rng);
+      hard_and_random_pairs(series_format(p), schlick_config(p).operand_bits, rng, 50000), rng);
 }
 
 }  // namespace
