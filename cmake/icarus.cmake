@@ -45,7 +45,7 @@ if(CMAKE_SCRIPT_MODE_FILE)
   file(READ ${TB_SRC} tb_text)
   foreach(p ${params})
     string(REGEX REPLACE "^-Ptb_shade_unit\\.([A-Za-z0-9_]+)=.*$" "\\1" pname "${p}")
-    if(NOT tb_text MATCHES "parameter int ${pname} ")
+    if(NOT tb_text MATCHES "parameter (int|logic \\[[^\n]*\\]) ${pname} ")
       message(FATAL_ERROR "icarus check: ${CONFIG} sets shade_unit parameter ${pname}, which "
                           "sim/icarus/tb_shade_unit.sv does not declare and pass on; add it there")
     endif()

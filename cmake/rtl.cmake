@@ -82,6 +82,12 @@ if(IVERILOG)
     COMMAND ${IVERILOG} -g2012 -Wall -s shade_unit -o ${CMAKE_BINARY_DIR}/rtl_iverilog.vvp ${RTL_SOURCES})
 endif()
 if(YOSYS)
+  include(${CMAKE_SOURCE_DIR}/cmake/spec_params.cmake)
+  # SPEC_PARAMS by slot (the decode at the top of each unit's module): W_m m 4, B 8, timing;
+  # the LUT A 4, B 8, F 2, truncate.
+  spec_params_literal(_yosys_wpow0 4 8 0)
+  spec_params_literal(_yosys_wpow1 4 8 1)
+  spec_params_literal(_yosys_lut 4 8 2 0)
   add_test(NAME rtl_yosys_no_latch
     COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_check.sh ${YOSYS} ${CMAKE_BINARY_DIR}/rtl_yosys.log ${RTL_SOURCES})
   # shade_unit's slot glue: the metadata delay line (pipelined W_m, latency 3) and the pending
@@ -90,7 +96,7 @@ if(YOSYS)
     add_test(NAME rtl_yosys_no_latch_wpow_timing${timing}
       COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_check.sh ${YOSYS} ${CMAKE_BINARY_DIR}/rtl_yosys_wpow${timing}.log ${RTL_SOURCES})
     set_tests_properties(rtl_yosys_no_latch_wpow_timing${timing} PROPERTIES
-      ENVIRONMENT "YOSYS_CHPARAM=-set SPECULAR_KIND 3 -set WPOW_MAX_M 4 -set WPOW_BASE_BITS 8 -set WPOW_TIMING ${timing}")
+      ENVIRONMENT "YOSYS_CHPARAM=-set SPECULAR_KIND 3 -set SPEC_PARAMS ${_yosys_wpow${timing}}")
   endforeach()
   # The wide port's beat decoder and the triangle queue's banks and span queue.
   add_test(NAME rtl_yosys_no_latch_port4_queue3
@@ -99,9 +105,9 @@ if(YOSYS)
     ENVIRONMENT "YOSYS_CHPARAM=-set PORT_WORDS 4 -set TRI_QUEUE 3")
   # Two material buffers: the banked material registers and each unit's banked parameters with
   # the bank tag in its stages (LUT; W_m pipelined and iterative), behind a triangle queue.
-  set(_yosys_m2_lut "-set SPECULAR_KIND 1 -set LUT_ADDR_BITS 4 -set LUT_INTERP_BITS 2")
-  set(_yosys_m2_wpow0 "-set SPECULAR_KIND 3 -set WPOW_MAX_M 4 -set WPOW_BASE_BITS 8 -set WPOW_TIMING 0")
-  set(_yosys_m2_wpow1 "-set SPECULAR_KIND 3 -set WPOW_MAX_M 4 -set WPOW_BASE_BITS 8 -set WPOW_TIMING 1")
+  set(_yosys_m2_lut "-set SPECULAR_KIND 1 -set SPEC_PARAMS ${_yosys_lut}")
+  set(_yosys_m2_wpow0 "-set SPECULAR_KIND 3 -set SPEC_PARAMS ${_yosys_wpow0}")
+  set(_yosys_m2_wpow1 "-set SPECULAR_KIND 3 -set SPEC_PARAMS ${_yosys_wpow1}")
   foreach(unit lut wpow0 wpow1)
     add_test(NAME rtl_yosys_no_latch_material_buffers2_${unit}
       COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_check.sh ${YOSYS} ${CMAKE_BINARY_DIR}/rtl_yosys_m2_${unit}.log ${RTL_SOURCES})
@@ -112,7 +118,7 @@ if(YOSYS)
   add_test(NAME rtl_yosys_no_latch_lanes4
     COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_check.sh ${YOSYS} ${CMAKE_BINARY_DIR}/rtl_yosys_l4.log ${RTL_SOURCES})
   set_tests_properties(rtl_yosys_no_latch_lanes4 PROPERTIES
-    ENVIRONMENT "YOSYS_CHPARAM=-set LANES 4 -set SPECULAR_KIND 3 -set WPOW_MAX_M 4 -set WPOW_BASE_BITS 8 -set WPOW_TIMING 1")
+    ENVIRONMENT "YOSYS_CHPARAM=-set LANES 4 -set SPECULAR_KIND 3 -set SPEC_PARAMS ${_yosys_wpow1}")
 endif()
 
 # Co-simulation: every scenario (--scenario all includes "edge"), several seeds, both backends,

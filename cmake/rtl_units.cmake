@@ -4,6 +4,9 @@
 # Every configuration is Verilated once, straight into the one test executable rtl_units_test;
 # its parameters are written to a generated header as "NAME=VALUE ..." text, which the test
 # parses into the model's LutConfig / SchlickConfig / WpowConfig, so CMake and C++ cannot disagree.
+# The unit's own fields are given by slot, SLOTk=V (SPEC_PARAMS slot k, packed here by
+# spec_params_literal); the test maps them to fields through the unit's row of
+# model/specular_units.cpp, so a slot the RTL decodes differently from the row fails the test.
 find_package(verilator 5 HINTS $ENV{VERILATOR_ROOT})
 if(NOT verilator_FOUND)
   message(WARNING "Verilator not found: specular-unit RTL tests are skipped")
@@ -11,6 +14,7 @@ if(NOT verilator_FOUND)
 endif()
 find_program(IVERILOG iverilog)
 find_program(YOSYS yosys)
+include(${CMAKE_SOURCE_DIR}/cmake/spec_params.cmake)
 
 set(RTL_UNITS_DIR ${CMAKE_SOURCE_DIR}/rtl)
 set(RTL_UNITS_GEN ${CMAKE_BINARY_DIR}/verilated/units)
@@ -33,8 +37,25 @@ set(RTL_UNITS_ENTRIES "")
 set(RTL_UNITS_INCLUDES "")
 # rtl_unit(<name> <top module> <NAME=VALUE>...): one Verilated configuration of a unit.
 function(rtl_unit name top)
-  set(gparams "")
+  set(named "")
+  set(slots "")
   foreach(p ${ARGN})
+    if(p MATCHES "^SLOT([0-9]+)=(.*)$")
+      list(LENGTH slots n)
+      if(NOT CMAKE_MATCH_1 EQUAL n)
+        message(FATAL_ERROR "rtl_unit(${name}): SLOT${CMAKE_MATCH_1} out of order (expected SLOT${n})")
+      endif()
+      list(APPEND slots ${CMAKE_MATCH_2})
+    else()
+      list(APPEND named ${p})
+    endif()
+  endforeach()
+  if(slots)
+    spec_params_literal(spec ${slots})
+    list(APPEND named SPEC_PARAMS=${spec})
+  endif()
+  set(gparams "")
+  foreach(p ${named})
     list(APPEND gparams -G${p})
   endforeach()
   set(extra "")
@@ -55,7 +76,7 @@ function(rtl_unit name top)
     COMMAND verilator --lint-only -Wall ${gparams} --top-module ${top} ${RTL_UNITS_SOURCES})
   if(IVERILOG)
     set(pparams "")
-    foreach(p ${ARGN})
+    foreach(p ${named})
       list(APPEND pparams -P${top}.${p})
     endforeach()
     add_test(NAME rtl_units_iverilog_${name}
@@ -66,43 +87,44 @@ endfunction()
 
 # Exponent LUT: smallest widths with exhaustive inputs; interpolation with nearest index and a
 # rounded output; the default-sized table loaded from a $readmemh file.
-rtl_unit(lut_small exponent_lut ADDR_BITS=4 ENTRY_BITS=6 INTERP_BITS=0 INDEX=0
+# Slots (the decode at the top of each module): exponent_lut 0 ADDR_BITS, 1 ENTRY_BITS,
+# 2 INTERP_BITS, 3 INDEX; schlick_divider 0 QUOTIENT_BITS, 1 OPERAND_BITS, 2 TIMING; wpow_unit
+# 0 MAX_M, 1 BASE_BITS, 2 TIMING.
+rtl_unit(lut_small exponent_lut SLOT0=4 SLOT1=6 SLOT2=0 SLOT3=0
          SERIES_WL=12 SERIES_IWL=3 OUT_WL=9 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
-rtl_unit(lut_interp exponent_lut ADDR_BITS=5 ENTRY_BITS=8 INTERP_BITS=3 INDEX=1
+rtl_unit(lut_interp exponent_lut SLOT0=5 SLOT1=8 SLOT2=3 SLOT3=1
          SERIES_WL=14 SERIES_IWL=3 OUT_WL=7 OUT_IWL=1 OUT_QUANT=1 OUT_OVERFLOW=0)
-rtl_unit(lut_file exponent_lut ADDR_BITS=10 ENTRY_BITS=8 INTERP_BITS=0 INDEX=0
+rtl_unit(lut_file exponent_lut SLOT0=10 SLOT1=8 SLOT2=0 SLOT3=0
          SERIES_WL=32 SERIES_IWL=4 OUT_WL=17 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
 # Schlick divider: smallest widths (exhaustive operand pairs, output wider than the quotient)
 # both timings; the default widths iterative; a long pipeline with a rounded narrow output.
-rtl_unit(schlick_small_pipe schlick_divider QUOTIENT_BITS=3 OPERAND_BITS=2 TIMING=0
+rtl_unit(schlick_small_pipe schlick_divider SLOT0=3 SLOT1=2 SLOT2=0
          SERIES_WL=7 SERIES_IWL=2 OUT_WL=5 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
-rtl_unit(schlick_small_iter schlick_divider QUOTIENT_BITS=3 OPERAND_BITS=2 TIMING=1
+rtl_unit(schlick_small_iter schlick_divider SLOT0=3 SLOT1=2 SLOT2=1
          SERIES_WL=7 SERIES_IWL=2 OUT_WL=5 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
-rtl_unit(schlick_iter schlick_divider QUOTIENT_BITS=16 OPERAND_BITS=24 TIMING=1
+rtl_unit(schlick_iter schlick_divider SLOT0=16 SLOT1=24 SLOT2=1
          SERIES_WL=32 SERIES_IWL=4 OUT_WL=17 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
-rtl_unit(schlick_pipe schlick_divider QUOTIENT_BITS=20 OPERAND_BITS=12 TIMING=0
+rtl_unit(schlick_pipe schlick_divider SLOT0=20 SLOT1=12 SLOT2=0
          SERIES_WL=23 SERIES_IWL=3 OUT_WL=13 OUT_IWL=1 OUT_QUANT=1 OUT_OVERFLOW=0)
 # W_m: m = 4 with 4-bit base both timings (exhaustive), m = 1 (no squarer), W16 default
 # pipelined, m = 32 iterative with a rounded output.
-rtl_unit(wpow_small_pipe wpow_unit MAX_M=4 BASE_BITS=4 TIMING=0
+rtl_unit(wpow_small_pipe wpow_unit SLOT0=4 SLOT1=4 SLOT2=0
          SERIES_WL=8 SERIES_IWL=2 OUT_WL=6 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
-rtl_unit(wpow_small_iter wpow_unit MAX_M=4 BASE_BITS=4 TIMING=1
+rtl_unit(wpow_small_iter wpow_unit SLOT0=4 SLOT1=4 SLOT2=1
          SERIES_WL=8 SERIES_IWL=2 OUT_WL=6 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
-rtl_unit(wpow_m1 wpow_unit MAX_M=1 BASE_BITS=2 TIMING=1
+rtl_unit(wpow_m1 wpow_unit SLOT0=1 SLOT1=2 SLOT2=1
          SERIES_WL=8 SERIES_IWL=2 OUT_WL=4 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
-rtl_unit(wpow_w16 wpow_unit MAX_M=16 BASE_BITS=16 TIMING=0
+rtl_unit(wpow_w16 wpow_unit SLOT0=16 SLOT1=16 SLOT2=0
          SERIES_WL=32 SERIES_IWL=4 OUT_WL=17 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
-rtl_unit(wpow_m32_iter wpow_unit MAX_M=32 BASE_BITS=12 TIMING=1
+rtl_unit(wpow_m32_iter wpow_unit SLOT0=32 SLOT1=12 SLOT2=1
          SERIES_WL=23 SERIES_IWL=3 OUT_WL=9 OUT_IWL=1 OUT_QUANT=1 OUT_OVERFLOW=0)
 # The slot: the cfg-port mapping and the timing contract through the wrapper.
 rtl_unit(slot_lut specular_unit SPECULAR_KIND=1 SERIES_WL=16 SERIES_IWL=3 SERIES_PER_LIGHT=1
-         SPECULAR_OUT_WL=12 SPECULAR_OUT_IWL=1 LUT_ADDR_BITS=6 LUT_ENTRY_BITS=10
-         LUT_INTERP_BITS=2 LUT_INDEX=1)
+         SPECULAR_OUT_WL=12 SPECULAR_OUT_IWL=1 SLOT0=6 SLOT1=10 SLOT2=2 SLOT3=1)
 rtl_unit(slot_schlick specular_unit SPECULAR_KIND=2 SERIES_WL=32 SERIES_IWL=4 SERIES_PER_LIGHT=2
-         SPECULAR_OUT_WL=17 SPECULAR_OUT_IWL=1 SCHLICK_QUOTIENT_BITS=12 SCHLICK_OPERAND_BITS=16
-         SCHLICK_TIMING=1)
+         SPECULAR_OUT_WL=17 SPECULAR_OUT_IWL=1 SLOT0=12 SLOT1=16 SLOT2=1)
 rtl_unit(slot_wpow specular_unit SPECULAR_KIND=3 SERIES_WL=20 SERIES_IWL=4 SERIES_PER_LIGHT=1
-         SPECULAR_OUT_WL=11 SPECULAR_OUT_IWL=1 WPOW_MAX_M=8 WPOW_BASE_BITS=10 WPOW_TIMING=1)
+         SPECULAR_OUT_WL=11 SPECULAR_OUT_IWL=1 SLOT0=8 SLOT1=10 SLOT2=1)
 rtl_unit(slot_ideal specular_unit SPECULAR_KIND=0 SERIES_WL=32 SERIES_IWL=4 SERIES_PER_LIGHT=1
          SPECULAR_OUT_WL=17 SPECULAR_OUT_IWL=1)
 
@@ -118,12 +140,18 @@ set_tests_properties(rtl_units_test PROPERTIES LABELS rtl TIMEOUT 300)
 
 # Yosys: each unit synthesizes without latches (small widths: this is about structure).
 if(YOSYS)
+  # SPEC_PARAMS by slot, as above: lut A 6, B 8, F 3, truncate; schlick Q 10, D 12; W_m m 16, B 10.
+  spec_params_literal(lut 6 8 3 0)
+  spec_params_literal(schlick_iter 10 12 1)
+  spec_params_literal(schlick_pipe 10 12 0)
+  spec_params_literal(wpow_pipe 16 10 0)
+  spec_params_literal(wpow_iter 16 10 1)
   foreach(cfg
-      "lut:-set SPECULAR_KIND 1 -set LUT_ADDR_BITS 6 -set LUT_INTERP_BITS 3"
-      "schlick_iter:-set SPECULAR_KIND 2 -set SERIES_PER_LIGHT 2 -set SCHLICK_QUOTIENT_BITS 10 -set SCHLICK_OPERAND_BITS 12 -set SCHLICK_TIMING 1"
-      "schlick_pipe:-set SPECULAR_KIND 2 -set SERIES_PER_LIGHT 2 -set SCHLICK_QUOTIENT_BITS 10 -set SCHLICK_OPERAND_BITS 12 -set SCHLICK_TIMING 0"
-      "wpow_pipe:-set SPECULAR_KIND 3 -set WPOW_BASE_BITS 10 -set WPOW_TIMING 0"
-      "wpow_iter:-set SPECULAR_KIND 3 -set WPOW_BASE_BITS 10 -set WPOW_TIMING 1")
+      "lut:-set SPECULAR_KIND 1 -set SPEC_PARAMS ${lut}"
+      "schlick_iter:-set SPECULAR_KIND 2 -set SERIES_PER_LIGHT 2 -set SPEC_PARAMS ${schlick_iter}"
+      "schlick_pipe:-set SPECULAR_KIND 2 -set SERIES_PER_LIGHT 2 -set SPEC_PARAMS ${schlick_pipe}"
+      "wpow_pipe:-set SPECULAR_KIND 3 -set SPEC_PARAMS ${wpow_pipe}"
+      "wpow_iter:-set SPECULAR_KIND 3 -set SPEC_PARAMS ${wpow_iter}")
     string(REGEX REPLACE ":.*" "" cname "${cfg}")
     string(REGEX REPLACE "^[^:]*:" "" cparams "${cfg}")
     add_test(NAME rtl_units_yosys_${cname}

@@ -1,5 +1,8 @@
 #include "model/rtl_parameters.h"
 
+#include <cstdio>
+#include <stdexcept>
+
 #include "model/specular_units.h"
 
 namespace shadesim {
@@ -49,10 +52,18 @@ std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u, const I
     p.push_back({"SPECULAR_OUT_QUANT", code(s.out.quant)});
     p.push_back({"SPECULAR_OUT_OVERFLOW", code(s.out.overflow)});
   }
-  // The unit's own fields that are hardware (model/specular_units.h); an enum's code is its
-  // Verilog code.
-  for (const SpecularField& field : unit.fields) {
-    if (*field.verilog != '\0') p.push_back({field.verilog, field.get(s)});
+  // The unit's own fields that are hardware (model/specular_units.h), each in its slot; an enum's
+  // code is its Verilog code. Unused slots are 0.
+  if (unit.hardware) {
+    VerilogParameter packed{"SPEC_PARAMS", std::vector<int64_t>(kSpecSlots, 0)};
+    for (const SpecularField& field : unit.fields) {
+      if (field.slot < 0) continue;
+      if (field.slot >= kSpecSlots)
+        throw std::logic_error(unit.field_name(field) + ": slot " + std::to_string(field.slot) +
+                               " is beyond SPEC_PARAMS's " + std::to_string(kSpecSlots));
+      packed.slots[static_cast<size_t>(field.slot)] = field.get(s);
+    }
+    p.push_back(packed);
   }
   if (f.lsb_row >= 0) p.push_back({"FAULT_LSB_ROW", f.lsb_row});
   if (f.stall_row >= 0) p.push_back({"FAULT_STALL_ROW", f.stall_row});
@@ -60,9 +71,32 @@ std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u, const I
   return p;
 }
 
+std::string VerilogParameter::literal() const {
+  if (slots.empty()) return std::to_string(value);
+  std::string hex;
+  for (auto it = slots.rbegin(); it != slots.rend(); ++it) {
+    if (*it < 0 || *it > 0xFFFFFFFF)
+      throw std::logic_error(name + ": slot value " + std::to_string(*it) + " is not 32-bit");
+    char digits[9];
+    std::snprintf(digits, sizeof digits, "%08llx", static_cast<unsigned long long>(*it));
+    hex += digits;
+  }
+  return std::to_string(slots.size() * kSpecSlotBits) + "'h" + hex;
+}
+
+std::map<std::string, int64_t> parameter_map(const std::vector<VerilogParameter>& params) {
+  std::map<std::string, int64_t> m;
+  for (const auto& p : params) {
+    if (p.slots.empty()) m[p.name] = p.value;
+    for (size_t k = 0; k < p.slots.size(); ++k)
+      m[p.name + "[" + std::to_string(k) + "]"] = p.slots[k];
+  }
+  return m;
+}
+
 std::vector<std::string> verilator_parameter_args(const std::vector<VerilogParameter>& params) {
   std::vector<std::string> args;
-  for (const auto& p : params) args.push_back("-G" + p.name + "=" + std::to_string(p.value));
+  for (const auto& p : params) args.push_back("-G" + p.name + "=" + p.literal());
   return args;
 }
 
@@ -70,7 +104,7 @@ std::vector<std::string> iverilog_parameter_args(const std::vector<VerilogParame
                                                  const std::string& root_module) {
   std::vector<std::string> args;
   for (const auto& p : params) {
-    args.push_back("-P" + root_module + "." + p.name + "=" + std::to_string(p.value));
+    args.push_back("-P" + root_module + "." + p.name + "=" + p.literal());
   }
   return args;
 }
@@ -78,7 +112,7 @@ std::vector<std::string> iverilog_parameter_args(const std::vector<VerilogParame
 std::string yosys_chparam_args(const std::vector<VerilogParameter>& params) {
   std::string s;
   for (const auto& p : params) {
-    s += (s.empty() ? "" : " ") + std::string("-set ") + p.name + " " + std::to_string(p.value);
+    s += (s.empty() ? "" : " ") + std::string("-set ") + p.name + " " + p.literal();
   }
   return s;
 }

@@ -13,13 +13,14 @@
 namespace shadesim {
 namespace {
 
-// An enum field's code is its Verilog code (rtl/shade_unit.sv's parameter comments).
+// An enum field's code is its value in its SPEC_PARAMS slot (the decode comments at the top of
+// rtl/exponent_lut.sv, schlick_divider.sv, wpow_unit.sv).
 static_assert(static_cast<int>(LutIndex::kTruncate) == 0 &&
                   static_cast<int>(LutIndex::kNearest) == 1,
-              "LUT_INDEX: 0 truncate, 1 nearest");
+              "exponent_lut INDEX: 0 truncate, 1 nearest");
 static_assert(static_cast<int>(UnitTiming::kPipelined) == 0 &&
                   static_cast<int>(UnitTiming::kIterative) == 1,
-              "SCHLICK_TIMING / WPOW_TIMING: 0 pipelined, 1 iterative");
+              "schlick_divider / wpow_unit TIMING: 0 pipelined, 1 iterative");
 
 // Accessors of SpecularConfig::*Unit.*Member as an int.
 template <auto Unit, auto Member>
@@ -70,24 +71,24 @@ std::vector<SpecularUnitDescriptor> make_table() {
        true,
        1,
        {
-           {"addr_bits", "--lut-addr-bits", "LUT: address bits A (2^A entries)", "LUT_ADDR_BITS", 1,
+           {"addr_bits", "--lut-addr-bits", "LUT: address bits A (2^A entries)", "ADDR_BITS", 0, 1,
             20, false, nullptr, get<kLut, &L::addr_bits>, set<kLut, &L::addr_bits>, 4,
             [](int v) { return std::min(v + 2, 20); }},
-           {"entry_bits", "--lut-entry-bits", "LUT: entry bits B", "LUT_ENTRY_BITS", 1, 32, false,
+           {"entry_bits", "--lut-entry-bits", "LUT: entry bits B", "ENTRY_BITS", 1, 1, 32, false,
             nullptr, get<kLut, &L::entry_bits>, set<kLut, &L::entry_bits>, 4,
             [](int v) { return std::min(v + 4, 32); }},
            {"interp_bits", "--lut-interp-bits", "LUT: interpolation fraction bits (0 = off)",
-            "LUT_INTERP_BITS", 0, 16, false, nullptr, get<kLut, &L::interp_bits>,
+            "INTERP_BITS", 2, 0, 16, false, nullptr, get<kLut, &L::interp_bits>,
             set<kLut, &L::interp_bits>, 0, [](int v) { return std::max(v, 4); }},
-           {"index", "--lut-index", "LUT: address rounding", "LUT_INDEX", 0, 1, false,
+           {"index", "--lut-index", "LUT: address rounding", "INDEX", 3, 0, 1, false,
             name_of<LutIndex>, get<kLut, &L::index>, set<kLut, &L::index>},
            {"addressing", "--lut-addressing",
-            "LUT: a table per exponent (reloaded per material) or one shared", "", 0, 1, false,
+            "LUT: a table per exponent (reloaded per material) or one shared", "", -1, 0, 1, false,
             name_of<LutAddressing>, get<kLut, &L::addressing>, set<kLut, &L::addressing>},
            {"shared_range_log2", "--lut-shared-range-log2",
-            "LUT, shared table: log2 of the range U of u = k (1 - t) it spans", "", 0, 6, false,
+            "LUT, shared table: log2 of the range U of u = k (1 - t) it spans", "", -1, 0, 6, false,
             nullptr, get<kLut, &L::shared_range_log2>, set<kLut, &L::shared_range_log2>},
-           {"fit", "--fit", kFitHelp, "", 0, kFitHi, false, name_of<FitObjective>,
+           {"fit", "--fit", kFitHelp, "", -1, 0, kFitHi, false, name_of<FitObjective>,
             get<kLut, &L::fit>, set<kLut, &L::fit>},
        },
        [](const SpecularConfig& c) { return ExponentLut::latency(c.lut); },
@@ -127,64 +128,64 @@ std::vector<SpecularUnitDescriptor> make_table() {
            throw std::invalid_argument(
                "lut.addr_bits must be >= 2 with interpolation (two entries per interval)");
        }});
-  t.push_back(
-      {SpecularUnitKind::kSchlick,
-       "schlick",
-       2,
-       true,
-       2,  // numerator and denominator series
-       {
-           {"quotient_bits", "--schlick-quotient-bits",
-            "Schlick: quotient bits Q (divider iterations)", "SCHLICK_QUOTIENT_BITS", 1, 32, false,
-            nullptr, get<kSchlick, &S::quotient_bits>, set<kSchlick, &S::quotient_bits>, 4,
-            [](int v) { return std::min(v + 2, 32); }},
-           {"operand_bits", "--schlick-operand-bits",
-            "Schlick: fraction bits D of the divider's operands", "SCHLICK_OPERAND_BITS", 2, 48,
-            false, nullptr, get<kSchlick, &S::operand_bits>, set<kSchlick, &S::operand_bits>, 8,
-            [](int v) { return std::min(v + 4, 48); }},
-           {"timing", "--schlick-timing", "Schlick: iterative = Q cycles/pixel, pipelined = 1",
-            "SCHLICK_TIMING", 0, 1, false, name_of<UnitTiming>, get<kSchlick, &S::timing>,
-            set<kSchlick, &S::timing>},
-           {"fit", "--fit", kFitHelp, "", 0, kFitHi, false, name_of<FitObjective>,
-            get<kSchlick, &S::fit>, set<kSchlick, &S::fit>},
-       },
-       [](const SpecularConfig& c) { return SchlickDivider::latency(c.schlick); },
-       [](const SpecularConfig& c) { return SchlickDivider::cycles_per_pixel(c.schlick); },
-       [](const SpecularConfig& c) {
-         SpecularCost k;
-         k.divider_iterations = SchlickDivider::iterations(c.schlick);
-         // Each subtract/compare stage is D + 3 bits wide.
-         k.area = kFullAdderArea * SchlickDivider::subtractor_stages(c.schlick) *
-                  (c.schlick.operand_bits + 3);
-         return k;
-       },
-       [](const SpecularConfig& c) {
-         std::ostringstream os;
-         os << " Q=" << c.schlick.quotient_bits << " D=" << c.schlick.operand_bits
-            << timing_tag(c.schlick.timing) << fit_tag(c.schlick.fit);
-         return os.str();
-       },
-       [](const SpecularConfig& c, int) {
-         // Q x D divider bits, once (iterative) or per stage (pipelined).
-         const SchlickConfig& d = c.schlick;
-         return static_cast<double>(d.quotient_bits * d.operand_bits) *
-                (d.timing == UnitTiming::kIterative ? 1.0 : static_cast<double>(d.quotient_bits));
-       }});
+  t.push_back({SpecularUnitKind::kSchlick,
+               "schlick",
+               2,
+               true,
+               2,  // numerator and denominator series
+               {
+                   {"quotient_bits", "--schlick-quotient-bits",
+                    "Schlick: quotient bits Q (divider iterations)", "QUOTIENT_BITS", 0, 1, 32,
+                    false, nullptr, get<kSchlick, &S::quotient_bits>,
+                    set<kSchlick, &S::quotient_bits>, 4, [](int v) { return std::min(v + 2, 32); }},
+                   {"operand_bits", "--schlick-operand-bits",
+                    "Schlick: fraction bits D of the divider's operands", "OPERAND_BITS", 1, 2, 48,
+                    false, nullptr, get<kSchlick, &S::operand_bits>,
+                    set<kSchlick, &S::operand_bits>, 8, [](int v) { return std::min(v + 4, 48); }},
+                   {"timing", "--schlick-timing",
+                    "Schlick: iterative = Q cycles/pixel, pipelined = 1", "TIMING", 2, 0, 1, false,
+                    name_of<UnitTiming>, get<kSchlick, &S::timing>, set<kSchlick, &S::timing>},
+                   {"fit", "--fit", kFitHelp, "", -1, 0, kFitHi, false, name_of<FitObjective>,
+                    get<kSchlick, &S::fit>, set<kSchlick, &S::fit>},
+               },
+               [](const SpecularConfig& c) { return SchlickDivider::latency(c.schlick); },
+               [](const SpecularConfig& c) { return SchlickDivider::cycles_per_pixel(c.schlick); },
+               [](const SpecularConfig& c) {
+                 SpecularCost k;
+                 k.divider_iterations = SchlickDivider::iterations(c.schlick);
+                 // Each subtract/compare stage is D + 3 bits wide.
+                 k.area = kFullAdderArea * SchlickDivider::subtractor_stages(c.schlick) *
+                          (c.schlick.operand_bits + 3);
+                 return k;
+               },
+               [](const SpecularConfig& c) {
+                 std::ostringstream os;
+                 os << " Q=" << c.schlick.quotient_bits << " D=" << c.schlick.operand_bits
+                    << timing_tag(c.schlick.timing) << fit_tag(c.schlick.fit);
+                 return os.str();
+               },
+               [](const SpecularConfig& c, int) {
+                 // Q x D divider bits, once (iterative) or per stage (pipelined).
+                 const SchlickConfig& d = c.schlick;
+                 return static_cast<double>(d.quotient_bits * d.operand_bits) *
+                        (d.timing == UnitTiming::kIterative ? 1.0
+                                                            : static_cast<double>(d.quotient_bits));
+               }});
   t.push_back({SpecularUnitKind::kWpow,
                "wpow",
                3,
                true,
                1,
                {
-                   {"max_m", "--wpow-m", "W_m: m (4, 8 or 16)", "WPOW_MAX_M", 1, 32, true, nullptr,
+                   {"max_m", "--wpow-m", "W_m: m (4, 8 or 16)", "MAX_M", 0, 1, 32, true, nullptr,
                     get<kWpow, &W::max_m>, set<kWpow, &W::max_m>},
                    {"base_bits", "--wpow-bits", "W_m: fraction bits B of the base and squares",
-                    "WPOW_BASE_BITS", 2, 30, false, nullptr, get<kWpow, &W::base_bits>,
+                    "BASE_BITS", 1, 2, 30, false, nullptr, get<kWpow, &W::base_bits>,
                     set<kWpow, &W::base_bits>, 6, [](int v) { return std::min(v + 4, 30); }},
                    {"timing", "--wpow-timing",
-                    "W_m: pipelined = 1 cycle/pixel, iterative = log2(m) + 1", "WPOW_TIMING", 0, 1,
+                    "W_m: pipelined = 1 cycle/pixel, iterative = log2(m) + 1", "TIMING", 2, 0, 1,
                     false, name_of<UnitTiming>, get<kWpow, &W::timing>, set<kWpow, &W::timing>},
-                   {"fit", "--fit", kFitHelp, "", 0, kFitHi, false, name_of<FitObjective>,
+                   {"fit", "--fit", kFitHelp, "", -1, 0, kFitHi, false, name_of<FitObjective>,
                     get<kWpow, &W::fit>, set<kWpow, &W::fit>},
                },
                [](const SpecularConfig& c) { return WpowUnit::latency(c.wpow); },
@@ -291,8 +292,9 @@ SpecularConfig specular_config_of_parameters(const std::map<std::string, int64_t
     SpecularConfig s;
     s.kind = u.kind;
     for (const SpecularField& f : u.fields) {
-      if (*f.verilog == '\0') continue;
-      if (const auto it = params.find(f.verilog); it != params.end())
+      if (f.slot < 0) continue;
+      if (const auto it = params.find("SPEC_PARAMS[" + std::to_string(f.slot) + "]");
+          it != params.end())
         f.set(s, static_cast<int>(it->second));
     }
     return s;

@@ -11,7 +11,8 @@
 //   - spec-error's cost columns and Pareto front (sim/cmd_spec_error.cpp),
 //   - the area estimate's size of the specular slot (sim/area.cpp),
 //   - the unit's knobs in `shadesim explore` (host/explore.cpp).
-// A unit's field is added to its config struct (model/specular_config.h) and one row here.
+// A unit's field is added to its config struct (model/exponent_lut_config.h,
+// schlick_divider_config.h, wpow_unit_config.h) and one row here.
 #pragma once
 
 #include <cstdint>
@@ -26,12 +27,16 @@ namespace shadesim {
 // One configurable field of a unit's config struct, stored as an int (an enum field by its
 // code, which is also its Verilog code: the enums are declared in RTL order).
 struct SpecularField {
-  const char* key;      // JSON key under "specular.<unit>"; the name in errors is "<unit>.<key>"
-  const char* cli;      // command-line option; fields sharing one are set together; "" = none
-  const char* help;     // the option's help text
-  const char* verilog;  // shade_unit parameter; "" = host-only (shapes the stream, not the RTL)
-  int lo, hi;           // accepted values (an enum field: its codes)
-  bool power_of_two;    // the value must also be a power of two
+  const char* key;   // JSON key under "specular.<unit>"; the name in errors is "<unit>.<key>"
+  const char* cli;   // command-line option; fields sharing one are set together; "" = none
+  const char* help;  // the option's help text
+  // The field in the RTL: its localparam in the unit's module (rtl/exponent_lut.sv, ...), which
+  // decodes it from slot `slot` of SPEC_PARAMS (shade_pkg::spec_slot); "" and -1 = host-only
+  // (shapes the stream, not the RTL). The slot is explicit so reordering rows cannot move it.
+  const char* verilog;
+  int slot;
+  int lo, hi;                           // accepted values (an enum field: its codes)
+  bool power_of_two;                    // the value must also be a power of two
   std::string (*value_name)(int code);  // an enum field's names; nullptr for an integer field
   int (*get)(const SpecularConfig&);
   void (*set)(SpecularConfig&, int);
@@ -89,9 +94,10 @@ const std::vector<SpecularUnitDescriptor>& specular_units();
 const SpecularUnitDescriptor& specular_unit(SpecularUnitKind kind);
 // The selected unit's costs; latency and cycles per pixel are the descriptor's (SlotTiming's).
 SpecularCost specular_cost(const SpecularConfig& config);
-// The unit a shade_unit parameter list builds: SPECULAR_KIND and the unit's parameters by name
-// (an absent parameter keeps its default, which is shade_unit's; host-only fields keep theirs).
-// Throws std::invalid_argument when SPECULAR_KIND is missing or names no unit.
+// The unit a shade_unit parameter list builds (as parameter_map, model/rtl_parameters.h, gives
+// it): SPECULAR_KIND and the unit's fields from their slots "SPEC_PARAMS[k]" (an absent slot
+// keeps the model's default; host-only fields keep theirs). Throws std::invalid_argument when
+// SPECULAR_KIND is missing or names no unit.
 SpecularConfig specular_config_of_parameters(const std::map<std::string, int64_t>& params);
 // nullptr when no unit has this name.
 const SpecularUnitDescriptor* find_specular_unit(const std::string& name);

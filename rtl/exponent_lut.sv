@@ -1,10 +1,11 @@
 // exponent_lut: t^n from a table (model/exponent_lut.h, class ExponentLut; Bishop & Weimer).
 //
-// Parameters mirror LutConfig and the unit's formats: ADDR_BITS (A, 2^A entries), ENTRY_BITS
-// (B, entry e means e / 2^B), INTERP_BITS (F, 0 = no interpolation), INDEX (LutIndex: 0 truncate,
-// 1 nearest); SERIES_WL/IWL (the series format, fs = SERIES_WL - SERIES_IWL >= 1 fraction bits);
-// OUT_WL/IWL/QUANT/OVERFLOW (the specular out format, unsigned). Shared vs per-exponent
-// addressing is the host's business: the hardware is the same.
+// SPEC_PARAMS's slots (decoded below) mirror LutConfig: ADDR_BITS (A, 2^A entries), ENTRY_BITS
+// (B, entry e means e / 2^B), INTERP_BITS (F, 0 = no interpolation), INDEX (LutIndex: 0
+// truncate, 1 nearest). The other parameters are the unit's formats: SERIES_WL/IWL (the series
+// format, fs = SERIES_WL - SERIES_IWL >= 1 fraction bits); OUT_WL/IWL/QUANT/OVERFLOW (the
+// specular out format, unsigned). Shared vs per-exponent addressing is the host's business: the
+// hardware is the same.
 //
 // Stages (each a register clocked by en_i, in the model's order):
 //   1. ADDRESS  a = quantize(series << shift, unsigned A.F, INDEX rule, saturate)
@@ -28,10 +29,10 @@
 // TABLE_FILE: optional $readmemh file written by ExponentLut::write_hex (absolute path), loaded at
 // time 0; a missing file is a $fatal error, not $readmemh's warning.
 module exponent_lut #(
-  parameter int ADDR_BITS    = 10,
-  parameter int ENTRY_BITS   = 8,
-  parameter int INTERP_BITS  = 0,
-  parameter int INDEX        = 0,  // LutIndex: 0 kTruncate, 1 kNearest
+  // The unit's fields, packed (shade_pkg::SpecSlots slots; decoded below). The default is
+  // the model's default LutConfig: A 10, B 8, F 0, truncate.
+  parameter logic [shade_pkg::SpecParamW-1:0] SPEC_PARAMS =
+      {{(shade_pkg::SpecSlots - 4){32'd0}}, 32'd0, 32'd0, 32'd8, 32'd10},
   parameter int SERIES_WL    = 32,
   parameter int SERIES_IWL   = 4,
   parameter int OUT_WL       = 17,
@@ -57,6 +58,22 @@ module exponent_lut #(
   // verilator lint_on UNUSEDSIGNAL
   output logic [OUT_WL-1:0]     spec_o
 );
+  // LutConfig from SPEC_PARAMS: the slots of the "lut" row of model/specular_units.cpp. The
+  // names are the parameters' they replace, so the body reads as before.
+  localparam int ADDR_BITS   = shade_pkg::spec_slot(SPEC_PARAMS, 0);  // lut.addr_bits
+  localparam int ENTRY_BITS  = shade_pkg::spec_slot(SPEC_PARAMS, 1);  // lut.entry_bits
+  localparam int INTERP_BITS = shade_pkg::spec_slot(SPEC_PARAMS, 2);  // lut.interp_bits
+  localparam int INDEX       = shade_pkg::spec_slot(SPEC_PARAMS, 3);  // lut.index: LutIndex code
+`ifndef SYNTHESIS
+  // The ranges of the row (SpecularField lo / hi) this RTL needs; the model checks all of them.
+  initial begin
+    if (ADDR_BITS < 1 || ADDR_BITS > CFG_ADDR_W)
+      $fatal(1, "exponent_lut: ADDR_BITS %0d is not 1..%0d: cfg_addr_i cannot reach every entry",
+             ADDR_BITS, CFG_ADDR_W);
+    if (ENTRY_BITS < 1) $fatal(1, "exponent_lut: ENTRY_BITS %0d is not >= 1", ENTRY_BITS);
+    if (INDEX != 0 && INDEX != 1) $fatal(1, "exponent_lut: INDEX %0d is not 0 or 1", INDEX);
+  end
+`endif
   localparam int Fs      = SERIES_WL - SERIES_IWL;
   localparam int ShiftW  = $clog2(Fs + 1);
   localparam int AW      = ADDR_BITS + INTERP_BITS;

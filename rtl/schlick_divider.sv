@@ -2,8 +2,8 @@
 // (model/schlick_divider.h, class SchlickDivider). No per-material parameters: the exponent lives
 // in the two pre-scaled series (numerator t/n', denominator (n' - (n'-1) t)/n').
 //
-// Parameters mirror SchlickConfig and the formats: QUOTIENT_BITS (Q, quotient fraction bits =
-// iterations), OPERAND_BITS (D, operand fraction bits), TIMING (UnitTiming: 0 pipelined,
+// SPEC_PARAMS's slots (decoded below) mirror SchlickConfig: QUOTIENT_BITS (Q, quotient fraction
+// bits = iterations), OPERAND_BITS (D, operand fraction bits), TIMING (UnitTiming: 0 pipelined,
 // 1 iterative); SERIES_WL/IWL; OUT_WL/IWL/QUANT/OVERFLOW (the specular out format, unsigned).
 //
 // Stages, in the model's order:
@@ -25,9 +25,10 @@
 //            is ignored then), the result is on spec_o from cycle c+Q and stays there until the
 //            edge that ends the next start cycle. A new start in cycle c+Q gives II = Q.
 module schlick_divider #(
-  parameter int QUOTIENT_BITS = 16,
-  parameter int OPERAND_BITS  = 24,
-  parameter int TIMING        = 1,  // UnitTiming: 0 kPipelined, 1 kIterative
+  // The unit's fields, packed (shade_pkg::SpecSlots slots; decoded below). The default is
+  // the model's default SchlickConfig: Q 16, D 24, iterative.
+  parameter logic [shade_pkg::SpecParamW-1:0] SPEC_PARAMS =
+      {{(shade_pkg::SpecSlots - 3){32'd0}}, 32'd1, 32'd24, 32'd16},
   parameter int SERIES_WL     = 32,
   parameter int SERIES_IWL    = 4,
   parameter int OUT_WL        = 17,
@@ -43,6 +44,19 @@ module schlick_divider #(
   output logic [OUT_WL-1:0]    spec_o,
   output logic                 busy_o
 );
+  // SchlickConfig from SPEC_PARAMS: the slots of the "schlick" row of model/specular_units.cpp
+  // (slots 0 and 2 also set shade_pkg::spec_latency / spec_interval). The names are the
+  // parameters' they replace, so the body reads as before.
+  localparam int QUOTIENT_BITS = shade_pkg::spec_slot(SPEC_PARAMS, 0);  // schlick.quotient_bits
+  localparam int OPERAND_BITS  = shade_pkg::spec_slot(SPEC_PARAMS, 1);  // schlick.operand_bits
+  localparam int TIMING        = shade_pkg::spec_slot(SPEC_PARAMS, 2);  // schlick.timing code
+`ifndef SYNTHESIS
+  initial begin
+    if (QUOTIENT_BITS < 1) $fatal(1, "schlick_divider: QUOTIENT_BITS %0d < 1", QUOTIENT_BITS);
+    if (OPERAND_BITS < 2) $fatal(1, "schlick_divider: OPERAND_BITS %0d < 2", OPERAND_BITS);
+    if (TIMING != 0 && TIMING != 1) $fatal(1, "schlick_divider: TIMING %0d is not 0 or 1", TIMING);
+  end
+`endif
   localparam int Q       = QUOTIENT_BITS;
   localparam int Fs      = SERIES_WL - SERIES_IWL;
   localparam int OpW     = OPERAND_BITS + 2;      // unsigned 2.D

@@ -71,22 +71,36 @@ package shade_pkg;
   localparam int SpecWpow        = 3;
   localparam int TimingIterative = 1;  // 0: pipelined
 
+  // A unit's own fields (LutConfig, SchlickConfig, WpowConfig) reach the RTL as ONE packed
+  // parameter, SPEC_PARAMS, of SpecSlots slots of SpecSlotW bits: slot k is
+  // SPEC_PARAMS[k*SpecSlotW +: SpecSlotW]. shade_unit and specular_unit only pass it on; each
+  // unit module decodes its own slots at its top. Which field is in which slot is the field's
+  // row in model/specular_units.cpp (SpecularField::slot); model/rtl_parameters.cpp packs them
+  // (kSpecSlots, kSpecSlotBits are these two). A new field of a unit so touches that unit's
+  // files and its row, not shade_unit, specular_unit or the testbench.
+  localparam int SpecSlots  = 8;
+  localparam int SpecSlotW  = 32;
+  localparam int SpecParamW = SpecSlots * SpecSlotW;
+
+  function automatic int spec_slot(input logic [SpecParamW-1:0] params, input int slot);
+    spec_slot = params[slot*SpecSlotW +: SpecSlotW];
+  endfunction
+
   // Registers between the slot's series input and its specular output: ideal 0; lut 2 (+1
   // interpolated); schlick its quotient bits; wpow log2(max_m) squarings + the clamped base.
-  function automatic int spec_latency(input int kind, input int lut_interp_bits,
-                                      input int schlick_quotient_bits, input int wpow_max_m);
-    spec_latency = kind == SpecLut     ? (lut_interp_bits > 0 ? 3 : 2) :
-                   kind == SpecSchlick ? schlick_quotient_bits :
-                   kind == SpecWpow    ? $clog2(wpow_max_m) + 1 : 0;
+  // The slots read (model/specular_units.cpp): lut 2 interp_bits; schlick 0 quotient_bits,
+  // 2 timing; wpow 0 max_m, 2 timing.
+  function automatic int spec_latency(input int kind, input logic [SpecParamW-1:0] params);
+    spec_latency = kind == SpecLut     ? (spec_slot(params, 2) > 0 ? 3 : 2) :
+                   kind == SpecSchlick ? spec_slot(params, 0) :
+                   kind == SpecWpow    ? $clog2(spec_slot(params, 0)) + 1 : 0;
   endfunction
 
   // Cycles per pixel: 1, except an iterative unit, which takes its whole latency per pixel.
-  function automatic int spec_interval(input int kind, input int lut_interp_bits,
-                                       input int schlick_quotient_bits, input int schlick_timing,
-                                       input int wpow_max_m, input int wpow_timing);
-    spec_interval = (kind == SpecSchlick && schlick_timing == TimingIterative) ||
-                    (kind == SpecWpow && wpow_timing == TimingIterative)
-                        ? spec_latency(kind, lut_interp_bits, schlick_quotient_bits, wpow_max_m)
+  function automatic int spec_interval(input int kind, input logic [SpecParamW-1:0] params);
+    spec_interval = (kind == SpecSchlick || kind == SpecWpow) &&
+                    spec_slot(params, 2) == TimingIterative
+                        ? spec_latency(kind, params)
                         : 1;
   endfunction
   // verilator lint_on UNUSEDPARAM

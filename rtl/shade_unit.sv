@@ -71,22 +71,12 @@ module shade_unit #(
   // bit TableMatBit, a per-exponent reload) writes the latest MATERIAL's bank and waits only
   // until no span of that bank is in flight; any other TABLE writes both and drains.
   parameter int MATERIAL_BUFFERS = 1,
-  // The specular unit's own parameters (specular_unit; model/specular_config.h field names
-  // with the unit's prefix). Unused unless SPECULAR_KIND selects that unit.
-  // verilator lint_off UNUSEDPARAM
+  // The specular unit's output rounding and its own fields, packed: SPEC_PARAMS is passed to
+  // specular_unit untouched (shade_pkg::SpecSlots; the selected unit's module decodes its
+  // slots, model/specular_units.cpp gives each field its slot).
   parameter int SPECULAR_OUT_QUANT    = 0,  // Quantization: 0 truncate, 1 round to nearest
   parameter int SPECULAR_OUT_OVERFLOW = 0,  // Overflow: 0 saturate, 1 wrap
-  parameter int LUT_ADDR_BITS         = 10,
-  parameter int LUT_ENTRY_BITS        = 8,
-  parameter int LUT_INTERP_BITS       = 0,
-  parameter int LUT_INDEX             = 0,  // 0 truncate, 1 nearest
-  parameter int SCHLICK_QUOTIENT_BITS = 16,
-  parameter int SCHLICK_OPERAND_BITS  = 24,
-  parameter int SCHLICK_TIMING        = 1,  // 0 pipelined, 1 iterative
-  parameter int WPOW_MAX_M            = 16,
-  parameter int WPOW_BASE_BITS        = 16,
-  parameter int WPOW_TIMING           = 0,  // 0 pipelined, 1 iterative
-  // verilator lint_on UNUSEDPARAM
+  parameter logic [shade_pkg::SpecParamW-1:0] SPEC_PARAMS = '0,
   // Deliberate faults for the harness's own tests (-1 = off): add 1 LSB to channel 0 of every
   // pixel of row FAULT_LSB_ROW; hold the engines one extra cycle before the last_in_row span
   // of row FAULT_STALL_ROW (first occurrence only); never let the engines take a span of row
@@ -118,11 +108,8 @@ module shade_unit #(
   localparam int NMatFixed      = CHANNELS + LIGHTS * CHANNELS;  // ambient + spec_colour words
   localparam int OfsW           = 17;  // x0 - xo with x0 < 2^15 and xo a signed 16-bit value
   // The slot's timing (shade_pkg, the one definition; specular_unit's contract).
-  localparam int SpecLatency    = shade_pkg::spec_latency(SPECULAR_KIND, LUT_INTERP_BITS,
-                                                          SCHLICK_QUOTIENT_BITS, WPOW_MAX_M);
-  localparam int SpecInterval   = shade_pkg::spec_interval(SPECULAR_KIND, LUT_INTERP_BITS,
-                                                           SCHLICK_QUOTIENT_BITS, SCHLICK_TIMING,
-                                                           WPOW_MAX_M, WPOW_TIMING);
+  localparam int SpecLatency    = shade_pkg::spec_latency(SPECULAR_KIND, SPEC_PARAMS);
+  localparam int SpecInterval   = shade_pkg::spec_interval(SPECULAR_KIND, SPEC_PARAMS);
   localparam bit Iterative      = SpecInterval > 1;
   localparam int LaneSerW       = NSer * SERIES_WL;  // one lane's series values
   localparam int LaneDiffW      = NDiff * SERIES_WL;  // ... of them the diffuse ones
@@ -742,11 +729,7 @@ module shade_unit #(
       .SERIES_PER_LIGHT(SeriesPerLight), .SPECULAR_OUT_WL(SPECULAR_OUT_WL),
       .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL), .SPECULAR_OUT_QUANT(SPECULAR_OUT_QUANT),
       .SPECULAR_OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW), .MATERIAL_BUFFERS(MATERIAL_BUFFERS),
-      .LUT_ADDR_BITS(LUT_ADDR_BITS), .LUT_ENTRY_BITS(LUT_ENTRY_BITS),
-      .LUT_INTERP_BITS(LUT_INTERP_BITS), .LUT_INDEX(LUT_INDEX),
-      .SCHLICK_QUOTIENT_BITS(SCHLICK_QUOTIENT_BITS), .SCHLICK_OPERAND_BITS(SCHLICK_OPERAND_BITS),
-      .SCHLICK_TIMING(SCHLICK_TIMING),
-      .WPOW_MAX_M(WPOW_MAX_M), .WPOW_BASE_BITS(WPOW_BASE_BITS), .WPOW_TIMING(WPOW_TIMING)
+      .SPEC_PARAMS(SPEC_PARAMS)
     ) u_slot (
       .clk_i, .rst_ni, .en_i(slot_en),
       .series_i(eng_v[J*LaneSerW + (NDiff + L*SeriesPerLight)*SERIES_WL +:

@@ -3,8 +3,10 @@
 // 2 schlick (schlick_divider), 3 wpow (wpow_unit). Ideal is pow() in double, not hardware: the
 // slot outputs 0 for it (bit-exact with the model whenever spec_colour is 0).
 //
-// Unit parameters carry the unit's prefix: LUT_ADDR_BITS = LutConfig::addr_bits, ...;
-// the out format is SPECULAR_OUT_WL/IWL/QUANT/OVERFLOW (unsigned), the series format SERIES_WL/IWL.
+// SPEC_PARAMS: the selected unit's own fields, packed (shade_pkg::SpecSlots slots), passed on
+// untouched; the unit module decodes its slots (model/specular_units.cpp gives each field its
+// slot). The out format is SPECULAR_OUT_WL/IWL/QUANT/OVERFLOW (unsigned), the series format
+// SERIES_WL/IWL.
 //
 // Timing contract (the README's RTL timing table gives it per unit):
 //   LATENCY  = shade_pkg::spec_latency(...): registers between series_i and spec_o.
@@ -34,20 +36,9 @@ module specular_unit #(
   parameter int SPECULAR_OUT_QUANT    = 0,  // Quantization: 0 truncate, 1 round to nearest
   parameter int SPECULAR_OUT_OVERFLOW = 0,  // Overflow: 0 saturate, 1 wrap
   parameter int MATERIAL_BUFFERS      = 1,  // material banks, 1 or 2
-  // LutConfig
-  parameter int LUT_ADDR_BITS         = 10,
-  parameter int LUT_ENTRY_BITS        = 8,
-  parameter int LUT_INTERP_BITS       = 0,
-  parameter int LUT_INDEX             = 0,  // 0 truncate, 1 nearest
   parameter     LUT_TABLE_FILE        = "", // optional $readmemh file (ExponentLut::write_hex)
-  // SchlickConfig
-  parameter int SCHLICK_QUOTIENT_BITS = 16,
-  parameter int SCHLICK_OPERAND_BITS  = 24,
-  parameter int SCHLICK_TIMING        = 1,  // 0 pipelined, 1 iterative
-  // WpowConfig
-  parameter int WPOW_MAX_M            = 16,
-  parameter int WPOW_BASE_BITS        = 16,
-  parameter int WPOW_TIMING           = 0   // 0 pipelined, 1 iterative
+  // The unit's fields ('0 for ideal; a hardware unit's range checks reject '0).
+  parameter logic [shade_pkg::SpecParamW-1:0] SPEC_PARAMS = '0
   // verilator lint_on UNUSEDPARAM
 ) (
   input  logic                                  clk_i,
@@ -66,8 +57,7 @@ module specular_unit #(
 );
   if (SPECULAR_KIND == shade_pkg::SpecLut) begin : g_lut
     exponent_lut #(
-      .ADDR_BITS(LUT_ADDR_BITS), .ENTRY_BITS(LUT_ENTRY_BITS), .INTERP_BITS(LUT_INTERP_BITS),
-      .INDEX(LUT_INDEX), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
+      .SPEC_PARAMS(SPEC_PARAMS), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
       .OUT_WL(SPECULAR_OUT_WL), .OUT_IWL(SPECULAR_OUT_IWL), .OUT_QUANT(SPECULAR_OUT_QUANT),
       .OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW), .CFG_ADDR_W(16), .BANKS(MATERIAL_BUFFERS),
       .TABLE_FILE(LUT_TABLE_FILE)
@@ -85,8 +75,7 @@ module specular_unit #(
     end
   end else if (SPECULAR_KIND == shade_pkg::SpecSchlick) begin : g_schlick
     schlick_divider #(
-      .QUOTIENT_BITS(SCHLICK_QUOTIENT_BITS), .OPERAND_BITS(SCHLICK_OPERAND_BITS),
-      .TIMING(SCHLICK_TIMING), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
+      .SPEC_PARAMS(SPEC_PARAMS), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
       .OUT_WL(SPECULAR_OUT_WL), .OUT_IWL(SPECULAR_OUT_IWL), .OUT_QUANT(SPECULAR_OUT_QUANT),
       .OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW)
     ) u_schlick (
@@ -101,8 +90,7 @@ module specular_unit #(
     // verilator lint_on UNUSEDSIGNAL
   end else if (SPECULAR_KIND == shade_pkg::SpecWpow) begin : g_wpow
     wpow_unit #(
-      .MAX_M(WPOW_MAX_M), .BASE_BITS(WPOW_BASE_BITS), .TIMING(WPOW_TIMING),
-      .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
+      .SPEC_PARAMS(SPEC_PARAMS), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
       .OUT_WL(SPECULAR_OUT_WL), .OUT_IWL(SPECULAR_OUT_IWL), .OUT_QUANT(SPECULAR_OUT_QUANT),
       .OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW), .CFG_ADDR_W(16), .BANKS(MATERIAL_BUFFERS)
     ) u_wpow (
@@ -136,9 +124,6 @@ module specular_unit #(
              SPECULAR_KIND);
     if (SPECULAR_KIND == shade_pkg::SpecSchlick && SERIES_PER_LIGHT != 2)
       $fatal(1, "specular_unit: schlick needs SERIES_PER_LIGHT = 2 (numerator, denominator)");
-    if (SPECULAR_KIND == shade_pkg::SpecLut && LUT_ADDR_BITS > 16)
-      $fatal(1, "specular_unit: LUT_ADDR_BITS %0d > 16: cfg_addr_i cannot reach every entry",
-             LUT_ADDR_BITS);
   end
 `endif
 endmodule

@@ -1,9 +1,9 @@
 // wpow_unit: W_m(t) = (zeta (t - 1) + 1)^m by repeated squaring (model/wpow_unit.h, class
 // WpowUnit; Romanyuk et al.). zeta and the pre-scale live in the series (host setup).
 //
-// Parameters mirror WpowConfig and the formats: MAX_M (m, a power of two 1..32; K = log2(m)
-// squaring stages), BASE_BITS (B, fraction bits of the base and of every square), TIMING
-// (UnitTiming: 0 pipelined, 1 iterative); SERIES_WL/IWL (fs = SERIES_WL - SERIES_IWL >= 1);
+// SPEC_PARAMS's slots (decoded below) mirror WpowConfig: MAX_M (m, a power of two 1..32;
+// K = log2(m) squaring stages), BASE_BITS (B, fraction bits of the base and of every square),
+// TIMING (UnitTiming: 0 pipelined, 1 iterative); SERIES_WL/IWL (fs = SERIES_WL - SERIES_IWL >= 1);
 // OUT_WL/IWL/QUANT/OVERFLOW (the specular out format, unsigned).
 //
 // Stages, in the model's order:
@@ -31,9 +31,10 @@
 // MATERIAL words write bank cfg_bank_i. The bank tag bank_i of the pixel on series_i travels
 // with it through the unit's own stages, so each stage reads the bank of the pixel it holds.
 module wpow_unit #(
-  parameter int MAX_M        = 16,
-  parameter int BASE_BITS    = 16,
-  parameter int TIMING       = 0,  // UnitTiming: 0 kPipelined, 1 kIterative
+  // The unit's fields, packed (shade_pkg::SpecSlots slots; decoded below). The default is
+  // the model's default WpowConfig: m 16, B 16, pipelined.
+  parameter logic [shade_pkg::SpecParamW-1:0] SPEC_PARAMS =
+      {{(shade_pkg::SpecSlots - 3){32'd0}}, 32'd0, 32'd16, 32'd16},
   parameter int SERIES_WL    = 32,
   parameter int SERIES_IWL   = 4,
   parameter int OUT_WL       = 17,
@@ -58,6 +59,18 @@ module wpow_unit #(
   output logic [OUT_WL-1:0]     spec_o,
   output logic                  busy_o
 );
+  // WpowConfig from SPEC_PARAMS: the slots of the "wpow" row of model/specular_units.cpp
+  // (slots 0 and 2 also set shade_pkg::spec_latency / spec_interval). The names are the
+  // parameters' they replace, so the body reads as before.
+  localparam int MAX_M     = shade_pkg::spec_slot(SPEC_PARAMS, 0);  // wpow.max_m
+  localparam int BASE_BITS = shade_pkg::spec_slot(SPEC_PARAMS, 1);  // wpow.base_bits
+  localparam int TIMING    = shade_pkg::spec_slot(SPEC_PARAMS, 2);  // wpow.timing code
+`ifndef SYNTHESIS
+  initial begin
+    if (BASE_BITS < 2) $fatal(1, "wpow_unit: BASE_BITS %0d < 2", BASE_BITS);
+    if (TIMING != 0 && TIMING != 1) $fatal(1, "wpow_unit: TIMING %0d is not 0 or 1", TIMING);
+  end
+`endif
   localparam int K       = $clog2(MAX_M);
   localparam int B       = BASE_BITS;
   localparam int BW      = B + 1;                    // unsigned 1.B

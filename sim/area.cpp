@@ -141,8 +141,16 @@ std::vector<fs::path> rtl_sources(const std::string& dir) {
   if (ec) throw std::runtime_error(dir + ": cannot list the RTL sources: " + ec.message());
   if (files.empty()) throw std::runtime_error(dir + ": no *.sv RTL sources");
   // Yosys resolves the hierarchy after reading every file, so the order only has to be fixed
-  // (for the cache key), not dependency order.
-  std::sort(files.begin(), files.end());
+  // (for the cache key), not dependency order; except that a package must be read before a file
+  // that names it in a parameter declaration (the units' SPEC_PARAMS width is shade_pkg's).
+  const auto is_package = [](const fs::path& f) {
+    const std::string n = f.filename().string();
+    return n.size() > 7 && n.compare(n.size() - 7, 7, "_pkg.sv") == 0;
+  };
+  std::sort(files.begin(), files.end(), [&](const fs::path& a, const fs::path& b) {
+    if (is_package(a) != is_package(b)) return is_package(a);
+    return a < b;
+  });
   return files;
 }
 
@@ -327,8 +335,7 @@ void read_ice40_stat(const StatSection& s, Ice40Area& a) {
 // and its area is understated: say so.
 void check_series(AreaReport& r) {
   if (r.modules.empty()) return;
-  std::map<std::string, int64_t> p;
-  for (const auto& v : r.parameters) p[v.name] = v.value;
+  const std::map<std::string, int64_t> p = parameter_map(r.parameters);
   const int64_t kind = p.at("SPECULAR_KIND");
   const int64_t expected =
       p.at("CHANNELS") * p.at("LIGHTS") + (kind == 0 ? 0 : p.at("LIGHTS") * (kind == 2 ? 2 : 1));
@@ -388,7 +395,12 @@ std::optional<double> read_fmax(const std::string& log) {
 
 Json params_json(const std::vector<VerilogParameter>& ps) {
   Json j = Json::array();
-  for (const auto& p : ps) j.push_back({{"name", p.name}, {"value", p.value}});
+  for (const auto& p : ps) {
+    if (p.slots.empty())
+      j.push_back({{"name", p.name}, {"value", p.value}});
+    else
+      j.push_back({{"name", p.name}, {"slots", p.slots}});
+  }
   return j;
 }
 
@@ -432,7 +444,13 @@ AreaReport area_report_from_json(const std::string& text, const std::string& sou
   try {
     const Json j = Json::parse(text);
     AreaReport r;
-    for (const auto& p : j.at("parameters")) r.parameters.push_back({p.at("name"), p.at("value")});
+    for (const auto& p : j.at("parameters")) {
+      if (p.contains("slots"))
+        r.parameters.emplace_back(p.at("name").get<std::string>(),
+                                  p.at("slots").get<std::vector<int64_t>>());
+      else
+        r.parameters.emplace_back(p.at("name").get<std::string>(), p.at("value").get<int64_t>());
+    }
     r.key = j.at("key");
     r.from_cache = j.at("from_cache");
     r.yosys_version = j.at("yosys_version");
@@ -669,11 +687,8 @@ namespace {
 
 using ParamMap = std::map<std::string, int64_t>;
 
-ParamMap param_map(const std::vector<VerilogParameter>& ps) {
-  ParamMap m;
-  for (const auto& p : ps) m[p.name] = p.value;
-  return m;
-}
+// SPEC_PARAMS as one entry per slot, so a differing unit field counts as one parameter.
+ParamMap param_map(const std::vector<VerilogParameter>& ps) { return parameter_map(ps); }
 
 int64_t get(const ParamMap& p, const char* name) {
   const auto it = p.find(name);

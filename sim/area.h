@@ -3,7 +3,8 @@
 //
 // The parameters come only from shade_unit_parameters() (model/rtl_parameters.h), passed to
 // Yosys with yosys_chparam_args(). Three flows run on the same parameters:
-//   flat      read all rtl/*.sv (sorted by name: ABC's result depends on the netlist's order, by
+//   flat      read all rtl/*.sv (packages, *_pkg.sv, first: the units' parameter types name
+//             shade_pkg; then sorted by name: ABC's result depends on the netlist's order, by
 //             about 0.5 % in cells, so the order is fixed); chparam; synth -flatten; abc -g
 //             AND,NAND,OR,NOR,XOR,XNOR,MUX; stat -tech cmos: the unit's generic cells, transistor
 //             estimate, flip-flops.

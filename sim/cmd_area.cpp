@@ -106,7 +106,8 @@ void print_estimate_check(std::ostream& os, const UnitConfig& unit, const AreaRe
     bool same = a.parameters.size() == measured.parameters.size();
     for (size_t i = 0; same && i < a.parameters.size(); ++i) {
       same = a.parameters[i].name == measured.parameters[i].name &&
-             a.parameters[i].value == measured.parameters[i].value;
+             a.parameters[i].value == measured.parameters[i].value &&
+             a.parameters[i].slots == measured.parameters[i].slots;
     }
     if (!same) others.push_back(std::move(a));
   }

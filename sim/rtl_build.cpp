@@ -119,7 +119,7 @@ const Tools& find_tools() {
 
 std::string parameter_text(const std::vector<VerilogParameter>& params) {
   std::string s;
-  for (const auto& p : params) s += p.name + "=" + std::to_string(p.value) + " ";
+  for (const auto& p : params) s += p.name + "=" + p.literal() + " ";
   return s;
 }
 
@@ -193,7 +193,15 @@ std::string generated_header(const RtlConfig& build, CosimBackend backend) {
      << "]\n#pragma once\n#define SHADESIM_BUILD_PARAMETERS {";
   bool first = true;
   for (const auto& p : shade_unit_parameters(build.unit, build.faults)) {
-    os << (first ? "" : ", ") << "{\"" << p.name << "\", " << p.value << "}";
+    os << (first ? "" : ", ") << "{\"" << p.name << "\", ";
+    if (p.slots.empty()) {
+      os << p.value;
+    } else {
+      os << "std::vector<int64_t>{";
+      for (size_t k = 0; k < p.slots.size(); ++k) os << (k ? ", " : "") << p.slots[k];
+      os << "}";
+    }
+    os << "}";
     first = false;
   }
   os << "}\n";

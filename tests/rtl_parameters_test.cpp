@@ -5,18 +5,30 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace shadesim {
 namespace {
 
+// parameter_map's form: SPEC_PARAMS as "SPEC_PARAMS[k]", one entry per slot.
 std::map<std::string, int64_t> as_map(const std::vector<VerilogParameter>& params) {
-  std::map<std::string, int64_t> m;
+  std::set<std::string> names;
   for (const auto& p : params) {
-    EXPECT_TRUE(m.emplace(p.name, p.value).second) << "parameter " << p.name << " given twice";
+    EXPECT_TRUE(names.insert(p.name).second) << "parameter " << p.name << " given twice";
   }
-  return m;
+  return parameter_map(params);
+}
+
+// The selected unit's SPEC_PARAMS slots, in slot order.
+std::vector<int64_t> spec_slots(const std::vector<VerilogParameter>& params) {
+  for (const auto& p : params) {
+    if (p.name == "SPEC_PARAMS") return p.slots;
+  }
+  ADD_FAILURE() << "no SPEC_PARAMS";
+  return {};
 }
 
 TEST(RtlParameters, DefaultUnitMapsToItsWidthsAndCodes) {
@@ -48,25 +60,28 @@ TEST(RtlParameters, EachUnitGetsOnlyItsOwnParameters) {
   EXPECT_EQ(m.at("SERIES_OVERFLOW"), 0);
   EXPECT_EQ(m.at("SPECULAR_OUT_QUANT"), 1);
   EXPECT_EQ(m.at("SPECULAR_OUT_OVERFLOW"), 0);
-  EXPECT_EQ(m.at("LUT_INDEX"), 1);
-  EXPECT_EQ(m.at("LUT_INTERP_BITS"), 4);
-  EXPECT_EQ(m.count("WPOW_MAX_M") + m.count("SCHLICK_TIMING"), 0u);
+  // rtl/exponent_lut.sv's slots: 0 ADDR_BITS, 1 ENTRY_BITS, 2 INTERP_BITS, 3 INDEX; the rest 0.
+  EXPECT_EQ(spec_slots(shade_unit_parameters(u)), (std::vector<int64_t>{10, 8, 4, 1, 0, 0, 0, 0}));
 
   u.specular.kind = SpecularUnitKind::kSchlick;
   u.specular.schlick.timing = UnitTiming::kPipelined;
   m = as_map(shade_unit_parameters(u));
   EXPECT_EQ(m.at("SPECULAR_KIND"), 2);
-  EXPECT_EQ(m.at("SCHLICK_TIMING"), 0);
-  EXPECT_EQ(m.count("LUT_INDEX"), 0u);
+  // rtl/schlick_divider.sv's slots: 0 QUOTIENT_BITS, 1 OPERAND_BITS, 2 TIMING.
+  EXPECT_EQ(spec_slots(shade_unit_parameters(u)), (std::vector<int64_t>{16, 24, 0, 0, 0, 0, 0, 0}));
 
   u.specular.kind = SpecularUnitKind::kWpow;
   u.specular.wpow.timing = UnitTiming::kIterative;
   u.specular.wpow.base_bits = 12;
   m = as_map(shade_unit_parameters(u));
   EXPECT_EQ(m.at("SPECULAR_KIND"), 3);
-  EXPECT_EQ(m.at("WPOW_TIMING"), 1);
-  EXPECT_EQ(m.at("WPOW_BASE_BITS"), 12);
-  EXPECT_EQ(m.count("SCHLICK_TIMING"), 0u);
+  // rtl/wpow_unit.sv's slots: 0 MAX_M, 1 BASE_BITS, 2 TIMING.
+  EXPECT_EQ(spec_slots(shade_unit_parameters(u)), (std::vector<int64_t>{16, 12, 1, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(m.at("SPEC_PARAMS[1]"), 12);
+
+  // The ideal unit has no hardware and no SPEC_PARAMS (shade_unit's default, '0).
+  u.specular.kind = SpecularUnitKind::kIdeal;
+  EXPECT_EQ(as_map(shade_unit_parameters(u)).count("SPEC_PARAMS[0]"), 0u);
 }
 
 TEST(RtlParameters, MaterialBuffersMapOnlyWhenTwo) {
@@ -119,6 +134,27 @@ TEST(RtlParameters, FaultsOnlyWhenInjectedAndToolSyntax) {
   EXPECT_EQ(verilator_parameter_args(params).front(), "-GCHANNELS=1");
   EXPECT_EQ(iverilog_parameter_args(params, "tb").front(), "-Ptb.CHANNELS=1");
   EXPECT_EQ(yosys_chparam_args({{"A", 1}, {"B", -1}}), "-set A 1 -set B -1");
+}
+
+TEST(RtlParameters, PackedSpecParamsIsOneSizedHexLiteralInEveryTool) {
+  // Slot k is bits [32k +: 32] of a 256-bit value (rtl/shade_pkg.sv SpecSlots 8, SpecSlotW 32),
+  // written out by hand: slot 0 (10 = 0xa) is the last 8 hex digits.
+  const VerilogParameter p{"SPEC_PARAMS", std::vector<int64_t>{10, 8, 4, 1, 0, 0, 0, 0}};
+  const std::string want =
+      "256'h00000000000000000000000000000000000000010000000400000008"
+      "0000000a";
+  EXPECT_EQ(p.literal(), want);
+  EXPECT_EQ(verilator_parameter_args({p}).front(), "-GSPEC_PARAMS=" + want);
+  EXPECT_EQ(iverilog_parameter_args({p}, "tb").front(), "-Ptb.SPEC_PARAMS=" + want);
+  EXPECT_EQ(yosys_chparam_args({p}), "-set SPEC_PARAMS " + want);
+  EXPECT_EQ(VerilogParameter("X", std::vector<int64_t>{0xFFFFFFFFLL}).literal(), "32'hffffffff");
+  EXPECT_THROW(VerilogParameter("X", std::vector<int64_t>{-1}).literal(), std::logic_error);
+  const auto m = parameter_map({p, VerilogParameter("LANES", 2)});
+  EXPECT_EQ(m.at("SPEC_PARAMS[0]"), 10);
+  EXPECT_EQ(m.at("SPEC_PARAMS[3]"), 1);
+  EXPECT_EQ(m.at("SPEC_PARAMS[7]"), 0);
+  EXPECT_EQ(m.at("LANES"), 2);
+  EXPECT_EQ(m.count("SPEC_PARAMS"), 0u);
 }
 
 TEST(RtlParameters, AnInvalidUnitIsRefusedNamingTheField) {

@@ -1,8 +1,9 @@
 // The specular unit table (model/specular_units.h) against the code that walks it: every field
 // of every unit round-trips through the UnitConfig JSON, has a command-line option that sets
-// it, reaches its Verilog parameter, and is refused out of range with an error naming it. The
-// Verilog names and defaults are checked against rtl/shade_unit.sv's parameter list, read from
-// the file, and a few slot timings against rtl/shade_pkg.sv's spec_latency written out by hand.
+// it, reaches its slot of SPEC_PARAMS, and is refused out of range with an error naming it. The
+// slots, names and defaults are checked against each unit module's decode (rtl/exponent_lut.sv,
+// ...), read from the file, and a few slot timings against rtl/shade_pkg.sv's spec_latency
+// written out by hand.
 #include "model/specular_units.h"
 
 #include <gtest/gtest.h>
@@ -26,9 +27,7 @@ namespace shadesim {
 namespace {
 
 std::map<std::string, int64_t> as_map(const std::vector<VerilogParameter>& params) {
-  std::map<std::string, int64_t> m;
-  for (const auto& p : params) m[p.name] = p.value;
-  return m;
+  return parameter_map(params);
 }
 
 // A config that selects `unit` (its other fields at their defaults).
@@ -107,7 +106,7 @@ std::string cli_error(const std::vector<std::string>& args) {
 }
 
 TEST(SpecularUnits, EveryKindHasOneRowWithUniqueNames) {
-  std::set<std::string> names, verilog;
+  std::set<std::string> names;
   std::set<int> codes;
   for (const SpecularUnitKind k : {SpecularUnitKind::kIdeal, SpecularUnitKind::kLut,
                                    SpecularUnitKind::kSchlick, SpecularUnitKind::kWpow}) {
@@ -116,11 +115,17 @@ TEST(SpecularUnits, EveryKindHasOneRowWithUniqueNames) {
     EXPECT_TRUE(names.insert(u.name).second) << u.name;
     EXPECT_TRUE(codes.insert(u.verilog_kind).second) << u.name;
     EXPECT_EQ(find_specular_unit(u.name), &u);
-    std::set<std::string> keys;
+    std::set<std::string> keys, verilog;
+    std::set<int> slots;
     for (const SpecularField& f : u.fields) {
       EXPECT_TRUE(keys.insert(f.key).second) << u.field_name(f) << " twice";
       if (*f.verilog) {
         EXPECT_TRUE(verilog.insert(f.verilog).second) << f.verilog << " twice";
+        EXPECT_TRUE(slots.insert(f.slot).second) << u.field_name(f) << ": slot twice";
+        EXPECT_GE(f.slot, 0) << u.field_name(f);
+        EXPECT_LT(f.slot, kSpecSlots) << u.field_name(f);
+      } else {
+        EXPECT_EQ(f.slot, -1) << u.field_name(f);
       }
       EXPECT_LE(f.lo, f.hi) << u.field_name(f);
       EXPECT_TRUE(f.in_range(f.get(SpecularConfig{})))
@@ -237,81 +242,112 @@ TEST(SpecularUnits, EveryFieldHasACommandLineOptionThatSetsIt) {
   EXPECT_EQ(d.specular.schlick.timing, UnitTiming::kPipelined);
 }
 
-TEST(SpecularUnits, HardwareFieldsReachTheirVerilogParameterOthersDoNot) {
+TEST(SpecularUnits, HardwareFieldsReachTheirSlotOthersDoNot) {
   for (const SpecularUnitDescriptor& u : specular_units()) {
     for (const SpecularField& f : u.fields) {
       UnitConfig c = on(u);
       const auto before = as_map(shade_unit_parameters(c));
       f.set(c.specular, other_value(f, c.specular));
       const auto after = as_map(shade_unit_parameters(c));
-      if (*f.verilog) {
-        ASSERT_EQ(after.count(f.verilog), 1u) << f.verilog;
-        EXPECT_EQ(after.at(f.verilog), f.get(c.specular)) << f.verilog;
-        EXPECT_NE(before.at(f.verilog), after.at(f.verilog)) << f.verilog;
+      if (f.slot >= 0) {
+        const std::string slot = "SPEC_PARAMS[" + std::to_string(f.slot) + "]";
+        ASSERT_EQ(after.count(slot), 1u) << u.field_name(f);
+        EXPECT_EQ(after.at(slot), f.get(c.specular)) << u.field_name(f);
+        EXPECT_NE(before.at(slot), after.at(slot)) << u.field_name(f);
+        // Only that slot changed.
+        auto rest = after;
+        rest[slot] = before.at(slot);
+        EXPECT_EQ(rest, before) << u.field_name(f) << " changed another parameter";
       } else {
         EXPECT_EQ(before, after) << u.field_name(f) << " is host-only but changed the parameters";
       }
-      // Another unit's fields never appear.
-      for (const SpecularUnitDescriptor& v : specular_units()) {
-        if (&v == &u) continue;
-        for (const SpecularField& g : v.fields) {
-          if (*g.verilog) {
-            EXPECT_EQ(after.count(g.verilog), 0u) << g.verilog << " on " << u.name;
-          }
-        }
-      }
     }
-  }
-}
-
-// shade_unit's `parameter int NAME = VALUE` lines.
-std::map<std::string, std::string> shade_unit_sv_parameters() {
-  std::ifstream is(std::string(SHADESIM_SOURCE_DIR) + "/rtl/shade_unit.sv");
-  EXPECT_TRUE(is) << "cannot read rtl/shade_unit.sv";
-  std::map<std::string, std::string> m;
-  const std::regex line(R"(^\s*parameter\s+int\s+(\w+)\s*=\s*([^,/\s]+))");
-  for (std::string s; std::getline(is, s);) {
-    std::smatch match;
-    if (std::regex_search(s, match, line)) m[match[1]] = match[2];
-  }
-  return m;
-}
-
-TEST(SpecularUnits, VerilogNamesAndDefaultsAreShadeUnitsOwn) {
-  const auto sv = shade_unit_sv_parameters();
-  // Spot checks, written out from rtl/shade_unit.sv's parameter list.
-  EXPECT_EQ(sv.at("LUT_ADDR_BITS"), "10");
-  EXPECT_EQ(sv.at("SCHLICK_OPERAND_BITS"), "24");
-  EXPECT_EQ(sv.at("WPOW_TIMING"), "0");
-  const std::map<std::string, int64_t> rtl_defaults = {
-      {"LUT_ADDR_BITS", 10},         {"LUT_ENTRY_BITS", 8},
-      {"LUT_INTERP_BITS", 0},        {"LUT_INDEX", 0},
-      {"SCHLICK_QUOTIENT_BITS", 16}, {"SCHLICK_OPERAND_BITS", 24},
-      {"SCHLICK_TIMING", 1},         {"WPOW_MAX_M", 16},
-      {"WPOW_BASE_BITS", 16},        {"WPOW_TIMING", 0}};
-  std::set<std::string> in_table;
-  for (const SpecularUnitDescriptor& u : specular_units()) {
+    // Slots no field of the unit uses stay 0.
     const auto p = as_map(shade_unit_parameters(on(u)));
-    if (u.hardware) {
-      EXPECT_EQ(p.at("SPECULAR_KIND"), u.verilog_kind);
+    for (int k = 0; u.hardware && k < kSpecSlots; ++k) {
+      const bool used = std::any_of(u.fields.begin(), u.fields.end(),
+                                    [&](const SpecularField& f) { return f.slot == k; });
+      if (!used) EXPECT_EQ(p.at("SPEC_PARAMS[" + std::to_string(k) + "]"), 0) << u.name << k;
     }
+  }
+}
+
+std::string read_rtl(const std::string& file) {
+  std::ifstream is(std::string(SHADESIM_SOURCE_DIR) + "/rtl/" + file);
+  EXPECT_TRUE(is) << "cannot read rtl/" << file;
+  std::ostringstream os;
+  os << is.rdbuf();
+  return os.str();
+}
+
+// Each hardware unit's module, which decodes its own slots of SPEC_PARAMS.
+std::string unit_module_file(SpecularUnitKind kind) {
+  switch (kind) {
+    case SpecularUnitKind::kLut:
+      return "exponent_lut.sv";
+    case SpecularUnitKind::kSchlick:
+      return "schlick_divider.sv";
+    case SpecularUnitKind::kWpow:
+      return "wpow_unit.sv";
+    default:
+      return "";
+  }
+}
+
+TEST(SpecularUnits, EachUnitModuleDecodesItsRowsSlotsWithTheModelsDefaults) {
+  // shade_pkg's packing is rtl_parameters.h's.
+  const std::string pkg = read_rtl("shade_pkg.sv");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(pkg, m, std::regex(R"(localparam int SpecSlots\s*=\s*(\d+);)")));
+  EXPECT_EQ(std::stoi(m[1]), kSpecSlots);
+  ASSERT_TRUE(std::regex_search(pkg, m, std::regex(R"(localparam int SpecSlotW\s*=\s*(\d+);)")));
+  EXPECT_EQ(std::stoi(m[1]), kSpecSlotBits);
+  // shade_unit carries no unit field by name any more: only the packed parameter.
+  const std::string top = read_rtl("shade_unit.sv");
+  EXPECT_FALSE(std::regex_search(top, std::regex(R"(parameter\s+int\s+(LUT|SCHLICK|WPOW)_)")));
+  EXPECT_NE(top.find("SPEC_PARAMS"), std::string::npos);
+
+  for (const SpecularUnitDescriptor& u : specular_units()) {
+    if (!u.hardware) continue;
+    const std::string sv = read_rtl(unit_module_file(u.kind));
+    // "localparam int NAME = shade_pkg::spec_slot(SPEC_PARAMS, K);"
+    std::map<std::string, int> decoded;
+    const std::regex line(
+        R"(localparam int (\w+)\s*=\s*shade_pkg::spec_slot\(SPEC_PARAMS, (\d+)\))");
+    for (auto it = std::sregex_iterator(sv.begin(), sv.end(), line); it != std::sregex_iterator();
+         ++it)
+      decoded[(*it)[1]] = std::stoi((*it)[2]);
+    // The module's SPEC_PARAMS default "{{(shade_pkg::SpecSlots - N){32'd0}}, 32'dV, ..., 32'dV0}".
+    ASSERT_TRUE(std::regex_search(
+        sv, m,
+        std::regex(R"(SPEC_PARAMS =\s*\{\{\(shade_pkg::SpecSlots - (\d+)\)\{32'd0\}\},([^}]*)\})")))
+        << u.name;
+    std::vector<int64_t> defaults;
+    const std::string list = m[2];
+    const std::regex value(R"(32'd(\d+))");
+    for (auto it = std::sregex_iterator(list.begin(), list.end(), value);
+         it != std::sregex_iterator(); ++it)
+      defaults.insert(defaults.begin(), std::stoll((*it)[1]));  // written high slot first
+    EXPECT_EQ(defaults.size(), static_cast<size_t>(std::stoi(m[1]))) << u.name;
+
+    const SpecularConfig model_default = on(u).specular;
+    size_t hardware_fields = 0;
     for (const SpecularField& f : u.fields) {
-      if (!*f.verilog) continue;
-      in_table.insert(f.verilog);
-      ASSERT_EQ(sv.count(f.verilog), 1u) << f.verilog << " is not a parameter of rtl/shade_unit.sv";
-      // The model's default is the RTL's default, so an unset parameter means the same unit.
-      EXPECT_EQ(std::to_string(p.at(f.verilog)), sv.at(f.verilog)) << f.verilog;
-      EXPECT_EQ(p.at(f.verilog), rtl_defaults.at(f.verilog)) << f.verilog;
+      if (f.slot < 0) {
+        EXPECT_STREQ(f.verilog, "") << u.field_name(f);
+        continue;
+      }
+      ++hardware_fields;
+      ASSERT_EQ(decoded.count(f.verilog), 1u)
+          << u.field_name(f) << ": " << unit_module_file(u.kind) << " decodes no " << f.verilog;
+      EXPECT_EQ(decoded.at(f.verilog), f.slot) << u.field_name(f);
+      // The RTL's default is the model's, so the standalone module is the default unit.
+      ASSERT_LT(static_cast<size_t>(f.slot), defaults.size()) << u.field_name(f);
+      EXPECT_EQ(defaults[static_cast<size_t>(f.slot)], f.get(model_default)) << u.field_name(f);
     }
+    // Every slot the module decodes has its row.
+    EXPECT_EQ(decoded.size(), hardware_fields) << u.name;
   }
-  // Every unit parameter of shade_unit has its row.
-  for (const auto& [name, value] : sv) {
-    if (std::regex_match(name, std::regex("(LUT|SCHLICK|WPOW)_\\w+"))) {
-      EXPECT_EQ(in_table.count(name), 1u)
-          << name << " of rtl/shade_unit.sv has no row in the table";
-    }
-  }
-  EXPECT_EQ(in_table.size(), rtl_defaults.size());
 }
 
 TEST(SpecularUnits, SlotTimingIsShadePkgsSpecLatencyAndInterval) {

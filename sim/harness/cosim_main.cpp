@@ -65,7 +65,7 @@ InjectedFaults built_faults(const CosimExecutable& exe) {
 
 std::string parameter_text(const std::vector<VerilogParameter>& params) {
   std::string s;
-  for (const auto& p : params) s += (s.empty() ? "" : " ") + p.name + "=" + std::to_string(p.value);
+  for (const auto& p : params) s += (s.empty() ? "" : " ") + p.name + "=" + p.literal();
   return s;
 }
 
@@ -514,7 +514,12 @@ void print_list(bool json, const CosimExecutable& exe) {
     return;
   }
   nlohmann::json p = nlohmann::json::object();
-  for (const auto& v : params) p[v.name] = v.value;
+  for (const auto& v : params) {
+    if (v.slots.empty())
+      p[v.name] = v.value;
+    else
+      p[v.name] = v.slots;
+  }
   std::cout << nlohmann::json{{"backend", exe.backend},
                               {"traced", exe.traced},
                               {"covered", exe.covered},

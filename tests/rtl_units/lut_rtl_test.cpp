@@ -13,14 +13,7 @@ namespace shadesim {
 namespace rtl_units {
 namespace {
 
-LutConfig lut_config(const Params& p, const std::string& prefix = "") {
-  LutConfig c;
-  c.addr_bits = static_cast<int>(get(p, prefix + "ADDR_BITS"));
-  c.entry_bits = static_cast<int>(get(p, prefix + "ENTRY_BITS"));
-  c.interp_bits = static_cast<int>(get(p, prefix + "INTERP_BITS"));
-  c.index = get(p, prefix + "INDEX") ? LutIndex::kNearest : LutIndex::kTruncate;
-  return c;
-}
+LutConfig lut_config(const Params& p) { return unit_fields(p, SpecularUnitKind::kLut).lut; }
 
 template <class V>
 void send_cfg(V& dut, bool table, uint32_t addr, int64_t data) {

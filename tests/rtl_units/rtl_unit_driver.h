@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "model/fixed_point.h"
+#include "model/specular_units.h"
 #include "rtl_units_configs.inc"
 
 namespace shadesim {
@@ -55,6 +56,18 @@ inline int64_t get(const Params& p, const std::string& key) {
   const auto it = p.find(key);
   if (it == p.end()) throw std::runtime_error("RTL unit configuration lacks " + key);
   return it->second;
+}
+
+// The unit's fields from the configuration's SLOTk entries (SPEC_PARAMS slot k,
+// cmake/rtl_units.cmake) through the unit's row of model/specular_units.cpp: the slots the RTL
+// module decodes must be the row's, or the model built here is not the unit the RTL is.
+inline SpecularConfig unit_fields(const Params& p, SpecularUnitKind kind) {
+  SpecularConfig s;
+  s.kind = kind;
+  for (const SpecularField& f : specular_unit(kind).fields) {
+    if (f.slot >= 0) f.set(s, static_cast<int>(get(p, "SLOT" + std::to_string(f.slot))));
+  }
+  return s;
 }
 
 // The series format (signed; its own rounding/overflow rules do not matter to the units).

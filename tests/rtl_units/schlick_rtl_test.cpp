@@ -12,12 +12,8 @@ namespace shadesim {
 namespace rtl_units {
 namespace {
 
-SchlickConfig schlick_config(const Params& p, const std::string& prefix = "") {
-  SchlickConfig c;
-  c.quotient_bits = static_cast<int>(get(p, prefix + "QUOTIENT_BITS"));
-  c.operand_bits = static_cast<int>(get(p, prefix + "OPERAND_BITS"));
-  c.timing = get(p, prefix + "TIMING") ? UnitTiming::kIterative : UnitTiming::kPipelined;
-  return c;
+SchlickConfig schlick_config(const Params& p) {
+  return unit_fields(p, SpecularUnitKind::kSchlick).schlick;
 }
 
 using Pair = std::pair<int64_t, int64_t>;
@@ -117,8 +113,7 @@ TEST(SchlickDividerRtl, DefaultWidthsIterativeHardAndRandom) {
   const Params p = config_params("schlick_iter");
   check_divider<Vschlick_iter>(
       "schlick_iter",
-      hard_and_random_pairs(series_format(p), static_cast<int>(get(p, "OPERAND_BITS")), rng, 20000),
-      rng);
+      hard_and_random_pairs(series_format(p), schlick_config(p).operand_bits, rng, 20000), rng);
 }
 
 TEST(SchlickDividerRtl, LongPipelineRoundedOutputHardAndRandom) {
@@ -126,8 +121,7 @@ TEST(SchlickDividerRtl, LongPipelineRoundedOutputHardAndRandom) {
   const Params p = config_params("schlick_pipe");
   check_divider<Vschlick_pipe>(
       "schlick_pipe",
-      hard_and_random_pairs(series_format(p), static_cast<int>(get(p, "OPERAND_BITS")), rng, 50000),
-      rng);
+      hard_and_random_pairs(series_format(p), schlick_config(p).operand_bits, rng, 50000), rng);
 }
 
 }  // namespace

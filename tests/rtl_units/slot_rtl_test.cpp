@@ -14,23 +14,8 @@ namespace {
 UnitConfig slot_config(const Params& p) {
   UnitConfig u;
   u.series = series_format(p);
-  SpecularConfig& s = u.specular;
-  s.out = out_format(p, "SPECULAR_OUT_");
-  const auto opt = [&](const std::string& k, int64_t dflt) {
-    const auto it = p.find(k);
-    return static_cast<int>(it == p.end() ? dflt : it->second);
-  };
-  s.kind = static_cast<SpecularUnitKind>(get(p, "SPECULAR_KIND"));
-  s.lut.addr_bits = opt("LUT_ADDR_BITS", 10);
-  s.lut.entry_bits = opt("LUT_ENTRY_BITS", 8);
-  s.lut.interp_bits = opt("LUT_INTERP_BITS", 0);
-  s.lut.index = opt("LUT_INDEX", 0) ? LutIndex::kNearest : LutIndex::kTruncate;
-  s.schlick.quotient_bits = opt("SCHLICK_QUOTIENT_BITS", 16);
-  s.schlick.operand_bits = opt("SCHLICK_OPERAND_BITS", 24);
-  s.schlick.timing = opt("SCHLICK_TIMING", 1) ? UnitTiming::kIterative : UnitTiming::kPipelined;
-  s.wpow.max_m = opt("WPOW_MAX_M", 16);
-  s.wpow.base_bits = opt("WPOW_BASE_BITS", 16);
-  s.wpow.timing = opt("WPOW_TIMING", 0) ? UnitTiming::kIterative : UnitTiming::kPipelined;
+  u.specular = unit_fields(p, static_cast<SpecularUnitKind>(get(p, "SPECULAR_KIND")));
+  u.specular.out = out_format(p, "SPECULAR_OUT_");
   return u;
 }
 

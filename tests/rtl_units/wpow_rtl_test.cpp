@@ -11,13 +11,7 @@ namespace shadesim {
 namespace rtl_units {
 namespace {
 
-WpowConfig wpow_config(const Params& p, const std::string& prefix = "") {
-  WpowConfig c;
-  c.max_m = static_cast<int>(get(p, prefix + "MAX_M"));
-  c.base_bits = static_cast<int>(get(p, prefix + "BASE_BITS"));
-  c.timing = get(p, prefix + "TIMING") ? UnitTiming::kIterative : UnitTiming::kPipelined;
-  return c;
-}
+WpowConfig wpow_config(const Params& p) { return unit_fields(p, SpecularUnitKind::kWpow).wpow; }
 
 template <class V>
 void send_param(V& dut, uint32_t addr, int64_t data) {
