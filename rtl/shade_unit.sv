@@ -762,9 +762,9 @@ module shade_unit #(
     logic [SpecLatency-1:0] line_v_q;
     // One flat vector, stage i at [i*MetaW +: MetaW]. Not an unpacked array of packed structs:
     // Icarus 11 left it X here (and with it every pixel's x, y and mask on the LUT builds).
-    // Not a packed array of them either: Yosys 0.23 reads `meta_t [N-1:0]` as N single bits
-    // (the element type's width dropped), so its netlist kept one bit of the metadata - every
-    // lane's diffuse values, x, y and mask constant but lane 0's diffuse LSB.
+    // Not a packed array of them either: Yosys 0.23 sizes `meta_t [N-1:0] line_q` as one meta_t
+    // and reads line_q[i] as its bit i, so its netlist kept one bit of the metadata (lane 0's
+    // diffuse LSB): x, y and mask constant, the other lanes' colours merged, most series gone.
     localparam int MetaW = 2 * XY_BITS + 3 + LANES + LANES * LaneDiffW;  // $bits(meta_t)
     logic [SpecLatency*MetaW-1:0] line_q;
     assign out_adv        = adv;
