@@ -3,6 +3,7 @@
 alias of another output bit in the netlist.
 
 usage: yosys_outputs_check.py YOSYS OUT_PREFIX rtl/*.sv   (shade_pkg.sv first)
+       yosys_outputs_check.py - PREFIX   (check PREFIX.v as it is: the checker's own test)
 YOSYS_CHPARAM: chparam arguments for shade_unit (a small multi-lane unit keeps it quick).
 
 In a correct netlist of a multi-lane unit every bit of pix_colour_o, pix_x_o and pix_y_o is its
@@ -22,7 +23,7 @@ PORTS = ("pix_colour_o", "pix_x_o", "pix_y_o")
 
 
 def main():
-    if len(sys.argv) < 4:
+    if len(sys.argv) < 3 or (sys.argv[1] != "-" and len(sys.argv) < 4):
         sys.exit(__doc__)
     yosys, prefix, sources = sys.argv[1], sys.argv[2], sys.argv[3:]
     chparam = os.environ.get("YOSYS_CHPARAM", "")
