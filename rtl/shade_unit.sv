@@ -464,7 +464,9 @@ module shade_unit #(
   if (Queued) begin : g_span_queue
     localparam int PtrW = $clog2(SpanQ);
     localparam int CntW = $clog2(SpanQ + 1);
-    span_t            sq_span_q [SpanQ];  // each queued span and its triangle's bank
+    // Each queued span (as span_t's bits: Yosys 0.23 misreads an unpacked array of packed
+    // structs written through a computed index) and its triangle's bank.
+    logic [SpanW-1:0] sq_span_q [SpanQ];
     logic [BankW-1:0] sq_bank_q [SpanQ];
     logic             sq_mat_q [SpanQ];   // each queued span's material bank
     logic [PtrW-1:0] head_q, tail_q;
