@@ -121,8 +121,10 @@ if(YOSYS)
     ENVIRONMENT "YOSYS_CHPARAM=-set LANES 4 -set SPECULAR_KIND 3 -set SPEC_PARAMS ${_yosys_wpow1}")
   # The flat netlist behaves like the RTL: every bit of pix_colour_o, pix_x_o and pix_y_o is its
   # own flip-flop (no constant or aliased lanes). A small four-lane unit with a pipelined slot
-  # (LUT A 4, B 4: the metadata delay line), about 15 s of Yosys. Yosys 0.23 once read that
-  # line's packed array of structs as single bits: lanes 1..3 merged, x and y constant 0.
+  # (LUT A 4, B 4: the metadata delay line) behind a four-word port and a triangle queue (the
+  # span queue), about 15-20 s of Yosys. Yosys 0.23 once misread both: the line's packed array
+  # of structs (lanes 1..3 merged, x and y constant 0) and the span queue's unpacked array of
+  # span_t (y constant 0).
   spec_params_literal(_yosys_lut_small 4 4 0 0)
   add_test(NAME rtl_yosys_flat_outputs_lanes4
     COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_outputs_check.py ${YOSYS}
@@ -137,7 +139,7 @@ if(YOSYS)
   set_tests_properties(rtl_yosys_flat_outputs_self_test_bad PROPERTIES PASS_REGULAR_EXPRESSION
     "assign pix_x_o = 4'h0;.*pix_colour_o: 8 of 16 bits are their own flip-flop")
   set_tests_properties(rtl_yosys_flat_outputs_lanes4 PROPERTIES
-    ENVIRONMENT "YOSYS_CHPARAM=-set XY_BITS 4 -set COEF_WL 8 -set COEF_IWL 2 -set SERIES_WL 6 -set SERIES_IWL 2 -set OUT_BITS 3 -set SPEC_COLOUR_WL 4 -set SPECULAR_OUT_WL 5 -set SPECULAR_OUT_IWL 1 -set LANES 4 -set SPECULAR_KIND 1 -set SPEC_PARAMS ${_yosys_lut_small}")
+    ENVIRONMENT "YOSYS_CHPARAM=-set XY_BITS 4 -set COEF_WL 8 -set COEF_IWL 2 -set SERIES_WL 6 -set SERIES_IWL 2 -set OUT_BITS 3 -set SPEC_COLOUR_WL 4 -set SPECULAR_OUT_WL 5 -set SPECULAR_OUT_IWL 1 -set LANES 4 -set PORT_WORDS 4 -set TRI_QUEUE 2 -set SPECULAR_KIND 1 -set SPEC_PARAMS ${_yosys_lut_small}")
 endif()
 
 # Co-simulation: every scenario (--scenario all includes "edge"), several seeds, both backends,
