@@ -119,6 +119,27 @@ if(YOSYS)
     COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_check.sh ${YOSYS} ${CMAKE_BINARY_DIR}/rtl_yosys_l4.log ${RTL_SOURCES})
   set_tests_properties(rtl_yosys_no_latch_lanes4 PROPERTIES
     ENVIRONMENT "YOSYS_CHPARAM=-set LANES 4 -set SPECULAR_KIND 3 -set SPEC_PARAMS ${_yosys_wpow1}")
+  # The flat netlist behaves like the RTL: every bit of pix_colour_o, pix_x_o and pix_y_o is its
+  # own flip-flop (no constant or aliased lanes). A small four-lane unit with a pipelined slot
+  # (LUT A 4, B 4: the metadata delay line) behind a four-word port and a triangle queue (the
+  # span queue), about 15-20 s of Yosys. Yosys 0.23 once misread both: the line's packed array
+  # of structs (lanes 1..3 merged, x and y constant 0) and the span queue's unpacked array of
+  # span_t (y constant 0).
+  spec_params_literal(_yosys_lut_small 4 4 0 0)
+  add_test(NAME rtl_yosys_flat_outputs_lanes4
+    COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_outputs_check.py ${YOSYS}
+            ${CMAKE_BINARY_DIR}/rtl_yosys_flat_l4 ${RTL_SOURCES})
+  # The checker itself, on two netlists (sim/harness/yosys_outputs_fixtures): a correct one
+  # passes, the pre-fix four-lane netlist's outputs fail.
+  foreach(f good bad)
+    add_test(NAME rtl_yosys_flat_outputs_self_test_${f}
+      COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_outputs_check.py -
+              ${CMAKE_SOURCE_DIR}/sim/harness/yosys_outputs_fixtures/${f})
+  endforeach()
+  set_tests_properties(rtl_yosys_flat_outputs_self_test_bad PROPERTIES PASS_REGULAR_EXPRESSION
+    "assign pix_x_o = 4'h0;.*pix_colour_o: 8 of 16 bits are their own flip-flop")
+  set_tests_properties(rtl_yosys_flat_outputs_lanes4 PROPERTIES
+    ENVIRONMENT "YOSYS_CHPARAM=-set XY_BITS 4 -set COEF_WL 8 -set COEF_IWL 2 -set SERIES_WL 6 -set SERIES_IWL 2 -set OUT_BITS 3 -set SPEC_COLOUR_WL 4 -set SPECULAR_OUT_WL 5 -set SPECULAR_OUT_IWL 1 -set LANES 4 -set PORT_WORDS 4 -set TRI_QUEUE 2 -set SPECULAR_KIND 1 -set SPEC_PARAMS ${_yosys_lut_small}")
 endif()
 
 # Co-simulation: every scenario (--scenario all includes "edge"), several seeds, both backends,

@@ -464,7 +464,9 @@ module shade_unit #(
   if (Queued) begin : g_span_queue
     localparam int PtrW = $clog2(SpanQ);
     localparam int CntW = $clog2(SpanQ + 1);
-    span_t            sq_span_q [SpanQ];  // each queued span and its triangle's bank
+    // Each queued span (as span_t's bits: Yosys 0.23 misreads an unpacked array of packed
+    // structs written through a computed index) and its triangle's bank.
+    logic [SpanW-1:0] sq_span_q [SpanQ];
     logic [BankW-1:0] sq_bank_q [SpanQ];
     logic             sq_mat_q [SpanQ];   // each queued span's material bank
     logic [PtrW-1:0] head_q, tail_q;
@@ -760,11 +762,15 @@ module shade_unit #(
   end else if (SpecLatency > 0) begin : g_delay
     // SpecLatency stages moving with the slot's pipeline on the global advance (en_i = adv).
     logic [SpecLatency-1:0] line_v_q;
-    // A packed array: Icarus 11 left the unpacked array of packed structs X here (and with it
-    // every pixel's x, y and mask on the LUT builds), though meta_in and line_v_q were known.
-    meta_t [SpecLatency-1:0] line_q;
+    // One flat vector, stage i at [i*MetaW +: MetaW]. Not an unpacked array of packed structs:
+    // Icarus 11 left it X here (and with it every pixel's x, y and mask on the LUT builds).
+    // Not a packed array of them either: Yosys 0.23 sizes `meta_t [N-1:0] line_q` as one meta_t
+    // and reads line_q[i] as its bit i, so its netlist kept one bit of the metadata (lane 0's
+    // diffuse LSB): x, y and mask constant, the other lanes' colours merged, most series gone.
+    localparam int MetaW = 2 * XY_BITS + 3 + LANES + LANES * LaneDiffW;  // $bits(meta_t)
+    logic [SpecLatency*MetaW-1:0] line_q;
     assign out_adv        = adv;
-    assign meta_out       = line_q[SpecLatency-1];
+    assign meta_out       = line_q[(SpecLatency-1)*MetaW +: MetaW];
     assign meta_out_valid = line_v_q[SpecLatency-1];
     assign slot_empty     = line_v_q == '0;
     always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -777,8 +783,10 @@ module shade_unit #(
     end
     always_ff @(posedge clk_i) begin
       if (adv) begin
-        line_q[0] <= meta_in;
-        for (int i = 1; i < SpecLatency; i++) line_q[i] <= line_q[i-1];
+        line_q[0 +: MetaW] <= meta_in;
+        for (int i = 1; i < SpecLatency; i++) begin
+          line_q[i*MetaW +: MetaW] <= line_q[(i-1)*MetaW +: MetaW];
+        end
       end
     end
   end else begin : g_direct
@@ -848,6 +856,8 @@ module shade_unit #(
       $fatal(1, "shade_unit: PORT_WORDS %0d is not 1, 2, 4 or 8", PORT_WORDS);
     if (TRI_QUEUE < 1 || TRI_QUEUE > 8)
       $fatal(1, "shade_unit: TRI_QUEUE %0d is not 1..8", TRI_QUEUE);
+    if ($bits(meta_t) != 2 * XY_BITS + 3 + LANES + LANES * LaneDiffW)
+      $fatal(1, "shade_unit: the metadata line's width (MetaW) is not $bits(meta_t)");
     if (MATERIAL_BUFFERS != 1 && MATERIAL_BUFFERS != 2)
       $fatal(1, "shade_unit: MATERIAL_BUFFERS %0d is not 1 or 2", MATERIAL_BUFFERS);
     for (int t = 0; t < 6; t++) begin
