@@ -55,9 +55,11 @@ struct UnitConfig {
   // empty. With 2 the per-material registers (ambient, spec_colour, the specular unit's
   // parameters) have two banks and every span carries the bank of the latest MATERIAL: a
   // MATERIAL switches to the other bank and waits only while an in-flight span still reads that
-  // one. The LUT table stays one copy (a shared table is loaded once and must serve every
-  // material), so a TABLE still waits for the empty datapath. Each MATERIAL defines every banked
-  // field (model/command_stream.h), so pixels do not depend on this either.
+  // one. The LUT's table has a bank per buffer too: a per-material TABLE (header bit 55, a
+  // per-exponent reload) writes the latest MATERIAL's bank and waits only for that bank's spans;
+  // any other TABLE writes both and waits for the empty datapath (model/command_stream.h).
+  // Each MATERIAL defines every other banked field, so the encoder's pixels do not depend on
+  // this either.
   int material_buffers = 1;
 
   // Term t's format (0..5): coef's, or coef narrowed to coef_term_iwl[t] integer bits.

@@ -382,9 +382,9 @@ void register_cycles(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({1, 2, 4}));
   sub->add_option(
          "--material-buffers", o->material_buffers,
-         "material buffers: 2 loads a MATERIAL into the bank no span in flight reads, so it\n"
-         "does not drain the datapath (a TABLE still does); default 1, or the --config file's;\n"
-         "given, it overrides the file's")
+         "material buffers: 2 loads a MATERIAL, and a per-material TABLE (a per-exponent LUT's\n"
+         "reload), into the bank no span in flight reads, so neither drains the datapath;\n"
+         "default 1, or the --config file's; given, it overrides the file's")
       ->check(CLI::IsMember({1, 2}));
   sub->add_option("--seed", o->seed, "stimulus seed")->capture_default_str();
   add_stimulus_options(sub, o->gap_pct, o->max_gap, o->stall_pct);
