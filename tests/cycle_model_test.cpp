@@ -27,6 +27,15 @@ SpanCmd span(int y, int x0, int len, bool last) {
   return s;
 }
 
+// A MATERIAL of one channel and one light: header count 3 (ambient, spec_colour, exponent).
+MaterialCmd small_material() {
+  MaterialCmd m;
+  m.ambient = {0};
+  m.spec_colour = {0};
+  m.exponent = 1;
+  return m;
+}
+
 // The words of `cmds`; a TRIANGLE takes one payload word per coefficient given, whatever the
 // unit's coefficient layout (the cycle model reads only its header's count).
 std::vector<uint64_t> words(std::vector<Command> cmds) {
@@ -69,10 +78,7 @@ TEST(CycleModel, BackToBackSpansLeaveNoBubble) {
 }
 
 TEST(CycleModel, MaterialWaitsForEmptyDatapath) {
-  MaterialCmd m;
-  m.ambient = {0};
-  m.spec_colour = {0};
-  m.exponent = 1;  // header count 3
+  const MaterialCmd m = small_material();
   const CycleRun r =
       run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{});
   ASSERT_EQ(r.scanlines.size(), 2u);
@@ -85,10 +91,7 @@ TEST(CycleModel, MaterialWaitsForEmptyDatapath) {
 // switching back waits for the first bank's span, and a TABLE that is not per-material still
 // waits for the empty datapath.
 TEST(CycleModel, TwoMaterialBuffersRemoveTheDrain) {
-  MaterialCmd m;
-  m.ambient = {0};
-  m.spec_colour = {0};
-  m.exponent = 1;  // header count 3
+  const MaterialCmd m = small_material();
   CycleConfig two;
   two.material_buffers = 2;
   // SPAN 0 (bank 0) on 0, its pixels leave on 5..14. MATERIAL (to bank 1) on 1, payload 2..4,
@@ -128,10 +131,7 @@ TEST(CycleModel, TwoMaterialBuffersRemoveTheDrain) {
 // A per-material TABLE (a per-exponent reload) writes the bank of the latest MATERIAL: with two
 // buffers it waits only for that bank's spans, not for the empty datapath.
 TEST(CycleModel, PerMaterialTableLoadsTheNewBankWithoutADrain) {
-  MaterialCmd m;
-  m.ambient = {0};
-  m.spec_colour = {0};
-  m.exponent = 1;  // header count 3
+  const MaterialCmd m = small_material();
   TableCmd t;
   t.base = 0;
   t.entries.assign(2, 0);
@@ -239,10 +239,7 @@ TEST(CycleModel, IterativeSlotTakesItsIntervalPerPixel) {
 }
 
 TEST(CycleModel, MaterialDrainIncludesTheSlot) {
-  MaterialCmd m;
-  m.ambient = {0};
-  m.spec_colour = {0};
-  m.exponent = 1;  // header count 3
+  const MaterialCmd m = small_material();
   for (int lat : {0, 2, 7}) {
     const CycleRun r = run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}),
                                        Stimulus{}, SlotTiming{lat, 1});
@@ -372,10 +369,7 @@ TEST(CommandPort, ASpanQueueTakesARunOfSpansInOneCycle) {
 
 TEST(CommandPort, MaterialPayloadIsOneWordPerCycle) {
   // P = 4: [MAT a s e | SPAN]: the header on 0, its three words on 1..3, the SPAN on 4.
-  MaterialCmd m;
-  m.ambient = {0};
-  m.spec_colour = {0};
-  m.exponent = 1;
+  const MaterialCmd m = small_material();
   const CycleRun r = run_cycle_model(words({m, span(0, 0, 2, true)}), Stimulus{}, port(4));
   ASSERT_EQ(r.scanlines.size(), 1u);
   EXPECT_EQ(r.scanlines[0].cycle, 4u + 4u + 2u);
@@ -461,10 +455,7 @@ TEST(CycleBreakdown, SingleSpanIsFillThenPixels) {
 }
 
 TEST(CycleBreakdown, MaterialSwitchCostsItsWordsAndARefill) {
-  MaterialCmd m;
-  m.ambient = {0};
-  m.spec_colour = {0};
-  m.exponent = 1;  // header + 3 payload words
+  const MaterialCmd m = small_material();
   const CycleRun r =
       run_cycle_model(words({span(0, 0, 10, true), m, span(1, 0, 1, true)}), Stimulus{});
   const CycleBreakdown& b = r.breakdown;
@@ -585,10 +576,7 @@ TEST(CycleBreakdown, PartitionsRandomRuns) {
     for (int i = 0; i < 60; ++i) {
       const int kind = static_cast<int>(rng() % 6);
       if (kind == 0) {
-        MaterialCmd m;
-        m.ambient = {0};
-        m.spec_colour = {0};
-        m.exponent = 1;
+        const MaterialCmd m = small_material();
         cmds.push_back(m);
       } else if (kind == 1) {
         TableCmd t;
