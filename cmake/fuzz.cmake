@@ -65,24 +65,13 @@ if(NOT seeds_result EQUAL 0)
   message(FATAL_ERROR "SHADESIM_FUZZ: tests/fuzz/mesh_seeds.sh failed")
 endif()
 
-set(seeds_scene ${CMAKE_SOURCE_DIR}/scenes ${CMAKE_SOURCE_DIR}/scenes/hard)
-set(seeds_mesh ${fuzz_dir}/seeds/mesh)
-set(seeds_command_stream ${CMAKE_SOURCE_DIR}/tests/fuzz/seeds/commands)
-set(seeds_unit_config ${CMAKE_SOURCE_DIR}/tests/fuzz/seeds/unit_config)
-
 foreach(target ${fuzz_targets})
-  # New inputs go to a corpus folder of the build (the first folder argument); the seed folders
-  # are only read. -seed fixes the run so a failure repeats. One input may take up to 60 s (a
-  # 1024-tessellation scene under ASan on a loaded machine) before it counts as a hang.
-  set(corpus ${fuzz_dir}/corpus/${target})
-  file(MAKE_DIRECTORY ${corpus})
-  # malloc_limit_mb above the mesh import's own address-space cap (host/mesh.cpp), which turns
-  # absurd element counts into a clean error before libFuzzer would call them out of memory.
+  # scripts/fuzz holds the flags and the seed folders (the same as a long run's): new inputs go
+  # to <build>/fuzz/corpus/<target>, the seeds are only read, -seed=1 fixes the run.
+  file(MAKE_DIRECTORY ${fuzz_dir}/corpus/${target})
   add_test(NAME fuzz_${target}
-    COMMAND ${fuzz_dir}/fuzz_${target} -runs=${SHADESIM_FUZZ_RUNS}
-            -max_total_time=${SHADESIM_FUZZ_SECONDS} -timeout=60 -rss_limit_mb=2048
-            -malloc_limit_mb=8192 -seed=1 -print_final_stats=1
-            -artifact_prefix=${fuzz_dir}/ ${corpus} ${seeds_${target}})
+    COMMAND ${CMAKE_SOURCE_DIR}/scripts/fuzz --build ${CMAKE_BINARY_DIR} --runs ${SHADESIM_FUZZ_RUNS}
+            --seconds ${SHADESIM_FUZZ_SECONDS} ${target})
   set_tests_properties(fuzz_${target} PROPERTIES LABELS fuzz TIMEOUT 300)
   file(GLOB regressions CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tests/fuzz/regressions/${target}/*)
   if(regressions)

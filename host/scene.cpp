@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "host/mesh.h"
+#include "model/json_error.h"
 
 namespace shadesim {
 namespace {
@@ -214,52 +215,20 @@ std::string directory_of(const std::string& path) {
   return slash == std::string::npos ? std::string(".") : path.substr(0, slash == 0 ? 1 : slash);
 }
 
-json parse_file(const std::string& path) {
+std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ": cannot open scene file (expected a readable JSON file)");
   std::ostringstream buffer;
   buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  return buffer.str();
+}
+
+json parse_text(const std::string& text, const std::string& path) {
   try {
     return json::parse(text);
-  } catch (const json::parse_error& e) {
-    // e.byte is 1-based and points at the offending character (past the end for early EOF).
-    const size_t stop = std::min<size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
-    size_t line = 1, column = 1;
-    for (size_t i = 0; i < stop; ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
-    }
-    // nlohmann's message is "[json.exception.parse_error.N] parse error at ...: <reason>".
-    std::string reason = e.what();
-    const auto colon = reason.find(": ");
-    if (colon != std::string::npos) reason = reason.substr(colon + 2);
-    throw SceneError(path + ":" + std::to_string(line) + ":" + std::to_string(column) +
-                     ": malformed JSON: " + reason);
   } catch (const json::exception& e) {
-    // A number beyond double range ("1e999") is out_of_range.406, not a parse error, and carries
-    // no position: locate the quoted token from the message in the text instead.
-    std::string reason = e.what();
-    const auto bracket = reason.find("] ");
-    if (bracket != std::string::npos) reason = reason.substr(bracket + 2);
-    std::string where;
-    const auto open = reason.find('\''), close = reason.rfind('\'');
-    if (open != std::string::npos && close > open + 1) {
-      const size_t at = text.find(reason.substr(open + 1, close - open - 1));
-      if (at != std::string::npos) {
-        const size_t line = 1 + static_cast<size_t>(std::count(
-                                    text.begin(), text.begin() + static_cast<long>(at), '\n'));
-        const size_t line_start = text.rfind('\n', at == 0 ? 0 : at - 1);
-        const size_t column = line_start == std::string::npos || at == 0 ? at + 1 : at - line_start;
-        where = ":" + std::to_string(line) + ":" + std::to_string(column);
-      }
-    }
-    throw SceneError(path + where + ": malformed JSON: " + reason +
-                     " (expected a number within double range)");
+    const JsonTextError error = describe_json_error(text, e);
+    throw SceneError(path + error.place + ": malformed JSON: " + error.reason);
   }
 }
 
@@ -429,8 +398,10 @@ bool Scene::is_grey() const {
   return true;
 }
 
-Scene load_scene(const std::string& path) {
-  const json root = parse_file(path);
+Scene load_scene(const std::string& path) { return parse_scene(read_file(path), path); }
+
+Scene parse_scene(const std::string& text, const std::string& path) {
+  const json root = parse_text(text, path);
   const Reader r(path);
   r.check_keys(root, "",
                {"image", "camera", "lights", "ambient_light", "eye", "error_budget_lsb",

@@ -86,4 +86,8 @@ struct Scene {
 // Reads and checks a scene file. Throws SceneError on any problem.
 Scene load_scene(const std::string& path);
 
+// The same for a scene file's text already in memory; `path` names it in errors, and mesh files
+// are found relative to its folder.
+Scene parse_scene(const std::string& text, const std::string& path);
+
 }  // namespace shadesim

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "model/coef_packing.h"
+#include "model/json_error.h"
 #include "model/specular_units.h"
 #include "model/unit_config_file.h"
 
@@ -602,20 +603,6 @@ class ConfigJsonReader {
   bool reject_unknown_;
 };
 
-// Line and column (1-based) of byte offset `byte` in `text`.
-std::pair<size_t, size_t> line_and_column(const std::string& text, size_t byte) {
-  size_t line = 1, column = 1;
-  for (size_t i = 0; i < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-  return {line, column};
-}
-
 }  // namespace
 
 UnitConfig config_from_json(const std::string& text, const std::string& source) {
@@ -635,9 +622,21 @@ UnitConfig config_from_json(const std::string& text, const std::string& source) 
 
 UnitConfig overlay_unit_config(const std::string& json_object, const UnitConfig& base,
                                const std::string& source) {
+  return parse_unit_config(json_object, source, base);
+}
+
+UnitConfig parse_unit_config(const std::string& text, const std::string& source,
+                             const UnitConfig& base) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    const JsonTextError error = describe_json_error(text, e);
+    throw UnitConfigFileError(source + error.place + ": JSON syntax error: " + error.reason);
+  }
   UnitConfig c = base;
   try {
-    ConfigJsonReader("", false, true).read(nlohmann::json::parse(json_object), c);
+    ConfigJsonReader("", false, true).read(j, c);
     c.specular.validate();
     c.validate();
   } catch (const nlohmann::json::exception& e) {
@@ -655,27 +654,7 @@ UnitConfig load_unit_config(const std::string& path, const UnitConfig& base) {
   }
   std::ostringstream buf;
   buf << is.rdbuf();
-  const std::string text = buf.str();
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    // e.byte is the 1-based offset of the character where parsing failed.
-    const auto [line, column] = line_and_column(text, e.byte > 0 ? e.byte - 1 : 0);
-    std::string why = e.what();
-    if (const auto colon = why.find(": "); colon != std::string::npos) why = why.substr(colon + 2);
-    throw UnitConfigFileError(path + ":" + std::to_string(line) + ":" + std::to_string(column) +
-                              ": JSON syntax error: " + why);
-  }
-  UnitConfig c = base;
-  try {
-    ConfigJsonReader("", false, true).read(j, c);
-    c.specular.validate();
-    c.validate();
-  } catch (const std::invalid_argument& e) {
-    throw UnitConfigFileError(path + ": " + e.what());
-  }
-  return c;
+  return parse_unit_config(buf.str(), path, base);
 }
 
 }  // namespace shadesim

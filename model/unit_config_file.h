@@ -24,8 +24,12 @@ class UnitConfigFileError : public std::runtime_error {
 // UnitConfigFileError.
 UnitConfig load_unit_config(const std::string& path, const UnitConfig& base = {});
 
-// The same for a UnitConfig JSON object held in memory (e.g. one entry of
-// sim/harness/builds.json); `source` names it in errors.
+// The same for a file's text held in memory; `source` names it in errors.
+UnitConfig parse_unit_config(const std::string& text, const std::string& source,
+                             const UnitConfig& base = {});
+
+// A UnitConfig JSON object over `base` (e.g. one entry of sim/harness/builds.json): the same
+// reader as a file's.
 UnitConfig overlay_unit_config(const std::string& json_object, const UnitConfig& base,
                                const std::string& source);
 

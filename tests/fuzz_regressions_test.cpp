@@ -13,6 +13,7 @@
 
 #include "host/mesh.h"
 #include "host/scene.h"
+#include "model/unit_config_file.h"
 
 namespace shadesim {
 namespace {
@@ -98,6 +99,33 @@ TEST(FuzzRegressions, SceneWithCrashingMeshNamesTheField) {
     EXPECT_NE(std::string(e.what()).find("objects[0].file"), std::string::npos) << e.what();
   }
   fs::remove_all(dir);
+}
+
+// Every UnitConfig input is a UnitConfigFileError naming the file, and for a JSON error its line
+// and column (the fuzzer's crash was an nlohmann exception that escaped the reader).
+TEST(FuzzRegressions, EveryUnitConfigInputIsAUnitConfigFileErrorNamingTheFile) {
+  const std::vector<fs::path> inputs = inputs_of("unit_config");
+  ASSERT_GE(inputs.size(), 1u);
+  for (const fs::path& input : inputs) {
+    std::string message;
+    try {
+      load_unit_config(input.string());
+    } catch (const UnitConfigFileError& e) {
+      message = e.what();
+    }
+    EXPECT_EQ(message.rfind(input.string() + ":", 0), 0u) << input << ": got '" << message << "'";
+  }
+  const fs::path overflow = kRegressions / "unit_config/number_beyond_double_range.json";
+  std::string message;
+  try {
+    load_unit_config(overflow.string());
+  } catch (const UnitConfigFileError& e) {
+    message = e.what();
+  }
+  // 8e8888 starts at line 1, column 28 of the file.
+  EXPECT_EQ(message.rfind(overflow.string() + ":1:28: JSON syntax error: number overflow", 0), 0u)
+      << message;
+  EXPECT_NE(message.find("expected a number within double range"), std::string::npos) << message;
 }
 
 }  // namespace

@@ -1,8 +1,10 @@
-// libFuzzer target: the scene JSON reader (host/scene.h). Every input must load or throw
+// libFuzzer target: the scene JSON reader (host/scene.h), on the file's text in memory
+// (parse_scene: what load_scene runs after reading the file). Every input must load or throw
 // SceneError with a message; anything else (crash, sanitizer report, other exception) fails.
 #include <cstddef>
 #include <cstdint>
 #include <fstream>
+#include <string>
 
 #include "host/scene.h"
 #include "tests/fuzz/fuzz_support.h"
@@ -22,9 +24,10 @@ const bool mesh_beside_scene = [] {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (!mesh_beside_scene) shadesim::fuzz::fail("cannot copy long_span_tri.obj beside the scene");
-  const std::string path = shadesim::fuzz::write_input("scene.json", data, size);
+  const std::string text(reinterpret_cast<const char*>(data), size);
   try {
-    const shadesim::Scene scene = shadesim::load_scene(path);
+    const shadesim::Scene scene =
+        shadesim::parse_scene(text, shadesim::fuzz::private_dir() + "/scene.json");
     if (scene.materials.empty() || scene.objects.empty() || scene.lights.empty()) {
       shadesim::fuzz::fail("load_scene accepted a scene without materials, objects or lights");
     }

@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -12,6 +13,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+
+#include "host/mesh.h"
 
 namespace shadesim::fuzz {
 
@@ -56,6 +59,24 @@ inline void require_message(const std::exception& e) {
 [[noreturn]] inline void fail(const char* what) {
   std::fprintf(stderr, "shadesim fuzz: %s\n", what);
   std::abort();
+}
+
+// What a loaded mesh promises (host/mesh.h): triangles that index its vertices, one unit normal
+// per vertex.
+inline void check_mesh(const shadesim::Mesh& mesh) {
+  if (mesh.triangles.empty() || mesh.normals.size() != mesh.positions.size()) {
+    fail("the mesh loader returned an empty mesh or unmatched normals");
+  }
+  for (const auto& t : mesh.triangles) {
+    for (uint32_t i : t) {
+      if (i >= mesh.positions.size()) fail("triangle index out of range");
+    }
+  }
+  for (const shadesim::Vec3& n : mesh.normals) {
+    if (!(std::fabs(shadesim::length(n) - 1.0) < 1e-6)) {
+      fail("the mesh loader returned a normal that is not unit length");
+    }
+  }
 }
 
 }  // namespace shadesim::fuzz

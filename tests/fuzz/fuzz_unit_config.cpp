@@ -1,17 +1,19 @@
-// libFuzzer target: the UnitConfig file reader (model/unit_config_file.h). Every input must give
-// a configuration that passes validate() and survives a JSON round trip, or throw
-// UnitConfigFileError with a message.
+// libFuzzer target: the UnitConfig file reader (model/unit_config_file.h), on the file's text in
+// memory (parse_unit_config: what load_unit_config runs after reading the file, without a file
+// write per input). Every input must give a configuration that passes validate() and survives a
+// JSON round trip, or throw UnitConfigFileError with a message.
 #include <cstddef>
 #include <cstdint>
+#include <string>
 
 #include "model/command_stream.h"
 #include "model/unit_config_file.h"
 #include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  const std::string path = shadesim::fuzz::write_input("unit.json", data, size);
+  const std::string text(reinterpret_cast<const char*>(data), size);
   try {
-    const shadesim::UnitConfig config = shadesim::load_unit_config(path);
+    const shadesim::UnitConfig config = shadesim::parse_unit_config(text, "unit.json");
     config.validate();
     // The header of a saved stream carries config_to_json: what was accepted must read back
     // as the same configuration.
