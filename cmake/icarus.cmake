@@ -73,9 +73,15 @@ if(CMAKE_SCRIPT_MODE_FILE)
   endif()
   _icarus_step("export" ${TOOL} export ${stem}.cmds --hex ${stem}.hex --pixels ${stem}.expected.txt
                --gaps ${stem}.gaps.hex --cycles ${stem}.cycles.hex ${stim})
+  # FAULT=SITE@Y (a build with fault hooks): the plusargs shade_unit's fault_select reads.
+  set(fault_plusargs)
+  if(FAULT)
+    _icarus_step("fault plusargs" ${TOOL} fault-plusargs ${FAULT})
+    separate_arguments(fault_plusargs UNIX_COMMAND "${step_out}")
+  endif()
   string(TIMESTAMP t0 "%s")
   _icarus_step("vvp" ${VVP} -n ${TB} +words=${stem}.hex +gaps=${stem}.gaps.hex +cycles=${stem}.cycles.hex
-               +pixels=${stem}.icarus.txt)
+               +pixels=${stem}.icarus.txt ${fault_plusargs})
   string(TIMESTAMP t1 "%s")
   math(EXPR vvp_seconds "${t1} - ${t0}")
   string(REPLACE ";" " " stim_text "${stim}")
@@ -136,9 +142,8 @@ string(REPLACE ";" "," _rtl_list "${RTL_SOURCES}")
 # `edge` stream (the value-space corners, three frames, commands after END_FRAME) under that
 # scenario's gaps and back-pressure: Icarus pixels and exit cycles = the models', bit for bit and
 # cycle for cycle, and its cycle count = the Verilator C++ backend's (the build the cosim tests
-# use, from the same cache). The fault_* builds exist to show a checker catches them: two of
-# them run below as expected failures; the wide-port variants of the same faults and
-# fault_hang (a test of the harness's watchdog) are left to the Verilator harness.
+# use, from the same cache). Builds with fault hooks run fault-free here; two of the faults run
+# below as expected failures, the others are left to the Verilator harness (cmake/rtl.cmake).
 set(_icarus_check ${CMAKE_COMMAND} -DICARUS_CHECK=ON -DSHADESIM=${SHADESIM_CLI} -DIVERILOG=${IVERILOG}
     -DTB_SRC=${ICARUS_TB} -DRTL=${_rtl_list} -DTOOL=$<TARGET_FILE:icarus_stream_tool> -DVVP=${VVP}
     -DBUILDS=${CMAKE_SOURCE_DIR}/sim/harness/builds.json)
@@ -146,9 +151,6 @@ set(_icarus_check ${CMAKE_COMMAND} -DICARUS_CHECK=ON -DSHADESIM=${SHADESIM_CLI} 
 # (12,000-34,000 pixels) cost minutes of Icarus: those builds run `short` (about 1,800 pixels)
 # under edge's stimulus instead.
 foreach(name ${RTL_BUILD_NAMES})
-  if(name MATCHES "^fault_")
-    continue()
-  endif()
   set(_scenario -DSCENARIO=edge)
   foreach(unit schlick wpow)
     string(JSON timing ERROR_VARIABLE no_timing GET "${_builds_json}" ${name} unit specular ${unit} timing)
@@ -166,13 +168,13 @@ endforeach()
 # often hides the one-cycle stall (the output is stalled anyway: mixed seeds 1, 2, 3 and 5 pass on
 # Verilator too); seed 4 is one where it shows.
 add_test(NAME icarus_catches_lsb_fault
-  COMMAND ${_icarus_check} -DTB=${ICARUS_DIR}/check/fault_lsb/tb.vvp -DCONFIG=fault_lsb
-          -DWORK=${ICARUS_DIR}/check/fault_lsb -DSCENARIO=mixed -DSEED=3 -DEXPECT_MISMATCH_Y=17
-          -P ${CMAKE_SOURCE_DIR}/cmake/icarus.cmake)
+  COMMAND ${_icarus_check} -DTB=${ICARUS_DIR}/check/fault_lsb/tb.vvp -DCONFIG=grey_s428w
+          -DWORK=${ICARUS_DIR}/check/fault_lsb -DSCENARIO=mixed -DSEED=3 -DFAULT=lsb@17
+          -DEXPECT_MISMATCH_Y=17 -P ${CMAKE_SOURCE_DIR}/cmake/icarus.cmake)
 add_test(NAME icarus_catches_stall_fault
-  COMMAND ${_icarus_check} -DTB=${ICARUS_DIR}/check/fault_stall/tb.vvp -DCONFIG=fault_stall
-          -DWORK=${ICARUS_DIR}/check/fault_stall -DSCENARIO=mixed -DSEED=4 -DEXPECT_MISMATCH_Y=23
-          -P ${CMAKE_SOURCE_DIR}/cmake/icarus.cmake)
+  COMMAND ${_icarus_check} -DTB=${ICARUS_DIR}/check/fault_stall/tb.vvp -DCONFIG=grey_s428w
+          -DWORK=${ICARUS_DIR}/check/fault_stall -DSCENARIO=mixed -DSEED=4 -DFAULT=stall@23
+          -DEXPECT_MISMATCH_Y=23 -P ${CMAKE_SOURCE_DIR}/cmake/icarus.cmake)
 # The testbench declares every shade_unit parameter with its default and passes it on; the
 # same check fails for a parameter shade_unit gains (INJECT adds one to shade_unit's list).
 set(_tb_params ${CMAKE_COMMAND} -DRTL_TOP=${CMAKE_SOURCE_DIR}/rtl/shade_unit.sv -DTB=${ICARUS_TB})

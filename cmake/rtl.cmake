@@ -21,7 +21,7 @@ set(RTL_SOURCES
   ${RTL_DIR}/shade_pkg.sv ${RTL_DIR}/fixed_round.sv ${RTL_DIR}/fixed_sat.sv ${RTL_DIR}/span_setup.sv
   ${RTL_DIR}/series_engine.sv ${RTL_DIR}/lane_fanout.sv ${RTL_DIR}/pixel_combine.sv
   ${RTL_DIR}/exponent_lut.sv ${RTL_DIR}/schlick_divider.sv ${RTL_DIR}/wpow_unit.sv
-  ${RTL_DIR}/specular_unit.sv ${RTL_DIR}/shade_unit.sv)
+  ${RTL_DIR}/specular_unit.sv ${RTL_DIR}/fault_select.sv ${RTL_DIR}/shade_unit.sv)
 
 # The named builds (and what the tests iterate over), read from the same file shadesim reads.
 file(READ ${CMAKE_SOURCE_DIR}/sim/harness/builds.json _builds_json)
@@ -55,7 +55,7 @@ set(RTL_CACHE ${CMAKE_BINARY_DIR}/rtl-cache)
 # run: a build whose inputs have not changed is a cache hit (hashing the inputs takes < 1 s).
 add_custom_target(rtl_builds ALL
   COMMAND shadesim rtl-build --all --cache ${RTL_CACHE}
-  COMMAND shadesim rtl-build --config grey_s428w,fault_lsb --backends cpp_trace --cache ${RTL_CACHE}
+  COMMAND shadesim rtl-build --config grey_s428w --backends cpp_trace --cache ${RTL_CACHE}
   DEPENDS shadesim shadesim_harness shadesim_model
   COMMENT "Verilating the named RTL builds into ${RTL_CACHE} (cache hits are instant)"
   USES_TERMINAL)
@@ -70,9 +70,6 @@ _cosim(COSIM_SC systemc)
 # ---- tests --------------------------------------------------------------------------------------
 # Static checks on the RTL: lint (every named build's parameters), Icarus, Yosys (no latches).
 foreach(name ${RTL_BUILD_NAMES})
-  if(name MATCHES "^fault_")
-    continue()
-  endif()
   add_test(NAME rtl_lint_${name}
     COMMAND sh -c "exec ${VERILATOR_BIN} --lint-only -Wall $(\"$0\" rtl-params --config ${name}) --top-module shade_unit \"$@\""
             ${SHADESIM_CLI} ${RTL_SOURCES})
@@ -186,18 +183,6 @@ foreach(scenario mixed tiny long)
     COMMAND ${COSIM_SC} --config grey_p4_q2_l4_m2 --scenario ${scenario} --seed 7
             --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
 endforeach()
-add_test(NAME rtl_cosim_catches_lsb_fault_p4_l4
-  COMMAND ${COSIM_CPP} --config fault_lsb_p4_l4 --scenario mixed --seed 3 --stall-pct 0
-          --expect-mismatch pixel:17 --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
-add_test(NAME rtl_cosim_catches_stall_fault_p4_l4
-  COMMAND ${COSIM_CPP} --config fault_stall_p4_l4 --scenario mixed --seed 3 --stall-pct 0
-          --expect-mismatch cycle:23 --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
-add_test(NAME rtl_cosim_catches_lsb_fault_p4
-  COMMAND ${COSIM_CPP} --config fault_lsb_p4 --scenario mixed --seed 3 --stall-pct 0
-          --expect-mismatch pixel:17 --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
-add_test(NAME rtl_cosim_catches_stall_fault_p4
-  COMMAND ${COSIM_CPP} --config fault_stall_p4 --scenario mixed --seed 3 --stall-pct 0
-          --expect-mismatch cycle:23 --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
 # The specular-unit builds: every scenario (non-zero specular colours, unit parameters, LUT
 # tables), one seed each in CI; the SystemC backend on one scenario where it is built.
 foreach(name ${RTL_SPECULAR_BUILD_NAMES})
@@ -215,20 +200,54 @@ add_test(NAME rtl_cosim_backends_agree_schlick_iter_d
 # Both backends give the same pixels, scanlines and cycles on the same run.
 add_test(NAME rtl_cosim_backends_agree
   COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/same_results.sh ${SHADESIM_CLI} ${RTL_CACHE} rgb2_s320s mixed 11)
-# The harness must catch deliberate faults at the right scanline.
-add_test(NAME rtl_cosim_catches_lsb_fault
-  COMMAND ${COSIM_CPP} --config fault_lsb --scenario mixed --seed 3 --stall-pct 0
-          --expect-mismatch pixel:17 --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
-add_test(NAME rtl_cosim_catches_stall_fault
-  COMMAND ${COSIM_CPP} --config fault_stall --scenario mixed --seed 3 --stall-pct 0
-          --expect-mismatch cycle:23 --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
-# An RTL that stops emitting (its engines never take a span of row 100): the watchdog, not the
-# overall cycle bound, reports it as a hang on that row.
-add_test(NAME rtl_cosim_catches_hang_fault
-  COMMAND ${COSIM_CPP} --config fault_hang --scenario short --seed 3 --stall-pct 0
-          --expect-mismatch hang:100 --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
-set_tests_properties(rtl_cosim_catches_lsb_fault rtl_cosim_catches_stall_fault rtl_cosim_catches_hang_fault
-  PROPERTIES LABELS rtl)
+# The harness must catch each deliberate fault at the right place: its first mismatch of the
+# right kind on the fault's row. One build per kind of datapath carries the fault hooks
+# (builds.json "fault_hooks"), and each test picks its fault at run time (--fault SITE@Y,
+# sim/harness/fault_site.h), under the scenario's own gaps and back-pressure unless noted.
+#   NAME  BUILD  SCENARIO  SEED  FAULT  EXPECTED
+set(_fault_tests
+  # the output of every lane, through one-word and four-word ports
+  lsb             grey_s428w        mixed 3  lsb@17    pixel:17
+  lsb_p4          grey_p4           mixed 3  lsb@17    pixel:17
+  lsb_p4_l4       grey_p4_q2_l4_m2  mixed 3  lsb@17    pixel:17
+  # one extra engine stall: a late pixel (back-pressure hides it on some seeds, so 0 here)
+  stall           grey_s428w        mixed 3  stall@23  cycle:23
+  stall_p4        grey_p4           mixed 3  stall@23  cycle:23
+  stall_p4_l4     grey_p4_q2_l4_m2  mixed 3  stall@23  cycle:23
+  # engines that stop: the watchdog, not the overall cycle bound, reports a hang on that row
+  hang            grey_s428w        short 3  hang@100  hang:100
+  # channel 2, position, end of row, span setup and output rounding (RGB, two lights)
+  channel2        rgb2_s320s        mixed 5  ch2@19    pixel:19
+  x               rgb2_s320s        mixed 5  x@21      pixel:21
+  y               rgb2_s320s        mixed 5  y@22      pixel:22
+  eor             rgb2_s320s        mixed 5  eor@24    pixel:24
+  span_setup      rgb2_s320s        mixed 5  setup@26  pixel:26
+  rounding        rgb2_s320s        mixed 5  round@27  pixel:27
+  # each specular unit's result (LUT, iterative Schlick, iterative W_16)
+  spec_lut        lut_n             mixed 5  spec@18   pixel:18
+  spec_schlick    schlick_iter_n    mixed 5  spec@18   pixel:18
+  spec_wpow       wpow16_n          mixed 5  spec@18   pixel:18)
+list(LENGTH _fault_tests _n)
+math(EXPR _last "${_n} / 6 - 1")
+foreach(i RANGE ${_last})
+  math(EXPR _at "${i} * 6")
+  list(SUBLIST _fault_tests ${_at} 6 _t)
+  list(GET _t 0 _name)
+  list(GET _t 1 _build)
+  list(GET _t 2 _scenario)
+  list(GET _t 3 _seed)
+  list(GET _t 4 _fault)
+  list(GET _t 5 _expect)
+  set(_stall)
+  if(_fault MATCHES "^stall@")
+    set(_stall --stall-pct 0)
+  endif()
+  add_test(NAME rtl_cosim_catches_fault_${_name}
+    COMMAND ${COSIM_CPP} --config ${_build} --scenario ${_scenario} --seed ${_seed} ${_stall}
+            --fault ${_fault} --expect-mismatch ${_expect}
+            --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
+  set_tests_properties(rtl_cosim_catches_fault_${_name} PROPERTIES LABELS rtl)
+endforeach()
 
 # The scoreboard's lane checks (a beat the model did not expect is a mismatch).
 add_executable(rtl_scoreboard_lanes_test ${CMAKE_SOURCE_DIR}/tests/rtl/scoreboard_lanes_test.cpp)

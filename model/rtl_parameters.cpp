@@ -65,9 +65,7 @@ std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u, const I
     }
     p.push_back(packed);
   }
-  if (f.lsb_row >= 0) p.push_back({"FAULT_LSB_ROW", f.lsb_row});
-  if (f.stall_row >= 0) p.push_back({"FAULT_STALL_ROW", f.stall_row});
-  if (f.hang_row >= 0) p.push_back({"FAULT_HANG_ROW", f.hang_row});
+  if (f.hooks) p.push_back({"FAULT_HOOKS", 1});
   return p;
 }
 

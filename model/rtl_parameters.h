@@ -15,12 +15,11 @@
 
 namespace shadesim {
 
-// Deliberate faults for the harness's own tests (shade_unit FAULT_* parameters); -1 = off.
+// A build that can inject the harness's deliberate faults (shade_unit FAULT_HOOKS = 1); which
+// one, and on which row, each run chooses (sim/harness/fault_site.h). No unit has them.
 struct InjectedFaults {
-  int lsb_row = -1;    // add 1 LSB to channel 0 of every pixel of this row
-  int stall_row = -1;  // one extra engine stall before the last_in_row span of this row
-  int hang_row = -1;   // the engines stop for good on this row: no more pixels (a hang)
-  bool any() const { return lsb_row >= 0 || stall_row >= 0 || hang_row >= 0; }
+  bool hooks = false;
+  bool any() const { return hooks; }
 };
 
 // SPEC_PARAMS, shade_unit's one parameter for the specular unit's own fields: kSpecSlots slots of

@@ -77,13 +77,9 @@ module shade_unit #(
   parameter int SPECULAR_OUT_QUANT    = 0,  // Quantization: 0 truncate, 1 round to nearest
   parameter int SPECULAR_OUT_OVERFLOW = 0,  // Overflow: 0 saturate, 1 wrap
   parameter logic [shade_pkg::SpecParamW-1:0] SPEC_PARAMS = '0,
-  // Deliberate faults for the harness's own tests (-1 = off): add 1 LSB to channel 0 of every
-  // pixel of row FAULT_LSB_ROW; hold the engines one extra cycle before the last_in_row span
-  // of row FAULT_STALL_ROW (first occurrence only); never let the engines take a span of row
-  // FAULT_HANG_ROW, so no pixel leaves after it (the co-simulation watchdog must say so).
-  parameter int FAULT_LSB_ROW    = -1,
-  parameter int FAULT_STALL_ROW  = -1,
-  parameter int FAULT_HANG_ROW   = -1
+  // 1: the deliberate faults of the harness's own tests can be injected, one at a time, chosen
+  // at run time (fault_select; the sites are shade_pkg::Fault*). 0 (every unit): none.
+  parameter int FAULT_HOOKS      = 0
 ) (
   input  logic                         clk_i,
   input  logic                         rst_ni,
@@ -146,6 +142,16 @@ module shade_unit #(
   logic load_eng;  // the engines take the span waiting in setup stage 3
   logic stall_fault;
   logic hang_fault;
+
+  // ---- deliberate faults (FAULT_HOOKS builds only) -------------------------------------------
+  logic [shade_pkg::FaultSiteW-1:0] fault_site;
+  logic [XY_BITS-1:0]               fault_row;
+  if (FAULT_HOOKS != 0) begin : g_fault_select
+    fault_select #(.XY_BITS(XY_BITS)) u_fault_select (.site_o(fault_site), .row_o(fault_row));
+  end else begin : g_no_fault_select
+    assign fault_site = shade_pkg::FaultNone;
+    assign fault_row  = '0;
+  end
   logic s1_v_q, s2_v_q, s3_v_q, run_q;
   logic s1_move, s2_move, s1_free, s3_free;
   logic datapath_empty, slot_empty;
@@ -603,7 +609,19 @@ module shade_unit #(
     assign mat_q          = 1'b0;
   end
 
-  logic [NSer*SERIES_WL-1:0] start_v, start_d, start_d2;
+  logic [NSer*SERIES_WL-1:0] setup_v, start_v, start_d, start_d2;
+
+  // FaultSpanSetup: series 0's start value (light 0's diffuse, channel 0) one output LSB high
+  // on the fault row, as a wrong setup product would make it.
+  localparam int SetupFaultShift = SERIES_WL - SERIES_IWL > OUT_BITS ?
+                                   SERIES_WL - SERIES_IWL - OUT_BITS : 0;
+  /* verilator coverage_off */  // deliberate-fault hook: taken only by a fault test
+  always_comb begin
+    start_v = setup_v;
+    if (fault_site == shade_pkg::FaultSpanSetup && s3_q.y == fault_row)
+      start_v[SERIES_WL-1:0] = setup_v[SERIES_WL-1:0] + (SERIES_WL'(1) << SetupFaultShift);
+  end
+  /* verilator coverage_on */
   logic [LANES*LaneSerW-1:0] eng_v;  // lane j's series at j * LaneSerW
 
   for (genvar i = 0; i < NSer; i++) begin : g_series
@@ -616,7 +634,7 @@ module shade_unit #(
                coef_q[rd_base + CoefAW'(6*i+3)], coef_q[rd_base + CoefAW'(6*i+2)],
                coef_q[rd_base + CoefAW'(6*i+1)], coef_q[rd_base + CoefAW'(6*i)]}),
       .dx_i(dx), .dy_i(dy),
-      .v_o(start_v[i*SERIES_WL +: SERIES_WL]), .d_o(start_d[i*SERIES_WL +: SERIES_WL]),
+      .v_o(setup_v[i*SERIES_WL +: SERIES_WL]), .d_o(start_d[i*SERIES_WL +: SERIES_WL]),
       .d2_o(start_d2[i*SERIES_WL +: SERIES_WL])
     );
     if (LANES == 1) begin : g_one_lane
@@ -652,20 +670,9 @@ module shade_unit #(
   // 1 <= rem_q <= LANES (LANES = 1: rem_q == 1).
   assign last_pix = rem_q - 16'd1 < 16'(LANES);
 
-  if (FAULT_STALL_ROW >= 0) begin : g_stall_fault
-    assign stall_fault = !fault_done_q && s3_q.last && s3_q.y == XY_BITS'(FAULT_STALL_ROW);
-  end else begin : g_no_stall_fault
-    // verilator lint_off UNUSED
-    logic unused_fault_done;
-    assign unused_fault_done = fault_done_q;
-    // verilator lint_on UNUSED
-    assign stall_fault = 1'b0;
-  end
-  if (FAULT_HANG_ROW >= 0) begin : g_hang_fault
-    assign hang_fault = s3_q.y == XY_BITS'(FAULT_HANG_ROW);  // never takes that row's span
-  end else begin : g_no_hang_fault
-    assign hang_fault = 1'b0;
-  end
+  assign stall_fault = fault_site == shade_pkg::FaultStall && !fault_done_q && s3_q.last &&
+                       s3_q.y == fault_row;
+  assign hang_fault  = fault_site == shade_pkg::FaultHang && s3_q.y == fault_row;
   assign load_eng = s3_v_q && (!run_q || (emit && last_pix)) && !stall_fault && !hang_fault;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -718,7 +725,7 @@ module shade_unit #(
   assign meta_in.diffuse = lane_diffuse;
 
   // Lane j, light l: spec and busy at j * LIGHTS + l. All lanes' slots start together.
-  logic [LANES*LIGHTS*SPECULAR_OUT_WL-1:0] spec;
+  logic [LANES*LIGHTS*SPECULAR_OUT_WL-1:0] slot_spec, spec;
   logic [LANES*LIGHTS-1:0]                 busy;
   logic                                    slot_en;
   assign slot_en   = Iterative ? emit : adv;
@@ -738,7 +745,7 @@ module shade_unit #(
                       SeriesPerLight*SERIES_WL]), .bank_i(mat_q),
       .cfg_valid_i(cfg_valid), .cfg_bank_i(mat_wr), .cfg_all_banks_i(cfg_all_banks),
       .cfg_table_i(cfg_table), .cfg_addr_i(cfg_addr),
-      .cfg_data_i(cmd_word), .spec_o(spec[g*SPECULAR_OUT_WL +: SPECULAR_OUT_WL]),
+      .cfg_data_i(cmd_word), .spec_o(slot_spec[g*SPECULAR_OUT_WL +: SPECULAR_OUT_WL]),
       .busy_o(busy[g])
     );
   end
@@ -797,6 +804,21 @@ module shade_unit #(
   end
 
   // ---- pixel combine ----------------------------------------------------------------------------
+  // FaultSpecular: light 0's specular result of every lane, its top fraction bit flipped (half
+  // the unit's full scale) on the fault row, as a wrong unit would give it.
+  /* verilator coverage_off */  // deliberate-fault hook: taken only by a fault test
+  always_comb begin
+    spec = slot_spec;
+    if (fault_site == shade_pkg::FaultSpecular && meta_out.y == fault_row) begin
+      for (int j = 0; j < LANES; j++)
+        spec[j*LIGHTS*SPECULAR_OUT_WL + SPECULAR_OUT_WL - SPECULAR_OUT_IWL - 1] =
+            !slot_spec[j*LIGHTS*SPECULAR_OUT_WL + SPECULAR_OUT_WL - SPECULAR_OUT_IWL - 1];
+    end
+  end
+  /* verilator coverage_on */
+  logic fault_trunc;  // FaultRounding: the fault row's output truncated
+  assign fault_trunc = fault_site == shade_pkg::FaultRounding && meta_out.y == fault_row;
+
   logic [LANES*LaneColW-1:0] colour, colour_out;  // lane j at j * LaneColW
   for (genvar j = 0; j < LANES; j++) begin : g_combine
     pixel_combine #(
@@ -808,24 +830,27 @@ module shade_unit #(
       .diffuse_i(meta_out.diffuse[j*LaneDiffW +: LaneDiffW]),
       .spec_i(spec[j*LIGHTS*SPECULAR_OUT_WL +: LIGHTS*SPECULAR_OUT_WL]),
       .ambient_i(ambient_q[meta_out.mat]), .spec_colour_i(spec_colour_q[meta_out.mat]),
-      .gate_only_i(gate_only_q[meta_out.mat]),
+      .gate_only_i(gate_only_q[meta_out.mat]), .trunc_i(fault_trunc),
       .colour_o(colour[j*LaneColW +: LaneColW])
     );
   end
 
-  if (FAULT_LSB_ROW >= 0) begin : g_lsb_fault
-    // Channel 0 of every lane's pixel on the row.
-    always_comb begin
-      colour_out = colour;
-      if (meta_out.y == XY_BITS'(FAULT_LSB_ROW)) begin
-        for (int j = 0; j < LANES; j++) begin
+  // FaultLsb, FaultChannel2: channel 0 or 2 of every lane's pixel on the fault row + 1 LSB.
+  localparam int FaultChannel = CHANNELS > 2 ? 2 : 0;
+  /* verilator coverage_off */  // deliberate-fault hook: taken only by a fault test
+  always_comb begin
+    colour_out = colour;
+    if (meta_out.y == fault_row) begin
+      for (int j = 0; j < LANES; j++) begin
+        if (fault_site == shade_pkg::FaultLsb)
           colour_out[j*LaneColW +: OUT_BITS] = colour[j*LaneColW +: OUT_BITS] + OUT_BITS'(1);
-        end
+        if (fault_site == shade_pkg::FaultChannel2 && CHANNELS > 2)
+          colour_out[j*LaneColW + FaultChannel*OUT_BITS +: OUT_BITS] =
+              colour[j*LaneColW + FaultChannel*OUT_BITS +: OUT_BITS] + OUT_BITS'(1);
       end
     end
-  end else begin : g_no_lsb_fault
-    assign colour_out = colour;
   end
+  /* verilator coverage_on */
 
   // A span's last beat leaves the slot: no pixel of it reads its bank any more (the pix register
   // holds finished colours).
@@ -843,11 +868,15 @@ module shade_unit #(
 
   always_ff @(posedge clk_i) begin
     if (out_adv && meta_out_valid) begin
-      pix_x_o      <= meta_out.x;
-      pix_y_o      <= meta_out.y;
+      // FaultX, FaultY, FaultEor: the fault row's position or end-of-row flag wrong.
+      pix_x_o      <= meta_out.x + XY_BITS'(fault_site == shade_pkg::FaultX &&
+                                             meta_out.y == fault_row);
+      pix_y_o      <= meta_out.y ^ XY_BITS'(fault_site == shade_pkg::FaultY &&
+                                             meta_out.y == fault_row);
       pix_colour_o <= colour_out;
       pix_mask_o   <= meta_out.mask;
-      pix_eor_o    <= meta_out.eor;
+      pix_eor_o    <= meta_out.eor ^ (fault_site == shade_pkg::FaultEor &&
+                                      meta_out.y == fault_row);
     end
   end
 `ifndef SYNTHESIS
@@ -858,6 +887,8 @@ module shade_unit #(
       $fatal(1, "shade_unit: TRI_QUEUE %0d is not 1..8", TRI_QUEUE);
     if ($bits(meta_t) != 2 * XY_BITS + 3 + LANES + LANES * LaneDiffW)
       $fatal(1, "shade_unit: the metadata line's width (MetaW) is not $bits(meta_t)");
+    if (FAULT_HOOKS != 0 && FAULT_HOOKS != 1)
+      $fatal(1, "shade_unit: FAULT_HOOKS %0d is not 0 or 1", FAULT_HOOKS);
     if (MATERIAL_BUFFERS != 1 && MATERIAL_BUFFERS != 2)
       $fatal(1, "shade_unit: MATERIAL_BUFFERS %0d is not 1 or 2", MATERIAL_BUFFERS);
     for (int t = 0; t < 6; t++) begin

@@ -58,13 +58,9 @@ void list_named(bool json) {
   if (json) {
     nlohmann::json all = nlohmann::json::array();
     for (const auto& b : builds) {
-      nlohmann::json faults = nlohmann::json::object();
-      if (b.faults.lsb_row >= 0) faults["lsb_row"] = b.faults.lsb_row;
-      if (b.faults.stall_row >= 0) faults["stall_row"] = b.faults.stall_row;
-      if (b.faults.hang_row >= 0) faults["hang_row"] = b.faults.hang_row;
       all.push_back({{"name", b.name},
                      {"unit", nlohmann::json::parse(config_to_json(b.unit))},
-                     {"faults", faults},
+                     {"fault_hooks", b.faults.hooks},
                      {"backends", b.backends}});
     }
     std::cout << all.dump(2) << '\n';
@@ -222,6 +218,7 @@ void register_cosim(CLI::App& app, int& exit_code) {
       "listed here go to the co-simulation itself: --scenario mixed|long|short|slow|maxbp|switch|\n"
       "tiny|edge|all, --seed, --runs, --gap-pct, --max-gap, --stall-pct, --expect-mismatch "
       "KIND:Y,\n"
+      "--fault SITE@Y (a build with fault hooks: inject one deliberate fault),\n"
       "--save-dir, --json FILE, --min-spec-pct, --rows (run with any unit and --help to see "
       "them).");
   sub->add_option("--backend", o->backend, "cpp (Verilator C++) or systemc (Verilator in SystemC)")

@@ -59,7 +59,8 @@ struct RegressOptions {
   std::string resume;     // DIR: run what DIR's plans name and DIR has no result for
   double timeout = 1800;  // seconds per run; 0: none
   uint64_t watchdog =
-      0;  // cycles without pix_valid_o that count as a hang; 0: the harness's default
+      0;              // cycles without pix_valid_o that count as a hang; 0: the harness's default
+  std::string fault;  // SITE@Y: every run injects this deliberate fault (fault-hook builds)
   bool waves = false;
   bool list = false;
   bool coverage = false;     // covered builds; merge and report RTL coverage
@@ -93,14 +94,17 @@ struct RunSettings {
   int gap_pct = 20, max_gap = 8, stall_pct = 20;
   double timeout = 1800;
   uint64_t watchdog = 0;
+  std::string fault;  // SITE@Y or empty (sim/harness/fault_site.h)
 };
 
 nlohmann::json settings_json(const RunSettings& s) {
-  return {{"gap_pct", s.gap_pct},
-          {"max_gap", s.max_gap},
-          {"stall_pct", s.stall_pct},
-          {"timeout", s.timeout},
-          {"watchdog", s.watchdog}};
+  nlohmann::json j = {{"gap_pct", s.gap_pct},
+                      {"max_gap", s.max_gap},
+                      {"stall_pct", s.stall_pct},
+                      {"timeout", s.timeout},
+                      {"watchdog", s.watchdog}};
+  if (!s.fault.empty()) j["fault"] = s.fault;  // plans without it stay as they were
+  return j;
 }
 
 struct Job {
@@ -263,6 +267,7 @@ LoadedPlans load_plans(const fs::path& dir) {
       s.stall_pct = js.at("stall_pct").get<int>();
       s.timeout = js.at("timeout").get<double>();
       s.watchdog = js.at("watchdog").get<uint64_t>();
+      if (js.contains("fault")) s.fault = js.at("fault").get<std::string>();
     } catch (const nlohmann::json::exception& e) {
       throw std::invalid_argument(f.string() + ": settings: " + e.what());
     }
@@ -338,6 +343,7 @@ void emit_jobs(const RegressOptions& o, const RunSettings& settings, const fs::p
               "--stall-pct", std::to_string(settings.stall_pct), "--timeout",
               number_text(settings.timeout), "--jobs", "1", "--out", out.string()});
     if (settings.watchdog > 0) a.insert(a.end(), {"--watchdog", std::to_string(settings.watchdog)});
+    if (!settings.fault.empty()) a.insert(a.end(), {"--fault", settings.fault});
     if (!o.cache.empty()) a.insert(a.end(), {"--cache", o.cache});
     if (o.waves) a.push_back("--waves");
     if (o.coverage) a.push_back("--coverage");  // each line's run writes its coverage.dat
@@ -372,6 +378,7 @@ std::string replay_command(const Job& j, const RunSettings& settings) {
          std::to_string(settings.gap_pct) + " --max-gap " + std::to_string(settings.max_gap) +
          " --stall-pct " + std::to_string(settings.stall_pct);
   if (settings.watchdog > 0) cmd += " --watchdog " + std::to_string(settings.watchdog);
+  if (!settings.fault.empty()) cmd += " --fault " + settings.fault;
   return cmd;
 }
 
@@ -539,6 +546,7 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
                                    (dir / "failing").string()};
   if (settings.watchdog > 0)
     args.insert(args.end(), {"--watchdog", std::to_string(settings.watchdog)});
+  if (!settings.fault.empty()) args.insert(args.end(), {"--fault", settings.fault});
   if (o.coverage) {
     // Written by the run itself, pass or fail; a resumed run must not keep an earlier attempt's.
     const fs::path dat = dir / "coverage.dat";
@@ -704,7 +712,7 @@ Selection select_resumed(const RegressOptions& o) {
 Selection select_planned(const RegressOptions& o) {
   Selection sel;
   sel.out = o.out_dir;
-  sel.settings = RunSettings{o.gap_pct, o.max_gap, o.stall_pct, o.timeout, o.watchdog};
+  sel.settings = RunSettings{o.gap_pct, o.max_gap, o.stall_pct, o.timeout, o.watchdog, o.fault};
   sel.scenes = o.scenes.empty() ? default_scenes() : o.scenes;
   sel.all = full_run_list(o, sel.scenes);
   const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
@@ -1001,6 +1009,10 @@ void register_regress(CLI::App& app, int& exit_code) {
       "--watchdog", o->watchdog,
       "cycles without pix_valid_o, while pixels are still expected, that count as a hang\n"
       "(default 0: the cycle model's longest pixel-less stretch of each stream + 1000)");
+  sub->add_option("--fault", o->fault,
+                  "SITE@Y: every run injects this deliberate fault (configurations with fault\n"
+                  "hooks only; `shadesim cosim --help` lists the sites), to see the regression "
+                  "catch it");
   sub->add_flag("--waves", o->waves,
                 "on a mismatch, re-run the C++ backend with FST tracing of the window around it");
   sub->add_flag("--list", o->list, "list the named builds and exit");

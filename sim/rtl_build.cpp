@@ -76,7 +76,7 @@ std::vector<fs::path> rtl_sources() {
   for (const char* f :
        {"shade_pkg.sv", "fixed_round.sv", "fixed_sat.sv", "span_setup.sv", "series_engine.sv",
         "lane_fanout.sv", "pixel_combine.sv", "exponent_lut.sv", "schlick_divider.sv",
-        "wpow_unit.sv", "specular_unit.sv", "shade_unit.sv"}) {
+        "wpow_unit.sv", "specular_unit.sv", "fault_select.sv", "shade_unit.sv"}) {
     out.push_back(rtl / f);
   }
   return out;

@@ -118,19 +118,14 @@ TEST(RtlParameters, NarrowedCoefficientTermsMapToTheirWidths) {
   EXPECT_THROW(shade_unit_parameters(u), std::invalid_argument);
 }
 
-TEST(RtlParameters, FaultsOnlyWhenInjectedAndToolSyntax) {
-  EXPECT_EQ(as_map(shade_unit_parameters(UnitConfig{})).count("FAULT_LSB_ROW"), 0u);
+TEST(RtlParameters, FaultHooksOnlyWhenAskedForAndToolSyntax) {
+  EXPECT_EQ(as_map(shade_unit_parameters(UnitConfig{})).count("FAULT_HOOKS"), 0u);
   InjectedFaults f;
-  f.stall_row = 23;
+  EXPECT_FALSE(f.any());
+  f.hooks = true;
+  EXPECT_TRUE(f.any());
   const auto params = shade_unit_parameters(UnitConfig{}, f);
-  const auto m = as_map(params);
-  EXPECT_EQ(m.at("FAULT_STALL_ROW"), 23);
-  EXPECT_EQ(m.count("FAULT_LSB_ROW"), 0u);
-  EXPECT_EQ(m.count("FAULT_HANG_ROW"), 0u);
-  InjectedFaults hang;
-  hang.hang_row = 100;
-  EXPECT_TRUE(hang.any());
-  EXPECT_EQ(as_map(shade_unit_parameters(UnitConfig{}, hang)).at("FAULT_HANG_ROW"), 100);
+  EXPECT_EQ(as_map(params).at("FAULT_HOOKS"), 1);
   EXPECT_EQ(verilator_parameter_args(params).front(), "-GCHANNELS=1");
   EXPECT_EQ(iverilog_parameter_args(params, "tb").front(), "-Ptb.CHANNELS=1");
   EXPECT_EQ(yosys_chparam_args({{"A", 1}, {"B", -1}}), "-set A 1 -set B -1");

@@ -4,8 +4,8 @@
 // merge's errors on folders and result files it cannot use.
 //
 // The RTL tests reuse the builds the default regression needs (the shipped scenes on their own
-// configurations) and the named build fault_hang; the kill test runs a subset of the scenes on
-// one backend.
+// configurations) and the named build grey_s428w with its hang fault; the kill test runs a subset
+// of the scenes on one backend.
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -351,10 +351,11 @@ TEST(Scaleout, AKilledShardIsNamedByMergeAndResumeCompletesIt) {
 
 TEST(Scaleout, TheWatchdogReportsAnRtlThatStopsEmittingAsAHangWithAReplay) {
   const fs::path d = temp_dir("scaleout", "hang");
-  // fault_hang never lets its engines take a span of row 100: no pixel leaves after row 99.
+  // The hang fault: grey_s428w's engines never take a span of row 100, so no pixel leaves
+  // after row 99.
   const uint64_t limit = 300;
   Result r = run("cosim --backend cpp --cache " + kCache +
-                 " --config fault_hang --scenario short --seed 3 --stall-pct 0"
+                 " --config grey_s428w --fault hang@100 --scenario short --seed 3 --stall-pct 0"
                  " --watchdog " +
                  std::to_string(limit) + " --save-dir " + d.string() + " --json " +
                  (d / "hang.json").string());
@@ -372,23 +373,26 @@ TEST(Scaleout, TheWatchdogReportsAnRtlThatStopsEmittingAsAHangWithAReplay) {
   ASSERT_TRUE(j["replay"].is_string());
   const std::string replay = j["replay"];
   EXPECT_NE(replay.find("--watchdog " + std::to_string(limit)), std::string::npos) << replay;
+  EXPECT_NE(replay.find("--config grey_s428w --fault hang@100"), std::string::npos) << replay;
   // The replay command reproduces the hang.
   ASSERT_EQ(replay.rfind("shadesim ", 0), 0u);
   r = run(replay.substr(9) + " --cache " + kCache + " --save-dir " + (d / "replayed").string());
   EXPECT_EQ(r.status, 1) << r.output;
-  EXPECT_NE(r.output.find("HANG: hang in configuration fault_hang"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("HANG: hang in configuration grey_s428w"), std::string::npos) << r.output;
 
   // Under regress with the default limit: status hang, a replay line, and the regression fails.
   r = in_source(
-      kShadesim + " regress scenes/sphere.json --configs fault_hang --backends cpp --cache " +
+      kShadesim +
+      " regress scenes/sphere.json --configs grey_s428w --fault hang@100 --backends cpp --cache " +
       kCache + " --out " + (d / "regress").string() + " --json " + (d / "regress.json").string());
   EXPECT_EQ(r.status, 1) << r.output;
   const auto reg = read_json(d / "regress.json");
   ASSERT_EQ(reg["jobs"].size(), 1u);
   EXPECT_EQ(reg["jobs"][0]["status"], "hang") << reg.dump(2);
   EXPECT_EQ(reg["hangs"], 1);
-  EXPECT_NE(reg["jobs"][0]["replay"].get<std::string>().find("--config fault_hang"),
-            std::string::npos);
+  EXPECT_NE(
+      reg["jobs"][0]["replay"].get<std::string>().find("--config grey_s428w --fault hang@100"),
+      std::string::npos);
   EXPECT_NE(r.output.find("replay: shadesim cosim"), std::string::npos) << r.output;
 }
 

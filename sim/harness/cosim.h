@@ -53,6 +53,7 @@
 #include "model/command_stream.h"
 #include "model/cycle_model.h"
 #include "model/shade_unit.h"
+#include "sim/harness/fault_site.h"
 #include "sim/harness/idle_noise.h"
 #include "sim/harness/rtl_config.h"
 #include "sim/harness/scoreboard.h"
@@ -68,6 +69,7 @@ struct CosimJob {
   Stimulus stim;
   uint64_t watchdog_cycles = 0;  // hang limit (sim/harness/watchdog.h); 0: the cycle model's
   std::string coverage_path;     // covered builds: where the run writes its coverage .dat
+  FaultInjection fault;          // FAULT_HOOKS builds: the deliberate fault this run injects
 };
 
 // Cycles to dump into an FST file (trace-enabled builds only), inclusive. The run goes on past

@@ -52,13 +52,11 @@ struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The deliberate faults, from the parameters this executable was Verilated with.
+// Whether this executable can inject the deliberate faults, from its Verilog parameters.
 InjectedFaults built_faults(const CosimExecutable& exe) {
   InjectedFaults f;
   for (const auto& p : exe.parameters) {
-    if (p.name == "FAULT_LSB_ROW") f.lsb_row = static_cast<int>(p.value);
-    if (p.name == "FAULT_STALL_ROW") f.stall_row = static_cast<int>(p.value);
-    if (p.name == "FAULT_HANG_ROW") f.hang_row = static_cast<int>(p.value);
+    if (p.name == "FAULT_HOOKS") f.hooks = p.value != 0;
   }
   return f;
 }
@@ -84,6 +82,7 @@ struct Options {
   int rows = 0;  // 0: the scenario's own
   int gap_pct = -1, max_gap = -1, stall_pct = -1;
   std::string expect;  // KIND:Y
+  std::string fault;   // SITE@Y (sim/harness/fault_site.h)
   std::string save_dir = ".";
   std::string json_path;
   std::string waves_path;
@@ -95,26 +94,25 @@ struct Options {
   bool list = false;
 };
 
-nlohmann::json faults_json(const InjectedFaults& f) {
-  nlohmann::json j = nlohmann::json::object();
-  if (f.lsb_row >= 0) j["lsb_row"] = f.lsb_row;
-  if (f.stall_row >= 0) j["stall_row"] = f.stall_row;
-  if (f.hang_row >= 0) j["hang_row"] = f.hang_row;
-  return j;
+// The build's unit and, on a fault run, the fault it injects.
+std::string unit_text(const CosimJob& job) {
+  return job.config.unit.to_string() + fault_text(job.config.faults) +
+         (job.fault.any() ? " fault=" + job.fault.text() : "");
 }
 
 // One line naming everything needed to find the mismatch.
-std::string mismatch_message(const Mismatch& m, const RtlConfig& c) {
+std::string mismatch_message(const Mismatch& m, const CosimJob& job) {
+  const RtlConfig& c = job.config;
   std::ostringstream os;
   if (m.kind == Mismatch::Kind::kHang) {
-    os << "hang in configuration " << c.name << " [" << c.unit.to_string() << fault_text(c.faults)
-       << "]: " << m.got << ", at cycle " << m.cycle << ", while expecting " << m.expected
-       << " (scanline " << m.scanline << ")";
+    os << "hang in configuration " << c.name << " [" << unit_text(job) << "]: " << m.got
+       << ", at cycle " << m.cycle << ", while expecting " << m.expected << " (scanline "
+       << m.scanline << ")";
     return os.str();
   }
-  os << to_string(m.kind) << " mismatch in configuration " << c.name << " [" << c.unit.to_string()
-     << fault_text(c.faults) << "]: scanline " << m.scanline << " (y=" << m.y << "), x=" << m.x
-     << ", cycle " << m.cycle << ": expected " << m.expected << ", got " << m.got;
+  os << to_string(m.kind) << " mismatch in configuration " << c.name << " [" << unit_text(job)
+     << "]: scanline " << m.scanline << " (y=" << m.y << "), x=" << m.x << ", cycle " << m.cycle
+     << ": expected " << m.expected << ", got " << m.got;
   if (!m.before.empty()) os << " (" << m.before << ")";
   return os.str();
 }
@@ -165,7 +163,7 @@ nlohmann::json outcome_json(const Outcome& o, const CosimExecutable& exe) {
         {"got", m.got},
         {"cycle", m.cycle},
         {"before", m.before.empty() ? nlohmann::json(nullptr) : nlohmann::json(m.before)},
-        {"message", mismatch_message(m, o.job.config)}};
+        {"message", mismatch_message(m, o.job)}};
   }
   j["saved_stream"] =
       o.saved_stream.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.saved_stream);
@@ -312,6 +310,26 @@ Expectation parse_expectation(const std::string& text) {
   throw InputError("--expect-mismatch kind '" + e.kind + "': expected one of " + kinds);
 }
 
+// --fault SITE@Y: only a build with fault hooks injects it, and only where the unit can show it.
+FaultInjection parse_fault_option(const std::string& text, const RtlConfig& build) {
+  if (text.empty()) return {};
+  FaultInjection f;
+  try {
+    f = parse_fault(text);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(std::string("--fault: ") + e.what());
+  }
+  if (!build.faults.hooks) {
+    throw InputError("--fault " + text +
+                     ": this build has no fault hooks (a named build with "
+                     "\"fault_hooks\": true in sim/harness/builds.json has them, e.g. grey_s428w)");
+  }
+  if (const std::string why = fault_unsupported(f, build.unit); !why.empty()) {
+    throw InputError("--fault " + text + ": " + why);
+  }
+  return f;
+}
+
 // Options that only make sense for some runs, checked before anything runs.
 void check_run_options(const Options& o, const std::vector<CosimJob>& jobs,
                        const CosimExecutable& exe) {
@@ -389,15 +407,16 @@ bool check_specular_share(Outcome& out, const Options& o) {
   return false;
 }
 
-// The command that reproduces a failed run. Deliberate faults exist only in named builds
-// (sim/harness/builds.json), so a build with faults is named by --config; any other unit is
-// named by the saved stream's header, which `shadesim cosim --stream` reads (a name such as
-// own:sphere, regress's scene-own configuration, is no argument `cosim --config` accepts).
+// The command that reproduces a failed run. Fault hooks exist only in named builds
+// (sim/harness/builds.json), so a build with them is named by --config, and a fault run's fault
+// by --fault; any other unit is named by the saved stream's header, which `shadesim cosim
+// --stream` reads (a name such as own:sphere, regress's scene-own configuration, is no argument
+// `cosim --config` accepts).
 std::string replay_line(const CosimJob& job, const std::string& stream_path, const Options& o,
                         const CosimExecutable& exe) {
-  const InjectedFaults& f = job.config.faults;
-  const bool faulty = f.lsb_row >= 0 || f.stall_row >= 0 || f.hang_row >= 0;
-  return exe.command + (faulty ? " --config " + job.config.name : "") + " --stream " + stream_path +
+  const bool hooks = job.config.faults.hooks;
+  return exe.command + (hooks ? " --config " + job.config.name : "") +
+         (job.fault.any() ? " --fault " + job.fault.text() : "") + " --stream " + stream_path +
          ' ' + job.stim.to_args() +
          (o.watchdog > 0 ? " --watchdog " + std::to_string(o.watchdog) : "");
 }
@@ -420,9 +439,10 @@ void save_failure(Outcome& out, const Options& o, const CosimExecutable& exe) {
 void print_mismatch(const Outcome& out) {
   const Mismatch& m = out.result.first;
   const RtlConfig& c = out.job.config;
-  if (m.kind == Mismatch::Kind::kHang) std::cout << "  HANG: " << mismatch_message(m, c) << '\n';
+  if (m.kind == Mismatch::Kind::kHang)
+    std::cout << "  HANG: " << mismatch_message(m, out.job) << '\n';
   std::cout << "  first mismatch (" << to_string(m.kind) << "): configuration " << c.name << " ["
-            << c.unit.to_string() << fault_text(c.faults) << "]\n"
+            << unit_text(out.job) << "]\n"
             << "    scanline " << m.scanline << " (y=" << m.y << "), x=" << m.x << ", cycle "
             << m.cycle << '\n'
             << "    expected " << m.expected << '\n'
@@ -470,7 +490,9 @@ void write_results_json(const std::string& path, const std::vector<Outcome>& out
 int run_all(const Options& o, const CosimExecutable& exe) {
   const RtlConfig build = resolve_build(o, exe);
   const Expectation expect = parse_expectation(o.expect);
-  const std::vector<CosimJob> jobs = make_jobs(o, build);
+  const FaultInjection fault = parse_fault_option(o.fault, build);
+  std::vector<CosimJob> jobs = make_jobs(o, build);
+  for (CosimJob& job : jobs) job.fault = fault;
   check_run_options(o, jobs, exe);
 
   std::vector<Outcome> outcomes;
@@ -524,7 +546,7 @@ void print_list(bool json, const CosimExecutable& exe) {
                               {"traced", exe.traced},
                               {"covered", exe.covered},
                               {"parameters", p},
-                              {"faults", faults_json(built_faults(exe))}}
+                              {"fault_hooks", built_faults(exe).hooks}}
                    .dump(2)
             << '\n';
 }
@@ -557,6 +579,13 @@ int cosim_main(int argc, char** argv, const CosimExecutable& exe) {
                  "KIND:Y - succeed only if the first mismatch is KIND "
                  "(pixel|cycle|ready|extra-pixel|hang|timeout) "
                  "at scanline y=Y");
+  std::string sites;
+  for (const FaultSiteInfo& s : fault_sites())
+    sites += std::string("\n    ") + s.name + ": " + s.what;
+  app.add_option("--fault", o.fault,
+                 "SITE@Y - inject one deliberate fault on row Y (a build with fault hooks, e.g. "
+                 "grey_s428w); SITE is one of:" +
+                     sites);
   app.add_option("--save-dir", o.save_dir, "where a failing run's command stream is saved");
   auto* json_opt =
       app.add_option("--json", o.json_path, "write each run's result as JSON to this file")

@@ -5,7 +5,9 @@
 #include <chrono>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "sim/harness/cosim.h"
 #include "verilated.h"
@@ -67,6 +69,12 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
         "tracing");
   }
 #endif
+  // The deliberate fault of a fault run, read by shade_unit's fault_select at time 0.
+  std::vector<std::string> args = job.fault.plusargs();
+  args.insert(args.begin(), "cosim");
+  std::vector<const char*> argv;
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  context.commandArgs(static_cast<int>(argv.size()), argv.data());
   V top(&context);
   if (!port_fits(top.cmd_data_i, cfg.port_words)) {
     throw std::invalid_argument("configuration " + job.config.name + ": port_words " +

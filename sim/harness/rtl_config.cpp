@@ -33,18 +33,18 @@ std::vector<RtlConfig> load_named_builds(const std::string& path) {
     } catch (const UnitConfigFileError& e) {
       throw std::invalid_argument(e.what());
     }
-    if (b.contains("faults")) {
-      const auto& f = b.at("faults");
-      auto row = [&](const char* key) {
-        if (!f.contains(key)) return -1;
-        if (!f.at(key).is_number_integer() || f.at(key).get<int>() < 0) {
-          throw std::invalid_argument(where + ".faults." + key + ": expected a row >= 0");
-        }
-        return f.at(key).get<int>();
-      };
-      c.faults.lsb_row = row("lsb_row");
-      c.faults.stall_row = row("stall_row");
-      c.faults.hang_row = row("hang_row");
+    for (auto it = b.begin(); it != b.end(); ++it) {
+      if (it.key() != "unit" && it.key() != "backends" && it.key() != "fault_hooks") {
+        throw std::invalid_argument(where + "." + it.key() +
+                                    ": unknown key (expected unit, backends, fault_hooks)");
+      }
+    }
+    if (b.contains("fault_hooks")) {
+      if (!b.at("fault_hooks").is_boolean()) {
+        throw std::invalid_argument(where + ".fault_hooks: expected true or false, got " +
+                                    b.at("fault_hooks").dump());
+      }
+      c.faults.hooks = b.at("fault_hooks").get<bool>();
     }
     if (b.contains("backends")) {
       for (const auto& be : b.at("backends")) {
@@ -70,12 +70,6 @@ RtlConfig named_build(const std::string& path, const std::string& name) {
                               "; expected one of " + names + ", or a UnitConfig FILE.json");
 }
 
-std::string fault_text(const InjectedFaults& f) {
-  std::string s;
-  if (f.lsb_row >= 0) s += " fault=lsb@y" + std::to_string(f.lsb_row);
-  if (f.stall_row >= 0) s += " fault=stall@y" + std::to_string(f.stall_row);
-  if (f.hang_row >= 0) s += " fault=hang@y" + std::to_string(f.hang_row);
-  return s;
-}
+std::string fault_text(const InjectedFaults& f) { return f.hooks ? " fault-hooks" : ""; }
 
 }  // namespace shadesim

@@ -1,7 +1,7 @@
-// An RTL build as the harness sees it: a unit configuration, the deliberate faults compiled into
-// it, and a name for reports. The named builds the tests share live in sim/harness/builds.json;
-// any other UnitConfig is built on demand (sim/rtl_build.h). Verilog parameters come from the
-// one mapping in model/rtl_parameters.h.
+// An RTL build as the harness sees it: a unit configuration, whether it can inject the
+// deliberate faults (sim/harness/fault_site.h), and a name for reports. The named builds the tests
+// share live in sim/harness/builds.json; any other UnitConfig is built on demand (sim/rtl_build.h).
+// Verilog parameters come from the one mapping in model/rtl_parameters.h.
 #pragma once
 
 #include <string>
@@ -26,6 +26,6 @@ std::vector<RtlConfig> load_named_builds(const std::string& path);
 // The build called `name` in `path`, or an error listing the names there are.
 RtlConfig named_build(const std::string& path, const std::string& name);
 
-std::string fault_text(const InjectedFaults& faults);  // " fault=lsb@y17", or ""
+std::string fault_text(const InjectedFaults& faults);  // " fault-hooks", or ""
 
 }  // namespace shadesim

@@ -266,10 +266,22 @@ int tool_main(int argc, char** argv) {
   cmp->add_option("expected", expected_path, "expected pixels (export --pixels)")->required();
   cmp->add_option("got", got_path, "pixels written by the testbench")->required();
 
+  std::string fault_text;
+  CLI::App* plus = app.add_subcommand(
+      "fault-plusargs", "the testbench's plusargs that inject a deliberate fault (SITE@Y)");
+  plus->add_option("fault", fault_text, "SITE@Y, as shadesim cosim --fault takes it")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  }
+  if (*plus) {
+    std::string line;
+    for (const std::string& a : parse_fault(fault_text).plusargs())
+      line += (line.empty() ? "" : " ") + a;
+    std::cout << line << '\n';
+    return 0;
   }
   if (*exp) {
     if (files.hex.empty() && files.pixels.empty() && files.gaps.empty() && files.cycles.empty()) {

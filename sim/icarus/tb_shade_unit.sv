@@ -51,9 +51,7 @@ module tb_shade_unit #(
   parameter int SPECULAR_OUT_OVERFLOW = 0,
   parameter logic [shade_pkg::SpecParamW-1:0] SPEC_PARAMS = '0,
   parameter int MATERIAL_BUFFERS = 1,
-  parameter int FAULT_LSB_ROW    = -1,
-  parameter int FAULT_STALL_ROW  = -1,
-  parameter int FAULT_HANG_ROW   = -1,
+  parameter int FAULT_HOOKS      = 0,
   // Capacity of the word memory (Icarus allocates it all: ~45 bytes a word); a longer stream
   // is a hard error, never a silent truncation.
   parameter int MAX_WORDS        = 1 << 20,
@@ -91,8 +89,7 @@ module tb_shade_unit #(
     .SPECULAR_OUT_QUANT(SPECULAR_OUT_QUANT), .SPECULAR_OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW),
     .SPEC_PARAMS(SPEC_PARAMS),
     .MATERIAL_BUFFERS(MATERIAL_BUFFERS),
-    .FAULT_LSB_ROW(FAULT_LSB_ROW), .FAULT_STALL_ROW(FAULT_STALL_ROW),
-    .FAULT_HANG_ROW(FAULT_HANG_ROW)
+    .FAULT_HOOKS(FAULT_HOOKS)
   ) dut (
     .clk_i(clk), .rst_ni(rst_n),
     .cmd_data_i(cmd_data), .cmd_valid_i(cmd_valid), .cmd_ready_o(cmd_ready),
