@@ -113,15 +113,13 @@ module exponent_lut #(
   end
 
   // ---- table RAM, one per bank: written by TABLE words, two registered read ports ----------
+  // An entry address of 2^A or more writes nothing. One expression for every A, so the tests of
+  // the usual A < CFG_ADDR_W also cover A = CFG_ADDR_W (every address an entry), which no named
+  // build has: as a generate branch of its own it hid a mutant (scripts/mutate-rtl).
   logic                  tbl_we;
   logic [ADDR_BITS-1:0]  tbl_waddr;
-  if (CFG_ADDR_W > ADDR_BITS) begin : g_wide_cfg
-    assign tbl_we    = cfg_valid_i && cfg_table_i && cfg_addr_i[CFG_ADDR_W-1:ADDR_BITS] == '0;
-    assign tbl_waddr = cfg_addr_i[ADDR_BITS-1:0];
-  end else begin : g_narrow_cfg
-    assign tbl_we    = cfg_valid_i && cfg_table_i;
-    assign tbl_waddr = ADDR_BITS'(cfg_addr_i);
-  end
+  assign tbl_we    = cfg_valid_i && cfg_table_i && (cfg_addr_i >> ADDR_BITS) == '0;
+  assign tbl_waddr = ADDR_BITS'(cfg_addr_i);
   logic [ADDR_BITS-1:0]          idx, idx1;  // READ's addresses (idx1 used with F > 0)
   logic [BANKS*ENTRY_BITS-1:0]   rd0, rd1;   // bank b's entries at idx, idx1: [b*B +: B]
   for (genvar b = 0; b < BANKS; b++) begin : g_table
