@@ -30,12 +30,16 @@ std::map<std::string, int> rtl_fault_sites() {
 TEST(FaultSite, NumbersAreShadePkgs) {
   const std::map<std::string, int> rtl = rtl_fault_sites();
   // The RTL's names for the C++ sites (FaultNone is 0, FaultInjection's default).
-  const std::map<FaultSite, std::string> rtl_name = {
-      {FaultSite::kLsb, "Lsb"},           {FaultSite::kStall, "Stall"},
-      {FaultSite::kHang, "Hang"},         {FaultSite::kChannel2, "Channel2"},
-      {FaultSite::kX, "X"},               {FaultSite::kY, "Y"},
-      {FaultSite::kEor, "Eor"},           {FaultSite::kSpanSetup, "SpanSetup"},
-      {FaultSite::kRounding, "Rounding"}, {FaultSite::kSpecular, "Specular"}};
+  const std::map<FaultSite, std::string> rtl_name = {{FaultSite::kLsb, "Lsb"},
+                                                     {FaultSite::kStall, "Stall"},
+                                                     {FaultSite::kHang, "Hang"},
+                                                     {FaultSite::kChannel2, "Channel2"},
+                                                     {FaultSite::kX, "X"},
+                                                     {FaultSite::kY, "Y"},
+                                                     {FaultSite::kEor, "Eor"},
+                                                     {FaultSite::kSpanSetup, "SpanSetup"},
+                                                     {FaultSite::kRounding, "Rounding"},
+                                                     {FaultSite::kSpecular, "Specular"}};
   ASSERT_EQ(rtl.size(), fault_sites().size() + 1) << "a site on one side only";
   EXPECT_EQ(rtl.at("None"), 0);
   for (const FaultSiteInfo& s : fault_sites()) {

@@ -35,7 +35,8 @@ std::vector<std::string> FaultInjection::plusargs() const {
 
 FaultInjection parse_fault(const std::string& text) {
   std::string names;
-  for (const FaultSiteInfo& s : fault_sites()) names += (names.empty() ? "" : ", ") + std::string(s.name);
+  for (const FaultSiteInfo& s : fault_sites())
+    names += (names.empty() ? "" : ", ") + std::string(s.name);
   const auto at = text.find('@');
   const std::string expected = "expected SITE@Y with SITE one of " + names + " and Y a row >= 0";
   if (at == std::string::npos) throw std::invalid_argument("fault '" + text + "': " + expected);

@@ -13,16 +13,16 @@ namespace shadesim {
 
 enum class FaultSite : int {
   kNone = 0,
-  kLsb = 1,         // channel 0 of every pixel of the row + 1 LSB
-  kStall = 2,       // one extra engine stall before the row's last_in_row span (first one)
-  kHang = 3,        // the engines never take a span of the row: no more pixels
-  kChannel2 = 4,    // channel 2 of every pixel of the row + 1 LSB
-  kX = 5,           // pix_x_o + 1 on the row
-  kY = 6,           // pix_y_o bit 0 flipped on the row
-  kEor = 7,         // pix_eor_o inverted on the row
-  kSpanSetup = 8,   // series 0's start value + 1 output LSB for the row's spans
-  kRounding = 9,    // the row's output truncated instead of rounded
-  kSpecular = 10,   // light 0's specular result with its top fraction bit flipped on the row
+  kLsb = 1,        // channel 0 of every pixel of the row + 1 LSB
+  kStall = 2,      // one extra engine stall before the row's last_in_row span (first one)
+  kHang = 3,       // the engines never take a span of the row: no more pixels
+  kChannel2 = 4,   // channel 2 of every pixel of the row + 1 LSB
+  kX = 5,          // pix_x_o + 1 on the row
+  kY = 6,          // pix_y_o bit 0 flipped on the row
+  kEor = 7,        // pix_eor_o inverted on the row
+  kSpanSetup = 8,  // series 0's start value + 1 output LSB for the row's spans
+  kRounding = 9,   // the row's output truncated instead of rounded
+  kSpecular = 10,  // light 0's specular result with its top fraction bit flipped on the row
 };
 
 struct FaultInjection {
