@@ -1,5 +1,5 @@
-// Triangle meshes: procedural shapes with analytic normals, mesh files through assimp, and the
-// object-to-world transform.
+// Triangle meshes: procedural shapes with analytic normals, and the object-to-world transform.
+// Mesh files are read by host/mesh_import.h.
 #pragma once
 
 #include <string>
@@ -26,11 +26,6 @@ Mesh make_cylinder(double radius, double height, int tessellation);
 // Square of side `size` in the xz plane (y = 0), facing +y, tessellation x tessellation quads.
 // Any tessellation >= 1 is accepted here.
 Mesh make_plane(double size, int tessellation);
-
-// Reads any format assimp reads (OBJ, PLY, STL, DAE, BLEND, ...), triangulated, node transforms
-// applied, all meshes merged; smooth normals generated where the file has none.
-// Throws SceneError naming the file and what was expected.
-Mesh load_mesh_file(const std::string& path);
 
 // Scale, then rotate about x, then y, then z (Euler XYZ, degrees), then translate.
 struct Transform {

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "host/mesh.h"
+#include "host/mesh_import.h"
 #include "model/json_error.h"
 
 namespace shadesim {

@@ -2,9 +2,11 @@
 // the product's readers in the normal build: each must end in the reader's documented error,
 // with a message that names the file.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -12,6 +14,7 @@
 #include <vector>
 
 #include "host/mesh.h"
+#include "host/mesh_import.h"
 #include "host/scene.h"
 #include "model/unit_config_file.h"
 
@@ -45,9 +48,12 @@ fs::path mesh_file_of(const fs::path& input, const fs::path& dir) {
   return file;
 }
 
+// A runaway import (lws_runaway_import) ends at this CPU limit instead of the product's 120 s.
+constexpr int kCpuSecondsPerFile = 3;
+
 std::string load_error(const fs::path& file) {
   try {
-    load_mesh_file(file.string());
+    MeshImporter(kCpuSecondsPerFile).load(file.string());
   } catch (const SceneError& e) {
     return e.what();
   }
@@ -78,6 +84,93 @@ TEST(FuzzRegressions, AssimpCrashIsReportedNotFatal) {
   const fs::path file = mesh_file_of(kRegressions / "mesh/assimp_raw_postprocess_segv.raw.in", dir);
   const std::string message = load_error(file);
   EXPECT_NE(message.find("assimp crashed"), std::string::npos) << message;
+  fs::remove_all(dir);
+}
+
+// One MeshImporter keeps its import process across files (the fuzzer's path): a file that kills
+// the process is reported, the next file gets a new process and loads, and every answer is the
+// one a process of its own gives (load_mesh_file).
+TEST(FuzzRegressions, OneImporterSurvivesAnImportProcessCrash) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("shadesim-fuzz-importer-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path crash =
+      mesh_file_of(kRegressions / "mesh/assimp_raw_postprocess_segv.raw.in", dir);
+  const fs::path huge = mesh_file_of(kRegressions / "mesh/off_huge_vertex_count.off.in", dir);
+  const fs::path good = dir / "tet.obj";
+  std::ofstream(good) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  const Mesh alone = load_mesh_file(good.string());
+  MeshImporter importer(kCpuSecondsPerFile);
+  auto error_of = [&](const fs::path& file) -> std::string {
+    try {
+      importer.load(file.string());
+    } catch (const SceneError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  for (int round = 0; round < 3; ++round) {
+    SCOPED_TRACE(round);
+    const Mesh shared = importer.load(good.string());
+    EXPECT_EQ(shared.positions, alone.positions);
+    EXPECT_EQ(shared.normals, alone.normals);
+    EXPECT_EQ(shared.triangles, alone.triangles);
+    EXPECT_EQ(error_of(huge), load_error(huge));
+    const std::string crashed = error_of(crash);
+    EXPECT_NE(crashed.find("assimp crashed"), std::string::npos) << crashed;
+    EXPECT_EQ(crashed, load_error(crash));
+  }
+  fs::remove_all(dir);
+}
+
+// A truncated LightWave scene on which Debian's assimp runs for minutes (found by fuzz_mesh as a
+// timeout): the import ends at the CPU limit, and the message says so.
+TEST(FuzzRegressions, RunawayImportEndsAtTheCpuLimit) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("shadesim-fuzz-runaway-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path file = mesh_file_of(kRegressions / "mesh/lws_runaway_import.lws.in", dir);
+  const std::string message = load_error(file);
+  EXPECT_NE(message.find("assimp ran past 3 s of CPU"), std::string::npos) << message;
+  fs::remove_all(dir);
+}
+
+// The import process dies with the process that asked for it: a runaway import must not keep a
+// core busy after the fuzzer (or a user's Ctrl-C) ended its parent.
+TEST(FuzzRegressions, ImportProcessDiesWithItsParent) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("shadesim-fuzz-orphan-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path file = mesh_file_of(kRegressions / "mesh/lws_runaway_import.lws.in", dir);
+  const pid_t parent = ::fork();
+  ASSERT_GE(parent, 0);
+  if (parent == 0) {
+    try {
+      MeshImporter(100).load(file.string());
+    } catch (...) {
+    }
+    _exit(0);
+  }
+  // The parent's only child is its import process, once it has started.
+  const std::string children =
+      "/proc/" + std::to_string(parent) + "/task/" + std::to_string(parent) + "/children";
+  pid_t importer = 0;
+  for (int tries = 0; tries < 200 && importer == 0; ++tries) {
+    ::usleep(20000);
+    std::ifstream(children) >> importer;
+  }
+  ::kill(parent, SIGKILL);
+  ::waitpid(parent, nullptr, 0);
+  ASSERT_GT(importer, 0) << "no import process under " << parent;
+  // Dead means gone, or a zombie waiting for a reaper that is not us.
+  auto alive = [&] {
+    std::ifstream stat("/proc/" + std::to_string(importer) + "/stat");
+    std::string pid, name, state;
+    return stat >> pid >> name >> state && state != "Z" && state != "X";
+  };
+  for (int tries = 0; tries < 250 && alive(); ++tries) ::usleep(20000);
+  EXPECT_FALSE(alive()) << "import process " << importer << " outlived its parent";
+  if (alive()) ::kill(importer, SIGKILL);
   fs::remove_all(dir);
 }
 

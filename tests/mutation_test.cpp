@@ -27,6 +27,7 @@
 
 #include "host/frame.h"
 #include "host/mesh.h"
+#include "host/mesh_import.h"
 #include "host/reference.h"
 #include "host/scene.h"
 #include "model/command_stream.h"

@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "host/mesh.h"
+#include "host/mesh_import.h"
 #include "tests/support/test_data.h"
 
 namespace shadesim {
@@ -324,6 +325,7 @@ TEST(MeshFiles, PlyAndStlLoad) {
 TEST(MeshFiles, EveryAssimpInvalidModelGivesSceneError) {
   const fs::path invalid = fs::path(kAssimpModels) / "invalid";
   SHADESIM_NEEDS_TEST_FILE(invalid);
+  MeshImporter shared;
   int checked = 0;
   for (const auto& entry : fs::directory_iterator(invalid)) {
     const std::string path = entry.path().string();
@@ -340,6 +342,8 @@ TEST(MeshFiles, EveryAssimpInvalidModelGivesSceneError) {
     }
     const std::string message = scene_error([&] { load_mesh_file(path); });
     EXPECT_NE(message.find(path), std::string::npos) << message;
+    // One import process for every file gives each the answer a process of its own gives.
+    EXPECT_EQ(scene_error([&] { shared.load(path); }), message);
     ++checked;
   }
   EXPECT_GE(checked, 10);

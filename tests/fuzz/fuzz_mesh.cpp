@@ -1,11 +1,12 @@
-// libFuzzer target: the mesh loader (host/mesh.h, through assimp). An input is
+// libFuzzer target: the mesh loader (host/mesh_import.h, through assimp). An input is
 // "<extension>\n<file bytes>": assimp picks its importer by the extension first, so the
 // extension is part of what is fuzzed. Every input must give a mesh whose triangles index its
 // vertices and whose normals are unit length, or throw SceneError with a message.
-// This is the product's path, a forked import per input, so it runs a few hundred inputs a
-// second. The import cannot run in process instead: Debian's assimp crashes, leaks and asks for
-// absurd allocations on fuzzed files (a trial in libFuzzer's fork mode: 26 crashes and
-// leak reports in assimp in 1,309 inputs), which the product's import child survives.
+// This is the product's path: the import runs in a separate process, which the product's
+// MeshImporter keeps across files, so one fork serves up to kImportsPerProcess inputs. The
+// import cannot run in this process instead: Debian's assimp crashes, leaks and asks for absurd
+// allocations on fuzzed files (a trial in libFuzzer's fork mode: 26 crashes and leak reports in
+// assimp in 1,309 inputs), which the import process survives or dies of alone.
 #include <pthread.h>
 #include <sanitizer/common_interface_defs.h>
 
@@ -14,7 +15,7 @@
 #include <cstdint>
 #include <string>
 
-#include "host/mesh.h"
+#include "host/mesh_import.h"
 #include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -28,14 +29,18 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string path =
       shadesim::fuzz::write_input("mesh." + extension, data + newline + 1, size - newline - 1);
   try {
-    shadesim::fuzz::check_mesh(shadesim::load_mesh_file(path));
+    // One importer for the whole run; libFuzzer's entry point leaves nowhere else to keep it.
+    // Its CPU limit per file is well inside -timeout (scripts/fuzz, cmake/fuzz.cmake), so a
+    // runaway import is seen ending in the product's SceneError, not as the fuzzer's timeout.
+    static shadesim::MeshImporter importer(10);
+    shadesim::fuzz::check_mesh(importer.load(path));
   } catch (const shadesim::SceneError& e) {
     shadesim::fuzz::require_message(e);
   }
   return 0;
 }
 
-// load_mesh_file imports in a forked child. Debian's assimp is not instrumented, but the child
+// The import process is a fork of this one. Debian's assimp is not instrumented, but the child
 // inherits libFuzzer's death callback: when ASan ends the child (operator new cannot return null
 // under ASan, so assimp's absurd allocations from corrupt element counts abort it instead of
 // throwing std::bad_alloc), the callback would save the input as a crash although the parent
