@@ -69,12 +69,9 @@ CosimResult run_verilated_cpp(const CosimJob& job, const WaveWindow* waves = nul
         "tracing");
   }
 #endif
-  // The deliberate fault of a fault run, read by shade_unit's fault_select at time 0.
-  std::vector<std::string> args = job.fault.plusargs();
-  args.insert(args.begin(), "cosim");
-  std::vector<const char*> argv;
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  context.commandArgs(static_cast<int>(argv.size()), argv.data());
+  // The deliberate fault of a fault run.
+  VerilatorCommandLine command_line(job.fault);
+  context.commandArgs(command_line.argc(), command_line.argv());
   V top(&context);
   if (!port_fits(top.cmd_data_i, cfg.port_words)) {
     throw std::invalid_argument("configuration " + job.config.name + ": port_words " +

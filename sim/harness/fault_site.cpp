@@ -33,6 +33,11 @@ std::vector<std::string> FaultInjection::plusargs() const {
           "+shadesim_fault_row=" + std::to_string(row)};
 }
 
+VerilatorCommandLine::VerilatorCommandLine(const FaultInjection& fault) : args_(fault.plusargs()) {
+  args_.insert(args_.begin(), "cosim");
+  for (const std::string& a : args_) argv_.push_back(a.c_str());
+}
+
 FaultInjection parse_fault(const std::string& text) {
   std::string names;
   for (const FaultSiteInfo& s : fault_sites())

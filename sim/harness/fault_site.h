@@ -34,6 +34,21 @@ struct FaultInjection {
   std::vector<std::string> plusargs() const;  // +shadesim_fault=N +shadesim_fault_row=Y
 };
 
+// The command line a Verilated model is given (Verilated's commandArgs): a program name and the
+// fault's plusargs, which shade_unit's fault_select reads at time 0.
+class VerilatorCommandLine {
+ public:
+  explicit VerilatorCommandLine(const FaultInjection& fault);
+  VerilatorCommandLine(const VerilatorCommandLine&) = delete;  // argv_ points into args_
+  VerilatorCommandLine& operator=(const VerilatorCommandLine&) = delete;
+  int argc() const { return static_cast<int>(argv_.size()); }
+  const char** argv() { return argv_.data(); }
+
+ private:
+  std::vector<std::string> args_;
+  std::vector<const char*> argv_;  // into args_
+};
+
 // "SITE@Y", e.g. "ch2@40". Throws std::invalid_argument naming the sites on anything else.
 FaultInjection parse_fault(const std::string& text);
 

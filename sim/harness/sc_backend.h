@@ -145,12 +145,9 @@ CosimResult run_verilated_systemc(const CosimJob& job) {
   sc_core::sc_signal<MT> pix_mask("pix_mask");
   sc_core::sc_signal<bool> pix_eor("pix_eor"), pix_valid("pix_valid"), pix_ready("pix_ready");
 
-  // The deliberate fault of a fault run, read by shade_unit's fault_select at time 0.
-  std::vector<std::string> args = job.fault.plusargs();
-  args.insert(args.begin(), "cosim");
-  std::vector<const char*> argv;
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  Verilated::commandArgs(static_cast<int>(argv.size()), argv.data());
+  // The deliberate fault of a fault run.
+  VerilatorCommandLine command_line(job.fault);
+  Verilated::commandArgs(command_line.argc(), command_line.argv());
   V dut("dut");
   dut.clk_i(clk);
   dut.rst_ni(rst_n);
