@@ -349,6 +349,34 @@ TEST(MeshFiles, EveryAssimpInvalidModelGivesSceneError) {
   EXPECT_GE(checked, 10);
 }
 
+// The import process this one forked last: the only child of this test's thread.
+pid_t import_process() {
+  std::ifstream children("/proc/self/task/" + std::to_string(::gettid()) + "/children");
+  pid_t pid = 0;
+  children >> pid;
+  return pid;
+}
+
+// One importer serves kImportsPerProcess files with one process, then starts another, and the
+// files keep loading the same.
+TEST(MeshFiles, ImporterReplacesItsProcessAfterItsLifetime) {
+  TempDir dir;
+  const std::string obj = dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  MeshImporter importer;
+  EXPECT_EQ(import_process(), 0);  // started by the first load, not before
+  importer.load(obj);
+  const pid_t first = import_process();
+  ASSERT_GT(first, 0);
+  for (int i = 1; i < MeshImporter::kImportsPerProcess; ++i) {
+    ASSERT_EQ(importer.load(obj).triangles.size(), 1u) << "import " << i;
+  }
+  EXPECT_EQ(import_process(), first);
+  EXPECT_EQ(importer.load(obj).triangles.size(), 1u);
+  const pid_t second = import_process();
+  EXPECT_GT(second, 0);
+  EXPECT_NE(second, first);
+}
+
 TEST(MeshFiles, MissingFileAndNoTriangles) {
   TempDir dir;
   const std::string missing = dir.path() + "/nope.obj";
