@@ -47,7 +47,7 @@ package shade_pkg;
         word = word + 1;
         lsb  = 0;
       end
-      if (i < j) lsb = lsb + bits;
+      lsb = lsb + bits;
     end
     coef_word = word;
   endfunction
