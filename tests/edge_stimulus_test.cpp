@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "model/shade_unit.h"
@@ -53,6 +54,35 @@ TEST(EdgeStimulus, SeveralFramesAndCommandsAfterEndFrame) {
   EXPECT_EQ(frames, 3u);
   EXPECT_GT(spans_after_first_end, 0u);
   EXPECT_GT(commands_after_first_end, spans_after_first_end);  // triangles, materials too
+}
+
+// Schlick's divider with a numerator that is positive yet 0 in its operands (below 2^-D), beside
+// a denominator at or below 0: the pair where the rules "den <= 0 gives 1" and "num_op = 0 gives
+// 0" disagree, so their order shows. A triangle gives it where light l's numerator series is
+// flat at such a value and its denominator series starts at or below 0.
+TEST(EdgeStimulus, SchlickNumeratorBelowTheOperandLsbBesideADenominatorAtOrBelowZero) {
+  const UnitConfig unit = build("schlick_iter_n").unit;
+  ASSERT_EQ(unit.specular.kind, SpecularUnitKind::kSchlick);
+  const double operand_lsb = std::ldexp(1.0, -unit.specular.schlick.operand_bits);
+  const int per_light = unit.specular.series_per_light();
+  int pairs = 0;
+  for (uint64_t seed = 1; seed <= 3; ++seed) {
+    for (const Command& cmd : edge_stream(unit, seed).commands) {
+      const auto* t = std::get_if<TriangleCmd>(&cmd);
+      if (t == nullptr) continue;
+      for (int l = 0; l < unit.lights; ++l) {
+        const size_t num =
+            static_cast<size_t>(unit.diffuse_series() + l * per_light) * kTermsPerSeries;
+        const size_t den = num + kTermsPerSeries;
+        const double num0 = unit.coef_term(0).to_double(t->coef[num]);
+        bool flat = true;
+        for (int k = 1; k < kTermsPerSeries; ++k) flat = flat && t->coef[num + k] == 0;
+        pairs += flat && num0 > 0 && num0 < operand_lsb &&
+                 unit.coef_term(0).to_double(t->coef[den]) <= 0;
+      }
+    }
+  }
+  EXPECT_GT(pairs, 0);
 }
 
 // Output codes at both clamps: totals below 0 (negative ambient) give 0, totals above 1 give

@@ -160,10 +160,11 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
       lut_table(irange(0, lut_size - n), n, true);
     }
   };
-  // Edge triangles: per series one of four kinds - ordinary (most often, so the specular term
+  // Edge triangles: per series one of five kinds - ordinary (most often, so the specular term
   // still shows in most pixels); a large value (totals above 1, the output saturates); a value
   // at the top of the series range with a rising slope and curvature (the series leaves its
-  // format: wraps, or saturates in :sat builds); a negative value (the diffuse clamp at 0).
+  // format: wraps, or saturates in :sat builds); a negative value (the diffuse clamp at 0); a
+  // flat value just above 0.
   // Coefficients stay inside the coef format.
   // The lowest T0 of series s. A specular unit's diffuse series start at or above 0: the
   // specular term shows only where light l's diffuse values sum to more than 0 (the N.L gate,
@@ -181,7 +182,7 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
       double terms[kTermsPerSeries] = {uni(diffuse_lo(s), 1.2) * base, uni(-1, 1) / 256 * g,
                                        uni(-1, 1) / 256 * g,           uni(-1, 1) / 16384 * g,
                                        uni(-1, 1) / 16384 * g,         uni(-1, 1) / 16384 * g};
-      const int kind = irange(0, 9);
+      const int kind = irange(0, 10);
       if (kind == 7) {
         terms[0] = uni(1.0, 3.0);
       } else if (kind == 8) {
@@ -190,6 +191,12 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
         terms[5] = uni(0.0, 1.0) / 1024;
       } else if (kind == 9) {
         terms[0] = -uni(0.1, 2.0);
+      } else if (kind == 10) {
+        // Flat, a few series LSBs above 0: positive, yet 0 in a Schlick divider's narrower
+        // operand, so beside a kind-9 denominator the divider's rules for num > 0, den <= 0 and
+        // num_op = 0 are all in play.
+        terms[0] = std::ldexp(irange(1, 7), -config.series.frac_bits());
+        std::fill(terms + 1, terms + kTermsPerSeries, 0.0);
       }
       for (double& v : terms) v = std::clamp(v, -coef_top, coef_top);
       for (double v : terms) t.coef.push_back(config.coef.from_double(v));
