@@ -1,6 +1,7 @@
 #include "sim/harness/random_stream.h"
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <stdexcept>
 
@@ -182,8 +183,16 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
       double terms[kTermsPerSeries] = {uni(diffuse_lo(s), 1.2) * base, uni(-1, 1) / 256 * g,
                                        uni(-1, 1) / 256 * g,           uni(-1, 1) / 16384 * g,
                                        uni(-1, 1) / 16384 * g,         uni(-1, 1) / 16384 * g};
-      const int kind = irange(0, 10);
-      if (kind == 7) {
+      const int kind = irange(0, 9);
+      if (kind == 6) {
+        // Flat, 1-7 series LSBs above 0: positive, yet 0 in a Schlick divider's narrower
+        // operand, so beside a kind-9 denominator the divider's rules for num > 0, den <= 0 and
+        // num_op = 0 are all in play. The LSB count comes from the slope already drawn: no
+        // extra draw, so every stream keeps the spans (and the cycle counts) it had before.
+        const int lsbs = 1 + static_cast<int>(std::fabs(terms[1]) * 256 / g * 7);
+        terms[0] = std::ldexp(std::min(lsbs, 7), -config.series.frac_bits());
+        std::fill(terms + 1, terms + kTermsPerSeries, 0.0);
+      } else if (kind == 7) {
         terms[0] = uni(1.0, 3.0);
       } else if (kind == 8) {
         terms[0] = series_top * uni(0.9, 0.999);
@@ -191,12 +200,6 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
         terms[5] = uni(0.0, 1.0) / 1024;
       } else if (kind == 9) {
         terms[0] = -uni(0.1, 2.0);
-      } else if (kind == 10) {
-        // Flat, a few series LSBs above 0: positive, yet 0 in a Schlick divider's narrower
-        // operand, so beside a kind-9 denominator the divider's rules for num > 0, den <= 0 and
-        // num_op = 0 are all in play.
-        terms[0] = std::ldexp(irange(1, 7), -config.series.frac_bits());
-        std::fill(terms + 1, terms + kTermsPerSeries, 0.0);
       }
       for (double& v : terms) v = std::clamp(v, -coef_top, coef_top);
       for (double v : terms) t.coef.push_back(config.coef.from_double(v));
