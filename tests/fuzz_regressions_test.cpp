@@ -38,6 +38,22 @@ std::vector<fs::path> inputs_of(const std::string& harness) {
   return files;
 }
 
+// A folder of this test process, removed when the test ends, an early return included.
+struct ScratchDir {
+  explicit ScratchDir(const std::string& name)
+      : path(fs::temp_directory_path() /
+             ("shadesim-fuzz-" + name + "-" + std::to_string(::getpid()))) {
+    fs::create_directories(path);
+  }
+  ~ScratchDir() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  const fs::path path;
+};
+
 // fuzz_mesh's input form: "<extension>\n<file bytes>".
 fs::path mesh_file_of(const fs::path& input, const fs::path& dir) {
   const std::string bytes = read_bytes(input);
@@ -61,9 +77,8 @@ std::string load_error(const fs::path& file) {
 }
 
 TEST(FuzzRegressions, EveryMeshInputIsASceneErrorNamingTheFile) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("shadesim-fuzz-regress-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const ScratchDir scratch("regress");
+  const fs::path& dir = scratch.path;
   const std::vector<fs::path> inputs = inputs_of("mesh");
   ASSERT_GE(inputs.size(), 2u);
   for (const fs::path& input : inputs) {
@@ -72,28 +87,24 @@ TEST(FuzzRegressions, EveryMeshInputIsASceneErrorNamingTheFile) {
     EXPECT_NE(message.find(file.string()), std::string::npos)
         << input << ": expected a SceneError naming " << file << ", got '" << message << "'";
   }
-  fs::remove_all(dir);
 }
 
 // The RAW file of assimp-testmodels that kills Debian's assimp in post-processing: the crash is
 // the import child's, and the message says so.
 TEST(FuzzRegressions, AssimpCrashIsReportedNotFatal) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("shadesim-fuzz-crash-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const ScratchDir scratch("crash");
+  const fs::path& dir = scratch.path;
   const fs::path file = mesh_file_of(kRegressions / "mesh/assimp_raw_postprocess_segv.raw.in", dir);
   const std::string message = load_error(file);
   EXPECT_NE(message.find("assimp crashed"), std::string::npos) << message;
-  fs::remove_all(dir);
 }
 
 // One MeshImporter keeps its import process across files (the fuzzer's path): a file that kills
 // the process is reported, the next file gets a new process and loads, and every answer is the
 // one a process of its own gives (load_mesh_file).
 TEST(FuzzRegressions, OneImporterSurvivesAnImportProcessCrash) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("shadesim-fuzz-importer-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const ScratchDir scratch("importer");
+  const fs::path& dir = scratch.path;
   const fs::path crash =
       mesh_file_of(kRegressions / "mesh/assimp_raw_postprocess_segv.raw.in", dir);
   const fs::path huge = mesh_file_of(kRegressions / "mesh/off_huge_vertex_count.off.in", dir);
@@ -120,27 +131,23 @@ TEST(FuzzRegressions, OneImporterSurvivesAnImportProcessCrash) {
     EXPECT_NE(crashed.find("assimp crashed"), std::string::npos) << crashed;
     EXPECT_EQ(crashed, load_error(crash));
   }
-  fs::remove_all(dir);
 }
 
 // A truncated LightWave scene on which Debian's assimp runs for minutes (found by fuzz_mesh as a
 // timeout): the import ends at the CPU limit, and the message says so.
 TEST(FuzzRegressions, RunawayImportEndsAtTheCpuLimit) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("shadesim-fuzz-runaway-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const ScratchDir scratch("runaway");
+  const fs::path& dir = scratch.path;
   const fs::path file = mesh_file_of(kRegressions / "mesh/lws_runaway_import.lws.in", dir);
   const std::string message = load_error(file);
   EXPECT_NE(message.find("assimp ran past 3 s of CPU"), std::string::npos) << message;
-  fs::remove_all(dir);
 }
 
 // The import process dies with the process that asked for it: a runaway import must not keep a
 // core busy after the fuzzer (or a user's Ctrl-C) ended its parent.
 TEST(FuzzRegressions, ImportProcessDiesWithItsParent) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("shadesim-fuzz-orphan-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const ScratchDir scratch("orphan");
+  const fs::path& dir = scratch.path;
   const fs::path file = mesh_file_of(kRegressions / "mesh/lws_runaway_import.lws.in", dir);
   const pid_t parent = ::fork();
   ASSERT_GE(parent, 0);
@@ -171,14 +178,12 @@ TEST(FuzzRegressions, ImportProcessDiesWithItsParent) {
   for (int tries = 0; tries < 250 && alive(); ++tries) ::usleep(20000);
   EXPECT_FALSE(alive()) << "import process " << importer << " outlived its parent";
   if (alive()) ::kill(importer, SIGKILL);
-  fs::remove_all(dir);
 }
 
 // A scene that names the crashing mesh reports it at the object's "file" field.
 TEST(FuzzRegressions, SceneWithCrashingMeshNamesTheField) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("shadesim-fuzz-scene-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const ScratchDir scratch("scene");
+  const fs::path& dir = scratch.path;
   const fs::path mesh = mesh_file_of(kRegressions / "mesh/assimp_raw_postprocess_segv.raw.in", dir);
   const fs::path scene = dir / "scene.json";
   std::ofstream(scene) << R"({"image": {"width": 8, "height": 8}, "camera": {},
@@ -191,7 +196,6 @@ TEST(FuzzRegressions, SceneWithCrashingMeshNamesTheField) {
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("objects[0].file"), std::string::npos) << e.what();
   }
-  fs::remove_all(dir);
 }
 
 // Every UnitConfig input is a UnitConfigFileError naming the file, and for a JSON error its line
