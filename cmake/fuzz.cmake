@@ -1,4 +1,5 @@
-# libFuzzer harnesses (tests/fuzz/) for the scene, mesh, command-stream and UnitConfig readers,
+# libFuzzer harnesses (tests/fuzz/) for the scene, mesh (through assimp, and the decoding of the
+# import process's answer), command-stream and UnitConfig readers,
 # built with clang + ASan + UBSan as a project of their own in <build>/fuzz (the main build's
 # compiler need not be clang), and one ctest per harness that runs it for a bounded number of
 # inputs from its seed corpus. A crash, hang, leak, sanitizer report or an exception that is not
@@ -8,7 +9,7 @@ include(ExternalProject)
 
 set(SHADESIM_FUZZ_RUNS 100000 CACHE STRING "Inputs each fuzz ctest runs at most")
 set(SHADESIM_FUZZ_SECONDS 20 CACHE STRING
-    "Seconds each fuzz ctest runs at most (4 harnesses: keep the sum under the CI's 2 minutes)")
+    "Seconds each fuzz ctest runs at most (5 harnesses: keep the sum under the CI's 2 minutes)")
 
 find_program(SHADESIM_CLANGXX NAMES clang++ clang++-14 DOC "clang++ for the libFuzzer harnesses")
 set(fuzz_probe_ok FALSE)
@@ -35,8 +36,15 @@ if(NOT fuzz_probe_ok)
 endif()
 message(STATUS "shadesim: libFuzzer harnesses with ${SHADESIM_CLANGXX} in ${CMAKE_BINARY_DIR}/fuzz")
 
+# The mesh harnesses' seeds come from assimp-testmodels' files, its malformed ones too.
+set(mesh_models /usr/share/assimp/models)
+if(NOT IS_DIRECTORY ${mesh_models})
+  message(FATAL_ERROR "SHADESIM_FUZZ: ${mesh_models} not found; the mesh fuzzers' seed corpora "
+                      "come from the Debian package assimp-testmodels (scripts/setup installs it)")
+endif()
+
 set(fuzz_dir ${CMAKE_BINARY_DIR}/fuzz)
-set(fuzz_targets scene mesh command_stream unit_config)
+set(fuzz_targets scene mesh mesh_answer command_stream unit_config)
 set(fuzz_executables)
 foreach(target ${fuzz_targets})
   list(APPEND fuzz_executables ${fuzz_dir}/fuzz_${target})
@@ -45,19 +53,14 @@ ExternalProject_Add(shadesim_fuzzers
   SOURCE_DIR ${CMAKE_SOURCE_DIR}/tests/fuzz
   BINARY_DIR ${fuzz_dir}
   CMAKE_ARGS -DCMAKE_CXX_COMPILER=${SHADESIM_CLANGXX} -DCMAKE_BUILD_TYPE=RelWithDebInfo
-             -DSHADESIM_SOURCE_DIR=${CMAKE_SOURCE_DIR}
+             -DSHADESIM_SOURCE_DIR=${CMAKE_SOURCE_DIR} -DMESH_MODELS=${mesh_models}
   CMAKE_GENERATOR ${CMAKE_GENERATOR}
   BUILD_ALWAYS ON  # its own build tool decides what is out of date
   BUILD_BYPRODUCTS ${fuzz_executables}
   INSTALL_COMMAND "")
 
-# The mesh harness's seeds: assimp-testmodels' files (its malformed ones too) with the
-# extension line the harness expects.
-set(mesh_models /usr/share/assimp/models)
-if(NOT IS_DIRECTORY ${mesh_models})
-  message(FATAL_ERROR "SHADESIM_FUZZ: ${mesh_models} not found; the mesh fuzzer's seed corpus "
-                      "comes from the Debian package assimp-testmodels (scripts/setup installs it)")
-endif()
+# fuzz_mesh's seeds: those files with the extension line the harness expects (fuzz_mesh_answer's
+# are written by its build, tests/fuzz/CMakeLists.txt).
 execute_process(COMMAND bash ${CMAKE_SOURCE_DIR}/tests/fuzz/mesh_seeds.sh ${mesh_models}
                         ${fuzz_dir}/seeds/mesh
                 RESULT_VARIABLE seeds_result OUTPUT_QUIET)

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cerrno>
 #include <cmath>
@@ -373,18 +374,30 @@ std::string MeshImporter::exchange(const std::string& path) {
                    std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
 }
 
-Mesh MeshImporter::load(const std::string& path) {
+std::string MeshImporter::import_answer(const std::string& path) {
   {
     std::ifstream probe(path, std::ios::binary);
     if (!probe) throw SceneError(path + ": cannot open mesh file (expected a readable file)");
   }
-  const std::string answer = exchange(path);
+  return exchange(path);
+}
+
+Mesh MeshImporter::load(const std::string& path) {
+  return mesh_from_import_answer(path, import_answer(path));
+}
+
+Mesh mesh_from_import_answer(const std::string& path, const std::string& answer) {
   AnswerReader reader(answer);
   char kind = 0;
   bool ok = reader.read(&kind, 1);
   if (ok && kind == 'E') {
     std::vector<char> message;
-    if (!reader.read_array(message)) throw SceneError(path + ": mesh import process failed");
+    // what() is a C string: a message that is empty or holds a NUL would reach the user empty
+    // or cut short, and no real message is either (assimp's and ours are C strings with the path)
+    if (!reader.read_array(message) || message.empty() || !reader.at_end() ||
+        std::find(message.begin(), message.end(), '\0') != message.end()) {
+      throw SceneError(path + ": mesh import process sent a malformed error");
+    }
     throw SceneError(std::string(message.begin(), message.end()));
   }
   uint64_t count = 0;

@@ -32,6 +32,10 @@ class MeshImporter {
   // Throws SceneError naming the file and what was expected.
   Mesh load(const std::string& path);
 
+  // The import process's answer for one file, as it sent it: what load() decodes with
+  // mesh_from_import_answer. Real answers seed the fuzzer of that decoder (tests/fuzz/).
+  std::string import_answer(const std::string& path);
+
  private:
   void start(const std::string& path);
   int stop();  // the process's wait status
@@ -42,6 +46,13 @@ class MeshImporter {
   pid_t process_ = -1;
   int imports_ = 0;
 };
+
+// The caller's half of an import: an import process's answer (an 'M' and the parts assimp gave,
+// or an 'E' and the message of the error to throw) decoded and checked into a Mesh. Everything
+// that checks what assimp made of a file runs here, in the caller's process, where sanitizers and
+// the fuzzer see it. Throws SceneError naming `path` on an error answer, a malformed answer, or
+// parts that are no mesh (non-finite positions, indices out of range, no triangle).
+Mesh mesh_from_import_answer(const std::string& path, const std::string& answer);
 
 // One file, in a process of its own (MeshImporter::load).
 Mesh load_mesh_file(const std::string& path);

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -196,6 +197,102 @@ TEST(FuzzRegressions, SceneWithCrashingMeshNamesTheField) {
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("objects[0].file"), std::string::npos) << e.what();
   }
+}
+
+// Every fuzz_mesh_answer input ends in a SceneError naming the mesh file the answer stands for.
+TEST(FuzzRegressions, EveryMeshAnswerInputIsASceneErrorNamingTheFile) {
+  const std::vector<fs::path> inputs = inputs_of("mesh_answer");
+  ASSERT_GE(inputs.size(), 1u);
+  for (const fs::path& input : inputs) {
+    std::string message;
+    try {
+      mesh_from_import_answer("model.obj", read_bytes(input));
+    } catch (const SceneError& e) {
+      message = e.what();
+    }
+    EXPECT_EQ(message.rfind("model.obj: ", 0), 0u) << input << ": got '" << message << "'";
+  }
+}
+
+// Import answers built byte by byte from the wire form (host/mesh_import.h): 'M', a part count,
+// then per part three arrays, each an element count and the elements.
+class AnswerBytes {
+ public:
+  explicit AnswerBytes(char kind) : bytes_(1, kind) {}
+  AnswerBytes& count(uint64_t n) { return raw(&n, sizeof n); }
+  AnswerBytes& floats(std::vector<float> values) {
+    count(values.size());
+    return raw(values.data(), values.size() * sizeof(float));
+  }
+  AnswerBytes& indices(std::vector<uint32_t> values) {
+    count(values.size());
+    return raw(values.data(), values.size() * sizeof(uint32_t));
+  }
+  AnswerBytes& text(const std::string& message) {
+    count(message.size());
+    return raw(message.data(), message.size());
+  }
+  AnswerBytes& raw(const void* data, size_t size) {
+    bytes_.append(static_cast<const char*>(data), size);
+    return *this;
+  }
+  const std::string& bytes() const { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+std::string answer_error(const std::string& answer) {
+  try {
+    mesh_from_import_answer("model.obj", answer);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(MeshImportAnswer, OneTriangleWithAZeroNormalGetsItsFaceNormal) {
+  const std::string answer = AnswerBytes('M')
+                                 .count(1)
+                                 .floats({0, 0, 0, 2, 0, 0, 0, 2, 0})
+                                 .floats({0, 0, 0, 0, 0, 1, 0, 0, 3})
+                                 .indices({0, 1, 2})
+                                 .bytes();
+  const Mesh mesh = mesh_from_import_answer("model.obj", answer);
+  ASSERT_EQ(mesh.triangles.size(), 1u);
+  EXPECT_EQ(mesh.positions[1], (Vec3{2, 0, 0}));
+  // The triangle lies in z = 0, counter-clockwise seen from +z: every normal is +z, the zero one
+  // from the face and the long one normalised.
+  for (const Vec3& n : mesh.normals) EXPECT_EQ(n, (Vec3{0, 0, 1}));
+}
+
+TEST(MeshImportAnswer, EachBrokenAnswerNamesWhatWasExpected) {
+  const auto part = [](std::vector<float> positions, std::vector<uint32_t> triangle) {
+    const size_t normals = positions.size();
+    return AnswerBytes('M')
+        .count(1)
+        .floats(std::move(positions))
+        .floats(std::vector<float>(normals, 1.0f))
+        .indices(std::move(triangle));
+  };
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(answer_error(part({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 3}).bytes()),
+            "model.obj: mesh 0 triangle 0: expected vertex indices below 3");
+  EXPECT_EQ(answer_error(part({0, 0, 0, 1, nan, 0, 0, 1, 0}, {0, 1, 2}).bytes()),
+            "model.obj: mesh 0 vertex 1: expected finite coordinates");
+  EXPECT_EQ(answer_error(part({0, 0, 0, 1, 0, 0, 0, 1, 0}, {}).bytes()),
+            "model.obj: expected at least one triangle, the file has none");
+  EXPECT_EQ(answer_error(part({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2}).raw("x", 1).bytes()),
+            "model.obj: mesh import process sent a malformed result");
+  EXPECT_EQ(answer_error(AnswerBytes('M').count(2).floats({}).floats({}).indices({}).bytes()),
+            "model.obj: mesh import process sent a malformed result");
+  EXPECT_EQ(answer_error(AnswerBytes('E').text("model.obj: assimp could not read it").bytes()),
+            "model.obj: assimp could not read it");
+  EXPECT_EQ(answer_error(AnswerBytes('E').text(std::string("\0cut", 4)).bytes()),
+            "model.obj: mesh import process sent a malformed error");
+  EXPECT_EQ(answer_error(AnswerBytes('E').text("").bytes()),
+            "model.obj: mesh import process sent a malformed error");
+  EXPECT_EQ(answer_error(""), "model.obj: mesh import process sent a malformed result");
 }
 
 // Every UnitConfig input is a UnitConfigFileError naming the file, and for a JSON error its line
