@@ -201,15 +201,18 @@ add_test(NAME rtl_cosim_backends_agree_schlick_iter_d
 add_test(NAME rtl_cosim_backends_agree
   COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/same_results.sh ${SHADESIM_CLI} ${RTL_CACHE} rgb2_s320s mixed 11)
 # The harness must catch each deliberate fault at the right place: its first mismatch of the
-# right kind on the fault's row. One build per kind of datapath carries the fault hooks
+# right kind on the fault's row, and for the faults that change every pixel of the row (lsb,
+# ch2, x, y, eor) on the row's first pixel, the x0 of the stream's first span on it (":first").
+# The others change only some pixels (setup and round where the output rounds differently, spec
+# where the highlight shows), or delay a span (stall): only their row is asserted. One build per kind of datapath carries the fault hooks
 # (builds.json "fault_hooks"), and each test picks its fault at run time (--fault SITE@Y,
 # sim/harness/fault_site.h), under the scenario's own gaps and back-pressure unless noted.
 #   NAME  BUILD  SCENARIO  SEED  FAULT  EXPECTED
 set(_fault_tests
   # the output of every lane, through one-word and four-word ports
-  lsb             grey_s428w        mixed 3  lsb@17    pixel:17
-  lsb_p4          grey_p4           mixed 3  lsb@17    pixel:17
-  lsb_p4_l4       grey_p4_q2_l4_m2  mixed 3  lsb@17    pixel:17
+  lsb             grey_s428w        mixed 3  lsb@17    pixel:17:first
+  lsb_p4          grey_p4           mixed 3  lsb@17    pixel:17:first
+  lsb_p4_l4       grey_p4_q2_l4_m2  mixed 3  lsb@17    pixel:17:first
   # one extra engine stall: a late pixel (back-pressure hides it on some seeds, so 0 here)
   stall           grey_s428w        mixed 3  stall@23  cycle:23
   stall_p4        grey_p4           mixed 3  stall@23  cycle:23
@@ -217,10 +220,10 @@ set(_fault_tests
   # engines that stop: the watchdog, not the overall cycle bound, reports a hang on that row
   hang            grey_s428w        short 3  hang@100  hang:100
   # channel 2, position, end of row, span setup and output rounding (RGB, two lights)
-  channel2        rgb2_s320s        mixed 5  ch2@19    pixel:19
-  x               rgb2_s320s        mixed 5  x@21      pixel:21
-  y               rgb2_s320s        mixed 5  y@22      pixel:22
-  eor             rgb2_s320s        mixed 5  eor@24    pixel:24
+  channel2        rgb2_s320s        mixed 5  ch2@19    pixel:19:first
+  x               rgb2_s320s        mixed 5  x@21      pixel:21:first
+  y               rgb2_s320s        mixed 5  y@22      pixel:22:first
+  eor             rgb2_s320s        mixed 5  eor@24    pixel:24:first
   span_setup      rgb2_s320s        mixed 5  setup@26  pixel:26
   rounding        rgb2_s320s        mixed 5  round@27  pixel:27
   # each specular unit's result (LUT, iterative Schlick, iterative W_16)

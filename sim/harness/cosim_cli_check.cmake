@@ -89,6 +89,22 @@ if(MODE STREQUAL "json")
   expect_eq("replayed mismatch y" "${r_y}" "17")
   expect_eq("replayed scenario" "${r_scenario}" "replay")
 
+  # --expect-mismatch with a column: the mismatch's own column passes, the next one fails and
+  # says what it expected, and a column that is not a number or 'first' is bad input.
+  string(JSON x GET "${j}" first_mismatch x)
+  run(0 out ${COSIM} ${fault_args} --expect-mismatch pixel:17:${x})
+  math(EXPR wrong_x "${x} + 1")
+  run(1 out ${COSIM} ${fault_args} --expect-mismatch pixel:17:${wrong_x})
+  if(NOT out MATCHES "FAIL: expected the first mismatch to be pixel:17:${wrong_x}")
+    message(FATAL_ERROR "a wrong expected column was not reported:\n${out}")
+  endif()
+  execute_process(COMMAND ${COSIM} ${fault_args} --expect-mismatch pixel:17:left
+                  RESULT_VARIABLE rc OUTPUT_QUIET ERROR_VARIABLE err)
+  expect_eq("exit status for --expect-mismatch pixel:17:left" "${rc}" "2")
+  if(NOT err MATCHES "expected KIND:Y or KIND:Y:X")
+    message(FATAL_ERROR "unclear error for a malformed --expect-mismatch: ${err}")
+  endif()
+
   # A run on a scene's own configuration (regress's own:<scene>, no --config `cosim` accepts):
   # its replay line must run and reproduce the failure. --watchdog 1 makes the run fail (a hang
   # before the first pixel) without a faulty build.

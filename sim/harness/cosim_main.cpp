@@ -35,6 +35,7 @@
 #include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <variant>
 
@@ -81,7 +82,7 @@ struct Options {
   int runs = 1;
   int rows = 0;  // 0: the scenario's own
   int gap_pct = -1, max_gap = -1, stall_pct = -1;
-  std::string expect;  // KIND:Y
+  std::string expect;  // KIND:Y[:X]
   std::string fault;   // SITE@Y (sim/harness/fault_site.h)
   std::string save_dir = ".";
   std::string json_path;
@@ -280,14 +281,32 @@ RtlConfig resolve_build(const Options& o, const CosimExecutable& exe) {
   return b;
 }
 
-// --expect-mismatch KIND:Y: the run succeeds only if its first mismatch is KIND on row Y.
+// --expect-mismatch KIND:Y[:X]: the run succeeds only if its first mismatch is KIND on row Y,
+// and at column X when given. X "first" is the row's first pixel as the stream orders them: the
+// x0 of the stream's first SPAN on row Y, so a fault on every pixel of a row is checked to show
+// on the first one, without asking the model under test where that is.
 struct Expectation {
   std::string kind;  // empty: none expected
   int y = -1;
+  std::optional<int> x;  // none: any column
+  bool first_of_row = false;
   std::string text;  // as given
 
   bool active() const { return !kind.empty(); }
-  bool met_by(const Mismatch& m) const { return to_string(m.kind) == kind && m.y == y; }
+  bool met_by(const Mismatch& m, const CommandStream& stream) const {
+    if (to_string(m.kind) != kind || m.y != y) return false;
+    if (first_of_row) return m.x == first_span_x(stream, y);
+    return !x || m.x == *x;
+  }
+
+  static int first_span_x(const CommandStream& stream, int row) {
+    for (const Command& c : stream.commands) {
+      if (const auto* span = std::get_if<SpanCmd>(&c); span != nullptr && span->y == row) {
+        return span->x0;
+      }
+    }
+    return -1;  // the stream has no span on the row: no mismatch can be its first pixel
+  }
 };
 
 Expectation parse_expectation(const std::string& text) {
@@ -295,12 +314,27 @@ Expectation parse_expectation(const std::string& text) {
   if (text.empty()) return e;
   e.text = text;
   const auto colon = text.find(':');
+  const auto second = colon == std::string::npos ? colon : text.find(':', colon + 1);
   try {
     if (colon == std::string::npos) throw std::invalid_argument(text);
     e.kind = text.substr(0, colon);
-    e.y = std::stoi(text.substr(colon + 1));
+    const std::string row = text.substr(colon + 1, second - colon - 1);
+    size_t used = 0;
+    e.y = std::stoi(row, &used);
+    if (used != row.size()) throw std::invalid_argument(text);
+    if (second != std::string::npos) {
+      const std::string column = text.substr(second + 1);
+      if (column == "first") {
+        e.first_of_row = true;
+      } else {
+        e.x = std::stoi(column, &used);
+        if (used != column.size()) throw std::invalid_argument(text);
+      }
+    }
   } catch (const std::logic_error&) {
-    throw InputError("--expect-mismatch '" + text + "': expected KIND:Y, e.g. pixel:17");
+    throw InputError("--expect-mismatch '" + text +
+                     "': expected KIND:Y or KIND:Y:X (X a column or 'first'), e.g. pixel:17 or "
+                     "pixel:17:first");
   }
   std::string kinds;
   for (Mismatch::Kind k : kExpectableKinds) {
@@ -513,10 +547,16 @@ int run_all(const Options& o, const CosimExecutable& exe) {
     if (!o.waves_path.empty()) write_waveform(out, o, exe);
     outcomes.push_back(out);
     if (expect.active()) {
-      const bool as_expected = expect.met_by(out.result.first);
+      const bool as_expected = expect.met_by(out.result.first, job.stream);
       std::cout << (as_expected
                         ? "  the deliberate fault was caught where expected\n"
-                        : "  FAIL: expected the first mismatch to be " + expect.text + "\n");
+                        : "  FAIL: expected the first mismatch to be " + expect.text +
+                              (expect.first_of_row ? " (x=" +
+                                                         std::to_string(Expectation::first_span_x(
+                                                             job.stream, expect.y)) +
+                                                         ")"
+                                                   : "") +
+                              "\n");
       write_results_json(o.json_path, outcomes, exe);
       return as_expected ? 0 : 1;
     }
@@ -576,9 +616,10 @@ int cosim_main(int argc, char** argv, const CosimExecutable& exe) {
   app.add_option("--stall-pct", o.stall_pct, "override: chance of pix_ready low per cycle")
       ->check(CLI::Range(0, 99));
   app.add_option("--expect-mismatch", o.expect,
-                 "KIND:Y - succeed only if the first mismatch is KIND "
+                 "KIND:Y[:X] - succeed only if the first mismatch is KIND "
                  "(pixel|cycle|ready|extra-pixel|hang|timeout) "
-                 "at scanline y=Y");
+                 "at scanline y=Y (and column X; 'first': the x0 of the stream's first span "
+                 "on row Y)");
   std::string sites;
   for (const FaultSiteInfo& s : fault_sites())
     sites += std::string("\n    ") + s.name + ": " + s.what;
