@@ -78,9 +78,14 @@ Mismatch compare(const CommandStream& stream, const UnitConfig& model_config) {
       same = same && model[i].colour[c] == gold[i].colour[c];
     if (!same) {
       if (m.differing++ == 0) {
+        // every channel: the one that differs need not be the first
+        std::string model_colour, gold_colour;
+        for (int c = 0; c < stream.config.channels; ++c) {
+          model_colour += (c ? "," : "") + std::to_string(model[i].colour[c]);
+          gold_colour += (c ? "," : "") + std::to_string(gold[i].colour[c]);
+        }
         m.first = "pixel " + std::to_string(i) + " (" + std::to_string(gold[i].x) + "," +
-                  std::to_string(gold[i].y) + "): model " + std::to_string(model[i].colour[0]) +
-                  " golden " + std::to_string(gold[i].colour[0]);
+                  std::to_string(gold[i].y) + "): model " + model_colour + " golden " + gold_colour;
       }
     }
   }
