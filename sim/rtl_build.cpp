@@ -149,7 +149,7 @@ std::string key_of(const RtlConfig& build, CosimBackend backend, const Tools& to
   // Only covered builds hash this, so the keys of plain builds (and their cache) stay as they were.
   if (coverage) {
     static const std::string cover_points = read_file(cover_points_file());  // once, like `inputs`
-    h.add("coverage: line toggle user");
+    h.add("coverage: line toggle user; slow code -O0");
     h.add(cover_points);
   }
   h.add(kRecipeVersion);
@@ -226,9 +226,13 @@ fs::path build_into(const fs::path& work, const RtlConfig& build, CosimBackend b
       "-j", std::to_string(std::max(1, make_jobs)), "--top-module", "shade_unit", "--prefix",
       "Vshade_unit", "-Mdir", (work / "obj").string(), "-o", "cosim", "-O3", "--x-assign", "fast",
       "--x-initial", "fast",
-      // The generated makefile's default is -Os.
+      // The generated makefile's default is -Os. Its "slow" files hold code that runs once
+      // (construction, initial blocks, settling); in a coverage build they also register every
+      // cover point, megabytes of straight-line code on which -O1 takes minutes per file
+      // (own:multi: 357 s for one 4 MB file, 10 s at -O0), so coverage builds compile them
+      // unoptimised.
       "-MAKEFLAGS",
-      "OPT_FAST=-O2 OPT_GLOBAL=-O2 OPT_SLOW=-O1" +
+      std::string("OPT_FAST=-O2 OPT_GLOBAL=-O2 OPT_SLOW=") + (coverage ? "-O0" : "-O1") +
           (tools.ccache.empty() ? std::string() : " OBJCACHE=" + tools.ccache)};
   if (backend == CosimBackend::kSystemC) cflags += " -DSHADESIM_COSIM_SYSTEMC=1";
   if (backend == CosimBackend::kCppTrace) {
