@@ -155,6 +155,11 @@ class CycleModel {
     return clock(cmd_valid, &cmd_word, pix_ready);
   }
 
+  // Whether clock() charges each cycle to a category (Edge::category, kept by default). A
+  // caller that only follows the cycles - the co-simulation's lockstep block - turns it off;
+  // nothing else in an Edge changes.
+  void track_categories(bool on) { track_categories_ = on; }
+
   // Nothing in flight, no pixel waiting, and no beat half taken apart.
   bool idle() const { return !in_payload_ && pos_ == 0 && datapath_empty() && !pix_.valid; }
 
@@ -236,6 +241,7 @@ class CycleModel {
   // history_pos_ is the slot of the current cycle (cycle mod size, kept without a division).
   std::vector<Category> port_history_;
   size_t history_pos_ = 0;
+  bool track_categories_ = true;
 };
 
 std::string to_string(CycleModel::Category c);
@@ -350,18 +356,20 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   e.pix_count = pix_.count;
 
   // ---- where this cycle went ----
-  const size_t slot = history_pos_;
-  if (e.pix_fire) {
-    e.category = Category::kPixel;
-  } else if (pix_.valid) {
-    e.category = Category::kBackPressure;
-  } else if (iterative() && inflight_.valid) {
-    e.category = Category::kUnitStall;
-  } else {
-    e.category = port_history_[slot];  // the port's category span_latency() cycles ago
+  if (track_categories_) {
+    const size_t slot = history_pos_;
+    if (e.pix_fire) {
+      e.category = Category::kPixel;
+    } else if (pix_.valid) {
+      e.category = Category::kBackPressure;
+    } else if (iterative() && inflight_.valid) {
+      e.category = Category::kUnitStall;
+    } else {
+      e.category = port_history_[slot];  // the port's category span_latency() cycles ago
+    }
+    port_history_[slot] = port_category(cmd_valid, take_hdr || !in_payload_, word);
+    if (++history_pos_ == port_history_.size()) history_pos_ = 0;
   }
-  port_history_[slot] = port_category(cmd_valid, take_hdr || !in_payload_, word);
-  if (++history_pos_ == port_history_.size()) history_pos_ = 0;
 
   // ---- the edge: engines -> slot -> pix register ----
   const Pix from_engines{

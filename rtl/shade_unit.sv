@@ -157,7 +157,7 @@ module shade_unit #(
   logic datapath_empty, slot_empty;
   logic spec_busy;  // an iterative specular unit cannot start (all lights run in lockstep)
   logic out_adv;    // the pix register takes the slot's output pixel
-  logic item_fire, beat_done, hdr_fire, pay_fire, span_fire;
+  logic beat_done, hdr_fire, pay_fire, span_fire;
 
   // ---- triangle queue: banks, and the span queue between the decoder and span setup ----------
   localparam bit Queued = TRI_QUEUE > 1;
@@ -244,17 +244,26 @@ module shade_unit #(
   end
   assign span_run = run_length(word_is_span, hdr_pos);
 
-  always_comb begin
-    hdr_n = 16'd1;
-    if (hdr_op == shade_pkg::OpNop) begin
-      hdr_n = 16'(PORT_WORDS) - hdr_pos;
-    end else if (hdr_op == shade_pkg::OpTriangle) begin
-      hdr_n = 16'd1 + (hdr_count < 16'(PORT_WORDS) - hdr_pos - 16'd1
-                       ? hdr_count : 16'(PORT_WORDS) - hdr_pos - 16'd1);
-    end else if (Queued && hdr_op == shade_pkg::OpSpan && hdr_here) begin
-      hdr_n = span_run < sq_room ? span_run : sq_room;
-      if (hdr_n == 16'd0) hdr_n = 16'd1;  // a full queue: hdr_ready holds the header
+  if (PORT_WORDS > 1) begin : g_hdr_n
+    always_comb begin
+      hdr_n = 16'd1;
+      if (hdr_op == shade_pkg::OpNop) begin
+        hdr_n = 16'(PORT_WORDS) - hdr_pos;
+      end else if (hdr_op == shade_pkg::OpTriangle) begin
+        hdr_n = 16'd1 + (hdr_count < 16'(PORT_WORDS) - hdr_pos - 16'd1
+                         ? hdr_count : 16'(PORT_WORDS) - hdr_pos - 16'd1);
+      end else if (Queued && hdr_op == shade_pkg::OpSpan && hdr_here) begin
+        hdr_n = span_run < sq_room ? span_run : sq_room;
+        if (hdr_n == 16'd0) hdr_n = 16'd1;  // a full queue: hdr_ready holds the header
+      end
     end
+  end else begin : g_hdr_one
+    // A one-word port: a header taken is the whole beat (a NOP pads nothing, a TRIANGLE's words
+    // follow in later beats, a SPAN run is one header), so the rules above all give 1 whenever
+    // a header is taken, which is the only time hdr_n is read. Not evaluated on every cycle.
+    assign hdr_n = 16'd1;
+    logic unused_hdr_n;
+    assign unused_hdr_n = ^span_run ^ (^sq_room);
   end
 
   assign datapath_empty = sq_empty && !s1_v_q && !s2_v_q && !s3_v_q && !run_q && slot_empty;
@@ -279,19 +288,34 @@ module shade_unit #(
   assign take_hdr    = hdr_here && hdr_ready;
   assign item_n      = tail_n + (take_hdr ? hdr_n : 16'd0) +
                        (in_payload_q && !tri_payload ? 16'd1 : 16'd0);
-  assign item_fire   = cmd_valid_i && item_n != 16'd0;
   assign beat_done   = item_n == beat_left;
   assign cmd_ready_o = item_n != 16'd0 && beat_done;
   assign hdr_fire    = cmd_valid_i && take_hdr;
   assign pay_fire    = cmd_valid_i && in_payload_q;
   assign span_fire   = hdr_fire && hdr_op == shade_pkg::OpSpan;
 
+  // The next word of the beat: after the item of this cycle, or word 0 of the next beat.
+  if (PORT_WORDS > 1) begin : g_beat_pos
+    logic item_fire;
+    assign item_fire = cmd_valid_i && item_n != 16'd0;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        pos_q <= '0;
+      end else if (item_fire) begin
+        pos_q <= beat_done ? '0 : PosW'(16'(pos_q) + item_n);
+      end
+    end
+  end else begin : g_one_word_beat
+    // A one-word port: every item takes the whole beat (hdr_n above, one payload word or one
+    // coefficient word), so the next word is always word 0.
+    assign pos_q = '0;
+  end
+
   logic [15:0] pay_take;  // payload words taken: the tail, or one MATERIAL / TABLE word
   assign pay_take = tri_payload ? tail_n : 16'd1;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      pos_q        <= '0;
       in_payload_q <= 1'b0;
       pay_op_q     <= PaySkip;
       pay_idx_q    <= 16'd0;
@@ -299,7 +323,6 @@ module shade_unit #(
       tbl_base_q   <= 16'd0;
       tbl_mat_q    <= 1'b0;
     end else begin
-      if (item_fire) pos_q <= beat_done ? '0 : PosW'(16'(pos_q) + item_n);
       if (hdr_fire) begin
         pay_idx_q  <= 16'd0;
         pay_last_q <= hdr_count - 16'd1;
@@ -347,21 +370,15 @@ module shade_unit #(
   // coefficient that word holds loads from its field.
   localparam int CoefAW = $clog2(TRI_QUEUE * NCoef);
   logic                  head_take;  // a TRIANGLE header is taken with its words
-  logic [15:0]           coef_word_of [NCoef];  // payload word of coefficient j (constant)
   logic [CoefAW-1:0]     rd_base;    // bank rd_bank's first coefficient
   logic [15:0]           coef_idx [PORT_WORDS];
   logic [PORT_WORDS-1:0] coef_we, coef_tail;
   logic [BankW-1:0]      coef_bank [PORT_WORDS];
   assign head_take = hdr_fire && hdr_op == shade_pkg::OpTriangle;
   assign rd_base   = CoefAW'(rd_bank * NCoef);
-  for (genvar j = 0; j < NCoef; j++) begin : g_coef_word
-    localparam int Word = shade_pkg::coef_word(j, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL, COEF_T3_WL,
-                                               COEF_T4_WL, COEF_T5_WL);
-    assign coef_word_of[j] = 16'(Word);
-  end
   always_comb begin
     for (int k = 0; k < PORT_WORDS; k++) begin
-      coef_tail[k] = 16'(k) >= 16'(pos_q) && 16'(k) < hdr_pos;
+      coef_tail[k] = 16'(k) - 16'(pos_q) < tail_n;  // pos_q <= k < hdr_pos
       coef_idx[k]  = coef_tail[k] ? pay_idx_q + 16'(k) - 16'(pos_q) : 16'(k) - hdr_pos - 16'd1;
       coef_we[k]   = (cmd_valid_i && coef_tail[k] ||
                       head_take && 16'(k) > hdr_pos && 16'(k) < hdr_pos + hdr_n) &&
@@ -370,40 +387,65 @@ module shade_unit #(
     end
   end
 
-  // Coefficient j's field in beat word k, sign-extended.
-  logic [COEF_WL-1:0] coef_field [PORT_WORDS][NCoef];
-  for (genvar k = 0; k < PORT_WORDS; k++) begin : g_beat_word
-    for (genvar j = 0; j < NCoef; j++) begin : g_coef
-      localparam int Lsb = shade_pkg::coef_lsb(j, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL,
-                                                COEF_T3_WL, COEF_T4_WL, COEF_T5_WL);
-      localparam int W   = shade_pkg::coef_term_wl(j, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL,
-                                                    COEF_T3_WL, COEF_T4_WL, COEF_T5_WL);
-      logic [W-1:0] field;
-      assign field            = cmd_data_i[k*WordW + Lsb +: W];
-      assign coef_field[k][j] = COEF_WL'($signed(field));
-    end
-  end
-
-  // Coefficient j loads from the one beat word (if any) that carries its payload word. One
-  // process per coefficient: Verilator unrolls a loop of delayed array writes only up to 64.
-  for (genvar j = 0; j < NCoef; j++) begin : g_coef_load
-    logic               load;
-    logic [BankW-1:0]   bank;
-    logic [COEF_WL-1:0] value;
-    always_comb begin
-      load  = 1'b0;
-      bank  = '0;
-      value = '0;
+  // Unpacked coefficients of one width (every term wider than half a word): payload word i is
+  // coefficient i, so each beat word writes at most one coefficient, at its payload index. The
+  // packed layout's per-coefficient selection below would be evaluated on every cycle for
+  // nothing (a simulator's cost, not the hardware's: the same registers load the same values).
+  localparam bit CoefEach = NCoefWords == NCoef && COEF_T1_WL == COEF_T0_WL &&
+                            COEF_T2_WL == COEF_T0_WL && COEF_T3_WL == COEF_T0_WL &&
+                            COEF_T4_WL == COEF_T0_WL && COEF_T5_WL == COEF_T0_WL;
+  if (CoefEach) begin : g_coef_each
+    always_ff @(posedge clk_i) begin
       for (int k = 0; k < PORT_WORDS; k++) begin
-        if (coef_we[k] && coef_idx[k] == coef_word_of[j]) begin
-          load  = 1'b1;
-          bank  = coef_bank[k];
-          value = coef_field[k][j];
+        if (coef_we[k]) begin
+          coef_q[CoefAW'(coef_bank[k] * NCoef + 32'(coef_idx[k]))] <=
+              COEF_WL'($signed(cmd_data_i[k*WordW +: COEF_T0_WL]));
         end
       end
     end
-    always_ff @(posedge clk_i) begin
-      if (load) coef_q[CoefAW'(bank * NCoef + j)] <= value;
+  end else begin : g_coef_packed
+    logic [15:0] coef_word_of [NCoef];  // payload word of coefficient j (constant)
+    for (genvar j = 0; j < NCoef; j++) begin : g_coef_word
+      localparam int Word = shade_pkg::coef_word(j, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL,
+                                                 COEF_T3_WL, COEF_T4_WL, COEF_T5_WL);
+      assign coef_word_of[j] = 16'(Word);
+    end
+
+    // Coefficient j's field in beat word k, sign-extended.
+    logic [COEF_WL-1:0] coef_field [PORT_WORDS][NCoef];
+    for (genvar k = 0; k < PORT_WORDS; k++) begin : g_beat_word
+      for (genvar j = 0; j < NCoef; j++) begin : g_coef
+        localparam int Lsb = shade_pkg::coef_lsb(j, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL,
+                                                  COEF_T3_WL, COEF_T4_WL, COEF_T5_WL);
+        localparam int W   = shade_pkg::coef_term_wl(j, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL,
+                                                      COEF_T3_WL, COEF_T4_WL, COEF_T5_WL);
+        logic [W-1:0] field;
+        assign field            = cmd_data_i[k*WordW + Lsb +: W];
+        assign coef_field[k][j] = COEF_WL'($signed(field));
+      end
+    end
+
+    // Coefficient j loads from the one beat word (if any) that carries its payload word. One
+    // process per coefficient: Verilator unrolls a loop of delayed array writes only up to 64.
+    for (genvar j = 0; j < NCoef; j++) begin : g_coef_load
+      logic               load;
+      logic [BankW-1:0]   bank;
+      logic [COEF_WL-1:0] value;
+      always_comb begin
+        load  = 1'b0;
+        bank  = '0;
+        value = '0;
+        for (int k = 0; k < PORT_WORDS; k++) begin
+          if (coef_we[k] && coef_idx[k] == coef_word_of[j]) begin
+            load  = 1'b1;
+            bank  = coef_bank[k];
+            value = coef_field[k][j];
+          end
+        end
+      end
+      always_ff @(posedge clk_i) begin
+        if (load) coef_q[CoefAW'(bank * NCoef + j)] <= value;
+      end
     end
   end
 
@@ -531,7 +573,9 @@ module shade_unit #(
     assign sq_room       = 16'd1;  // unused: SPAN headers go one at a time
     assign sq_empty      = 1'b1;
     assign s1_load       = span_fire;
-    assign s1_src        = beat_span[word_sel*SpanW +: SpanW];
+    // (A one-word port has one place for the header: no select to evaluate on every cycle.)
+    assign s1_src        = PORT_WORDS == 1 ? beat_span[SpanW-1:0]
+                                           : beat_span[word_sel*SpanW +: SpanW];
     assign rd_bank       = '0;
     assign s1_src_mat    = mat_wr;
     assign next_bank     = '0;
@@ -539,9 +583,13 @@ module shade_unit #(
     assign tri_bank_free = 1'b1;
   end
 
-  logic signed [OfsW-1:0] dx, dy;
-  assign dx = $signed(OfsW'(s1_src.x0)) - OfsW'(xo_q[rd_bank]);
-  assign dy = $signed(OfsW'(s1_src.y)) - OfsW'(yo_q[rd_bank]);
+  // Span setup takes the offsets dx = x0 - xo, dy = y - yo of the span entering stage 1 (x0
+  // and y zero-extended, the origin sign-extended, all OfsW bits).
+  logic signed [OfsW-1:0] s1_x, s1_y, s1_xo, s1_yo;
+  assign s1_x  = OfsW'(s1_src.x0);
+  assign s1_y  = OfsW'(s1_src.y);
+  assign s1_xo = OfsW'(xo_q[rd_bank]);
+  assign s1_yo = OfsW'(yo_q[rd_bank]);
 
   assign s3_free = !s3_v_q || load_eng;
   assign s2_move = s2_v_q && s3_free;
@@ -633,7 +681,7 @@ module shade_unit #(
       .coef_i({coef_q[rd_base + CoefAW'(6*i+5)], coef_q[rd_base + CoefAW'(6*i+4)],
                coef_q[rd_base + CoefAW'(6*i+3)], coef_q[rd_base + CoefAW'(6*i+2)],
                coef_q[rd_base + CoefAW'(6*i+1)], coef_q[rd_base + CoefAW'(6*i)]}),
-      .dx_i(dx), .dy_i(dy),
+      .x_i(s1_x), .y_i(s1_y), .xo_i(s1_xo), .yo_i(s1_yo),
       .v_o(setup_v[i*SERIES_WL +: SERIES_WL]), .d_o(start_d[i*SERIES_WL +: SERIES_WL]),
       .d2_o(start_d2[i*SERIES_WL +: SERIES_WL])
     );

@@ -4,6 +4,7 @@
 //   stage 2  exact sums  v = T0 + T1 dy + T2 dx + T3 dy^2 + T4 dx dy + T5 dx^2
 //                        d = T2 + T4 dy + T5 (2 dx + 1),   d2 = 2 T5
 //   stage 3  each rounded once into the series format (fixed_round, then fixed_sat)
+// ("exact": with a wrapping series, exact modulo 2^KeepW, which decides every bit it keeps.)
 // Each stage register loads when its enable is high; shade_unit owns the valid bits.
 module span_setup #(
   parameter int COEF_WL         = 36,
@@ -19,45 +20,59 @@ module span_setup #(
   input  logic                     s2_en_i,
   input  logic                     s3_en_i,
   input  logic [6*COEF_WL-1:0]     coef_i,  // T0 in the low bits .. T5 in the high bits
-  input  logic signed [OFS_W-1:0]  dx_i,
-  input  logic signed [OFS_W-1:0]  dy_i,
+  // The span's start and its triangle's origin: dx = x_i - xo_i, dy = y_i - yo_i (OFS_W bits).
+  input  logic signed [OFS_W-1:0]  x_i,
+  input  logic signed [OFS_W-1:0]  y_i,
+  input  logic signed [OFS_W-1:0]  xo_i,
+  input  logic signed [OFS_W-1:0]  yo_i,
   output logic [SERIES_WL-1:0]     v_o,
   output logic [SERIES_WL-1:0]     d_o,
   output logic [SERIES_WL-1:0]     d2_o
 );
   localparam int SqW   = 2 * OFS_W;          // dx*dy, dx^2, dy^2 and 2dx+1 (exact)
-  localparam int ProdW = COEF_WL + SqW;      // coefficient times any offset term (exact)
-  localparam int SumW  = ProdW + 3;          // six terms: never overflows
   localparam int Drop  = (COEF_WL - COEF_IWL) - (SERIES_WL - SERIES_IWL);
+  // A wrapping series keeps only the low SERIES_WL bits of the rounded sum, which depend only
+  // on the sum's low SERIES_WL + Drop bits (rounding adds below them, carries go up): the
+  // products and sums are kept modulo 2^KeepW, which gives the same series bits as exact
+  // arithmetic and is all the hardware needs (and a simulator computes it in a 64-bit word
+  // instead of multi-word products). A saturating series needs every bit to see overflow.
+  localparam int ExactW = COEF_WL + SqW + 3;  // six exact products' sum: never overflows
+  localparam int KeepW  = SERIES_WL + Drop < 2 ? 2 : SERIES_WL + Drop;
+  localparam bit Modular = SERIES_OVERFLOW != 0 && KeepW < ExactW;
+  localparam int ProdW = Modular ? KeepW : COEF_WL + SqW;  // coefficient times an offset term
+  localparam int SumW  = Modular ? KeepW : ExactW;
 
   // Every product operand is cast to the product's width (signed casts sign-extend), so the
-  // multiplications are exact. Casts rather than functions: a Verilated function zeroes its
-  // wide temporaries on every clock.
+  // multiplications are exact (modulo 2^ProdW). Casts rather than functions: a Verilated
+  // function zeroes its wide temporaries on every clock.
   logic [COEF_WL-1:0] t0, t1, t2, t3, t4, t5;
   assign {t5, t4, t3, t2, t1, t0} = coef_i;
 
   // ---- stage 1: products --------------------------------------------------------------
-  logic signed [SqW-1:0] dx_w, dy_w, dxx, dxy, dyy, dx2p1;
-  assign dx_w  = {{OFS_W{dx_i[OFS_W-1]}}, dx_i};
-  assign dy_w  = {{OFS_W{dy_i[OFS_W-1]}}, dy_i};
-  assign dxx   = dx_w * dx_w;
-  assign dxy   = dx_w * dy_w;
-  assign dyy   = dy_w * dy_w;
-  assign dx2p1 = (dx_w <<< 1) + SqW'(1);
-
+  // The offsets, their sign extensions and squares are written inside the register process,
+  // not as continuous assignments, so that a simulator computes them only on the edges that
+  // load stage 1 (the span's start changes with cmd_data_i on every cycle without a span
+  // queue). The offsets are signed: each cast sign-extends them.
+  function automatic logic signed [OFS_W-1:0] ofs(input logic signed [OFS_W-1:0] a,
+                                                  input logic signed [OFS_W-1:0] b);
+    ofs = a - b;
+  endfunction
   logic signed [ProdW-1:0] p_t0_q, p_t1y_q, p_t2x_q, p_t3yy_q, p_t4xy_q, p_t5xx_q;
   logic signed [ProdW-1:0] p_t2_q, p_t4y_q, p_t5x_q, p_t5_q;
   always_ff @(posedge clk_i) begin
     if (s1_en_i) begin
       p_t0_q   <= ProdW'($signed(t0));
-      p_t1y_q  <= ProdW'($signed(t1)) * ProdW'(dy_w);
-      p_t2x_q  <= ProdW'($signed(t2)) * ProdW'(dx_w);
-      p_t3yy_q <= ProdW'($signed(t3)) * ProdW'(dyy);
-      p_t4xy_q <= ProdW'($signed(t4)) * ProdW'(dxy);
-      p_t5xx_q <= ProdW'($signed(t5)) * ProdW'(dxx);
+      p_t1y_q  <= ProdW'($signed(t1)) * ProdW'(ofs(y_i, yo_i));
+      p_t2x_q  <= ProdW'($signed(t2)) * ProdW'(ofs(x_i, xo_i));
+      p_t3yy_q <= ProdW'($signed(t3)) *
+                  ProdW'(SqW'(SqW'(ofs(y_i, yo_i)) * SqW'(ofs(y_i, yo_i))));
+      p_t4xy_q <= ProdW'($signed(t4)) *
+                  ProdW'(SqW'(SqW'(ofs(x_i, xo_i)) * SqW'(ofs(y_i, yo_i))));
+      p_t5xx_q <= ProdW'($signed(t5)) *
+                  ProdW'(SqW'(SqW'(ofs(x_i, xo_i)) * SqW'(ofs(x_i, xo_i))));
       p_t2_q   <= ProdW'($signed(t2));
-      p_t4y_q  <= ProdW'($signed(t4)) * ProdW'(dy_w);
-      p_t5x_q  <= ProdW'($signed(t5)) * ProdW'(dx2p1);
+      p_t4y_q  <= ProdW'($signed(t4)) * ProdW'(ofs(y_i, yo_i));
+      p_t5x_q  <= ProdW'($signed(t5)) * ProdW'(SqW'((SqW'(ofs(x_i, xo_i)) <<< 1) + SqW'(1)));
       p_t5_q   <= ProdW'($signed(t5));
     end
   end

@@ -1,7 +1,7 @@
 // The co-simulation contract (in the manner of ibex's dv/cosim/cosim.h): what the reference
 // provides, what a backend must do each cycle, and what a failure means. Both backends -
-// sim/harness/cpp_backend.h (a plain loop around the Verilated C++ model) and
-// sim/harness/sc_backend.h (the Verilated SystemC model under an sc_clock) - only move values
+// sim/harness/cpp_backend.cpp (a plain loop around the Verilated C++ model) and
+// sim/harness/sc_backend.cpp (the Verilated SystemC model under an sc_clock) - only move values
 // between the DUT's ports and the one lockstep block below, class Lockstep.
 //
 // The reference, built from a CosimJob before the first clock:
@@ -229,12 +229,27 @@ class Lockstep {
     const uint64_t* model_data =
         model_valid ? model_driver_.beat() : (drive_.cmd_valid ? zeros_.data() : drive_.cmd_data);
     const CycleModel::Edge e = model_.clock(model_valid, model_data, drive_.pix_ready);
-    board_.cmd_ready(cycle, s.cmd_ready, e.cmd_ready,
-                     {drive_.cmd_valid, rtl_driver_.index(), beats_, drive_.cmd_data[0]});
+    if (s.cmd_ready != e.cmd_ready) {  // the port's state is gathered only for the report
+      board_.cmd_ready(cycle, s.cmd_ready, e.cmd_ready,
+                       {drive_.cmd_valid, rtl_driver_.index(), beats_, drive_.cmd_data[0]});
+    }
+    const bool rtl_beat = !draining_ && s.pix_valid && drive_.pix_ready;
+    // The common case first: one pixel leaves both the cycle model and the RTL on this edge,
+    // each the bit-accurate model's next one (Scoreboard::pixel_pair_if_expected). Anything
+    // else - beats of several lanes, pixels on one side only, a mismatch - takes the general
+    // path, which reports it.
+    if (e.pix_fire && rtl_beat && e.pix_count == 1 && s.pix_mask == 1 &&
+        board_.pixel_pair_if_expected(cycle, e.pix_x, e.pix_y, e.pix_eor, s.pix_x, s.pix_y,
+                                      colour_bits(0, cfg_.channels * cfg_.out_bits), s.pix_eor,
+                                      cfg_.out_bits)) {
+      model_driver_.clock(e.cmd_fire);
+      rtl_driver_.clock(drive_.cmd_valid && s.cmd_ready);
+      return keep_going(cycle, s.pix_valid);
+    }
     if (e.pix_fire) board_.model_beat(cycle, e.pix_x, e.pix_y, e.pix_count, e.pix_eor);
     if (draining_) {
       if (s.pix_valid) board_.rtl_valid_after_end(s.pix_x, s.pix_y, s.pix_mask, cycle);
-    } else if (s.pix_valid && drive_.pix_ready) {
+    } else if (rtl_beat) {
       score_beat(board_, s.pix_x, s.pix_y, s.pix_mask, s.pix_eor, colour_bits, cfg_, cycle);
     }
     model_driver_.clock(e.cmd_fire);
@@ -268,7 +283,9 @@ class Lockstep {
         watchdog_(prep.watchdog_cycles),
         cycle_limit_(prep.cycle_limit),
         drain_cycles_(drain_cycles(model_, timing_)),
-        waves_(waves) {}
+        waves_(waves) {
+    model_.track_categories(false);  // the breakdown of `cycles`, not needed here
+  }
 
   bool keep_going(uint64_t cycle, bool pix_valid) {
     const bool window_open = waves_ != nullptr && cycle < waves_->last;

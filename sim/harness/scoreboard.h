@@ -83,6 +83,37 @@ class Scoreboard {
     accept_rtl_pixel(cycle);
     return true;
   }
+  // The common case of a cycle in step: one pixel (lane 0 of a beat) left the cycle model at
+  // (mx, my, meor) and one the RTL with (rx, ry, colour, reor), both on `cycle`, and nothing is
+  // waiting for a partner. When both are the bit-accurate model's next pixel, counts it as
+  // model_beat() and then rtl_pixel_if_expected() / rtl_pixel() would (their exit cycles are
+  // equal) and returns true. Otherwise changes nothing and returns false: the caller then
+  // takes those two, which report whatever differs.
+  bool pixel_pair_if_expected(uint64_t cycle, int mx, int my, bool meor, uint64_t rx, uint64_t ry,
+                              uint64_t colour, bool reor, int out_bits) {
+    if (failed() || next_ != model_next_ || next_ >= expected_.size() || !rtl_exit_.empty() ||
+        !model_exit_.empty()) {
+      return false;
+    }
+    const PixelOut& want = expected_[next_];
+    if (want.lane != 0 || want.x != mx || want.y != my || want.end_of_row != meor ||
+        want.x != static_cast<uint16_t>(rx) || want.y != static_cast<uint16_t>(ry) ||
+        want.end_of_row != reor) {
+      return false;
+    }
+    const uint64_t mask = (uint64_t{1} << out_bits) - 1;
+    for (int c = 0; c < channels_; ++c) {
+      if (want.colour[c] != static_cast<uint16_t>((colour >> (c * out_bits)) & mask)) return false;
+    }
+    ++next_;
+    ++model_next_;
+    cycles_ = cycle + 1;
+    if (want.end_of_row) {
+      ++scanline_;
+      ++rows_compared_;
+    }
+    return true;
+  }
   // A pixel left the RTL on `cycle`.
   void rtl_pixel(const PixelOut& got, uint64_t cycle) {
     if (!failed() && next_ < expected_.size()) {

@@ -32,6 +32,7 @@ struct PixelTiming {
 inline PixelTiming predict_pixel_timing(const std::vector<uint64_t>& words, const Stimulus& stim,
                                         const CycleConfig& timing) {
   CycleModel model(timing);
+  model.track_categories(false);
   CommandDriver driver(words, stim, timing.port_words);
   PixelTiming t;
   uint64_t quiet = 0;
