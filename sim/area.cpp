@@ -22,6 +22,7 @@
 #include <thread>
 
 #include "model/specular_units.h"
+#include "sim/content_hash.h"
 #include "sim/process.h"
 
 #ifndef SHADESIM_SOURCE_DIR
@@ -88,24 +89,6 @@ void write_atomically(const fs::path& p, const std::string& text) {
     throw std::runtime_error(p.string() + ": cannot rename into place: " + ec.message());
   }
 }
-
-// FNV-1a, 64 bit: a stable content hash for cache keys (not for security).
-struct Fnv1a {
-  uint64_t h = 1469598103934665603ULL;
-  void add(const std::string& s) {
-    for (const unsigned char c : s) {
-      h ^= c;
-      h *= 1099511628211ULL;
-    }
-    h ^= 0xff;  // field separator: ("ab","c") and ("a","bc") differ
-    h *= 1099511628211ULL;
-  }
-  std::string hex() const {
-    std::ostringstream os;
-    os << std::hex << std::setw(16) << std::setfill('0') << h;
-    return os.str();
-  }
-};
 
 std::string find_program(const std::string& name, const std::string& package) {
   auto executable = [](const fs::path& p) {
@@ -497,7 +480,7 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
 
   // Cache key: everything the figures depend on. The file names are in the script text.
   auto key_for = [&](bool breakdown, bool pnr, const std::string& nextpnr_version) {
-    Fnv1a h;
+    ContentHash h;
     h.add("shadesim-area-v1");
     h.add(chparam);
     for (const auto& f : files) {

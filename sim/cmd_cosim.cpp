@@ -30,6 +30,7 @@ struct CosimOptions {
   std::string waves;
   std::string cache;
   std::string coverage;  // FILE.dat: run the covered build, write its coverage there
+  std::string optimization = "fast";
   bool list = false;
   bool list_json = false;
 };
@@ -100,6 +101,7 @@ int run_cosim(const CosimOptions& o, std::vector<std::string> passthrough) {
   bo.cache_dir = o.cache;
   bo.make_jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   bo.coverage = !o.coverage.empty();
+  bo.optimization = parse_rtl_optimization(o.optimization);
   if (bo.coverage && backend == CosimBackend::kCppTrace) {
     throw std::invalid_argument(
         "--coverage and --waves: a traced build has no coverage; run them one at a time");
@@ -123,6 +125,8 @@ int run_cosim(const CosimOptions& o, std::vector<std::string> passthrough) {
 struct RtlBuildCliOptions {
   std::vector<std::string> configs;
   bool all = false;
+  bool runtime = false;
+  std::string optimization = "fast";
   std::vector<std::string> backends;
   std::string cache;
   int jobs = 0;
@@ -151,8 +155,29 @@ int run_rtl_build(const RtlBuildCliOptions& o) {
   std::vector<RtlConfig> configs;
   if (o.all) configs = load_named_builds(named_builds_path());
   for (const auto& c : o.configs) configs.push_back(resolve_rtl_config(c, "--config"));
+  const int workers =
+      std::max(1, o.jobs > 0 ? o.jobs : static_cast<int>(std::thread::hardware_concurrency()));
+  if (o.runtime) {
+    // Every flavour's runtime, so that no first build of a configuration pays for one.
+    RtlBuildOptions bo;
+    bo.cache_dir = o.cache;
+    bo.make_jobs = workers;
+    for (const CosimBackend be :
+         {CosimBackend::kCpp, CosimBackend::kSystemC, CosimBackend::kCppTrace}) {
+      for (const bool covered : {false, true}) {
+        // Coverage runs on the C++ backend (regress --coverage); a traced build has none.
+        if (covered && be != CosimBackend::kCpp) continue;
+        Flavour f;
+        f.backend = be;
+        f.coverage = covered;
+        std::cout << std::left << std::setw(17) << "runtime" << ' ' << std::setw(9) << f.name()
+                  << ' ' << ensure_rtl_runtime(f, bo) << '\n';
+      }
+    }
+    if (configs.empty()) return 0;
+  }
   if (configs.empty()) {
-    throw std::invalid_argument("rtl-build: name builds with --config, or --all");
+    throw std::invalid_argument("rtl-build: name builds with --config, or --all (or --runtime)");
   }
   for (const auto& c : configs) {
     // --backends given: those; otherwise each named build's own (cpp for a file).
@@ -165,11 +190,11 @@ int run_rtl_build(const RtlBuildCliOptions& o) {
   }
   if (o.print_key) {
     for (const auto& it : items)
-      std::cout << rtl_build_key(it.config, it.backend, o.coverage) << '\n';
+      std::cout << rtl_build_key(it.config, it.backend, o.coverage, o.cache) << '\n';
     return 0;
   }
-  const int workers =
-      std::max(1, o.jobs > 0 ? o.jobs : static_cast<int>(std::thread::hardware_concurrency()));
+  // Fewer builds than workers: each build's compiler runs on the spare cores.
+  const int per_build = std::max<int>(1, workers / static_cast<int>(items.size()));
   std::atomic<size_t> next{0};
   std::mutex m;
   size_t done = 0;
@@ -177,11 +202,12 @@ int run_rtl_build(const RtlBuildCliOptions& o) {
     for (size_t i = next++; i < items.size(); i = next++) {
       RtlBuildOptions bo;
       bo.cache_dir = o.cache;
-      bo.make_jobs = 1;  // parallelism across builds
+      bo.make_jobs = per_build;
       bo.coverage = o.coverage;
+      bo.optimization = parse_rtl_optimization(o.optimization);
       try {
         const RtlBuildResult r = ensure_rtl_build(items[i].config, items[i].backend, bo);
-        items[i].result = r.executable + (r.built ? "" : " (cached)");
+        items[i].result = r.executable + (r.built ? "" : r.relinked ? " (relinked)" : " (cached)");
       } catch (const std::exception& e) {
         items[i].failed = true;
         items[i].result = e.what();
@@ -233,6 +259,11 @@ void register_cosim(CLI::App& app, int& exit_code) {
       "--coverage", o->coverage,
       "run the covered build (line, toggle, user cover points) and write its Verilator\n"
       "coverage to FILE.dat, pass or fail (several runs: FILE_<i>.dat)");
+  sub->add_option("--opt", o->optimization,
+                  "compile a new build quick (-O0: builds fastest) or fast (-O2: simulates "
+                  "fastest); a cached fast build is used either way")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"quick", "fast"}));
   sub->add_flag("--list", o->list, "list the named builds (sim/harness/builds.json)");
   sub->add_flag("--list-json", o->list_json, "with --list: as JSON");
   sub->allow_extras();
@@ -268,6 +299,14 @@ void register_cosim(CLI::App& app, int& exit_code) {
   build->add_option("-j,--jobs", b->jobs, "builds at once (default: hardware threads)")
       ->check(CLI::NonNegativeNumber);
   build->add_flag("--coverage", b->coverage, "the covered builds (what regress --coverage runs)");
+  build->add_flag("--runtime", b->runtime,
+                  "compile the Verilator runtime of every flavour into the cache (once; the first "
+                  "build of a new configuration then compiles only its own model)");
+  build
+      ->add_option("--opt", b->optimization,
+                   "quick (-O0: builds fastest) or fast (-O2: simulates fastest)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"quick", "fast"}));
   build->add_flag("--print-key", b->print_key, "print each build's cache key and build nothing");
   build->add_flag("--print-source-dir", b->print_source_dir, "print the checkout the builds read");
   build->add_flag("--print-rtl-sources", b->print_rtl_sources,

@@ -54,10 +54,11 @@ struct RegressOptions {
   std::string junit_path;
   std::string json_path;
   std::string cache;
-  std::string shard;      // I/N
-  std::string emit_jobs;  // FILE: write one command per run instead of running
-  std::string resume;     // DIR: run what DIR's plans name and DIR has no result for
-  double timeout = 1800;  // seconds per run; 0: none
+  std::string optimization;  // quick | fast; empty: by each build's expected cycles
+  std::string shard;         // I/N
+  std::string emit_jobs;     // FILE: write one command per run instead of running
+  std::string resume;        // DIR: run what DIR's plans name and DIR has no result for
+  double timeout = 1800;     // seconds per run; 0: none
   uint64_t watchdog =
       0;              // cycles without pix_valid_o that count as a hang; 0: the harness's default
   std::string fault;  // SITE@Y: every run injects this deliberate fault (fault-hook builds)
@@ -474,29 +475,39 @@ void build_all(std::vector<Job>& jobs, const RegressOptions& o, int workers) {
     RtlConfig build;
     CosimBackend backend;
     std::string key, executable, error;
+    uint64_t cycles = 0;  // an upper estimate of what its runs simulate
   };
   std::vector<Need> needs;
   for (auto& j : jobs) {
     if (j.rec.status != "pending") continue;
     const CosimBackend be = parse_cosim_backend(j.spec.backend);
-    const std::string key = rtl_build_key(j.build, be, o.coverage);
-    if (std::none_of(needs.begin(), needs.end(), [&](const Need& n) { return n.key == key; })) {
-      needs.push_back({j.build, be, key, "", ""});
-    }
+    const std::string key = rtl_build_key(j.build, be, o.coverage, o.cache);
+    auto it = std::find_if(needs.begin(), needs.end(), [&](const Need& n) { return n.key == key; });
+    if (it == needs.end()) it = needs.insert(needs.end(), {j.build, be, key, "", "", 0});
+    // Under the regression's gaps and back-pressure a pixel takes under 2 cycles on every
+    // shipped unit (1.28-1.49); 4 leaves room for slow specular units.
+    it->cycles += 4 * j.rec.pixels;
   }
   std::cout << "regress: " << needs.size() << " RTL build(s) needed (cache: "
             << (o.cache.empty() ? default_rtl_cache_dir() : o.cache) << ")" << std::endl;
+  // Fewer builds than workers: each build's compiler runs on the spare cores.
+  const int per_build =
+      std::max<int>(1, workers / std::max<int>(1, static_cast<int>(needs.size())));
   parallel_for(needs.size(), workers, [&](size_t i) {
     try {
-      needs[i].executable =
-          ensure_rtl_build(needs[i].build, needs[i].backend, build_options(o)).executable;
+      RtlBuildOptions b = build_options(o);
+      b.make_jobs = per_build;
+      b.optimization = o.optimization.empty() ? choose_optimization(needs[i].cycles)
+                                              : parse_rtl_optimization(o.optimization);
+      needs[i].executable = ensure_rtl_build(needs[i].build, needs[i].backend, b).executable;
     } catch (const std::exception& e) {
       needs[i].error = e.what();
     }
   });
   for (auto& j : jobs) {
     if (j.rec.status != "pending") continue;
-    const std::string key = rtl_build_key(j.build, parse_cosim_backend(j.spec.backend), o.coverage);
+    const std::string key =
+        rtl_build_key(j.build, parse_cosim_backend(j.spec.backend), o.coverage, o.cache);
     const auto it =
         std::find_if(needs.begin(), needs.end(), [&](const Need& n) { return n.key == key; });
     if (!it->error.empty()) {
@@ -990,6 +1001,12 @@ void register_regress(CLI::App& app, int& exit_code) {
   sub->add_option("--junit", o->junit_path, "write JUnit XML for CI");
   sub->add_option("--json", o->json_path, "write every run's figures as JSON");
   sub->add_option("--cache", o->cache, "RTL build cache folder (default: <build>/rtl-cache)");
+  sub->add_option("--opt", o->optimization,
+                  "compile new RTL builds quick (-O0: builds fastest) or fast (-O2: simulates "
+                  "fastest); default: quick for runs under " +
+                      std::to_string(kQuickBuildCycles / 1000000) +
+                      " M cycles (a cached fast build is used either way)")
+      ->check(CLI::IsMember({"quick", "fast"}));
   sub->add_option("--shard", o->shard,
                   "I/N: run only the I-th of N equal shards of the job list (runs I, I+N, I+2N, "
                   "...; 1 <= I <= N)");

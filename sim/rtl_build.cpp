@@ -5,66 +5,37 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
+#include <map>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
+#include "model/rtl_parameters.h"
 #include "model/unit_config_file.h"
-#include "sim/process.h"
+#include "sim/content_hash.h"
 
 namespace shadesim {
 namespace {
 
 namespace fs = std::filesystem;
 
-// Bumped when the way a build is made changes (flags, generated header), so old entries miss.
-constexpr const char* kRecipeVersion = "rtl-build 2";  // 2: the driver in libshadesim_harness
+// Bumped when the way a build is made changes in a way its inputs do not show, so old entries
+// miss. 3: Verilated model, glue and link kept apart (sim/rtl_recipe.h).
+constexpr const char* kRecipeVersion = "rtl-build 3";
 
 std::string read_file(const fs::path& p) {
   std::ifstream is(p, std::ios::binary);
   std::stringstream ss;
   ss << is.rdbuf();
   return ss.str();
-}
-
-// FNV-1a, twice with different offsets: 128 bits is plenty to tell builds apart (this is a cache
-// key, not a security boundary).
-struct Hasher {
-  uint64_t a = 1469598103934665603ull, b = 1099511628211ull * 7919ull;
-  void add(const std::string& s) {
-    for (unsigned char c : s) {
-      a = (a ^ c) * 1099511628211ull;
-      b = (b ^ c) * 1099511628211ull + 0x9e3779b97f4a7c15ull;
-    }
-    a = (a ^ 0xff) * 1099511628211ull;  // field separator
-  }
-  std::string hex() const {
-    char buf[33];
-    std::snprintf(buf, sizeof buf, "%016llx%016llx", static_cast<unsigned long long>(a),
-                  static_cast<unsigned long long>(b));
-    return buf;
-  }
-};
-
-std::string tool_version(const std::string& exe, const std::string& arg) {
-  const ProcessResult r = run_process({exe, arg}, "");
-  return r.output.substr(0, r.output.find('\n'));
-}
-
-// Sorted files of a folder with one of the extensions, as absolute paths.
-std::vector<fs::path> files_in(const fs::path& dir, const std::vector<std::string>& exts) {
-  std::vector<fs::path> out;
-  for (const auto& e : fs::directory_iterator(dir)) {
-    if (!e.is_regular_file()) continue;
-    const std::string ext = e.path().extension().string();
-    if (std::find(exts.begin(), exts.end(), ext) != exts.end()) out.push_back(e.path());
-  }
-  std::sort(out.begin(), out.end());
-  return out;
 }
 
 // shade_unit's sources in dependency order, leaves first (Icarus and Yosys want it too).
@@ -82,83 +53,84 @@ std::vector<fs::path> rtl_sources() {
   return out;
 }
 
-std::vector<fs::path> harness_libraries() {
-  const fs::path bin(SHADESIM_BINARY_DIR);
-  return {bin / "libshadesim_harness.a", bin / "libshadesim_model.a"};
-}
-
-struct Tools {
-  std::string verilator, make, cxx;
-  std::string verilator_version, cxx_version;
-  // Optional: with ccache the Verilator runtime (verilated.cpp, ~7 s of compiler time) compiles
-  // once per machine, not once per build. It changes no output, so it is not in the cache key.
-  std::string ccache;
-};
-
-Tools find_tools_now() {
-  Tools t;
-  t.verilator = find_program("verilator", "verilator", "rtl build (RTL on demand)");
-  t.make = find_program("make", "make", "rtl build (RTL on demand)");
-  t.cxx = find_program("g++", "g++", "rtl build (RTL on demand)");
-  t.verilator_version = tool_version(t.verilator, "--version");
-  t.cxx_version = tool_version(t.cxx, "--version");
-  try {
-    t.ccache = find_program("ccache", "ccache", "rtl build (optional compiler cache)");
-  } catch (const std::runtime_error&) {
-    t.ccache.clear();
-  }
-  return t;
-}
-
-// The tools and their versions cannot change while a process runs; asking once saves two child
-// processes per key.
-const Tools& find_tools() {
-  static const Tools tools = find_tools_now();
-  return tools;
-}
-
-std::string parameter_text(const std::vector<VerilogParameter>& params) {
-  std::string s;
-  for (const auto& p : params) s += p.name + "=" + p.literal() + " ";
-  return s;
-}
-
-// The hash of every file a build is made from (the same for all builds of this process).
-std::string inputs_digest() {
-  Hasher h;
-  const fs::path src(source_dir());
-  std::vector<fs::path> inputs = rtl_sources();
-  for (const auto& p : files_in(src / "sim" / "harness", {".h", ".cpp"})) inputs.push_back(p);
-  for (const auto& p : files_in(src / "model", {".h"})) inputs.push_back(p);
-  for (const auto& p : harness_libraries()) inputs.push_back(p);
-  for (const auto& p : inputs) {
+// The contents of `files`, each with its name, into `h`; a missing one is an error naming it.
+void add_files(ContentHash& h, const std::vector<fs::path>& files) {
+  for (const auto& p : files) {
     if (!fs::exists(p)) {
       throw std::runtime_error("rtl build: " + p.string() +
-                               " is missing; build the project first " + "(scripts/build)");
+                               " is missing; build the project first (scripts/build)");
     }
     h.add(p.filename().string());
     h.add(read_file(p));
   }
+}
+
+fs::path cache_of(const std::string& dir) {
+  // Absolute: the compiler runs in the build's own folders.
+  return fs::absolute(dir.empty() ? default_rtl_cache_dir() : dir);
+}
+
+// The tools, found once per process and cache folder.
+const Toolchain& toolchain(const fs::path& cache) {
+  static std::mutex m;
+  static std::map<std::string, Toolchain> known;
+  std::lock_guard<std::mutex> lock(m);
+  auto it = known.find(cache.string());
+  if (it == known.end()) it = known.emplace(cache.string(), find_toolchain(cache)).first;
+  return it->second;
+}
+
+Flavour flavour_of(CosimBackend backend, bool coverage) {
+  Flavour f;
+  f.backend = backend;
+  f.coverage = coverage;
+  return f;
+}
+
+std::string runtime_key(const Flavour& f, const Toolchain& t) {
+  ContentHash h;
+  h.add(kRecipeVersion).add("runtime").add(recipe_text(f, t));
   return h.hex();
 }
 
-std::string key_of(const RtlConfig& build, CosimBackend backend, const Tools& tools,
-                   bool coverage) {
-  static const std::string inputs = inputs_digest();
-  Hasher h;
-  // Only covered builds hash this, so the keys of plain builds (and their cache) stay as they were.
-  if (coverage) {
-    static const std::string cover_points = read_file(cover_points_file());  // once, like `inputs`
-    h.add("coverage: line toggle user; slow code -O0");
-    h.add(cover_points);
+// The RTL's contents, read once per process (the same for every build of it).
+const std::string& rtl_digest() {
+  static const std::string digest = [] {
+    ContentHash h;
+    add_files(h, rtl_sources());
+    return h.hex();
+  }();
+  return digest;
+}
+
+std::string model_key(const RtlConfig& build, const Flavour& f, const Toolchain& t) {
+  ContentHash h;
+  h.add(kRecipeVersion).add("model").add(recipe_text(f, t)).add(rtl_digest());
+  for (const auto& p : shade_unit_parameters(build.unit, build.faults))
+    h.add(p.name + "=" + p.literal());
+  if (f.coverage) {
+    h.add("coverage: line toggle user");
+    add_files(h, {cover_points_file()});
   }
-  h.add(kRecipeVersion);
-  h.add(parameter_text(shade_unit_parameters(build.unit, build.faults)));
-  h.add(to_string(backend));
-  h.add(tools.verilator_version);
-  h.add(tools.cxx_version);
-  h.add(inputs);
   return h.hex();
+}
+
+// The glue's and the libraries' contents, once per process.
+const std::string& glue_digest() {
+  static const std::string digest = [] {
+    ContentHash h;
+    add_files(h, glue_sources());
+    return h.hex();
+  }();
+  return digest;
+}
+const std::string& libraries_digest() {
+  static const std::string digest = [] {
+    ContentHash h;
+    add_files(h, harness_libraries());
+    return h.hex();
+  }();
+  return digest;
 }
 
 // Holds an exclusive flock on a file for its lifetime.
@@ -167,7 +139,7 @@ class FileLock {
   explicit FileLock(const fs::path& path) : fd_(open(path.c_str(), O_RDWR | O_CREAT, 0644)) {
     if (fd_ < 0) throw std::runtime_error("rtl build: cannot create lock " + path.string());
     while (flock(fd_, LOCK_EX) != 0) {
-      if (errno != EINTR) break;  // no locking here: the atomic rename still keeps the cache whole
+      if (errno != EINTR) break;  // no locking here: the atomic renames still keep the cache whole
     }
   }
   ~FileLock() { close(fd_); }
@@ -186,106 +158,84 @@ bool try_lock_now(const fs::path& path) {
   return free;
 }
 
-std::string generated_header(const RtlConfig& build, CosimBackend backend) {
-  std::ostringstream os;
-  os << "// Generated by shadesim (sim/rtl_build.cpp) for this build; do not edit.\n"
-     << "// " << build.unit.to_string() << fault_text(build.faults) << " [" << to_string(backend)
-     << "]\n#pragma once\n#define SHADESIM_BUILD_PARAMETERS {";
-  bool first = true;
-  for (const auto& p : shade_unit_parameters(build.unit, build.faults)) {
-    os << (first ? "" : ", ") << "{\"" << p.name << "\", ";
-    if (p.slots.empty()) {
-      os << p.value;
-    } else {
-      os << "std::vector<int64_t>{";
-      for (size_t k = 0; k < p.slots.size(); ++k) os << (k ? ", " : "") << p.slots[k];
-      os << "}";
-    }
-    os << "}";
-    first = false;
-  }
-  os << "}\n";
-  return os.str();
+// Host and pid: on a cache shared over NFS two hosts can have the same pid.
+std::string private_suffix() {
+  char host[256] = {0};
+  gethostname(host, sizeof host - 1);
+  return std::string(".tmp.") + host + "." + std::to_string(getpid());
 }
 
-// Verilates and compiles into `work`; returns the executable's path there.
-fs::path build_into(const fs::path& work, const RtlConfig& build, CosimBackend backend,
-                    const Tools& tools, int make_jobs, bool coverage, const fs::path& log) {
-  const fs::path src(source_dir());
-  fs::create_directories(work);
-  {
-    std::ofstream h(work / "cosim_build.h");
-    h << generated_header(build, backend);
-    if (!h)
-      throw std::runtime_error("rtl build: cannot write " + (work / "cosim_build.h").string());
+// Runs `make` (which writes into the temporary path it is given), then renames the result into
+// `final_path`; on failure keeps the log in <cache>/failed/ and throws.
+template <class Make>
+void make_atomically(const fs::path& final_path, const fs::path& cache, const fs::path& log,
+                     Make make) {
+  const fs::path tmp = final_path.string() + private_suffix();
+  std::error_code ec;
+  fs::remove_all(tmp, ec);
+  try {
+    make(tmp);
+  } catch (...) {
+    fs::create_directories(cache / "failed", ec);
+    fs::copy_file(log, cache / "failed" / (final_path.filename().string() + ".log"),
+                  fs::copy_options::overwrite_existing, ec);
+    fs::remove_all(tmp, ec);
+    throw;
   }
-  std::string cflags = "-std=c++17 -O2 -I" + src.string() + " -I" + work.string();
-  std::string ldflags = "-pthread";
-  std::vector<std::string> args = {
-      tools.verilator, backend == CosimBackend::kSystemC ? "--sc" : "--cc", "--exe", "--build",
-      "-j", std::to_string(std::max(1, make_jobs)), "--top-module", "shade_unit", "--prefix",
-      "Vshade_unit", "-Mdir", (work / "obj").string(), "-o", "cosim", "-O3", "--x-assign", "fast",
-      "--x-initial", "fast",
-      // The generated makefile's default is -Os. Its "slow" files hold code that runs once
-      // (construction, initial blocks, settling); in a coverage build they also register every
-      // cover point, megabytes of straight-line code on which -O1 takes minutes per file
-      // (own:multi: 357 s for one 4 MB file, 10 s at -O0), so coverage builds compile them
-      // unoptimised.
-      "-MAKEFLAGS",
-      std::string("OPT_FAST=-O2 OPT_GLOBAL=-O2 OPT_SLOW=") + (coverage ? "-O0" : "-O1") +
-          (tools.ccache.empty() ? std::string() : " OBJCACHE=" + tools.ccache)};
-  if (backend == CosimBackend::kSystemC) cflags += " -DSHADESIM_COSIM_SYSTEMC=1";
-  if (backend == CosimBackend::kCppTrace) {
-    args.push_back("--trace-fst");
-    cflags += " -DSHADESIM_COSIM_TRACE=1";
+  fs::rename(tmp, final_path, ec);
+  if (ec) {
+    fs::remove_all(tmp, ec);
+    if (!fs::exists(final_path))
+      throw std::runtime_error("rtl build: cannot move " + tmp.string() + " into place");
   }
-  for (const auto& a : verilator_parameter_args(shade_unit_parameters(build.unit, build.faults))) {
-    args.push_back(a);
+}
+
+fs::path runtime_dir(const fs::path& cache, const Flavour& f, const Toolchain& t) {
+  return cache / "runtime" / (f.name() + "-" + runtime_key(f, t));
+}
+
+fs::path ensure_runtime(const fs::path& cache, const Flavour& f, const Toolchain& t, int jobs,
+                        bool quiet) {
+  const fs::path dir = runtime_dir(cache, f, t);
+  if (fs::exists(dir)) return dir;
+  fs::create_directories(dir.parent_path());
+  FileLock lock(dir.string() + ".lock");
+  if (fs::exists(dir)) return dir;
+  if (!quiet)
+    std::cerr << "rtl build: compiling the Verilator runtime for " << f.name() << " builds into "
+              << dir.string() << " (once per flavour)..." << std::endl;
+  const fs::path log = dir.string() + ".log";
+  make_atomically(dir, cache, log, [&](const fs::path& tmp) {
+    fs::create_directories(tmp);
+    build_runtime(tmp, f, t, jobs, log);
+  });
+  return dir;
+}
+
+// Executable and its parts for one optimisation inside a build folder.
+struct Products {
+  fs::path objects, glue, exe;
+};
+Products products(const fs::path& dir, RtlOptimization opt, const std::string& runtime) {
+  const std::string o = to_string(opt);
+  const std::string glue_key = glue_digest().substr(0, 16);
+  ContentHash link;
+  link.add(kRecipeVersion).add(glue_key).add(runtime).add(libraries_digest());
+  return {dir / ("model-" + o), dir / ("glue-" + o + "-" + glue_key + ".o"),
+          dir / ("cosim-" + o + "-" + link.hex().substr(0, 16))};
+}
+
+// Older executables of the same optimisation (their libraries changed since): not used again.
+void remove_stale_executables(const fs::path& dir, const fs::path& keep, RtlOptimization opt) {
+  const std::string prefix = "cosim-" + to_string(opt) + "-";
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind(prefix, 0) == 0 && e.path() != keep) fs::remove(e.path(), ec);
   }
-  if (coverage) {
-    args.insert(args.end(), {"--coverage-line", "--coverage-toggle", "--coverage-user"});
-    cflags += " -DSHADESIM_COSIM_COVERAGE=1";
-  }
-  for (const auto& lib : harness_libraries()) ldflags += " " + lib.string();
-  if (backend == CosimBackend::kSystemC) ldflags += " -lsystemc";
-  args.insert(args.end(), {"-CFLAGS", cflags, "-LDFLAGS", ldflags});
-  for (const auto& p : rtl_sources()) args.push_back(p.string());
-  if (coverage) args.push_back(cover_points_file());  // bound into shade_unit; no RTL file names it
-  args.push_back((src / "sim" / "harness" / "cosim_adapter.cpp").string());
-  const ProcessResult r = run_process(args, log.string());
-  const fs::path exe = work / "obj" / "cosim";
-  if (r.exit_code != 0 || !fs::exists(exe)) {
-    std::string tail;
-    std::ifstream is(log);
-    std::vector<std::string> lines;
-    for (std::string line; std::getline(is, line);) lines.push_back(line);
-    for (size_t i = lines.size() > 12 ? lines.size() - 12 : 0; i < lines.size(); ++i)
-      tail += "\n  " + lines[i];
-    throw std::runtime_error("rtl build: Verilator/compiler failed (exit " +
-                             std::to_string(r.exit_code) + "); log " + log.string() + ":" + tail);
-  }
-  return exe;
 }
 
 }  // namespace
-
-std::string to_string(CosimBackend b) {
-  switch (b) {
-    case CosimBackend::kCpp:
-      return "cpp";
-    case CosimBackend::kSystemC:
-      return "systemc";
-    case CosimBackend::kCppTrace:
-      return "cpp_trace";
-  }
-  return "?";
-}
-
-CosimBackend parse_cosim_backend(const std::string& s) {
-  if (s == "cpp") return CosimBackend::kCpp;
-  if (s == "systemc") return CosimBackend::kSystemC;
-  throw std::invalid_argument("backend '" + s + "': expected cpp or systemc");
-}
 
 std::string source_dir() { return SHADESIM_SOURCE_DIR; }
 
@@ -307,8 +257,10 @@ std::string default_rtl_cache_dir() {
   return (fs::path(SHADESIM_BINARY_DIR) / "rtl-cache").string();
 }
 
-std::string rtl_build_key(const RtlConfig& build, CosimBackend backend, bool coverage) {
-  return key_of(build, backend, find_tools(), coverage);
+std::string rtl_build_key(const RtlConfig& build, CosimBackend backend, bool coverage,
+                          const std::string& cache_dir) {
+  const fs::path cache = cache_of(cache_dir);
+  return model_key(build, flavour_of(backend, coverage), toolchain(cache));
 }
 
 RtlConfig resolve_rtl_config(const std::string& name_or_file, const std::string& what) {
@@ -330,69 +282,104 @@ RtlConfig resolve_rtl_config(const std::string& name_or_file, const std::string&
   }
 }
 
+std::string ensure_rtl_runtime(const Flavour& flavour, const RtlBuildOptions& o) {
+  const fs::path cache = cache_of(o.cache_dir);
+  return ensure_runtime(cache, flavour, toolchain(cache), o.make_jobs, o.quiet).string();
+}
+
 RtlBuildResult ensure_rtl_build(const RtlConfig& build, CosimBackend backend,
                                 const RtlBuildOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
-  const Tools& tools = find_tools();
+  const fs::path cache = cache_of(o.cache_dir);
+  const Toolchain& tools = toolchain(cache);
+  const Flavour flavour = flavour_of(backend, o.coverage);
+  const std::string rkey = runtime_key(flavour, tools);
   RtlBuildResult r;
-  r.key = key_of(build, backend, tools, o.coverage);
-  // Absolute: the compiler runs in the build's own folder.
-  const fs::path cache = fs::absolute(o.cache_dir.empty() ? default_rtl_cache_dir() : o.cache_dir);
-  const std::string stem = to_string(backend) + (o.coverage ? "-coverage-" : "-") + r.key;
-  const fs::path final_dir = cache / stem;
-  const fs::path exe = final_dir / "obj" / "cosim";
-  r.executable = exe.string();
-  if (fs::exists(exe)) return r;
-
+  r.key = model_key(build, flavour, tools);
+  const fs::path dir = cache / (flavour.name() + "-" + r.key);
+  // A fast executable serves a quick request too.
+  for (const auto opt : {RtlOptimization::kFast, o.optimization}) {
+    const Products p = products(dir, opt, rkey);
+    if (fs::exists(p.exe)) {
+      r.executable = p.exe.string();
+      r.optimization = opt;
+      return r;
+    }
+  }
+  const fs::path runtime = ensure_runtime(cache, flavour, tools, o.make_jobs, o.quiet);
   fs::create_directories(cache);
-  const fs::path lock_path = cache / (stem + ".lock");
+  const fs::path lock_path = dir.string() + ".lock";
   if (!o.quiet && !try_lock_now(lock_path)) {
     std::cerr << "rtl build: waiting for another process building " << build.name << " ("
-              << to_string(backend) << ", key " << r.key.substr(0, 12) << ")" << std::endl;
+              << flavour.name() << ", key " << r.key.substr(0, 12) << ")" << std::endl;
   }
   FileLock lock(lock_path);
-  if (fs::exists(exe)) return r;  // built by the process we waited for
+  const Products p = products(dir, o.optimization, rkey);
+  r.executable = p.exe.string();
+  r.optimization = o.optimization;
+  if (fs::exists(p.exe)) return r;  // made by the process we waited for
 
-  if (!o.quiet) {
-    std::cerr << "rtl build: Verilating " << build.name << " [" << build.unit.to_string()
-              << fault_text(build.faults) << "] for the " << to_string(backend) << " backend"
-              << (o.coverage ? " with coverage" : "") << " into " << final_dir.string()
-              << " (about a minute)..." << std::endl;
+  const std::string what = build.name + " [" + build.unit.to_string() + fault_text(build.faults) +
+                           "] for the " + flavour.name() + " backend";
+  const fs::path log = dir.string() + ".log";
+  if (!fs::exists(dir)) {
+    if (!o.quiet)
+      std::cerr << "rtl build: Verilating " << what << " into " << dir.string() << std::endl;
+    std::ofstream(log, std::ios::trunc).flush();
+    make_atomically(dir, cache, log, [&](const fs::path& tmp) {
+      fs::create_directories(tmp);
+      verilate(tmp, build, flavour, tools, rtl_source_files(), cover_points_file(), log);
+    });
+    r.built = true;
   }
-  // Folders of builds that were killed: nobody else works on this key while we hold the lock.
-  for (const auto& e : fs::directory_iterator(cache)) {
-    if (e.path().filename().string().rfind(stem + ".tmp.", 0) == 0) fs::remove_all(e.path());
+  // The glue compiles beside the model's objects (it is on no one's critical path then).
+  std::exception_ptr glue_error;
+  std::thread glue([&] {
+    try {
+      if (!fs::exists(p.glue)) {
+        make_atomically(p.glue, cache, log, [&](const fs::path& tmp) {
+          compile_glue(dir, tmp, flavour, tools, runtime, o.optimization, log);
+        });
+      }
+    } catch (...) {
+      glue_error = std::current_exception();
+    }
+  });
+  struct Joiner {  // on an exception from the model's compile
+    std::thread& t;
+    ~Joiner() {
+      if (t.joinable()) t.join();
+    }
+  } joiner{glue};
+  std::vector<fs::path> objects;
+  if (!fs::exists(p.objects)) {
+    if (!o.quiet && !r.built)
+      std::cerr << "rtl build: compiling " << what << " (" << to_string(o.optimization) << ")"
+                << std::endl;
+    make_atomically(p.objects, cache, log, [&](const fs::path& tmp) {
+      compile_model(dir, tmp, flavour, tools, runtime, o.optimization, o.make_jobs, log);
+    });
+    r.built = true;
   }
-  // Host and pid: on a cache shared over NFS two hosts can have the same pid.
-  char host[256] = {0};
-  gethostname(host, sizeof host - 1);
-  const fs::path work = cache / (stem + ".tmp." + host + "." + std::to_string(getpid()));
-  fs::create_directories(work);
-  const fs::path log = work / "build.log";
-  try {
-    build_into(work, build, backend, tools, o.make_jobs, o.coverage, log);
-  } catch (...) {
-    fs::create_directories(cache / "failed");
-    std::error_code ec;
-    fs::copy_file(log, cache / "failed" / (stem + ".log"), fs::copy_options::overwrite_existing,
-                  ec);
-    fs::remove_all(work, ec);
-    throw;
-  }
-  std::error_code ec;
-  fs::rename(work, final_dir, ec);
-  if (ec) {
-    // Another process (without a working lock) finished first: keep its copy.
-    fs::remove_all(work, ec);
-    if (!fs::exists(exe))
-      throw std::runtime_error("rtl build: cannot move the build into " + final_dir.string());
-  }
-  r.built = true;
+  for (const auto& e : fs::directory_iterator(p.objects))
+    if (e.path().extension() == ".o") objects.push_back(e.path());
+  std::sort(objects.begin(), objects.end());
+  if (!r.built && !o.quiet)
+    std::cerr << "rtl build: relinking " << what << " (the model or harness libraries changed; "
+              << "its Verilated objects are reused)" << std::endl;
+  glue.join();
+  if (glue_error) std::rethrow_exception(glue_error);
+  make_atomically(p.exe, cache, log, [&](const fs::path& tmp) {
+    link_executable(tmp, objects, p.glue, flavour, tools, runtime, log);
+  });
+  remove_stale_executables(dir, p.exe, o.optimization);
+  r.relinked = !r.built;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!o.quiet) {
-    std::cerr << "rtl build: " << build.name << " (" << to_string(backend)
-              << (o.coverage ? ", coverage" : "") << ") built in "
-              << static_cast<int>(r.seconds + 0.5) << " s" << std::endl;
+    std::cerr << "rtl build: " << build.name << " (" << flavour.name() << ", "
+              << to_string(o.optimization) << ") " << (r.built ? "built" : "relinked") << " in "
+              << std::fixed << std::setprecision(1) << r.seconds << " s" << std::defaultfloat
+              << std::endl;
   }
   return r;
 }

@@ -5,7 +5,9 @@
 #   3. a changed parameter is a new key (a build);
 #   4. a changed RTL source is a new key: a copy of rtl/ (SHADESIM_RTL_DIR) gives the same key
 #      as the checkout, and the copy with one line added gives another (the checkout is never
-#      edited).
+#      edited);
+#   5. a changed model or harness library (SHADESIM_HARNESS_LIB_DIR: a copy with one object
+#      added) keeps every build key, relinks every cached build and Verilates or compiles none.
 # usage: build_cache_check.sh SHADESIM WORKDIR
 set -eu
 shadesim="$1"; work="$2"
@@ -29,7 +31,7 @@ exe_a=$(awk '{print $3}' "$work/a.out"); exe_b=$(awk '{print $3}' "$work/b.out")
 [ -x "$exe_a" ] || { echo "no executable at $exe_a"; exit 1; }
 builds=$(cat "$work/a.err" "$work/b.err" | grep -c 'built in' || true)
 [ "$builds" -eq 1 ] || { echo "expected exactly one of the two to build, got $builds"; cat "$work"/*.err; exit 1; }
-[ "$(ls -d "$cache"/cpp-* | grep -vc '\.lock$')" -eq 1 ] || { echo "cache holds more than one build"; ls "$cache"; exit 1; }
+[ "$(ls -d "$cache"/cpp-* | grep -Evc '\.(lock|log)$')" -eq 1 ] || { echo "cache holds more than one build"; ls "$cache"; exit 1; }
 ls "$cache" | grep -q '\.tmp\.' && { echo "a temporary build folder was left behind"; ls "$cache"; exit 1; }
 "$exe_a" --unit "$work/small.json" --scenario short --seed 1 | grep -q PASS ||
   { echo "the built executable does not pass"; exit 1; }
@@ -54,3 +56,25 @@ key0=$("$shadesim" rtl-build --config "$work/small.json" --backends cpp --cache 
 [ "$key1" = "$key0" ] || { echo "an identical copy of the RTL gave another key"; exit 1; }
 [ "$key1" != "$key2" ] || { echo "a changed RTL source kept the key"; exit 1; }
 echo "build cache: concurrent builds agree, reuse, parameter and source changes rebuild"
+
+# 5. A changed model or harness library relinks every cached build and Verilates none. The
+# libraries are copied and the model's gains one object, as any edit of a model source changes
+# libshadesim_model.a; the checkout's own libraries are not touched.
+libs="$work/libs"
+mkdir -p "$libs"
+bin=$(dirname "$(command -v "$shadesim" || echo "$shadesim")")
+cp "$bin/libshadesim_harness.a" "$bin/libshadesim_model.a" "$libs/"
+echo 'int shadesim_model_edit_marker = 1;' >"$work/marker.cpp"
+g++ -c -o "$work/marker.o" "$work/marker.cpp"
+ar rs "$libs/libshadesim_model.a" "$work/marker.o" 2>/dev/null
+keys_before=$("$shadesim" rtl-build --config "$work/small.json,$work/small9.json" --backends cpp --cache "$cache" --print-key)
+keys_after=$(SHADESIM_HARNESS_LIB_DIR="$libs" "$shadesim" rtl-build --config "$work/small.json,$work/small9.json" --backends cpp --cache "$cache" --print-key)
+[ "$keys_before" = "$keys_after" ] || { echo "a changed library changed the build keys (the Verilated model's)"; exit 1; }
+SHADESIM_HARNESS_LIB_DIR="$libs" "$shadesim" rtl-build --config "$work/small.json,$work/small9.json" --backends cpp --cache "$cache" >"$work/e.out" 2>"$work/e.err"
+[ "$(grep -c '(relinked)' "$work/e.out")" -eq 2 ] || { echo "expected both cached builds relinked:"; cat "$work/e.out" "$work/e.err"; exit 1; }
+grep -Eq 'Verilating|compiling' "$work/e.err" && { echo "a changed library Verilated or compiled a model again:"; cat "$work/e.err"; exit 1; }
+exe_e=$(awk '$1 == "'"$work/small.json"'" {print $3}' "$work/e.out")
+[ "$exe_e" != "$exe_a" ] || { echo "the relinked executable has the old name"; exit 1; }
+"$exe_e" --unit "$work/small.json" --scenario short --seed 1 | grep -q PASS ||
+  { echo "the relinked executable does not pass"; exit 1; }
+echo "build cache: a changed model library relinks every cached build without Verilating"

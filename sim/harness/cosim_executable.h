@@ -1,10 +1,11 @@
 // One Verilated co-simulation executable, as the shared driver (sim/harness/cosim_main.cpp) sees
 // it: its backend, the parameters it was Verilated with, and how to run a job on its model.
 //
-// The driver - options, jobs, reports, replay lines, waveform re-runs - does not depend on the
-// Verilated model, so it is compiled once into libshadesim_harness. Each RTL build compiles only
-// its Verilated model and sim/harness/cosim_adapter.cpp, which fills this in and calls
-// cosim_main. (The driver in every build cost 17 s of compiler time, half of a build.)
+// The driver - options, jobs, reports, replay lines, waveform re-runs - and the backends' loops
+// do not depend on the Verilated model, so they are compiled once into the harness libraries.
+// Each RTL build compiles only its Verilated model and the glue (sim/harness/cosim_glue.cpp),
+// whose main hands the model to cpp_cosim_main or sc_cosim_main (sim/harness/verilated_dut.h),
+// which fill this in and call cosim_main.
 #pragma once
 
 #include <functional>
@@ -32,5 +33,11 @@ struct CosimExecutable {
 // The executable's main: parses argv, runs the jobs, reports. Exit status: 0 every run passed (or
 // the expected mismatch was found), 1 a mismatch, 2 bad input.
 int cosim_main(int argc, char** argv, const CosimExecutable& exe);
+// cosim_main, with anything it throws printed as "<command>: error: ..." and exit status 2.
+int cosim_main_or_error(int argc, char** argv, const CosimExecutable& exe);
+
+// The parameters a build's glue lists, as the driver compares them.
+struct BuiltModel;
+std::vector<VerilogParameter> built_parameters(const BuiltModel& model);
 
 }  // namespace shadesim

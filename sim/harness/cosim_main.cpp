@@ -4,7 +4,7 @@
 // shadesim builds one per parameter set into its cache (sim/rtl_build.h) and runs it through
 // `shadesim cosim`, which passes the unit as a file. This file is the executable's shared
 // driver, compiled once into libshadesim_harness; each build adds its Verilated model through
-// sim/harness/cosim_adapter.cpp (sim/harness/cosim_executable.h):
+// sim/harness/cosim_glue.cpp (sim/harness/cosim_executable.h):
 //
 //   <exe> --unit unit.json --config grey_s428w --scenario all --seed 1 --runs 3
 //   <exe> --stream failing.cmds --seed 5 --gap-pct 30 ...   (replay: the stream names its unit)
@@ -44,6 +44,7 @@
 #include "sim/harness/cosim.h"
 #include "sim/harness/cosim_executable.h"
 #include "sim/harness/random_stream.h"
+#include "sim/harness/verilated_dut.h"
 
 namespace shadesim {
 namespace {
@@ -678,6 +679,32 @@ int cosim_main(int argc, char** argv, const CosimExecutable& exe) {
       std::ofstream os(o.json_path);
       if (os) os << nlohmann::json{{"passed", false}, {"error", e.what()}}.dump(2) << '\n';
     }
+    return 2;
+  }
+}
+
+}  // namespace shadesim
+
+namespace shadesim {
+
+std::vector<VerilogParameter> built_parameters(const BuiltModel& model) {
+  std::vector<VerilogParameter> out;
+  for (int i = 0; i < model.parameter_count; ++i) {
+    const BuiltParameter& p = model.parameters[i];
+    if (p.slots) {
+      out.emplace_back(p.name, std::vector<int64_t>(p.slots, p.slots + p.slot_count));
+    } else {
+      out.emplace_back(p.name, p.value);
+    }
+  }
+  return out;
+}
+
+int cosim_main_or_error(int argc, char** argv, const CosimExecutable& exe) {
+  try {
+    return cosim_main(argc, argv, exe);
+  } catch (const std::exception& e) {
+    std::cerr << exe.command << ": error: " << e.what() << '\n';
     return 2;
   }
 }

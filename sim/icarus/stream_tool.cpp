@@ -59,7 +59,7 @@ std::ofstream open_out(const std::string& path) {
 }
 
 // The cycle on which each of the model's pixels leaves, as the cycle model clocks the stream
-// under `stim` (the loop of the harness's lockstep model: sim/harness/cpp_backend.h). Each beat
+// under `stim` (the loop of the harness's lockstep model: sim/harness/cpp_backend.cpp). Each beat
 // holds pix_count pixels from lane 0's x; they must be the model's next pixels.
 std::vector<uint64_t> pixel_exit_cycles(const std::vector<uint64_t>& words, const Stimulus& stim,
                                         const UnitConfig& cfg, const std::vector<PixelOut>& pixels,
