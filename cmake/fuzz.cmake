@@ -75,10 +75,10 @@ foreach(target ${fuzz_targets})
   add_test(NAME fuzz_${target}
     COMMAND ${CMAKE_SOURCE_DIR}/scripts/fuzz --build ${CMAKE_BINARY_DIR} --runs ${SHADESIM_FUZZ_RUNS}
             --seconds ${SHADESIM_FUZZ_SECONDS} ${target})
-  set_tests_properties(fuzz_${target} PROPERTIES LABELS fuzz TIMEOUT 300)
+  set_tests_properties(fuzz_${target} PROPERTIES TIMEOUT 300)
   file(GLOB regressions CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tests/fuzz/regressions/${target}/*)
   if(regressions)
     add_test(NAME fuzz_${target}_regressions COMMAND ${fuzz_dir}/fuzz_${target} ${regressions})
-    set_tests_properties(fuzz_${target}_regressions PROPERTIES LABELS fuzz TIMEOUT 300)
+    set_tests_properties(fuzz_${target}_regressions PROPERTIES TIMEOUT 300)
   endif()
 endforeach()

@@ -13,7 +13,7 @@ option(SHADESIM_ALLOW_MISSING_TOOLS
 # A ctest that reports `what` as left out (ctest counts it Skipped, never Passed).
 function(shadesim_left_out name what)
   add_test(NAME left_out_${name} COMMAND sh -c "echo 'left out: ${what}'; exit 77")
-  set_tests_properties(left_out_${name} PROPERTIES SKIP_RETURN_CODE 77 LABELS left_out)
+  set_tests_properties(left_out_${name} PROPERTIES SKIP_RETURN_CODE 77 LABELS left_out)  # + its tier: cmake/test_tiers.cmake
 endfunction()
 
 # Real and malformed meshes nobody here wrote (Debian's assimp-testmodels): the mesh, scene and

@@ -136,7 +136,7 @@ target_compile_definitions(rtl_units_test PRIVATE
   SHADESIM_RTL_UNITS_TABLE_FILE="${RTL_UNITS_TABLE_FILE}")
 target_link_libraries(rtl_units_test PRIVATE shadesim_model GTest::gtest_main)
 add_test(NAME rtl_units_test COMMAND rtl_units_test)
-set_tests_properties(rtl_units_test PROPERTIES LABELS rtl TIMEOUT 300)
+set_tests_properties(rtl_units_test PROPERTIES TIMEOUT 300)
 
 # Yosys: each unit synthesizes without latches (small widths: this is about structure).
 if(YOSYS)
