@@ -387,8 +387,10 @@ std::string replay_command(const Job& j, const RunSettings& settings) {
 // and configuration at a time (mesh import limits the process's address space while it runs, so
 // it is not done on several threads at once). A run the scene does not fit is skipped, one the
 // host cannot prepare is an error; either is recorded at once.
+// `prefetch` starts each configuration's Verilation as soon as it is known, beside the host
+// setup of the scenes.
 std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& out,
-                           const fs::path& base) {
+                           const fs::path& base, RtlPrefetch& prefetch) {
   std::vector<Job> jobs;
   std::map<std::string, size_t> first_of_pair;  // scene + config -> its first job
   for (const auto& spec : specs) {
@@ -406,6 +408,7 @@ std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& ou
       // The pair's other backend: the same unit and stream.
       const Job& twin = jobs[done->second];
       j.build = twin.build;
+      if (twin.rec.status == "pending") prefetch.add(j.build, parse_cosim_backend(spec.backend));
       j.rec.unit = twin.rec.unit;
       j.rec.unit_text = twin.rec.unit_text;
       j.rec.pixels = twin.rec.pixels;
@@ -420,6 +423,7 @@ std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& ou
       try {
         j.build = resolve_config(spec, base);
         j.build.name = spec.config;
+        prefetch.add(j.build, parse_cosim_backend(spec.backend));
         j.rec.unit = nlohmann::json::parse(config_to_json(j.build.unit));
         j.rec.unit_text = j.build.unit.to_string() + fault_text(j.build.faults);
         std::ofstream(j.unit_path) << config_to_json(j.build.unit) << '\n';
@@ -928,7 +932,8 @@ int run_regress(const RegressOptions& o) {
   print_settings(sel, o.coverage);
 
   // Host setup, build, run: each run's record is on disk the moment it ends.
-  std::vector<Job> jobs = plan_jobs(sel.selected, sel.out, sel.base);
+  RtlPrefetch prefetch(build_options(o), workers);
+  std::vector<Job> jobs = plan_jobs(sel.selected, sel.out, sel.base, prefetch);
   const auto t0 = std::chrono::steady_clock::now();
   build_all(jobs, o, workers);
   run_jobs(jobs, o, sel.settings, workers);

@@ -31,13 +31,6 @@ namespace fs = std::filesystem;
 // miss. 3: Verilated model, glue and link kept apart (sim/rtl_recipe.h).
 constexpr const char* kRecipeVersion = "rtl-build 3";
 
-std::string read_file(const fs::path& p) {
-  std::ifstream is(p, std::ios::binary);
-  std::stringstream ss;
-  ss << is.rdbuf();
-  return ss.str();
-}
-
 // shade_unit's sources in dependency order, leaves first (Icarus and Yosys want it too).
 std::vector<fs::path> rtl_sources() {
   // SHADESIM_RTL_DIR: another copy of rtl/ (mutation testing, the cache test).
@@ -61,7 +54,7 @@ void add_files(ContentHash& h, const std::vector<fs::path>& files) {
                                " is missing; build the project first (scripts/build)");
     }
     h.add(p.filename().string());
-    h.add(read_file(p));
+    h.add(read_text(p));
   }
 }
 
@@ -235,6 +228,25 @@ void remove_stale_executables(const fs::path& dir, const fs::path& keep, RtlOpti
   }
 }
 
+// The Verilated model of `build` in `dir` (the caller holds the build's lock); true when this
+// call Verilated it.
+bool ensure_verilated(const fs::path& dir, const fs::path& cache, const RtlConfig& build,
+                      const Flavour& flavour, const Toolchain& tools, bool quiet) {
+  if (fs::exists(dir)) return false;
+  const fs::path log = dir.string() + ".log";
+  if (!quiet) {
+    std::cerr << "rtl build: Verilating " << build.name << " [" << build.unit.to_string()
+              << fault_text(build.faults) << "] for the " << flavour.name() << " backend into "
+              << dir.string() << std::endl;
+  }
+  std::ofstream(log, std::ios::trunc).flush();
+  make_atomically(dir, cache, log, [&](const fs::path& tmp) {
+    fs::create_directories(tmp);
+    verilate(tmp, build, flavour, tools, rtl_source_files(), cover_points_file(), log);
+  });
+  return true;
+}
+
 }  // namespace
 
 std::string source_dir() { return SHADESIM_SOURCE_DIR; }
@@ -310,7 +322,7 @@ RtlBuildResult ensure_rtl_build(const RtlConfig& build, CosimBackend backend,
   fs::create_directories(cache);
   const fs::path lock_path = dir.string() + ".lock";
   if (!o.quiet && !try_lock_now(lock_path)) {
-    std::cerr << "rtl build: waiting for another process building " << build.name << " ("
+    std::cerr << "rtl build: waiting for another process or thread building " << build.name << " ("
               << flavour.name() << ", key " << r.key.substr(0, 12) << ")" << std::endl;
   }
   FileLock lock(lock_path);
@@ -322,18 +334,10 @@ RtlBuildResult ensure_rtl_build(const RtlConfig& build, CosimBackend backend,
   const std::string what = build.name + " [" + build.unit.to_string() + fault_text(build.faults) +
                            "] for the " + flavour.name() + " backend";
   const fs::path log = dir.string() + ".log";
-  if (!fs::exists(dir)) {
-    if (!o.quiet)
-      std::cerr << "rtl build: Verilating " << what << " into " << dir.string() << std::endl;
-    std::ofstream(log, std::ios::trunc).flush();
-    make_atomically(dir, cache, log, [&](const fs::path& tmp) {
-      fs::create_directories(tmp);
-      verilate(tmp, build, flavour, tools, rtl_source_files(), cover_points_file(), log);
-    });
-    r.built = true;
-  }
+  r.built = ensure_verilated(dir, cache, build, flavour, tools, o.quiet);
   // The glue compiles beside the model's objects (it is on no one's critical path then).
   std::exception_ptr glue_error;
+  const bool glue_needed = !fs::exists(p.glue);
   std::thread glue([&] {
     try {
       if (!fs::exists(p.glue)) {
@@ -357,7 +361,9 @@ RtlBuildResult ensure_rtl_build(const RtlConfig& build, CosimBackend backend,
       std::cerr << "rtl build: compiling " << what << " (" << to_string(o.optimization) << ")"
                 << std::endl;
     make_atomically(p.objects, cache, log, [&](const fs::path& tmp) {
-      compile_model(dir, tmp, flavour, tools, runtime, o.optimization, o.make_jobs, log);
+      // One core is the glue's while it compiles.
+      const int jobs = std::max(1, o.make_jobs - (glue_needed ? 1 : 0));
+      compile_model(dir, tmp, flavour, tools, runtime, o.optimization, jobs, log);
     });
     r.built = true;
   }
@@ -382,6 +388,55 @@ RtlBuildResult ensure_rtl_build(const RtlConfig& build, CosimBackend backend,
               << std::endl;
   }
   return r;
+}
+
+RtlPrefetch::RtlPrefetch(const RtlBuildOptions& options, int workers)
+    : options_(options), workers_(std::max(1, workers)) {}
+
+RtlPrefetch::~RtlPrefetch() {
+  {
+    std::lock_guard<std::mutex> lock(m_);
+    closed_ = true;
+  }
+  ready_.notify_all();
+  for (auto& t : threads_) t.join();
+}
+
+void RtlPrefetch::add(const RtlConfig& build, CosimBackend backend) {
+  const Flavour flavour = flavour_of(backend, options_.coverage);
+  const fs::path cache = cache_of(options_.cache_dir);
+  std::string key;
+  try {
+    key = model_key(build, flavour, toolchain(cache));
+  } catch (const std::exception&) {
+    return;  // ensure_rtl_build reports it
+  }
+  std::lock_guard<std::mutex> lock(m_);
+  if (!keys_.insert(key).second) return;
+  queue_.push_back({build, flavour, cache / (flavour.name() + "-" + key)});
+  if (threads_.size() < static_cast<size_t>(workers_)) threads_.emplace_back([this] { work(); });
+  ready_.notify_one();
+}
+
+void RtlPrefetch::work() {
+  for (;;) {
+    Item item;
+    {
+      std::unique_lock<std::mutex> lock(m_);
+      ready_.wait(lock, [this] { return closed_ || !queue_.empty(); });
+      if (queue_.empty()) return;
+      item = queue_.front();
+      queue_.erase(queue_.begin());
+    }
+    try {
+      const fs::path cache = cache_of(options_.cache_dir);
+      fs::create_directories(cache);
+      FileLock lock(item.dir.string() + ".lock");
+      ensure_verilated(item.dir, cache, item.build, item.flavour, toolchain(cache), options_.quiet);
+    } catch (const std::exception&) {
+      // ensure_rtl_build tries again and reports the error with its run.
+    }
+  }
 }
 
 }  // namespace shadesim

@@ -20,7 +20,12 @@
 // build waits for the lock and then finds it. A failed build leaves its log in <cache>/failed/.
 #pragma once
 
+#include <condition_variable>
+#include <filesystem>
+#include <mutex>
+#include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "sim/harness/rtl_config.h"
@@ -77,6 +82,35 @@ std::vector<std::string> rtl_source_files();
 
 // Where the project's sources are (the checkout shadesim was built from).
 std::string source_dir();
+// Verilates builds in the background while the caller does other work (regress's host setup):
+// add() queues a build; at most `workers` Verilator processes run at once; the destructor waits
+// for them. ensure_rtl_build then finds the Verilated model (or waits on its lock) and only
+// compiles and links. A failure here is silent: ensure_rtl_build tries again and reports it.
+class RtlPrefetch {
+ public:
+  RtlPrefetch(const RtlBuildOptions& options, int workers);
+  ~RtlPrefetch();
+  RtlPrefetch(const RtlPrefetch&) = delete;
+  RtlPrefetch& operator=(const RtlPrefetch&) = delete;
+  void add(const RtlConfig& build, CosimBackend backend);
+
+ private:
+  struct Item {
+    RtlConfig build;
+    Flavour flavour;
+    std::filesystem::path dir;
+  };
+  void work();
+  RtlBuildOptions options_;
+  int workers_;
+  std::mutex m_;
+  std::condition_variable ready_;
+  bool closed_ = false;
+  std::set<std::string> keys_;
+  std::vector<Item> queue_;
+  std::vector<std::thread> threads_;
+};
+
 // Builds the runtime of a flavour into the cache now (the rtl_runtime target: so that the first
 // build of a new configuration does not pay for it). Returns its folder.
 std::string ensure_rtl_runtime(const Flavour& flavour, const RtlBuildOptions& options);

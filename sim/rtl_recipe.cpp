@@ -24,13 +24,6 @@ namespace fs = std::filesystem;
 // The precompiled header every Verilated object and the glue include first.
 constexpr const char* kPchName = "verilated_pch.h";
 
-std::string read_text(const fs::path& p) {
-  std::ifstream is(p, std::ios::binary);
-  std::stringstream ss;
-  ss << is.rdbuf();
-  return ss.str();
-}
-
 void write_text(const fs::path& p, const std::string& text) {
   std::ofstream os(p, std::ios::binary);
   os << text;
@@ -163,6 +156,13 @@ std::string resolved(const std::string& path) {
 }
 
 }  // namespace
+
+std::string read_text(const fs::path& p) {
+  std::ifstream is(p, std::ios::binary);
+  std::stringstream ss;
+  ss << is.rdbuf();
+  return ss.str();
+}
 
 std::string to_string(CosimBackend b) {
   switch (b) {

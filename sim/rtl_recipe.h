@@ -90,6 +90,9 @@ void link_executable(const std::filesystem::path& exe,
                      const std::filesystem::path& glue, const Flavour& f, const Toolchain& t,
                      const std::filesystem::path& runtime, const std::filesystem::path& log);
 
+// A file's whole contents ("" when it cannot be read).
+std::string read_text(const std::filesystem::path& p);
+
 // Runs `commands` with at most `jobs` at once (output appended to `log`); throws naming the
 // first that failed, with the tail of its output.
 void run_commands(const std::vector<std::vector<std::string>>& commands, int jobs,

@@ -14,6 +14,7 @@
 
 #include "model/rtl_parameters.h"
 #include "sim/harness/cosim.h"
+#include "sim/harness/verilated_dut.h"
 
 namespace shadesim {
 
@@ -37,7 +38,22 @@ int cosim_main(int argc, char** argv, const CosimExecutable& exe);
 int cosim_main_or_error(int argc, char** argv, const CosimExecutable& exe);
 
 // The parameters a build's glue lists, as the driver compares them.
-struct BuiltModel;
 std::vector<VerilogParameter> built_parameters(const BuiltModel& model);
+// What every executable of a backend shares: the parameters and coverage from its glue, its
+// name and the shadesim command that runs it. The caller adds `run` (and what else differs).
+CosimExecutable executable_of(const BuiltModel& model, const std::string& backend,
+                              const std::string& command);
+
+// The outputs a backend sampled, as the lockstep block takes them.
+inline Lockstep::Sample sample_of(const DutOutputs& o) {
+  Lockstep::Sample s;
+  s.cmd_ready = o.cmd_ready;
+  s.pix_valid = o.pix_valid;
+  s.pix_x = o.pix_x;
+  s.pix_y = o.pix_y;
+  s.pix_mask = o.pix_mask;
+  s.pix_eor = o.pix_eor;
+  return s;
+}
 
 }  // namespace shadesim

@@ -84,6 +84,17 @@ class Dut final : public shadesim::CppDut {
     o.pix_eor = top_->pix_eor_o;
     return o;
   }
+  shadesim::DutOutputs settle(bool cmd_valid, const uint64_t* beat, int port_words,
+                              bool pix_ready) override {
+    set_inputs(cmd_valid, beat, port_words, pix_ready);
+    top_->eval();
+    return outputs();
+  }
+  void rising_edge() override {
+    top_->clk_i = 1;
+    top_->eval();
+    top_->clk_i = 0;
+  }
   uint64_t colour_bits(int lsb, int width) const override {
     return colour_of(top_->pix_colour_o, lsb, width);
   }

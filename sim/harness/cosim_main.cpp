@@ -700,6 +700,17 @@ std::vector<VerilogParameter> built_parameters(const BuiltModel& model) {
   return out;
 }
 
+CosimExecutable executable_of(const BuiltModel& model, const std::string& backend,
+                              const std::string& command) {
+  CosimExecutable exe;
+  exe.parameters = built_parameters(model);
+  exe.covered = model.covered;
+  exe.traced = model.traced;
+  exe.backend = backend;
+  exe.command = command;
+  return exe;
+}
+
 int cosim_main_or_error(int argc, char** argv, const CosimExecutable& exe) {
   try {
     return cosim_main(argc, argv, exe);

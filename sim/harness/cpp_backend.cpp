@@ -58,23 +58,18 @@ CosimResult run_cpp(const CosimJob& job, const WaveWindow* waves, const BuiltMod
   const auto colour_bits = [&dut](int lsb, int width) { return dut->colour_bits(lsb, width); };
   for (uint64_t cycle = 0;; ++cycle) {
     const Lockstep::Drive& in = lockstep.drive(cycle);
-    dut->set_inputs(in.cmd_valid, in.cmd_data, cfg.port_words, in.pix_ready);
-    dut->eval();
+    const DutOutputs o = dut->settle(in.cmd_valid, in.cmd_data, cfg.port_words, in.pix_ready);
     const uint64_t t = (cycle + kResetCycles) * kWaveUnitsPerCycle;
     dump(cycle, t);
-    const DutOutputs o = dut->outputs();
-    Lockstep::Sample out;
-    out.cmd_ready = o.cmd_ready;
-    out.pix_valid = o.pix_valid;
-    out.pix_x = o.pix_x;
-    out.pix_y = o.pix_y;
-    out.pix_mask = o.pix_mask;
-    out.pix_eor = o.pix_eor;
-    const bool go_on = lockstep.edge(cycle, out, colour_bits);
-    dut->set_clock(true);
-    dut->eval();
-    dump(cycle, t + kWaveUnitsPerCycle / 2);
-    dut->set_clock(false);
+    const bool go_on = lockstep.edge(cycle, sample_of(o), colour_bits);
+    if (waves) {  // the dump after the edge sees the clock high, as before
+      dut->set_clock(true);
+      dut->eval();
+      dump(cycle, t + kWaveUnitsPerCycle / 2);
+      dut->set_clock(false);
+    } else {
+      dut->rising_edge();
+    }
     if (!go_on) break;
   }
   dut->final();
@@ -89,13 +84,9 @@ CosimResult run_cpp(const CosimJob& job, const WaveWindow* waves, const BuiltMod
 }  // namespace
 
 int cpp_cosim_main(int argc, char** argv, const BuiltModel& model) {
-  CosimExecutable exe;
-  exe.parameters = built_parameters(model);
-  exe.covered = model.covered;
-  exe.traced = model.traced;
-  exe.backend = "cpp";
-  exe.command =
-      model.traced ? "shadesim cosim --backend cpp --waves" : "shadesim cosim --backend cpp";
+  CosimExecutable exe = executable_of(
+      model, "cpp",
+      model.traced ? "shadesim cosim --backend cpp --waves" : "shadesim cosim --backend cpp");
   exe.run = [&model](const CosimJob& job, const WaveWindow* waves) {
     return run_cpp(job, waves, model);
   };

@@ -46,16 +46,9 @@ struct ScBench : sc_core::sc_module {
     const int port_words = lockstep_.unit().port_words;
     const int64_t cycle = sc_cycle_now();
     if (cycle >= 0) {
-      const DutOutputs o = dut_.read_outputs();
-      Lockstep::Sample out;
-      out.cmd_ready = o.cmd_ready;
-      out.pix_valid = o.pix_valid;
-      out.pix_x = o.pix_x;
-      out.pix_y = o.pix_y;
-      out.pix_mask = o.pix_mask;
-      out.pix_eor = o.pix_eor;
       const auto colour_bits = [this](int lsb, int width) { return dut_.colour_bits(lsb, width); };
-      if (!lockstep_.edge(static_cast<uint64_t>(cycle), out, colour_bits)) {
+      if (!lockstep_.edge(static_cast<uint64_t>(cycle), sample_of(dut_.read_outputs()),
+                          colour_bits)) {
         sc_core::sc_stop();
         return;
       }
@@ -101,11 +94,7 @@ CosimResult run_systemc(const CosimJob& job) {
 }  // namespace
 
 int sc_cosim_main(int argc, char** argv, const BuiltModel& model) {
-  CosimExecutable exe;
-  exe.parameters = built_parameters(model);
-  exe.covered = model.covered;
-  exe.backend = "systemc";
-  exe.command = "shadesim cosim --backend systemc";
+  CosimExecutable exe = executable_of(model, "systemc", "shadesim cosim --backend systemc");
   exe.one_job_per_process = true;
   exe.run = [](const CosimJob& job, const WaveWindow* waves) {
     if (waves) {

@@ -52,6 +52,11 @@ class CppDut {
   virtual void set_inputs(bool cmd_valid, const uint64_t* beat, int port_words, bool pix_ready) = 0;
   virtual void eval() = 0;
   virtual DutOutputs outputs() const = 0;
+  // One cycle in two calls (the per-cycle path): the inputs set and settled, the outputs
+  // sampled; then the rising edge evaluated and the clock low again.
+  virtual DutOutputs settle(bool cmd_valid, const uint64_t* beat, int port_words,
+                            bool pix_ready) = 0;
+  virtual void rising_edge() = 0;
   // Bits [lsb, lsb + width) of pix_colour_o, width <= 64.
   virtual uint64_t colour_bits(int lsb, int width) const = 0;
   // Traced builds: an FST file of the dumps between open and close. Others throw
