@@ -25,7 +25,7 @@ const PreparedFrame& frame() {
 void BM_ForwardDifference(benchmark::State& state) {
   const PreparedFrame& f = frame();
   const UnitConfig& cfg = f.config;
-  const SpanSetup setup(cfg.coef, cfg.series);
+  const SpanSetup setup(cfg.coef, cfg.series, cfg.offset_bits);
   const int n = cfg.series_per_triangle();
   SeriesBank bank(cfg.series, n);
   int64_t checksum = 0;

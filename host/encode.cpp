@@ -77,6 +77,70 @@ MaterialCmd material_command(const Scene& scene, const UnitConfig& config, const
   return cmd;
 }
 
+struct Pixel {
+  int32_t x = 0, y = 0;
+};
+
+// Spans [begin, end) of one triangle from one origin.
+struct OriginGroup {
+  size_t end = 0;
+  Pixel origin;
+};
+
+// The longest run of spans from `begin` (before `end`) whose starts lie within one offset range
+// of offset_bits signed bits, and its origin: the triangle's centroid pixel moved, per axis, just
+// far enough that every start's offset fits. A triangle that fits keeps the centroid pixel.
+OriginGroup next_origin_group(const std::vector<Span>& spans, size_t begin, size_t end,
+                              Pixel centroid, int offset_bits) {
+  const int32_t lo = -(int32_t{1} << (offset_bits - 1)), hi = -lo - 1;
+  int32_t x_min = spans[begin].x0, x_max = x_min, y_min = spans[begin].y, y_max = y_min;
+  size_t k = begin + 1;
+  for (; k < end; ++k) {
+    const Span& s = spans[k];
+    const int32_t nx_min = std::min(x_min, s.x0), nx_max = std::max(x_max, s.x0);
+    const int32_t ny_min = std::min(y_min, s.y), ny_max = std::max(y_max, s.y);
+    if (nx_max - nx_min > hi - lo || ny_max - ny_min > hi - lo) break;
+    x_min = nx_min, x_max = nx_max, y_min = ny_min, y_max = ny_max;
+  }
+  return {k,
+          {std::clamp(centroid.x, x_max - hi, x_min - lo),
+           std::clamp(centroid.y, y_max - hi, y_min - lo)}};
+}
+
+// One TRIANGLE: every series' quadratic re-expanded about the origin pixel's centre.
+TriangleCmd triangle_command(const UnitConfig& config, int scene_lights,
+                             const TriangleSeries& series, const Scene& scene,
+                             const Material& material, uint32_t gate_only,
+                             const SpecularSeriesPlan& plan, const CoefficientWriter& writer,
+                             Pixel origin) {
+  const Quadratic zero{};
+  TriangleCmd t;
+  t.xo = origin.x;
+  t.yo = origin.y;
+  const double ox = t.xo + 0.5, oy = t.yo + 0.5;
+  for (int l = 0; l < config.lights; ++l) {
+    const bool present = l < scene_lights;
+    const Quadratic q = present ? series.diffuse[static_cast<size_t>(l)].recentred(ox, oy) : zero;
+    for (int c = 0; c < config.channels; ++c) {
+      // A gate-only light: channel 0 carries N.L itself (its colour is 0 in every channel).
+      double scale = 0.0;
+      if (present) {
+        scale =
+            (gate_only >> l & 1) != 0 ? (c == 0 ? 1.0 : 0.0) : diffuse_scale(scene, material, l, c);
+      }
+      writer.append(q, scale, 0.0, t.coef);
+    }
+  }
+  for (int l = 0; l < config.lights; ++l) {
+    // An absent light's specular series still feeds the unit (its colour is 0): give it the
+    // unit's value for t = 0 so it stays in the unit's input range.
+    const Quadratic q =
+        l < scene_lights ? series.specular[static_cast<size_t>(l)].recentred(ox, oy) : zero;
+    for (const auto& [a, b] : plan.affine) writer.append(q, a, b, t.coef);
+  }
+  return t;
+}
+
 }  // namespace
 
 UnitConfig config_for_scene(const Scene& scene, UnitConfig base) {
@@ -103,7 +167,6 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
                           const Visibility& vis) {
   check_scene_fits(scene, config);
   const int scene_lights = static_cast<int>(scene.lights.size());
-  const Quadratic zero{};
   EncodedFrame frame;
   frame.stream.config = config;
   auto& cmds = frame.stream.commands;
@@ -152,39 +215,27 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
     // have its centroid thousands of pixels away, beyond the 16-bit origin field.
     const double xc = (tri.v[0].x + tri.v[1].x + tri.v[2].x) / 3.0;
     const double yc = (tri.v[0].y + tri.v[1].y + tri.v[2].y) / 3.0;
-    TriangleCmd t;
-    t.xo = static_cast<int32_t>(std::clamp(std::floor(xc), 0.0, scene.width - 1.0));
-    t.yo = static_cast<int32_t>(std::clamp(std::floor(yc), 0.0, scene.height - 1.0));
-    const double ox = t.xo + 0.5, oy = t.yo + 0.5;
-    const uint32_t gate_only = material_gate_only[static_cast<size_t>(tri.material)];
-    for (int l = 0; l < config.lights; ++l) {
-      const bool present = l < scene_lights;
-      const Quadratic q = present ? series.diffuse[static_cast<size_t>(l)].recentred(ox, oy) : zero;
-      for (int c = 0; c < config.channels; ++c) {
-        // A gate-only light: channel 0 carries N.L itself (its colour is 0 in every channel).
-        double scale = 0.0;
-        if (present) {
-          scale = (gate_only >> l & 1) != 0 ? (c == 0 ? 1.0 : 0.0)
-                                            : diffuse_scale(scene, material, l, c);
-        }
-        writer.append(q, scale, 0.0, t.coef);
+    const Pixel centroid{static_cast<int32_t>(std::clamp(std::floor(xc), 0.0, scene.width - 1.0)),
+                         static_cast<int32_t>(std::clamp(std::floor(yc), 0.0, scene.height - 1.0))};
+    size_t end = i;
+    while (end < vis.spans.size() && vis.spans[end].triangle == tri_index) ++end;
+    // Span setup takes offsets of offset_bits: spans beyond them from one origin go in groups,
+    // each a TRIANGLE of its own about an origin its spans' starts reach (a re-origin).
+    bool first_group = true;
+    while (i < end) {
+      const OriginGroup group = next_origin_group(vis.spans, i, end, centroid, config.offset_bits);
+      if (!first_group) ++stats.reorigins;
+      first_group = false;
+      cmds.emplace_back(triangle_command(config, scene_lights, series, scene, material,
+                                         material_gate_only[static_cast<size_t>(tri.material)],
+                                         plan, writer, group.origin));
+      ++stats.triangles;
+      for (; i < group.end; ++i) {
+        const Span& s = vis.spans[i];
+        cmds.emplace_back(SpanCmd{s.y, s.x0, s.length, s.last_in_row});
+        ++stats.spans;
+        stats.pixels += static_cast<size_t>(s.length);
       }
-    }
-    for (int l = 0; l < config.lights; ++l) {
-      // An absent light's specular series still feeds the unit (its colour is 0): give it the
-      // unit's value for t = 0 so it stays in the unit's input range.
-      const Quadratic q =
-          l < scene_lights ? series.specular[static_cast<size_t>(l)].recentred(ox, oy) : zero;
-      for (const auto& [a, b] : plan.affine) writer.append(q, a, b, t.coef);
-    }
-    cmds.emplace_back(std::move(t));
-    ++stats.triangles;
-
-    for (; i < vis.spans.size() && vis.spans[i].triangle == tri_index; ++i) {
-      const Span& s = vis.spans[i];
-      cmds.emplace_back(SpanCmd{s.y, s.x0, s.length, s.last_in_row});
-      ++stats.spans;
-      stats.pixels += static_cast<size_t>(s.length);
     }
   }
   cmds.emplace_back(EndFrameCmd{});

@@ -21,6 +21,9 @@ UnitConfig config_for_scene(const Scene& scene, UnitConfig base);
 struct EncodeStats {
   std::size_t materials = 0;  // MATERIAL commands (material switches, including the first)
   std::size_t triangles = 0;  // TRI commands: triangles that own at least one pixel
+  // TRI commands beyond a triangle's first: its spans' starts did not all fit one origin's
+  // UnitConfig::offset_bits, so later spans came from another origin (included in `triangles`).
+  std::size_t reorigins = 0;
   std::size_t spans = 0;
   std::size_t pixels = 0;
   std::size_t words = 0;          // 64-bit words on the cmd port

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
@@ -73,6 +74,7 @@ struct SceneInfo {
 // Numbers measured on one scene's trial frame, merged over scenes.
 struct Walk {
   int longest_span = 0, max_offset = 0;
+  int start_offset_min = 0, start_offset_max = 0;  // of dx, dy at a span's first pixel
   double monomial_sum = 0, v_min = 0, v_max = 0, diff_max = 0, coef_max = 0;
   std::array<double, kTermsPerSeries> term_max{};  // largest |T_t| of any series
 };
@@ -100,6 +102,8 @@ void walk_stream(const CommandStream& stream, Walk& w) {
     } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
       if (!tri) throw std::logic_error("derive_config: span before any triangle");
       w.longest_span = std::max(w.longest_span, s->length);
+      w.start_offset_min = std::min({w.start_offset_min, s->x0 - tri->xo, s->y - tri->yo});
+      w.start_offset_max = std::max({w.start_offset_max, s->x0 - tri->xo, s->y - tri->yo});
       const Int128 dy = s->y - tri->yo;
       for (int x = s->x0; x < s->x0 + s->length; ++x) {
         const Int128 dx = x - tri->xo;
@@ -258,6 +262,15 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
   }
   ms.longest_span = w.longest_span;
   ms.max_offset = w.max_offset;
+  ms.start_offset_min = w.start_offset_min;
+  ms.start_offset_max = w.start_offset_max;
+  // Span setup's offsets: the fewest signed bits that hold every span start's dx, dy, so the
+  // encoder moves no origin of these scenes: -2^(b-1) <= min and max <= 2^(b-1) - 1.
+  cfg.offset_bits = 2;
+  while (-(1 << (cfg.offset_bits - 1)) > w.start_offset_min ||
+         (1 << (cfg.offset_bits - 1)) - 1 < w.start_offset_max) {
+    ++cfg.offset_bits;
+  }
   ms.max_monomial_sum = w.monomial_sum;
   ms.series_min = w.v_min;
   ms.series_max = w.v_max;
@@ -360,6 +373,14 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
          "largest image " + std::to_string(ms.max_width) + "x" + std::to_string(ms.max_height) +
              ": " + std::to_string(size) + " <= 2^" + std::to_string(cfg.xy_bits) +
              (xy < 4 ? " (at least 4)" : ""));
+  if (json.contains("offset_bits")) {
+    reason("offset_bits", value("offset_bits"),
+           "spans start at dx, dy in " + std::to_string(ms.start_offset_min) + ".." +
+               std::to_string(ms.start_offset_max) + " px from their triangle's origin, within " +
+               std::to_string(-(1 << (cfg.offset_bits - 1))) + ".." +
+               std::to_string((1 << (cfg.offset_bits - 1)) - 1) +
+               ": no origin moved, no triangle re-origined");
+  }
   const double steps = 1.0 + ms.longest_span * (ms.longest_span - 1.0) / 2.0;
   reason("coef", value("coef"),
          "integer: " + coef_int_why + "; fraction " + std::to_string(coef_frac) +

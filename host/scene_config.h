@@ -67,6 +67,8 @@ struct ConfigMeasurements {
   int max_width = 0, max_height = 0;
   int longest_span = 0;                   // pixels
   int max_offset = 0;                     // max |dx|, |dy| of a pixel from its triangle's origin
+  int start_offset_min = 0;               // smallest dx or dy of a span's first pixel
+  int start_offset_max = 0;               // largest (span setup's offsets)
   double max_monomial_sum = 0;            // max of 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 over pixels
   double series_min = 0, series_max = 0;  // every series value at a pixel, and ambient words
   double difference_max = 0;              // max |d|, |d2|

@@ -94,12 +94,37 @@ void validate_command(const Command& cmd, const UnitConfig& cfg, const std::stri
   }
 }
 
+// Span setup takes the span's first-pixel offsets from its triangle's origin in offset_bits
+// signed bits (rtl/span_setup.sv wraps them): a stream whose offsets do not fit would shade
+// wrong pixels, so it is rejected naming both commands.
+void check_span_offsets(const SpanCmd& s, const TriangleCmd& t, size_t tri_at,
+                        const UnitConfig& cfg, const std::string& loc) {
+  const int64_t dx = int64_t{s.x0} - t.xo, dy = int64_t{s.y} - t.yo;
+  if (cfg.offsets_fit(dx, dy)) return;
+  const int64_t hi = (int64_t{1} << (cfg.offset_bits - 1)) - 1;
+  throw CommandStreamError(
+      loc + "span y=" + std::to_string(s.y) + " x0=" + std::to_string(s.x0) +
+      ": offsets dx=" + std::to_string(dx) + " dy=" + std::to_string(dy) + " from the origin (" +
+      std::to_string(t.xo) + ", " + std::to_string(t.yo) + ") of the triangle at command " +
+      std::to_string(tri_at) + " do not fit offset_bits=" + std::to_string(cfg.offset_bits) + " (" +
+      std::to_string(-hi - 1) + ".." + std::to_string(hi) +
+      "): re-origin the triangle or widen it");
+}
+
 }  // namespace
 
 void CommandStream::validate(const std::string& source) const {
   config.validate();
+  const TriangleCmd* tri = nullptr;
+  size_t tri_at = 0;
   for (size_t i = 0; i < commands.size(); ++i) {
     validate_command(commands[i], config, where(source, i, "command"));
+    if (const auto* t = std::get_if<TriangleCmd>(&commands[i])) {
+      tri = t;
+      tri_at = i;
+    } else if (const auto* s = std::get_if<SpanCmd>(&commands[i]); s && tri) {
+      check_span_offsets(*s, *tri, tri_at, config, where(source, i, "command"));
+    }
   }
 }
 
@@ -408,6 +433,8 @@ std::string config_to_json(const UnitConfig& c) {
   j["channels"] = c.channels;
   j["lights"] = c.lights;
   j["xy_bits"] = c.xy_bits;
+  // Only when not the default: streams and build keys of screen-sized offsets stay as they were.
+  if (c.offset_bits != UnitConfig::kMaxOffsetBits) j["offset_bits"] = c.offset_bits;
   j["coef"] = c.coef.to_string();
   j["series"] = c.series.to_string();
   j["spec_colour"] = c.spec_colour.to_string();
@@ -451,12 +478,13 @@ class ConfigJsonReader {
     // "derivation" is the annotation `shadesim config --json` writes beside the fields (how each
     // was derived); it is for people and never read.
     check_keys(j, "",
-               {"channels", "lights", "xy_bits", "coef", "series", "spec_colour", "out_bits",
-                "coef_term_iwl", "port_words", "tri_queue", "lanes", "material_buffers", "specular",
-                "derivation"});
+               {"channels", "lights", "xy_bits", "offset_bits", "coef", "series", "spec_colour",
+                "out_bits", "coef_term_iwl", "port_words", "tri_queue", "lanes", "material_buffers",
+                "specular", "derivation"});
     read_int(j, "", "channels", 1, 3, require_top_, c.channels);
     read_int(j, "", "lights", 1, 8, require_top_, c.lights);
     read_int(j, "", "xy_bits", 1, 16, require_top_, c.xy_bits);
+    read_int(j, "", "offset_bits", 2, UnitConfig::kMaxOffsetBits, false, c.offset_bits);
     read_format(j, "", "coef", require_top_, c.coef);
     read_format(j, "", "series", require_top_, c.series);
     read_format(j, "", "spec_colour", require_top_, c.spec_colour);

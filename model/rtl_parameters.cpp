@@ -40,6 +40,8 @@ std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u, const I
   };
   // shade_unit's default is 1: one-buffer units keep their parameter list (and build key).
   if (u.material_buffers != 1) p.push_back({"MATERIAL_BUFFERS", u.material_buffers});
+  // Likewise OFS_BITS, whose default is the screen-sized 17.
+  if (u.offset_bits != UnitConfig::kMaxOffsetBits) p.push_back({"OFS_BITS", u.offset_bits});
   // Narrowed coefficient terms (coef packing); shade_unit's defaults are COEF_WL.
   if (!u.coef_term_iwl.empty()) {
     for (int t = 0; t < 6; ++t)

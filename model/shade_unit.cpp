@@ -13,7 +13,7 @@ const UnitConfig& validated(const UnitConfig& config) {
 
 ShadeUnit::ShadeUnit(const UnitConfig& config)
     : config_(validated(config)),
-      span_setup_(config.coef, config.series),
+      span_setup_(config.coef, config.series, config.offset_bits),
       specular_(config),
       combine_(config),
       fanout_(config.series, config.lanes),

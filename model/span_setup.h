@@ -1,7 +1,8 @@
 // SpanSetup: start value and differences of one series for one span, from the triangle's
 // quantized Taylor coefficients. Mirrors rtl/span_setup.sv stage for stage.
 //
-//   stage 1  exact products with the integer offsets dx = x0 - xo, dy = y - yo
+//   stage 1  exact products with the integer offsets dx = x0 - xo, dy = y - yo (offset_bits
+//            signed bits, UnitConfig::offset_bits)
 //   stage 2  exact sums (coef fraction bits, wide enough that nothing is lost)
 //              v  = T0 + T1 dy + T2 dx + T3 dy^2 + T4 dx dy + T5 dx^2   value at the first pixel
 //              d  = T2 + T4 dy + T5 (2 dx + 1)                          first forward difference
@@ -25,11 +26,16 @@ struct SeriesStart {
 
 class SpanSetup {
  public:
-  SpanSetup(const FixedFormat& coef, const FixedFormat& series) : coef_(coef), series_(series) {}
+  SpanSetup(const FixedFormat& coef, const FixedFormat& series, int offset_bits)
+      : coef_(coef),
+        series_(series),
+        offset_{offset_bits, offset_bits, true, Quantization::kTruncate, Overflow::kWrap} {}
 
-  // t[0..5] = T0..T5 raw in the coef format.
+  // t[0..5] = T0..T5 raw in the coef format; dx, dy the span's offsets from the origin, taken
+  // modulo 2^offset_bits as signed values, as the RTL's OFS_W-bit subtraction does
+  // (CommandStream::validate rejects streams whose offsets do not fit).
   SeriesStart operator()(const int64_t* t, int32_t dx, int32_t dy) const {
-    const Int128 x = dx, y = dy;
+    const Int128 x = offset_.wrap(int64_t{dx}), y = offset_.wrap(int64_t{dy});
     const Int128 v = Int128{t[0]} + Int128{t[1]} * y + Int128{t[2]} * x + Int128{t[3]} * y * y +
                      Int128{t[4]} * x * y + Int128{t[5]} * x * x;
     const Int128 d = Int128{t[2]} + Int128{t[4]} * y + Int128{t[5]} * (2 * x + 1);
@@ -41,6 +47,7 @@ class SpanSetup {
  private:
   FixedFormat coef_;
   FixedFormat series_;
+  FixedFormat offset_;  // the offsets: offset_bits signed integer bits, wrapping
 };
 
 }  // namespace shadesim

@@ -11,6 +11,9 @@ void UnitConfig::validate() const {
     fail("channels must be 1 or 3, got " + std::to_string(channels));
   if (lights < 1 || lights > 8) fail("lights must be 1..8, got " + std::to_string(lights));
   if (xy_bits < 4 || xy_bits > 15) fail("xy_bits must be 4..15, got " + std::to_string(xy_bits));
+  if (offset_bits < 2 || offset_bits > kMaxOffsetBits)
+    fail("offset_bits must be 2.." + std::to_string(kMaxOffsetBits) + ", got " +
+         std::to_string(offset_bits));
   if (out_bits < 1 || out_bits > 16)
     fail("out_bits must be 1..16, got " + std::to_string(out_bits));
   if (port_words != 1 && port_words != 2 && port_words != 4 && port_words != 8)
@@ -69,6 +72,7 @@ std::string UnitConfig::to_string() const {
   }
   os << " series=" << series.to_string() << " out=" << out_bits
      << " spec=" << shadesim::to_string(specular.kind) << ':' << specular.out.to_string();
+  if (offset_bits != kMaxOffsetBits) os << " ofs=" << offset_bits;
   if (port_words != 1) os << " port=" << port_words << 'w';
   if (tri_queue != 1) os << " triq=" << tri_queue;
   if (lanes != 1) os << " lanes=" << lanes;

@@ -3,6 +3,7 @@
 // shade_unit with the same names.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,14 @@ struct UnitConfig {
 
   // Screen coordinates: unsigned, image up to 2^xy_bits pixels on a side.
   int xy_bits = 12;
+  // Span setup's offsets dx = x0 - xo, dy = y - yo of a span's first pixel from its triangle's
+  // origin: signed, offset_bits wide (-2^(offset_bits-1) .. 2^(offset_bits-1) - 1). They size
+  // every product in span setup (its squares are 2 * offset_bits wide), so a unit sized to its
+  // scene's triangles is far smaller than one sized to the screen; the encoder re-origins a
+  // triangle whose spans do not fit (EncodeStats::reorigins) and CommandStream::validate rejects
+  // a stream that breaks it. 17: any origin in the image, any span start (2^15 + 2^15 - 1).
+  int offset_bits = 17;
+  static constexpr int kMaxOffsetBits = 17;
 
   // Per-triangle Taylor coefficients T0..T5 as loaded from the command stream. Wrapping is
   // exact here: span setup multiplies them only by integers, so every sum is right modulo
@@ -65,6 +74,11 @@ struct UnitConfig {
   // Term t's format (0..5): coef's, or coef narrowed to coef_term_iwl[t] integer bits.
   FixedFormat coef_term(int t) const;
   int coef_term_bits(int t) const { return coef_term(t).wl; }
+  // Whether span setup can take the offsets (dx, dy): each fits offset_bits signed.
+  bool offsets_fit(int64_t dx, int64_t dy) const {
+    const int64_t lo = -(int64_t{1} << (offset_bits - 1)), hi = -lo - 1;
+    return dx >= lo && dx <= hi && dy >= lo && dy <= hi;
+  }
 
   int diffuse_series() const { return lights * channels; }
   int specular_series() const { return lights * specular.series_per_light(); }

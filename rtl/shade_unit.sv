@@ -37,6 +37,9 @@ module shade_unit #(
   parameter int CHANNELS         = 1,
   parameter int LIGHTS           = 1,
   parameter int XY_BITS          = 12,
+  // Signed width of span setup's offsets dx = x0 - xo, dy = y - yo (UnitConfig::offset_bits):
+  // 17 holds any origin in the image; a scene's own unit takes what its triangles need.
+  parameter int OFS_BITS         = 17,
   parameter int COEF_WL          = 36,
   parameter int COEF_IWL         = 4,
   // Coefficient packing: the width of each term T0..T5 in the TRIANGLE payload (COEF_WL's
@@ -102,7 +105,7 @@ module shade_unit #(
                                                        COEF_T2_WL, COEF_T3_WL, COEF_T4_WL,
                                                        COEF_T5_WL) + 1;  // TRIANGLE payload
   localparam int NMatFixed      = CHANNELS + LIGHTS * CHANNELS;  // ambient + spec_colour words
-  localparam int OfsW           = 17;  // x0 - xo with x0 < 2^15 and xo a signed 16-bit value
+  localparam int OfsW           = OFS_BITS;
   // The slot's timing (shade_pkg, the one definition; specular_unit's contract).
   localparam int SpecLatency    = shade_pkg::spec_latency(SPECULAR_KIND, SPEC_PARAMS);
   localparam int SpecInterval   = shade_pkg::spec_interval(SPECULAR_KIND, SPEC_PARAMS);
@@ -121,6 +124,8 @@ module shade_unit #(
       $fatal(1, "shade_unit: LIGHTS %0d is not 1..8", LIGHTS);
     if (XY_BITS < 4 || XY_BITS > 15)
       $fatal(1, "shade_unit: XY_BITS %0d is not 4..15", XY_BITS);
+    if (OFS_BITS < 2 || OFS_BITS > 17)
+      $fatal(1, "shade_unit: OFS_BITS %0d is not 2..17", OFS_BITS);
     if (SPECULAR_KIND < shade_pkg::SpecIdeal || SPECULAR_KIND > shade_pkg::SpecWpow)
       $fatal(1, "shade_unit: SPECULAR_KIND %0d is not a unit (0 ideal .. 3 wpow)", SPECULAR_KIND);
     if (SERIES_QUANT != 0 && SERIES_QUANT != 1)
@@ -583,8 +588,9 @@ module shade_unit #(
     assign tri_bank_free = 1'b1;
   end
 
-  // Span setup takes the offsets dx = x0 - xo, dy = y - yo of the span entering stage 1 (x0
-  // and y zero-extended, the origin sign-extended, all OfsW bits).
+  // Span setup takes the offsets dx = x0 - xo, dy = y - yo of the span entering stage 1, modulo
+  // 2^OfsW (x0 and y zero-extended or cut, the origin sign-extended or cut): exact for every
+  // stream CommandStream::validate accepts, whose offsets fit OFS_BITS signed bits.
   logic signed [OfsW-1:0] s1_x, s1_y, s1_xo, s1_yo;
   assign s1_x  = OfsW'(s1_src.x0);
   assign s1_y  = OfsW'(s1_src.y);

@@ -686,6 +686,12 @@ int64_t lanes_of(const ParamMap& p) {
   return it == p.end() ? 1 : it->second;
 }
 
+// OFS_BITS, 17 (screen-sized) when the unit does not set it.
+int64_t offset_bits_of(const ParamMap& p) {
+  const auto it = p.find("OFS_BITS");
+  return it == p.end() ? UnitConfig::kMaxOffsetBits : it->second;
+}
+
 // Instances of each module (shade_unit.sv: NSer series, one slot per light, one combine; with
 // LANES > 1 an engine per series, a slot per light and a combine per lane, one span setup).
 int64_t instances_of(const std::string& module, const ParamMap& p) {
@@ -710,15 +716,16 @@ double size_of(const std::string& module, const ParamMap& p) {
   const double so = static_cast<double>(get(p, "SPECULAR_OUT_WL")),
                sc = static_cast<double>(get(p, "SPEC_COLOUR_WL"));
   if (module == "span_setup") {
-    // Seven coefficient x offset products and three offset squares, each exact at its full
-    // width with sign-extended operands; with a wrapping series only the low w bits (up to the
-    // series' top) reach the output, and a product truncated to w bits of w-bit operands has
-    // w(w+1)/2 partial-product bits. Plus the three register stages.
-    const double sum_w = c + 37;
+    // Four coefficient x offset products (offsets of OFS_BITS o, and 2 dx + 1), three
+    // coefficient x square products (2o bits) and three offset squares; a c x k product has
+    // c k partial-product bits, and with a wrapping series only the low w bits (up to the
+    // series' top) reach the output, at most w(w+1)/2 of them. Plus the three register stages.
+    const double o = static_cast<double>(offset_bits_of(p));
+    const double sum_w = c + 2 * o + 3;
     const double drop = (c - ci) - (s - si);
     const double w = get(p, "SERIES_OVERFLOW") == 1 ? std::min(sum_w, drop + s + 1) : sum_w;
-    const double w2 = std::min(w, 34.0);
-    return 7 * w * (w + 1) / 2 + 3 * w2 * (w2 + 1) / 2 + 13 * w;
+    const auto product = [w](double a, double b) { return std::min(a * b, w * (w + 1) / 2); };
+    return 4 * product(c, o + 1) + 3 * product(c, 2 * o) + 3 * o * o + 13 * w;
   }
   if (module == "series_engine") return s;
   if (module == "pixel_combine") return ch * (l * so * sc + (l + 1) * (s + 4));

@@ -165,6 +165,8 @@ void register_config(CLI::App& app, int& exit_code) {
       "               (its RTL slot outputs 0), so it becomes W_16 B=16 pipelined, the closest\n"
       "               hardware unit to ideal in the README table; the reason says so\n"
       "  xy_bits      enough unsigned bits for the largest image width and height (at least 4)\n"
+      "  offset_bits  enough signed bits for the largest |dx|, |dy| of a span's first pixel from\n"
+      "               its triangle's origin, so no triangle is re-origined\n"
       "  series       integer bits: the fewest (>= 2) holding every series value at every pixel\n"
       "               (measured on a trial unit that loses nothing); fraction bits F: the proven\n"
       "               drift bound over the longest span L, 2^-F (1 + L(L-1)/2) (half with "

@@ -236,8 +236,10 @@ int run_cycles(const CyclesOptions& o) {
             << "stimulus     seed " << o.seed << ", input gaps " << o.gap_pct << "% (max "
             << o.max_gap << "), back-pressure " << o.stall_pct << "%\n"
             << "stream       " << words.size() << " words: " << frame.encoded.stats.triangles
-            << " tri, " << frame.encoded.stats.spans << " spans, " << frame.encoded.stats.materials
-            << " material loads, " << frame.encoded.stats.table_words << " table words\n"
+            << " tri (" << frame.encoded.stats.reorigins << " re-origin(s), offset_bits "
+            << frame.encoded.stream.config.offset_bits << "), " << frame.encoded.stats.spans
+            << " spans, " << frame.encoded.stats.materials << " material loads, "
+            << frame.encoded.stats.table_words << " table words\n"
             << "triangle     " << 1 + layout.words << " words: 1 header + " << layout.words
             << " payload (one coefficient a word: " << unpacked_words << ") holding "
             << diffuse_bits + specular_bits << " coefficient bits: diffuse " << diffuse_bits << " ("

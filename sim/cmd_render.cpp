@@ -161,7 +161,9 @@ int run_render(const RenderOptions& o) {
               << "cosine       " << specular_models(scene) << "\n"
               << "stream       " << frame.encoded.stats.triangles << " tri, "
               << frame.encoded.stats.spans << " spans, " << frame.encoded.stats.materials
-              << " material loads, " << frame.encoded.stats.words << " words\n"
+              << " material loads, " << frame.encoded.stats.words << " words; "
+              << frame.encoded.stats.reorigins << " re-origin(s) (offset_bits " << cfg.offset_bits
+              << ")\n"
               << "pixels       " << es.pixels << " shaded\n"
               << "error        max " << es.max_code_lsb
               << " LSB (8-bit codes vs rounded reference), mean " << std::setprecision(4)
@@ -218,6 +220,7 @@ int run_render(const RenderOptions& o) {
     for (const Material& m : scene.materials) models[m.name] = to_string(m.specular_model);
     j["specular_model"] = models;
     j["stream"] = {{"triangles", frame.encoded.stats.triangles},
+                   {"reorigins", frame.encoded.stats.reorigins},
                    {"spans", frame.encoded.stats.spans},
                    {"materials", frame.encoded.stats.materials},
                    {"words", frame.encoded.stats.words},

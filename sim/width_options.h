@@ -21,6 +21,7 @@ struct WidthOptions {
   std::string spec_out = defaults.specular.out.to_string();
   int out_bits = defaults.out_bits;
   int xy_bits = defaults.xy_bits;
+  int offset_bits = defaults.offset_bits;
   // Specular unit fields by command-line option (model/specular_units.h): the text as given,
   // parsed in to_config. Fields sharing an option (--fit) are set together.
   std::map<std::string, std::string> unit_fields = default_unit_fields(defaults.specular);
@@ -43,6 +44,7 @@ struct WidthOptions {
     c.specular.out = parse_fixed_format(spec_out, "--spec-out");
     c.out_bits = out_bits;
     c.xy_bits = xy_bits;
+    c.offset_bits = offset_bits;
     // Every unit's options are checked, not only the unit the scene will select: a bad value
     // is named by its option here rather than later by its field.
     for (const SpecularUnitDescriptor& u : specular_units()) {
@@ -85,6 +87,11 @@ inline void add_width_options(CLI::App& sub, WidthOptions& w) {
       ->capture_default_str()
       ->group(group);
   sub.add_option("--xy-bits", w.xy_bits, "screen coordinate bits")
+      ->capture_default_str()
+      ->group(group);
+  sub.add_option("--offset-bits", w.offset_bits,
+                 "span setup's signed offset bits (a span's start from its triangle's origin); "
+                 "the encoder re-origins triangles beyond them")
       ->capture_default_str()
       ->group(group);
   // One option per distinct flag of the unit table; an option that several units share (--fit)

@@ -19,7 +19,7 @@ void check_scene(const std::string& name, const UnitConfig& base) {
   o.base = base;
   const PreparedFrame f = prepare_frame(std::string(SHADESIM_SOURCE_DIR) + "/scenes/" + name, o);
   const UnitConfig& cfg = f.config;
-  const SpanSetup setup(cfg.coef, cfg.series);
+  const SpanSetup setup(cfg.coef, cfg.series, cfg.offset_bits);
   SeriesBank bank(cfg.series, cfg.series_per_triangle());
   const double coef_half_lsb =
       std::ldexp(cfg.coef.quant == Quantization::kRoundNearest ? 0.5 : 1.0, -cfg.coef.frac_bits());
@@ -114,6 +114,61 @@ TEST(Encode, GreyOneLightSceneOnALargerFixedUnitShadesTheSame) {
   tiny.fixed_unit = true;  // grey, one light
   EXPECT_THROW(prepare_frame(std::string(SHADESIM_SOURCE_DIR) + "/scenes/multi.json", tiny),
                std::invalid_argument);
+}
+
+TEST(Encode, NarrowOffsetsReoriginTrianglesAndStillTrackTheQuadratics) {
+  // 5-bit offsets (-16..15) on multi, whose spans start up to 60 px from their triangles'
+  // centroid pixels: the large triangles' spans need several origins.
+  UnitConfig narrow;
+  narrow.offset_bits = 5;
+  check_scene("multi.json", narrow);
+  FrameOptions o;
+  o.base = narrow;
+  const std::string path = std::string(SHADESIM_SOURCE_DIR) + "/scenes/multi.json";
+  const PreparedFrame f = prepare_frame(path, o);
+  const PreparedFrame wide = prepare_frame(path, FrameOptions{});
+  EXPECT_GT(f.encoded.stats.reorigins, 0u);
+  EXPECT_EQ(f.encoded.stats.triangles, wide.encoded.stats.triangles + f.encoded.stats.reorigins);
+  EXPECT_EQ(f.encoded.stats.spans, wide.encoded.stats.spans);
+  EXPECT_EQ(f.encoded.stats.pixels, wide.encoded.stats.pixels);
+  const TriangleCmd* tri = nullptr;
+  for (const Command& cmd : f.encoded.stream.commands) {
+    if (const auto* t = std::get_if<TriangleCmd>(&cmd)) tri = t;
+    if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
+      ASSERT_NE(tri, nullptr);
+      EXPECT_GE(s->x0 - tri->xo, -16);
+      EXPECT_LE(s->x0 - tri->xo, 15);
+      EXPECT_GE(s->y - tri->yo, -16);
+      EXPECT_LE(s->y - tri->yo, 15);
+    }
+  }
+}
+
+TEST(Encode, AStreamWhoseOffsetsDoNotFitIsRejectedNamingTheTriangle) {
+  CommandStream cs;
+  cs.config.offset_bits = 4;  // -8..7
+  cs.config.specular.kind = SpecularUnitKind::kIdeal;
+  TriangleCmd t;
+  t.xo = 10;
+  t.yo = 20;
+  t.coef.assign(static_cast<size_t>(cs.config.series_per_triangle() * kTermsPerSeries), 0);
+  cs.commands = {MaterialCmd{}, t, SpanCmd{27, 17, 3, true}, SpanCmd{28, 18, 1, true}};
+  auto& m = std::get<MaterialCmd>(cs.commands[0]);
+  m.ambient.assign(1, 0);
+  m.spec_colour.assign(1, 0);
+  // Command 2: dx = dy = 7 fit; command 3: dx = dy = 8 do not.
+  try {
+    cs.validate("s");
+    FAIL() << "expected a CommandStreamError";
+  } catch (const CommandStreamError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("command 3"), std::string::npos) << what;
+    EXPECT_NE(what.find("dx=8"), std::string::npos) << what;
+    EXPECT_NE(what.find("triangle at command 1"), std::string::npos) << what;
+    EXPECT_NE(what.find("offset_bits=4 (-8..7)"), std::string::npos) << what;
+  }
+  std::get<SpanCmd>(cs.commands[3]) = SpanCmd{13, 3, 1, true};  // dx = dy = -7
+  EXPECT_NO_THROW(cs.validate("s"));
 }
 
 TEST(Encode, GreySceneUsesOneChannelAndRgbSceneThree) {

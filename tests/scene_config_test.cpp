@@ -221,6 +221,84 @@ TEST(SceneConfig, ShippedScenesShadeOnTheirConfigurationAsWellAsOnTheDefaults) {
   }
 }
 
+// Every shipped and hard scene (the hard set has the long spans and sliver triangles).
+std::vector<std::string> shipped_and_hard_scenes() {
+  std::vector<std::string> out;
+  for (const char* dir : {"", "hard/"}) {
+    for (const auto& e : std::filesystem::directory_iterator(scene(dir))) {
+      if (e.path().extension() == ".json") out.push_back(e.path().string());
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// The smallest and largest dx, dy of a span's first pixel from its triangle's origin.
+std::pair<int, int> start_offset_range(const CommandStream& stream) {
+  const TriangleCmd* tri = nullptr;
+  int lo = 0, hi = 0;
+  for (const Command& cmd : stream.commands) {
+    if (const auto* t = std::get_if<TriangleCmd>(&cmd)) tri = t;
+    if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
+      lo = std::min({lo, s->x0 - tri->xo, s->y - tri->yo});
+      hi = std::max({hi, s->x0 - tri->xo, s->y - tri->yo});
+    }
+  }
+  return {lo, hi};
+}
+
+TEST(SceneConfig, OffsetBitsAreTheFewestThatHoldEverySpanStart) {
+  for (const std::string& path : shipped_and_hard_scenes()) {
+    const DerivedConfig d = derive_config({path}, {});
+    FrameOptions o;
+    o.base = d.config;
+    o.base.offset_bits = UnitConfig::kMaxOffsetBits;
+    o.fixed_unit = true;
+    const auto [lo, hi] = start_offset_range(prepare_frame(path, o).encoded.stream);
+    // Closed form: signed b bits hold -2^(b-1) .. 2^(b-1) - 1: b = 1 + ceil(log2(-lo)) for the
+    // negative side, 2 + floor(log2(hi)) for the positive one, at least 2.
+    const int neg = lo < -1 ? 1 + static_cast<int>(std::ceil(std::log2(-lo))) : 2;
+    const int pos = hi > 1 ? 2 + static_cast<int>(std::floor(std::log2(hi))) : 2;
+    EXPECT_EQ(d.config.offset_bits, std::max(neg, pos)) << path << ": " << lo << ".." << hi;
+    EXPECT_EQ(d.measured.start_offset_min, lo) << path;
+    EXPECT_EQ(d.measured.start_offset_max, hi) << path;
+    o.base = d.config;
+    const PreparedFrame sized = prepare_frame(path, o);
+    EXPECT_EQ(sized.encoded.stats.reorigins, 0u) << path;
+    // One bit fewer: some triangle's centroid origin no longer holds its spans, so the encoder
+    // moves that origin (or splits the triangle) and the stream changes.
+    if (d.config.offset_bits > 2) {
+      o.base.offset_bits = d.config.offset_bits - 1;
+      EXPECT_NE(prepare_frame(path, o).encoded.stream.encode(), sized.encoded.stream.encode())
+          << path;
+    }
+  }
+}
+
+TEST(SceneConfig, SizedOffsetsShadeEveryPixelAsScreenSizedOnes) {
+  // The same unit with offset_bits 17 (the screen-sized span setup every unit had before) and
+  // with its derived offset_bits: the same stream, and every pixel bit-identical.
+  for (const std::string& path : shipped_and_hard_scenes()) {
+    const DerivedConfig d = derive_config({path}, {});
+    FrameOptions o;
+    o.fixed_unit = true;
+    o.base = d.config;
+    const PreparedFrame sized = prepare_frame(path, o);
+    o.base.offset_bits = UnitConfig::kMaxOffsetBits;
+    const PreparedFrame wide = prepare_frame(path, o);
+    EXPECT_EQ(sized.encoded.stream.encode(), wide.encoded.stream.encode()) << path;
+    const auto a = ShadeUnit(sized.config).run(sized.encoded.stream);
+    const auto b = ShadeUnit(wide.config).run(wide.encoded.stream);
+    ASSERT_EQ(a.size(), b.size()) << path;
+    ASSERT_GT(a.size(), 0u) << path;
+    size_t differ = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+      differ += a[i].x != b[i].x || a[i].y != b[i].y || a[i].colour != b[i].colour;
+    }
+    EXPECT_EQ(differ, 0u) << path << " (offset_bits " << d.config.offset_bits << ")";
+  }
+}
+
 TEST(SceneConfig, BadBudgetIsAnError) {
   DeriveOptions o;
   o.budget_lsb = 0;

@@ -205,16 +205,25 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
       for (double v : terms) t.coef.push_back(config.coef.from_double(v));
     }
   };
+  // Span setup's offsets (UnitConfig::offset_bits): an origin far off screen only where they
+  // are screen-sized; otherwise within the offsets' range of the span that starts the triangle
+  // (dx = x0 - xo = -offset: the offset in -hi..hi + 1; a span beyond it starts a new
+  // triangle, below).
+  const int ofs_hi = (1 << (config.offset_bits - 1)) - 1;
+  const bool wide_offsets = config.offset_bits == UnitConfig::kMaxOffsetBits;
+  int32_t origin_x = 0, origin_y = 0;
   auto triangle = [&](int x0, int y) {
     TriangleCmd t;
     const bool wild = chance(shape.p_wild);
-    if (wild && chance(0.5)) {
+    if (wild && wide_offsets && chance(0.5)) {
       t.xo = chance(0.5) ? -32768 : 32767;
       t.yo = chance(0.5) ? -32768 : 32767;
     } else {
-      t.xo = x0 + irange(-40, 40);
-      t.yo = y + irange(-40, 40);
+      t.xo = x0 + std::clamp(irange(-40, 40), -ofs_hi, ofs_hi + 1);
+      t.yo = y + std::clamp(irange(-40, 40), -ofs_hi, ofs_hi + 1);
     }
+    origin_x = t.xo;
+    origin_y = t.yo;
     const double k = wild ? 64.0 : 1.0;
     if (shape.edge && !wild) {
       edge_terms(t);
@@ -270,7 +279,10 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
         x = span.x0 + span.length + (edge_kind > 0 ? 0 : irange(0, 8));
         span.last_in_row = s == spans - 1 || x >= width;
         if (chance(shape.p_material)) material();
-        if (!have_triangle || chance(shape.p_new_triangle)) triangle(span.x0, span.y);
+        if (!have_triangle || chance(shape.p_new_triangle) ||
+            !config.offsets_fit(span.x0 - origin_x, span.y - origin_y)) {
+          triangle(span.x0, span.y);
+        }
         have_triangle = true;
         cs.commands.emplace_back(span);
         if (span.last_in_row) break;
