@@ -1,12 +1,15 @@
 // SpanSetup: start value and differences of one series for one span, from the triangle's
-// quantized Taylor coefficients. Mirrors rtl/span_setup.sv stage for stage.
+// quantized Taylor coefficients. Mirrors rtl/span_setup.sv stage for stage, in Horner form (every
+// multiplier has one offset operand, none a square):
 //
-//   stage 1  exact products with the integer offsets dx = x0 - xo, dy = y - yo (offset_bits
+//   stage 1  exact brackets with the integer offsets dx = x0 - xo, dy = y - yo (offset_bits
 //            signed bits, UnitConfig::offset_bits)
+//              a = T1 + T3 dy + T4 dx,   b = T2 + T5 dx
+//              d = T2 + T4 dy + T5 (2 dx + 1)                          first forward difference
 //   stage 2  exact sums (coef fraction bits, wide enough that nothing is lost)
-//              v  = T0 + T1 dy + T2 dx + T3 dy^2 + T4 dx dy + T5 dx^2   value at the first pixel
-//              d  = T2 + T4 dy + T5 (2 dx + 1)                          first forward difference
-//              d2 = 2 T5                                                second difference
+//              v  = T0 + a dy + b dx                                   value at the first pixel
+//                 = T0 + T1 dy + T2 dx + T3 dy^2 + T4 dx dy + T5 dx^2
+//              d2 = 2 T5                                               second difference
 //   stage 3  each rounded once into the series format (its quantization and overflow rule)
 //
 // Only stage 3 loses bits, so with truncation the per-pixel value after k steps differs from the
@@ -36,9 +39,12 @@ class SpanSetup {
   // (CommandStream::validate rejects streams whose offsets do not fit).
   SeriesStart operator()(const int64_t* t, int32_t dx, int32_t dy) const {
     const Int128 x = offset_.wrap(int64_t{dx}), y = offset_.wrap(int64_t{dy});
-    const Int128 v = Int128{t[0]} + Int128{t[1]} * y + Int128{t[2]} * x + Int128{t[3]} * y * y +
-                     Int128{t[4]} * x * y + Int128{t[5]} * x * x;
+    // Stage 1.
+    const Int128 a = Int128{t[1]} + Int128{t[3]} * y + Int128{t[4]} * x;
+    const Int128 b = Int128{t[2]} + Int128{t[5]} * x;
     const Int128 d = Int128{t[2]} + Int128{t[4]} * y + Int128{t[5]} * (2 * x + 1);
+    // Stage 2.
+    const Int128 v = Int128{t[0]} + a * y + b * x;
     const Int128 d2 = 2 * Int128{t[5]};
     const int f = coef_.frac_bits();
     return {series_.quantize(v, f), series_.quantize(d, f), series_.quantize(d2, f)};

@@ -1,9 +1,11 @@
 // span_setup: start value and differences of one series for one span (model/span_setup.h,
-// class SpanSetup), three register stages in the model's order:
-//   stage 1  exact products of the coefficients with the integer offsets dx, dy
-//   stage 2  exact sums  v = T0 + T1 dy + T2 dx + T3 dy^2 + T4 dx dy + T5 dx^2
-//                        d = T2 + T4 dy + T5 (2 dx + 1),   d2 = 2 T5
+// class SpanSetup), three register stages in the model's order, in Horner form:
+//   stage 1  exact brackets  a = T1 + T3 dy + T4 dx,  b = T2 + T5 dx,
+//                            d = T2 + T4 dy + T5 (2 dx + 1),  d2 = T5
+//   stage 2  exact sums      v = T0 + a dy + b dx  (= T0 + T1 dy + T2 dx + T3 dy^2 + T4 dx dy
+//                            + T5 dx^2),  d,  d2 = 2 T5
 //   stage 3  each rounded once into the series format (fixed_round, then fixed_sat)
+// Every multiplier has one OFS_W-bit offset operand: six of them, no squares.
 // ("exact": with a wrapping series, exact modulo 2^KeepW, which decides every bit it keeps.)
 // Each stage register loads when its enable is high; shade_unit owns the valid bits.
 module span_setup #(
@@ -29,17 +31,17 @@ module span_setup #(
   output logic [SERIES_WL-1:0]     d_o,
   output logic [SERIES_WL-1:0]     d2_o
 );
-  localparam int SqW   = 2 * OFS_W;          // dx*dy, dx^2, dy^2 and 2dx+1 (exact)
+  localparam int SqW   = 2 * OFS_W;          // a dy and b dx reach COEF_WL + SqW bits (exact)
   localparam int Drop  = (COEF_WL - COEF_IWL) - (SERIES_WL - SERIES_IWL);
   // A wrapping series keeps only the low SERIES_WL bits of the rounded sum, which depend only
   // on the sum's low SERIES_WL + Drop bits (rounding adds below them, carries go up): the
   // products and sums are kept modulo 2^KeepW, which gives the same series bits as exact
   // arithmetic and is all the hardware needs (and a simulator computes it in a 64-bit word
   // instead of multi-word products). A saturating series needs every bit to see overflow.
-  localparam int ExactW = COEF_WL + SqW + 3;  // six exact products' sum: never overflows
+  localparam int ExactW = COEF_WL + SqW + 3;  // v, d exact: never overflow
   localparam int KeepW  = SERIES_WL + Drop < 2 ? 2 : SERIES_WL + Drop;
   localparam bit Modular = SERIES_OVERFLOW != 0 && KeepW < ExactW;
-  localparam int ProdW = Modular ? KeepW : COEF_WL + SqW;  // coefficient times an offset term
+  localparam int ProdW = Modular ? KeepW : COEF_WL + SqW;  // a bracket (|a| < 2^(COEF_WL+OFS_W))
   localparam int SumW  = Modular ? KeepW : ExactW;
 
   // Every product operand is cast to the product's width (signed casts sign-extend), so the
@@ -48,42 +50,41 @@ module span_setup #(
   logic [COEF_WL-1:0] t0, t1, t2, t3, t4, t5;
   assign {t5, t4, t3, t2, t1, t0} = coef_i;
 
-  // ---- stage 1: products --------------------------------------------------------------
-  // The offsets, their sign extensions and squares are written inside the register process,
-  // not as continuous assignments, so that a simulator computes them only on the edges that
-  // load stage 1 (the span's start changes with cmd_data_i on every cycle without a span
-  // queue). The offsets are signed: each cast sign-extends them.
+  // ---- stage 1: the first-order products and the Horner brackets ------------------------
+  // v = T0 + dy (T1 + T3 dy + T4 dx) + dx (T2 + T5 dx): every product has one offset operand,
+  // none a square, so each multiplier is COEF_WL x OFS_W. Stage 1 forms the brackets
+  //   a = T1 + T3 dy + T4 dx,   b = T2 + T5 dx,   d = T2 + T4 dy + T5 (2 dx + 1) = b + T4 dy +
+  //   T5 dx + T5,   d2 = 2 T5
+  // and stage 2 multiplies the brackets by dy and dx. The offsets are formed inside the
+  // register process, so that a simulator computes them only on the edges that load stage 1
+  // (the span's start changes with cmd_data_i on every cycle without a span queue). The
+  // offsets are signed: each cast sign-extends them.
   function automatic logic signed [OFS_W-1:0] ofs(input logic signed [OFS_W-1:0] a,
                                                   input logic signed [OFS_W-1:0] b);
     ofs = a - b;
   endfunction
-  logic signed [ProdW-1:0] p_t0_q, p_t1y_q, p_t2x_q, p_t3yy_q, p_t4xy_q, p_t5xx_q;
-  logic signed [ProdW-1:0] p_t2_q, p_t4y_q, p_t5x_q, p_t5_q;
+  logic signed [ProdW-1:0] p_t0_q, p_a_q, p_b_q, p_d_q, p_t5_q;
+  logic signed [OFS_W-1:0] p_dx_q, p_dy_q;
   always_ff @(posedge clk_i) begin
     if (s1_en_i) begin
-      p_t0_q   <= ProdW'($signed(t0));
-      p_t1y_q  <= ProdW'($signed(t1)) * ProdW'(ofs(y_i, yo_i));
-      p_t2x_q  <= ProdW'($signed(t2)) * ProdW'(ofs(x_i, xo_i));
-      p_t3yy_q <= ProdW'($signed(t3)) *
-                  ProdW'(SqW'(SqW'(ofs(y_i, yo_i)) * SqW'(ofs(y_i, yo_i))));
-      p_t4xy_q <= ProdW'($signed(t4)) *
-                  ProdW'(SqW'(SqW'(ofs(x_i, xo_i)) * SqW'(ofs(y_i, yo_i))));
-      p_t5xx_q <= ProdW'($signed(t5)) *
-                  ProdW'(SqW'(SqW'(ofs(x_i, xo_i)) * SqW'(ofs(x_i, xo_i))));
-      p_t2_q   <= ProdW'($signed(t2));
-      p_t4y_q  <= ProdW'($signed(t4)) * ProdW'(ofs(y_i, yo_i));
-      p_t5x_q  <= ProdW'($signed(t5)) * ProdW'(SqW'((SqW'(ofs(x_i, xo_i)) <<< 1) + SqW'(1)));
-      p_t5_q   <= ProdW'($signed(t5));
+      p_t0_q <= ProdW'($signed(t0));
+      p_a_q  <= ProdW'($signed(t1)) + ProdW'($signed(t3)) * ProdW'(ofs(y_i, yo_i))
+              + ProdW'($signed(t4)) * ProdW'(ofs(x_i, xo_i));
+      p_b_q  <= ProdW'($signed(t2)) + ProdW'($signed(t5)) * ProdW'(ofs(x_i, xo_i));
+      p_d_q  <= ProdW'($signed(t2)) + ProdW'($signed(t4)) * ProdW'(ofs(y_i, yo_i))
+              + ((ProdW'($signed(t5)) * ProdW'(ofs(x_i, xo_i))) <<< 1) + ProdW'($signed(t5));
+      p_t5_q <= ProdW'($signed(t5));
+      p_dx_q <= ofs(x_i, xo_i);
+      p_dy_q <= ofs(y_i, yo_i);
     end
   end
 
-  // ---- stage 2: exact sums --------------------------------------------------------------
+  // ---- stage 2: the brackets times the offsets, and the sums ----------------------------
   logic signed [SumW-1:0] v_sum_q, d_sum_q, d2_sum_q;
   always_ff @(posedge clk_i) begin
     if (s2_en_i) begin
-      v_sum_q  <= SumW'(p_t0_q) + SumW'(p_t1y_q) + SumW'(p_t2x_q) + SumW'(p_t3yy_q)
-                + SumW'(p_t4xy_q) + SumW'(p_t5xx_q);
-      d_sum_q  <= SumW'(p_t2_q) + SumW'(p_t4y_q) + SumW'(p_t5x_q);
+      v_sum_q  <= SumW'(p_t0_q) + SumW'(p_a_q) * SumW'(p_dy_q) + SumW'(p_b_q) * SumW'(p_dx_q);
+      d_sum_q  <= SumW'(p_d_q);
       d2_sum_q <= SumW'(p_t5_q) <<< 1;
     end
   end

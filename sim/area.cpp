@@ -716,16 +716,17 @@ double size_of(const std::string& module, const ParamMap& p) {
   const double so = static_cast<double>(get(p, "SPECULAR_OUT_WL")),
                sc = static_cast<double>(get(p, "SPEC_COLOUR_WL"));
   if (module == "span_setup") {
-    // Four coefficient x offset products (offsets of OFS_BITS o, and 2 dx + 1), three
-    // coefficient x square products (2o bits) and three offset squares; a c x k product has
-    // c k partial-product bits, and with a wrapping series only the low w bits (up to the
-    // series' top) reach the output, at most w(w+1)/2 of them. Plus the three register stages.
+    // Horner form (rtl/span_setup.sv): four coefficient x offset products (offsets of
+    // OFS_BITS o) in stage 1 and two bracket x offset products ((c + o) x o) in stage 2; a
+    // c x k product has c k partial-product bits, and with a wrapping series only the low w
+    // bits (up to the series' top) reach the output, at most w(w+1)/2 of them. Plus the
+    // registers: five brackets and two offsets, three sums, three outputs.
     const double o = static_cast<double>(offset_bits_of(p));
     const double sum_w = c + 2 * o + 3;
     const double drop = (c - ci) - (s - si);
     const double w = get(p, "SERIES_OVERFLOW") == 1 ? std::min(sum_w, drop + s + 1) : sum_w;
     const auto product = [w](double a, double b) { return std::min(a * b, w * (w + 1) / 2); };
-    return 4 * product(c, o + 1) + 3 * product(c, 2 * o) + 3 * o * o + 13 * w;
+    return 4 * product(c, o) + 2 * product(c + o, o) + 8 * w + 2 * o + 3 * s;
   }
   if (module == "series_engine") return s;
   if (module == "pixel_combine") return ch * (l * so * sc + (l + 1) * (s + 4));
