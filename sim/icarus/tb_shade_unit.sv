@@ -26,6 +26,7 @@ module tb_shade_unit #(
   parameter int CHANNELS         = 1,
   parameter int LIGHTS           = 1,
   parameter int XY_BITS          = 12,
+  parameter int OFS_BITS         = 17,
   parameter int COEF_WL          = 36,
   parameter int COEF_IWL         = 4,
   parameter int COEF_T0_WL       = COEF_WL,
@@ -76,7 +77,7 @@ module tb_shade_unit #(
   logic                         pix_ready = 1'b0;  // low in reset, as the harness drives it
 
   shade_unit #(
-    .CHANNELS(CHANNELS), .LIGHTS(LIGHTS), .XY_BITS(XY_BITS),
+    .CHANNELS(CHANNELS), .LIGHTS(LIGHTS), .XY_BITS(XY_BITS), .OFS_BITS(OFS_BITS),
     .COEF_WL(COEF_WL), .COEF_IWL(COEF_IWL),
     .COEF_T0_WL(COEF_T0_WL), .COEF_T1_WL(COEF_T1_WL), .COEF_T2_WL(COEF_T2_WL),
     .COEF_T3_WL(COEF_T3_WL), .COEF_T4_WL(COEF_T4_WL), .COEF_T5_WL(COEF_T5_WL),
