@@ -100,6 +100,9 @@ set(SHADESIM_GTEST_CASE_TIERS
   cli_test       "^Cli\\.CyclesEstimateEqualsTheRtlOnTheSameSceneAndStimulus$"      rtl
   # Yosys: a direct run against shadesim area's cell count
   area_test      "^Area\\.CellCountEqualsADirectYosysRunAndTheCacheIsReused$"      rtl
+  # Yosys on tiny modules (GE's closed forms) and a small LUT unit (its table RAM bits)
+  area_test      "^Area\\.GateEquivalentsFollowTheClosedFormOnTinyModules$"         rtl
+  area_test      "^Area\\.TableRamBitsAreApartFromGateEquivalents$"                 rtl
   # explore's CLI synthesises the area estimate's anchor with Yosys (once per build tree)
   explore_test   "^ExploreCli\\."                                                rtl
   scaleout_test  "^Explore\\.EmitsTheRunsOfItsVerificationAsRegressJobLines$"       rtl

@@ -21,6 +21,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "model/exponent_lut.h"
 #include "model/specular_units.h"
 #include "sim/content_hash.h"
 #include "sim/process.h"
@@ -44,6 +45,17 @@ constexpr const char* kFlatScript =
     "abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX\n"
     "opt_clean\n"
     "tee -q -o @WORK@/flat_stat.txt stat -tech cmos\n";
+// Table memories: synth's first half (to `fine`, where memory_map would turn them into
+// flip-flops), then a dump of the $mem cells: their SIZE x WIDTH are the RAM bits kept out of GE
+// (area.h). A run of its own: splitting the flat flow's synth at `fine` changes ABC's result by
+// a few cells, and the flat figures must equal one plain synth.
+constexpr const char* kMemoryScript =
+    "synth -flatten -top shade_unit -run :fine\n"
+    "tee -q -o @WORK@/flat_mem.txt dump t:$mem_v2 t:$mem\n";
+// The netlist regress --netlist simulates: the flat flow's own result, written out.
+constexpr const char* kNetlistWrite =
+    "rename -top shade_unit\n"
+    "write_verilog -noattr @WORK@/netlist.v\n";
 // Breakdown: the same flow with the datapath modules kept as modules (their fixed_round /
 // fixed_sat helpers are flattened into them), so stat says where the area goes. Across a kept
 // boundary Yosys cannot drop unread logic, so this total is at least the flat one.
@@ -255,12 +267,22 @@ int64_t flip_flops_of(const StatSection& s) {
   return n;
 }
 
+// The transistors `stat -tech cmos` charged for the flip-flops of `s` (area.h: only the plain
+// $_DFF_P_ / $_DFF_N_ have a cost in its table).
+int64_t flip_flop_transistors_of(const StatSection& s) {
+  int64_t n = 0;
+  for (const auto& [type, count] : s.by_type) {
+    if (type == "$_DFF_P_" || type == "$_DFF_N_") n += count * kYosysCmosPlainDffTransistors;
+  }
+  return n;
+}
+
 // Per-module rows from the kept-hierarchy stat: each module with its submodules folded in,
 // instance counts from the top down, then the top's own glue.
 void read_breakdown(const std::map<std::string, StatSection>& stat, const fs::path& p,
                     AreaReport& r) {
   struct Totals {
-    int64_t cells = 0, transistors = 0, ffs = 0;
+    int64_t cells = 0, transistors = 0, ffs = 0, logic = 0;
   };
   std::map<std::string, Totals> memo;
   auto is_module = [&](const std::string& type) {
@@ -269,13 +291,15 @@ void read_breakdown(const std::map<std::string, StatSection>& stat, const fs::pa
   std::function<Totals(const std::string&)> total = [&](const std::string& name) -> Totals {
     if (auto f = memo.find(name); f != memo.end()) return f->second;
     const StatSection& sec = stat.at(name);
-    Totals t{sec.cells, sec.transistors, flip_flops_of(sec)};
+    Totals t{sec.cells, sec.transistors, flip_flops_of(sec),
+             sec.transistors - flip_flop_transistors_of(sec)};
     for (const auto& [type, n] : sec.by_type) {
       if (!is_module(type)) continue;
       const Totals sub = total(type);
       t.cells += n * (sub.cells - 1);  // each instance counts as one cell in sec.cells
       t.transistors += n * sub.transistors;
       t.ffs += n * sub.ffs;
+      t.logic += n * sub.logic;
     }
     return memo[name] = t;
   };
@@ -286,10 +310,17 @@ void read_breakdown(const std::map<std::string, StatSection>& stat, const fs::pa
     if (!is_module(type)) continue;
     const Totals sub = total(type);
     glue_cells -= n;
-    r.modules.push_back(
-        {base_module_name(type), static_cast<int>(n), sub.cells, sub.transistors, sub.ffs});
+    r.modules.push_back({base_module_name(type), static_cast<int>(n), sub.cells, sub.transistors,
+                         sub.ffs, sub.logic});
   }
-  r.modules.push_back({"shade_unit", 1, glue_cells, top.transistors, flip_flops_of(top)});
+  r.modules.push_back({"shade_unit", 1, glue_cells, top.transistors, flip_flops_of(top),
+                       top.transistors - flip_flop_transistors_of(top)});
+  // The table memories sit in specular_unit (exponent_lut): their bits from the parameters,
+  // checked against Yosys's count of the flat flow in check_ram().
+  const int64_t ram_each = ram_bits_per_specular_unit(r.parameters);
+  for (auto& m : r.modules) {
+    if (m.module == "specular_unit") m.ram_bits_each = ram_each;
+  }
   r.breakdown_cells = 0;
   for (const auto& m : r.modules) r.breakdown_cells += m.cells();
   if (auto h = stat.find("design hierarchy");
@@ -317,7 +348,15 @@ void read_ice40_stat(const StatSection& s, Ice40Area& a) {
 // series legitimately go). Fewer means Yosys's netlist is not the unit the co-simulation checks
 // and its area is understated: say so.
 void check_series(AreaReport& r) {
-  if (r.modules.empty()) return;
+  if (r.modules.empty()) {
+    r.warnings.clear();
+    if (r.has_gate_equivalents() && r.ram_bits != r.ram_bits_expected) {
+      r.warnings.push_back("Yosys found " + std::to_string(r.ram_bits) +
+                           " table memory bits, the parameters give " +
+                           std::to_string(r.ram_bits_expected));
+    }
+    return;
+  }
   const std::map<std::string, int64_t> p = parameter_map(r.parameters);
   const int64_t kind = p.at("SPECULAR_KIND");
   const int64_t expected =
@@ -327,6 +366,12 @@ void check_series(AreaReport& r) {
     if (m.module == "span_setup") kept += m.instances;
   }
   r.warnings.clear();
+  if (r.has_gate_equivalents() && r.ram_bits != r.ram_bits_expected) {
+    r.warnings.push_back("Yosys found " + std::to_string(r.ram_bits) +
+                         " table memory bits, the parameters give " +
+                         std::to_string(r.ram_bits_expected) +
+                         ": GE leaves out Yosys's count, the per-module rows the parameters'");
+  }
   if (kept < expected) {
     r.warnings.push_back(
         "Yosys kept " + std::to_string(kept) + " of the " + std::to_string(expected) +
@@ -389,6 +434,96 @@ Json params_json(const std::vector<VerilogParameter>& ps) {
 
 }  // namespace
 
+int64_t gate_equivalents(int64_t logic_transistors, int64_t flip_flops, int64_t ram_bits) {
+  return std::llround(static_cast<double>(logic_transistors) / kTransistorsPerGate) +
+         kGatesPerFlipFlop * (flip_flops - ram_bits);
+}
+
+int64_t ModuleArea::gate_equivalents_each() const {
+  return has_gate_equivalents()
+             ? shadesim::gate_equivalents(logic_transistors_each, flip_flops_each, ram_bits_each)
+             : -1;
+}
+
+int64_t AreaReport::gate_equivalents() const {
+  return has_gate_equivalents()
+             ? shadesim::gate_equivalents(logic_transistors, flip_flops, ram_bits)
+             : -1;
+}
+
+CmosStat read_cmos_stat(const std::string& stat_file, const std::string& module) {
+  const auto stat = read_stat_text(stat_file);
+  const StatSection* sec = nullptr;
+  if (!module.empty()) {
+    for (const auto& [name, s] : stat)
+      if (base_module_name(name) == module) sec = &s;
+  } else if (stat.size() == 1) {
+    sec = &stat.begin()->second;
+  } else {
+    for (const auto& [name, s] : stat)
+      if (name == "design hierarchy") sec = &s;
+  }
+  if (!sec) throw std::runtime_error(stat_file + ": no statistics for module '" + module + "'");
+  CmosStat c;
+  c.cells = sec->cells;
+  c.transistors = sec->transistors;
+  c.transistors_partial = sec->transistors_partial;
+  c.flip_flops = flip_flops_of(*sec);
+  c.logic_transistors = sec->transistors - flip_flop_transistors_of(*sec);
+  return c;
+}
+
+int64_t read_memory_bits(const std::string& dump_file) {
+  // "  cell $mem_v2 \name" then its "    parameter \SIZE n" and "    parameter \WIDTH n".
+  // Only the tables count: register arrays (shade_unit's coef_q, ambient_q, ...) are $mem cells
+  // too at this point, and are logic.
+  std::istringstream is(read_text(dump_file));
+  static const std::regex cell(R"(^\s*cell \$mem(_v2)? \\(\S*\.)?)" +
+                               std::string(kTableMemoryName) + R"(\s*$)");
+  static const std::regex any_cell(R"(^\s*cell )");
+  static const std::regex param(R"(^\s*parameter \\(SIZE|WIDTH) ([0-9]+)\s*$)");
+  int64_t total = 0, size = -1, width = -1;
+  bool in_mem = false;
+  auto close = [&] {
+    if (!in_mem) return;
+    if (size < 0 || width < 0)
+      throw std::runtime_error(dump_file + ": a memory cell without SIZE or WIDTH");
+    total += size * width;
+    in_mem = false;
+  };
+  std::smatch m;
+  for (std::string line; std::getline(is, line);) {
+    if (std::regex_search(line, m, cell)) {
+      close();
+      in_mem = true;
+      size = width = -1;
+    } else if (std::regex_search(line, m, any_cell)) {
+      close();
+    } else if (in_mem && std::regex_match(line, m, param)) {
+      (m[1].str() == "SIZE" ? size : width) = std::stoll(m[2].str());
+    } else if (in_mem && std::regex_match(line, std::regex(R"(^\s*end\s*$)"))) {
+      close();
+    }
+  }
+  close();
+  return total;
+}
+
+int64_t ram_bits_per_specular_unit(const std::vector<VerilogParameter>& parameters) {
+  const std::map<std::string, int64_t> p = parameter_map(parameters);
+  const SpecularConfig unit = specular_config_of_parameters(p);
+  if (unit.kind != SpecularUnitKind::kLut) return 0;
+  const auto banks = p.find("MATERIAL_BUFFERS");
+  return ExponentLut::table_bits(unit.lut) * (banks == p.end() ? 1 : banks->second);
+}
+
+int64_t ram_bits_of_parameters(const std::vector<VerilogParameter>& parameters) {
+  const std::map<std::string, int64_t> p = parameter_map(parameters);
+  const auto lanes = p.find("LANES");
+  return ram_bits_per_specular_unit(parameters) * p.at("LIGHTS") *
+         (lanes == p.end() ? 1 : lanes->second);
+}
+
 std::string area_report_to_json(const AreaReport& r) {
   Json modules = Json::array();
   for (const auto& m : r.modules) {
@@ -399,27 +534,44 @@ std::string area_report_to_json(const AreaReport& r) {
                        {"flip_flops_each", m.flip_flops_each},
                        {"cells", m.cells()},
                        {"transistors", m.transistors()}});
+    if (m.has_gate_equivalents()) {
+      modules.back()["logic_transistors_each"] = m.logic_transistors_each;
+      modules.back()["ram_bits_each"] = m.ram_bits_each;
+      modules.back()["gate_equivalents_each"] = m.gate_equivalents_each();
+      modules.back()["gate_equivalents"] = m.gate_equivalents();
+    }
   }
   Json ice40 = {{"lut4", r.ice40.lut4},           {"dff", r.ice40.dff},
                 {"carry", r.ice40.carry},         {"ram4k", r.ice40.ram4k},
                 {"fits_hx8k", r.ice40.fits_hx8k}, {"fit_note", r.ice40.fit_note},
                 {"pnr_note", r.ice40.pnr_note}};
   ice40["fmax_mhz"] = r.ice40.fmax_mhz ? Json(*r.ice40.fmax_mhz) : Json(nullptr);
-  const Json j = {{"parameters", params_json(r.parameters)},
-                  {"key", r.key},
-                  {"from_cache", r.from_cache},
-                  {"yosys_version", r.yosys_version},
-                  {"nextpnr_version", r.nextpnr_version},
-                  {"cells", r.cells},
-                  {"transistors", r.transistors},
-                  {"transistors_exclude_flip_flops", r.transistors_partial},
-                  {"flip_flops", r.flip_flops},
-                  {"breakdown_cells", r.breakdown_cells},
-                  {"modules", modules},
-                  {"ice40", ice40},
-                  {"seconds", r.seconds},
-                  {"cpu_seconds", r.cpu_seconds},
-                  {"warnings", r.warnings}};
+  Json j = {{"parameters", params_json(r.parameters)},
+            {"key", r.key},
+            {"from_cache", r.from_cache},
+            {"yosys_version", r.yosys_version},
+            {"nextpnr_version", r.nextpnr_version},
+            {"cells", r.cells},
+            {"transistors", r.transistors},
+            {"transistors_exclude_flip_flops", r.transistors_partial},
+            {"flip_flops", r.flip_flops},
+            {"breakdown_cells", r.breakdown_cells},
+            {"modules", modules},
+            {"ice40", ice40},
+            {"seconds", r.seconds},
+            {"cpu_seconds", r.cpu_seconds},
+            {"warnings", r.warnings}};
+  if (r.has_gate_equivalents()) {
+    // GE: NAND2 gate equivalents = logic_transistors / 4 + 6 per flip-flop outside the RAM
+    // (sim/area.h); ram_bits: the table memories, apart.
+    j["logic_transistors"] = r.logic_transistors;
+    j["ram_bits"] = r.ram_bits;
+    j["ram_bits_expected"] = r.ram_bits_expected;
+    j["gate_equivalents"] = r.gate_equivalents();
+    j["gate_equivalents_convention"] =
+        "NAND2 GE = (stat -tech cmos transistors less its flip-flop cost) / 4 + 6 per flip-flop; "
+        "table memory bits apart (ram_bits), not flip-flops";
+  }
   return j.dump(2) + "\n";
 }
 
@@ -446,6 +598,16 @@ AreaReport area_report_from_json(const std::string& text, const std::string& sou
     for (const auto& m : j.at("modules")) {
       r.modules.push_back({m.at("module"), m.at("instances"), m.at("cells_each"),
                            m.at("transistors_each"), m.at("flip_flops_each")});
+      // Entries written before GE were measured have no logic transistors: GE unknown.
+      if (m.contains("logic_transistors_each")) {
+        r.modules.back().logic_transistors_each = m.at("logic_transistors_each");
+        r.modules.back().ram_bits_each = m.at("ram_bits_each");
+      }
+    }
+    if (j.contains("logic_transistors")) {
+      r.logic_transistors = j.at("logic_transistors");
+      r.ram_bits = j.at("ram_bits");
+      r.ram_bits_expected = j.at("ram_bits_expected");
     }
     const Json& a = j.at("ice40");
     r.ice40.lut4 = a.at("lut4");
@@ -481,7 +643,7 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
   // Cache key: everything the figures depend on. The file names are in the script text.
   auto key_for = [&](bool breakdown, bool pnr, const std::string& nextpnr_version) {
     ContentHash h;
-    h.add("shadesim-area-v1");
+    h.add("shadesim-area-v2");  // 2: gate equivalents and RAM bits measured
     h.add(chparam);
     for (const auto& f : files) {
       h.add(f.filename().string());
@@ -490,6 +652,7 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
     h.add(r.yosys_version);
     h.add(kFlatScript);
     h.add(kIce40Script);
+    h.add(kMemoryScript);
     if (breakdown) h.add(kBreakdownScript);
     if (pnr) {
       h.add(nextpnr_version);
@@ -561,6 +724,9 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
   jobs.push_back({"synth_ice40", std::async(std::launch::async, [&] {
                     run_yosys("ice40", kIce40Script, "yosys synth_ice40", nullptr);
                   })});
+  jobs.push_back({"table memories", std::async(std::launch::async, [&] {
+                    run_yosys("memory", kMemoryScript, "yosys table memories", nullptr);
+                  })});
   if (o.breakdown) {
     jobs.push_back({"per-module synthesis", std::async(std::launch::async, [&] {
                       run_yosys("breakdown", kBreakdownScript, "yosys per-module synthesis",
@@ -608,11 +774,14 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
     r.transistors = top.transistors;
     r.transistors_partial = top.transistors_partial;
     r.flip_flops = flip_flops_of(top);
+    r.logic_transistors = top.transistors - flip_flop_transistors_of(top);
+    r.ram_bits = read_memory_bits((work / "flat_mem.txt").string());
+    r.ram_bits_expected = ram_bits_of_parameters(r.parameters);
   }
   if (o.breakdown) {
     read_breakdown(read_stat_text(work / "breakdown_stat.txt"), work / "breakdown_stat.txt", r);
-    check_series(r);
   }
+  check_series(r);
   {
     const fs::path p = work / "ice40_stat.txt";
     const auto stat = read_stat_text(p);
@@ -659,6 +828,148 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
     fs::remove_all(work, ec);
   }
   return r;
+}
+
+// ---- netlist -------------------------------------------------------------------------------
+
+namespace {
+
+// The ports of shade_unit the co-simulation glue drives (sim/harness/cosim_glue.cpp), with their
+// widths from the parameters (rtl/shade_unit.sv's port list).
+std::map<std::string, std::pair<std::string, int64_t>> expected_ports(
+    const std::vector<VerilogParameter>& parameters) {
+  const std::map<std::string, int64_t> p = parameter_map(parameters);
+  const auto get_or = [&](const char* n, int64_t d) {
+    const auto it = p.find(n);
+    return it == p.end() ? d : it->second;
+  };
+  const int64_t lanes = get_or("LANES", 1);
+  return {{"clk_i", {"input", 1}},
+          {"rst_ni", {"input", 1}},
+          {"cmd_data_i", {"input", get_or("PORT_WORDS", 1) * 64}},
+          {"cmd_valid_i", {"input", 1}},
+          {"cmd_ready_o", {"output", 1}},
+          {"pix_x_o", {"output", p.at("XY_BITS")}},
+          {"pix_y_o", {"output", p.at("XY_BITS")}},
+          {"pix_colour_o", {"output", lanes * p.at("CHANNELS") * p.at("OUT_BITS")}},
+          {"pix_mask_o", {"output", lanes}},
+          {"pix_eor_o", {"output", 1}},
+          {"pix_valid_o", {"output", 1}},
+          {"pix_ready_i", {"input", 1}}};
+}
+
+// Throws naming the netlist and the port when its top is not shade_unit with exactly the ports
+// (direction, width) the glue drives.
+void check_netlist_ports(const fs::path& netlist, const std::vector<VerilogParameter>& params) {
+  std::istringstream is(read_text(netlist));
+  static const std::regex module_re(R"(^\s*module\s+(\S+?)\s*\()");
+  static const std::regex port_re(
+      R"(^\s*(input|output|inout)\s+(\[(-?[0-9]+):(-?[0-9]+)\]\s+)?(\S+)\s*;)");
+  std::map<std::string, std::pair<std::string, int64_t>> found;
+  int modules = 0;
+  std::smatch m;
+  for (std::string line; std::getline(is, line);) {
+    if (std::regex_search(line, m, module_re)) {
+      ++modules;
+      if (m[1].str() != "shade_unit")
+        throw std::runtime_error(netlist.string() + ": its module is '" + m[1].str() +
+                                 "', not shade_unit");
+    } else if (std::regex_search(line, m, port_re)) {
+      const int64_t w =
+          m[2].matched ? std::llabs(std::stoll(m[3].str()) - std::stoll(m[4].str())) + 1 : 1;
+      found[m[5].str()] = {m[1].str(), w};
+    }
+  }
+  if (modules != 1)
+    throw std::runtime_error(netlist.string() + ": " + std::to_string(modules) +
+                             " modules, expected the flat shade_unit alone");
+  const auto want = expected_ports(params);
+  for (const auto& [name, dw] : want) {
+    const auto it = found.find(name);
+    if (it == found.end())
+      throw std::runtime_error(netlist.string() + ": shade_unit has no port " + name);
+    if (it->second != dw)
+      throw std::runtime_error(netlist.string() + ": port " + name + " is " + it->second.first +
+                               " [" + std::to_string(it->second.second) + "], the RTL's is " +
+                               dw.first + " [" + std::to_string(dw.second) + "]");
+  }
+  for (const auto& [name, dw] : found) {
+    if (!want.count(name))
+      throw std::runtime_error(netlist.string() + ": shade_unit has a port " + name +
+                               " the RTL's port list (and the glue) does not");
+  }
+}
+
+}  // namespace
+
+std::string default_netlist_cache_dir() {
+  return (fs::path(SHADESIM_BINARY_DIR) / "netlist-cache").string();
+}
+
+UnitNetlist unit_netlist(const UnitConfig& unit, const NetlistOptions& o) {
+  if (o.cache_dir.empty()) throw std::invalid_argument("unit_netlist: no cache folder");
+  const std::vector<VerilogParameter> params = shade_unit_parameters(unit);  // validates
+  const std::string chparam = yosys_chparam_args(params);
+  const std::string yosys = find_program(o.yosys, "yosys");
+  std::string dir = o.rtl_dir;
+  if (dir.empty()) {
+    const char* other = std::getenv("SHADESIM_RTL_DIR");
+    dir = other && *other ? other : SHADESIM_SOURCE_DIR "/rtl";
+  }
+  const std::vector<fs::path> files = rtl_sources(dir);
+  const std::string version = first_line(run_process({yosys, "-V"}, "").output);
+  ContentHash h;
+  h.add("shadesim-netlist-v1").add(chparam);
+  for (const auto& f : files) {
+    h.add(f.filename().string());
+    h.add(read_text(f));
+  }
+  h.add(version).add(kFlatScript).add(kNetlistWrite);
+  UnitNetlist n;
+  n.key = h.hex();
+  const fs::path cache = fs::absolute(o.cache_dir);
+  fs::create_directories(cache);
+  const fs::path path = cache / ("netlist-" + n.key + ".v");
+  const fs::path info = cache / ("netlist-" + n.key + ".json");
+  n.path = path.string();
+  auto read_info = [&] {
+    const Json j = Json::parse(read_text(info));
+    n.cells = j.at("cells");
+    n.flip_flops = j.at("flip_flops");
+    n.gate_equivalents = j.at("gate_equivalents");
+    n.ram_bits = j.at("ram_bits");
+    n.seconds = j.at("seconds");
+  };
+  if (fs::exists(path) && fs::exists(info)) {
+    read_info();
+    n.from_cache = true;
+    return n;
+  }
+  std::string tmpl = (cache / ("work-" + n.key + "-XXXXXX")).string();
+  if (!::mkdtemp(tmpl.data())) throw std::runtime_error(tmpl + ": cannot create a work folder");
+  const fs::path work = tmpl;
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string flow = std::string(kFlatScript) + kNetlistWrite;
+  write_atomically(work / "netlist.ys", yosys_script(files, chparam, flow.c_str(), work));
+  run_tool({yosys, "-q", "-l", (work / "netlist.log").string(), (work / "netlist.ys").string()},
+           work / "netlist.out", "yosys netlist of " + unit.to_string(), o.progress);
+  check_netlist_ports(work / "netlist.v", params);
+  const CmosStat c = read_cmos_stat((work / "flat_stat.txt").string(), "shade_unit");
+  n.cells = c.cells;
+  n.flip_flops = c.flip_flops;
+  n.ram_bits = ram_bits_of_parameters(params);  // the area report measures them with Yosys
+  n.gate_equivalents = gate_equivalents(c.logic_transistors, c.flip_flops, n.ram_bits);
+  n.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  // The netlist first, then its stat: an entry is complete once the .json exists.
+  write_atomically(path, read_text(work / "netlist.v"));
+  const Json j = {{"unit", unit.to_string()},   {"key", n.key},
+                  {"yosys_version", version},   {"cells", n.cells},
+                  {"flip_flops", n.flip_flops}, {"gate_equivalents", n.gate_equivalents},
+                  {"ram_bits", n.ram_bits},     {"seconds", n.seconds}};
+  write_atomically(info, j.dump(2) + "\n");
+  std::error_code ec;
+  fs::remove_all(work, ec);
+  return n;
 }
 
 }  // namespace shadesim
@@ -793,6 +1104,10 @@ AreaEstimate estimate_area(const UnitConfig& unit, const std::vector<AreaReport>
   e.cells = static_cast<int64_t>(std::llround(flat));
   e.lut4 = static_cast<int64_t>(std::llround(flat * static_cast<double>(best->ice40.lut4) /
                                              static_cast<double>(best->cells)));
+  if (best->has_gate_equivalents()) {
+    e.gate_equivalents = static_cast<int64_t>(std::llround(
+        flat * static_cast<double>(best->gate_equivalents()) / static_cast<double>(best->cells)));
+  }
   e.anchor_key = best->key;
   e.differing_parameters = best_diff;
   return e;

@@ -7,11 +7,34 @@
 //             shade_pkg; then sorted by name: ABC's result depends on the netlist's order, by
 //             about 0.5 % in cells, so the order is fixed); chparam; synth -flatten; abc -g
 //             AND,NAND,OR,NOR,XOR,XNOR,MUX; stat -tech cmos: the unit's generic cells, transistor
-//             estimate, flip-flops.
+//             estimate, flip-flops. unit_netlist() writes this same netlist (write_verilog
+//             -noattr) for simulation.
+//   memory    synth -flatten -run :fine and a dump of the table memories (RAM bits, below).
 //   breakdown the same with the datapath modules kept (keep_hierarchy): per-module cells.
 //   ice40     synth_ice40 (flattened): SB_LUT4, SB_DFF*, SB_CARRY, SB_RAM40_4K counts.
 //   pnr       nextpnr-ice40 --hx8k on the synth_ice40 netlist: Fmax of clk_i. Skipped (and said
 //             so) when the LUT4 or DFF count alone exceeds the HX8K's 7,680 logic cells.
+//
+// Gate equivalents (GE), the one convention every figure here uses: NAND2 gates =
+//   logic transistors / 4  +  6 per flip-flop  (rounded to the nearest gate),
+// with "logic transistors" = `stat -tech cmos`'s estimate less what it charges for flip-flops.
+// Yosys 0.23's CMOS table (its cost.h) charges 16 transistors for a plain $_DFF_P_ /
+// $_DFF_N_ and nothing for every other flip-flop type ($_DFFE_*, $_SDFF*, $_DFF_PN0_, ...; the
+// "+" of "N+ transistors"), so those 16 are taken off and every flip-flop counts 6 GE, whatever
+// its type (checked by area_test on tiny modules: NAND 4, AND 6, XOR 12, MUX 12, NOT 2
+// transistors, a 4-bit register 4 x 16). A NAND2 is 4 transistors.
+//
+// Table memories (the exponent LUT's entries, rtl/exponent_lut.sv mem_q) are RAM, not logic: an
+// ASIC would use an SRAM macro, an iCE40 its block RAM. synth maps them to flip-flops (and
+// their write decoders and read multiplexers) in its `fine` half; the memory flow stops before
+// it, dumps the $mem / $mem_v2 cells and sums SIZE x WIDTH of the tables (cells named mem_q,
+// kTableMemoryName; register arrays are $mem cells there too): `ram_bits`. (A run of its own:
+// splitting the flat flow's synth there changes ABC's result by a few cells.) Those bits'
+// flip-flops are left out of the flip-flop term of GE (their decoders and read multiplexers stay in
+// the logic term: GE is an upper bound of the logic beside a macro). The count is cross-checked
+// against the parameters (lut: 2^A x B per bank, MATERIAL_BUFFERS banks, one table per
+// specular_unit instance); a difference is a warning. The per-module rows take their RAM bits
+// from that parameter count (the table sits in specular_unit).
 //
 // Results are cached per configuration in AreaOptions::cache_dir, one JSON file per key; the
 // key hashes the parameter list, the RTL sources' contents, the Yosys (and nextpnr) version
@@ -30,6 +53,7 @@
 #include <cstdint>
 #include <optional>
 #include <ostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -61,9 +85,39 @@ struct ModuleArea {
   int64_t cells_each = 0;        // generic cells of one instance, its submodules included
   int64_t transistors_each = 0;  // stat -tech cmos estimate of one instance
   int64_t flip_flops_each = 0;
+  // transistors_each less Yosys's cost of its flip-flops (see Gate equivalents above); -1: not
+  // known (a cache entry written before GE were measured).
+  int64_t logic_transistors_each = -1;
+  int64_t ram_bits_each = 0;  // table memory bits inside one instance (not in GE)
   int64_t cells() const { return cells_each * instances; }
   int64_t transistors() const { return transistors_each * instances; }
+  bool has_gate_equivalents() const { return logic_transistors_each >= 0; }
+  int64_t gate_equivalents_each() const;
+  int64_t gate_equivalents() const { return gate_equivalents_each() * instances; }
 };
+
+// NAND2 gate equivalents (the convention above): llround(logic_transistors / 4) +
+// 6 * (flip_flops - ram_bits).
+constexpr int kTransistorsPerGate = 4;
+constexpr int kGatesPerFlipFlop = 6;
+// What Yosys 0.23's `stat -tech cmos` charges for $_DFF_P_ and $_DFF_N_ (nothing for others).
+constexpr int kYosysCmosPlainDffTransistors = 16;
+int64_t gate_equivalents(int64_t logic_transistors, int64_t flip_flops, int64_t ram_bits);
+
+// One module's figures from a Yosys `stat -tech cmos` text file (a `tee -o` of it): cells,
+// transistors, flip-flops (every $_*DFF* cell) and logic transistors (transistors less
+// kYosysCmosPlainDffTransistors per $_DFF_P_ / $_DFF_N_). `module` "" takes the only or top
+// module. Throws std::runtime_error naming the file.
+struct CmosStat {
+  int64_t cells = 0, transistors = 0, flip_flops = 0, logic_transistors = 0;
+  bool transistors_partial = false;
+};
+CmosStat read_cmos_stat(const std::string& stat_file, const std::string& module = "");
+// Table memory bits in a Yosys `dump` of $mem / $mem_v2 cells: the sum of SIZE x WIDTH over
+// the cells named kTableMemoryName (last hierarchical component); the unit's register arrays
+// (coef_q, ambient_q, ...) are $mem cells there too and are not counted.
+constexpr const char* kTableMemoryName = "mem_q";  // rtl/exponent_lut.sv's table
+int64_t read_memory_bits(const std::string& dump_file);
 
 struct Ice40Area {
   int64_t lut4 = 0, dff = 0, carry = 0, ram4k = 0;
@@ -84,7 +138,14 @@ struct AreaReport {
   int64_t cells = 0;
   int64_t transistors = 0;
   bool transistors_partial = false;  // Yosys's CMOS cost table has no flip-flops: not counted
-  int64_t flip_flops = 0;
+  int64_t flip_flops = 0;            // every flip-flop, the RAM's included
+  // GE inputs (see Gate equivalents above); logic_transistors -1: a cache entry from before
+  // GE were measured (no GE shown, no GE estimate from it).
+  int64_t logic_transistors = -1;
+  int64_t ram_bits = 0;           // table memory bits (Yosys: $mem cells' SIZE x WIDTH)
+  int64_t ram_bits_expected = 0;  // the same from the parameters (the cross-check)
+  bool has_gate_equivalents() const { return logic_transistors >= 0; }
+  int64_t gate_equivalents() const;  // NAND2 GE of the logic, RAM apart
   // Where the area goes (empty without AreaOptions::breakdown): the same flow with span_setup,
   // series_engine, specular_unit and pixel_combine kept as modules. shade_unit's row is its own
   // glue only (decoder, coefficient and material registers, span pipeline control, metadata
@@ -113,13 +174,42 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& options);
 // the cells. Throws std::runtime_error when no anchor has the
 // unit's specular kind (run unit_area on one such configuration first).
 struct AreaEstimate {
-  int64_t cells = 0;       // estimated flat generic cells
-  int64_t lut4 = 0;        // estimated iCE40 LUT4s
-  std::string anchor_key;  // the measured report it was scaled from
+  int64_t cells = 0;              // estimated flat generic cells
+  int64_t gate_equivalents = -1;  // the anchor's GE scaled like its cells; -1: anchor has none
+  int64_t lut4 = 0;               // estimated iCE40 LUT4s
+  std::string anchor_key;         // the measured report it was scaled from
   int differing_parameters = 0;
   std::string label() const;  // "estimate (scaled from Yosys run KEY, N parameters differ)"
 };
 AreaEstimate estimate_area(const UnitConfig& unit, const std::vector<AreaReport>& anchors);
+
+// Table memory bits of a unit from its parameters (the cross-check of AreaReport::ram_bits):
+// per specular_unit instance, lut: 2^A x B x MATERIAL_BUFFERS; other kinds 0.
+int64_t ram_bits_per_specular_unit(const std::vector<VerilogParameter>& parameters);
+int64_t ram_bits_of_parameters(const std::vector<VerilogParameter>& parameters);
+
+// The gate-level netlist of `unit` that the flat flow measures, for simulation in place of the
+// RTL (regress --netlist): the flat script above, then `write_verilog -noattr`. Parameters are
+// baked in (chparam), FAULT_HOOKS is 0. Cached in `cache_dir` as netlist-<key>.v, the key
+// hashing the parameters, the RTL sources' contents, the Yosys version and the script (like the
+// area cache), with its stat beside it (netlist-<key>.json). The top's ports are checked against
+// the ports the co-simulation glue drives (names and widths from the parameters).
+struct NetlistOptions {
+  std::string rtl_dir;    // empty: SHADESIM_RTL_DIR, else this source tree's rtl/
+  std::string cache_dir;  // required
+  std::string yosys = "yosys";
+  std::ostream* progress = nullptr;
+};
+struct UnitNetlist {
+  std::string path;  // the Verilog netlist
+  std::string key;
+  bool from_cache = false;
+  int64_t cells = 0, flip_flops = 0, gate_equivalents = 0, ram_bits = 0;
+  double seconds = 0;  // Yosys's wall time when it was made
+};
+UnitNetlist unit_netlist(const UnitConfig& unit, const NetlistOptions& options);
+// The default netlist cache: <build>/netlist-cache.
+std::string default_netlist_cache_dir();
 
 // Every report in a cache folder (unreadable entries are skipped).
 std::vector<AreaReport> load_area_reports(const std::string& cache_dir);

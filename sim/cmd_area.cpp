@@ -59,15 +59,36 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
      << "   CMOS estimate (stat -tech cmos)"
      << (r.transistors_partial ? "; flip-flops not included (Yosys has no CMOS cost for them)" : "")
      << "\n"
-     << "  flip-flops   " << std::setw(10) << grouped(r.flip_flops) << "\n\n";
+     << "  flip-flops   " << std::setw(10) << grouped(r.flip_flops)
+     << (r.ram_bits > 0 ? "   of which " + grouped(r.ram_bits) + " hold table RAM bits" : "")
+     << "\n";
+  if (r.has_gate_equivalents()) {
+    os << "  GE           " << std::setw(10) << grouped(r.gate_equivalents())
+       << "   NAND2 gate equivalents of the logic: (transistors less Yosys's flip-flop cost, "
+       << grouped(r.logic_transistors) << ") / 4\n"
+       << "                          + 6 per flip-flop outside the table RAM ("
+       << grouped(r.flip_flops - r.ram_bits) << ")\n"
+       << "  RAM bits     " << std::setw(10) << grouped(r.ram_bits)
+       << "   table memories ($mem cells' SIZE x WIDTH before memory_map; parameters: "
+       << grouped(r.ram_bits_expected) << "),\n"
+       << "                          apart from GE: an SRAM macro (iCE40: block RAM), not "
+          "flip-flops\n";
+  } else {
+    os << "  GE                    -   (cache entry measured before GE; run without the cache)\n";
+  }
+  os << "\n";
   if (!r.modules.empty()) {
     os << "where the area goes (same flow, datapath modules kept: " << grouped(r.breakdown_cells)
        << " cells; more than flat, as\n"
        << "Yosys cannot drop logic across a kept boundary; each row includes its submodules)\n"
        << "  " << std::left << std::setw(16) << "module" << std::right << std::setw(5) << "inst"
        << std::setw(11) << "cells each" << std::setw(11) << "cells" << std::setw(8) << "share"
-       << std::setw(13) << "transistors" << std::setw(8) << "FFs" << '\n';
+       << std::setw(13) << "transistors" << std::setw(8) << "FFs" << std::setw(10) << "GE"
+       << std::setw(8) << "GE %" << std::setw(10) << "RAM bits" << '\n';
   }
+  int64_t breakdown_ge = 0;
+  for (const auto& m : r.modules)
+    breakdown_ge += m.has_gate_equivalents() ? m.gate_equivalents() : 0;
   for (const auto& m : r.modules) {
     const double pct = r.breakdown_cells ? 100.0 * static_cast<double>(m.cells()) /
                                                static_cast<double>(r.breakdown_cells)
@@ -76,8 +97,19 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
     os << "  " << std::left << std::setw(16) << name << std::right << std::setw(5) << m.instances
        << std::setw(11) << grouped(m.cells_each) << std::setw(11) << grouped(m.cells())
        << std::setw(7) << std::fixed << std::setprecision(1) << pct << "%" << std::setw(13)
-       << grouped(m.transistors()) << std::setw(8) << grouped(m.flip_flops_each * m.instances)
-       << '\n';
+       << grouped(m.transistors()) << std::setw(8) << grouped(m.flip_flops_each * m.instances);
+    if (m.has_gate_equivalents()) {
+      const double ge_pct = breakdown_ge > 0 ? 100.0 * static_cast<double>(m.gate_equivalents()) /
+                                                   static_cast<double>(breakdown_ge)
+                                             : 0.0;
+      os << std::setw(10) << grouped(m.gate_equivalents()) << std::setw(7) << ge_pct << "%"
+         << std::setw(10) << grouped(m.ram_bits_each * m.instances);
+    }
+    os << '\n';
+  }
+  if (breakdown_ge > 0) {
+    os << "  (GE per module from the kept-hierarchy synthesis: " << grouped(breakdown_ge)
+       << " GE in all; RAM bits\n   from the parameters, apart from GE)\n";
   }
   os << "\niCE40 (synth_ice40)\n"
      << "  LUT4         " << std::setw(10) << grouped(r.ice40.lut4) << '\n'
@@ -117,9 +149,18 @@ void print_estimate_check(std::ostream& os, const UnitConfig& unit, const AreaRe
     const double err = measured.cells ? 100.0 * static_cast<double>(e.cells - measured.cells) /
                                             static_cast<double>(measured.cells)
                                       : 0.0;
-    os << grouped(e.cells) << " cells, " << grouped(e.lut4) << " LUT4: " << e.label() << "; "
-       << std::showpos << std::setprecision(1) << err << std::noshowpos
-       << " % against this measurement\n";
+    os << grouped(e.cells) << " cells, " << grouped(e.lut4) << " LUT4";
+    if (e.gate_equivalents >= 0) os << ", " << grouped(e.gate_equivalents) << " GE";
+    os << ": " << e.label() << "; " << std::showpos << std::setprecision(1) << err << std::noshowpos
+       << " % cells against this measurement";
+    if (e.gate_equivalents >= 0 && measured.has_gate_equivalents() &&
+        measured.gate_equivalents() > 0) {
+      os << ", " << std::showpos
+         << 100.0 * static_cast<double>(e.gate_equivalents - measured.gate_equivalents()) /
+                static_cast<double>(measured.gate_equivalents())
+         << std::noshowpos << " % GE";
+    }
+    os << "\n";
   } catch (const std::exception& ex) {
     os << "- (" << ex.what() << ")\n";
   }
@@ -157,8 +198,12 @@ void register_area(CLI::App& app, int& exit_code) {
       "               abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX (2-input gates, MUXes, flip-flops)\n"
       "  transistors  Yosys's CMOS estimate of those cells (stat -tech cmos; flip-flops have no\n"
       "               CMOS cost in Yosys and are not included)\n"
-      "  flip-flops   the flip-flops among them\n"
-      "  per module   cells per instance of span_setup, series_engine, specular_unit, "
+      "  flip-flops   the flip-flops among them (with those the table RAM was mapped to)\n"
+      "  GE           NAND2 gate equivalents: (transistors less Yosys's flip-flop cost) / 4 + 6\n"
+      "               per flip-flop, the table RAM's flip-flops left out (sim/area.h)\n"
+      "  RAM bits     table memories (exponent LUT entries), apart: an SRAM macro, not logic\n"
+      "  per module   cells, transistors, FFs, GE and RAM bits per instance of span_setup, "
+      "series_engine, specular_unit, "
       "pixel_combine\n"
       "               and shade_unit's own glue (decoder, registers, control), from the same flow\n"
       "               with those modules kept: read the shares (the kept total exceeds the flat "

@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "model/command_stream.h"
+#include "sim/area.h"
 #include "sim/commands.h"
 #include "sim/rtl_build.h"
 
@@ -31,6 +32,8 @@ struct CosimOptions {
   std::string cache;
   std::string coverage;  // FILE.dat: run the covered build, write its coverage there
   std::string optimization = "fast";
+  bool netlist = false;       // Yosys's gate-level netlist in place of the RTL
+  std::string netlist_cache;  // empty: <build>/netlist-cache
   bool list = false;
   bool list_json = false;
 };
@@ -105,6 +108,19 @@ int run_cosim(const CosimOptions& o, std::vector<std::string> passthrough) {
   if (bo.coverage && backend == CosimBackend::kCppTrace) {
     throw std::invalid_argument(
         "--coverage and --waves: a traced build has no coverage; run them one at a time");
+  }
+  if (o.netlist) {
+    if (bo.coverage) throw std::invalid_argument("--netlist: a gate-level netlist has no coverage");
+    // The netlist is synthesised with FAULT_HOOKS 0: a fault-hook build's netlist has none.
+    build.faults = InjectedFaults{};
+    NetlistOptions no;
+    no.cache_dir = o.netlist_cache.empty() ? default_netlist_cache_dir() : o.netlist_cache;
+    no.progress = &std::cerr;
+    const UnitNetlist n = unit_netlist(build.unit, no);
+    build.netlist = n.path;
+    std::cerr << "cosim: gate-level netlist " << n.path << " (" << n.cells << " cells, "
+              << n.gate_equivalents << " GE" << (n.from_cache ? ", cached" : "") << ")"
+              << std::endl;
   }
   const RtlBuildResult r = ensure_rtl_build(build, backend, bo);
   const fs::path cache(o.cache.empty() ? default_rtl_cache_dir() : o.cache);
@@ -264,6 +280,11 @@ void register_cosim(CLI::App& app, int& exit_code) {
                   "fastest); a cached fast build is used either way")
       ->capture_default_str()
       ->check(CLI::IsMember({"quick", "fast"}));
+  sub->add_flag("--netlist", o->netlist,
+                "simulate the unit's gate-level netlist from Yosys (what `shadesim area` "
+                "measures) in place of the RTL; no fault hooks, no coverage");
+  sub->add_option("--netlist-cache", o->netlist_cache,
+                  "with --netlist: folder of the cached netlists (default: <build>/netlist-cache)");
   sub->add_flag("--list", o->list, "list the named builds (sim/harness/builds.json)");
   sub->add_flag("--list-json", o->list_json, "with --list: as JSON");
   sub->allow_extras();

@@ -14,10 +14,12 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -30,6 +32,7 @@
 
 #include "host/frame.h"
 #include "host/scene_config.h"
+#include "sim/area.h"
 #include "sim/commands.h"
 #include "sim/coverage.h"
 #include "sim/process.h"
@@ -64,8 +67,10 @@ struct RegressOptions {
   std::string fault;  // SITE@Y: every run injects this deliberate fault (fault-hook builds)
   bool waves = false;
   bool list = false;
-  bool coverage = false;     // covered builds; merge and report RTL coverage
-  double coverage_min = -1;  // --coverage-min PCT: exit 1 below this rtl/ line coverage
+  bool coverage = false;      // covered builds; merge and report RTL coverage
+  bool netlist = false;       // simulate Yosys's gate-level netlist in place of the RTL
+  std::string netlist_cache;  // its cache folder; empty: <build>/netlist-cache
+  double coverage_min = -1;   // --coverage-min PCT: exit 1 below this rtl/ line coverage
 };
 
 struct Shard {
@@ -116,6 +121,8 @@ struct Job {
   RunRecord rec;
 };
 
+void save_record(const Job& j);
+
 RtlBuildOptions build_options(const RegressOptions& o) {
   RtlBuildOptions b;
   b.cache_dir = o.cache;
@@ -125,6 +132,88 @@ RtlBuildOptions build_options(const RegressOptions& o) {
 }
 
 fs::path run_dir(const fs::path& out, const RunSpec& s) { return out / "runs" / s.id(); }
+
+// --netlist: each configuration's gate-level netlist (sim/area.h unit_netlist), synthesised in
+// the background while the host sets up the scenes, at most `workers` Yosys runs at once.
+class NetlistSource {
+ public:
+  NetlistSource(const RegressOptions& o, int workers) : workers_(std::max(1, workers)) {
+    options_.cache_dir = o.netlist_cache.empty() ? default_netlist_cache_dir() : o.netlist_cache;
+  }
+  // Starts (once per unit) the netlist of `unit`; the token names it for get().
+  std::string start(const UnitConfig& unit) {
+    const std::string token = config_to_json(unit);
+    std::lock_guard<std::mutex> lock(m_);
+    if (!jobs_.count(token)) {
+      jobs_.emplace(token, std::async(std::launch::async, [this, unit] {
+                             Slot slot(*this);
+                             return unit_netlist(unit, options_);
+                           }).share());
+    }
+    return token;
+  }
+  // The netlist `token` names (waits for it); throws what its synthesis threw.
+  UnitNetlist get(const std::string& token) {
+    std::shared_future<UnitNetlist> f;
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      f = jobs_.at(token);
+    }
+    return f.get();
+  }
+
+ private:
+  struct Slot {  // one of `workers_` Yosys slots
+    explicit Slot(NetlistSource& s) : s(s) {
+      std::unique_lock<std::mutex> lock(s.slots_m_);
+      s.free_.wait(lock, [&] { return s.running_ < s.workers_; });
+      ++s.running_;
+    }
+    ~Slot() {
+      {
+        std::lock_guard<std::mutex> lock(s.slots_m_);
+        --s.running_;
+      }
+      s.free_.notify_one();
+    }
+    NetlistSource& s;
+  };
+  NetlistOptions options_;
+  int workers_;
+  std::mutex m_, slots_m_;
+  std::condition_variable free_;
+  int running_ = 0;
+  std::map<std::string, std::shared_future<UnitNetlist>> jobs_;
+};
+
+// Replaces each pending job's netlist token by the netlist's path (an error for the job when
+// Yosys failed), and says what each netlist is.
+void resolve_netlists(std::vector<Job>& jobs, NetlistSource& netlists) {
+  std::set<std::string> told;
+  for (auto& j : jobs) {
+    if (j.build.netlist.empty()) continue;
+    const std::string token = j.build.netlist;
+    j.build.netlist.clear();
+    if (j.rec.status != "pending") continue;
+    try {
+      const UnitNetlist n = netlists.get(token);
+      j.build.netlist = n.path;
+      j.rec.unit_text += " [gate-level netlist, " + std::to_string(n.gate_equivalents) + " GE]";
+      if (told.insert(n.path).second) {
+        std::cout << "regress: netlist of " << j.build.name << ": " << n.path << " (" << n.cells
+                  << " cells, " << n.flip_flops << " flip-flops, " << n.gate_equivalents << " GE"
+                  << (n.ram_bits ? ", " + std::to_string(n.ram_bits) + " table RAM bits" : "")
+                  << "; " << (n.from_cache ? "cached, Yosys took " : "Yosys ") << std::fixed
+                  << std::setprecision(1) << n.seconds << " s" << std::defaultfloat << ")"
+                  << std::endl;
+      }
+    } catch (const std::exception& e) {
+      j.rec.status = "error";
+      j.rec.message = std::string("netlist synthesis failed: ") + e.what();
+      save_record(j);
+    }
+  }
+}
 
 // The scene's own configuration: the smallest unit that shades it within its error budget, with
 // real specular hardware (host/scene_config.h states each rule).
@@ -348,6 +437,9 @@ void emit_jobs(const RegressOptions& o, const RunSettings& settings, const fs::p
     if (!o.cache.empty()) a.insert(a.end(), {"--cache", o.cache});
     if (o.waves) a.push_back("--waves");
     if (o.coverage) a.push_back("--coverage");  // each line's run writes its coverage.dat
+    if (o.netlist) a.push_back("--netlist");
+    if (o.netlist && !o.netlist_cache.empty())
+      a.insert(a.end(), {"--netlist-cache", o.netlist_cache});
     std::string line;
     for (const auto& w : a) line += (line.empty() ? "" : " ") + (w == "&&" ? w : shell_quote(w));
     lines << line << '\n';
@@ -390,7 +482,7 @@ std::string replay_command(const Job& j, const RunSettings& settings) {
 // `prefetch` starts each configuration's Verilation as soon as it is known, beside the host
 // setup of the scenes.
 std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& out,
-                           const fs::path& base, RtlPrefetch& prefetch) {
+                           const fs::path& base, RtlPrefetch& prefetch, NetlistSource* netlists) {
   std::vector<Job> jobs;
   std::map<std::string, size_t> first_of_pair;  // scene + config -> its first job
   for (const auto& spec : specs) {
@@ -408,7 +500,8 @@ std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& ou
       // The pair's other backend: the same unit and stream.
       const Job& twin = jobs[done->second];
       j.build = twin.build;
-      if (twin.rec.status == "pending") prefetch.add(j.build, parse_cosim_backend(spec.backend));
+      if (twin.rec.status == "pending" && !netlists)
+        prefetch.add(j.build, parse_cosim_backend(spec.backend));
       j.rec.unit = twin.rec.unit;
       j.rec.unit_text = twin.rec.unit_text;
       j.rec.pixels = twin.rec.pixels;
@@ -423,7 +516,12 @@ std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& ou
       try {
         j.build = resolve_config(spec, base);
         j.build.name = spec.config;
-        prefetch.add(j.build, parse_cosim_backend(spec.backend));
+        if (netlists) {
+          // A token until resolve_netlists (the build's key needs the netlist's contents).
+          j.build.netlist = netlists->start(j.build.unit);
+        } else {
+          prefetch.add(j.build, parse_cosim_backend(spec.backend));
+        }
         j.rec.unit = nlohmann::json::parse(config_to_json(j.build.unit));
         j.rec.unit_text = j.build.unit.to_string() + fault_text(j.build.faults);
         std::ofstream(j.unit_path) << config_to_json(j.build.unit) << '\n';
@@ -933,7 +1031,10 @@ int run_regress(const RegressOptions& o) {
 
   // Host setup, build, run: each run's record is on disk the moment it ends.
   RtlPrefetch prefetch(build_options(o), workers);
-  std::vector<Job> jobs = plan_jobs(sel.selected, sel.out, sel.base, prefetch);
+  std::unique_ptr<NetlistSource> netlists;
+  if (o.netlist) netlists = std::make_unique<NetlistSource>(o, workers);
+  std::vector<Job> jobs = plan_jobs(sel.selected, sel.out, sel.base, prefetch, netlists.get());
+  if (netlists) resolve_netlists(jobs, *netlists);
   const auto t0 = std::chrono::steady_clock::now();
   build_all(jobs, o, workers);
   run_jobs(jobs, o, sel.settings, workers);
@@ -1037,6 +1138,12 @@ void register_regress(CLI::App& app, int& exit_code) {
                   "catch it");
   sub->add_flag("--waves", o->waves,
                 "on a mismatch, re-run the C++ backend with FST tracing of the window around it");
+  sub->add_flag("--netlist", o->netlist,
+                "simulate the gate-level netlist Yosys makes of each configuration (the flat\n"
+                "netlist `shadesim area` measures, written by write_verilog) in place of the RTL;\n"
+                "cached per configuration (--netlist-cache), no fault hooks, no --coverage");
+  sub->add_option("--netlist-cache", o->netlist_cache,
+                  "with --netlist: folder of the cached netlists (default: <build>/netlist-cache)");
   sub->add_flag("--list", o->list, "list the named builds and exit");
   sub->add_flag(
       "--coverage", o->coverage,
@@ -1048,6 +1155,12 @@ void register_regress(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0.0, 100.0));
   sub->callback([o, &exit_code]() {
     if (o->coverage_min >= 0) o->coverage = true;
+    if (o->netlist && o->coverage)
+      throw std::invalid_argument(
+          "--netlist: a gate-level netlist has no RTL coverage; drop "
+          "--coverage");
+    if (o->netlist && !o->fault.empty())
+      throw std::invalid_argument("--netlist: a netlist has no fault hooks; drop --fault");
     exit_code = run_regress(*o);
   });
 }

@@ -98,7 +98,20 @@ const std::string& rtl_digest() {
 
 std::string model_key(const RtlConfig& build, const Flavour& f, const Toolchain& t) {
   ContentHash h;
-  h.add(kRecipeVersion).add("model").add(recipe_text(f, t)).add(rtl_digest());
+  h.add(kRecipeVersion).add("model").add(recipe_text(f, t));
+  if (build.netlist.empty()) {
+    h.add(rtl_digest());
+  } else {
+    // A gate-level netlist: its own contents are the circuit (an edited netlist is a new build).
+    if (f.coverage)
+      throw std::invalid_argument("rtl build: a netlist build has no coverage (" + build.name +
+                                  ")");
+    if (!fault_text(build.faults).empty())
+      throw std::invalid_argument("rtl build: a netlist build has no fault hooks (" + build.name +
+                                  ")");
+    h.add("netlist");
+    add_files(h, {fs::path(build.netlist)});
+  }
   for (const auto& p : shade_unit_parameters(build.unit, build.faults))
     h.add(p.name + "=" + p.literal());
   if (f.coverage) {
@@ -235,9 +248,10 @@ bool ensure_verilated(const fs::path& dir, const fs::path& cache, const RtlConfi
   if (fs::exists(dir)) return false;
   const fs::path log = dir.string() + ".log";
   if (!quiet) {
-    std::cerr << "rtl build: Verilating " << build.name << " [" << build.unit.to_string()
-              << fault_text(build.faults) << "] for the " << flavour.name() << " backend into "
-              << dir.string() << std::endl;
+    std::cerr << "rtl build: Verilating " << build.name
+              << (build.netlist.empty() ? "" : " (gate-level netlist " + build.netlist + ")")
+              << " [" << build.unit.to_string() << fault_text(build.faults) << "] for the "
+              << flavour.name() << " backend into " << dir.string() << std::endl;
   }
   std::ofstream(log, std::ios::trunc).flush();
   make_atomically(dir, cache, log, [&](const fs::path& tmp) {

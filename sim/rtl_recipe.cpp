@@ -332,8 +332,17 @@ void verilate(const fs::path& dir, const RtlConfig& build, const Flavour& f, con
   if (traced(f)) args.push_back("--trace-fst");
   if (f.coverage)
     args.insert(args.end(), {"--coverage-line", "--coverage-toggle", "--coverage-user"});
-  for (const auto& a : verilator_parameter_args(params)) args.push_back(a);
-  for (const auto& s : rtl_sources) args.push_back(s);
+  if (build.netlist.empty()) {
+    for (const auto& a : verilator_parameter_args(params)) args.push_back(a);
+    for (const auto& s : rtl_sources) args.push_back(s);
+  } else {
+    // Yosys's flat netlist: the parameters are baked in (no -G), the one file is the unit.
+    // Its gates read and write single bits of wide wires, which Verilator calls circular
+    // (UNOPTFLAT) though no bit depends on itself; it orders them by settling, as it would a
+    // real loop, so the warning says nothing about the circuit.
+    args.push_back("-Wno-UNOPTFLAT");
+    args.push_back(build.netlist);
+  }
   if (f.coverage) args.push_back(cover_points);  // bound into shade_unit; no RTL file names it
   run_commands({args}, 1, log, "Verilator");
   // The runtime must hold every library file this model asks for.

@@ -3,6 +3,13 @@
 // cache answers a repeated run without Yosys and misses on a changed parameter; bad input and
 // a missing tool give clear errors. Small units (1 channel, 1 light, narrow widths) and no
 // place and route keep it quick.
+// Gate equivalents (sim/area.h): against closed forms on tiny modules (NAND2 = 4 transistors;
+// Yosys 0.23's CMOS costs (its cost.h): NOT 2, NAND/NOR 4, AND/OR 6, XOR/XNOR/MUX 12, a plain
+// flip-flop 16, other flip-flops nothing; every flip-flop 6 GE), shadesim area's GE against the
+// same formula applied by this test to a direct Yosys stat, and a LUT unit's table RAM bits
+// against 2^A x B.
+#include "sim/area.h"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -78,7 +85,7 @@ TEST(Area, CellCountEqualsADirectYosysRunAndTheCacheIsReused) {
                                " shade_unit\nsynth -flatten -top shade_unit\n"
                                "abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX\nopt_clean\n"
                                "tee -o " +
-                               (dir / "direct_stat.txt").string() + " stat\n");
+                               (dir / "direct_stat.txt").string() + " stat -tech cmos\n");
   auto direct = std::async(std::launch::async, [&] {
     return run_shell(yosys + " -q -l " + (dir / "direct.log").string() + " " +
                      (dir / "direct.ys").string());
@@ -112,6 +119,31 @@ TEST(Area, CellCountEqualsADirectYosysRunAndTheCacheIsReused) {
   EXPECT_GT(j["ice40"]["lut4"].get<long>(), 0);
   EXPECT_NE(area.output.find("span_setup"), std::string::npos) << area.output;
 
+  // GE by the stated convention, computed here from the direct run's stat: transistors less
+  // 16 per $_DFF_P_ / $_DFF_N_ (the only flip-flops Yosys's CMOS table costs), / 4, plus 6 per
+  // flip-flop; no table RAM in an ideal unit.
+  ASSERT_TRUE(
+      std::regex_search(stat_text, m, std::regex(R"(Estimated number of transistors:\s+([0-9]+))")))
+      << stat_text;
+  const long transistors = std::stol(m[1].str());
+  long ffs = 0, plain = 0;
+  const std::regex ff_line(R"(\s(\$_[A-Z0-9_]*DFF[A-Z0-9_]*)\s+([0-9]+))");
+  for (auto it = std::sregex_iterator(stat_text.begin(), stat_text.end(), ff_line);
+       it != std::sregex_iterator(); ++it) {
+    ffs += std::stol((*it)[2].str());
+    if ((*it)[1].str() == "$_DFF_P_" || (*it)[1].str() == "$_DFF_N_")
+      plain += std::stol((*it)[2].str());
+  }
+  const long logic = transistors - 16 * plain;
+  EXPECT_EQ(j["flip_flops"].get<long>(), ffs);
+  EXPECT_EQ(j["logic_transistors"].get<long>(), logic);
+  EXPECT_EQ(j["ram_bits"].get<long>(), 0);
+  EXPECT_EQ(j["gate_equivalents"].get<long>(), std::lround(logic / 4.0) + 6 * ffs);
+  long module_ge = 0;
+  for (const auto& row : j["modules"]) module_ge += row["gate_equivalents"].get<long>();
+  EXPECT_GE(module_ge, j["gate_equivalents"].get<long>());  // kept hierarchy: at least flat
+  EXPECT_NE(area.output.find("GE"), std::string::npos) << area.output;
+
   // A stand-in yosys that reports the real version (the key includes it) and fails on any
   // synthesis: a cache hit must not need it, a miss must.
   const fs::path fake = dir / "fakebin";
@@ -138,6 +170,91 @@ TEST(Area, CellCountEqualsADirectYosysRunAndTheCacheIsReused) {
   EXPECT_NE(miss.status, 0) << miss.output;
   EXPECT_NE(miss.output.find("failed"), std::string::npos) << miss.output;
   EXPECT_EQ(miss.output.find("cache hit"), std::string::npos) << miss.output;
+  fs::remove_all(dir);
+}
+
+// Yosys's flat flow (the one shadesim area uses) on a tiny module; its stat -tech cmos.
+CmosStat tiny(const std::string& yosys, const fs::path& dir, const std::string& name,
+              const std::string& verilog) {
+  write(dir / (name + ".v"), verilog);
+  const Result r = run_shell(yosys + " -q -p 'read_verilog " + (dir / (name + ".v")).string() +
+                             "; synth -flatten -top " + name +
+                             "; abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX; opt_clean; tee -q -o " +
+                             (dir / (name + ".txt")).string() + " stat -tech cmos'");
+  EXPECT_EQ(r.status, 0) << r.output;
+  return read_cmos_stat((dir / (name + ".txt")).string(), name);
+}
+
+TEST(Area, GateEquivalentsFollowTheClosedFormOnTinyModules) {
+  const std::string yosys = find_yosys();
+  if (yosys.empty()) GTEST_SKIP() << "yosys not installed";
+  const auto dir = temp_dir("tiny");
+  // A 4-bit register: 4 flip-flops, no logic: 24 GE (Yosys charges $_DFF_P_ 16 transistors,
+  // which GE takes off: a flip-flop is 6 GE whatever its type).
+  const CmosStat reg = tiny(yosys, dir, "reg4",
+                            "module reg4(input clk, input [3:0] d, output reg [3:0] q);\n"
+                            "  always @(posedge clk) q <= d;\nendmodule\n");
+  EXPECT_EQ(reg.flip_flops, 4);
+  EXPECT_EQ(reg.transistors, 4 * 16);
+  EXPECT_EQ(reg.logic_transistors, 0);
+  EXPECT_EQ(gate_equivalents(reg.logic_transistors, reg.flip_flops, 0), 24);
+  // The same with an enable ($_DFFE_PP_, which Yosys does not cost): still 24 GE.
+  const CmosStat en = tiny(yosys, dir, "reg4en",
+                           "module reg4en(input clk, en, input [3:0] d, output reg [3:0] q);\n"
+                           "  always @(posedge clk) if (en) q <= d;\nendmodule\n");
+  EXPECT_EQ(en.flip_flops, 4);
+  EXPECT_EQ(en.logic_transistors, 0);
+  EXPECT_EQ(gate_equivalents(en.logic_transistors, en.flip_flops, 0), 24);
+  // Four XORs into the register: 4 x 12 transistors = 12 GE, + 24.
+  const CmosStat x = tiny(yosys, dir, "xreg4",
+                          "module xreg4(input clk, input [3:0] a, b, output reg [3:0] q);\n"
+                          "  always @(posedge clk) q <= a ^ b;\nendmodule\n");
+  EXPECT_EQ(x.flip_flops, 4);
+  EXPECT_EQ(x.logic_transistors, 48);
+  EXPECT_EQ(gate_equivalents(x.logic_transistors, x.flip_flops, 0), 36);
+  // One gate of each kind: AND 6 + NAND 4 + OR 6 + NOR 4 + XOR 12 + XNOR 12 + NOT 2 + MUX 12.
+  const CmosStat g = tiny(yosys, dir, "gates",
+                          "module gates(input a, b, c, output [7:0] y);\n"
+                          "  assign y = {a & b, ~(a & b), a | b, ~(a | b), a ^ b, ~(a ^ b), ~a,"
+                          " c ? a : b};\nendmodule\n");
+  EXPECT_EQ(g.cells, 8);
+  EXPECT_EQ(g.flip_flops, 0);
+  EXPECT_EQ(g.logic_transistors, 58);
+  EXPECT_EQ(gate_equivalents(g.logic_transistors, 0, 0), 15);  // 14.5 rounds to 15
+  // RAM bits are not flip-flops of GE.
+  EXPECT_EQ(gate_equivalents(400, 100, 64), 100 + 6 * 36);
+  fs::remove_all(dir);
+}
+
+// A LUT unit: its table (2^A x B bits, one bank, one light) is reported as RAM bits, measured
+// by Yosys and equal to the closed form, and left out of GE's flip-flops.
+TEST(Area, TableRamBitsAreApartFromGateEquivalents) {
+  if (find_yosys().empty()) GTEST_SKIP() << "yosys not installed";
+  const auto dir = temp_dir("ram");
+  write(dir / "lut.json",
+        R"({"channels":1,"lights":1,"xy_bits":4,"offset_bits":4,"coef":"s2.6:rnd:wrap",)"
+        R"("series":"s2.6:trn:wrap","spec_colour":"u1.3:rnd:sat","out_bits":4,)"
+        R"("specular":{"kind":"lut","out":"u1.3","lut":{"addr_bits":4,"entry_bits":5}}})");
+  const Result area =
+      run_shell(shadesim() + "area --config " + (dir / "lut.json").string() + " --no-pnr --cache " +
+                (dir / "cache").string() + " --json " + (dir / "area.json").string());
+  ASSERT_EQ(area.status, 0) << area.output;
+  std::ifstream js(dir / "area.json");
+  const auto j = nlohmann::json::parse(js);
+  EXPECT_EQ(j["ram_bits"].get<long>(), 16 * 5);
+  EXPECT_EQ(j["ram_bits_expected"].get<long>(), 16 * 5);
+  const long ffs = j["flip_flops"].get<long>();
+  EXPECT_GE(ffs, 16 * 5);  // synth maps the table to flip-flops; GE leaves them out
+  EXPECT_EQ(j["gate_equivalents"].get<long>(),
+            std::lround(j["logic_transistors"].get<long>() / 4.0) + 6 * (ffs - 16 * 5));
+  long row_ram = 0;
+  for (const auto& row : j["modules"]) {
+    row_ram += row["ram_bits_each"].get<long>() * row["instances"].get<long>();
+    if (row["module"] == "specular_unit") EXPECT_EQ(row["ram_bits_each"].get<long>(), 16 * 5);
+  }
+  EXPECT_EQ(row_ram, 16 * 5);
+  EXPECT_TRUE(j["warnings"].empty()) << j["warnings"].dump();
+  EXPECT_NE(area.output.find("RAM bits"), std::string::npos) << area.output;
   fs::remove_all(dir);
 }
 

@@ -17,6 +17,10 @@ struct RtlConfig {
   UnitConfig unit;
   InjectedFaults faults;
   std::vector<std::string> backends;  // named builds: the backends the tests use
+  // Non-empty: the gate-level netlist of `unit` (sim/area.h unit_netlist: Yosys's flat netlist,
+  // parameters baked in) is Verilated in place of rtl/; the build is keyed by its contents.
+  // No fault hooks and no coverage in such a build.
+  std::string netlist;
 };
 
 // The named builds of `path` (sim/harness/builds.json). Throws std::invalid_argument naming the
