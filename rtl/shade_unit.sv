@@ -27,9 +27,9 @@
 //                previous span's last beat leaves the engines (back-to-back spans have no
 //                bubble). A beat holds up to LANES pixels of one span.
 //   slot         specular_unit per light and lane (LATENCY / INTERVAL below; all lanes in
-//                lockstep); none with SPECULAR_KIND = none (4), which also has no specular
-//                series (no span_setup, engines or coefficients for them) and whose
-//                pixel_combine adds no specular term. Pipelined units
+//                lockstep). SPECULAR_KIND 4 (none): no slot and no specular series (no span_setup,
+//                engines or coefficient registers for them); pixel_combine adds no specular
+//                term. Pipelined units
 //                (INTERVAL 1): a LATENCY-deep metadata line (valid, x, y, eor, diffuse values)
 //                moves with the slot on the global advance. Iterative units (INTERVAL > 1): one
 //                pixel in flight in a pending register; the engines step only when the unit
