@@ -30,6 +30,7 @@ string(JSON _n LENGTH "${_builds_json}")
 math(EXPR _last "${_n} - 1")
 set(RTL_BUILD_NAMES "")
 set(RTL_SPECULAR_BUILD_NAMES "")
+set(RTL_NO_SPECULAR_BUILD_NAMES "")  # specular kind none: no unit, no specular series
 foreach(i RANGE ${_last})
   string(JSON name MEMBER "${_builds_json}" ${i})
   if(name MATCHES "^_")
@@ -44,8 +45,10 @@ foreach(i RANGE ${_last})
     string(JSON b GET "${_builds_json}" ${name} backends ${k})
     list(APPEND RTL_BUILD_${name}_BACKENDS ${b})
   endforeach()
-  if(NOT no_kind AND NOT kind STREQUAL "ideal")
+  if(NOT no_kind AND NOT kind STREQUAL "ideal" AND NOT kind STREQUAL "none")
     list(APPEND RTL_SPECULAR_BUILD_NAMES ${name})
+  elseif(NOT no_kind AND kind STREQUAL "none")
+    list(APPEND RTL_NO_SPECULAR_BUILD_NAMES ${name})
   endif()
 endforeach()
 
@@ -195,6 +198,14 @@ foreach(name ${RTL_SPECULAR_BUILD_NAMES})
       COMMAND ${COSIM_SC} --config ${name} --scenario mixed --seed 23 --min-spec-pct 25
               --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
   endif()
+endforeach()
+# Specular kind none (no specular unit, no specular series, no specular term in pixel_combine):
+# every scenario, one seed; the random streams' specular colours and gate-only masks must add
+# nothing in the RTL, as in the model.
+foreach(name ${RTL_NO_SPECULAR_BUILD_NAMES})
+  add_test(NAME rtl_cosim_cpp_${name}
+    COMMAND ${COSIM_CPP} --config ${name} --scenario all --seed 21 --runs 1
+            --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
 endforeach()
 add_test(NAME rtl_cosim_backends_agree_schlick_iter_n
   COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/same_results.sh ${SHADESIM_CLI} ${RTL_CACHE} schlick_iter_n switch 5)

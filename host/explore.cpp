@@ -215,10 +215,14 @@ std::vector<Knob> knobs_for(const UnitConfig& start) {
       [](UnitConfig& c, int v) { c.series.overflow = v ? Overflow::kSaturate : Overflow::kWrap; },
       [](const UnitConfig& c) { return c.series.overflow == Overflow::kSaturate ? 1 : 0; }));
   const SpecularConfig& s = start.specular;
-  k.push_back(numeric(
-      spec, "spec.out.frac", 4, std::min(s.out.frac_bits() + 2, 60),
-      [](UnitConfig& c, int v) { c.specular.out.wl = c.specular.out.iwl + v; },
-      [](const UnitConfig& c) { return c.specular.out.frac_bits(); }));
+  // Specular kind none has no specular term: its output and colour widths reach no pixel and no
+  // hardware, so they are not searched.
+  const bool specular_term = s.kind != SpecularUnitKind::kNone;
+  if (specular_term)
+    k.push_back(numeric(
+        spec, "spec.out.frac", 4, std::min(s.out.frac_bits() + 2, 60),
+        [](UnitConfig& c, int v) { c.specular.out.wl = c.specular.out.iwl + v; },
+        [](const UnitConfig& c) { return c.specular.out.frac_bits(); }));
   // The selected unit's explored fields (model/specular_units.h).
   const SpecularUnitDescriptor& unit = specular_unit(s.kind);
   for (const SpecularField& f : unit.fields) {
@@ -229,8 +233,9 @@ std::vector<Knob> knobs_for(const UnitConfig& start) {
         [field](UnitConfig& c, int v) { field->set(c.specular, v); },
         [field](const UnitConfig& c) { return field->get(c.specular); }));
   }
-  k.push_back(
-      frac_knob("specular colour", "spec_colour.frac", &UnitConfig::spec_colour, 2, 2, start));
+  if (specular_term)
+    k.push_back(
+        frac_knob("specular colour", "spec_colour.frac", &UnitConfig::spec_colour, 2, 2, start));
   k.push_back(numeric(
       "output", "out_bits", std::max(1, start.out_bits - 2), std::min(16, start.out_bits + 2),
       [](UnitConfig& c, int v) { c.out_bits = v; }, [](const UnitConfig& c) { return c.out_bits; },

@@ -44,6 +44,7 @@ int signed_integer_bits(double lo, double hi) {
 // summed over the series it reads: t^n has slope <= n on [0, 1], and the series carries an
 // affine image of t (scale from plan_specular, which includes any pre-shift).
 double unit_slope(const UnitConfig& config, double n) {
+  if (config.specular.kind == SpecularUnitKind::kNone) return 0;  // no series, no term
   const SpecularSeriesPlan plan = plan_specular(config, n);
   const double scale = std::fabs(plan.affine.front().first);
   switch (config.specular.kind) {
@@ -62,6 +63,8 @@ double unit_slope(const UnitConfig& config, double n) {
       const double np = std::max(1.0, plan.parameter);
       return 2.0 * np;
     }
+    case SpecularUnitKind::kNone:
+      return 0;
   }
   return n;
 }
@@ -197,12 +200,23 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
   cfg.channels = colour_scene.empty() ? 1 : 3;
   cfg.lights = lights;
 
-  // Specular unit: one for all scenes.
+  // Specular unit: one for all scenes; none when no material of any scene has a specular term
+  // (a non-zero specular colour under a light of non-zero colour in some channel).
+  const Material* specular_material = nullptr;
+  for (const auto& s : scenes) {
+    for (const auto& m : s.scene.materials) {
+      for (const auto& light : s.scene.lights) {
+        for (int c = 0; c < 3 && !specular_material; ++c) {
+          if (channel(m.specular, c) * channel(light.colour, c) != 0) specular_material = &m;
+        }
+      }
+    }
+  }
   const SceneInfo* unit_scene = &scenes.front();
   const Material* unit_material = &scenes.front().scene.materials.front();
   for (const auto& s : scenes) {
     for (const auto& m : s.scene.materials) {
-      if (m.unit != unit_material->unit) {
+      if (specular_material && m.unit != unit_material->unit) {
         throw std::invalid_argument(
             "derive_config: one unit serves every scene, but " + unit_scene->path + " (material '" +
             unit_material->name + "') names the specular unit " + to_string(unit_material->unit) +
@@ -213,7 +227,16 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
   }
   const SpecularUnitKind named = unit_material->unit;
   std::string specular_why;
-  if (named == SpecularUnitKind::kIdeal) {
+  if (!specular_material) {
+    cfg.specular.kind = SpecularUnitKind::kNone;
+    specular_why =
+        std::string(scenes.size() == 1 ? "the scene has no" : "no scene has a") +
+        " specular term (every material's specular colour times every light's colour "
+        "is 0): no specular unit and no specular series" +
+        (named == SpecularUnitKind::kNone ? ""
+                                          : " (the materials name " + to_string(named) +
+                                                ", which adds 0 without a specular colour)");
+  } else if (named == SpecularUnitKind::kIdeal) {
     cfg.specular = options.ideal_substitute;
     specular_why = cfg.specular.kind == SpecularUnitKind::kIdeal
                        ? "the scenes name ideal, kept as asked: exact pow, not hardware (its RTL "
@@ -416,7 +439,10 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
       "as requested (throughput only: pixels do not depend on it); 4 with tri_queue 2 brings every "
       "shipped scene to <= 1.1 cycles per pixel");
   reason("tri_queue", value("tri_queue"), "as requested (throughput only)");
-  reason("specular", cfg.specular.describe() + " out=" + cfg.specular.out.to_string(),
+  reason("specular",
+         cfg.specular.describe() + (cfg.specular.kind == SpecularUnitKind::kNone
+                                        ? std::string()
+                                        : " out=" + cfg.specular.out.to_string()),
          specular_why);
   reasons.insert(reasons.begin(),
                  FieldReason{"budget", fmt(budget) + " LSB",

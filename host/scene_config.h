@@ -4,8 +4,10 @@
 //
 // The rules (shadesim config --help states the same):
 //   channels, lights   1 channel if every scene is grey, else 3; lights = the most any scene has.
-//   specular           the unit the scenes' materials name; `ideal` is not hardware (its RTL slot
-//                      outputs 0), so a scene naming it gets DeriveOptions::ideal_substitute.
+//   specular           none when no material of any scene has a specular term (specular colour
+//                      times light colour is 0 in every channel): no unit and no specular series;
+//                      else the unit the scenes' materials name; `ideal` is not hardware (its RTL
+//                      slot outputs 0), so a scene naming it gets DeriveOptions::ideal_substitute.
 //   xy_bits            enough unsigned bits for the widest / tallest image (at least 4).
 //   series integer     the fewest (>= 2) that hold every series value at every pixel (and every
 //                      ambient word), measured on a trial unit wide enough that setup pre-shifts

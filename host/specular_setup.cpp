@@ -184,6 +184,8 @@ SpecularSeriesPlan plan_specular(const UnitConfig& config, double n) {
     case SpecularUnitKind::kIdeal:
       p.affine = {{1.0, 0.0}};
       break;
+    case SpecularUnitKind::kNone:
+      break;  // no specular series and no unit parameters
     case SpecularUnitKind::kLut: {
       const double d = ExponentLut::argument_scale(s.lut);
       if (s.lut.addressing == LutAddressing::kPerExponent) {
@@ -240,6 +242,8 @@ std::function<double(double)> unit_float_function(const UnitConfig& config, doub
       const int m = plan.effective_m;
       return [parameter, m](double t) { return wpow_float(t, parameter, m); };
     }
+    case SpecularUnitKind::kNone:
+      return [](double) { return 0.0; };
     case SpecularUnitKind::kIdeal:
       break;
   }

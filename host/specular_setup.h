@@ -59,7 +59,8 @@ double fit_exp_k(double n, FitObjective objective);
 
 // ---------------------------------------------------------------- plan per material
 struct SpecularSeriesPlan {
-  // One (scale, offset) per series the unit reads for a light: series = scale * t + offset.
+  // One (scale, offset) per series the unit reads for a light: series = scale * t + offset
+  // (none: no series, no unit parameters).
   std::vector<std::pair<double, double>> affine;
   std::vector<int64_t> unit_params;  // MATERIAL unit_params
   std::vector<TableCmd> tables;      // per-exponent LUT: load after every switch to this material
@@ -74,7 +75,7 @@ SpecularSeriesPlan plan_specular(const UnitConfig& config, double exponent);
 // The function of t the configured unit approximates t^n with, in double (no widths): what it
 // would give with exact arithmetic. ideal and per-exponent LUT: clamp01(t)^n (the table's
 // sampling is a width, not a function); shared LUT: exp_float(t, k); Schlick: schlick_float(t, n');
-// W_m: wpow_float(t, zeta, m_eff) - with the same fitted parameters plan_specular() uses.
+// W_m: wpow_float(t, zeta, m_eff) - with the same fitted parameters plan_specular() uses; none: 0.
 std::function<double(double)> unit_float_function(const UnitConfig& config, double exponent);
 
 // The shared LUT's table (load once at stream start); empty unless lut + shared addressing.

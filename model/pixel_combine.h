@@ -18,6 +18,8 @@
 //                                   + sum_l g_l s_l k_lc
 //   stage 3  output code = round-to-nearest into u0.out_bits, saturating (negative -> 0,
 //            >= 1 - 2^-(out_bits+1) -> all ones). A code c stands for c / 2^out_bits.
+// Specular kind none (no specular term): stage 1 has no products and no gates, stage 2 no
+// specular sum; spec and spec_colour are not read (pixel_combine.sv's SPECULAR = 0 branch).
 #pragma once
 
 #include <array>
@@ -35,6 +37,7 @@ class PixelCombine {
   explicit PixelCombine(const UnitConfig& c)
       : channels_(c.channels),
         lights_(c.lights),
+        specular_(c.specular.kind != SpecularUnitKind::kNone),
         series_(c.series),
         product_frac_(c.specular.out.frac_bits() + c.spec_colour.frac_bits()),
         out_(output_format(c.out_bits)) {}
@@ -58,7 +61,7 @@ class PixelCombine {
                                                 const int64_t* ambient, const int64_t* spec_colour,
                                                 uint32_t gate_only) const {
     std::array<bool, kMaxLights> lit{};
-    for (int l = 0; l < lights_; ++l) lit[static_cast<size_t>(l)] = gate(diffuse, l);
+    for (int l = 0; specular_ && l < lights_; ++l) lit[static_cast<size_t>(l)] = gate(diffuse, l);
     std::array<uint16_t, kMaxChannels> out{};
     for (int c = 0; c < channels_; ++c) {
       Int128 acc = ambient[c];
@@ -77,6 +80,7 @@ class PixelCombine {
  private:
   int channels_;
   int lights_;
+  bool specular_;  // false for specular kind none: no specular term at all
   FixedFormat series_;
   int product_frac_;
   FixedFormat out_;

@@ -48,8 +48,8 @@ std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u, const I
       p.push_back({"COEF_T" + std::to_string(t) + "_WL", u.coef_term_bits(t)});
   }
   // Only the selected unit's parameters: the others keep shade_unit's defaults, so two configs
-  // that differ in an unused unit's widths map to the same build. The ideal unit has no output
-  // stage to round.
+  // that differ in an unused unit's widths map to the same build. The ideal unit and none have
+  // no output stage to round and no fields.
   if (unit.hardware) {
     p.push_back({"SPECULAR_OUT_QUANT", code(s.out.quant)});
     p.push_back({"SPECULAR_OUT_OVERFLOW", code(s.out.overflow)});

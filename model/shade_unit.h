@@ -86,7 +86,8 @@ void ShadeUnit::consume(const Command& cmd, Sink&& sink) {
     px.y = static_cast<uint16_t>(s->y);
     // Pixel k of the span, on `lane` of its beat, from that lane's series values.
     auto shade = [&](const int64_t* values, int32_t k, int lane) {
-      for (int l = 0; l < config_.lights; ++l) {
+      // Kind none (no specular series): spec_ stays 0, and PixelCombine adds no specular term.
+      for (int l = 0; per_light > 0 && l < config_.lights; ++l) {
         spec_[l] = specular_.evaluate(&values[diffuse + l * per_light]);
       }
       px.x = static_cast<uint16_t>(s->x0 + k);

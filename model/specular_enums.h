@@ -13,6 +13,7 @@ enum class SpecularUnitKind {
   kLut,      // exponent look-up table (Bishop & Weimer)
   kSchlick,  // Schlick's rational form through a radix-2 divider
   kWpow,     // W_m shift-and-square (Romanyuk et al.)
+  kNone,     // no specular term: no series, no unit, nothing added (a diffuse-only scene's unit)
 };
 
 std::string to_string(SpecularUnitKind kind);

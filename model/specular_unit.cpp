@@ -20,6 +20,7 @@ SpecularUnit::SpecularUnit(const UnitConfig& config)
       wpow_.emplace(s.wpow, config.series, s.out);
       break;
     case SpecularUnitKind::kIdeal:
+    case SpecularUnitKind::kNone:
       break;
   }
 }

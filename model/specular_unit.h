@@ -29,6 +29,7 @@ class SpecularUnit {
   void load_table(const TableCmd& t);
 
   // series[0 .. series_per_light-1]: this light's specular series values (series format raw).
+  // Kind none reads none and gives 0.
   int64_t evaluate(const int64_t* series) const {
     switch (kind_) {
       case SpecularUnitKind::kLut:
@@ -37,6 +38,8 @@ class SpecularUnit {
         return schlick_->evaluate(series[0], series[1]);
       case SpecularUnitKind::kWpow:
         return wpow_->evaluate(series[0]);
+      case SpecularUnitKind::kNone:
+        return 0;  // no unit and no series (ShadeUnit does not call it)
       case SpecularUnitKind::kIdeal:
       default:
         return ideal_(series[0]);

@@ -210,6 +210,19 @@ std::vector<SpecularUnitDescriptor> make_table() {
                  const double k = WpowUnit::stages(c.wpow);
                  return b * b * (c.wpow.timing == UnitTiming::kIterative ? 1.0 : k) + b * series_wl;
                }});
+  // No specular term: shade_unit instantiates no specular_unit and no specular series (nor their
+  // span setup and engines), and pixel_combine adds nothing; MATERIAL carries no unit parameters.
+  t.push_back({SpecularUnitKind::kNone,
+               "none",
+               4,
+               false,
+               0,
+               {},
+               [](const SpecularConfig&) { return 0; },
+               [](const SpecularConfig&) { return 1; },
+               [](const SpecularConfig&) { return SpecularCost{}; },
+               [](const SpecularConfig&) { return std::string(); },
+               [](const SpecularConfig&, int) { return 0.0; }});
   return t;
 }
 

@@ -70,10 +70,13 @@ constexpr double kFullAdderArea = 8.0;
 
 struct SpecularUnitDescriptor {
   SpecularUnitKind kind;
-  const char* name;      // to_string(kind): JSON "kind", --specular, spec-error --units
-  int verilog_kind;      // shade_unit's SPECULAR_KIND code
-  bool hardware;         // false for the ideal yardstick (no RTL, no cost)
-  int series_per_light;  // specular series per light the unit consumes
+  const char* name;  // to_string(kind): JSON "kind", --specular, spec-error --units
+  int verilog_kind;  // shade_unit's SPECULAR_KIND code
+  // A unit module that approximates t^n in the RTL (its output rounding and SPEC_PARAMS are
+  // Verilog parameters). False for the ideal yardstick (no RTL, no cost) and for none (no
+  // specular term at all: no unit, no series).
+  bool hardware;
+  int series_per_light;  // specular series per light the unit consumes (none: 0)
   std::vector<SpecularField> fields;
   int (*latency)(const SpecularConfig&);   // slot latency in cycles
   int (*interval)(const SpecularConfig&);  // cycles per pixel
@@ -89,7 +92,7 @@ struct SpecularUnitDescriptor {
   std::string field_name(const SpecularField& f) const { return std::string(name) + "." + f.key; }
 };
 
-// Every unit, ideal first, in SpecularUnitKind order.
+// Every unit, ideal first, in SpecularUnitKind order (none last).
 const std::vector<SpecularUnitDescriptor>& specular_units();
 const SpecularUnitDescriptor& specular_unit(SpecularUnitKind kind);
 // The selected unit's costs; latency and cycles per pixel are the descriptor's (SlotTiming's).
@@ -101,7 +104,7 @@ SpecularCost specular_cost(const SpecularConfig& config);
 SpecularConfig specular_config_of_parameters(const std::map<std::string, int64_t>& params);
 // nullptr when no unit has this name.
 const SpecularUnitDescriptor* find_specular_unit(const std::string& name);
-// "ideal, lut, schlick, wpow" (hardware_only: without ideal).
+// "ideal, lut, schlick, wpow, none" (hardware_only: "lut, schlick, wpow").
 std::string specular_unit_names(bool hardware_only = false);
 
 }  // namespace shadesim

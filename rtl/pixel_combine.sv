@@ -7,6 +7,8 @@
 //   stage 2  exact sum per channel: ambient_c + sum_l max(0, D_lc) [light not gate-only]
 //                                   + sum_l g_l s_l k_lc
 //   stage 3  round to nearest into u0.OUT_BITS, saturating
+// SPECULAR = 0 (specular kind none): no specular term - no gates, products or specular sums;
+// spec_i and spec_colour_i are not read.
 module pixel_combine #(
   parameter int CHANNELS         = 1,
   parameter int LIGHTS           = 1,
@@ -18,7 +20,8 @@ module pixel_combine #(
   parameter int SPEC_COLOUR_IWL  = 1,
   parameter int SPECULAR_OUT_WL  = 17,
   parameter int SPECULAR_OUT_IWL = 1,
-  parameter int OUT_BITS         = 8
+  parameter int OUT_BITS         = 8,
+  parameter bit SPECULAR         = 1   // 0: no specular term (SpecularUnitKind none)
 ) (
   input  logic [LIGHTS*CHANNELS*SERIES_WL-1:0]      diffuse_i,      // [l*CHANNELS + c]
   input  logic [LIGHTS*SPECULAR_OUT_WL-1:0]         spec_i,         // [l]
@@ -42,21 +45,30 @@ module pixel_combine #(
 
   localparam int GateW      = SERIES_WL + $clog2(CHANNELS + 1);  // sum of a light's channels
 
-  // The specular gate per light: the sum of its channels' diffuse values is > 0.
+  // The specular gate per light: the sum of its channels' diffuse values is > 0 (none without a
+  // specular term).
   logic [LIGHTS-1:0] lit;
-  for (genvar l = 0; l < LIGHTS; l++) begin : g_gate
-    // Running sum over the channels (continuous assignments: Icarus 11 does not settle an
-    // always_comb that reads back what it writes).
-    logic [(CHANNELS + 1)*GateW-1:0] part /*verilator split_var*/;
-    assign part[0 +: GateW] = '0;
-    for (genvar c = 0; c < CHANNELS; c++) begin : g_sum
-      logic signed [SERIES_WL-1:0] d;
-      assign d = $signed(diffuse_i[(l*CHANNELS + c)*SERIES_WL +: SERIES_WL]);
-      assign part[(c + 1)*GateW +: GateW] = part[c*GateW +: GateW] + GateW'(d);
+  if (!SPECULAR) begin : g_no_gate
+    assign lit = '0;
+    // verilator lint_off UNUSEDSIGNAL
+    logic unused_spec;
+    assign unused_spec = (^spec_i) ^ (^spec_colour_i) ^ (^lit);
+    // verilator lint_on UNUSEDSIGNAL
+  end else begin : g_gates
+    for (genvar l = 0; l < LIGHTS; l++) begin : g_gate
+      // Running sum over the channels (continuous assignments: Icarus 11 does not settle an
+      // always_comb that reads back what it writes).
+      logic [(CHANNELS + 1)*GateW-1:0] part /*verilator split_var*/;
+      assign part[0 +: GateW] = '0;
+      for (genvar c = 0; c < CHANNELS; c++) begin : g_sum
+        logic signed [SERIES_WL-1:0] d;
+        assign d = $signed(diffuse_i[(l*CHANNELS + c)*SERIES_WL +: SERIES_WL]);
+        assign part[(c + 1)*GateW +: GateW] = part[c*GateW +: GateW] + GateW'(d);
+      end
+      logic signed [GateW-1:0] n_dot_l;
+      assign n_dot_l = $signed(part[CHANNELS*GateW +: GateW]);
+      assign lit[l]  = !n_dot_l[GateW-1] && n_dot_l != '0;
     end
-    logic signed [GateW-1:0] n_dot_l;
-    assign n_dot_l = $signed(part[CHANNELS*GateW +: GateW]);
-    assign lit[l]  = !n_dot_l[GateW-1] && n_dot_l != '0;
   end
 
   for (genvar c = 0; c < CHANNELS; c++) begin : g_chan
@@ -66,25 +78,31 @@ module pixel_combine #(
 
     for (genvar l = 0; l < LIGHTS; l++) begin : g_light
       logic signed [SERIES_WL-1:0] diffuse;
-      logic [SPECULAR_OUT_WL-1:0]  spec;
-      logic [SPEC_COLOUR_WL-1:0]   colour;
-      logic signed [ProdW-1:0]     product;
-      logic signed [ProdRndW-1:0]  product_rnd;
-      logic [SERIES_WL-1:0]        product_fit;
       logic signed [AccW-1:0]      diffuse_term, spec_term;
 
       assign diffuse = $signed(diffuse_i[(l*CHANNELS + c)*SERIES_WL +: SERIES_WL]);
-      assign spec    = spec_i[l*SPECULAR_OUT_WL +: SPECULAR_OUT_WL];
-      assign colour  = spec_colour_i[(l*CHANNELS + c)*SPEC_COLOUR_WL +: SPEC_COLOUR_WL];
-      assign product = $signed({1'b0, (ProdW - 1)'(spec) * (ProdW - 1)'(colour)});
+      if (SPECULAR) begin : g_spec
+        logic [SPECULAR_OUT_WL-1:0]  spec;
+        logic [SPEC_COLOUR_WL-1:0]   colour;
+        logic signed [ProdW-1:0]     product;
+        logic signed [ProdRndW-1:0]  product_rnd;
+        logic [SERIES_WL-1:0]        product_fit;
 
-      fixed_round #(.IN_W(ProdW), .DROP(ProdDrop), .ROUND(SERIES_QUANT))
-        u_round (.in_i(product), .out_o(product_rnd));
-      fixed_sat #(.IN_W(ProdRndW), .OUT_W(SERIES_WL), .OUT_SIGNED(1), .WRAP(SERIES_OVERFLOW))
-        u_sat (.in_i(product_rnd), .out_o(product_fit));
+        assign spec    = spec_i[l*SPECULAR_OUT_WL +: SPECULAR_OUT_WL];
+        assign colour  = spec_colour_i[(l*CHANNELS + c)*SPEC_COLOUR_WL +: SPEC_COLOUR_WL];
+        assign product = $signed({1'b0, (ProdW - 1)'(spec) * (ProdW - 1)'(colour)});
+
+        fixed_round #(.IN_W(ProdW), .DROP(ProdDrop), .ROUND(SERIES_QUANT))
+          u_round (.in_i(product), .out_o(product_rnd));
+        fixed_sat #(.IN_W(ProdRndW), .OUT_W(SERIES_WL), .OUT_SIGNED(1), .WRAP(SERIES_OVERFLOW))
+          u_sat (.in_i(product_rnd), .out_o(product_fit));
+
+        assign spec_term = lit[l] ? AccW'($signed(product_fit)) : '0;
+      end else begin : g_no_spec
+        assign spec_term = '0;
+      end
 
       assign diffuse_term = diffuse[SERIES_WL-1] || gate_only_i[l] ? '0 : AccW'(diffuse);
-      assign spec_term    = lit[l] ? AccW'($signed(product_fit)) : '0;
       assign sums[(l + 1)*AccW +: AccW] = $signed(sums[l*AccW +: AccW]) + diffuse_term + spec_term;
     end
 

@@ -69,6 +69,7 @@ package shade_pkg;
   localparam int SpecLut         = 1;
   localparam int SpecSchlick     = 2;
   localparam int SpecWpow        = 3;
+  localparam int SpecNone        = 4;  // no specular term: shade_unit has no slot and no series
   localparam int TimingIterative = 1;  // 0: pipelined
 
   // A unit's own fields (LutConfig, SchlickConfig, WpowConfig) reach the RTL as ONE packed
@@ -86,7 +87,7 @@ package shade_pkg;
     spec_slot = params[slot*SpecSlotW +: SpecSlotW];
   endfunction
 
-  // Registers between the slot's series input and its specular output: ideal 0; lut 2 (+1
+  // Registers between the slot's series input and its specular output: ideal and none 0; lut 2 (+1
   // interpolated); schlick its quotient bits; wpow log2(max_m) squarings + the clamped base.
   // The slots read (model/specular_units.cpp): lut 2 interp_bits; schlick 0 quotient_bits,
   // 2 timing; wpow 0 max_m, 2 timing.

@@ -27,7 +27,9 @@
 //                previous span's last beat leaves the engines (back-to-back spans have no
 //                bubble). A beat holds up to LANES pixels of one span.
 //   slot         specular_unit per light and lane (LATENCY / INTERVAL below; all lanes in
-//                lockstep). Pipelined units
+//                lockstep). SPECULAR_KIND 4 (none): no slot and no specular series (no span_setup,
+//                engines or coefficient registers for them); pixel_combine adds no specular
+//                term. Pipelined units
 //                (INTERVAL 1): a LATENCY-deep metadata line (valid, x, y, eor, diffuse values)
 //                moves with the slot on the global advance. Iterative units (INTERVAL > 1): one
 //                pixel in flight in a pending register; the engines step only when the unit
@@ -58,7 +60,8 @@ module shade_unit #(
   parameter int SPEC_COLOUR_WL   = 13,
   parameter int SPEC_COLOUR_IWL  = 1,
   parameter int OUT_BITS         = 8,
-  parameter int SPECULAR_KIND    = 0,  // SpecularUnitKind: 0 ideal, 1 lut, 2 schlick, 3 wpow
+  // SpecularUnitKind: 0 ideal, 1 lut, 2 schlick, 3 wpow, 4 none (no specular term)
+  parameter int SPECULAR_KIND    = 0,
   parameter int SPECULAR_OUT_WL  = 17,
   parameter int SPECULAR_OUT_IWL = 1,
   parameter int PORT_WORDS       = 1,  // 64-bit words per cmd handshake: 1, 2, 4 or 8
@@ -97,7 +100,9 @@ module shade_unit #(
   output logic                         pix_valid_o,
   input  logic                         pix_ready_i
 );
-  localparam int SeriesPerLight = SPECULAR_KIND == shade_pkg::SpecSchlick ? 2 : 1;
+  localparam bit Specular       = SPECULAR_KIND != shade_pkg::SpecNone;  // a specular term
+  localparam int SeriesPerLight = SPECULAR_KIND == shade_pkg::SpecSchlick ? 2 :
+                                  Specular ? 1 : 0;
   localparam int NDiff          = LIGHTS * CHANNELS;
   localparam int NSer           = NDiff + LIGHTS * SeriesPerLight;
   localparam int NCoef          = 6 * NSer;
@@ -126,8 +131,9 @@ module shade_unit #(
       $fatal(1, "shade_unit: XY_BITS %0d is not 4..15", XY_BITS);
     if (OFS_BITS < 2 || OFS_BITS > 17)
       $fatal(1, "shade_unit: OFS_BITS %0d is not 2..17", OFS_BITS);
-    if (SPECULAR_KIND < shade_pkg::SpecIdeal || SPECULAR_KIND > shade_pkg::SpecWpow)
-      $fatal(1, "shade_unit: SPECULAR_KIND %0d is not a unit (0 ideal .. 3 wpow)", SPECULAR_KIND);
+    if (SPECULAR_KIND < shade_pkg::SpecIdeal || SPECULAR_KIND > shade_pkg::SpecNone)
+      $fatal(1, "shade_unit: SPECULAR_KIND %0d is not a unit (0 ideal .. 3 wpow, 4 none)",
+             SPECULAR_KIND);
     if (SERIES_QUANT != 0 && SERIES_QUANT != 1)
       $fatal(1, "shade_unit: SERIES_QUANT %0d is not 0 (truncate) or 1 (round)", SERIES_QUANT);
     if (SERIES_OVERFLOW != 0 && SERIES_OVERFLOW != 1)
@@ -784,24 +790,35 @@ module shade_unit #(
   logic                                    slot_en;
   assign slot_en   = Iterative ? emit : adv;
   assign spec_busy = |busy;
-  for (genvar g = 0; g < LANES * LIGHTS; g++) begin : g_spec
-    localparam int L = g % LIGHTS;
-    localparam int J = g / LIGHTS;
-    specular_unit #(
-      .SPECULAR_KIND(SPECULAR_KIND), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
-      .SERIES_PER_LIGHT(SeriesPerLight), .SPECULAR_OUT_WL(SPECULAR_OUT_WL),
-      .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL), .SPECULAR_OUT_QUANT(SPECULAR_OUT_QUANT),
-      .SPECULAR_OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW), .MATERIAL_BUFFERS(MATERIAL_BUFFERS),
-      .SPEC_PARAMS(SPEC_PARAMS)
-    ) u_slot (
-      .clk_i, .rst_ni, .en_i(slot_en),
-      .series_i(eng_v[J*LaneSerW + (NDiff + L*SeriesPerLight)*SERIES_WL +:
-                      SeriesPerLight*SERIES_WL]), .bank_i(mat_q),
-      .cfg_valid_i(cfg_valid), .cfg_bank_i(mat_wr), .cfg_all_banks_i(cfg_all_banks),
-      .cfg_table_i(cfg_table), .cfg_addr_i(cfg_addr),
-      .cfg_data_i(cmd_word), .spec_o(slot_spec[g*SPECULAR_OUT_WL +: SPECULAR_OUT_WL]),
-      .busy_o(busy[g])
-    );
+  if (Specular) begin : g_slots
+    for (genvar g = 0; g < LANES * LIGHTS; g++) begin : g_spec
+      localparam int L = g % LIGHTS;
+      localparam int J = g / LIGHTS;
+      specular_unit #(
+        .SPECULAR_KIND(SPECULAR_KIND), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
+        .SERIES_PER_LIGHT(SeriesPerLight), .SPECULAR_OUT_WL(SPECULAR_OUT_WL),
+        .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL), .SPECULAR_OUT_QUANT(SPECULAR_OUT_QUANT),
+        .SPECULAR_OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW), .MATERIAL_BUFFERS(MATERIAL_BUFFERS),
+        .SPEC_PARAMS(SPEC_PARAMS)
+      ) u_slot (
+        .clk_i, .rst_ni, .en_i(slot_en),
+        .series_i(eng_v[J*LaneSerW + (NDiff + L*SeriesPerLight)*SERIES_WL +:
+                        SeriesPerLight*SERIES_WL]), .bank_i(mat_q),
+        .cfg_valid_i(cfg_valid), .cfg_bank_i(mat_wr), .cfg_all_banks_i(cfg_all_banks),
+        .cfg_table_i(cfg_table), .cfg_addr_i(cfg_addr),
+        .cfg_data_i(cmd_word), .spec_o(slot_spec[g*SPECULAR_OUT_WL +: SPECULAR_OUT_WL]),
+        .busy_o(busy[g])
+      );
+    end
+  end else begin : g_no_slots
+    // No specular term: no unit, so nothing is configured (the MATERIAL's exponent word and
+    // TABLE entries are taken and dropped) and pixel_combine reads no specular value.
+    assign slot_spec = '0;
+    assign busy      = '0;
+    // verilator lint_off UNUSEDSIGNAL
+    logic unused_cfg;
+    assign unused_cfg = cfg_valid ^ cfg_table ^ cfg_all_banks ^ (^cfg_addr) ^ slot_en;
+    // verilator lint_on UNUSEDSIGNAL
   end
 
   if (Iterative) begin : g_pending
@@ -879,7 +896,8 @@ module shade_unit #(
       .CHANNELS(CHANNELS), .LIGHTS(LIGHTS), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
       .SERIES_QUANT(SERIES_QUANT), .SERIES_OVERFLOW(SERIES_OVERFLOW),
       .SPEC_COLOUR_WL(SPEC_COLOUR_WL), .SPEC_COLOUR_IWL(SPEC_COLOUR_IWL),
-      .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL), .OUT_BITS(OUT_BITS)
+      .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL), .OUT_BITS(OUT_BITS),
+      .SPECULAR(Specular)
     ) u_combine (
       .diffuse_i(meta_out.diffuse[j*LaneDiffW +: LaneDiffW]),
       .spec_i(spec[j*LIGHTS*SPECULAR_OUT_WL +: LIGHTS*SPECULAR_OUT_WL]),

@@ -1,7 +1,8 @@
 // specular_unit: one light's specular unit, whichever the configuration selects
 // (model/specular_unit.h, class SpecularUnit). SPECULAR_KIND: 0 ideal, 1 lut (exponent_lut),
 // 2 schlick (schlick_divider), 3 wpow (wpow_unit). Ideal is pow() in double, not hardware: the
-// slot outputs 0 for it (bit-exact with the model whenever spec_colour is 0).
+// slot outputs 0 for it (bit-exact with the model whenever spec_colour is 0). Kind 4 (none) has
+// no specular_unit at all: shade_unit instantiates none.
 //
 // SPEC_PARAMS: the selected unit's own fields, packed (shade_pkg::SpecSlots slots), passed on
 // untouched; the unit module decodes its slots (model/specular_units.cpp gives each field its

@@ -360,7 +360,8 @@ void check_series(AreaReport& r) {
   const std::map<std::string, int64_t> p = parameter_map(r.parameters);
   const int64_t kind = p.at("SPECULAR_KIND");
   const int64_t expected =
-      p.at("CHANNELS") * p.at("LIGHTS") + (kind == 0 ? 0 : p.at("LIGHTS") * (kind == 2 ? 2 : 1));
+      p.at("CHANNELS") * p.at("LIGHTS") +
+      (kind == 0 ? 0 : p.at("LIGHTS") * specular_config_of_parameters(p).series_per_light());
   int64_t kept = 0;
   for (const auto& m : r.modules) {
     if (m.module == "span_setup") kept += m.instances;
@@ -1011,7 +1012,7 @@ int64_t instances_of(const std::string& module, const ParamMap& p) {
   const int64_t lanes = lanes_of(p);
   if (module == "span_setup") return ch * l + l * per_light;
   if (module == "series_engine") return (ch * l + l * per_light) * lanes;
-  if (module == "specular_unit") return l * lanes;
+  if (module == "specular_unit") return per_light == 0 ? 0 : l * lanes;  // none: no slot
   if (module == "pixel_combine") return lanes;
   return 1;  // shade_unit glue
 }

@@ -14,6 +14,7 @@
 #include "host/scene_config.h"
 #include "model/command_stream.h"
 #include "model/shade_unit.h"
+#include "model/specular_units.h"
 #include "sim/commands.h"
 
 namespace shadesim {
@@ -78,7 +79,7 @@ int run_config(const ConfigOptions& o) {
   nlohmann::json scenes = nlohmann::json::array();
   const bool substituted =
       load_scene(o.scenes.front()).materials.front().unit == SpecularUnitKind::kIdeal &&
-      cfg.specular.kind != SpecularUnitKind::kIdeal;
+      specular_unit(cfg.specular.kind).hardware;
   for (const auto& path : o.scenes) {
     const SceneResult r = shade(path, cfg, d);
     const ErrorStats& e = r.error;
@@ -161,7 +162,9 @@ void register_config(CLI::App& app, int& exit_code) {
       "Rules:\n"
       "  channels     1 if every scene is grey, else 3\n"
       "  lights       the most directional lights of any scene\n"
-      "  specular     the unit the materials name (all must name one); `ideal` is not hardware\n"
+      "  specular     none (no specular unit, no specular series) when no material has a\n"
+      "               specular term (specular colour x light colour 0 in every channel); else\n"
+      "               the unit the materials name (all must name one); `ideal` is not hardware\n"
       "               (its RTL slot outputs 0), so it becomes W_16 B=16 pipelined, the closest\n"
       "               hardware unit to ideal in the README table; the reason says so\n"
       "  xy_bits      enough unsigned bits for the largest image width and height (at least 4)\n"

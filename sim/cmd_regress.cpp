@@ -216,7 +216,8 @@ void resolve_netlists(std::vector<Job>& jobs, NetlistSource& netlists) {
 }
 
 // The scene's own configuration: the smallest unit that shades it within its error budget, with
-// real specular hardware (host/scene_config.h states each rule).
+// real specular hardware, or none when the scene has no specular term (host/scene_config.h
+// states each rule).
 RtlConfig own_config(const std::string& scene) {
   RtlConfig c;
   c.name = "own:" + fs::path(scene).stem().string();

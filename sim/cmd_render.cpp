@@ -141,6 +141,8 @@ int run_render(const RenderOptions& o) {
   const std::string unit_label =
       cfg.specular.describe() + (cfg.specular.kind == SpecularUnitKind::kIdeal
                                      ? " (exact pow of the fixed-point t; not hardware)"
+                                 : cfg.specular.kind == SpecularUnitKind::kNone
+                                     ? " (no specular term: highlights not shaded)"
                                      : "");
   if (!o.quiet) {
     std::cout << "scene        " << o.scene << "  (" << scene.width << "x" << scene.height << ", "
@@ -265,6 +267,7 @@ int run_all_units(const RenderOptions& o) {
               << "configuration\n";
   }
   for (const SpecularUnitDescriptor& unit : specular_units()) {  // model/specular_units.h
+    if (unit.series_per_light == 0) continue;                    // none: no highlight to compare
     const SpecularUnitKind kind = unit.kind;
     fo.specular_override = kind;
     const PreparedFrame frame = prepare_frame(o.scene, fo);

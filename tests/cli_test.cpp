@@ -212,15 +212,16 @@ TEST(Cli, ConfigDerivesAUnitThatRenderAndCyclesUseWithConfig) {
   const std::string cfg = (dir / "sphere_unit.json").string();
   const Result r = run("config " + kScenes + "sphere.json --json " + cfg);
   ASSERT_EQ(r.status, 0) << r.output;
-  for (const char* field :
-       {"channels = 1", "lights = 1", "xy_bits = 8", "series = ", "coef = ", "specular = wpow"}) {
+  // sphere.json has no specular term: no specular unit (issue 21), and the output says why.
+  for (const char* field : {"channels = 1", "lights = 1", "xy_bits = 8",
+                            "series = ", "coef = ", "specular = none", "no specular term"}) {
     EXPECT_NE(r.output.find(field), std::string::npos) << field << "\n" << r.output;
   }
   EXPECT_NE(r.output.find("scenes/sphere.json: max 1 LSB"), std::string::npos) << r.output;
   std::ifstream js(cfg);
   const auto j = nlohmann::json::parse(js);
   EXPECT_EQ(j["xy_bits"], 8);
-  EXPECT_EQ(j["specular"]["kind"], "wpow");
+  EXPECT_EQ(j["specular"]["kind"], "none");
   EXPECT_EQ(j["derivation"]["error"][0]["max_code_lsb"], 1);
   // The file is the unit: render and cycles shade on exactly it.
   const auto rendered = run_json(
@@ -228,11 +229,11 @@ TEST(Cli, ConfigDerivesAUnitThatRenderAndCyclesUseWithConfig) {
       dir / "r.json");
   EXPECT_EQ(rendered["config"]["series"], j["series"]);
   EXPECT_EQ(rendered["config"]["coef"], j["coef"]);
-  EXPECT_EQ(rendered["config"]["specular"]["kind"], "wpow");
+  EXPECT_EQ(rendered["config"]["specular"]["kind"], "none");
   EXPECT_EQ(rendered["error"]["max_code_lsb"], j["derivation"]["error"][0]["max_code_lsb"]);
   const auto cycles = run_json("cycles " + kScenes + "sphere.json --config " + cfg, dir / "c.json");
   EXPECT_EQ(cycles["config"]["xy_bits"], 8);
-  EXPECT_EQ(cycles["slot"]["latency"], 5);  // W_16 pipelined: the README's timing table
+  EXPECT_EQ(cycles["slot"]["latency"], 0);  // none: no slot between the engines and the output
   // Without --config the defaults stay what the README's figures use.
   const auto plain = run_json("render " + kScenes + "sphere.json -q --out " + (dir / "p").string(),
                               dir / "p.json");
@@ -278,12 +279,13 @@ TEST(Cli, ConfigAndConfigFileErrorsNameTheProblem) {
   expect_error("render " + kScenes + "sphere.json --config " + (dir / "absent.json").string(),
                "absent.json");
   // config itself: scenes naming different units, a bad budget, a missing scene.
-  auto sphere = nlohmann::json::parse(std::ifstream(kScenes + "sphere.json"));
-  sphere["materials"][0]["unit"] = "lut";
-  const std::string lut_scene = (dir / "sphere_lut.json").string();
-  std::ofstream(lut_scene) << sphere.dump();
-  expect_error("config " + kScenes + "sphere.json " + lut_scene, "sphere_lut.json");
-  expect_error("config " + kScenes + "sphere.json " + lut_scene, "names lut");
+  // (specular.json has a specular term; without one no unit is derived, whatever they name.)
+  auto specular = nlohmann::json::parse(std::ifstream(kScenes + "specular.json"));
+  specular["materials"][0]["unit"] = "lut";
+  const std::string lut_scene = (dir / "specular_lut.json").string();
+  std::ofstream(lut_scene) << specular.dump();
+  expect_error("config " + kScenes + "specular.json " + lut_scene, "specular_lut.json");
+  expect_error("config " + kScenes + "specular.json " + lut_scene, "names lut");
   expect_error("config " + kScenes + "sphere.json --budget 0", "--budget");
   expect_error("config /nonexistent/scene.json", "scene.json");
   expect_error("config", "scenes");

@@ -130,11 +130,12 @@ class SceneConfigFiles : public ::testing::Test {
     std::filesystem::create_directories(dir_);
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
-  // sphere.json with every material naming `unit`, written next to its mesh-free original.
-  std::string sphere_with_unit(const std::string& unit) const {
-    auto j = scene_json(scene("sphere.json"));
+  // A mesh-free shipped scene with every material naming `unit`, written to the test's folder.
+  std::string with_unit(const std::string& name, const std::string& unit) const {
+    auto j = scene_json(scene(name));
     for (auto& m : j["materials"]) m["unit"] = unit;
-    const std::string path = (dir_ / ("sphere_" + unit + ".json")).string();
+    const std::string path =
+        (dir_ / (std::filesystem::path(name).stem().string() + "_" + unit + ".json")).string();
     std::ofstream(path) << j.dump(1);
     return path;
   }
@@ -142,9 +143,10 @@ class SceneConfigFiles : public ::testing::Test {
 };
 
 TEST_F(SceneConfigFiles, AHardwareUnitIsKeptAndDifferentUnitsAreAnError) {
-  const std::string lut = sphere_with_unit("lut");
+  // specular.json has a specular term (sphere.json has none: it gets no unit, whatever it names).
+  const std::string lut = with_unit("specular.json", "lut");
   EXPECT_EQ(derive_config({lut}, {}).config.specular.kind, SpecularUnitKind::kLut);
-  const std::string schlick = sphere_with_unit("schlick");
+  const std::string schlick = with_unit("specular.json", "schlick");
   try {
     (void)derive_config({lut, schlick}, {});
     FAIL() << "expected an error";
@@ -297,6 +299,79 @@ TEST(SceneConfig, SizedOffsetsShadeEveryPixelAsScreenSizedOnes) {
     }
     EXPECT_EQ(differ, 0u) << path << " (offset_bits " << d.config.offset_bits << ")";
   }
+}
+
+TEST_F(SceneConfigFiles, ADiffuseOnlySceneGetsNoSpecularUnitWhateverItNames) {
+  for (const char* unit : {"ideal", "lut", "schlick", "wpow", "none"}) {
+    const std::string path = with_unit("sphere.json", unit);
+    const DerivedConfig d = derive_config({path}, {});
+    EXPECT_EQ(d.config.specular.kind, SpecularUnitKind::kNone) << unit;
+    EXPECT_NE(reason_of(d, "specular").reason.find("no specular term"), std::string::npos)
+        << reason_of(d, "specular").reason;
+  }
+  // Different names do not matter when no material has a specular term.
+  EXPECT_EQ(
+      derive_config({with_unit("sphere.json", "lut"), with_unit("sphere.json", "schlick")}, {})
+          .config.specular.kind,
+      SpecularUnitKind::kNone);
+  // One scene with a specular term keeps the unit for all of them.
+  EXPECT_EQ(derive_config({scene("sphere.json"), scene("specular.json")}, {}).config.specular.kind,
+            SpecularUnitKind::kWpow);
+}
+
+TEST(SceneConfig, DiffuseOnlyScenesShadeOnNoSpecularUnitAsOnTheW16One) {
+  // Issue 21: a scene whose materials have no specular term gets specular kind none (no unit, no
+  // specular series); its image is bit-identical to the one of the same unit with the W_16 unit
+  // the derivation used to give it (whose specular contribution was 0). Scenes with a specular
+  // term keep their unit.
+  int diffuse_only = 0;
+  for (const std::string& path : shipped_and_hard_scenes()) {
+    const DerivedConfig d = derive_config({path}, {});
+    const Scene scene = load_scene(path);
+    bool specular_term = false;
+    for (const Material& m : scene.materials) {
+      for (const DirectionalLight& l : scene.lights) {
+        specular_term = specular_term || m.specular.x * l.colour.x != 0 ||
+                        m.specular.y * l.colour.y != 0 || m.specular.z * l.colour.z != 0;
+      }
+    }
+    if (specular_term) {
+      EXPECT_NE(d.config.specular.kind, SpecularUnitKind::kNone) << path;
+      continue;
+    }
+    ++diffuse_only;
+    ASSERT_EQ(d.config.specular.kind, SpecularUnitKind::kNone) << path;
+    UnitConfig old_style = d.config;
+    old_style.specular = DeriveOptions{}.ideal_substitute;  // W_16, B = 16, pipelined
+    ASSERT_EQ(old_style.specular.kind, SpecularUnitKind::kWpow);
+    FrameOptions o;
+    o.fixed_unit = true;
+    o.base = d.config;
+    const PreparedFrame none = prepare_frame(path, o);
+    o.base = old_style;
+    const PreparedFrame w16 = prepare_frame(path, o);
+    // The new stream carries no specular series and no unit parameters.
+    for (const Command& cmd : none.encoded.stream.commands) {
+      if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
+        ASSERT_EQ(t->coef.size(), static_cast<size_t>(d.config.diffuse_series() * kTermsPerSeries))
+            << path;
+      }
+      if (const auto* m = std::get_if<MaterialCmd>(&cmd)) {
+        EXPECT_TRUE(m->unit_params.empty()) << path;
+      }
+    }
+    const auto a = ShadeUnit(none.config).run(none.encoded.stream);
+    const auto b = ShadeUnit(w16.config).run(w16.encoded.stream);
+    ASSERT_EQ(a.size(), b.size()) << path;
+    ASSERT_GT(a.size(), 0u) << path;
+    size_t differ = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+      differ += a[i].x != b[i].x || a[i].y != b[i].y || a[i].colour != b[i].colour ||
+                a[i].end_of_row != b[i].end_of_row;
+    }
+    EXPECT_EQ(differ, 0u) << path << ": " << d.config.to_string();
+  }
+  ASSERT_GE(diffuse_only, 1) << "no shipped or hard scene without a specular term";
 }
 
 TEST(SceneConfig, BadBudgetIsAnError) {

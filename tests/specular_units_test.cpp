@@ -20,6 +20,7 @@
 #include "model/command_stream.h"
 #include "model/cycle_model.h"
 #include "model/rtl_parameters.h"
+#include "model/specular_unit.h"
 #include "model/unit_config_file.h"
 #include "sim/width_options.h"
 
@@ -108,8 +109,9 @@ std::string cli_error(const std::vector<std::string>& args) {
 TEST(SpecularUnits, EveryKindHasOneRowWithUniqueNames) {
   std::set<std::string> names;
   std::set<int> codes;
-  for (const SpecularUnitKind k : {SpecularUnitKind::kIdeal, SpecularUnitKind::kLut,
-                                   SpecularUnitKind::kSchlick, SpecularUnitKind::kWpow}) {
+  for (const SpecularUnitKind k :
+       {SpecularUnitKind::kIdeal, SpecularUnitKind::kLut, SpecularUnitKind::kSchlick,
+        SpecularUnitKind::kWpow, SpecularUnitKind::kNone}) {
     const SpecularUnitDescriptor& u = specular_unit(k);
     EXPECT_EQ(u.kind, k);
     EXPECT_TRUE(names.insert(u.name).second) << u.name;
@@ -132,9 +134,9 @@ TEST(SpecularUnits, EveryKindHasOneRowWithUniqueNames) {
           << u.field_name(f) << "'s default is out of range";
     }
   }
-  EXPECT_EQ(specular_units().size(), 4u);
+  EXPECT_EQ(specular_units().size(), 5u);
   EXPECT_EQ(find_specular_unit("nope"), nullptr);
-  EXPECT_EQ(specular_unit_names(), "ideal, lut, schlick, wpow");
+  EXPECT_EQ(specular_unit_names(), "ideal, lut, schlick, wpow, none");
   EXPECT_EQ(specular_unit_names(true), "lut, schlick, wpow");
 }
 
@@ -368,6 +370,10 @@ TEST(SpecularUnits, SlotTimingIsShadePkgsSpecLatencyAndInterval) {
   s.wpow.timing = UnitTiming::kIterative;
   EXPECT_EQ(SlotTiming::of(s).latency, 4);
   EXPECT_EQ(SlotTiming::of(s).interval, 4);
+  // none: no slot at all, nothing between the engines and pixel_combine.
+  s.kind = SpecularUnitKind::kNone;
+  EXPECT_EQ(SlotTiming::of(s).latency, 0);
+  EXPECT_EQ(SlotTiming::of(s).interval, 1);
   // spec-error's cost columns carry the same timing.
   for (const SpecularUnitDescriptor& u : specular_units()) {
     SpecularConfig c;
@@ -375,6 +381,38 @@ TEST(SpecularUnits, SlotTimingIsShadePkgsSpecLatencyAndInterval) {
     EXPECT_EQ(specular_cost(c).latency, SlotTiming::of(c).latency) << u.name;
     EXPECT_EQ(specular_cost(c).cycles_per_pixel, SlotTiming::of(c).interval) << u.name;
   }
+}
+
+TEST(SpecularUnits, NoneHasNoSeriesNoParametersAndShadesNoSpecularTerm) {
+  const SpecularUnitDescriptor& none = specular_unit(SpecularUnitKind::kNone);
+  EXPECT_STREQ(none.name, "none");
+  EXPECT_EQ(parse_specular_unit("none", "test"), SpecularUnitKind::kNone);
+  EXPECT_EQ(none.series_per_light, 0);
+  EXPECT_TRUE(none.fields.empty());
+  EXPECT_FALSE(none.hardware);
+  // shade_unit's SPECULAR_KIND 4 (shade_pkg SpecNone), no output rounding and no SPEC_PARAMS.
+  const std::string pkg = read_rtl("shade_pkg.sv");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(pkg, m, std::regex(R"(localparam int SpecNone\s*=\s*(\d+);)")));
+  EXPECT_EQ(std::stoi(m[1]), none.verilog_kind);
+  UnitConfig c;
+  c.channels = 3;
+  c.lights = 2;
+  c.specular.kind = SpecularUnitKind::kNone;
+  EXPECT_EQ(c.specular_series(), 0);
+  EXPECT_EQ(c.series_per_triangle(), c.diffuse_series());
+  const auto p = as_map(shade_unit_parameters(c));
+  EXPECT_EQ(p.at("SPECULAR_KIND"), 4);
+  EXPECT_EQ(p.count("SPECULAR_OUT_QUANT"), 0u);
+  EXPECT_EQ(p.count("SPEC_PARAMS[0]"), 0u);
+  EXPECT_EQ(specular_config_of_parameters(p).kind, SpecularUnitKind::kNone);
+  // The unit gives 0 whatever its (absent) series hold, and a MATERIAL carries no parameters.
+  SpecularUnit unit(c);
+  MaterialCmd mat;
+  mat.exponent = int64_t{30} << kExponentFracBits;
+  unit.load_material(mat);
+  const int64_t series[2] = {c.series.from_double(1.0), c.series.from_double(1.0)};
+  EXPECT_EQ(unit.evaluate(series), 0);
 }
 
 }  // namespace

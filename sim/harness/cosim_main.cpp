@@ -428,7 +428,9 @@ uint64_t specular_affected_pixels(const CosimJob& job, const std::vector<PixelOu
 // With real specular hardware: how much of the run exercised it (Outcome::spec_affected).
 // False when that is under --min-spec-pct.
 bool check_specular_share(Outcome& out, const Options& o) {
-  if (out.job.config.unit.specular.kind == SpecularUnitKind::kIdeal) return true;
+  if (out.job.config.unit.specular.kind == SpecularUnitKind::kIdeal ||
+      out.job.config.unit.specular.kind == SpecularUnitKind::kNone)
+    return true;  // no specular hardware to exercise
   const std::vector<PixelOut> expected = ShadeUnit(out.job.config.unit).run(out.job.stream);
   out.spec_affected = static_cast<int64_t>(specular_affected_pixels(out.job, expected));
   const double pct = expected.empty() ? 0.0

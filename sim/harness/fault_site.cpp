@@ -69,6 +69,9 @@ std::string fault_unsupported(const FaultInjection& fault, const UnitConfig& uni
   if (fault.site == FaultSite::kSpecular && unit.specular.kind == SpecularUnitKind::kIdeal) {
     return "an ideal unit has no specular hardware (its specular colour is 0)";
   }
+  if (fault.site == FaultSite::kSpecular && unit.specular.kind == SpecularUnitKind::kNone) {
+    return "a unit with specular kind none has no specular term";
+  }
   return "";
 }
 

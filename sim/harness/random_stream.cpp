@@ -98,9 +98,12 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
 
   // Specular units: random table contents and unit parameters within the model's legal ranges,
   // and non-zero specular colours (the ideal unit is pow() in double, not hardware: the RTL slot
-  // outputs 0 for it, so its streams keep spec_colour = 0).
+  // outputs 0 for it, so its streams keep spec_colour = 0). A unit with no specular term (none)
+  // gets colours and gate-only masks too, which model and RTL must both ignore, and the diffuse
+  // series of a unit without a specular term (none, ideal) span their whole range.
   const SpecularConfig& spec = config.specular;
-  const bool has_spec_hw = spec.kind != SpecularUnitKind::kIdeal;
+  const bool spec_colours = spec.kind != SpecularUnitKind::kIdeal;
+  const bool has_spec_hw = spec_colours && spec.kind != SpecularUnitKind::kNone;
   const int lut_size = 1 << spec.lut.addr_bits;
   // per_material: the table of the latest MATERIAL (with two material buffers its bank only).
   auto lut_table = [&](int base, int n, bool per_material) {
@@ -131,13 +134,13 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
       m.ambient.push_back(config.series.from_double(negative ? uni(-0.6, 0.0) : uni(0.0, 0.25)));
     }
     m.spec_colour.assign(static_cast<size_t>(config.lights * config.channels), 0);
-    if (has_spec_hw) {
+    if (spec_colours) {
       for (auto& v : m.spec_colour) {
         v = config.spec_colour.from_double(shape.edge ? uni(0.2, 0.9) : uni(0.0, 0.5));
       }
     }
     // A quarter of the materials with spec hardware: a random set of gate-only lights.
-    if (has_spec_hw && gate_rng() % 4 == 0) {
+    if (spec_colours && gate_rng() % 4 == 0) {
       m.gate_only = static_cast<uint32_t>(gate_rng() % (uint64_t{1} << config.lights));
     }
     m.exponent = int64_t{irange(1, 200)} << kExponentFracBits;

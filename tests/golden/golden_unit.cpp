@@ -107,6 +107,8 @@ int64_t specular(const UnitConfig& c, const State& st, const int64_t* series) {
       const Int128 q = (Int128{n} << s.schlick.quotient_bits) / d;
       return sc_quantize(q, s.schlick.quotient_bits, s.out);
     }
+    case SpecularUnitKind::kNone:  // no unit: shade() adds no specular term
+      return 0;
     case SpecularUnitKind::kLut: {  // model/exponent_lut.h
       const LutConfig& l = s.lut;
       const int shift = st.unit_params.empty() ? 0 : static_cast<int>(st.unit_params[0]);
@@ -236,6 +238,7 @@ std::vector<Pixel> shade(const CommandStream& stream) {
           for (int l = 0; l < c.lights; ++l) {
             if ((st.gate_only & (1u << l)) == 0)
               sum += std::max<int64_t>(0, values[l * c.channels + ch]);
+            if (per_light == 0) continue;  // specular kind none: no series, no specular term
             // The gate (model/pixel_combine.h): specular only where light l's channels' diffuse
             // values sum to more than 0.
             Int128 n_dot_l = 0;
