@@ -25,6 +25,7 @@ struct AreaCliOptions {
   std::string cache_dir = SHADESIM_BINARY_DIR "/area-cache";
   std::string json_path;
   bool no_pnr = false;
+  std::string rtl_dir;  // empty: this tree's rtl/
 };
 
 // The one place that turns the command line into a UnitConfig. For now: a config file is read
@@ -172,6 +173,7 @@ int run_area(const AreaCliOptions& o) {
   AreaOptions ao;
   ao.cache_dir = o.cache_dir;
   ao.place_and_route = !o.no_pnr;
+  ao.rtl_dir = o.rtl_dir;
   ao.progress = &std::cerr;
   const AreaReport r = unit_area(unit, ao);
   print_report(std::cout, source, unit, r);
@@ -228,6 +230,10 @@ void register_area(CLI::App& app, int& exit_code) {
   scene->excludes(config);
   sub->add_option("--cache", o->cache_dir, "cache folder for results")->capture_default_str();
   sub->add_option("--json", o->json_path, "also write the report as JSON");
+  sub->add_option("--rtl-dir", o->rtl_dir,
+                  "synthesise the rtl/*.sv of DIR instead of this tree's (an A/B against another "
+                  "commit's RTL: git worktree add /tmp/old COMMIT; --rtl-dir /tmp/old/rtl)")
+      ->check(CLI::ExistingDirectory);
   sub->add_flag("--no-pnr", o->no_pnr,
                 "skip nextpnr-ice40 place and route (no Fmax; much quicker)");
   sub->callback([o, &exit_code]() {
