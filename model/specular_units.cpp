@@ -51,19 +51,26 @@ std::string fit_tag(FitObjective f) {
   return f == FitObjective::kNone ? "" : " fit=" + to_string(f);
 }
 
+// A row with no specular hardware (ideal: exact pow in the model, its RTL slot outputs 0; none:
+// no specular term at all): no fields, latency 0, one pixel per cycle, no cost, no label, no size.
+SpecularUnitDescriptor unit_without_hardware(SpecularUnitKind kind, const char* name,
+                                             int verilog_kind, int series_per_light) {
+  return {kind,
+          name,
+          verilog_kind,
+          false,
+          series_per_light,
+          {},
+          [](const SpecularConfig&) { return 0; },
+          [](const SpecularConfig&) { return 1; },
+          [](const SpecularConfig&) { return SpecularCost{}; },
+          [](const SpecularConfig&) { return std::string(); },
+          [](const SpecularConfig&, int) { return 0.0; }};
+}
+
 std::vector<SpecularUnitDescriptor> make_table() {
   std::vector<SpecularUnitDescriptor> t;
-  t.push_back({SpecularUnitKind::kIdeal,
-               "ideal",
-               0,
-               false,
-               1,
-               {},
-               [](const SpecularConfig&) { return 0; },
-               [](const SpecularConfig&) { return 1; },
-               [](const SpecularConfig&) { return SpecularCost{}; },
-               [](const SpecularConfig&) { return std::string(); },
-               [](const SpecularConfig&, int) { return 0.0; }});
+  t.push_back(unit_without_hardware(SpecularUnitKind::kIdeal, "ideal", 0, 1));
   t.push_back(
       {SpecularUnitKind::kLut,
        "lut",
@@ -212,17 +219,7 @@ std::vector<SpecularUnitDescriptor> make_table() {
                }});
   // No specular term: shade_unit instantiates no specular_unit and no specular series (nor their
   // span setup and engines), and pixel_combine adds nothing; MATERIAL carries no unit parameters.
-  t.push_back({SpecularUnitKind::kNone,
-               "none",
-               4,
-               false,
-               0,
-               {},
-               [](const SpecularConfig&) { return 0; },
-               [](const SpecularConfig&) { return 1; },
-               [](const SpecularConfig&) { return SpecularCost{}; },
-               [](const SpecularConfig&) { return std::string(); },
-               [](const SpecularConfig&, int) { return 0.0; }});
+  t.push_back(unit_without_hardware(SpecularUnitKind::kNone, "none", 4, 0));
   return t;
 }
 
