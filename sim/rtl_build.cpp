@@ -110,6 +110,7 @@ std::string model_key(const RtlConfig& build, const Flavour& f, const Toolchain&
       throw std::invalid_argument("rtl build: a netlist build has no fault hooks (" + build.name +
                                   ")");
     h.add("netlist");
+    for (const auto& o : netlist_verilator_options()) h.add(o);
     add_files(h, {fs::path(build.netlist)});
   }
   for (const auto& p : shade_unit_parameters(build.unit, build.faults))

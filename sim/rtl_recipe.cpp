@@ -337,10 +337,7 @@ void verilate(const fs::path& dir, const RtlConfig& build, const Flavour& f, con
     for (const auto& s : rtl_sources) args.push_back(s);
   } else {
     // Yosys's flat netlist: the parameters are baked in (no -G), the one file is the unit.
-    // Its gates read and write single bits of wide wires, which Verilator calls circular
-    // (UNOPTFLAT) though no bit depends on itself; it orders them by settling, as it would a
-    // real loop, so the warning says nothing about the circuit.
-    args.push_back("-Wno-UNOPTFLAT");
+    for (const auto& o : netlist_verilator_options()) args.push_back(o);
     args.push_back(build.netlist);
   }
   if (f.coverage) args.push_back(cover_points);  // bound into shade_unit; no RTL file names it

@@ -50,6 +50,17 @@ struct Toolchain {
 // 40 ms, on every run).
 Toolchain find_toolchain(const std::filesystem::path& cache_dir);
 
+// Verilator options a gate-level netlist is Verilated with, besides the RTL's (part of its
+// model key). Its gates read and write single bits of wide wires, which Verilator calls circular
+// (UNOPTFLAT) though no bit depends on itself; it orders them by settling, as it would a real
+// loop, so the warning says nothing about the circuit. -fno-const-bit-op-tree: Verilator 5.006's
+// bit-op-tree rewrite of V3Const miscompiles Yosys's XNOR-rich gate netlists (verilator#4059,
+// fixed in 5.010); Icarus and Verilator -O0 run the same netlist bit-exact (docs/netlist.md).
+inline const std::vector<std::string>& netlist_verilator_options() {
+  static const std::vector<std::string> options = {"-Wno-UNOPTFLAT", "-fno-const-bit-op-tree"};
+  return options;
+}
+
 // What a product's key is made of, besides the inputs the caller adds.
 std::string recipe_text(const Flavour& f, const Toolchain& t);
 

@@ -1,8 +1,8 @@
 # The netlist is the circuit (issue 21 part 3): `shadesim regress --netlist` simulates Yosys's
 # gate-level netlist of a unit (the flat netlist `shadesim area` measures) in place of the RTL,
 # bit and cycle exact against the model, on one small unit per specular kind
-# (tests/netlist/*_small.json: ideal on sphere, which has no highlights; lut, schlick and wpow
-# on specular, which has). Then a deliberately broken netlist must fail: a copy of the wpow
+# (tests/netlist/*_small.json: ideal and none on sphere, which has no highlights; lut, schlick
+# and wpow on both). Then a deliberately broken netlist must fail: a copy of the wpow
 # unit's cached netlist with one gate inverted (the gate that drives the D input of
 # pix_colour_o[0], the LSB of every pixel's colour), in a netlist cache of its own, must give a
 # mismatch.
@@ -14,14 +14,15 @@ set(cfg ${SRC}/tests/netlist)
 execute_process(COMMAND ${CLI} regress ${SRC}/scenes/sphere.json ${SRC}/scenes/specular.json
                         --config ${cfg}/ideal_small.json --config ${cfg}/lut_small.json
                         --config ${cfg}/schlick_small.json --config ${cfg}/wpow_small.json
-                        --netlist --netlist-cache ${NETLISTS} --backends cpp --jobs 2
+                        --config ${cfg}/none_small.json --netlist --netlist-cache ${NETLISTS} --backends cpp --jobs 2
                         --out ${WORK}/good --cache ${CACHE}
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-# 8 runs: ideal on specular is skipped (its slot outputs 0 and the scene has highlights).
-if(NOT rc EQUAL 0 OR NOT out MATCHES "regress: 7 passed, 0 mismatched")
+# 10 runs: ideal on specular is skipped (its RTL slot outputs 0 and the scene has highlights;
+# none has no slot, and its model shades without highlights too).
+if(NOT rc EQUAL 0 OR NOT out MATCHES "regress: 9 passed, 0 mismatched")
   message(FATAL_ERROR "regress --netlist on the small units failed (rc ${rc}):\n${out}\n${err}")
 endif()
-foreach(kind ideal lut schlick wpow)
+foreach(kind ideal lut schlick wpow none)
   if(NOT out MATCHES "netlist of [^\n]*${kind}_small.json: [^\n]*GE")
     message(FATAL_ERROR "regress --netlist did not name the ${kind} unit's netlist:\n${out}")
   endif()
