@@ -44,7 +44,8 @@ constexpr const char* kFlatScript =
     "synth -flatten -top shade_unit\n"
     "abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX\n"
     "opt_clean\n"
-    "tee -q -o @WORK@/flat_stat.txt stat -tech cmos\n";
+    "tee -q -o @WORK@/flat_stat.txt stat -tech cmos\n"
+    "tee -q -o @WORK@/flat_ltp.txt ltp -noff\n";
 // Table memories: synth's first half (to `fine`, where memory_map would turn them into
 // flip-flops), then a dump of the $mem cells: their SIZE x WIDTH are the RAM bits kept out of GE
 // (area.h). A run of its own: splitting the flat flow's synth at `fine` changes ABC's result by
@@ -70,9 +71,16 @@ constexpr const char* kBreakdownScript =
     "abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX\n"
     "opt_clean\n"
     "tee -q -o @WORK@/breakdown_stat.txt stat -tech cmos -top shade_unit\n";
+// synth_ice40's own steps up to its `check`, then that step without `autoname`, which only names
+// wires (nextpnr does not need the names) and took most of Yosys's 14.6 minutes and 15 GB on
+// multi's unit with 17-bit offsets.
 constexpr const char* kIce40Script =
-    "synth_ice40 -top shade_unit -json @WORK@/ice40.json\n"
-    "tee -q -o @WORK@/ice40_stat.txt stat\n";
+    "synth_ice40 -top shade_unit -run :check\n"
+    "hierarchy -check\n"
+    "tee -q -o @WORK@/ice40_stat.txt stat\n"
+    "check -noinit\n"
+    "blackbox =A:whitebox\n"
+    "write_json @WORK@/ice40.json\n";
 // HX8K in its largest package (206 I/O); 12 MHz is only the target the report compares with.
 constexpr const char* kPnrArgs = "--hx8k --package ct256 --freq 12 --timing-allow-fail";
 
@@ -411,6 +419,32 @@ void check_fit(Ice40Area& a) {
   a.fit_note = os.str();
 }
 
+}  // namespace
+
+LogicDepth read_logic_depth(const std::string& ltp_file) {
+  // "Longest topological path in shade_unit (length=87):", then "    0: \\cmd_data_i [16]",
+  // one "  n: wire (via cell)" line per cell, and "ff: \\q (via $dff)" where it ends at one.
+  std::istringstream is(read_text(ltp_file));
+  static const std::regex head(R"(Longest topological path in \S+ \(length=([0-9]+)\))");
+  static const std::regex step(R"(^\s*([0-9]+|ff):\s*\\?(.*?)(\s+\(via .*\))?\s*$)");
+  LogicDepth d;
+  std::smatch m;
+  bool in_path = false;
+  for (std::string line; std::getline(is, line);) {
+    if (std::regex_search(line, m, head)) {
+      d.gates = std::stoll(m[1].str());
+      in_path = true;
+    } else if (in_path && std::regex_match(line, m, step)) {
+      if (m[1] == "0") d.from = m[2];
+      d.to = m[2];
+    }
+  }
+  if (d.gates < 0) throw std::runtime_error(ltp_file + ": no 'Longest topological path' line");
+  return d;
+}
+
+namespace {
+
 // nextpnr's last "Max frequency for clock ..." line (the post-route one).
 std::optional<double> read_fmax(const std::string& log) {
   static const std::regex re(R"(Max frequency for clock[^:]*:\s*([0-9.]+)\s*MHz)");
@@ -559,6 +593,11 @@ std::string area_report_to_json(const AreaReport& r) {
             {"breakdown_cells", r.breakdown_cells},
             {"modules", modules},
             {"ice40", ice40},
+            {"logic_depth",
+             {{"gates", r.logic_depth.gates},
+              {"from", r.logic_depth.from},
+              {"to", r.logic_depth.to},
+              {"method", LogicDepth::kMethod}}},
             {"seconds", r.seconds},
             {"cpu_seconds", r.cpu_seconds},
             {"warnings", r.warnings}};
@@ -609,6 +648,10 @@ AreaReport area_report_from_json(const std::string& text, const std::string& sou
       r.logic_transistors = j.at("logic_transistors");
       r.ram_bits = j.at("ram_bits");
       r.ram_bits_expected = j.at("ram_bits_expected");
+    }
+    if (j.contains("logic_depth")) {
+      const Json& d = j.at("logic_depth");
+      r.logic_depth = {d.at("gates").get<int64_t>(), d.at("from"), d.at("to")};
     }
     const Json& a = j.at("ice40");
     r.ice40.lut4 = a.at("lut4");
@@ -778,6 +821,7 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
     r.logic_transistors = top.transistors - flip_flop_transistors_of(top);
     r.ram_bits = read_memory_bits((work / "flat_mem.txt").string());
     r.ram_bits_expected = ram_bits_of_parameters(r.parameters);
+    r.logic_depth = read_logic_depth((work / "flat_ltp.txt").string());
   }
   if (o.breakdown) {
     read_breakdown(read_stat_text(work / "breakdown_stat.txt"), work / "breakdown_stat.txt", r);

@@ -129,6 +129,20 @@ struct Ice40Area {
   std::string pnr_note;            // why there is no Fmax (no fit, --no-pnr, nextpnr failed)
 };
 
+// Logic depth: the cells on the longest path between registers (or ports) of the flat generic
+// netlist, from Yosys `ltp -noff` after abc: every 2-input gate, MUX and inverter is one level.
+// A technology-free timing figure for every configuration, beside nextpnr's Fmax where the unit
+// fits an iCE40; it is not a delay (a MUX and a NAND count the same).
+struct LogicDepth {
+  static constexpr const char* kMethod =
+      "Yosys ltp -noff on the flat netlist after abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX: cells on "
+      "the longest register-to-register (or port) path, each gate, MUX and inverter one level";
+  int64_t gates = -1;  // -1: not measured (a cache entry from before)
+  std::string from, to;
+};
+// The depth in a `tee -o` of `ltp -noff`; throws std::runtime_error naming the file.
+LogicDepth read_logic_depth(const std::string& ltp_file);
+
 struct AreaReport {
   std::vector<VerilogParameter> parameters;  // as passed to chparam
   std::string key;                           // cache key (hex)
@@ -154,6 +168,7 @@ struct AreaReport {
   std::vector<ModuleArea> modules;
   int64_t breakdown_cells = 0;
   Ice40Area ice40;
+  LogicDepth logic_depth;  // of the flat netlist (above)
   double seconds = 0;      // wall time of the run that produced the figures (not of a cache hit)
   double cpu_seconds = 0;  // CPU time of its tools (all syntheses and nextpnr together)
   std::vector<std::string> warnings;  // e.g. series that Yosys removed: figures understated

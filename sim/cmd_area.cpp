@@ -112,6 +112,14 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
     os << "  (GE per module from the kept-hierarchy synthesis: " << grouped(breakdown_ge)
        << " GE in all; RAM bits\n   from the parameters, apart from GE)\n";
   }
+  os << "\ntiming\n  logic depth  ";
+  if (r.logic_depth.gates >= 0) {
+    os << std::setw(10) << r.logic_depth.gates << "   levels of 2-input gates, MUXes and inverters on the longest path\n"
+       << "                          (Yosys ltp -noff on the flat netlist), from " << r.logic_depth.from
+       << "\n                          to " << r.logic_depth.to << "\n";
+  } else {
+    os << std::setw(10) << "-" << "   (cache entry measured before logic depth; run without the cache)\n";
+  }
   os << "\niCE40 (synth_ice40)\n"
      << "  LUT4         " << std::setw(10) << grouped(r.ice40.lut4) << '\n'
      << "  DFF          " << std::setw(10) << grouped(r.ice40.dff) << '\n'

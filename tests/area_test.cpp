@@ -226,6 +226,34 @@ TEST(Area, GateEquivalentsFollowTheClosedFormOnTinyModules) {
   fs::remove_all(dir);
 }
 
+// Logic depth (`ltp -noff` after the flat flow's abc): a register fed straight from a port is 0
+// levels; an 8-input AND needs ceil(log2 8) = 3 levels of 2-input gates, and ABC reaches it.
+TEST(Area, LogicDepthIsTheLongestGatePathBetweenRegisters) {
+  const std::string yosys = find_yosys();
+  if (yosys.empty()) GTEST_SKIP() << "yosys not installed";
+  const auto dir = temp_dir("depth");
+  auto depth = [&](const std::string& name, const std::string& verilog) {
+    write(dir / (name + ".v"), verilog);
+    const Result r = run_shell(yosys + " -q -p 'read_verilog " + (dir / (name + ".v")).string() +
+                               "; synth -flatten -top " + name +
+                               "; abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX; opt_clean; tee -q -o " +
+                               (dir / (name + ".ltp")).string() + " ltp -noff'");
+    EXPECT_EQ(r.status, 0) << r.output;
+    return read_logic_depth((dir / (name + ".ltp")).string());
+  };
+  const LogicDepth reg = depth("reg4", "module reg4(input clk, input [3:0] d, output reg [3:0] q);\n"
+                                       "  always @(posedge clk) q <= d;\nendmodule\n");
+  EXPECT_EQ(reg.gates, 0);
+  const LogicDepth and8 = depth("and8", "module and8(input clk, input [7:0] a, output reg q);\n"
+                                        "  always @(posedge clk) q <= &a;\nendmodule\n");
+  EXPECT_EQ(and8.gates, 3);
+  EXPECT_EQ(and8.from.rfind("a [", 0), 0u) << and8.from;  // a port bit
+  EXPECT_EQ(and8.to, "q");                                // the flip-flop it ends at
+  write(dir / "none.ltp", "nothing here\n");
+  EXPECT_THROW(read_logic_depth((dir / "none.ltp").string()), std::runtime_error);
+  fs::remove_all(dir);
+}
+
 // A LUT unit: its table (2^A x B bits, one bank, one light) is reported as RAM bits, measured
 // by Yosys and equal to the closed form, and left out of GE's flip-flops.
 TEST(Area, TableRamBitsAreApartFromGateEquivalents) {
@@ -250,7 +278,9 @@ TEST(Area, TableRamBitsAreApartFromGateEquivalents) {
   long row_ram = 0;
   for (const auto& row : j["modules"]) {
     row_ram += row["ram_bits_each"].get<long>() * row["instances"].get<long>();
-    if (row["module"] == "specular_unit") EXPECT_EQ(row["ram_bits_each"].get<long>(), 16 * 5);
+    if (row["module"] == "specular_unit") {
+      EXPECT_EQ(row["ram_bits_each"].get<long>(), 16 * 5);
+    }
   }
   EXPECT_EQ(row_ram, 16 * 5);
   EXPECT_TRUE(j["warnings"].empty()) << j["warnings"].dump();
