@@ -14,6 +14,9 @@ Outputs (out/, build/), placeholders (scenes/<scene>.json), URLs and absolute pa
 repository paths. A mention of the "design brief" or design.md (not in the repository) counts as
 missing too. Exits 1 naming file:line and the path for each that does not exist.
 
+Markdown links (issue 22): every [text](target) in a *.md file must name an existing file, and
+its #anchor a heading of that file (GitHub's anchors).
+
 Commands and options (issue 22): in the code of every *.md file (fenced and indented blocks and
 `inline spans`), each `shadesim COMMAND` must be a subcommand that `shadesim --help` lists, and
 each --option after it (up to the end of the shell command: newline, ;, |, &&, a # comment or
@@ -25,7 +28,7 @@ and only paths are checked. Scripts (scripts/x) are paths, checked above.
   tests/doc_paths.py --self-test
 
 The self-test checks the checker on a small tree it writes, with a stand-in shadesim: it must
-name each missing path, unknown command and made-up option there and pass the paths, commands
+name each missing path, unknown command, made-up option and broken link there and pass the paths, commands
 and options that exist, ignoring paths in code (string literals), outputs and shell comments.
 """
 import glob
@@ -255,6 +258,37 @@ def check_commands(binary, docs):
     return found, checked
 
 
+# --- markdown links ------------------------------------------------------------------------------
+
+LINK = re.compile(r"\]\(([^)\s]+)\)")
+
+
+def anchor(heading):
+    """GitHub's anchor of a markdown heading: lower case, punctuation dropped, spaces to '-'."""
+    return re.sub(r"[^\w\- ]", "", heading.strip().lower()).replace(" ", "-")
+
+
+def check_links(path, text):
+    """Findings for each [text](target) in a markdown file whose file or #anchor does not exist."""
+    found = []
+    for number, line in enumerate(text.split("\n"), 1):
+        for m in LINK.finditer(line):
+            target = m.group(1)
+            if re.match(r"^[a-z]+:", target):
+                continue  # https:, mailto:
+            file, _, frag = target.partition("#")
+            full = os.path.normpath(os.path.join(os.path.dirname(path), file)) if file else path
+            rel = os.path.relpath(path, ROOT)
+            if not os.path.exists(full):
+                found.append(f"{rel}:{number}: link {target} does not resolve")
+            elif frag and full.endswith(".md"):
+                with open(full, errors="replace") as f:
+                    heads = {anchor(h) for h in re.findall(r"^#+\s+(.*)$", f.read(), re.M)}
+                if frag not in heads:
+                    found.append(f"{rel}:{number}: link {target}: no heading with that anchor")
+    return found
+
+
 def self_test():
     import subprocess
     import tempfile
@@ -273,7 +307,8 @@ def self_test():
               "`build/shadesim cycles x --config\nunit.json --made-up-option 3`.\n\n"
               "```sh\nbuild/shadesim render x --series s4.20 --bogus  # --config is a comment\n"
               "build/shadesim frobnicate --json x | grep --count\nscripts/run --any-option\n```\n\n"
-              "    shadesim cycles x --config f \\\n      --no-such\n")
+              "    shadesim cycles x --config f \\\n      --no-such\n\n"
+              "[ok](../README.md) [ok](#links) [gone](gone.md) [bad](../README.md#nowhere)\n\n## Links\n")
         write("fake/shadesim", "#!/bin/sh\ncase \"$1\" in\n"
               "--help) printf 'shadesim\\nOptions:\\n  -h,--help  help\\nSubcommands:\\n"
               "  render    Render a scene\\n  cycles    Count cycles\\n';;\n"
@@ -288,7 +323,9 @@ def self_test():
                     "docs/use.md:2: shadesim cycles --made-up-option is not an option",
                     "docs/use.md:6: shadesim render --bogus is not an option",
                     "docs/use.md:7: shadesim frobnicate is not a command",
-                    "docs/use.md:11: shadesim cycles --no-such is not an option"]
+                    "docs/use.md:11: shadesim cycles --no-such is not an option",
+                    "docs/use.md:14: link gone.md does not resolve",
+                    "docs/use.md:14: link ../README.md#nowhere: no heading with that anchor"]
         lines = r.stdout.strip().split("\n")
         problems = [e for e in expected if not any(line.startswith(e) for line in lines)]
         if r.returncode != 1:
@@ -314,6 +351,7 @@ def main():
             text = f.read()
         if kind == "doc":
             lines = list(enumerate(text.split("\n"), 1))
+            missing += check_links(path, text)
         elif kind == "c":
             lines = c_comments(text)
         else:
