@@ -14,17 +14,36 @@ Outputs (out/, build/), placeholders (scenes/<scene>.json), URLs and absolute pa
 repository paths. A mention of the "design brief" or design.md (not in the repository) counts as
 missing too. Exits 1 naming file:line and the path for each that does not exist.
 
+Markdown links (issue 22): every [text](target) in a *.md file must name an existing file, and
+its #anchor a heading of that file (GitHub's anchors).
+
+Commands and options (issue 22): in the code of every *.md file (fenced and indented blocks and
+`inline spans`), each `shadesim COMMAND` must be a subcommand that `shadesim --help` lists, and
+each --option after it (up to the end of the shell command: newline, ;, |, &&, a # comment or
+the next shadesim) must appear in `shadesim COMMAND --help`. The binary is --shadesim PATH (ctest
+passes the built one), else build/shadesim under SOURCE_DIR; without either the check says so
+and only paths are checked. Scripts (scripts/x) are paths, checked above.
+
+  tests/doc_paths.py [SOURCE_DIR] [--shadesim PATH]
   tests/doc_paths.py --self-test
 
-checks the checker on a small tree it writes: it must name each missing path there and pass
-the paths that exist, ignoring paths in code (string literals) and outputs.
+The self-test checks the checker on a small tree it writes, with a stand-in shadesim: it must
+name each missing path, unknown command, made-up option and broken link there and pass the paths, commands
+and options that exist, ignoring paths in code (string literals), outputs and shell comments.
 """
 import glob
 import os
 import re
 import sys
 
-ROOT = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), ".."))
+ARGS = [a for a in sys.argv[1:]]
+SHADESIM = None
+if "--shadesim" in ARGS:
+    i = ARGS.index("--shadesim")
+    SHADESIM = os.path.abspath(ARGS[i + 1]) if i + 1 < len(ARGS) else ""
+    del ARGS[i:i + 2]
+ROOT = os.path.abspath(ARGS[0] if ARGS and ARGS[0] != "--self-test" else
+                       os.path.join(os.path.dirname(__file__), ".."))
 SOURCE_DIRS = ["rtl", "sim", "model", "host", "tests", "scripts", "cmake", "bench"]
 C_LIKE = {".h", ".hpp", ".cpp", ".cc", ".c", ".sv", ".svh", ".v", ".vlt"}
 HASH = {".py", ".sh", ".cmake", ".txt", ".yml", ".yaml"}
@@ -150,6 +169,126 @@ def exists(tok, base_dir):
     return False
 
 
+# --- shadesim commands and options cited in the docs --------------------------------------------
+
+FENCE = re.compile(r"^\s*(```|~~~)")
+INLINE = re.compile(r"`([^`\n]+(?:\n[^`\n]+)*?)`")
+CITED = re.compile(r"(?:^|(?<=[\s(/]))shadesim\s+([a-z][a-z0-9-]*)")
+OPTION = re.compile(r"(?<![A-Za-z0-9_-])--[a-z][a-z0-9-]*")
+SEGMENT_END = re.compile(r";|&&|\|\||\||(?:^|\s)#|\n")
+
+
+def code_texts(text):
+    """(line number, code text) of a markdown file: each line of a fenced or indented block (a
+    line ending in a backslash joined with the next), and each inline `span` (which may run over
+    a line break within its paragraph)."""
+    out, prose, fenced, pending = [], [], False, None
+    lines = text.split("\n")
+    for number, line in enumerate(lines, 1):
+        if FENCE.match(line):
+            fenced = not fenced
+            prose.append("")
+            continue
+        if fenced or (line.startswith("    ") and line.strip() and
+                      (number == 1 or not lines[number - 2].strip() or pending)):
+            start, body = pending if pending else (number, "")
+            body += line.rstrip("\\") + " "
+            pending = (start, body) if line.endswith("\\") else None
+            if pending is None:
+                out.append((start, body))
+            prose.append("")
+        else:
+            prose.append(line)
+    joined = "\n".join(prose)
+    for m in INLINE.finditer(joined):
+        # an inline span is a command on one line: its line breaks are spaces
+        out.append((joined.count("\n", 0, m.start()) + 1, m.group(1).replace("\n", " ")))
+    return out
+
+
+def citations(code):
+    """(command, [options]) for each `shadesim COMMAND ...` in a piece of code."""
+    for m in CITED.finditer(code):
+        rest = code[m.end():]
+        end = SEGMENT_END.search(rest)
+        rest = rest[:end.start()] if end else rest
+        nxt = re.search(r"(?:^|[\s(/])shadesim\s", rest)
+        rest = rest[:nxt.start()] if nxt else rest
+        yield m.group(1), OPTION.findall(rest)
+
+
+def run_help(binary, *args):
+    import subprocess
+    r = subprocess.run([binary, *args, "--help"], capture_output=True, text=True, timeout=60)
+    return r.returncode, r.stdout + r.stderr
+
+
+def subcommands(binary):
+    code, text = run_help(binary)
+    names, inside = set(), False
+    for line in text.split("\n"):
+        if re.match(r"^\S.*:\s*$", line):
+            inside = line.strip().lower().startswith("subcommands")
+        elif inside and line.strip():
+            names.add(line.split()[0])
+    return names
+
+
+def check_commands(binary, docs):
+    """Findings for every cited command and option; docs is [(relative path, text)]."""
+    commands = subcommands(binary)
+    if not commands:
+        return [f"{binary} --help lists no subcommands"], 0
+    helps, found, checked = {}, [], 0
+    for rel, text in docs:
+        for number, code in code_texts(text):
+            for command, options in citations(code):
+                checked += 1
+                if command not in commands:
+                    found.append(f"{rel}:{number}: shadesim {command} is not a command of "
+                                 f"shadesim --help")
+                    continue
+                if command not in helps:
+                    helps[command] = run_help(binary, command)[1]
+                for option in options:
+                    checked += 1
+                    if not re.search(re.escape(option) + r"(?![A-Za-z0-9_-])", helps[command]):
+                        found.append(f"{rel}:{number}: shadesim {command} {option} is not an "
+                                     f"option of shadesim {command} --help")
+    return found, checked
+
+
+# --- markdown links ------------------------------------------------------------------------------
+
+LINK = re.compile(r"\]\(([^)\s]+)\)")
+
+
+def anchor(heading):
+    """GitHub's anchor of a markdown heading: lower case, punctuation dropped, spaces to '-'."""
+    return re.sub(r"[^\w\- ]", "", heading.strip().lower()).replace(" ", "-")
+
+
+def check_links(path, text):
+    """Findings for each [text](target) in a markdown file whose file or #anchor does not exist."""
+    found = []
+    for number, line in enumerate(text.split("\n"), 1):
+        for m in LINK.finditer(line):
+            target = m.group(1)
+            if re.match(r"^[a-z]+:", target):
+                continue  # https:, mailto:
+            file, _, frag = target.partition("#")
+            full = os.path.normpath(os.path.join(os.path.dirname(path), file)) if file else path
+            rel = os.path.relpath(path, ROOT)
+            if not os.path.exists(full):
+                found.append(f"{rel}:{number}: link {target} does not resolve")
+            elif frag and full.endswith(".md"):
+                with open(full, errors="replace") as f:
+                    heads = {anchor(h) for h in re.findall(r"^#+\s+(.*)$", f.read(), re.M)}
+                if frag not in heads:
+                    found.append(f"{rel}:{number}: link {target}: no heading with that anchor")
+    return found
+
+
 def self_test():
     import subprocess
     import tempfile
@@ -163,10 +302,30 @@ def self_test():
         write("scenes/hard/x.json", "{}\n")
         write("scripts/run", "#!/bin/sh\n# reads scenes/hard/x.json and scenes/none.json\necho '# not/a_comment.txt'\n")
         write("sim/b.cpp", "/* the design brief says\n   so, in host/setup.h */\nint x;\n")
-        r = subprocess.run([sys.executable, __file__, tmp], capture_output=True, text=True)
+        # commands and options, against a stand-in shadesim with two subcommands
+        write("docs/use.md", "Run `shadesim render scenes/hard/x.json --json a.json` or\n"
+              "`build/shadesim cycles x --config\nunit.json --made-up-option 3`.\n\n"
+              "```sh\nbuild/shadesim render x --series s4.20 --bogus  # --config is a comment\n"
+              "build/shadesim frobnicate --json x | grep --count\nscripts/run --any-option\n```\n\n"
+              "    shadesim cycles x --config f \\\n      --no-such\n\n"
+              "[ok](../README.md) [ok](#links) [gone](gone.md) [bad](../README.md#nowhere)\n\n## Links\n")
+        write("fake/shadesim", "#!/bin/sh\ncase \"$1\" in\n"
+              "--help) printf 'shadesim\\nOptions:\\n  -h,--help  help\\nSubcommands:\\n"
+              "  render    Render a scene\\n  cycles    Count cycles\\n';;\n"
+              "render) printf 'Options:\\n  --json FILE\\n  --series FMT\\n';;\n"
+              "cycles) printf 'Options:\\n  --config FILE\\n';;\nesac\n")
+        os.chmod(os.path.join(tmp, "fake/shadesim"), 0o755)
+        r = subprocess.run([sys.executable, __file__, tmp, "--shadesim", os.path.join(tmp, "fake/shadesim")],
+                           capture_output=True, text=True)
         expected = ["README.md:1: notes/rtl.md does not exist", "model/a.h:1: sim/gone.cpp does not exist",
                     "scripts/run:2: scenes/none.json does not exist", "sim/b.cpp:1: the design brief",
-                    "sim/b.cpp:2: host/setup.h does not exist"]
+                    "sim/b.cpp:2: host/setup.h does not exist",
+                    "docs/use.md:2: shadesim cycles --made-up-option is not an option",
+                    "docs/use.md:6: shadesim render --bogus is not an option",
+                    "docs/use.md:7: shadesim frobnicate is not a command",
+                    "docs/use.md:11: shadesim cycles --no-such is not an option",
+                    "docs/use.md:14: link gone.md does not resolve",
+                    "docs/use.md:14: link ../README.md#nowhere: no heading with that anchor"]
         lines = r.stdout.strip().split("\n")
         problems = [e for e in expected if not any(line.startswith(e) for line in lines)]
         if r.returncode != 1:
@@ -176,12 +335,13 @@ def self_test():
         if problems:
             print("doc_paths self-test FAILED:", *problems, "output:", r.stdout, sep="\n  ")
             return 1
-        print(f"doc_paths self-test: the {len(expected)} missing paths named, nothing else")
+        print(f"doc_paths self-test: the {len(expected)} missing paths, commands and options named, "
+              "nothing else")
         return 0
 
 
 def main():
-    if len(sys.argv) > 1 and sys.argv[1] == "--self-test":
+    if "--self-test" in sys.argv[1:]:
         return self_test()
     top_level = {e for e in os.listdir(ROOT) if e not in SKIP_DIRS}
     missing = []
@@ -191,6 +351,7 @@ def main():
             text = f.read()
         if kind == "doc":
             lines = list(enumerate(text.split("\n"), 1))
+            missing += check_links(path, text)
         elif kind == "c":
             lines = c_comments(text)
         else:
@@ -203,9 +364,25 @@ def main():
                 checked += 1
                 if not exists(tok, os.path.dirname(path)):
                     missing.append(f"{os.path.relpath(path, ROOT)}:{number}: {tok} does not exist")
+    binary = SHADESIM if SHADESIM is not None else os.path.join(ROOT, "build", "shadesim")
+    commands_note = ""
+    if SHADESIM is not None and not os.access(binary, os.X_OK):
+        missing.append(f"--shadesim {binary}: not an executable")
+    elif os.access(binary, os.X_OK):
+        docs = []
+        for path, kind in files():
+            if kind == "doc":
+                with open(path, errors="replace") as f:
+                    docs.append((os.path.relpath(path, ROOT), f.read()))
+        found, cited = check_commands(binary, docs)
+        missing += found
+        commands_note = f"; {cited} shadesim command(s) and option(s) cited, checked against {binary}"
+    else:
+        commands_note = f"; commands and options NOT checked: no {binary} (build it, or --shadesim PATH)"
     for m in missing:
         print(m)
-    print(f"doc_paths: {checked} path(s) named in docs and comments, {len(missing)} missing")
+    print(f"doc_paths: {checked} path(s) named in docs and comments, {len(missing)} missing"
+          + commands_note)
     return 1 if missing or checked == 0 else 0
 
 
