@@ -128,7 +128,9 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
      << "  HX8K         " << r.ice40.fit_note << '\n'
      << "  Fmax         ";
   if (r.ice40.fmax_mhz) {
-    os << std::setprecision(1) << *r.ice40.fmax_mhz << " MHz (nextpnr-ice40, HX8K ct256, clk_i)\n";
+    os << std::setprecision(1) << *r.ice40.fmax_mhz
+       << " MHz (nextpnr-ice40, HX8K ct256, clk_i; out of context: the unit's ports shifted\n"
+       << "                          through registers of a shell, so the pin count does not limit it)\n";
   } else {
     os << "- (" << r.ice40.pnr_note << ")\n";
   }
