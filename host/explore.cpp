@@ -348,13 +348,13 @@ void mark_pareto(std::vector<ExplorePoint>& points, int out_bits) {
                      const ExplorePoint& b) {  // a no worse than b in all four
     return a.figures.error.max_code_lsb <= b.figures.error.max_code_lsb &&
            a.figures.error.mean_code_lsb <= b.figures.error.mean_code_lsb &&
-           a.figures.area.cells <= b.figures.area.cells &&
+           a.front_area() <= b.front_area() &&
            a.figures.cycles_per_pixel <= b.figures.cycles_per_pixel;
   };
   auto better_somewhere = [](const ExplorePoint& a, const ExplorePoint& b) {
     return a.figures.error.max_code_lsb < b.figures.error.max_code_lsb ||
            a.figures.error.mean_code_lsb < b.figures.error.mean_code_lsb ||
-           a.figures.area.cells < b.figures.area.cells ||
+           a.front_area() < b.front_area() ||
            a.figures.cycles_per_pixel < b.figures.cycles_per_pixel;
   };
   auto takes_part = [out_bits](const ExplorePoint& p) {
@@ -370,6 +370,48 @@ void mark_pareto(std::vector<ExplorePoint>& points, int out_bits) {
       }
     }
   }
+}
+
+std::optional<double> ExplorePoint::mpixel_per_s() const {
+  if (!measured || !measured->fmax_mhz || !(figures.cycles_per_pixel > 0)) return std::nullopt;
+  return *measured->fmax_mhz / figures.cycles_per_pixel;
+}
+
+std::size_t measure_front(ExploreResult& result, const MeasureFunction& measure,
+                          const MeasureProgress& progress) {
+  const int out_bits = result.start.out_bits;
+  std::size_t measured = 0;
+  for (;;) {
+    std::vector<std::size_t> todo;
+    for (std::size_t i = 0; i < result.points.size(); ++i) {
+      const ExplorePoint& p = result.points[i];
+      const bool wanted = p.pareto || (result.chosen && *result.chosen == i);
+      if (wanted && p.valid && !p.measured) todo.push_back(i);
+    }
+    if (todo.empty()) return measured;
+    for (std::size_t k = 0; k < todo.size(); ++k) {
+      if (progress) progress(todo[k], measured + k, measured + todo.size());
+      result.points[todo[k]].measured = measure(result.points[todo[k]].config);
+    }
+    measured += todo.size();
+    mark_pareto(result.points, out_bits);
+  }
+}
+
+EstimateError estimate_error(const ExploreResult& result) {
+  std::vector<double> pct;
+  for (const auto& p : result.points) {
+    if (!p.measured || !(p.measured->cells > 0)) continue;
+    pct.push_back(100.0 * std::abs(p.figures.area.cells / p.measured->cells - 1.0));
+  }
+  EstimateError e;
+  e.count = pct.size();
+  if (pct.empty()) return e;
+  std::sort(pct.begin(), pct.end());
+  const std::size_t n = pct.size();
+  e.median_pct = n % 2 ? pct[n / 2] : 0.5 * (pct[n / 2 - 1] + pct[n / 2]);
+  e.max_pct = pct.back();
+  return e;
 }
 
 ExploreResult explore(ExploreScenes& scenes, const UnitConfig& start, const AreaFunction& area,

@@ -92,6 +92,19 @@ struct Knob {
 // fraction bits; specular colour fraction bits; output bits (not searched).
 std::vector<Knob> knobs_for(const UnitConfig& start);
 
+// A point's unit as Yosys measured it (shadesim area), for the points explore calls
+// Pareto-optimal: the sweep itself runs on AreaFunction's estimates.
+struct MeasuredArea {
+  double cells = 0;         // generic cells, the same metric as AreaFigure::cells
+  double gate_equivalents = 0;
+  double lut4 = 0;
+  bool fits_hx8k = false;
+  std::optional<double> fmax_mhz;  // nextpnr-ice40, out of context; none where it does not fit
+  int64_t logic_depth = -1;        // gate levels on the longest path (Yosys ltp)
+  std::string note;                // why there is no Fmax
+};
+using MeasureFunction = std::function<MeasuredArea(const UnitConfig&)>;
+
 struct ExplorePoint {
   UnitConfig config;
   std::string phase;               // start | stage | joint
@@ -101,6 +114,11 @@ struct ExplorePoint {
   std::string invalid_reason;
   bool meets_budget = false;
   bool pareto = false;  // on the front of (max LSB, mean LSB) against area and cycles per pixel
+  std::optional<MeasuredArea> measured;  // Yosys's figures (measure_front), else none
+  // The area the front is drawn with: the measurement where there is one, else the estimate.
+  double front_area() const { return measured ? measured->cells : figures.area.cells; }
+  // Mpixel/s at the measured Fmax (Fmax x pixels per clock), where both are known.
+  std::optional<double> mpixel_per_s() const;
 };
 
 struct ExploreOptions {
@@ -134,7 +152,24 @@ ExploreResult explore(ExploreScenes& scenes, const UnitConfig& start, const Area
 // Marks `pareto` on the points not dominated in (max code LSB, mean code LSB, area, cycles per
 // pixel): a point is dominated when another is no worse in all four and better in one. Only
 // points with `out_bits` output bits take part: an LSB of another output width is another unit.
+// Area is front_area(): measured where measured.
 void mark_pareto(std::vector<ExplorePoint>& points, int out_bits);
+
+// Yosys for the front: measures every Pareto point (and the chosen one) not measured yet, marks
+// the front again with the measured areas, and repeats until every point on it is measured (a
+// point the estimate kept off the front may join it once a neighbour's true area is known).
+// `progress` is told each point before it is measured. Returns the number measured.
+using MeasureProgress = std::function<void(std::size_t index, std::size_t done, std::size_t total)>;
+std::size_t measure_front(ExploreResult& result, const MeasureFunction& measure,
+                          const MeasureProgress& progress = {});
+
+// How far the estimates were from Yosys on the measured points: |estimate / measured - 1| of
+// generic cells, median and max, in percent; count 0 when none was measured.
+struct EstimateError {
+  std::size_t count = 0;
+  double median_pct = 0, max_pct = 0;
+};
+EstimateError estimate_error(const ExploreResult& result);
 
 // The error of one configuration on one scene split by source, in output LSBs before rounding:
 //   function     exact cosines through the unit's double function vs the reference (exact pow)

@@ -37,6 +37,8 @@ struct ExploreCliOptions {
   std::string area_cache = SHADESIM_BINARY_DIR "/area-cache";
   int out_bits = 8;
   bool verify = false;
+  bool estimate_only = false;  // no Yosys for the front: estimates only, labelled so
+  bool no_pnr = false;         // measure the front without nextpnr (no Fmax, no Mpixel/s)
   std::string emit_jobs;  // FILE: the verification's regress runs as job lines, not run
   bool quiet = false;
 };
@@ -74,6 +76,79 @@ AreaFunction area_model(const UnitConfig& start, const std::string& cache_dir) {
     return AreaFigure{static_cast<double>(e.cells), static_cast<double>(e.lut4),
                       "generic cells, " + e.label()};
   };
+}
+
+std::string fixed1(double v) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(1) << v;
+  return os.str();
+}
+
+// The front's measurement: shadesim area on the point's unit (cached like `area`), with the
+// out-of-context Fmax unless --no-pnr.
+MeasureFunction front_measure(const ExploreCliOptions& o) {
+  return [o](const UnitConfig& c) {
+    AreaOptions ao;
+    ao.cache_dir = o.area_cache;
+    ao.place_and_route = !o.no_pnr;
+    ao.breakdown = false;
+    ao.progress = o.quiet ? nullptr : &std::cerr;
+    const AreaReport a = unit_area(c, ao);
+    MeasuredArea m;
+    m.cells = static_cast<double>(a.cells);
+    m.gate_equivalents = static_cast<double>(a.gate_equivalents());
+    m.lut4 = static_cast<double>(a.ice40.lut4);
+    m.fits_hx8k = a.ice40.fits_hx8k;
+    m.fmax_mhz = a.ice40.fmax_mhz;
+    m.logic_depth = a.logic_depth.gates;
+    m.note = a.ice40.fmax_mhz ? a.ice40.fit_note : a.ice40.pnr_note;
+    return m;
+  };
+}
+
+// The measured front: Yosys's cells beside the estimate, GE, LUT4s, Fmax and Mpixel/s.
+void print_measured_front(std::ostream& os, const ExploreResult& r) {
+  std::vector<std::size_t> rows;
+  for (std::size_t i = 0; i < r.points.size(); ++i)
+    if (r.points[i].measured && (r.points[i].pareto || (r.chosen && *r.chosen == i)))
+      rows.push_back(i);
+  std::sort(rows.begin(), rows.end(), [&](std::size_t a, std::size_t b) {
+    return r.points[a].front_area() < r.points[b].front_area();
+  });
+  os << "Pareto front, Yosys-measured (shadesim area on each point; Fmax out of context on an "
+        "iCE40 HX8K)\n"
+     << std::left << std::setw(6) << "point" << std::setw(22) << "knob" << std::setw(8)
+     << "value" << std::right << std::setw(8) << "max LSB" << std::setw(8) << "cyc/px"
+     << std::setw(10) << "est cells" << std::setw(10) << "cells" << std::setw(8) << "est err"
+     << std::setw(9) << "GE" << std::setw(8) << "LUT4" << std::setw(7) << "depth" << std::setw(9)
+     << "Fmax MHz" << std::setw(9) << "Mpix/s" << "\n";
+  for (const std::size_t i : rows) {
+    const ExplorePoint& p = r.points[i];
+    const MeasuredArea& m = *p.measured;
+    std::ostringstream fmax, mpix;
+    if (m.fmax_mhz) {
+      fmax << std::fixed << std::setprecision(1) << *m.fmax_mhz;
+      mpix << std::fixed << std::setprecision(1) << *p.mpixel_per_s();
+    } else {
+      fmax << "-";
+      mpix << "-";
+    }
+    const double err = m.cells > 0 ? 100.0 * (p.figures.area.cells / m.cells - 1.0) : 0.0;
+    os << std::left << std::setw(6) << i << std::setw(22) << (p.knob.empty() ? p.phase : p.knob)
+       << std::setw(8) << (p.value.empty() ? "-" : p.value) << std::right << std::setw(8)
+       << p.figures.error.max_code_lsb << std::setw(8) << std::fixed << std::setprecision(3)
+       << p.figures.cycles_per_pixel << std::setw(10) << std::setprecision(0)
+       << p.figures.area.cells << std::setw(10) << m.cells << std::setw(7)
+       << std::showpos << std::setprecision(1) << err << std::noshowpos << "%" << std::setw(9)
+       << std::setprecision(0) << m.gate_equivalents << std::setw(8) << m.lut4 << std::setw(7)
+       << m.logic_depth << std::setw(9) << fmax.str() << std::setw(9) << mpix.str()
+       << (r.chosen && *r.chosen == i ? "  CHOSEN" : "") << (p.pareto ? "" : "  (off the front)")
+       << "\n";
+  }
+  const EstimateError e = estimate_error(r);
+  os << "estimate vs Yosys on these " << e.count << " points: median |error| " << std::fixed
+     << std::setprecision(1) << e.median_pct << " %, max " << e.max_pct
+     << " % (generic cells; the sweep's other points carry estimates only)\n";
 }
 
 // ---------------------------------------------------------------- RTL verification
@@ -277,6 +352,18 @@ nlohmann::json point_json(const ExplorePoint& p, std::size_t index, int channels
   j["coefficients_out_of_range"] = p.figures.coefficients_out_of_range;
   j["meets_budget"] = p.meets_budget;
   j["pareto"] = p.pareto;
+  if (p.measured) {
+    const MeasuredArea& m = *p.measured;
+    j["measured"] = {{"cells", m.cells},
+                     {"gate_equivalents", m.gate_equivalents},
+                     {"lut4", m.lut4},
+                     {"fits_hx8k", m.fits_hx8k},
+                     {"fmax_mhz", m.fmax_mhz ? nlohmann::json(*m.fmax_mhz) : nlohmann::json()},
+                     {"mpixel_per_s", p.mpixel_per_s() ? nlohmann::json(*p.mpixel_per_s())
+                                                       : nlohmann::json()},
+                     {"logic_depth", m.logic_depth},
+                     {"note", m.note}};
+  }
   return j;
 }
 
@@ -335,7 +422,7 @@ void print_table(std::ostream& os, const std::vector<const ExplorePoint*>& rows,
      << std::right << std::setw(10) << "max LSB" << std::setw(channels == 1 ? 9 : 23) << "mean LSB"
      << std::setw(9) << "PSNR dB" << std::setw(8) << ">1LSB%" << std::setw(8) << "cyc/px"
      << std::setw(9) << "area"
-     << "  budget\n";
+     << "   budget   (area: * Yosys-measured cells, else the estimate)\n";
   for (const ExplorePoint* p : rows) {
     const bool is_chosen = chosen && &all[*chosen] == p;
     os << std::left << std::setw(12) << p->phase << std::setw(22)
@@ -354,7 +441,8 @@ void print_table(std::ostream& os, const std::vector<const ExplorePoint*>& rows,
        << std::setw(channels == 1 ? 9 : 23) << per_channel_mean(e, channels) << std::setw(9)
        << psnr.str() << std::setw(8) << std::fixed << std::setprecision(2) << over_1lsb_pct(e)
        << std::setw(8) << std::setprecision(3) << p->figures.cycles_per_pixel << std::setw(9)
-       << std::setprecision(0) << p->figures.area.cells << "  " << (p->meets_budget ? "ok" : "over")
+       << std::setprecision(0) << p->front_area() << (p->measured ? "*" : " ") << " "
+       << (p->meets_budget ? "ok" : "over")
        << (p->pareto ? " pareto" : "") << (is_chosen ? " CHOSEN" : "") << '\n';
   }
 }
@@ -417,9 +505,19 @@ int run_explore(const ExploreCliOptions& o) {
   ProgressBar bar;
   const AreaFunction area = area_model(start, o.area_cache);
   const auto t1 = std::chrono::steady_clock::now();
-  const ExploreResult r = explore(scenes, start, area, eo, std::ref(bar));
+  ExploreResult r = explore(scenes, start, area, eo, std::ref(bar));
   const double sweep_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  const auto t2 = std::chrono::steady_clock::now();
+  if (!o.estimate_only) {
+    measure_front(r, front_measure(o), [&](std::size_t i, std::size_t done, std::size_t total) {
+      if (!o.quiet)
+        std::cerr << "explore: Yosys on Pareto point " << i << " (" << done + 1 << " of " << total
+                  << " so far)\n";
+    });
+  }
+  const double measure_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t2).count();
 
   std::vector<ErrorBudget> chosen_budget, start_budget;
   for (std::size_t s = 0; s < o.scenes.size(); ++s) {
@@ -464,11 +562,18 @@ int run_explore(const ExploreCliOptions& o) {
       if (p.pareto) front.push_back(&p);
     }
     std::sort(front.begin(), front.end(), [](const ExplorePoint* a, const ExplorePoint* b) {
-      return a->figures.area.cells < b->figures.area.cells;
+      return a->front_area() < b->front_area();
     });
-    std::cout << "\nPareto front (max LSB, mean LSB vs area and cycles/pixel), by area\n";
+    std::cout << "\nPareto front (max LSB, mean LSB vs area and cycles/pixel), by area"
+              << (o.estimate_only ? " - ESTIMATED areas (--estimate-only): not measured by Yosys"
+                                  : "; area: Yosys-measured cells")
+              << "\n";
     print_table(std::cout, front, channels, r.chosen, r.points);
     std::cout << '\n';
+    if (!o.estimate_only) {
+      print_measured_front(std::cout, r);
+      std::cout << '\n';
+    }
     if (r.chosen) {
       const ExplorePoint& c = r.points[*r.chosen];
       std::cout << "chosen       " << c.config.to_string() << "\n             "
@@ -502,7 +607,10 @@ int run_explore(const ExploreCliOptions& o) {
               << ", pareto_<point>.json for the front (in " << out_dir.string() << ")\n"
               << "time         host setup " << std::setprecision(2) << host_s << " s, "
               << r.points.size() << " points in " << sweep_s << " s on " << o.jobs
-              << " thread(s)\n";
+              << " thread(s)"
+              << (o.estimate_only ? std::string()
+                                  : ", Yosys on the front " + fixed1(measure_s) + " s")
+              << "\n";
     if (!o.json_path.empty()) std::cout << "plot         scripts/plot " << o.json_path << "\n";
   }
 
@@ -546,10 +654,14 @@ int run_explore(const ExploreCliOptions& o) {
         {"search_log", r.log},
         {"error_budget", {{"chosen", cb}, {"start", sb}}},
         {"config_files", nlohmann::json::array()},
-        {"seconds", {{"host_setup", host_s}, {"sweep", sweep_s}}},
+        {"seconds", {{"host_setup", host_s}, {"sweep", sweep_s}, {"measure_front", measure_s}}},
+        {"front_measured", !o.estimate_only},
         {"jobs", o.jobs}};
     for (const auto& v : to_verify)
       j["config_files"].push_back({{"name", v.name}, {"file", v.config_file}});
+    const EstimateError ee = estimate_error(r);
+    j["estimate_error"] = {{"points", ee.count}, {"median_pct", ee.median_pct},
+                           {"max_pct", ee.max_pct}};
     j["verification"] = nlohmann::json::array();
     for (const auto& v : verified) {
       j["verification"].push_back({{"name", v.name},
@@ -648,6 +760,12 @@ void register_explore(CLI::App& app, int& exit_code) {
       "write the regress runs --verify would do into FILE, one shell command per line (for GNU\n"
       "parallel or a batch system; README \"Regression on many machines\") instead of running "
       "them");
+  sub->add_flag("--estimate-only", o->estimate_only,
+                "do not synthesise the Pareto points: the front is drawn on estimated areas and "
+                "labelled so\n(by default every point on it, and the chosen one, is measured by "
+                "shadesim area: minutes\neach the first time, cached after)");
+  sub->add_flag("--no-pnr", o->no_pnr,
+                "measure the front without nextpnr-ice40 (no Fmax, no Mpixel/s; much quicker)");
   sub->add_flag("-q,--quiet", o->quiet, "print nothing (use with --json / --csv)");
   sub->callback([o, &exit_code]() { exit_code = run_explore(*o); });
 }

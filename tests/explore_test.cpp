@@ -176,6 +176,58 @@ TEST(Explore, ParetoFrontHasNoDominatedPoint) {
   EXPECT_FALSE(pts[3].pareto);
 }
 
+// measure_front: every point on the front (and the chosen one) gets Yosys's figures; a point the
+// estimates kept off the front joins it once its neighbour's measured area is larger, and is
+// measured in turn; the estimate error is |estimate / measured - 1| over the measured points.
+TEST(Explore, MeasureFrontMeasuresUntilEveryFrontPointIsMeasured) {
+  ExploreResult r;
+  r.start.out_bits = 8;
+  r.points.resize(3);
+  auto set = [](ExplorePoint& p, int max, double area) {
+    p.config.out_bits = 8;
+    p.figures.error.max_code_lsb = max;
+    p.figures.error.mean_code_lsb = 0.1 * max;
+    p.figures.area.cells = area;
+    p.figures.cycles_per_pixel = 2;
+  };
+  set(r.points[0], 1, 100);  // front by estimate; measured 200
+  set(r.points[1], 1, 150);  // dominated by 0's estimate; off the front until 0 is measured
+  set(r.points[2], 3, 50);   // front: cheapest, worst error; measured exactly
+  mark_pareto(r.points, 8);
+  ASSERT_TRUE(r.points[0].pareto);
+  ASSERT_FALSE(r.points[1].pareto);
+  const std::vector<double> measured_cells = {200, 160, 50};  // by point
+  std::vector<std::size_t> order;
+  const std::size_t n = measure_front(
+      r,
+      [&](const UnitConfig&) {
+        MeasuredArea m;
+        m.cells = measured_cells[order.back()];
+        return m;
+      },
+      [&](std::size_t i, std::size_t, std::size_t) { order.push_back(i); });
+  // Round 1 measures 0 and 2 (the estimated front); then 1 (160 < 200) is on the front and 0 is
+  // off it; round 2 measures 1.
+  EXPECT_EQ(n, 3u);
+  ASSERT_EQ(order, (std::vector<std::size_t>{0, 2, 1}));
+  for (std::size_t i = 0; i < 3; ++i) {
+    ASSERT_TRUE(r.points[i].measured) << i;
+    EXPECT_DOUBLE_EQ(r.points[i].measured->cells, measured_cells[i]) << i;
+  }
+  EXPECT_TRUE(r.points[1].pareto);
+  EXPECT_FALSE(r.points[0].pareto);
+  const EstimateError e = estimate_error(r);
+  EXPECT_EQ(e.count, 3u);
+  // |100/200 - 1| = 50 %, |50/50 - 1| = 0 %, |150/160 - 1| = 6.25 %.
+  EXPECT_DOUBLE_EQ(e.max_pct, 50.0);
+  EXPECT_DOUBLE_EQ(e.median_pct, 6.25);
+  // Mpixel/s: Fmax x pixels per clock, only where an Fmax is known.
+  EXPECT_FALSE(r.points[1].mpixel_per_s());
+  r.points[1].measured->fmax_mhz = 40.0;
+  ASSERT_TRUE(r.points[1].mpixel_per_s());
+  EXPECT_DOUBLE_EQ(*r.points[1].mpixel_per_s(), 20.0);
+}
+
 TEST(Explore, BadOptionsAreErrors) {
   const std::string scene = kScenes + "sphere.json";
   UnitConfig start;
@@ -230,7 +282,8 @@ std::vector<std::string> csv_fields(const std::string& line) {
 TEST(ExploreCli, JsonAndCsvAreWellFormedAndAgree) {
   const auto dir = temp_dir("out");
   const Result r =
-      run("explore " + kScenes + "sphere.json --budget 1 --json " + (dir / "e.json").string() +
+      run("explore " + kScenes + "sphere.json --budget 1 --estimate-only --json " +
+          (dir / "e.json").string() +
           " --csv " + (dir / "e.csv").string() + " --out " + dir.string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("Pareto front"), std::string::npos);
@@ -238,6 +291,8 @@ TEST(ExploreCli, JsonAndCsvAreWellFormedAndAgree) {
   std::ifstream js(dir / "e.json");
   const auto j = nlohmann::json::parse(js);
   EXPECT_EQ(j["kind"], "explore");
+  EXPECT_EQ(j["front_measured"], false);
+  EXPECT_NE(r.output.find("ESTIMATED areas (--estimate-only)"), std::string::npos);
   const auto& points = j["points"];
   ASSERT_GT(points.size(), 20u);
   const auto chosen = j["chosen_index"].get<size_t>();
@@ -304,7 +359,7 @@ TEST(ExploreCli, BadInputIsAClearError) {
 
   // W_16's lobe (the derived unit) is ~2 LSB from t^n on this highlight: no width meets 1 LSB,
   // and the output says which part no width can fix.
-  r = run("explore " + kScenes + "specular.json --out " + dir.string());
+  r = run("explore " + kScenes + "specular.json --estimate-only --out " + dir.string());
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("no width can fix"), std::string::npos) << r.output;
   std::filesystem::remove_all(dir);
