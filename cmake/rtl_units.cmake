@@ -106,7 +106,8 @@ rtl_unit(schlick_iter schlick_divider SLOT0=16 SLOT1=24 SLOT2=1
          SERIES_WL=32 SERIES_IWL=4 OUT_WL=17 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
 rtl_unit(schlick_pipe schlick_divider SLOT0=20 SLOT1=12 SLOT2=0
          SERIES_WL=23 SERIES_IWL=3 OUT_WL=13 OUT_IWL=1 OUT_QUANT=1 OUT_OVERFLOW=0)
-# W_m: m = 4 with 4-bit base both timings (exhaustive), m = 1 (no squarer), W16 default
+# W_m: m = 4 with 4-bit base both timings (exhaustive), m = 1 (no squarer), m = 2 with a 16-bit
+# base (every square of the squarer), W16 default
 # pipelined, m = 32 iterative with a rounded output.
 rtl_unit(wpow_small_pipe wpow_unit SLOT0=4 SLOT1=4 SLOT2=0
          SERIES_WL=8 SERIES_IWL=2 OUT_WL=6 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
@@ -114,6 +115,8 @@ rtl_unit(wpow_small_iter wpow_unit SLOT0=4 SLOT1=4 SLOT2=1
          SERIES_WL=8 SERIES_IWL=2 OUT_WL=6 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
 rtl_unit(wpow_m1 wpow_unit SLOT0=1 SLOT1=2 SLOT2=1
          SERIES_WL=8 SERIES_IWL=2 OUT_WL=4 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
+rtl_unit(wpow_m2_b16 wpow_unit SLOT0=2 SLOT1=16 SLOT2=0
+         SERIES_WL=18 SERIES_IWL=2 OUT_WL=17 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
 rtl_unit(wpow_w16 wpow_unit SLOT0=16 SLOT1=16 SLOT2=0
          SERIES_WL=32 SERIES_IWL=4 OUT_WL=17 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
 rtl_unit(wpow_m32_iter wpow_unit SLOT0=32 SLOT1=12 SLOT2=1

@@ -117,12 +117,21 @@ module wpow_unit #(
     end
   end
 
-  // (b * b) >> B, truncating; exact in 2B+1 bits because b <= 2^B.
+  // (b * b) >> B, truncating; exact in 2B+1 bits because b <= 2^B. Summed as a square, not as
+  // a product: b_i b_j (i < j) is a partial product twice, so row i holds b_i at 2i and
+  // b_i & b_j (j > i) once at i + j + 1. That is 153 partial-product bits for B = 16 against a
+  // multiplier's 289, 40 % fewer transistors under Yosys (`shadesim area`), and the same value
+  // (WpowUnitRtl.M2Base16EverySquareEqualsTheModelsProduct: every base of B = 16).
   function automatic logic [BW-1:0] square(input logic [BW-1:0] b);
     // verilator lint_off UNUSEDSIGNAL
-    logic [2*B:0] p;  // the low B bits are what truncation drops
+    logic [2*BW-1:0] p;  // the low B bits are what truncation drops; the top bit stays 0
     // verilator lint_on UNUSEDSIGNAL
-    p = (2*B+1)'(b) * (2*B+1)'(b);
+    logic [BW-1:0] row;  // b_i & b_j for j > i, from bit i + j + 1 on
+    p = '0;
+    for (int i = 0; i < BW; i++) begin
+      row = {BW{b[i]}} & (b >> (i + 1));
+      p = p + ((2*BW)'(b[i]) << (2 * i)) + ((2*BW)'(row) << (2 * i + 2));
+    end
     square = p[2*B:B];
   endfunction
 
