@@ -16,12 +16,9 @@ find_program(YOSYS yosys)
 set(SHADESIM_HAVE_RTL ON)
 
 set(RTL_DIR ${CMAKE_SOURCE_DIR}/rtl)
-# Dependency order (leaves first) for tools that want it (sim/rtl_build.cpp lists the same).
-set(RTL_SOURCES
-  ${RTL_DIR}/shade_pkg.sv ${RTL_DIR}/fixed_round.sv ${RTL_DIR}/fixed_sat.sv ${RTL_DIR}/span_setup.sv
-  ${RTL_DIR}/series_engine.sv ${RTL_DIR}/lane_fanout.sv ${RTL_DIR}/pixel_combine.sv
-  ${RTL_DIR}/exponent_lut.sv ${RTL_DIR}/schlick_divider.sv ${RTL_DIR}/wpow_unit.sv
-  ${RTL_DIR}/specular_unit.sv ${RTL_DIR}/fault_select.sv ${RTL_DIR}/shade_unit.sv)
+# Dependency order (leaves first), from the one list rtl/files.f every tool reads.
+include(${CMAKE_SOURCE_DIR}/cmake/rtl_files.cmake)
+rtl_files(RTL_SOURCES)
 
 # The named builds (and what the tests iterate over), read from the same file shadesim reads.
 file(READ ${CMAKE_SOURCE_DIR}/sim/harness/builds.json _builds_json)

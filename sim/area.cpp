@@ -25,6 +25,7 @@
 #include "model/specular_units.h"
 #include "sim/content_hash.h"
 #include "sim/process.h"
+#include "sim/rtl_files.h"
 
 #ifndef SHADESIM_SOURCE_DIR
 #define SHADESIM_SOURCE_DIR "."
@@ -66,6 +67,9 @@ constexpr const char* kBreakdownScript =
     "hierarchy -top shade_unit\n"
     "rename -top shade_unit\n"
     "setattr -mod -set keep_hierarchy 1 *span_setup *series_engine *specular_unit *pixel_combine\n"
+    // shade_unit's control modules (rtl/files.f), each its own row.
+    "setattr -mod -set keep_hierarchy 1 *cmd_decoder *coef_bank *span_queue *material_bank\n"
+    "setattr -mod -set keep_hierarchy 1 *setup_ctrl *engine_ctrl *slot_meta *out_reg\n"
     "synth -flatten -top shade_unit\n"
     "abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX\n"
     "opt_clean\n"
@@ -128,6 +132,8 @@ std::string first_line(const std::string& s) {
 }
 
 std::vector<fs::path> rtl_sources(const std::string& dir) {
+  // The one list (rtl/files.f); a tree from before it (--rtl-dir) is read whole, below.
+  if (fs::exists(fs::path(dir) / "files.f")) return rtl_file_list(dir);
   std::vector<fs::path> files;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
