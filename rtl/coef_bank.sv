@@ -16,10 +16,14 @@ module coef_bank #(
   parameter int COEF_T2_WL = COEF_WL,
   parameter int COEF_T3_WL = COEF_WL,
   parameter int COEF_T4_WL = COEF_WL,
-  parameter int COEF_T5_WL = COEF_WL
+  parameter int COEF_T5_WL = COEF_WL,
+  parameter int OFS_BITS   = 17   // span setup's offset width (the origin's, read)
 ) (
   input  logic                                   clk_i,
+  // verilator lint_off UNUSEDSIGNAL
+  // reason: packed coefficient terms may leave the top bits of a payload word unused
   input  logic [PORT_WORDS*shade_pkg::WordW-1:0] cmd_data_i,
+  // verilator lint_on UNUSEDSIGNAL
   input  logic                                   cmd_valid_i,
   input  logic                                   tri_fire_i,  // a TRIANGLE header is taken ...
   input  logic signed [15:0]                     hdr_xo_i,    // ... its origin
@@ -33,8 +37,8 @@ module coef_bank #(
   input  logic [(TRI_QUEUE > 1 ? $clog2(TRI_QUEUE) : 1)-1:0] next_bank_i,  // the next one's
   input  logic [(TRI_QUEUE > 1 ? $clog2(TRI_QUEUE) : 1)-1:0] rd_bank_i,    // span setup's
   output logic [N_COEF*COEF_WL-1:0]              coef_o,  // bank rd_bank_i, j at j * COEF_WL
-  output logic signed [15:0]                     xo_o,
-  output logic signed [15:0]                     yo_o
+  output logic signed [OFS_BITS-1:0]             xo_o,  // bank rd_bank_i's origin, sign-
+  output logic signed [OFS_BITS-1:0]             yo_o   // extended or cut to OFS_BITS
 );
   localparam int WordW      = shade_pkg::WordW;
   localparam int BankW      = TRI_QUEUE > 1 ? $clog2(TRI_QUEUE) : 1;
@@ -137,8 +141,8 @@ module coef_bank #(
   for (genvar j = 0; j < N_COEF; j++) begin : g_read
     assign coef_o[j*COEF_WL +: COEF_WL] = coef_q[rd_base + CoefAW'(j)];
   end
-  assign xo_o = xo_q[rd_bank_i];
-  assign yo_o = yo_q[rd_bank_i];
+  assign xo_o = OFS_BITS'(xo_q[rd_bank_i]);
+  assign yo_o = OFS_BITS'(yo_q[rd_bank_i]);
 
 `ifndef SYNTHESIS
   initial begin

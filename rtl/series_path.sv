@@ -11,18 +11,20 @@ module series_path #(
   parameter int SERIES_IWL      = 4,
   parameter int SERIES_QUANT    = 0,  // Quantization: 0 truncate, 1 round to nearest
   parameter int SERIES_OVERFLOW = 1,  // Overflow: 0 saturate, 1 wrap
-  parameter int OFS_BITS        = 17,
-  parameter int XY_BITS         = 12
+  parameter int OFS_BITS        = 17
 ) (
   input  logic                              clk_i,
   input  logic                              s1_en_i,  // setup stage enables (setup_ctrl)
   input  logic                              s2_en_i,
   input  logic                              s3_en_i,
   input  logic [N_SER*6*COEF_WL-1:0]        coef_i,   // series i's T0..T5 at 6*i*COEF_WL
-  input  logic [XY_BITS-1:0]                x0_i,  // the span entering stage 1
-  input  logic [XY_BITS-1:0]                y_i,
-  input  logic signed [15:0]                xo_i,  // ... its triangle's origin
-  input  logic signed [15:0]                yo_i,
+  // The offsets dx = x0 - xo, dy = y - yo of the span entering stage 1 are taken modulo
+  // 2^OFS_BITS (x0 and y zero-extended or cut, the origin sign-extended or cut): exact for every
+  // stream CommandStream::validate accepts, whose offsets fit OFS_BITS signed bits.
+  input  logic signed [OFS_BITS-1:0]        x_i,
+  input  logic signed [OFS_BITS-1:0]        y_i,
+  input  logic signed [OFS_BITS-1:0]        xo_i,  // ... its triangle's origin
+  input  logic signed [OFS_BITS-1:0]        yo_i,
   output logic [N_SER*SERIES_WL-1:0]        setup_v_o,  // stage 3's start values
   input  logic [N_SER*SERIES_WL-1:0]        start_v_i,  // ... as the engines take them
   input  logic                              load_i,
@@ -32,22 +34,14 @@ module series_path #(
   localparam int LaneSerW = N_SER * SERIES_WL;
   logic [N_SER*SERIES_WL-1:0] start_d, start_d2;
 
-  // Span setup takes the offsets dx = x0 - xo, dy = y - yo modulo 2^OFS_BITS (x0 and y
-  // zero-extended or cut, the origin sign-extended or cut): exact for every stream
-  // CommandStream::validate accepts, whose offsets fit OFS_BITS signed bits.
-  logic signed [OFS_BITS-1:0] x, y, xo, yo;
-  assign x  = OFS_BITS'(x0_i);
-  assign y  = OFS_BITS'(y_i);
-  assign xo = OFS_BITS'(xo_i);
-  assign yo = OFS_BITS'(yo_i);
 
   for (genvar i = 0; i < N_SER; i++) begin : g_series
     span_setup #(
       .COEF_WL(COEF_WL), .COEF_IWL(COEF_IWL), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
       .SERIES_QUANT(SERIES_QUANT), .SERIES_OVERFLOW(SERIES_OVERFLOW), .OFS_W(OFS_BITS)
     ) u_setup (
-      .clk_i, .s1_en_i, .s2_en_i, .s3_en_i, .coef_i(coef_i[6*i*COEF_WL +: 6*COEF_WL]), .x_i(x),
-      .y_i(y), .xo_i(xo), .yo_i(yo), .v_o(setup_v_o[i*SERIES_WL +: SERIES_WL]),
+      .clk_i, .s1_en_i, .s2_en_i, .s3_en_i, .coef_i(coef_i[6*i*COEF_WL +: 6*COEF_WL]), .x_i,
+      .y_i, .xo_i, .yo_i, .v_o(setup_v_o[i*SERIES_WL +: SERIES_WL]),
       .d_o(start_d[i*SERIES_WL +: SERIES_WL]), .d2_o(start_d2[i*SERIES_WL +: SERIES_WL])
     );
     if (LANES == 1) begin : g_one_lane

@@ -115,11 +115,12 @@ module shade_unit #(
     .next_bank_o(next_bank), .tri_bank_free_o(tri_bank_free)
   );
   logic [NCoef*COEF_WL-1:0] coef;  // bank rd_bank's, coefficient j at j * COEF_WL; its origin:
-  logic signed [15:0]       xo, yo;
+  logic signed [OFS_BITS-1:0] xo, yo;
   coef_bank #(
     .PORT_WORDS(PORT_WORDS), .TRI_QUEUE(TRI_QUEUE), .N_COEF(NCoef), .COEF_WL(COEF_WL),
     .COEF_T0_WL(COEF_T0_WL), .COEF_T1_WL(COEF_T1_WL), .COEF_T2_WL(COEF_T2_WL),
-    .COEF_T3_WL(COEF_T3_WL), .COEF_T4_WL(COEF_T4_WL), .COEF_T5_WL(COEF_T5_WL)
+    .COEF_T3_WL(COEF_T3_WL), .COEF_T4_WL(COEF_T4_WL), .COEF_T5_WL(COEF_T5_WL),
+    .OFS_BITS(OFS_BITS)
   ) u_coef_bank (
     .clk_i, .cmd_data_i, .cmd_valid_i, .tri_fire_i(tri_fire), .pos_i(pos),
     .hdr_xo_i(cmd_word[shade_pkg::HighLsb +: 16]), .hdr_yo_i(cmd_word[shade_pkg::MidLsb +: 16]),
@@ -150,16 +151,15 @@ module shade_unit #(
     .s3_span_o(s3_span), .busy_o(setup_busy)
   );
   logic [NSer*SERIES_WL-1:0] setup_v, start_v;
-  logic [LANES*LaneSerW-1:0] eng_v;  // lane j's series at j * LaneSerW
-  logic emit, adv, spec_busy;
+  logic [LANES*LaneSerW-1:0] eng_v;  logic emit, adv, spec_busy;  // eng_v: lane j at j*LaneSerW
   series_path #(
     .N_SER(NSer), .LANES(LANES), .COEF_WL(COEF_WL), .COEF_IWL(COEF_IWL), .SERIES_WL(SERIES_WL),
     .SERIES_IWL(SERIES_IWL), .SERIES_QUANT(SERIES_QUANT), .SERIES_OVERFLOW(SERIES_OVERFLOW),
-    .OFS_BITS(OFS_BITS), .XY_BITS(XY_BITS)
+    .OFS_BITS(OFS_BITS)
   ) u_series (
     .clk_i, .s1_en_i(s1_load), .s2_en_i(s1_move), .s3_en_i(s2_move), .coef_i(coef),
-    .x0_i(s1_src.x0), .y_i(s1_src.y), .xo_i(xo), .yo_i(yo), .setup_v_o(setup_v),
-    .start_v_i(start_v), .load_i(load_eng), .step_i(emit), .v_o(eng_v)
+    .x_i(OFS_BITS'(s1_src.x0)), .y_i(OFS_BITS'(s1_src.y)), .xo_i(xo), .yo_i(yo),
+    .setup_v_o(setup_v), .start_v_i(start_v), .load_i(load_eng), .step_i(emit), .v_o(eng_v)
   );
   logic eng_span_valid, eng_take_ready, run, eng_span_end, eng_eor;
   logic [XY_BITS-1:0]         eng_x, eng_y;
