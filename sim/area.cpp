@@ -69,7 +69,8 @@ constexpr const char* kBreakdownScript =
     "setattr -mod -set keep_hierarchy 1 *span_setup *series_engine *specular_unit *pixel_combine\n"
     // shade_unit's control modules (rtl/files.f), each its own row.
     "setattr -mod -set keep_hierarchy 1 *cmd_decoder *coef_bank *span_queue *material_bank\n"
-    "setattr -mod -set keep_hierarchy 1 *setup_ctrl *engine_ctrl *slot_meta *out_reg\n"
+    // (setup_ctrl's one parameter stays in its name: $paramod\setup_ctrl\XY_BITS=...)
+    "setattr -mod -set keep_hierarchy 1 *setup_ctrl* *engine_ctrl *slot_meta *out_reg\n"
     "synth -flatten -top shade_unit\n"
     "abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX\n"
     "opt_clean\n"
@@ -204,8 +205,16 @@ std::string yosys_script(const std::vector<fs::path>& files, const std::string& 
   return s + body;
 }
 
-// "$paramod$0f50...\span_setup" -> "span_setup"; "\shade_unit" -> "shade_unit".
+// "$paramod$0f50...\span_setup" -> "span_setup"; "\shade_unit" -> "shade_unit"; a module with
+// one short parameter keeps it in its name: "$paramod\setup_ctrl\XY_BITS=s32'..." -> "setup_ctrl".
 std::string base_module_name(const std::string& yosys_name) {
+  const std::string short_paramod = "$paramod\\";
+  if (yosys_name.rfind(short_paramod, 0) == 0) {
+    const auto end = yosys_name.find('\\', short_paramod.size());
+    return yosys_name.substr(short_paramod.size(), end == std::string::npos
+                                                       ? std::string::npos
+                                                       : end - short_paramod.size());
+  }
   const auto bs = yosys_name.rfind('\\');
   return bs == std::string::npos ? yosys_name : yosys_name.substr(bs + 1);
 }
