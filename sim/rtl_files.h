@@ -10,7 +10,7 @@
 
 namespace shadesim {
 
-// The sources listed in DIR/files.f, as paths under DIR; an error names a missing list.
+// The sources a folder's files.f lists, as paths in that folder; an error names a missing list.
 inline std::vector<std::filesystem::path> rtl_file_list(const std::string& dir) {
   const std::filesystem::path list = std::filesystem::path(dir) / "files.f";
   std::ifstream is(list);
