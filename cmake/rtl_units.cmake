@@ -16,12 +16,10 @@ find_program(IVERILOG iverilog)
 find_program(YOSYS yosys)
 include(${CMAKE_SOURCE_DIR}/cmake/spec_params.cmake)
 
-set(RTL_UNITS_DIR ${CMAKE_SOURCE_DIR}/rtl)
 set(RTL_UNITS_GEN ${CMAKE_BINARY_DIR}/verilated/units)
-set(RTL_UNITS_COMMON ${RTL_UNITS_DIR}/shade_pkg.sv ${RTL_UNITS_DIR}/fixed_round.sv ${RTL_UNITS_DIR}/fixed_sat.sv)
-set(RTL_UNITS_SLOT ${RTL_UNITS_DIR}/specular_unit.sv)
-set(RTL_UNITS_SOURCES ${RTL_UNITS_COMMON} ${RTL_UNITS_DIR}/exponent_lut.sv
-    ${RTL_UNITS_DIR}/schlick_divider.sv ${RTL_UNITS_DIR}/wpow_unit.sv ${RTL_UNITS_SLOT})
+# The leaves of rtl/files.f up to specular_unit.sv (the units, the slot and what they use).
+include(${CMAKE_SOURCE_DIR}/cmake/rtl_files.cmake)
+rtl_files(RTL_UNITS_SOURCES UNTIL specular_unit.sv)
 # The per-exponent table the "lut_file" configuration loads at time 0 ($readmemh); the test
 # writes it with ExponentLut::write_hex before it builds the model, and removes it to check that
 # a missing file is fatal.

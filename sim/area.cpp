@@ -25,6 +25,7 @@
 #include "model/specular_units.h"
 #include "sim/content_hash.h"
 #include "sim/process.h"
+#include "sim/rtl_files.h"
 
 #ifndef SHADESIM_SOURCE_DIR
 #define SHADESIM_SOURCE_DIR "."
@@ -67,6 +68,10 @@ constexpr const char* kBreakdownScript =
     "hierarchy -top shade_unit\n"
     "rename -top shade_unit\n"
     "setattr -mod -set keep_hierarchy 1 *span_setup *series_engine *specular_unit *pixel_combine\n"
+    // shade_unit's control modules (rtl/files.f), each its own row.
+    "setattr -mod -set keep_hierarchy 1 *cmd_decoder *coef_bank *span_queue *material_bank\n"
+    // (setup_ctrl's one parameter stays in its name: $paramod\setup_ctrl\XY_BITS=...)
+    "setattr -mod -set keep_hierarchy 1 *setup_ctrl* *engine_ctrl *slot_meta *out_reg\n"
     "synth -flatten -top shade_unit\n"
     "abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX\n"
     "opt_clean\n"
@@ -148,6 +153,8 @@ std::string first_line(const std::string& s) {
 }
 
 std::vector<fs::path> rtl_sources(const std::string& dir) {
+  // The one list (rtl/files.f); a tree from before it (--rtl-dir) is read whole, below.
+  if (fs::exists(fs::path(dir) / "files.f")) return rtl_file_list(dir);
   std::vector<fs::path> files;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
@@ -218,8 +225,16 @@ std::string yosys_script(const std::vector<fs::path>& files, const std::string& 
   return s + body;
 }
 
-// "$paramod$0f50...\span_setup" -> "span_setup"; "\shade_unit" -> "shade_unit".
+// "$paramod$0f50...\span_setup" -> "span_setup"; "\shade_unit" -> "shade_unit"; a module with
+// one short parameter keeps it in its name: "$paramod\setup_ctrl\XY_BITS=s32'..." -> "setup_ctrl".
 std::string base_module_name(const std::string& yosys_name) {
+  const std::string short_paramod = "$paramod\\";
+  if (yosys_name.rfind(short_paramod, 0) == 0) {
+    const auto end = yosys_name.find('\\', short_paramod.size());
+    return yosys_name.substr(short_paramod.size(), end == std::string::npos
+                                                       ? std::string::npos
+                                                       : end - short_paramod.size());
+  }
   const auto bs = yosys_name.rfind('\\');
   return bs == std::string::npos ? yosys_name : yosys_name.substr(bs + 1);
 }

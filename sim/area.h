@@ -3,9 +3,9 @@
 //
 // The parameters come only from shade_unit_parameters() (model/rtl_parameters.h), passed to
 // Yosys with yosys_chparam_args(). Three flows run on the same parameters:
-//   flat      read all rtl/*.sv (packages, *_pkg.sv, first: the units' parameter types name
-//             shade_pkg; then sorted by name: ABC's result depends on the netlist's order, by
-//             about 0.5 % in cells, so the order is fixed); chparam; synth -flatten; abc -g
+//   flat      read rtl/files.f's sources in its order (a tree without the list, --rtl-dir: all
+//             *.sv, packages first, then by name; ABC's result depends on the netlist's order,
+//             by about 0.5 % in cells, so the order is fixed); chparam; synth -flatten; abc -g
 //             AND,NAND,OR,NOR,XOR,XNOR,MUX; stat -tech cmos: the unit's generic cells, transistor
 //             estimate, flip-flops. unit_netlist() writes this same netlist (write_verilog
 //             -noattr) for simulation.

@@ -21,6 +21,7 @@
 #include "model/rtl_parameters.h"
 #include "model/unit_config_file.h"
 #include "sim/content_hash.h"
+#include "sim/rtl_files.h"
 
 namespace shadesim {
 namespace {
@@ -31,19 +32,13 @@ namespace fs = std::filesystem;
 // miss. 3: Verilated model, glue and link kept apart (sim/rtl_recipe.h).
 constexpr const char* kRecipeVersion = "rtl-build 3";
 
-// shade_unit's sources in dependency order, leaves first (Icarus and Yosys want it too).
+// shade_unit's sources in dependency order, leaves first (Icarus and Yosys want it too): the
+// one list rtl/files.f, which CMake (cmake/rtl_files.cmake) and `shadesim area` read too.
 std::vector<fs::path> rtl_sources() {
   // SHADESIM_RTL_DIR: another copy of rtl/ (mutation testing, the cache test).
   const char* other = std::getenv("SHADESIM_RTL_DIR");
   const fs::path rtl = other && *other ? fs::path(other) : fs::path(source_dir()) / "rtl";
-  std::vector<fs::path> out;
-  for (const char* f :
-       {"shade_pkg.sv", "fixed_round.sv", "fixed_sat.sv", "span_setup.sv", "series_engine.sv",
-        "lane_fanout.sv", "pixel_combine.sv", "exponent_lut.sv", "schlick_divider.sv",
-        "wpow_unit.sv", "specular_unit.sv", "fault_select.sv", "shade_unit.sv"}) {
-    out.push_back(rtl / f);
-  }
-  return out;
+  return rtl_file_list(rtl.string());
 }
 
 // The contents of `files`, each with its name, into `h`; a missing one is an error naming it.
@@ -99,6 +94,8 @@ const std::string& rtl_digest() {
 std::string model_key(const RtlConfig& build, const Flavour& f, const Toolchain& t) {
   ContentHash h;
   h.add(kRecipeVersion).add("model").add(recipe_text(f, t));
+  // The RTL's assertions are compiled in (verilate(): --assert); a build without them misses.
+  h.add("verilator --assert");
   if (build.netlist.empty()) {
     h.add(rtl_digest());
   } else {

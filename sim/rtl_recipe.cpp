@@ -328,7 +328,7 @@ void verilate(const fs::path& dir, const RtlConfig& build, const Flavour& f, con
                                    "-Mdir",        (dir / "obj").string(),
                                    "-O3",          "--x-assign",
                                    "fast",         "--x-initial",
-                                   "fast"};
+                                   "fast",         "--assert"};
   if (traced(f)) args.push_back("--trace-fst");
   if (f.coverage)
     args.insert(args.end(), {"--coverage-line", "--coverage-toggle", "--coverage-user"});

@@ -24,6 +24,7 @@
 #include <regex>
 #include <sstream>
 
+#include "sim/rtl_files.h"
 #include "tests/support/cli_run.h"
 
 namespace shadesim {
@@ -66,19 +67,12 @@ TEST(Area, CellCountEqualsADirectYosysRunAndTheCacheIsReused) {
   const auto dir = temp_dir("direct");
   write(dir / "small.json", kSmallConfig);
 
-  // The direct run: every rtl/*.sv, the chparam list above, synth -flatten and the gate mapping.
-  // ABC's result depends on the netlist's order, so read the files in the documented order
-  // (packages first, then by name; sim/area.h).
+  // The direct run: rtl/files.f's sources, the chparam list above, synth -flatten and the gate
+  // mapping. ABC's result depends on the netlist's order, so read the files in the list's order
+  // (sim/area.h).
   std::vector<std::string> sources;
-  for (const auto& e : fs::directory_iterator(std::string(SHADESIM_SOURCE_DIR) + "/rtl")) {
-    if (e.path().extension() == ".sv") sources.push_back(e.path().string());
-  }
-  const auto package = [](const std::string& f) {
-    return f.size() > 7 && f.compare(f.size() - 7, 7, "_pkg.sv") == 0;
-  };
-  std::sort(sources.begin(), sources.end(), [&](const std::string& a, const std::string& b) {
-    return package(a) != package(b) ? package(a) : a < b;
-  });
+  for (const auto& f : rtl_file_list(std::string(SHADESIM_SOURCE_DIR) + "/rtl"))
+    sources.push_back(f.string());
   std::string files;
   for (const auto& f : sources) files += " " + f;
   write(dir / "direct.ys", "read_verilog -sv" + files + "\nchparam " + kSmallChparam +

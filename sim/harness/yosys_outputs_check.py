@@ -44,10 +44,16 @@ def main():
     missing = [p for p in PORTS if p not in widths]
     if missing:
         sys.exit(f"yosys_outputs_check: no output {missing} in {netlist}")
+    # A port driven whole by the flattened register of the same name in a submodule
+    # (`assign pix_x_o = \u_out_reg.pix_x_o ;`): that register's bits are the port's.
+    reg_of = {p: p for p in PORTS}
+    for m in re.finditer(r"^\s*assign\s+(\w+)\s*=\s*(\\\S+)\s*;\s*$", text, re.M):
+        if m.group(1) in PORTS and m.group(2).endswith("." + m.group(1)):
+            reg_of[m.group(1)] = m.group(2)
     bad = []
     for m in re.finditer(r"^\s*assign\s+(.*?)\s*=\s*(.*?);\s*$", text, re.M):
         lhs, rhs = m.group(1), m.group(2)
-        if not port_re.search(lhs):
+        if not port_re.search(lhs) or (lhs in PORTS and rhs.strip() == reg_of[lhs]):
             continue
         # Constants ('h, 'b, 'd, 'x literals) or other output bits on the right: the output is
         # not its own register.
@@ -57,10 +63,11 @@ def main():
     # always blocks (`pix_colour_o[3] <=`) or through a register (`assign pix_colour_o[3] =
     # \pix_colour_o_reg[3]`).
     for port, width in widths.items():
-        regs = set(re.findall(r"\b" + port + r"\[(\d+)\]\s*<=", text))
-        for hi, lo in re.findall(r"\b" + port + r"\[(\d+):(\d+)\]\s*<=", text):
+        reg = re.escape(reg_of[port]) + r"\s*" if reg_of[port] != port else r"\b" + port
+        regs = set(re.findall(reg + r"\[(\d+)\]\s*<=", text))
+        for hi, lo in re.findall(reg + r"\[(\d+):(\d+)\]\s*<=", text):
             regs |= {str(b) for b in range(int(lo), int(hi) + 1)}
-        if re.search(r"\b" + port + r"\s*<=", text):
+        if re.search(reg + r"\s*<=", text):
             regs |= {str(b) for b in range(width)}
         regs |= set(re.findall(r"assign\s+" + port + r"\[(\d+)\]\s*=\s*\\" + port +
                                r"_reg\[\d+\]\s*;", text))

@@ -1,0 +1,26 @@
+# rtl_files(<out> [UNTIL <file>]): shade_unit's RTL sources, absolute, in dependency order, from
+# the one list rtl/files.f (which sim/rtl_build.cpp and sim/area.cpp read too). UNTIL stops after
+# that file (the specular units' own tests need the leaves up to specular_unit.sv). A change to
+# the list re-runs the configure.
+function(rtl_files out)
+  cmake_parse_arguments(RF "" "UNTIL" "" ${ARGN})
+  set(list_file ${CMAKE_SOURCE_DIR}/rtl/files.f)
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${list_file})
+  file(STRINGS ${list_file} lines)
+  set(files "")
+  foreach(line ${lines})
+    string(STRIP "${line}" line)
+    if(line STREQUAL "" OR line MATCHES "^//")
+      continue()
+    endif()
+    list(APPEND files ${CMAKE_SOURCE_DIR}/rtl/${line})
+    if(RF_UNTIL AND line STREQUAL RF_UNTIL)
+      set(${out} ${files} PARENT_SCOPE)
+      return()
+    endif()
+  endforeach()
+  if(RF_UNTIL)
+    message(FATAL_ERROR "rtl_files: ${RF_UNTIL} is not in rtl/files.f")
+  endif()
+  set(${out} ${files} PARENT_SCOPE)
+endfunction()

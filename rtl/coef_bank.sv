@@ -1,0 +1,160 @@
+// coef_bank: shade_unit's triangle queue registers - TRI_QUEUE banks of a triangle's origin and
+// its N_COEF Taylor coefficients, written from the command port's beat, read by span setup.
+//
+// A beat word k carries payload word coef_idx[k] of a TRIANGLE: the tail of the current one
+// (words pos_i .. pos_i + tail_n_i - 1, bank wr_bank_i) or the words after a TRIANGLE header
+// taken now (bank next_bank_i). Every coefficient such a word holds loads from its field
+// (shade_pkg::coef_word / coef_lsb), sign-extended to COEF_WL. Which bank a span reads and
+// when a bank is free is the span queue's (rtl/span_queue.sv).
+module coef_bank #(
+  parameter int PORT_WORDS = 1,
+  parameter int TRI_QUEUE  = 1,   // banks
+  parameter int N_COEF     = 6,   // coefficients per triangle (6 per series)
+  parameter int COEF_WL    = 36,
+  parameter int COEF_T0_WL = COEF_WL,  // each term's width in the payload (coefficient packing)
+  parameter int COEF_T1_WL = COEF_WL,
+  parameter int COEF_T2_WL = COEF_WL,
+  parameter int COEF_T3_WL = COEF_WL,
+  parameter int COEF_T4_WL = COEF_WL,
+  parameter int COEF_T5_WL = COEF_WL,
+  parameter int OFS_BITS   = 17   // span setup's offset width (the origin's, read)
+) (
+  input  logic                                   clk_i,
+  // verilator lint_off UNUSEDSIGNAL
+  // reason: packed coefficient terms may leave the top bits of a payload word unused
+  input  logic [PORT_WORDS*shade_pkg::WordW-1:0] cmd_data_i,
+  // verilator lint_on UNUSEDSIGNAL
+  input  logic                                   cmd_valid_i,
+  input  logic                                   tri_fire_i,  // a TRIANGLE header is taken ...
+  input  logic signed [15:0]                     hdr_xo_i,    // ... its origin
+  input  logic signed [15:0]                     hdr_yo_i,
+  input  logic [(PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1)-1:0] pos_i,
+  input  logic [15:0]                            tail_n_i,
+  input  logic [15:0]                            pay_idx_i,
+  input  logic [15:0]                            hdr_pos_i,
+  input  logic [15:0]                            hdr_n_i,
+  input  logic [(TRI_QUEUE > 1 ? $clog2(TRI_QUEUE) : 1)-1:0] wr_bank_i,    // latest TRIANGLE's
+  input  logic [(TRI_QUEUE > 1 ? $clog2(TRI_QUEUE) : 1)-1:0] next_bank_i,  // the next one's
+  input  logic [(TRI_QUEUE > 1 ? $clog2(TRI_QUEUE) : 1)-1:0] rd_bank_i,    // span setup's
+  output logic [N_COEF*COEF_WL-1:0]              coef_o,  // bank rd_bank_i, j at j * COEF_WL
+  output logic signed [OFS_BITS-1:0]             xo_o,  // bank rd_bank_i's origin, sign-
+  output logic signed [OFS_BITS-1:0]             yo_o   // extended or cut to OFS_BITS
+);
+  localparam int WordW      = shade_pkg::WordW;
+  localparam int BankW      = TRI_QUEUE > 1 ? $clog2(TRI_QUEUE) : 1;
+  localparam int CoefAW     = $clog2(TRI_QUEUE * N_COEF);
+  localparam int NCoefWords = shade_pkg::coef_word(N_COEF - 1, COEF_T0_WL, COEF_T1_WL,
+                                                   COEF_T2_WL, COEF_T3_WL, COEF_T4_WL,
+                                                   COEF_T5_WL) + 1;  // TRIANGLE payload
+
+  logic signed [15:0] xo_q [TRI_QUEUE];
+  logic signed [15:0] yo_q [TRI_QUEUE];
+  // An array, not one packed vector: a partial write of a 1000+-bit vector costs the Verilated
+  // model a full copy every clock.
+  logic [COEF_WL-1:0] coef_q [TRI_QUEUE*N_COEF];  // bank b at b * N_COEF
+
+  logic [CoefAW-1:0]     rd_base;  // bank rd_bank_i's first coefficient
+  logic [15:0]           coef_idx [PORT_WORDS];
+  logic [PORT_WORDS-1:0] coef_we, coef_tail;
+  logic [BankW-1:0]      coef_bank [PORT_WORDS];
+  assign rd_base = CoefAW'(rd_bank_i * N_COEF);
+  always_comb begin
+    for (int k = 0; k < PORT_WORDS; k++) begin
+      coef_tail[k] = 16'(k) - 16'(pos_i) < tail_n_i;  // pos_i <= k < hdr_pos_i
+      coef_idx[k]  = coef_tail[k] ? pay_idx_i + 16'(k) - 16'(pos_i) : 16'(k) - hdr_pos_i - 16'd1;
+      coef_we[k]   = (cmd_valid_i && coef_tail[k] ||
+                      tri_fire_i && 16'(k) > hdr_pos_i && 16'(k) < hdr_pos_i + hdr_n_i) &&
+                     coef_idx[k] < 16'(NCoefWords);
+      coef_bank[k] = coef_tail[k] ? wr_bank_i : next_bank_i;
+    end
+  end
+
+  // Unpacked coefficients of one width (every term wider than half a word): payload word i is
+  // coefficient i, so each beat word writes at most one coefficient, at its payload index. The
+  // packed layout's per-coefficient selection below would be evaluated on every cycle for
+  // nothing (a simulator's cost, not the hardware's: the same registers load the same values).
+  localparam bit CoefEach = NCoefWords == N_COEF && COEF_T1_WL == COEF_T0_WL &&
+                            COEF_T2_WL == COEF_T0_WL && COEF_T3_WL == COEF_T0_WL &&
+                            COEF_T4_WL == COEF_T0_WL && COEF_T5_WL == COEF_T0_WL;
+  if (CoefEach) begin : g_coef_each
+    always_ff @(posedge clk_i) begin
+      for (int k = 0; k < PORT_WORDS; k++) begin
+        if (coef_we[k]) begin
+          coef_q[CoefAW'(coef_bank[k] * N_COEF + 32'(coef_idx[k]))] <=
+              COEF_WL'($signed(cmd_data_i[k*WordW +: COEF_T0_WL]));
+        end
+      end
+    end
+  end else begin : g_coef_packed
+    logic [15:0] coef_word_of [N_COEF];  // payload word of coefficient j (constant)
+    for (genvar j = 0; j < N_COEF; j++) begin : g_coef_word
+      localparam int Word = shade_pkg::coef_word(j, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL,
+                                                 COEF_T3_WL, COEF_T4_WL, COEF_T5_WL);
+      assign coef_word_of[j] = 16'(Word);
+    end
+
+    // Coefficient j's field in beat word k, sign-extended.
+    logic [COEF_WL-1:0] coef_field [PORT_WORDS][N_COEF];
+    for (genvar k = 0; k < PORT_WORDS; k++) begin : g_beat_word
+      for (genvar j = 0; j < N_COEF; j++) begin : g_coef
+        localparam int Lsb = shade_pkg::coef_lsb(j, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL,
+                                                  COEF_T3_WL, COEF_T4_WL, COEF_T5_WL);
+        localparam int W   = shade_pkg::coef_term_wl(j, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL,
+                                                      COEF_T3_WL, COEF_T4_WL, COEF_T5_WL);
+        logic [W-1:0] field;
+        assign field            = cmd_data_i[k*WordW + Lsb +: W];
+        assign coef_field[k][j] = COEF_WL'($signed(field));
+      end
+    end
+
+    // Coefficient j loads from the one beat word (if any) that carries its payload word. One
+    // process per coefficient: Verilator unrolls a loop of delayed array writes only up to 64.
+    for (genvar j = 0; j < N_COEF; j++) begin : g_coef_load
+      logic               load;
+      logic [BankW-1:0]   bank;
+      logic [COEF_WL-1:0] value;
+      always_comb begin
+        load  = 1'b0;
+        bank  = '0;
+        value = '0;
+        for (int k = 0; k < PORT_WORDS; k++) begin
+          if (coef_we[k] && coef_idx[k] == coef_word_of[j]) begin
+            load  = 1'b1;
+            bank  = coef_bank[k];
+            value = coef_field[k][j];
+          end
+        end
+      end
+      always_ff @(posedge clk_i) begin
+        if (load) coef_q[CoefAW'(bank * N_COEF + j)] <= value;
+      end
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (tri_fire_i) begin
+      xo_q[next_bank_i] <= hdr_xo_i;
+      yo_q[next_bank_i] <= hdr_yo_i;
+    end
+  end
+
+  for (genvar j = 0; j < N_COEF; j++) begin : g_read
+    assign coef_o[j*COEF_WL +: COEF_WL] = coef_q[rd_base + CoefAW'(j)];
+  end
+  assign xo_o = OFS_BITS'(xo_q[rd_bank_i]);
+  assign yo_o = OFS_BITS'(yo_q[rd_bank_i]);
+
+`ifndef SYNTHESIS
+  initial begin
+    if (TRI_QUEUE < 1 || TRI_QUEUE > 8)
+      $fatal(1, "coef_bank: TRI_QUEUE %0d is not 1..8", TRI_QUEUE);
+    for (int t = 0; t < 6; t++) begin
+      if (shade_pkg::coef_term_wl(t, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL, COEF_T3_WL, COEF_T4_WL,
+                                  COEF_T5_WL) > COEF_WL ||
+          shade_pkg::coef_term_wl(t, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL, COEF_T3_WL, COEF_T4_WL,
+                                  COEF_T5_WL) < 2)
+        $fatal(1, "coef_bank: COEF_T%0d_WL must be 2..COEF_WL (%0d)", t, COEF_WL);
+    end
+  end
+`endif
+endmodule

@@ -1,0 +1,28 @@
+// shade_unit's RTL sources in dependency order, leaves first: the one list every tool reads
+// (cmake/rtl.cmake, cmake/rtl_units.cmake, cmake/icarus.cmake, sim/rtl_build.cpp, sim/area.cpp).
+// One file name per line, relative to this folder; lines starting with // are comments.
+shade_pkg.sv
+fixed_round.sv
+fixed_sat.sv
+span_setup.sv
+series_engine.sv
+lane_fanout.sv
+pixel_combine.sv
+exponent_lut.sv
+schlick_divider.sv
+wpow_unit.sv
+specular_unit.sv
+cmd_decoder.sv
+coef_bank.sv
+span_queue.sv
+material_bank.sv
+setup_ctrl.sv
+engine_ctrl.sv
+slot_meta.sv
+out_reg.sv
+combine_lanes.sv
+series_path.sv
+spec_slots.sv
+fault_select.sv
+fault_hooks.sv
+shade_unit.sv
