@@ -95,7 +95,7 @@ std::vector<Knob> knobs_for(const UnitConfig& start);
 // A point's unit as Yosys measured it (shadesim area), for the points explore calls
 // Pareto-optimal: the sweep itself runs on AreaFunction's estimates.
 struct MeasuredArea {
-  double cells = 0;         // generic cells, the same metric as AreaFigure::cells
+  double cells = 0;  // generic cells, the same metric as AreaFigure::cells
   double gate_equivalents = 0;
   double lut4 = 0;
   bool fits_hx8k = false;

@@ -114,11 +114,13 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
   }
   os << "\ntiming\n  logic depth  ";
   if (r.logic_depth.gates >= 0) {
-    os << std::setw(10) << r.logic_depth.gates << "   levels of 2-input gates, MUXes and inverters on the longest path\n"
-       << "                          (Yosys ltp -noff on the flat netlist), from " << r.logic_depth.from
-       << "\n                          to " << r.logic_depth.to << "\n";
+    os << std::setw(10) << r.logic_depth.gates
+       << "   levels of 2-input gates, MUXes and inverters on the longest path\n"
+       << "                          (Yosys ltp -noff on the flat netlist), from "
+       << r.logic_depth.from << "\n                          to " << r.logic_depth.to << "\n";
   } else {
-    os << std::setw(10) << "-" << "   (cache entry measured before logic depth; run without the cache)\n";
+    os << std::setw(10) << "-"
+       << "   (cache entry measured before logic depth; run without the cache)\n";
   }
   os << "\niCE40 (synth_ice40)\n"
      << "  LUT4         " << std::setw(10) << grouped(r.ice40.lut4) << '\n'
@@ -130,7 +132,8 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
   if (r.ice40.fmax_mhz) {
     os << std::setprecision(1) << *r.ice40.fmax_mhz
        << " MHz (nextpnr-ice40, HX8K ct256, clk_i; out of context: the unit's ports shifted\n"
-       << "                          through registers of a shell, so the pin count does not limit it)\n";
+       << "                          through registers of a shell, so the pin count does not limit "
+          "it)\n";
   } else {
     os << "- (" << r.ice40.pnr_note << ")\n";
   }

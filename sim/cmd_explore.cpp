@@ -39,7 +39,7 @@ struct ExploreCliOptions {
   bool verify = false;
   bool estimate_only = false;  // no Yosys for the front: estimates only, labelled so
   bool no_pnr = false;         // measure the front without nextpnr (no Fmax, no Mpixel/s)
-  std::string emit_jobs;  // FILE: the verification's regress runs as job lines, not run
+  std::string emit_jobs;       // FILE: the verification's regress runs as job lines, not run
   bool quiet = false;
 };
 
@@ -117,11 +117,12 @@ void print_measured_front(std::ostream& os, const ExploreResult& r) {
   });
   os << "Pareto front, Yosys-measured (shadesim area on each point; Fmax out of context on an "
         "iCE40 HX8K)\n"
-     << std::left << std::setw(6) << "point" << std::setw(22) << "knob" << std::setw(8)
-     << "value" << std::right << std::setw(8) << "max LSB" << std::setw(8) << "cyc/px"
-     << std::setw(10) << "est cells" << std::setw(10) << "cells" << std::setw(8) << "est err"
-     << std::setw(9) << "GE" << std::setw(8) << "LUT4" << std::setw(7) << "depth" << std::setw(9)
-     << "Fmax MHz" << std::setw(9) << "Mpix/s" << "\n";
+     << std::left << std::setw(6) << "point" << std::setw(22) << "knob" << std::setw(8) << "value"
+     << std::right << std::setw(8) << "max LSB" << std::setw(8) << "cyc/px" << std::setw(10)
+     << "est cells" << std::setw(10) << "cells" << std::setw(8) << "est err" << std::setw(9) << "GE"
+     << std::setw(8) << "LUT4" << std::setw(7) << "depth" << std::setw(9) << "Fmax MHz"
+     << std::setw(9) << "Mpix/s"
+     << "\n";
   for (const std::size_t i : rows) {
     const ExplorePoint& p = r.points[i];
     const MeasuredArea& m = *p.measured;
@@ -138,8 +139,8 @@ void print_measured_front(std::ostream& os, const ExploreResult& r) {
        << std::setw(8) << (p.value.empty() ? "-" : p.value) << std::right << std::setw(8)
        << p.figures.error.max_code_lsb << std::setw(8) << std::fixed << std::setprecision(3)
        << p.figures.cycles_per_pixel << std::setw(10) << std::setprecision(0)
-       << p.figures.area.cells << std::setw(10) << m.cells << std::setw(7)
-       << std::showpos << std::setprecision(1) << err << std::noshowpos << "%" << std::setw(9)
+       << p.figures.area.cells << std::setw(10) << m.cells << std::setw(7) << std::showpos
+       << std::setprecision(1) << err << std::noshowpos << "%" << std::setw(9)
        << std::setprecision(0) << m.gate_equivalents << std::setw(8) << m.lut4 << std::setw(7)
        << m.logic_depth << std::setw(9) << fmax.str() << std::setw(9) << mpix.str()
        << (r.chosen && *r.chosen == i ? "  CHOSEN" : "") << (p.pareto ? "" : "  (off the front)")
@@ -354,15 +355,15 @@ nlohmann::json point_json(const ExplorePoint& p, std::size_t index, int channels
   j["pareto"] = p.pareto;
   if (p.measured) {
     const MeasuredArea& m = *p.measured;
-    j["measured"] = {{"cells", m.cells},
-                     {"gate_equivalents", m.gate_equivalents},
-                     {"lut4", m.lut4},
-                     {"fits_hx8k", m.fits_hx8k},
-                     {"fmax_mhz", m.fmax_mhz ? nlohmann::json(*m.fmax_mhz) : nlohmann::json()},
-                     {"mpixel_per_s", p.mpixel_per_s() ? nlohmann::json(*p.mpixel_per_s())
-                                                       : nlohmann::json()},
-                     {"logic_depth", m.logic_depth},
-                     {"note", m.note}};
+    j["measured"] = {
+        {"cells", m.cells},
+        {"gate_equivalents", m.gate_equivalents},
+        {"lut4", m.lut4},
+        {"fits_hx8k", m.fits_hx8k},
+        {"fmax_mhz", m.fmax_mhz ? nlohmann::json(*m.fmax_mhz) : nlohmann::json()},
+        {"mpixel_per_s", p.mpixel_per_s() ? nlohmann::json(*p.mpixel_per_s()) : nlohmann::json()},
+        {"logic_depth", m.logic_depth},
+        {"note", m.note}};
   }
   return j;
 }
@@ -442,8 +443,8 @@ void print_table(std::ostream& os, const std::vector<const ExplorePoint*>& rows,
        << psnr.str() << std::setw(8) << std::fixed << std::setprecision(2) << over_1lsb_pct(e)
        << std::setw(8) << std::setprecision(3) << p->figures.cycles_per_pixel << std::setw(9)
        << std::setprecision(0) << p->front_area() << (p->measured ? "*" : " ") << " "
-       << (p->meets_budget ? "ok" : "over")
-       << (p->pareto ? " pareto" : "") << (is_chosen ? " CHOSEN" : "") << '\n';
+       << (p->meets_budget ? "ok" : "over") << (p->pareto ? " pareto" : "")
+       << (is_chosen ? " CHOSEN" : "") << '\n';
   }
 }
 
@@ -606,8 +607,7 @@ int run_explore(const ExploreCliOptions& o) {
               << (r.chosen ? ", " + (out_dir / "chosen.json").string() : std::string())
               << ", pareto_<point>.json for the front (in " << out_dir.string() << ")\n"
               << "time         host setup " << std::setprecision(2) << host_s << " s, "
-              << r.points.size() << " points in " << sweep_s << " s on " << o.jobs
-              << " thread(s)"
+              << r.points.size() << " points in " << sweep_s << " s on " << o.jobs << " thread(s)"
               << (o.estimate_only ? std::string()
                                   : ", Yosys on the front " + fixed1(measure_s) + " s")
               << "\n";
@@ -660,8 +660,8 @@ int run_explore(const ExploreCliOptions& o) {
     for (const auto& v : to_verify)
       j["config_files"].push_back({{"name", v.name}, {"file", v.config_file}});
     const EstimateError ee = estimate_error(r);
-    j["estimate_error"] = {{"points", ee.count}, {"median_pct", ee.median_pct},
-                           {"max_pct", ee.max_pct}};
+    j["estimate_error"] = {
+        {"points", ee.count}, {"median_pct", ee.median_pct}, {"max_pct", ee.max_pct}};
     j["verification"] = nlohmann::json::array();
     for (const auto& v : verified) {
       j["verification"].push_back({{"name", v.name},

@@ -235,11 +235,13 @@ TEST(Area, LogicDepthIsTheLongestGatePathBetweenRegisters) {
     EXPECT_EQ(r.status, 0) << r.output;
     return read_logic_depth((dir / (name + ".ltp")).string());
   };
-  const LogicDepth reg = depth("reg4", "module reg4(input clk, input [3:0] d, output reg [3:0] q);\n"
-                                       "  always @(posedge clk) q <= d;\nendmodule\n");
+  const LogicDepth reg = depth("reg4",
+                               "module reg4(input clk, input [3:0] d, output reg [3:0] q);\n"
+                               "  always @(posedge clk) q <= d;\nendmodule\n");
   EXPECT_EQ(reg.gates, 0);
-  const LogicDepth and8 = depth("and8", "module and8(input clk, input [7:0] a, output reg q);\n"
-                                        "  always @(posedge clk) q <= &a;\nendmodule\n");
+  const LogicDepth and8 = depth("and8",
+                                "module and8(input clk, input [7:0] a, output reg q);\n"
+                                "  always @(posedge clk) q <= &a;\nendmodule\n");
   EXPECT_EQ(and8.gates, 3);
   EXPECT_EQ(and8.from.rfind("a [", 0), 0u) << and8.from;  // a port bit
   EXPECT_EQ(and8.to, "q");                                // the flip-flop it ends at

@@ -281,10 +281,9 @@ std::vector<std::string> csv_fields(const std::string& line) {
 
 TEST(ExploreCli, JsonAndCsvAreWellFormedAndAgree) {
   const auto dir = temp_dir("out");
-  const Result r =
-      run("explore " + kScenes + "sphere.json --budget 1 --estimate-only --json " +
-          (dir / "e.json").string() +
-          " --csv " + (dir / "e.csv").string() + " --out " + dir.string());
+  const Result r = run("explore " + kScenes + "sphere.json --budget 1 --estimate-only --json " +
+                       (dir / "e.json").string() + " --csv " + (dir / "e.csv").string() +
+                       " --out " + dir.string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("Pareto front"), std::string::npos);
   EXPECT_NE(r.output.find("(3) quantization"), std::string::npos);

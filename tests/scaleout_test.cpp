@@ -212,9 +212,10 @@ TEST(Explore, EmitsTheRunsOfItsVerificationAsRegressJobLines) {
   // The model-only search, then the chosen point's regress runs as lines instead of in RTL (the
   // area estimate's anchor is synthesised into the build's area cache once, as explore_test does).
   const fs::path d = temp_dir("scaleout", "explore_emit");
-  const Result r = in_source(kShadesim + " explore scenes/sphere.json --budget 1 --estimate-only --area-cache " +
-                             SHADESIM_BINARY_DIR + "/area-cache --out " + (d / "ex").string() +
-                             " --emit-jobs " + (d / "jobs.txt").string());
+  const Result r =
+      in_source(kShadesim + " explore scenes/sphere.json --budget 1 --estimate-only --area-cache " +
+                SHADESIM_BINARY_DIR + "/area-cache --out " + (d / "ex").string() + " --emit-jobs " +
+                (d / "jobs.txt").string());
   ASSERT_EQ(r.status, 0) << r.output;
   std::ifstream is(d / "jobs.txt");
   std::vector<std::string> lines;

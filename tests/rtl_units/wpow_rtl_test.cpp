@@ -148,8 +148,8 @@ TEST(WpowUnitRtl, M2Base16EverySquareEqualsTheModelsProduct) {
   run.pipelined(static_cast<int64_t>(inputs.size()), 85);
   EXPECT_EQ(mm.count, 0) << "first mismatch " << mm.first;
   // The model's square is the exact product truncated: spot-check it against integers.
-  for (int64_t b : {int64_t{0}, int64_t{1}, int64_t{255}, int64_t{46341}, int64_t{65535},
-                    int64_t{65536}}) {
+  for (int64_t b :
+       {int64_t{0}, int64_t{1}, int64_t{255}, int64_t{46341}, int64_t{65535}, int64_t{65536}}) {
     EXPECT_EQ(model.evaluate(b), (b * b) >> 16) << b;
   }
 }
