@@ -38,8 +38,9 @@ get_filename_component(name ${stem} NAME)
 file(MAKE_DIRECTORY ${WORK}/broken-cache)
 file(COPY ${stem}.json DESTINATION ${WORK}/broken-cache)
 file(READ ${stem}.v text)
-# The flip-flop pix_colour_o[0] <= D; the gate driving D gets its output inverted.
-if(NOT text MATCHES "pix_colour_o\\[0\\] <= ([^;]+);")
+# The flip-flop pix_colour_o[0] <= D (out_reg's register, named "\u_out_reg.pix_colour_o [0]"
+# in the flat netlist); the gate driving D gets its output inverted.
+if(NOT text MATCHES "pix_colour_o ?\\[0\\] <= ([^;]+);")
   message(FATAL_ERROR "${stem}.v: no flip-flop drives pix_colour_o[0]")
 endif()
 set(d "${CMAKE_MATCH_1}")
