@@ -57,6 +57,12 @@ function(rtl_unit name top)
     list(APPEND gparams -G${p})
   endforeach()
   set(extra "")
+  # W_m's squarer has a synthesis view (a summed square) and a simulation view (a product):
+  # its unit builds simulate the synthesis view, so that every base is checked against the
+  # model (rtl/wpow_unit.sv).
+  if(top STREQUAL "wpow_unit")
+    set(extra "-DSYNTHESIS")
+  endif()
   if(name STREQUAL "lut_file")
     set(extra "-GTABLE_FILE=\"${RTL_UNITS_TABLE_FILE}\"")
   endif()

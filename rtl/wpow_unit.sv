@@ -117,21 +117,28 @@ module wpow_unit #(
     end
   end
 
-  // (b * b) >> B, truncating; exact in 2B+1 bits because b <= 2^B. Summed as a square, not as
-  // a product: b_i b_j (i < j) is a partial product twice, so row i holds b_i at 2i and
-  // b_i & b_j (j > i) once at i + j + 1. That is 153 partial-product bits for B = 16 against a
-  // multiplier's 289, 40 % fewer transistors under Yosys (`shadesim area`), and the same value
-  // (WpowUnitRtl.M2Base16EverySquareEqualsTheModelsProduct: every base of B = 16).
+  // (b * b) >> B, truncating; exact in 2B+1 bits because b <= 2^B. Synthesis sums it as a
+  // square, not as a product: b_i b_j (i < j) is a partial product twice, so row i holds b_i at
+  // 2i and b_i & b_j (j > i) once at i + j + 1. That is 153 partial-product bits for B = 16
+  // against a multiplier's 289, 40 % fewer transistors under Yosys (`shadesim area`).
+  // Simulators take the product, the same value in a fraction of their time (the loop is bit
+  // level); the summed form is checked against it for every base of B = 16 by
+  // WpowUnitRtl.M2Base16EverySquareEqualsTheModelsProduct (a build with SYNTHESIS defined), and
+  // as synthesised by rtl_netlist_cosim (docs/rtl.md, "Synthesis and simulation views").
   function automatic logic [BW-1:0] square(input logic [BW-1:0] b);
     // verilator lint_off UNUSEDSIGNAL
     logic [2*BW-1:0] p;  // the low B bits are what truncation drops; the top bit stays 0
     // verilator lint_on UNUSEDSIGNAL
+`ifdef SYNTHESIS
     logic [BW-1:0] row;  // b_i & b_j for j > i, from bit i + j + 1 on
     p = '0;
     for (int i = 0; i < BW; i++) begin
       row = {BW{b[i]}} & (b >> (i + 1));
       p = p + ((2*BW)'(b[i]) << (2 * i)) + ((2*BW)'(row) << (2 * i + 2));
     end
+`else
+    p = (2*BW)'(b) * (2*BW)'(b);
+`endif
     square = p[2*B:B];
   endfunction
 
