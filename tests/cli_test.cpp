@@ -5,8 +5,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "host/image.h"
 #include "tests/support/cli_run.h"
@@ -299,6 +303,53 @@ TEST(Cli, ConfigHelpStatesEachRule) {
                            "out_bits", "ideal", "W_16 B=16 pipelined"}) {
     EXPECT_NE(r.output.find(rule), std::string::npos) << rule << "\n" << r.output;
   }
+}
+
+TEST(Cli, VersionPrintsTheProjectVersionAndCommit) {
+  // The version as CMakeLists.txt declares it, read from the file itself.
+  std::ifstream cmake(std::string(SHADESIM_SOURCE_DIR) + "/CMakeLists.txt");
+  const std::string text((std::istreambuf_iterator<char>(cmake)), std::istreambuf_iterator<char>());
+  const std::string key = "project(shadesim VERSION ";
+  const size_t at = text.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const std::string version =
+      text.substr(at + key.size(), text.find(' ', at + key.size()) - (at + key.size()));
+  const Result r = run("--version");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output.rfind("shadesim " + version, 0), 0u) << version << "\n" << r.output;
+  // A commit, when printed, is one git knows in this checkout.
+  const size_t git = r.output.find("(git ");
+  if (git != std::string::npos) {
+    std::string commit = r.output.substr(git + 5, r.output.find(')', git) - git - 5);
+    if (commit.size() > 6 && commit.substr(commit.size() - 6) == "-dirty")
+      commit.resize(commit.size() - 6);
+    const Result known = run_shell("git -C " + std::string(SHADESIM_SOURCE_DIR) + " cat-file -e " +
+                                   commit + "^{commit}");
+    EXPECT_EQ(known.status, 0) << commit << "\n" << known.output;
+  }
+}
+
+TEST(Cli, UsageErrorsExitTwoNamingTheOption) {
+  const std::string sphere = kScenes + "sphere.json";
+  // {arguments, what the message must name}
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"render " + sphere + " --frobnicate", "--frobnicate"},            // unknown option
+      {"render " + sphere + " --out-bits x", "--out-bits"},              // not a number
+      {"cycles " + sphere + " --port-words 3", "--port-words"},          // not in the set
+      {"render " + sphere + " --config /nonexistent.json", "--config"},  // no such file
+      {"render " + sphere + " --config " + sphere + " --series s4.30", "--series"},  // excluded
+      {"render", "scene"},           // missing positional
+      {"frobnicate", "frobnicate"},  // unknown subcommand
+      {"", "subcommand"},
+  };
+  for (const auto& [args, name] : cases) {
+    const Result r = run(args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(name), std::string::npos) << args << "\n" << r.output;
+  }
+  // Help is not an error.
+  EXPECT_EQ(run("--help").status, 0);
+  EXPECT_EQ(run("cosim --help").status, 0);
 }
 
 TEST(Cli, HelpListsSubcommandAndWidthDefaults) {
