@@ -16,6 +16,7 @@
 #include "model/shade_unit.h"
 #include "model/specular_units.h"
 #include "sim/commands.h"
+#include "sim/output_paths.h"
 
 namespace shadesim {
 namespace {
@@ -211,9 +212,10 @@ void register_config(CLI::App& app, int& exit_code) {
          "(their default widths), or ideal to keep the yardstick (no RTL)")
       ->capture_default_str();
   sub->add_option(
-      "--json", o->json_path,
-      "write the UnitConfig JSON (loadable by --config) with a \"derivation\" block: reasons, "
-      "measurements, errors");
+         "--json", o->json_path,
+         "write the UnitConfig JSON (loadable by --config) with a \"derivation\" block: reasons, "
+         "measurements, errors")
+      ->check(output_file());
   sub->callback([o, &exit_code]() { exit_code = run_config(*o); });
 }
 

@@ -35,6 +35,7 @@
 #include "sim/area.h"
 #include "sim/commands.h"
 #include "sim/coverage.h"
+#include "sim/output_paths.h"
 #include "sim/process.h"
 #include "sim/regress_results.h"
 #include "sim/rtl_build.h"
@@ -1104,9 +1105,11 @@ void register_regress(CLI::App& app, int& exit_code) {
   add_stimulus_options(sub, o->gap_pct, o->max_gap, o->stall_pct);
   sub->add_option("-o,--out", o->out_dir,
                   "where plans and each run's folder (stream, logs, result) go")
-      ->capture_default_str();
-  sub->add_option("--junit", o->junit_path, "write JUnit XML for CI");
-  sub->add_option("--json", o->json_path, "write every run's figures as JSON");
+      ->capture_default_str()
+      ->check(output_folder());
+  sub->add_option("--junit", o->junit_path, "write JUnit XML for CI")->check(output_file());
+  sub->add_option("--json", o->json_path, "write every run's figures as JSON")
+      ->check(output_file());
   sub->add_option("--cache", o->cache, "RTL build cache folder (default: <build>/rtl-cache)");
   sub->add_option("--opt", o->optimization,
                   "compile new RTL builds quick (-O0: builds fastest) or fast (-O2: simulates "

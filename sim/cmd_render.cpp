@@ -18,6 +18,7 @@
 #include "model/specular_units.h"
 #include "sim/commands.h"
 #include "sim/config_option.h"
+#include "sim/output_paths.h"
 #include "sim/width_options.h"
 
 namespace shadesim {
@@ -333,10 +334,13 @@ void register_render(CLI::App& app, int& exit_code) {
   sub->add_option("scene", opts->scene, "scene JSON file (see scenes/)")
       ->required()
       ->check(CLI::ExistingFile);
-  sub->add_option("-o,--out", opts->out_dir, "output directory (default out/<scene name>)");
-  sub->add_option("--json", opts->json_path, "write the figures as JSON to this file");
+  sub->add_option("-o,--out", opts->out_dir, "output directory (default out/<scene name>)")
+      ->check(output_folder());
+  sub->add_option("--json", opts->json_path, "write the figures as JSON to this file")
+      ->check(output_file());
   sub->add_option("--save-stream", opts->stream_path,
-                  "save the command stream (text form) for replay");
+                  "save the command stream (text form) for replay")
+      ->check(output_file());
   sub->add_option("--budget", opts->budget_lsb,
                   "Taylor error budget per triangle in output LSBs (default: the scene's, else 1)")
       ->check(CLI::PositiveNumber);

@@ -352,6 +352,61 @@ TEST(Cli, UsageErrorsExitTwoNamingTheOption) {
   EXPECT_EQ(run("cosim --help").status, 0);
 }
 
+// Outputs are checked when the command line is read: an unwritable path fails at once, exit 2,
+// naming the option and the path, before any work (the error is the first thing printed).
+TEST(Cli, UnwritableOutputsFailBeforeAnyWork) {
+  const auto dir = temp_dir("outputs");
+  const std::string sphere = kScenes + "sphere.json";
+  std::ofstream(dir / "a_file") << "keep";
+  const std::string under_file = (dir / "a_file" / "sub" / "r.json").string();
+  const std::string bad_dir = (dir / "a_file").string() + " is not a folder";
+  // {command and option, the path given, what the message says of it}
+  const std::vector<std::array<std::string, 3>> cases = {
+      {"render " + sphere + " -o", "/proc/x", "/proc/x"},
+      {"render " + sphere + " --json", "/proc/x", "/proc/x"},
+      {"render " + sphere + " --json", under_file, bad_dir},
+      {"render " + sphere + " --save-stream", "/proc/x/s.cmd", "/proc/x"},
+      {"cycles " + sphere + " --json", "/proc/x", "/proc/x"},
+      {"regress " + sphere + " --backends cpp -o", "/proc/x", "/proc/x"},
+      {"regress " + sphere + " --backends cpp --json", under_file, bad_dir},
+      {"regress " + sphere + " --backends cpp --junit", "/proc/x", "/proc/x"},
+      {"explore " + sphere + " --json", "/proc/x", "/proc/x"},
+      {"explore " + sphere + " -o", "/proc/x", "/proc/x"},
+      {"area " + sphere + " --json", "/proc/x", "/proc/x"},
+      {"config " + sphere + " --json", (dir / "a_file" / "c.json").string(), bad_dir},
+      {"config " + sphere + " --json", dir.string(), dir.string() + " is a folder"},
+      {"cosim --config grey_s428w --json", "/proc/x", "/proc/x"},
+      {"cosim --config grey_s428w --save-dir", "/proc/x", "/proc/x"},
+      {"cosim --config grey_s428w --waves", "/proc/x/w.fst", "/proc/x"},
+      {"report -o", "/proc/x", "/proc/x"},
+  };
+  for (const auto& [command, path, named] : cases) {
+    const Result r = run(command + " " + path);
+    const std::string option = command.substr(command.rfind(' ') + 1);
+    EXPECT_EQ(r.status, 2) << command << " " << path << "\n" << r.output;
+    EXPECT_EQ(r.output.rfind("shadesim", 0), 0u) << "work before the error:\n" << r.output;
+    const std::string first_line = r.output.substr(0, r.output.find('\n'));
+    EXPECT_NE(first_line.find(named), std::string::npos) << first_line;
+    EXPECT_NE(first_line.find(option == "-o" ? "--out" : option), std::string::npos) << first_line;
+  }
+  // The check leaves nothing behind: a new folder it tried is gone when a later check fails,
+  // and an existing file is unchanged.
+  const auto fresh = dir / "fresh" / "deeper";
+  EXPECT_EQ(run("render " + sphere + " --json " + (fresh / "r.json").string() + " -o " +
+                (dir / "out").string() + " --series q4.28")
+                .status,
+            2);
+  EXPECT_FALSE(std::filesystem::exists(dir / "fresh"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out"));
+  EXPECT_EQ(
+      run("cycles " + sphere + " --json " + (dir / "a_file").string() + " --series q4.28").status,
+      2);
+  std::ifstream kept(dir / "a_file");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), std::istreambuf_iterator<char>()),
+            "keep");
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Cli, HelpListsSubcommandAndWidthDefaults) {
   const Result r = run("render --help");
   EXPECT_EQ(r.status, 0);
