@@ -77,12 +77,12 @@ inline void check_output_path(const std::string& path, bool folder, const std::s
 
 // CLI11 checks for an option naming an output file or folder (CLI11 adds the option's name).
 inline CLI::Validator output_file() {
-  return CLI::Validator([](std::string& p) { return output_path_problem(p, false); },
-                        "", "writable output file");
+  return CLI::Validator([](std::string& p) { return output_path_problem(p, false); }, "",
+                        "writable output file");
 }
 inline CLI::Validator output_folder() {
-  return CLI::Validator([](std::string& p) { return output_path_problem(p, true); },
-                        "", "writable output folder");
+  return CLI::Validator([](std::string& p) { return output_path_problem(p, true); }, "",
+                        "writable output folder");
 }
 
 }  // namespace shadesim
