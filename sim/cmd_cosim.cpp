@@ -18,6 +18,7 @@
 #include "model/command_stream.h"
 #include "sim/area.h"
 #include "sim/commands.h"
+#include "sim/number_checks.h"
 #include "sim/output_paths.h"
 #include "sim/rtl_build.h"
 
@@ -333,7 +334,7 @@ void register_cosim(CLI::App& app, int& exit_code) {
       ->delimiter(',');
   build->add_option("--cache", b->cache, "build cache folder (default: <build>/rtl-cache)");
   build->add_option("-j,--jobs", b->jobs, "builds at once (default: hardware threads)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   build->add_flag("--coverage", b->coverage, "the covered builds (what regress --coverage runs)");
   build->add_flag("--runtime", b->runtime,
                   "compile the Verilator runtime of every flavour into the cache (once; the first "

@@ -20,6 +20,7 @@
 #include "model/unit_config_file.h"
 #include "sim/area.h"
 #include "sim/commands.h"
+#include "sim/number_checks.h"
 #include "sim/output_paths.h"
 #include "sim/process.h"
 
@@ -718,11 +719,11 @@ void register_explore(CLI::App& app, int& exit_code) {
       ->required()
       ->check(CLI::ExistingFile);
   sub->add_option("--budget", o->budget_lsb, "error budget: max LSB off, every pixel and channel")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative_number())
       ->capture_default_str();
   sub->add_option("--setup-budget", o->setup_budget_lsb,
                   "Taylor error budget per triangle in output LSBs (default: the scene's, else 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   sub->add_option("--max-depth", o->max_depth, "subdivision depth limit per triangle")
       ->check(CLI::Range(0, 16))
       ->capture_default_str();

@@ -35,6 +35,7 @@
 #include "sim/area.h"
 #include "sim/commands.h"
 #include "sim/coverage.h"
+#include "sim/number_checks.h"
 #include "sim/output_paths.h"
 #include "sim/process.h"
 #include "sim/regress_results.h"
@@ -1101,7 +1102,7 @@ void register_regress(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   sub->add_option("-j,--jobs", o->jobs,
                   "parallel builds and co-simulations (default: hardware threads)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   add_stimulus_options(sub, o->gap_pct, o->max_gap, o->stall_pct);
   sub->add_option("-o,--out", o->out_dir,
                   "where plans and each run's folder (stream, logs, result) go")
@@ -1130,7 +1131,7 @@ void register_regress(CLI::App& app, int& exit_code) {
       "(and those that ended in an error), with the settings they were planned with");
   sub->add_option("--timeout", o->timeout,
                   "seconds a run may take before it is killed and reported as a timeout (0: none)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative_number())
       ->capture_default_str();
   sub->add_option(
       "--watchdog", o->watchdog,

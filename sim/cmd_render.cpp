@@ -18,6 +18,7 @@
 #include "model/specular_units.h"
 #include "sim/commands.h"
 #include "sim/config_option.h"
+#include "sim/number_checks.h"
 #include "sim/output_paths.h"
 #include "sim/width_options.h"
 
@@ -343,14 +344,14 @@ void register_render(CLI::App& app, int& exit_code) {
       ->check(output_file());
   sub->add_option("--budget", opts->budget_lsb,
                   "Taylor error budget per triangle in output LSBs (default: the scene's, else 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   sub->add_option("--max-depth", opts->max_depth, "subdivision depth limit per triangle")
       ->check(CLI::Range(0, 16))
       ->capture_default_str();
   sub->add_option("--specular", opts->specular,
                   "override the specular unit: ideal|lut|schlick|wpow");
   sub->add_option("--heat-scale", opts->heat_scale_lsb, "error heat map full scale in LSBs")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   sub->add_flag("-q,--quiet", opts->quiet, "print nothing (use with --json)");
   sub->add_flag("--all-units", opts->all_units,

@@ -407,6 +407,26 @@ TEST(Cli, UnwritableOutputsFailBeforeAnyWork) {
   std::filesystem::remove_all(dir);
 }
 
+// A budget of 0 or below is refused in words, not as CLI11's "not in range 0.000000 to <the
+// 309 digits of DBL_MAX>".
+TEST(Cli, NonPositiveBudgetSaysWhatIsExpected) {
+  const std::string sphere = kScenes + "sphere.json";
+  for (const char* budget : {"0", "-1", "-0.5"}) {
+    for (const std::string command : {"config", "render"}) {
+      const Result r = run(command + " " + sphere + " --budget " + budget);
+      EXPECT_EQ(r.status, 2) << r.output;
+      EXPECT_NE(r.output.find("--budget: must be greater than 0, got " + std::string(budget)),
+                std::string::npos)
+          << r.output;
+      EXPECT_EQ(r.output.find("0000000000"), std::string::npos) << r.output;
+    }
+  }
+  const Result timeout = run("regress " + sphere + " --timeout -3");
+  EXPECT_EQ(timeout.status, 2) << timeout.output;
+  EXPECT_NE(timeout.output.find("--timeout: must be 0 or more, got -3"), std::string::npos)
+      << timeout.output;
+}
+
 TEST(Cli, HelpListsSubcommandAndWidthDefaults) {
   const Result r = run("render --help");
   EXPECT_EQ(r.status, 0);
