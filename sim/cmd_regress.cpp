@@ -695,6 +695,15 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
   rec.cycles_per_second = field(j, "cycles_per_second", 0.0);
   rec.replay = field(j, "replay", std::string());
   if (r.exit_code == 0 && field(j, "passed", false)) {
+    // A run that shaded nothing compared nothing: it is not a pass (issue 23).
+    if (rec.cycles == 0 || field(j, "pixels", uint64_t{0}) == 0) {
+      rec.status = "error";
+      rec.message = "the run shaded " + std::to_string(field(j, "pixels", uint64_t{0})) +
+                    " pixels in " + std::to_string(rec.cycles) +
+                    " cycles: nothing was compared (an empty image?), so it does not count as a "
+                    "pass";
+      return;
+    }
     rec.status = "pass";
     return;
   }

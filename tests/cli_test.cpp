@@ -427,6 +427,54 @@ TEST(Cli, NonPositiveBudgetSaysWhatIsExpected) {
       << timeout.output;
 }
 
+// sphere.json with the camera turned away from the ball: every triangle is behind it, so no
+// pixel is covered.
+std::string write_empty_scene(const std::filesystem::path& dir) {
+  auto scene = nlohmann::json::parse(std::ifstream(kScenes + "sphere.json"));
+  scene["camera"]["target"] = {0, 0, 10};  // the camera sits at z = 5, the ball at the origin
+  const std::string path = (dir / "empty.json").string();
+  std::ofstream(path) << scene.dump();
+  return path;
+}
+
+TEST(Cli, EmptyImageSaysSoInsteadOfAPsnr) {
+  const auto dir = temp_dir("empty");
+  const std::string empty = write_empty_scene(dir);
+  const Result r = run("render " + empty + " --out " + (dir / "o").string() + " --json " +
+                       (dir / "r.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("pixels       0 shaded"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the image is empty"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("PSNR 0.00 dB"), std::string::npos) << r.output;
+  std::ifstream js(dir / "r.json");
+  const auto j = nlohmann::json::parse(js);
+  EXPECT_TRUE(j["empty_image"].get<bool>());
+  EXPECT_TRUE(j["error"]["psnr_db"].is_null());
+  const Result units = run("render " + empty + " --all-units --out " + (dir / "u").string());
+  ASSERT_EQ(units.status, 0) << units.output;
+  EXPECT_EQ(units.output.find("0.00 dB"), std::string::npos) << units.output;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, RegressCountsARunThatShadesNothingAsAnError) {
+#ifndef SHADESIM_HAVE_RTL
+  GTEST_SKIP() << "RTL not built (configure with -DSHADESIM_RTL=ON)";
+#endif
+  // 0 pixels in 0 cycles compares nothing: regress must not call it a pass.
+  const auto dir = temp_dir("empty_regress");
+  const Result r =
+      run("regress " + write_empty_scene(dir) + " --configs grey_s428w --backends cpp -j 1 --out " +
+          (dir / "reg").string() + " --json " + (dir / "r.json").string());
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("0 passed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("nothing was compared"), std::string::npos) << r.output;
+  std::ifstream js(dir / "r.json");
+  const auto j = nlohmann::json::parse(js);
+  ASSERT_EQ(j["jobs"].size(), 1u);
+  EXPECT_EQ(j["jobs"][0]["status"], "error");
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Cli, HelpListsSubcommandAndWidthDefaults) {
   const Result r = run("render --help");
   EXPECT_EQ(r.status, 0);
