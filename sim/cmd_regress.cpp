@@ -1124,8 +1124,8 @@ void register_regress(CLI::App& app, int& exit_code) {
   sub->add_option("--opt", o->optimization,
                   "compile new RTL builds quick (-O0: builds fastest) or fast (-O2: simulates "
                   "fastest); default: quick for runs under " +
-                      std::to_string(kQuickBuildCycles / 1000000) +
-                      " M cycles (a cached fast build is used either way)")
+                      std::to_string(kQuickBuildCycles) +
+                      " cycles (a cached fast build is used either way)")
       ->check(CLI::IsMember({"quick", "fast"}));
   sub->add_option("--shard", o->shard,
                   "I/N: run only the I-th of N equal shards of the job list (runs I, I+N, I+2N, "

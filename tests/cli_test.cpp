@@ -475,6 +475,23 @@ TEST(Cli, RegressCountsARunThatShadesNothingAsAnError) {
   std::filesystem::remove_all(dir);
 }
 
+// regress --help printed "quick for runs under 0 M cycles" (500000 / 1000000 in integers): the
+// threshold it prints must be a real one, the one docs/builds.md states.
+TEST(Cli, RegressHelpPrintsTheQuickBuildThreshold) {
+  const Result r = run("regress --help");
+  ASSERT_EQ(r.status, 0);
+  const std::string key = "quick for runs under ";
+  const size_t at = r.output.find(key);
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const std::string figure =
+      r.output.substr(at + key.size(), r.output.find(' ', at + key.size()) - (at + key.size()));
+  EXPECT_GT(std::stoull(figure), 0u) << figure;
+  EXPECT_EQ(r.output.compare(at + key.size() + figure.size(), 7, " cycles"), 0) << r.output;
+  std::ifstream doc(std::string(SHADESIM_SOURCE_DIR) + "/docs/builds.md");
+  const std::string text((std::istreambuf_iterator<char>(doc)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("sim/rtl_build.h`: " + figure + " cycles"), std::string::npos) << figure;
+}
+
 TEST(Cli, HelpListsSubcommandAndWidthDefaults) {
   const Result r = run("render --help");
   EXPECT_EQ(r.status, 0);
