@@ -492,6 +492,23 @@ TEST(Cli, RegressHelpPrintsTheQuickBuildThreshold) {
   EXPECT_NE(text.find("sim/rtl_build.h`: " + figure + " cycles"), std::string::npos) << figure;
 }
 
+TEST(Cli, CosimRefusesAFaultOnARowWithNoPixels) {
+#ifndef SHADESIM_HAVE_RTL
+  GTEST_SKIP() << "RTL not built (configure with -DSHADESIM_RTL=ON)";
+#endif
+  // The tiny scenario's stream covers a few rows near the top of the screen, never row 4000:
+  // a fault there could never show, and used to pass silently.
+  const std::string cosim = "cosim --config grey_s428w --backend cpp --scenario tiny --fault ";
+  const Result empty_row = run(cosim + "lsb@4000");
+  EXPECT_EQ(empty_row.status, 2) << empty_row.output;
+  EXPECT_NE(empty_row.output.find("--fault lsb@4000: row 4000"), std::string::npos)
+      << empty_row.output;
+  EXPECT_NE(empty_row.output.find("no pixels"), std::string::npos) << empty_row.output;
+  // On a row with pixels the fault is injected and caught.
+  const Result covered = run(cosim + "lsb@2");
+  EXPECT_EQ(covered.status, 1) << covered.output;
+}
+
 TEST(Cli, HelpListsSubcommandAndWidthDefaults) {
   const Result r = run("render --help");
   EXPECT_EQ(r.status, 0);

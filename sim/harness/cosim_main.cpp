@@ -530,6 +530,14 @@ int run_all(const Options& o, const CosimExecutable& exe) {
   const FaultInjection fault = parse_fault_option(o.fault, build);
   std::vector<CosimJob> jobs = make_jobs(o, build);
   for (CosimJob& job : jobs) job.fault = fault;
+  // A fault on a row no span covers can never show: refuse it rather than pass silently.
+  for (const CosimJob& job : jobs) {
+    if (fault.any() && Expectation::first_span_x(job.stream, fault.row) < 0) {
+      throw InputError("--fault " + o.fault + ": row " + std::to_string(fault.row) + " of the " +
+                       job.scenario + " stream (seed " + std::to_string(job.stim.seed) +
+                       ") has no pixels, so the fault could never show; choose a row with spans");
+    }
+  }
   check_run_options(o, jobs, exe);
 
   std::vector<Outcome> outcomes;
