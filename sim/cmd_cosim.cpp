@@ -20,6 +20,7 @@
 #include "sim/commands.h"
 #include "sim/number_checks.h"
 #include "sim/output_paths.h"
+#include "sim/replay.h"
 #include "sim/rtl_build.h"
 
 namespace shadesim {
@@ -129,6 +130,8 @@ int run_cosim(const CosimOptions& o, std::vector<std::string> passthrough) {
   const fs::path cache(o.cache.empty() ? default_rtl_cache_dir() : o.cache);
   std::vector<std::string> args = {r.executable, "--unit", write_unit_file(cache, build.unit),
                                    "--config", build.name};
+  args.insert(args.end(), {"--replay-prefix",
+                           cosim_replay_prefix(o.backend, o.cache, o.netlist, o.netlist_cache)});
   if (!o.stream.empty()) args.insert(args.end(), {"--stream", o.stream});
   if (!o.waves.empty()) args.insert(args.end(), {"--waves", o.waves});
   if (!o.coverage.empty()) args.insert(args.end(), {"--coverage", o.coverage});

@@ -39,6 +39,7 @@
 #include "sim/output_paths.h"
 #include "sim/process.h"
 #include "sim/regress_results.h"
+#include "sim/replay.h"
 #include "sim/rtl_build.h"
 #include "sim/stimulus_options.h"
 
@@ -467,8 +468,8 @@ void save_record(const Job& j) {
 }
 
 // The replay command for a run the harness gave none for (a timeout, a crash).
-std::string replay_command(const Job& j, const RunSettings& settings) {
-  std::string cmd = "shadesim cosim --backend " + j.spec.backend;
+std::string replay_command(const Job& j, const RunSettings& settings, const RegressOptions& o) {
+  std::string cmd = cosim_replay_prefix(j.spec.backend, o.cache, o.netlist, o.netlist_cache);
   if (j.spec.config_kind != "own") cmd += " --config " + j.spec.config;
   cmd += " --stream " + j.rec.stream + " --seed " + std::to_string(j.spec.seed) + " --gap-pct " +
          std::to_string(settings.gap_pct) + " --max-gap " + std::to_string(settings.max_gap) +
@@ -663,6 +664,8 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
   if (settings.watchdog > 0)
     args.insert(args.end(), {"--watchdog", std::to_string(settings.watchdog)});
   if (!settings.fault.empty()) args.insert(args.end(), {"--fault", settings.fault});
+  args.insert(args.end(), {"--replay-prefix", cosim_replay_prefix(job.spec.backend, o.cache,
+                                                                  o.netlist, o.netlist_cache)});
   if (o.coverage) {
     // Written by the run itself, pass or fail; a resumed run must not keep an earlier attempt's.
     const fs::path dat = dir / "coverage.dat";
@@ -680,7 +683,7 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
     rec.seconds = wall;
     rec.message =
         "killed after " + number_text(settings.timeout) + " s (--timeout); log: " + rec.log;
-    rec.replay = replay_command(job, settings);
+    rec.replay = replay_command(job, settings, o);
     return;
   }
   nlohmann::json j;
@@ -728,7 +731,7 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
     return;
   }
   rec.status = "error";
-  if (rec.replay.empty()) rec.replay = replay_command(job, settings);
+  if (rec.replay.empty()) rec.replay = replay_command(job, settings, o);
   // The last non-empty line of the log says why; the whole log is kept beside the results.
   std::ifstream log(rec.log);
   std::string line, last;

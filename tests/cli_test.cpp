@@ -7,7 +7,9 @@
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <set>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -507,6 +509,60 @@ TEST(Cli, CosimRefusesAFaultOnARowWithNoPixels) {
   // On a row with pixels the fault is injected and caught.
   const Result covered = run(cosim + "lsb@2");
   EXPECT_EQ(covered.status, 1) << covered.output;
+}
+
+// The first mismatch's place as the harness and regress print it: "scanline S (y=Y), x=X, cycle C".
+std::string mismatch_place(const std::string& output) {
+  std::smatch m;
+  static const std::regex place(R"(scanline \d+ \(y=\d+\), x=\d+, cycle \d+)");
+  return std::regex_search(output, m, place) ? m.str() : "";
+}
+
+// Every "replay: " line of `output`, with its "shadesim" made this build's binary.
+std::vector<std::string> replay_lines(const std::string& output) {
+  std::vector<std::string> lines;
+  std::istringstream is(output);
+  for (std::string line; std::getline(is, line);) {
+    const size_t at = line.find("replay: shadesim ");
+    if (at != std::string::npos) {
+      lines.push_back(std::string(SHADESIM_BINARY_DIR) + "/" + line.substr(at + 8));
+    }
+  }
+  return lines;
+}
+
+// A failing run (a deliberate fault, with a build cache named by --cache and --waves) prints
+// replay lines; pasted in the same folder, each must run and fail at the same place.
+TEST(Cli, ReplayLinesRunWhenPastedAndReproduceTheFailure) {
+#ifndef SHADESIM_HAVE_RTL
+  GTEST_SKIP() << "RTL not built (configure with -DSHADESIM_RTL=ON)";
+#endif
+  const auto dir = temp_dir("replay");
+  const std::string cd = "cd " + dir.string() + " && ";
+  const std::string cache = std::string(SHADESIM_BINARY_DIR) + "/rtl-cache";
+  const std::string shadesim = std::string(SHADESIM_BINARY_DIR) + "/shadesim ";
+  const Result regress =
+      run_shell(cd + shadesim + "regress " + kScenes +
+                "sphere.json --configs grey_s428w --backends cpp -j 1 --fault lsb@128 --cache " +
+                cache + " --out reg");
+  EXPECT_EQ(regress.status, 1) << regress.output;
+  const Result cosim =
+      run_shell(cd + shadesim + "cosim --config grey_s428w --scenario tiny --fault lsb@2 --cache " +
+                cache + " --waves w.fst");
+  EXPECT_EQ(cosim.status, 1) << cosim.output;
+  for (const Result* failed : {&regress, &cosim}) {
+    const std::vector<std::string> lines = replay_lines(failed->output);
+    ASSERT_FALSE(lines.empty()) << failed->output;
+    const std::string place = mismatch_place(failed->output);
+    ASSERT_FALSE(place.empty()) << failed->output;
+    for (const std::string& line : lines) {
+      EXPECT_NE(line.find("--cache " + cache), std::string::npos) << line;
+      const Result replayed = run_shell(cd + line);
+      EXPECT_EQ(replayed.status, 1) << line << "\n" << replayed.output;
+      EXPECT_EQ(mismatch_place(replayed.output), place) << line << "\n" << replayed.output;
+    }
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Cli, HelpListsSubcommandAndWidthDefaults) {
