@@ -458,7 +458,7 @@ TEST(Cli, EmptyImageSaysSoInsteadOfAPsnr) {
   std::filesystem::remove_all(dir);
 }
 
-TEST(Cli, RegressCountsARunThatShadesNothingAsAnError) {
+TEST(Cli, ARunThatShadesNothingIsNotAPass) {
 #ifndef SHADESIM_HAVE_RTL
   GTEST_SKIP() << "RTL not built (configure with -DSHADESIM_RTL=ON)";
 #endif
@@ -474,6 +474,21 @@ TEST(Cli, RegressCountsARunThatShadesNothingAsAnError) {
   const auto j = nlohmann::json::parse(js);
   ASSERT_EQ(j["jobs"].size(), 1u);
   EXPECT_EQ(j["jobs"][0]["status"], "error");
+  // cosim on the empty image's stream, saved for grey_s428w's unit: exit 1, not a pass.
+  const Result list = run("cosim --list --list-json");
+  ASSERT_EQ(list.status, 0) << list.output;
+  for (const auto& b : nlohmann::json::parse(list.output)) {
+    if (b["name"] == "grey_s428w") std::ofstream(dir / "grey.json") << b["unit"].dump();
+  }
+  const Result saved = run("render " + (dir / "empty.json").string() + " -q --out " +
+                           (dir / "r").string() + " --config " + (dir / "grey.json").string() +
+                           " --save-stream " + (dir / "empty.cmds").string());
+  ASSERT_EQ(saved.status, 0) << saved.output;
+  const Result cosim = run("cosim --config grey_s428w --backend cpp --stream " +
+                           (dir / "empty.cmds").string() + " --save-dir " + dir.string());
+  EXPECT_EQ(cosim.status, 1) << cosim.output;
+  EXPECT_NE(cosim.output.find("nothing was compared"), std::string::npos) << cosim.output;
+  EXPECT_EQ(cosim.output.find("PASS"), std::string::npos) << cosim.output;
   std::filesystem::remove_all(dir);
 }
 

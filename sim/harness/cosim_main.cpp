@@ -400,7 +400,7 @@ void print_run_line(const CosimJob& job, const CosimResult& r, const CosimExecut
       static_cast<unsigned long long>(r.scanlines), static_cast<unsigned long long>(r.cycles),
       r.pixels ? static_cast<double>(r.cycles) / static_cast<double>(r.pixels) : 0.0, r.seconds,
       r.seconds > 0 ? static_cast<double>(r.cycles) / r.seconds / 1e6 : 0.0,
-      r.passed() ? "PASS" : "MISMATCH");
+      r.passed() ? (r.pixels > 0 ? "PASS" : "EMPTY") : "MISMATCH");
   std::cout << line << '\n';
 }
 
@@ -554,6 +554,12 @@ int run_all(const Options& o, const CosimExecutable& exe) {
     print_run_line(job, out.result, exe);
     if (!check_specular_share(out, o)) ++failures;
     if (out.result.passed()) {
+      // No pixel compared is no evidence: a run that shaded nothing is not a pass (issue 23).
+      if (out.result.pixels == 0) {
+        std::cout << "  FAIL: the run shaded 0 pixels in " << out.result.cycles
+                  << " cycles: nothing was compared (an empty stream?)\n";
+        ++failures;
+      }
       outcomes.push_back(out);
       continue;
     }
