@@ -580,6 +580,27 @@ TEST(Cli, ReplayLinesRunWhenPastedAndReproduceTheFailure) {
   std::filesystem::remove_all(dir);
 }
 
+// A width option without an overflow suffix saturates, where SystemC's sc_fix would wrap: the
+// command says so, naming the option, and is silent when the suffix is written.
+TEST(Cli, WidthWithoutOverflowSuffixSaysItSaturates) {
+  const auto dir = temp_dir("suffix");
+  const std::string render = "render " + kScenes + "sphere.json -q --out " + dir.string();
+  const Result plain = run(render + " --coef s4.32");
+  ASSERT_EQ(plain.status, 0) << plain.output;
+  EXPECT_NE(plain.output.find("--coef s4.32 has no overflow suffix, so it saturates"),
+            std::string::npos)
+      << plain.output;
+  EXPECT_NE(plain.output.find("s4.32:wrap"), std::string::npos) << plain.output;
+  for (const char* given : {"s4.32:wrap", "s4.32:rnd:sat"}) {
+    const Result chosen = run(render + " --coef " + given);
+    ASSERT_EQ(chosen.status, 0) << chosen.output;
+    EXPECT_EQ(chosen.output.find("no overflow suffix"), std::string::npos) << chosen.output;
+  }
+  const Result help = run("render --help");
+  EXPECT_NE(help.output.find("no suffix means :trn and :sat"), std::string::npos) << help.output;
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Cli, HelpListsSubcommandAndWidthDefaults) {
   const Result r = run("render --help");
   EXPECT_EQ(r.status, 0);
