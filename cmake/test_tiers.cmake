@@ -100,6 +100,10 @@ set(SHADESIM_GTEST_TIERS
 set(SHADESIM_GTEST_CASE_TIERS
   # regress of grey_s428w on the Verilated RTL
   cli_test       "^Cli\\.CyclesEstimateEqualsTheRtlOnTheSameSceneAndStimulus$"      rtl
+  cli_test       "^Cli\\.ARunThatShadesNothingIsNotAPass$"                          rtl
+  cli_test       "^Cli\\.CosimRefusesAFaultOnARowWithNoPixels$"                     rtl
+  # shadesim regress and cosim fail on a deliberate fault; their replay lines are run
+  cli_test       "^Cli\\.ReplayLinesRunWhenPastedAndReproduceTheFailure$"           regress
   # Yosys: a direct run against shadesim area's cell count
   area_test      "^Area\\.CellCountEqualsADirectYosysRunAndTheCacheIsReused$"      rtl
   # Yosys on tiny modules (GE's closed forms) and a small LUT unit (its table RAM bits)

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <initializer_list>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -111,6 +112,9 @@ void check_span_offsets(const SpanCmd& s, const TriangleCmd& t, size_t tri_at,
       "): re-origin the triangle or widen it");
 }
 
+// The header line's UnitConfig JSON (defined with the JSON reader below).
+UnitConfig header_config(const std::string& text, const std::string& source,
+                         const std::function<std::string(const JsonTextError&)>& syntax_at);
 }  // namespace
 
 void CommandStream::validate(const std::string& source) const {
@@ -300,9 +304,26 @@ CommandStream CommandStream::read_text(std::istream& is, const std::string& sour
       if (!(ls >> version) || version != 1) {
         throw CommandStreamError(loc + "unsupported command-stream version; expected 1");
       }
+      // The JSON's first column in the line, so a syntax error names its column in the file.
+      std::streamoff json_at = ls.tellg();
+      if (json_at < 0) json_at = static_cast<std::streamoff>(line.size());  // nothing after
       std::string json;
       std::getline(ls, json);
-      cs.config = config_from_json(json, loc);
+      if (json.find_first_not_of(" \t\r") == std::string::npos) {
+        throw CommandStreamError(source + ":" + std::to_string(line_no) + ":" +
+                                 std::to_string(json_at + 1) +
+                                 ": expected the unit's config JSON object after "
+                                 "'shadesim-commands 1', got the end of the line");
+      }
+      cs.config = header_config(json, loc, [&](const JsonTextError& error) {
+        // The header is one line: the error's column in the JSON, moved to the file's column.
+        const size_t colon = error.place.rfind(':');
+        if (colon == std::string::npos || colon == 0) return loc;
+        return source + ":" + std::to_string(line_no) + ":" +
+               std::to_string(static_cast<size_t>(json_at) +
+                              std::stoul(error.place.substr(colon + 1))) +
+               ": ";
+      });
       have_header = true;
       continue;
     }
@@ -633,19 +654,42 @@ class ConfigJsonReader {
 
 }  // namespace
 
-UnitConfig config_from_json(const std::string& text, const std::string& source) {
+namespace {
+
+// A stream header's UnitConfig JSON. A syntax error is named at `syntax_at(error)` (the file,
+// line and column) with what was expected there, never by nlohmann's "[json.exception...]" text;
+// any other error by `source` (a prefix ending in ": ") and the field.
+UnitConfig header_config(const std::string& text, const std::string& source,
+                         const std::function<std::string(const JsonTextError&)>& syntax_at) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    const JsonTextError error = describe_json_error(text, e);
+    throw CommandStreamError(syntax_at(error) +
+                             "the header's config (a UnitConfig JSON object): " + error.reason);
+  }
   UnitConfig c;
   try {
     // A stream header is complete; keys it does not know are ignored (newer writers).
-    ConfigJsonReader("config.", true, false).read(nlohmann::json::parse(text), c);
+    ConfigJsonReader("config.", true, false).read(j, c);
     c.specular.validate();
     c.validate();
   } catch (const nlohmann::json::exception& e) {
-    throw CommandStreamError(source + "config: " + e.what());
+    throw CommandStreamError(source + "config: " + describe_json_error(text, e).reason);
   } catch (const std::invalid_argument& e) {
     throw CommandStreamError(source + e.what());
   }
   return c;
+}
+
+}  // namespace
+
+UnitConfig config_from_json(const std::string& text, const std::string& source) {
+  // A text of its own: a syntax error is at "config:LINE:COLUMN" of it.
+  return header_config(text, source, [&](const JsonTextError& error) {
+    return source + "config" + error.place + ": ";
+  });
 }
 
 UnitConfig overlay_unit_config(const std::string& json_object, const UnitConfig& base,

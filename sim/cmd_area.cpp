@@ -15,6 +15,7 @@
 #include "model/unit_config_file.h"
 #include "sim/area.h"
 #include "sim/commands.h"
+#include "sim/output_paths.h"
 
 namespace shadesim {
 namespace {
@@ -242,7 +243,7 @@ void register_area(CLI::App& app, int& exit_code) {
   config->excludes(scene);
   scene->excludes(config);
   sub->add_option("--cache", o->cache_dir, "cache folder for results")->capture_default_str();
-  sub->add_option("--json", o->json_path, "also write the report as JSON");
+  sub->add_option("--json", o->json_path, "also write the report as JSON")->check(output_file());
   sub->add_option("--rtl-dir", o->rtl_dir,
                   "synthesise the rtl/*.sv of DIR instead of this tree's (an A/B against another "
                   "commit's RTL: git worktree add /tmp/old COMMIT; --rtl-dir /tmp/old/rtl)")

@@ -16,6 +16,8 @@
 #include "model/shade_unit.h"
 #include "model/specular_units.h"
 #include "sim/commands.h"
+#include "sim/number_checks.h"
+#include "sim/output_paths.h"
 
 namespace shadesim {
 namespace {
@@ -194,7 +196,7 @@ void register_config(CLI::App& app, int& exit_code) {
   sub->add_option(
          "--budget", o->budget_lsb,
          "error budget in output LSBs (default: the smallest error_budget_lsb of the scenes)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   sub->add_option("--out-bits", o->out_bits, "output bits per channel")
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
@@ -211,9 +213,10 @@ void register_config(CLI::App& app, int& exit_code) {
          "(their default widths), or ideal to keep the yardstick (no RTL)")
       ->capture_default_str();
   sub->add_option(
-      "--json", o->json_path,
-      "write the UnitConfig JSON (loadable by --config) with a \"derivation\" block: reasons, "
-      "measurements, errors");
+         "--json", o->json_path,
+         "write the UnitConfig JSON (loadable by --config) with a \"derivation\" block: reasons, "
+         "measurements, errors")
+      ->check(output_file());
   sub->callback([o, &exit_code]() { exit_code = run_config(*o); });
 }
 

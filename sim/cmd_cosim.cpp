@@ -13,10 +13,14 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <thread>
+#include <utility>
 
 #include "model/command_stream.h"
 #include "sim/area.h"
 #include "sim/commands.h"
+#include "sim/number_checks.h"
+#include "sim/output_paths.h"
+#include "sim/replay.h"
 #include "sim/rtl_build.h"
 
 namespace shadesim {
@@ -126,6 +130,8 @@ int run_cosim(const CosimOptions& o, std::vector<std::string> passthrough) {
   const fs::path cache(o.cache.empty() ? default_rtl_cache_dir() : o.cache);
   std::vector<std::string> args = {r.executable, "--unit", write_unit_file(cache, build.unit),
                                    "--config", build.name};
+  args.insert(args.end(), {"--replay-prefix",
+                           cosim_replay_prefix(o.backend, o.cache, o.netlist, o.netlist_cache)});
   if (!o.stream.empty()) args.insert(args.end(), {"--stream", o.stream});
   if (!o.waves.empty()) args.insert(args.end(), {"--waves", o.waves});
   if (!o.coverage.empty()) args.insert(args.end(), {"--coverage", o.coverage});
@@ -269,12 +275,14 @@ void register_cosim(CLI::App& app, int& exit_code) {
   sub->add_option("--stream", o->stream,
                   "replay a saved command stream (text form; its header names the unit)");
   sub->add_option("--waves", o->waves,
-                  "on a mismatch, write an FST of the cycles around it (cpp backend)");
+                  "on a mismatch, write an FST of the cycles around it (cpp backend)")
+      ->check(output_file());
   sub->add_option("--cache", o->cache, "build cache folder (default: <build>/rtl-cache)");
   sub->add_option(
-      "--coverage", o->coverage,
-      "run the covered build (line, toggle, user cover points) and write its Verilator\n"
-      "coverage to FILE.dat, pass or fail (several runs: FILE_<i>.dat)");
+         "--coverage", o->coverage,
+         "run the covered build (line, toggle, user cover points) and write its Verilator\n"
+         "coverage to FILE.dat, pass or fail (several runs: FILE_<i>.dat)")
+      ->check(output_file());
   sub->add_option("--opt", o->optimization,
                   "compile a new build quick (-O0: builds fastest) or fast (-O2: simulates "
                   "fastest); a cached fast build is used either way")
@@ -290,6 +298,17 @@ void register_cosim(CLI::App& app, int& exit_code) {
   sub->allow_extras();
   sub->callback([o, sub, &exit_code]() {
     const std::vector<std::string> rest = sub->remaining();
+    // The co-simulation's own outputs (forwarded options) are checked before any build starts.
+    for (size_t i = 0; i < rest.size(); ++i) {
+      for (const auto& [option, folder] : {std::pair<std::string, bool>{"--json", false},
+                                           std::pair<std::string, bool>{"--save-dir", true}}) {
+        if (rest[i] == option && i + 1 < rest.size()) {
+          check_output_path(rest[i + 1], folder, option);
+        } else if (rest[i].rfind(option + "=", 0) == 0) {
+          check_output_path(rest[i].substr(option.size() + 1), folder, option);
+        }
+      }
+    }
     try {
       exit_code = run_cosim(*o, rest);
     } catch (const std::exception& e) {
@@ -318,7 +337,7 @@ void register_cosim(CLI::App& app, int& exit_code) {
       ->delimiter(',');
   build->add_option("--cache", b->cache, "build cache folder (default: <build>/rtl-cache)");
   build->add_option("-j,--jobs", b->jobs, "builds at once (default: hardware threads)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   build->add_flag("--coverage", b->coverage, "the covered builds (what regress --coverage runs)");
   build->add_flag("--runtime", b->runtime,
                   "compile the Verilator runtime of every flavour into the cache (once; the first "

@@ -18,6 +18,7 @@
 #include "sim/commands.h"
 #include "sim/config_option.h"
 #include "sim/harness/cycle_run.h"
+#include "sim/output_paths.h"
 #include "sim/stimulus_options.h"
 #include "sim/width_options.h"
 
@@ -390,7 +391,7 @@ void register_cycles(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({1, 2}));
   sub->add_option("--seed", o->seed, "stimulus seed")->capture_default_str();
   add_stimulus_options(sub, o->gap_pct, o->max_gap, o->stall_pct);
-  sub->add_option("--json", o->json_path, "write the figures as JSON");
+  sub->add_option("--json", o->json_path, "write the figures as JSON")->check(output_file());
   sub->add_flag(
       "--clocked", o->clocked,
       "also run the clocked cycle model when there are no gaps or back-pressure, and fail if the\n"

@@ -20,6 +20,8 @@
 #include "model/unit_config_file.h"
 #include "sim/area.h"
 #include "sim/commands.h"
+#include "sim/number_checks.h"
+#include "sim/output_paths.h"
 #include "sim/process.h"
 
 namespace shadesim {
@@ -717,11 +719,11 @@ void register_explore(CLI::App& app, int& exit_code) {
       ->required()
       ->check(CLI::ExistingFile);
   sub->add_option("--budget", o->budget_lsb, "error budget: max LSB off, every pixel and channel")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative_number())
       ->capture_default_str();
   sub->add_option("--setup-budget", o->setup_budget_lsb,
                   "Taylor error budget per triangle in output LSBs (default: the scene's, else 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   sub->add_option("--max-depth", o->max_depth, "subdivision depth limit per triangle")
       ->check(CLI::Range(0, 16))
       ->capture_default_str();
@@ -739,12 +741,14 @@ void register_explore(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
   sub->add_option(
-      "--json", o->json_path,
-      "write every point, the search and the error split as JSON (scripts/plot draws it)");
-  sub->add_option("--csv", o->csv_path, "write every point as CSV");
+         "--json", o->json_path,
+         "write every point, the search and the error split as JSON (scripts/plot draws it)")
+      ->check(output_file());
+  sub->add_option("--csv", o->csv_path, "write every point as CSV")->check(output_file());
   sub->add_option("-o,--out", o->out_dir,
                   "folder for the config files: start.json, chosen.json, pareto_<point>.json\n"
-                  "(default out/explore/<first scene>)");
+                  "(default out/explore/<first scene>)")
+      ->check(output_folder());
   sub->add_option(
          "--area-cache", o->area_cache,
          "shadesim area's cache: the measured units the area estimate scales from (the start\n"

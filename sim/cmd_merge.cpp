@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sim/commands.h"
+#include "sim/output_paths.h"
 #include "sim/regress_results.h"
 
 namespace shadesim {
@@ -182,8 +183,9 @@ void register_merge(CLI::App& app, int& exit_code) {
   sub->add_option("dirs", o->dirs, "regress output folders (each with plans/ and runs/)")
       ->required();
   sub->add_option("--json", o->json_path,
-                  "write every run's figures as JSON (the format of regress --json)");
-  sub->add_option("--junit", o->junit_path, "write JUnit XML for CI");
+                  "write every run's figures as JSON (the format of regress --json)")
+      ->check(output_file());
+  sub->add_option("--junit", o->junit_path, "write JUnit XML for CI")->check(output_file());
   sub->callback([o, &exit_code]() { exit_code = run_merge(*o); });
 }
 

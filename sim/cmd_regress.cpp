@@ -35,8 +35,11 @@
 #include "sim/area.h"
 #include "sim/commands.h"
 #include "sim/coverage.h"
+#include "sim/number_checks.h"
+#include "sim/output_paths.h"
 #include "sim/process.h"
 #include "sim/regress_results.h"
+#include "sim/replay.h"
 #include "sim/rtl_build.h"
 #include "sim/stimulus_options.h"
 
@@ -465,8 +468,8 @@ void save_record(const Job& j) {
 }
 
 // The replay command for a run the harness gave none for (a timeout, a crash).
-std::string replay_command(const Job& j, const RunSettings& settings) {
-  std::string cmd = "shadesim cosim --backend " + j.spec.backend;
+std::string replay_command(const Job& j, const RunSettings& settings, const RegressOptions& o) {
+  std::string cmd = cosim_replay_prefix(j.spec.backend, o.cache, o.netlist, o.netlist_cache);
   if (j.spec.config_kind != "own") cmd += " --config " + j.spec.config;
   cmd += " --stream " + j.rec.stream + " --seed " + std::to_string(j.spec.seed) + " --gap-pct " +
          std::to_string(settings.gap_pct) + " --max-gap " + std::to_string(settings.max_gap) +
@@ -661,6 +664,8 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
   if (settings.watchdog > 0)
     args.insert(args.end(), {"--watchdog", std::to_string(settings.watchdog)});
   if (!settings.fault.empty()) args.insert(args.end(), {"--fault", settings.fault});
+  args.insert(args.end(), {"--replay-prefix", cosim_replay_prefix(job.spec.backend, o.cache,
+                                                                  o.netlist, o.netlist_cache)});
   if (o.coverage) {
     // Written by the run itself, pass or fail; a resumed run must not keep an earlier attempt's.
     const fs::path dat = dir / "coverage.dat";
@@ -678,7 +683,7 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
     rec.seconds = wall;
     rec.message =
         "killed after " + number_text(settings.timeout) + " s (--timeout); log: " + rec.log;
-    rec.replay = replay_command(job, settings);
+    rec.replay = replay_command(job, settings, o);
     return;
   }
   nlohmann::json j;
@@ -692,6 +697,16 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
   rec.seconds = field(j, "seconds", 0.0);
   rec.cycles_per_second = field(j, "cycles_per_second", 0.0);
   rec.replay = field(j, "replay", std::string());
+  // A run that shaded nothing compared nothing: it is not a pass (issue 23; the co-simulation
+  // exits 1 for it, with no mismatch to name).
+  if ((r.exit_code == 0 || r.exit_code == 1) && field(j, "passed", false) &&
+      (rec.cycles == 0 || field(j, "pixels", uint64_t{0}) == 0)) {
+    rec.status = "error";
+    rec.message = "the run shaded " + std::to_string(field(j, "pixels", uint64_t{0})) +
+                  " pixels in " + std::to_string(rec.cycles) +
+                  " cycles: nothing was compared (an empty image?), so it does not count as a pass";
+    return;
+  }
   if (r.exit_code == 0 && field(j, "passed", false)) {
     rec.status = "pass";
     return;
@@ -717,7 +732,7 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
     return;
   }
   rec.status = "error";
-  if (rec.replay.empty()) rec.replay = replay_command(job, settings);
+  if (rec.replay.empty()) rec.replay = replay_command(job, settings, o);
   // The last non-empty line of the log says why; the whole log is kept beside the results.
   std::ifstream log(rec.log);
   std::string line, last;
@@ -1100,19 +1115,21 @@ void register_regress(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   sub->add_option("-j,--jobs", o->jobs,
                   "parallel builds and co-simulations (default: hardware threads)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   add_stimulus_options(sub, o->gap_pct, o->max_gap, o->stall_pct);
   sub->add_option("-o,--out", o->out_dir,
                   "where plans and each run's folder (stream, logs, result) go")
-      ->capture_default_str();
-  sub->add_option("--junit", o->junit_path, "write JUnit XML for CI");
-  sub->add_option("--json", o->json_path, "write every run's figures as JSON");
+      ->capture_default_str()
+      ->check(output_folder());
+  sub->add_option("--junit", o->junit_path, "write JUnit XML for CI")->check(output_file());
+  sub->add_option("--json", o->json_path, "write every run's figures as JSON")
+      ->check(output_file());
   sub->add_option("--cache", o->cache, "RTL build cache folder (default: <build>/rtl-cache)");
   sub->add_option("--opt", o->optimization,
                   "compile new RTL builds quick (-O0: builds fastest) or fast (-O2: simulates "
                   "fastest); default: quick for runs under " +
-                      std::to_string(kQuickBuildCycles / 1000000) +
-                      " M cycles (a cached fast build is used either way)")
+                      std::to_string(kQuickBuildCycles) +
+                      " cycles (a cached fast build is used either way)")
       ->check(CLI::IsMember({"quick", "fast"}));
   sub->add_option("--shard", o->shard,
                   "I/N: run only the I-th of N equal shards of the job list (runs I, I+N, I+2N, "
@@ -1127,7 +1144,7 @@ void register_regress(CLI::App& app, int& exit_code) {
       "(and those that ended in an error), with the settings they were planned with");
   sub->add_option("--timeout", o->timeout,
                   "seconds a run may take before it is killed and reported as a timeout (0: none)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative_number())
       ->capture_default_str();
   sub->add_option(
       "--watchdog", o->watchdog,

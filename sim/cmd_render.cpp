@@ -18,6 +18,8 @@
 #include "model/specular_units.h"
 #include "sim/commands.h"
 #include "sim/config_option.h"
+#include "sim/number_checks.h"
+#include "sim/output_paths.h"
 #include "sim/width_options.h"
 
 namespace shadesim {
@@ -53,10 +55,30 @@ Image model_image(const std::vector<PixelOut>& pixels, int width, int height, in
   return img;
 }
 
-std::string format_db(double db) {
+// PSNR in dB; an image with no pixel has none (the error stats of no samples are 0, not a PSNR).
+std::string format_db(double db, size_t pixels) {
+  if (pixels == 0) return "n/a (no pixels)";
   if (std::isinf(db)) return "inf (identical)";
   std::ostringstream os;
   os << std::fixed << std::setprecision(2) << db << " dB";
+  return os.str();
+}
+
+// The two error lines of render's summary; an image with no pixel says so (no error, no PSNR).
+std::string error_lines(const ErrorStats& es) {
+  std::ostringstream os;
+  if (es.pixels == 0) {
+    os << "error        none: the image is empty (no pixel covered), so there is no error or "
+          "PSNR to report\n"
+       << "warning      empty image: check the camera, the objects and the culled counts above\n";
+    return os.str();
+  }
+  os << "error        max " << es.max_code_lsb << " LSB (8-bit codes vs rounded reference), mean "
+     << std::setprecision(4) << es.mean_code_lsb << " LSB, PSNR "
+     << format_db(es.psnr_db, es.pixels) << "\n"
+     << "             max " << std::setprecision(3) << es.max_real_lsb
+     << " LSB before rounding the reference; " << es.pixels_over_1lsb
+     << " pixel(s) off by more than 1\n";
   return os.str();
 }
 
@@ -167,13 +189,8 @@ int run_render(const RenderOptions& o) {
               << frame.encoded.stats.reorigins << " re-origin(s) (offset_bits " << cfg.offset_bits
               << ")\n"
               << "pixels       " << es.pixels << " shaded\n"
-              << "error        max " << es.max_code_lsb
-              << " LSB (8-bit codes vs rounded reference), mean " << std::setprecision(4)
-              << es.mean_code_lsb << " LSB, PSNR " << format_db(es.psnr_db) << "\n"
-              << "             max " << std::setprecision(3) << es.max_real_lsb
-              << " LSB before rounding the reference; " << es.pixels_over_1lsb
-              << " pixel(s) off by more than 1\n"
-              << "setup budget " << (fo.budget_lsb ? *fo.budget_lsb : scene.error_budget_lsb)
+              << error_lines(es) << "setup budget "
+              << (fo.budget_lsb ? *fo.budget_lsb : scene.error_budget_lsb)
               << " LSB Taylor error per triangle; worst measured " << std::setprecision(3)
               << st.worst_error_lsb << " LSB\n"
               << "time         setup " << std::setprecision(3) << frame.timings.setup_s
@@ -228,10 +245,12 @@ int run_render(const RenderOptions& o) {
                    {"words", frame.encoded.stats.words},
                    {"coefficients_out_of_range", frame.encoded.stats.coefficients_out_of_range}};
     j["pixels"] = es.pixels;
+    j["empty_image"] = es.pixels == 0;
     j["error"] = {
         {"max_code_lsb", es.max_code_lsb},
         {"mean_code_lsb", es.mean_code_lsb},
-        {"psnr_db", std::isinf(es.psnr_db) ? nlohmann::json(nullptr) : nlohmann::json(es.psnr_db)},
+        {"psnr_db", std::isinf(es.psnr_db) || es.pixels == 0 ? nlohmann::json(nullptr)
+                                                             : nlohmann::json(es.psnr_db)},
         {"max_real_lsb", es.max_real_lsb},
         {"pixels_over_1lsb", es.pixels_over_1lsb},
         {"metric",
@@ -291,7 +310,7 @@ int run_all_units(const RenderOptions& o) {
     if (!o.quiet) {
       std::cout << std::left << std::setw(9) << to_string(kind) << std::setw(9) << e.max_code_lsb
                 << std::setw(11) << std::setprecision(4) << e.mean_code_lsb << std::setw(18)
-                << format_db(e.psnr_db) << description
+                << format_db(e.psnr_db, e.pixels) << description
                 << (unit.hardware ? "" : " (exact pow; not hardware)") << "\n";
     }
     units.push_back(
@@ -299,7 +318,8 @@ int run_all_units(const RenderOptions& o) {
          {"configuration", description},
          {"max_code_lsb", e.max_code_lsb},
          {"mean_code_lsb", e.mean_code_lsb},
-         {"psnr_db", std::isinf(e.psnr_db) ? nlohmann::json(nullptr) : nlohmann::json(e.psnr_db)},
+         {"psnr_db", std::isinf(e.psnr_db) || e.pixels == 0 ? nlohmann::json(nullptr)
+                                                            : nlohmann::json(e.psnr_db)},
          {"max_real_lsb", e.max_real_lsb},
          {"table_load_cycles", frame.encoded.stats.table_load_cycles},
          {"stream_words", frame.encoded.stats.words}});
@@ -333,20 +353,23 @@ void register_render(CLI::App& app, int& exit_code) {
   sub->add_option("scene", opts->scene, "scene JSON file (see scenes/)")
       ->required()
       ->check(CLI::ExistingFile);
-  sub->add_option("-o,--out", opts->out_dir, "output directory (default out/<scene name>)");
-  sub->add_option("--json", opts->json_path, "write the figures as JSON to this file");
+  sub->add_option("-o,--out", opts->out_dir, "output directory (default out/<scene name>)")
+      ->check(output_folder());
+  sub->add_option("--json", opts->json_path, "write the figures as JSON to this file")
+      ->check(output_file());
   sub->add_option("--save-stream", opts->stream_path,
-                  "save the command stream (text form) for replay");
+                  "save the command stream (text form) for replay")
+      ->check(output_file());
   sub->add_option("--budget", opts->budget_lsb,
                   "Taylor error budget per triangle in output LSBs (default: the scene's, else 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   sub->add_option("--max-depth", opts->max_depth, "subdivision depth limit per triangle")
       ->check(CLI::Range(0, 16))
       ->capture_default_str();
   sub->add_option("--specular", opts->specular,
                   "override the specular unit: ideal|lut|schlick|wpow");
   sub->add_option("--heat-scale", opts->heat_scale_lsb, "error heat map full scale in LSBs")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   sub->add_flag("-q,--quiet", opts->quiet, "print nothing (use with --json)");
   sub->add_flag("--all-units", opts->all_units,

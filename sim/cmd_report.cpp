@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "sim/commands.h"
+#include "sim/output_paths.h"
 #include "sim/process.h"
 #include "sim/report_inputs.h"
 #include "sim/report_page.h"
@@ -214,7 +215,8 @@ void register_report(CLI::App& app, int& exit_code) {
       "report JSON files, or folders holding them (read with the folders one level down);\n"
       "default: out (where scripts/render, scripts/run and --run write)");
   sub->add_option("-o,--out", o->out_dir, "folder of the page (index.html) and its plots")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(output_folder());
   sub->add_option(
          "--run", o->run,
          "first produce the inputs on the shipped scenes (run from the project folder), into "

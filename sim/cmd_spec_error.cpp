@@ -25,6 +25,7 @@
 #include "host/specular_setup.h"
 #include "model/specular_units.h"
 #include "sim/commands.h"
+#include "sim/output_paths.h"
 #include "sim/process.h"
 #include "sim/rtl_build.h"
 
@@ -488,12 +489,14 @@ void register_spec_error(CLI::App& app, int& exit_code) {
                   "all, or a comma list of " + specular_unit_names(true) + " (default all)");
   cmd->add_option("--points", opt->points,
                   "sample points per zone (epicentre, blooming, [0,1]) per exponent (default 256)");
-  cmd->add_option("--json", opt->json, "write the results as JSON");
-  cmd->add_option("--csv", opt->csv, "write one row per unit and exponent as CSV");
+  cmd->add_option("--json", opt->json, "write the results as JSON")->check(output_file());
+  cmd->add_option("--csv", opt->csv, "write one row per unit and exponent as CSV")
+      ->check(output_file());
   cmd->add_option(
-      "--plot", opt->plot,
-      "write a PNG of error against cost with the Pareto front (scripts/plot, matplotlib,\n"
-      "from the --json report; without --json the report goes to PLOT.json)");
+         "--plot", opt->plot,
+         "write a PNG of error against cost with the Pareto front (scripts/plot, matplotlib,\n"
+         "from the --json report; without --json the report goes to PLOT.json)")
+      ->check(output_file());
   cmd->add_flag("--no-papers", opt->no_papers, "skip the Bishop and Romanyuk reproductions");
   cmd->callback([opt, &exit_code]() {
     run(opt->exponents, opt->units, opt->points, opt->json, opt->csv, opt->plot, opt->no_papers,

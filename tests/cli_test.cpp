@@ -5,8 +5,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <set>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "host/image.h"
 #include "tests/support/cli_run.h"
@@ -299,6 +305,300 @@ TEST(Cli, ConfigHelpStatesEachRule) {
                            "out_bits", "ideal", "W_16 B=16 pipelined"}) {
     EXPECT_NE(r.output.find(rule), std::string::npos) << rule << "\n" << r.output;
   }
+}
+
+TEST(Cli, VersionPrintsTheProjectVersionAndCommit) {
+  // The version as CMakeLists.txt declares it, read from the file itself.
+  std::ifstream cmake(std::string(SHADESIM_SOURCE_DIR) + "/CMakeLists.txt");
+  const std::string text((std::istreambuf_iterator<char>(cmake)), std::istreambuf_iterator<char>());
+  const std::string key = "project(shadesim VERSION ";
+  const size_t at = text.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const std::string version =
+      text.substr(at + key.size(), text.find(' ', at + key.size()) - (at + key.size()));
+  const Result r = run("--version");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output.rfind("shadesim " + version, 0), 0u) << version << "\n" << r.output;
+  // A commit, when printed, is one git knows in this checkout.
+  const size_t git = r.output.find("(git ");
+  if (git != std::string::npos) {
+    std::string commit = r.output.substr(git + 5, r.output.find(')', git) - git - 5);
+    if (commit.size() > 6 && commit.substr(commit.size() - 6) == "-dirty")
+      commit.resize(commit.size() - 6);
+    const Result known = run_shell("git -C " + std::string(SHADESIM_SOURCE_DIR) + " cat-file -e " +
+                                   commit + "^{commit}");
+    EXPECT_EQ(known.status, 0) << commit << "\n" << known.output;
+  }
+}
+
+TEST(Cli, UsageErrorsExitTwoNamingTheOption) {
+  const std::string sphere = kScenes + "sphere.json";
+  // {arguments, what the message must name}
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"render " + sphere + " --frobnicate", "--frobnicate"},            // unknown option
+      {"render " + sphere + " --out-bits x", "--out-bits"},              // not a number
+      {"cycles " + sphere + " --port-words 3", "--port-words"},          // not in the set
+      {"render " + sphere + " --config /nonexistent.json", "--config"},  // no such file
+      {"render " + sphere + " --config " + sphere + " --series s4.30", "--series"},  // excluded
+      {"render", "scene"},           // missing positional
+      {"frobnicate", "frobnicate"},  // unknown subcommand
+      {"", "subcommand"},
+  };
+  for (const auto& [args, name] : cases) {
+    const Result r = run(args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(name), std::string::npos) << args << "\n" << r.output;
+  }
+  // Help is not an error.
+  EXPECT_EQ(run("--help").status, 0);
+  EXPECT_EQ(run("cosim --help").status, 0);
+}
+
+// Outputs are checked when the command line is read: an unwritable path fails at once, exit 2,
+// naming the option and the path, before any work (the error is the first thing printed).
+TEST(Cli, UnwritableOutputsFailBeforeAnyWork) {
+  const auto dir = temp_dir("outputs");
+  const std::string sphere = kScenes + "sphere.json";
+  std::ofstream(dir / "a_file") << "keep";
+  const std::string under_file = (dir / "a_file" / "sub" / "r.json").string();
+  const std::string bad_dir = (dir / "a_file").string() + " is not a folder";
+  // {command and option, the path given, what the message says of it}
+  const std::vector<std::array<std::string, 3>> cases = {
+      {"render " + sphere + " -o", "/proc/x", "/proc/x"},
+      {"render " + sphere + " --json", "/proc/x", "/proc/x"},
+      {"render " + sphere + " --json", under_file, bad_dir},
+      {"render " + sphere + " --save-stream", "/proc/x/s.cmd", "/proc/x"},
+      {"cycles " + sphere + " --json", "/proc/x", "/proc/x"},
+      {"regress " + sphere + " --backends cpp -o", "/proc/x", "/proc/x"},
+      {"regress " + sphere + " --backends cpp --json", under_file, bad_dir},
+      {"regress " + sphere + " --backends cpp --junit", "/proc/x", "/proc/x"},
+      {"explore " + sphere + " --json", "/proc/x", "/proc/x"},
+      {"explore " + sphere + " -o", "/proc/x", "/proc/x"},
+      {"area " + sphere + " --json", "/proc/x", "/proc/x"},
+      {"config " + sphere + " --json", (dir / "a_file" / "c.json").string(), bad_dir},
+      {"config " + sphere + " --json", dir.string(), dir.string() + " is a folder"},
+      {"cosim --config grey_s428w --json", "/proc/x", "/proc/x"},
+      {"cosim --config grey_s428w --save-dir", "/proc/x", "/proc/x"},
+      {"cosim --config grey_s428w --waves", "/proc/x/w.fst", "/proc/x"},
+      {"report -o", "/proc/x", "/proc/x"},
+  };
+  for (const auto& [command, path, named] : cases) {
+    const Result r = run(command + " " + path);
+    const std::string option = command.substr(command.rfind(' ') + 1);
+    EXPECT_EQ(r.status, 2) << command << " " << path << "\n" << r.output;
+    EXPECT_EQ(r.output.rfind("shadesim", 0), 0u) << "work before the error:\n" << r.output;
+    const std::string first_line = r.output.substr(0, r.output.find('\n'));
+    EXPECT_NE(first_line.find(named), std::string::npos) << first_line;
+    EXPECT_NE(first_line.find(option == "-o" ? "--out" : option), std::string::npos) << first_line;
+  }
+  // The check leaves nothing behind: a new folder it tried is gone when a later check fails,
+  // and an existing file is unchanged.
+  const auto fresh = dir / "fresh" / "deeper";
+  EXPECT_EQ(run("render " + sphere + " --json " + (fresh / "r.json").string() + " -o " +
+                (dir / "out").string() + " --series q4.28")
+                .status,
+            2);
+  EXPECT_FALSE(std::filesystem::exists(dir / "fresh"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out"));
+  EXPECT_EQ(
+      run("cycles " + sphere + " --json " + (dir / "a_file").string() + " --series q4.28").status,
+      2);
+  std::ifstream kept(dir / "a_file");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), std::istreambuf_iterator<char>()),
+            "keep");
+  std::filesystem::remove_all(dir);
+}
+
+// A budget of 0 or below is refused in words, not as CLI11's "not in range 0.000000 to <the
+// 309 digits of DBL_MAX>".
+TEST(Cli, NonPositiveBudgetSaysWhatIsExpected) {
+  const std::string sphere = kScenes + "sphere.json";
+  for (const char* budget : {"0", "-1", "-0.5"}) {
+    for (const std::string command : {"config", "render"}) {
+      const Result r = run(command + " " + sphere + " --budget " + budget);
+      EXPECT_EQ(r.status, 2) << r.output;
+      EXPECT_NE(r.output.find("--budget: must be greater than 0, got " + std::string(budget)),
+                std::string::npos)
+          << r.output;
+      EXPECT_EQ(r.output.find("0000000000"), std::string::npos) << r.output;
+    }
+  }
+  const Result timeout = run("regress " + sphere + " --timeout -3");
+  EXPECT_EQ(timeout.status, 2) << timeout.output;
+  EXPECT_NE(timeout.output.find("--timeout: must be 0 or more, got -3"), std::string::npos)
+      << timeout.output;
+}
+
+// sphere.json with the camera turned away from the ball: every triangle is behind it, so no
+// pixel is covered.
+std::string write_empty_scene(const std::filesystem::path& dir) {
+  auto scene = nlohmann::json::parse(std::ifstream(kScenes + "sphere.json"));
+  scene["camera"]["target"] = {0, 0, 10};  // the camera sits at z = 5, the ball at the origin
+  const std::string path = (dir / "empty.json").string();
+  std::ofstream(path) << scene.dump();
+  return path;
+}
+
+TEST(Cli, EmptyImageSaysSoInsteadOfAPsnr) {
+  const auto dir = temp_dir("empty");
+  const std::string empty = write_empty_scene(dir);
+  const Result r = run("render " + empty + " --out " + (dir / "o").string() + " --json " +
+                       (dir / "r.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("pixels       0 shaded"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the image is empty"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("PSNR 0.00 dB"), std::string::npos) << r.output;
+  std::ifstream js(dir / "r.json");
+  const auto j = nlohmann::json::parse(js);
+  EXPECT_TRUE(j["empty_image"].get<bool>());
+  EXPECT_TRUE(j["error"]["psnr_db"].is_null());
+  const Result units = run("render " + empty + " --all-units --out " + (dir / "u").string());
+  ASSERT_EQ(units.status, 0) << units.output;
+  EXPECT_EQ(units.output.find("0.00 dB"), std::string::npos) << units.output;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, ARunThatShadesNothingIsNotAPass) {
+#ifndef SHADESIM_HAVE_RTL
+  GTEST_SKIP() << "RTL not built (configure with -DSHADESIM_RTL=ON)";
+#endif
+  // 0 pixels in 0 cycles compares nothing: regress must not call it a pass.
+  const auto dir = temp_dir("empty_regress");
+  const Result r =
+      run("regress " + write_empty_scene(dir) + " --configs grey_s428w --backends cpp -j 1 --out " +
+          (dir / "reg").string() + " --json " + (dir / "r.json").string());
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("0 passed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("nothing was compared"), std::string::npos) << r.output;
+  std::ifstream js(dir / "r.json");
+  const auto j = nlohmann::json::parse(js);
+  ASSERT_EQ(j["jobs"].size(), 1u);
+  EXPECT_EQ(j["jobs"][0]["status"], "error");
+  // cosim on the empty image's stream, saved for grey_s428w's unit: exit 1, not a pass.
+  const Result list = run("cosim --list --list-json");
+  ASSERT_EQ(list.status, 0) << list.output;
+  for (const auto& b : nlohmann::json::parse(list.output)) {
+    if (b["name"] == "grey_s428w") std::ofstream(dir / "grey.json") << b["unit"].dump();
+  }
+  const Result saved = run("render " + (dir / "empty.json").string() + " -q --out " +
+                           (dir / "r").string() + " --config " + (dir / "grey.json").string() +
+                           " --save-stream " + (dir / "empty.cmds").string());
+  ASSERT_EQ(saved.status, 0) << saved.output;
+  const Result cosim = run("cosim --config grey_s428w --backend cpp --stream " +
+                           (dir / "empty.cmds").string() + " --save-dir " + dir.string());
+  EXPECT_EQ(cosim.status, 1) << cosim.output;
+  EXPECT_NE(cosim.output.find("nothing was compared"), std::string::npos) << cosim.output;
+  EXPECT_EQ(cosim.output.find("PASS"), std::string::npos) << cosim.output;
+  std::filesystem::remove_all(dir);
+}
+
+// regress --help printed "quick for runs under 0 M cycles" (500000 / 1000000 in integers): the
+// threshold it prints must be a real one, the one docs/builds.md states.
+TEST(Cli, RegressHelpPrintsTheQuickBuildThreshold) {
+  const Result r = run("regress --help");
+  ASSERT_EQ(r.status, 0);
+  const std::string key = "quick for runs under ";
+  const size_t at = r.output.find(key);
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const std::string figure =
+      r.output.substr(at + key.size(), r.output.find(' ', at + key.size()) - (at + key.size()));
+  EXPECT_GT(std::stoull(figure), 0u) << figure;
+  EXPECT_EQ(r.output.compare(at + key.size() + figure.size(), 7, " cycles"), 0) << r.output;
+  std::ifstream doc(std::string(SHADESIM_SOURCE_DIR) + "/docs/builds.md");
+  const std::string text((std::istreambuf_iterator<char>(doc)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("sim/rtl_build.h`: " + figure + " cycles"), std::string::npos) << figure;
+}
+
+TEST(Cli, CosimRefusesAFaultOnARowWithNoPixels) {
+#ifndef SHADESIM_HAVE_RTL
+  GTEST_SKIP() << "RTL not built (configure with -DSHADESIM_RTL=ON)";
+#endif
+  // The tiny scenario's stream covers a few rows near the top of the screen, never row 4000:
+  // a fault there could never show, and used to pass silently.
+  const std::string cosim = "cosim --config grey_s428w --backend cpp --scenario tiny --fault ";
+  const Result empty_row = run(cosim + "lsb@4000");
+  EXPECT_EQ(empty_row.status, 2) << empty_row.output;
+  EXPECT_NE(empty_row.output.find("--fault lsb@4000: row 4000"), std::string::npos)
+      << empty_row.output;
+  EXPECT_NE(empty_row.output.find("no pixels"), std::string::npos) << empty_row.output;
+  // On a row with pixels the fault is injected and caught.
+  const Result covered = run(cosim + "lsb@2");
+  EXPECT_EQ(covered.status, 1) << covered.output;
+}
+
+// The first mismatch's place as the harness and regress print it: "scanline S (y=Y), x=X, cycle C".
+std::string mismatch_place(const std::string& output) {
+  std::smatch m;
+  static const std::regex place(R"(scanline \d+ \(y=\d+\), x=\d+, cycle \d+)");
+  return std::regex_search(output, m, place) ? m.str() : "";
+}
+
+// Every "replay: " line of `output`, with its "shadesim" made this build's binary.
+std::vector<std::string> replay_lines(const std::string& output) {
+  std::vector<std::string> lines;
+  std::istringstream is(output);
+  for (std::string line; std::getline(is, line);) {
+    const size_t at = line.find("replay: shadesim ");
+    if (at != std::string::npos) {
+      lines.push_back(std::string(SHADESIM_BINARY_DIR) + "/" + line.substr(at + 8));
+    }
+  }
+  return lines;
+}
+
+// A failing run (a deliberate fault, with a build cache named by --cache and --waves) prints
+// replay lines; pasted in the same folder, each must run and fail at the same place.
+TEST(Cli, ReplayLinesRunWhenPastedAndReproduceTheFailure) {
+#ifndef SHADESIM_HAVE_RTL
+  GTEST_SKIP() << "RTL not built (configure with -DSHADESIM_RTL=ON)";
+#endif
+  const auto dir = temp_dir("replay");
+  const std::string cd = "cd " + dir.string() + " && ";
+  const std::string cache = std::string(SHADESIM_BINARY_DIR) + "/rtl-cache";
+  const std::string shadesim = std::string(SHADESIM_BINARY_DIR) + "/shadesim ";
+  const Result regress =
+      run_shell(cd + shadesim + "regress " + kScenes +
+                "sphere.json --configs grey_s428w --backends cpp -j 1 --fault lsb@128 --cache " +
+                cache + " --out reg");
+  EXPECT_EQ(regress.status, 1) << regress.output;
+  const Result cosim =
+      run_shell(cd + shadesim + "cosim --config grey_s428w --scenario tiny --fault lsb@2 --cache " +
+                cache + " --waves w.fst");
+  EXPECT_EQ(cosim.status, 1) << cosim.output;
+  for (const Result* failed : {&regress, &cosim}) {
+    const std::vector<std::string> lines = replay_lines(failed->output);
+    ASSERT_FALSE(lines.empty()) << failed->output;
+    const std::string place = mismatch_place(failed->output);
+    ASSERT_FALSE(place.empty()) << failed->output;
+    for (const std::string& line : lines) {
+      EXPECT_NE(line.find("--cache " + cache), std::string::npos) << line;
+      const Result replayed = run_shell(cd + line);
+      EXPECT_EQ(replayed.status, 1) << line << "\n" << replayed.output;
+      EXPECT_EQ(mismatch_place(replayed.output), place) << line << "\n" << replayed.output;
+    }
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// A width option without an overflow suffix saturates, where SystemC's sc_fix would wrap: the
+// command says so, naming the option, and is silent when the suffix is written.
+TEST(Cli, WidthWithoutOverflowSuffixSaysItSaturates) {
+  const auto dir = temp_dir("suffix");
+  const std::string render = "render " + kScenes + "sphere.json -q --out " + dir.string();
+  const Result plain = run(render + " --coef s4.32");
+  ASSERT_EQ(plain.status, 0) << plain.output;
+  EXPECT_NE(plain.output.find("--coef s4.32 has no overflow suffix, so it saturates"),
+            std::string::npos)
+      << plain.output;
+  EXPECT_NE(plain.output.find("s4.32:wrap"), std::string::npos) << plain.output;
+  for (const char* given : {"s4.32:wrap", "s4.32:rnd:sat"}) {
+    const Result chosen = run(render + " --coef " + given);
+    ASSERT_EQ(chosen.status, 0) << chosen.output;
+    EXPECT_EQ(chosen.output.find("no overflow suffix"), std::string::npos) << chosen.output;
+  }
+  const Result help = run("render --help");
+  EXPECT_NE(help.output.find("no suffix means :trn and :sat"), std::string::npos) << help.output;
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Cli, HelpListsSubcommandAndWidthDefaults) {

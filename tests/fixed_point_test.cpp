@@ -155,6 +155,33 @@ TEST(FixedPoint, ParseAndPrintRoundTrip) {
   EXPECT_TRUE(f.is_signed);
 }
 
+// What a width without suffixes means, against SystemC's own defaults (sc_fix(wl, iwl) with no
+// modes given: SC_TRN, SC_WRAP in IEEE 1666's default sc_fxtype_context). shadesim reads "s4.28"
+// as truncate and saturate (its stream headers and UnitConfig files write saturating formats
+// without a suffix), so the quantization agrees with sc_fix and the overflow does not: the width
+// options warn when given a width with no overflow suffix (sim/width_options.h), and
+// "s4.28:wrap" is what sc_fix's s4.28 means.
+TEST(FixedPoint, SuffixlessWidthTruncatesLikeScFixButSaturatesWhereScFixWraps) {
+  const FixedFormat plain = parse_fixed_format("s2.4", "t");
+  const FixedFormat wrap = parse_fixed_format("s2.4:wrap", "t");
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> dist(-8.0, 8.0);
+  int saturate_differs = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const double x = dist(rng);
+    sc_dt::sc_fix sc(plain.wl, plain.iwl);  // SystemC's default modes
+    sc = x;
+    const int64_t sc_value = static_cast<int64_t>(std::ldexp(sc.to_double(), plain.frac_bits()));
+    ASSERT_EQ(wrap.from_double(x), sc_value) << "x=" << x;
+    if (plain.holds(static_cast<int64_t>(std::floor(std::ldexp(x, plain.frac_bits()))))) {
+      ASSERT_EQ(plain.from_double(x), sc_value) << "in range, x=" << x;  // truncation agrees
+    } else {
+      saturate_differs += plain.from_double(x) != sc_value;
+    }
+  }
+  EXPECT_GT(saturate_differs, 1000);  // out of range: saturated here, wrapped by sc_fix
+}
+
 TEST(FixedPoint, ParseRejectsMalformedWithFieldName) {
   for (const char* text : {"", "x4.28", "s4", "s4.", "s.28", "s4.28:foo", "s4.2x", "s70.10"}) {
     try {

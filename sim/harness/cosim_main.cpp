@@ -88,6 +88,7 @@ struct Options {
   std::string save_dir = ".";
   std::string json_path;
   std::string waves_path;
+  std::string replay_prefix;  // how replay lines start; empty: the executable's own command
   uint64_t waves_before = 200, waves_after = 16;
   double min_spec_pct = 0;
   uint64_t watchdog =
@@ -399,7 +400,7 @@ void print_run_line(const CosimJob& job, const CosimResult& r, const CosimExecut
       static_cast<unsigned long long>(r.scanlines), static_cast<unsigned long long>(r.cycles),
       r.pixels ? static_cast<double>(r.cycles) / static_cast<double>(r.pixels) : 0.0, r.seconds,
       r.seconds > 0 ? static_cast<double>(r.cycles) / r.seconds / 1e6 : 0.0,
-      r.passed() ? "PASS" : "MISMATCH");
+      r.passed() ? (r.pixels > 0 ? "PASS" : "EMPTY") : "MISMATCH");
   std::cout << line << '\n';
 }
 
@@ -452,7 +453,8 @@ bool check_specular_share(Outcome& out, const Options& o) {
 std::string replay_line(const CosimJob& job, const std::string& stream_path, const Options& o,
                         const CosimExecutable& exe) {
   const bool hooks = job.config.faults.hooks;
-  return exe.command + (hooks ? " --config " + job.config.name : "") +
+  return (o.replay_prefix.empty() ? exe.command : o.replay_prefix) +
+         (hooks ? " --config " + job.config.name : "") +
          (job.fault.any() ? " --fault " + job.fault.text() : "") + " --stream " + stream_path +
          ' ' + job.stim.to_args() +
          (o.watchdog > 0 ? " --watchdog " + std::to_string(o.watchdog) : "");
@@ -530,6 +532,17 @@ int run_all(const Options& o, const CosimExecutable& exe) {
   const FaultInjection fault = parse_fault_option(o.fault, build);
   std::vector<CosimJob> jobs = make_jobs(o, build);
   for (CosimJob& job : jobs) job.fault = fault;
+  // A fault on a row no run's stream covers can never show: refuse it rather than pass silently.
+  if (fault.any() && std::none_of(jobs.begin(), jobs.end(), [&](const CosimJob& job) {
+        return Expectation::first_span_x(job.stream, fault.row) >= 0;
+      })) {
+    throw InputError(
+        "--fault " + o.fault + ": row " + std::to_string(fault.row) + " has no pixels in " +
+        (jobs.size() == 1 ? "the " + jobs[0].scenario + " stream (seed " +
+                                std::to_string(jobs[0].stim.seed) + ")"
+                          : "any of the " + std::to_string(jobs.size()) + " runs' streams") +
+        ", so the fault could never show; choose a row with spans");
+  }
   check_run_options(o, jobs, exe);
 
   std::vector<Outcome> outcomes;
@@ -541,6 +554,12 @@ int run_all(const Options& o, const CosimExecutable& exe) {
     print_run_line(job, out.result, exe);
     if (!check_specular_share(out, o)) ++failures;
     if (out.result.passed()) {
+      // No pixel compared is no evidence: a run that shaded nothing is not a pass (issue 23).
+      if (out.result.pixels == 0) {
+        std::cout << "  FAIL: the run shaded 0 pixels in " << out.result.cycles
+                  << " cycles: nothing was compared (an empty stream?)\n";
+        ++failures;
+      }
       outcomes.push_back(out);
       continue;
     }
@@ -630,6 +649,9 @@ int cosim_main(int argc, char** argv, const CosimExecutable& exe) {
                  "SITE@Y - inject one deliberate fault on row Y (a build with fault hooks, e.g. "
                  "grey_s428w); SITE is one of:" +
                      sites);
+  app.add_option("--replay-prefix", o.replay_prefix,
+                 "the shadesim command line replay lines start with (shadesim cosim and regress "
+                 "pass it: backend, cache, netlist)");
   app.add_option("--save-dir", o.save_dir, "where a failing run's command stream is saved");
   auto* json_opt =
       app.add_option("--json", o.json_path, "write each run's result as JSON to this file")

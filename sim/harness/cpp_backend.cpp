@@ -84,9 +84,7 @@ CosimResult run_cpp(const CosimJob& job, const WaveWindow* waves, const BuiltMod
 }  // namespace
 
 int cpp_cosim_main(int argc, char** argv, const BuiltModel& model) {
-  CosimExecutable exe = executable_of(
-      model, "cpp",
-      model.traced ? "shadesim cosim --backend cpp --waves" : "shadesim cosim --backend cpp");
+  CosimExecutable exe = executable_of(model, "cpp", "shadesim cosim --backend cpp");
   exe.run = [&model](const CosimJob& job, const WaveWindow* waves) {
     return run_cpp(job, waves, model);
   };

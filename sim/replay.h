@@ -1,0 +1,37 @@
+// The one home of replay lines' start (issue 23): "shadesim cosim --backend B" and every option
+// that chose which executable ran (--cache, --netlist, --netlist-cache), so a printed replay line
+// runs when pasted. shadesim cosim and regress pass it to the co-simulation (--replay-prefix),
+// whose replay_line (sim/harness/cosim_main.cpp) adds the build, fault, stream and stimulus;
+// regress's own replay lines (a timeout, a crash) start with it too.
+#pragma once
+
+#include <string>
+
+namespace shadesim {
+
+// `text` as one shell word: quoted when it holds anything but [A-Za-z0-9_./:=@,+-].
+inline std::string shell_word(const std::string& text) {
+  bool plain = !text.empty();
+  for (char c : text) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    std::string("_./:=@,+-").find(c) != std::string::npos;
+    plain = plain && ok;
+  }
+  if (plain) return text;
+  std::string q = "'";
+  for (char c : text) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// "shadesim cosim --backend cpp --cache DIR --netlist --netlist-cache DIR": empty folders are
+// the defaults and left out.
+inline std::string cosim_replay_prefix(const std::string& backend, const std::string& cache,
+                                       bool netlist, const std::string& netlist_cache) {
+  std::string s = "shadesim cosim --backend " + shell_word(backend);
+  if (!cache.empty()) s += " --cache " + shell_word(cache);
+  if (netlist) s += " --netlist";
+  if (netlist && !netlist_cache.empty()) s += " --netlist-cache " + shell_word(netlist_cache);
+  return s;
+}
+
+}  // namespace shadesim
