@@ -117,7 +117,9 @@ TEST(Cli, CyclesBreakdownPartitionsTheRunAndShowsBackPressure) {
   }
   EXPECT_GT(pressed["cycles"].get<uint64_t>(), free_run["cycles"].get<uint64_t>());
   for (const auto& row : pressed["breakdown"]) {
-    if (row["name"] == "back_pressure") EXPECT_GT(row["cycles"].get<uint64_t>(), 0u);
+    if (row["name"] == "back_pressure") {
+      EXPECT_GT(row["cycles"].get<uint64_t>(), 0u);
+    }
   }
   std::filesystem::remove_all(dir);
 }

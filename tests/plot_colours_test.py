@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""scripts/plot gives every unit family (spec-error) and every stage (explore) its own colour.
+"""scripts/plot gives every unit family (spec-error) and every stage (explore) its own colour,
+and the explore plot names its start once and no cache key on an axis.
 
 Issue 10: spec-error's plot colours used to repeat silently once there were more families than
 the palette held. This draws a spec-error report with many families through scripts/plot's real
@@ -66,11 +67,38 @@ def main():
         failures.append(f"{len(by_label)} families share {len(set(by_label.values()))} colours")
     plot.plt.close("all")
 
+    failures += explore_legend_and_axes(plot)
+
     for f in failures:
         print("FAIL:", f)
     if failures:
         sys.exit(1)
     print(f"plot colours: distinct for 1..60 colours and for {len(families)} spec-error families")
+
+
+def explore_legend_and_axes(plot):
+    """An explore report whose start point is a stage of its own, with an area metric naming its
+    Yosys anchor by cache key: the legend names the start once, the axis no cache key."""
+    def point(stage, area, err, pareto=False):
+        return {"valid": True, "stage": stage, "phase": "", "area": area, "cycles_per_pixel": 1.0,
+                "pareto": pareto, "error": {"max_code_lsb": err, "mean_code_lsb": err / 4}}
+    points = [point("start", 100.0, 1.0), point("coef", 90.0, 2.0, True), point("series", 80.0, 3.0)]
+    key = "5f3a9c0e12d4b7a8"
+    report = {"points": points, "start_index": 0, "chosen_index": 1, "start": {"out_bits": 8},
+              "budget_lsb": 2, "scenes": ["scenes/sphere.json"],
+              "area_metric": f"generic cells, estimate (scaled from Yosys run {key}, 2 parameters differ)"}
+    failures = []
+    with tempfile.TemporaryDirectory() as tmp:
+        plot.plot_explore(report, os.path.join(tmp, "explore.png"))
+    fig = plot.plt.gcf()
+    labels = [t.get_text() for legend in fig.legends for t in legend.get_texts()]
+    if labels.count("start") != 1:
+        failures.append(f"explore legend names 'start' {labels.count('start')} times: {labels}")
+    xlabels = " | ".join(ax.get_xlabel() for ax in fig.axes)
+    if key in xlabels:
+        failures.append(f"explore axis label carries the Yosys cache key: {xlabels}")
+    plot.plt.close("all")
+    return failures
 
 
 if __name__ == "__main__":
