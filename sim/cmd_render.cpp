@@ -265,6 +265,7 @@ int run_render(const RenderOptions& o) {
                    {"reference", (out_dir / "reference.png").string()},
                    {"error", (out_dir / "error.png").string()},
                    {"compare", (out_dir / "compare.png").string()}};
+    j["heat_scale_lsb"] = o.heat_scale_lsb;  // the error map's full scale (red), for its legend
     std::ofstream os(o.json_path);
     if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
     os << j.dump(2) << '\n';

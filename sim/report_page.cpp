@@ -174,6 +174,23 @@ std::string scene_name(const json& doc) {
   return s.is_string() ? fs::path(s.get<std::string>()).stem().string() : "(no scene name)";
 }
 
+// The heat map's colour scale (host/image.h error_heat_map): black exactly 0, then blue, green,
+// yellow, red at full scale and beyond; dark grey where no pixel was shaded.
+std::string heat_scale(const json& render) {
+  const json full = at(render, {"heat_scale_lsb"});
+  if (!full.is_number()) {
+    return "<p class=\"missing\">colour scale: not recorded (render JSON without "
+           "heat_scale_lsb)</p>\n";
+  }
+  const std::string f = text(full);
+  return "<p class=\"scale\">error colour scale: <span class=\"swatch\" "
+         "style=\"background:#000\"></span> 0 LSB <span class=\"bar\"></span> " +
+         esc(f) + " LSB and more (blue at &gt; 0, green " +
+         esc(text(json(full.get<double>() / 3))) + ", yellow " +
+         esc(text(json(2 * full.get<double>() / 3))) + ", red " + esc(f) +
+         ") <span class=\"swatch\" style=\"background:#303030\"></span> not shaded</p>\n";
+}
+
 std::string render_section(const ReportInput& in) {
   const json& d = in.doc;
   std::string h = "<h3>" + esc(scene_name(d)) + "</h3>\n" + source(in);
@@ -183,7 +200,7 @@ std::string render_section(const ReportInput& in) {
                    scene_name(d) + ": model | reference | error")
            : "<p class=\"missing\">" + esc(in.path) +
                  ": no images.compare (expected the path of render's compare.png)</p>";
-  h += "<p class=\"caption\">model | reference | error heat map</p>\n";
+  h += "<p class=\"caption\">model | reference | error heat map</p>\n" + heat_scale(d);
   h += key_values(
       {{"image", json(text(at(d, {"width"})) + "x" + text(at(d, {"height"})))},
        {"specular unit", at(d, {"specular_unit"})},
@@ -388,12 +405,61 @@ const char* kStyle =
     "body{font-family:sans-serif;margin:1.5em;max-width:1400px;color:#222}"
     "table{border-collapse:collapse;margin:.5em 0 1em}td,th{border:1px solid #bbb;padding:2px 8px;"
     "text-align:left;font-size:90%}th{background:#eee}table.kv th{width:18em}"
+    ".swatch,.bar{display:inline-block;height:1em;vertical-align:middle;border:1px solid #888}"
+    ".swatch{width:1em}.bar{width:12em;background:linear-gradient(to right,#0000ff,#00ff00,"
+    "#ffff00,#ff0000)}.verdict{font-size:120%;padding:.4em;border:2px solid #888}"
+    ".verdict.fail{border-color:#c00}.verdict.pass{border-color:#080}"
     "img{max-width:100%;border:1px solid #ccc;image-rendering:pixelated}"
     ".missing{color:#865;font-style:italic}.problem{color:#b00}.source,.caption{color:#666;font-"
     "size:85%}"
     "code{background:#f4f4f4;padding:1px 3px}section{margin-bottom:2em}";
 
 }  // namespace
+
+// The page's first line: the regression's totals over every regress input, the worst render
+// error, and the inputs that could not be read.
+std::string verdict(const ReportPage& page) {
+  int64_t runs = 0, failed = 0, renders = 0;
+  double worst = -1;
+  std::string worst_scene;
+  auto count = [](const json& d, const char* key) {
+    const json v = at(d, {key});
+    return v.is_number_integer() ? v.get<int64_t>() : int64_t{0};
+  };
+  for (const auto& in : page.inputs.inputs) {
+    if (in.kind == ReportKind::kRegress) {
+      const int64_t bad = count(in.doc, "mismatched") + count(in.doc, "errors") +
+                          count(in.doc, "hangs") + count(in.doc, "timeouts") +
+                          count(in.doc, "missing");
+      runs += count(in.doc, "passed") + bad;
+      failed += bad;
+    } else if (in.kind == ReportKind::kRender) {
+      ++renders;
+      const json e = at(in.doc, {"error", "max_code_lsb"});
+      if (e.is_number() && e.get<double>() > worst) {
+        worst = e.get<double>();
+        worst_scene = scene_name(in.doc);
+      }
+    }
+  }
+  const size_t problems = page.inputs.problems.size();
+  const bool fail = failed > 0 || problems > 0;
+  std::string v =
+      runs > 0
+          ? (failed > 0 ? std::to_string(failed) + " of " + std::to_string(runs) +
+                              " regression runs failed"
+                        : "all " + std::to_string(runs) + " regression runs bit- and cycle-exact")
+          : "no regression among the inputs";
+  if (renders > 0) {
+    v +=
+        "; " + std::to_string(renders) + " render(s)" +
+        (worst >= 0 ? ", worst max error " + text(json(worst)) + " LSB (" + worst_scene + ")" : "");
+  }
+  v += "; " + std::to_string(problems) + " input(s) could not be read";
+  const char* word = fail ? "FAIL" : (runs > 0 ? "PASS" : "no verdict");
+  return "<p class=\"verdict " + std::string(fail ? "fail" : (runs > 0 ? "pass" : "none")) +
+         "\" id=\"verdict\"><b>Verdict: " + word + "</b>: " + esc(v) + ".</p>\n";
+}
 
 const std::vector<std::string>& report_sections() {
   static const std::vector<std::string> titles = {"Inputs",
@@ -447,7 +513,8 @@ std::string report_html(const ReportPage& page) {
       "</style></head><body>\n"
       "<h1>shadesim report</h1>\n<p>Generated " +
       esc(page.generated) +
-      " by <code>shadesim report</code> from the JSON the other commands write.</p>\n";
+      " by <code>shadesim report</code> from the JSON the other commands write.</p>\n" +
+      verdict(page);
   h += section(t[0], inputs);
   h += section(t[1], kind_body(page, {ReportKind::kRender, ReportKind::kRenderUnits},
                                "<code>scripts/render</code> writes out/&lt;scene&gt;/render.json.",

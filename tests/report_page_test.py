@@ -9,7 +9,8 @@ two need Yosys or the RTL, minutes, which this test does not spend), a unit conf
 JUnit file (both listed as not read, with why). Writes the page, loads it in Debian's chromium
 (--headless) and asserts that the screenshot is not blank (pixel spread and colours, decoded with
 matplotlib), that the console logged no error, and that every section heading, the embedded
-images, the failure's replay command and the cycles breakdown are in the DOM. First it checks
+images, the failure's replay command, the cycles breakdown, the verdict line (FAIL: 1 of 2
+regression runs failed) and the heat map's colour scale are in the DOM. First it checks
 the console check itself on a page with a script error, so the check can fail. Then: a report
 without inputs says so in every section and names the folder; a malformed input is named.
 """
@@ -133,6 +134,18 @@ def main():
     for s in SECTIONS:
         check(s in headings, f"section '{s}' in the DOM")
     check(dom.count('src="data:image/png;base64,') >= 3, "render image and both plots are embedded in the DOM")
+    # The verdict comes first, from the inputs' totals: one of the two regression runs failed.
+    verdict = re.search(r'<p class="verdict (\w+)" id="verdict"><b>Verdict: (\w+)</b>: (.*?)</p>', dom)
+    check(bool(verdict) and dom.find('id="verdict"') < dom.find("<h2>"), "a verdict line before the first section")
+    if verdict:
+        check(verdict.group(2) == "FAIL" and "1 of 2 regression runs failed" in verdict.group(3),
+              "the verdict says FAIL, 1 of 2 regression runs failed: " + verdict.group(3))
+    # The heat map's colour scale, at the full scale render used (--heat-scale, 4 LSB by default).
+    with open(os.path.join(sphere, "render.json")) as f:
+        full = json.load(f)["heat_scale_lsb"]
+    check(full == 4, f"render.json records the heat map's full scale (4 LSB by default, got {full})")
+    check(re.search(r'class="scale">error colour scale:.*0 LSB.*class="bar".*\b4 LSB and more', dom) is not None,
+          "the error heat map has its colour scale, 0 to 4 LSB")
     check(replay in dom, "the failure's replay command is on the page")
     check("grey_s428w" in dom and "mismatch" in dom, "the regression table lists the failing run")
     with open(os.path.join(sphere, "cycles.json")) as f:
