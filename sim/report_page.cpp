@@ -120,6 +120,22 @@ std::string plot(const ReportPage& page, const ReportInput& in, const std::strin
 }
 
 // A table of the rows of an array of objects: the given columns, or every key the rows have.
+// A JSON key as words for a heading: `cycles_per_pixel` -> "cycles per pixel", `stream.words`
+// -> "stream: words".
+std::string plain(const std::string& key) {
+  std::string out;
+  for (size_t i = 0; i < key.size(); ++i) {
+    if (key[i] == '_') {
+      out += ' ';
+    } else if (key[i] == '.') {
+      out += ": ";
+    } else {
+      out += key[i];
+    }
+  }
+  return out;
+}
+
 std::string table(const json& rows, std::vector<std::pair<std::string, std::string>> columns,
                   size_t limit = 200) {
   if (!rows.is_array() || rows.empty()) return "<p class=\"missing\">(no rows)</p>\n";
@@ -129,7 +145,7 @@ std::string table(const json& rows, std::vector<std::pair<std::string, std::stri
       for (const auto& [k, v] : r.items()) {
         bool seen = false;
         for (const auto& c : columns) seen = seen || c.first == k;
-        if (!seen) columns.emplace_back(k, k);
+        if (!seen) columns.emplace_back(k, plain(k));
       }
     }
   }
@@ -293,13 +309,14 @@ std::string cycles_section(const ReportInput& in) {
   for (const auto& [k, v] : d.items()) {
     if (k == "scene" || k == "config" || k == "breakdown") continue;
     if (v.is_array() && !v.empty() && v.front().is_object()) {
-      tables += "<h4>" + esc(k) + "</h4>\n" + table(v, {});
+      tables += "<h4>" + esc(plain(k)) + "</h4>\n" + table(v, {});
     } else if (v.is_object()) {
       flatten(v, k + ".", figures);
     } else {
       figures.emplace_back(k, v);
     }
   }
+  for (auto& f : figures) f.first = plain(f.first);
   h += "<h4>breakdown</h4>\n" +
        table(d["breakdown"],
              {{"name", "reason"}, {"cycles", "cycles"}, {"percent", "%"}, {"meaning", "meaning"}});
@@ -323,7 +340,7 @@ std::string cycles_summary(const ReportPage& page) {
       row[key] = at(r, {"percent"});
       if (std::none_of(columns.begin(), columns.end(),
                        [&](const auto& c) { return c.first == key; })) {
-        columns.emplace_back(key, key + " %");
+        columns.emplace_back(key, plain(key) + " %");
       }
     }
     rows.push_back(row);
@@ -345,6 +362,8 @@ std::string regress_section(const ReportInput& in) {
   for (const auto& j : d["jobs"]) {
     if (!j.is_object()) continue;
     json row = j;
+    // A run that stopped early has no cycles per pixel to speak of.
+    if (text(at(j, {"status"})) != "pass") row["cycles_per_pixel"] = "-";
     const json scene = at(j, {"scene"});
     row["scene"] =
         scene.is_string() ? json(fs::path(scene.get<std::string>()).stem().string()) : scene;

@@ -134,6 +134,11 @@ def main():
     for s in SECTIONS:
         check(s in headings, f"section '{s}' in the DOM")
     check(dom.count('src="data:image/png;base64,') >= 3, "render image and both plots are embedded in the DOM")
+    # Headings in words, not JSON keys; no cycles per pixel for the run that stopped early.
+    check(re.search(r"<th>\w+_\w+", dom) is None, "no table heading is a raw JSON key (snake_case)")
+    failing_row = re.search(r"<tr>(?:<td>[^<]*</td>)*?<td>mismatch</td>.*?</tr>", dom)
+    check(bool(failing_row) and "<td>0</td><td>0.9</td>" not in failing_row.group(0) and
+          "<td>-</td>" in failing_row.group(0), "the failing run shows no cycles per pixel")
     # The verdict comes first, from the inputs' totals: one of the two regression runs failed.
     verdict = re.search(r'<p class="verdict (\w+)" id="verdict"><b>Verdict: (\w+)</b>: (.*?)</p>', dom)
     check(bool(verdict) and dom.find('id="verdict"') < dom.find("<h2>"), "a verdict line before the first section")
