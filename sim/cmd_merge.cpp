@@ -118,10 +118,13 @@ int run_merge(const MergeOptions& o) {
     r.scene_name = fs::path(p.spec.scene).stem().string();
     r.status = "missing";
     const auto u = unfinished.find(id);
-    r.message =
-        "planned in " + p.plan + ", but no folder holds its result: " +
-        (u != unfinished.end() ? u->second + " has no run.json (started, never finished: killed?)"
-                               : std::string("never started"));
+    r.message = "planned in " + p.plan + ", but no folder holds its result: " +
+                (u == unfinished.end() ? std::string("never started")
+                 // regress prepares every run's folder (its stream) before any runs; a run that
+                 // started has its simulator's log there.
+                 : fs::exists(fs::path(u->second) / "cosim.log")
+                     ? u->second + " has no run.json (started, never finished: killed?)"
+                     : u->second + " was prepared but its run never started (the job was stopped)");
     if (u != unfinished.end()) r.dir = u->second;
     missing.push_back(id);
     records.push_back(r);
@@ -133,7 +136,8 @@ int run_merge(const MergeOptions& o) {
   std::cout << "\nmerge: " << records.size() << " run(s) from " << o.dirs.size()
             << " folder(s): " << c.passed << " passed, " << c.mismatched << " mismatched, "
             << c.hangs << " hung, " << c.timeouts << " timed out, " << c.errors << " error(s), "
-            << c.skipped << " skipped, " << c.missing << " missing\n";
+            << c.skipped << " skipped, " << c.missing << " missing, " << c.interrupted
+            << " interrupted (--resume runs them)\n";
   for (const auto& r : records) {
     if (r.status != "pass" && r.status != "skipped") {
       std::cout << "  " << r.status << ": " << r.spec.id() << ": " << r.message

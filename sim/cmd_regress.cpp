@@ -35,6 +35,7 @@
 #include "sim/area.h"
 #include "sim/commands.h"
 #include "sim/coverage.h"
+#include "sim/interrupt.h"
 #include "sim/number_checks.h"
 #include "sim/output_paths.h"
 #include "sim/process.h"
@@ -758,11 +759,25 @@ void run_jobs(std::vector<Job>& jobs, const RegressOptions& o, const RunSettings
   parallel_for(jobs.size(), workers, [&](size_t i) {
     Job& j = jobs[i];
     if (j.rec.status == "pending") {
-      try {
-        run_job(j, o, settings);
-      } catch (const std::exception& e) {
-        j.rec.status = "error";
-        j.rec.message = e.what();
+      if (InterruptGuard::requested()) {
+        j.rec.status = "interrupted";
+        j.rec.message = "not run: the regression got signal " +
+                        std::to_string(InterruptGuard::signal_number()) +
+                        " before it started (--resume runs it)";
+      } else {
+        try {
+          run_job(j, o, settings);
+        } catch (const std::exception& e) {
+          j.rec.status = "error";
+          j.rec.message = e.what();
+        }
+        // A run that failed after the signal (which reaches the simulator too) was stopped by
+        // it, not by the RTL.
+        if (j.rec.status != "pass" && InterruptGuard::requested()) {
+          j.rec.message = "stopped by signal " + std::to_string(InterruptGuard::signal_number()) +
+                          " (--resume runs it again): " + j.rec.message;
+          j.rec.status = "interrupted";
+        }
       }
       try {
         save_record(j);
@@ -822,7 +837,8 @@ Selection select_resumed(const RegressOptions& o) {
     if (fs::exists(record)) {
       try {
         RunRecord r = read_run_record(record.string());
-        if (r.status != "error") {  // an error may be the machine's: run it again
+        // An error may be the machine's, an interrupted run never finished: run them again.
+        if (r.status != "error" && r.status != "interrupted") {
           sel.earlier.push_back(r);
           continue;
         }
@@ -899,6 +915,7 @@ RunCounts report_runs(const std::vector<RunRecord>& records, const RegressOption
   const RunCounts c = count_runs(records);
   std::cout << "\nregress: " << c.passed << " passed, " << c.mismatched << " mismatched, "
             << c.hangs << " hung, " << c.timeouts << " timed out, " << c.errors << " error(s), "
+            << (c.interrupted > 0 ? std::to_string(c.interrupted) + " interrupted, " : "")
             << c.skipped << " skipped (the scene does not fit the configuration) in "
             << fmt(wall, 1) << " s with " << workers << " job(s)\n";
   for (const auto& r : records) {
@@ -1052,6 +1069,7 @@ int run_regress(const RegressOptions& o) {
   std::vector<Job> jobs = plan_jobs(sel.selected, sel.out, sel.base, prefetch, netlists.get());
   if (netlists) resolve_netlists(jobs, *netlists);
   const auto t0 = std::chrono::steady_clock::now();
+  const InterruptGuard interrupt;  // Ctrl-C: no new runs; the rest are recorded as interrupted
   build_all(jobs, o, workers);
   run_jobs(jobs, o, sel.settings, workers);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -1061,6 +1079,12 @@ int run_regress(const RegressOptions& o) {
   const RunCounts c = report_runs(records, o, wall, workers);
   const bool coverage_met = !o.coverage || report_coverage(records, sel.out, o);
 
+  if (InterruptGuard::requested()) {
+    std::cout << "regress: interrupted by signal " << InterruptGuard::signal_number() << ": "
+              << c.interrupted << " run(s) recorded as interrupted; run them with: " << self_path()
+              << " regress --resume " << shell_quote(sel.out.string()) << std::endl;
+    return 128 + InterruptGuard::signal_number();
+  }
   if (c.passed == 0 && !c.failed()) {
     std::cout << "regress: FAIL: no run was executed\n";
     return 1;

@@ -64,8 +64,8 @@ T optional(const nlohmann::json& j, const char* key, T fallback, const std::stri
 }
 
 const std::vector<std::string>& known_statuses() {
-  static const std::vector<std::string> s = {"pass",  "mismatch", "hang",   "timeout",
-                                             "error", "skipped",  "missing"};
+  static const std::vector<std::string> s = {"pass",  "mismatch", "hang",        "timeout",
+                                             "error", "skipped",  "interrupted", "missing"};
   return s;
 }
 
@@ -129,12 +129,13 @@ RunRecord read_run_record(const std::string& path) {
                                        path, "a string");
   r.unit = j.contains("unit") ? j.at("unit") : nlohmann::json();
   r.unit_text = optional<std::string>(j, "unit_text", "", path, "a string");
-  r.status =
-      required<std::string>(j, "status", path, "pass, mismatch, hang, timeout, error or skipped");
+  r.status = required<std::string>(j, "status", path,
+                                   "pass, mismatch, hang, timeout, error, skipped or interrupted");
   if (std::find(known_statuses().begin(), known_statuses().end(), r.status) ==
       known_statuses().end()) {
-    throw std::runtime_error(path + ": field 'status' is '" + r.status +
-                             "', expected pass, mismatch, hang, timeout, error or skipped");
+    throw std::runtime_error(
+        path + ": field 'status' is '" + r.status +
+        "', expected pass, mismatch, hang, timeout, error, skipped or interrupted");
   }
   r.pixels = required<uint64_t>(j, "pixels", path, "an unsigned pixel count");
   r.cycles = required<uint64_t>(j, "cycles", path, "an unsigned cycle count");
@@ -210,6 +211,8 @@ RunCounts count_runs(const std::vector<RunRecord>& records) {
       ++c.skipped;
     else if (r.status == "missing")
       ++c.missing;
+    else if (r.status == "interrupted")
+      ++c.interrupted;
     else
       ++c.errors;
   }
@@ -274,11 +277,12 @@ void write_json_report(const std::string& path, const std::vector<RunRecord>& re
   nlohmann::json doc = std::move(extra);
   doc["passed"] = c.passed;
   doc["mismatched"] = c.mismatched + c.hangs;
-  doc["errors"] = c.errors + c.timeouts + c.missing;
+  doc["errors"] = c.errors + c.timeouts + c.missing + c.interrupted;
   doc["skipped"] = c.skipped;
   doc["hangs"] = c.hangs;
   doc["timeouts"] = c.timeouts;
   doc["missing"] = c.missing;
+  doc["interrupted"] = c.interrupted;
   doc["jobs"] = all;
   std::ofstream os(path);
   if (!os) throw std::runtime_error(path + ": cannot open for writing");

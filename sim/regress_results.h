@@ -65,16 +65,18 @@ void sort_records(std::vector<RunRecord>& records);
 
 struct RunCounts {
   long passed = 0, mismatched = 0, hangs = 0, timeouts = 0, errors = 0, skipped = 0, missing = 0;
+  long interrupted = 0;  // not run, or stopped, because the job got SIGINT / SIGTERM
   bool failed() const {
-    return mismatched > 0 || hangs > 0 || timeouts > 0 || errors > 0 || missing > 0;
+    return mismatched > 0 || hangs > 0 || timeouts > 0 || errors > 0 || missing > 0 ||
+           interrupted > 0;
   }
 };
 RunCounts count_runs(const std::vector<RunRecord>& records);
 
 void print_run_table(const std::vector<RunRecord>& records);
 // {passed, mismatched, errors, skipped, hangs, timeouts, missing, seed?, jobs: [...]} plus `extra`;
-// mismatched counts hangs too, errors counts timeouts and missing runs (so a reader that knows
-// only the first four still sees every failure).
+// mismatched counts hangs too, errors counts timeouts, missing and interrupted runs (so a reader
+// that knows only the first four still sees every failure).
 void write_json_report(const std::string& path, const std::vector<RunRecord>& records,
                        nlohmann::json extra);
 void write_junit_report(const std::string& path, const std::vector<RunRecord>& records);

@@ -12,6 +12,8 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
@@ -99,8 +101,8 @@ TEST(Merge, NamesMissingRunsAndFailsThenPassesWhenTheyArrive) {
   write_plan(d / "one", "all", {a, b});
   write_text(d / "one" / "runs" / a["id"].get<std::string>() / "run.json",
              passed_record(a, 10, 30).dump());
-  fs::create_directories(d / "one" / "runs" /
-                         b["id"].get<std::string>());  // started, never finished
+  // Started (its simulator's log is there), never finished.
+  write_text(d / "one" / "runs" / b["id"].get<std::string>() / "cosim.log", "");
   Result r = run(("merge " + (d / "one").string() + " --json " + (d / "m.json").string()));
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find(b["id"].get<std::string>() + ": planned in"), std::string::npos)
@@ -348,6 +350,70 @@ TEST(Scaleout, AKilledShardIsNamedByMergeAndResumeCompletesIt) {
   const auto m2 = read_json(d / "m2.json");
   EXPECT_EQ(m2["passed"], 3);
   EXPECT_EQ(m2["missing"], 0);
+}
+
+// Ctrl-C (SIGINT to regress alone: the run in flight finishes) once the first record is there:
+// regress records every run it did not finish as interrupted, says how to resume and exits
+// 128 + 2; merge counts them; --resume runs exactly them.
+TEST(Scaleout, SigintRecordsUnfinishedRunsAsInterruptedAndResumeRunsThem) {
+  const std::string common =
+      " scenes/specular.json scenes/sphere.json scenes/torus.json --backends cpp"
+      " --stall-pct 90 --cache " +
+      kCache + " -j 1";
+  fs::path d;
+  std::map<std::string, int> statuses;
+  std::string log;
+  for (int attempt = 0; attempt < 3 && statuses["interrupted"] == 0; ++attempt) {
+    d = temp_dir("scaleout", "sigint" + std::to_string(attempt));
+    // The shell keeps regress's pid and, once it ends, its exit status.
+    const std::string rc_tmp = (d / "rc.tmp").string();
+    in_source("(" + kShadesim + " regress" + common + " --out " + (d / "out").string() + " > " +
+              (d / "log").string() + " 2>&1 & echo $! > " + (d / "pid").string() +
+              "; wait $!; echo $? > " + rc_tmp + "; mv " + rc_tmp + " " + (d / "rc").string() +
+              ") > /dev/null 2>&1 &");
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(10);
+    const auto records = [&]() {
+      size_t n = 0;
+      if (fs::is_directory(d / "out" / "runs")) {
+        for (const auto& e : fs::directory_iterator(d / "out" / "runs"))
+          n += fs::exists(e.path() / "run.json");
+      }
+      return n;
+    };
+    while (records() == 0 && !fs::exists(d / "rc") && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    pid_t pid = 0;
+    std::ifstream(d / "pid") >> pid;
+    ASSERT_GT(pid, 0) << "no pid of the regression";
+    kill(pid, SIGINT);
+    while (!fs::exists(d / "rc") && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    statuses.clear();
+    for (const auto& e : fs::directory_iterator(d / "out" / "runs")) {
+      ASSERT_TRUE(fs::exists(e.path() / "run.json")) << e.path() << ": no record";
+      ++statuses[read_json(e.path() / "run.json")["status"].get<std::string>()];
+    }
+    std::ifstream lf(d / "log");
+    log.assign(std::istreambuf_iterator<char>(lf), std::istreambuf_iterator<char>());
+  }
+  ASSERT_GT(statuses["interrupted"], 0) << log;
+  EXPECT_EQ(statuses["pass"] + statuses["interrupted"], 3) << log;
+  std::ifstream rc(d / "rc");
+  int code = -1;
+  rc >> code;
+  EXPECT_EQ(code, 130) << log;
+  EXPECT_NE(log.find("interrupted by signal 2"), std::string::npos) << log;
+  EXPECT_NE(log.find("regress --resume"), std::string::npos) << log;
+
+  Result r = run("merge " + (d / "out").string() + " --json " + (d / "m.json").string());
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_EQ(read_json(d / "m.json")["interrupted"], statuses["interrupted"]) << r.output;
+  r = run("regress --resume " + (d / "out").string() + " --cache " + kCache);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find(std::to_string(statuses["pass"]) + " run(s) already there, " +
+                          std::to_string(statuses["interrupted"]) + " to run"),
+            std::string::npos)
+      << r.output;
 }
 
 TEST(Scaleout, TheWatchdogReportsAnRtlThatStopsEmittingAsAHangWithAReplay) {
