@@ -193,3 +193,13 @@ add_test(NAME icarus_tb_missing_words
   COMMAND ${VVP} -n ${ICARUS_DIR}/tb_grey_s428w.vvp +words=${ICARUS_DIR}/no-such-file.hex)
 set_tests_properties(icarus_tb_missing_words PROPERTIES
   PASS_REGULAR_EXPRESSION "no-such-file.hex: cannot open the file" FIXTURES_REQUIRED icarus_tb_grey)
+# span_setup's radix-4 Booth product against `*`, exhaustively (every 10-bit t, every d of 1..7
+# bits, wrapping and exact units), and the same check on a copy with broken Booth digits, which
+# must fail.
+set(_booth_check ${CMAKE_COMMAND} -DIVERILOG=${IVERILOG} -DVVP=${VVP} -DSRC=${CMAKE_SOURCE_DIR})
+add_test(NAME icarus_span_setup_booth
+  COMMAND ${_booth_check} -DWORK=${ICARUS_DIR}/booth
+          -P ${CMAKE_SOURCE_DIR}/tests/rtl/booth_check.cmake)
+add_test(NAME icarus_span_setup_booth_catches_broken
+  COMMAND ${_booth_check} -DWORK=${ICARUS_DIR}/booth_broken -DBREAK=ON
+          -P ${CMAKE_SOURCE_DIR}/tests/rtl/booth_check.cmake)

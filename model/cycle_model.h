@@ -222,7 +222,7 @@ class CycleModel {
   unsigned pos_ = 0;
   bool in_payload_ = false;
   Payload pay_op_ = Payload::kSkip;
-  unsigned pay_idx_ = 0, pay_last_ = 0;
+  unsigned pay_idx_ = 0, pay_rem_ = 1;  // pay_rem_: payload words still to come
   // Span setup stages 1..3
   Span s_[3];
   // Engines: rem_ pixels of the span still to leave them, lanes_ per beat
@@ -304,7 +304,7 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   // words due in the beat (tail), then at most one header (a TRIANGLE's with its coefficient
   // words after it in the beat), or one MATERIAL / TABLE payload word; n words from pos_.
   const unsigned beat_left = port_words_ - pos_;
-  const unsigned pay_rem = (pay_last_ - pay_idx_ + 1) & unsigned{CommandWord::kFieldMask};
+  const unsigned pay_rem = pay_rem_;
   const bool tri_payload = in_payload_ && pay_op_ == Payload::kTriangle;
   const unsigned tail = tri_payload ? std::min(pay_rem, beat_left) : 0;
   const unsigned hdr_pos = pos_ + tail;
@@ -459,7 +459,7 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   if (item_fire) pos_ = beat_done ? 0 : pos_ + n;
   if (hdr_fire) {
     pay_idx_ = 0;
-    pay_last_ = (count - 1) & CommandWord::kFieldMask;
+    pay_rem_ = count;
     switch (op) {
       case Opcode::kMaterial:
         // Its payload writes the other bank, which no span in flight reads.
@@ -472,6 +472,7 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
         wr_bank_ = next_bank;
         pay_op_ = Payload::kTriangle;
         pay_idx_ = hdr_n - 1;
+        pay_rem_ = (count - hdr_n + 1) & CommandWord::kFieldMask;
         in_payload_ = count > hdr_n - 1;
         break;
       case Opcode::kTable:
@@ -485,8 +486,9 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
     }
   } else if (pay_fire) {
     const unsigned taken = tri_payload ? tail : 1;
-    if (((pay_idx_ + taken - 1) & CommandWord::kFieldMask) == pay_last_) in_payload_ = false;
+    if (taken == pay_rem_) in_payload_ = false;  // the payload's last word
     pay_idx_ = (pay_idx_ + taken) & CommandWord::kFieldMask;
+    pay_rem_ = (pay_rem_ - taken) & CommandWord::kFieldMask;
   }
   return e;
 }

@@ -25,16 +25,16 @@ module cmd_decoder #(
   input  logic                                  tri_bank_free_i,   // next coefficient bank free
   // The item taken this cycle.
   output logic [shade_pkg::WordW-1:0]           word_o,       // header, else payload word
-  output logic [15:0]                           word_sel_o,   // ... its beat word
+  output logic [(PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1)-1:0] word_sel_o,  // ... its word
   output logic [7:0]                            hdr_op_o,
-  output logic [15:0]                           hdr_pos_o,    // where a header would be
-  output logic [15:0]                           hdr_n_o,      // words the header takes
+  output logic [$clog2(PORT_WORDS+1)-1:0]       hdr_pos_o,    // where a header would be
+  output logic [$clog2(PORT_WORDS+1)-1:0]       hdr_n_o,      // words the header takes
   output logic                                  hdr_fire_o,   // a header is taken
   output logic                                  span_fire_o,  // ... SPAN headers (hdr_n_o)
   output logic                                  tri_fire_o,   // ... a TRIANGLE header
   output logic                                  mat_fire_o,   // ... a MATERIAL header
   output logic [(PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1)-1:0] pos_o,  // first word not taken
-  output logic [15:0]                           tail_n_o,     // TRIANGLE words due in the beat
+  output logic [$clog2(PORT_WORDS+1)-1:0]       tail_n_o,     // TRIANGLE words due in beat
   output logic [15:0]                           pay_idx_o,    // payload index of pos_o's word
   output logic                                  pay_mat_o,    // a MATERIAL payload word taken
   // Configuration words for the specular slots: MATERIAL exponent (index 0) and unit
@@ -46,51 +46,50 @@ module cmd_decoder #(
 );
   localparam int WordW = shade_pkg::WordW;
   localparam int PosW  = PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1;
+  localparam int NW    = $clog2(PORT_WORDS + 1);  // a count of beat words: 0..PORT_WORDS
   typedef enum logic [1:0] {PaySkip, PayMaterial, PayTriangle, PayTable} pay_e;
   logic        in_payload_q, in_payload_d;
   pay_e        pay_op_q, pay_op_d;
-  logic [15:0] pay_idx_q, pay_idx_d, pay_last_q, pay_last_d, tbl_base_q, tbl_base_d;
+  logic [15:0] pay_idx_q, pay_idx_d, pay_rem_q, pay_rem_d, tbl_base_q, tbl_base_d;  // rem: left
   logic        tbl_mat_q, tbl_mat_d;  // the TABLE being loaded is per-material
   logic [PosW-1:0] pos_q;
   logic [7:0]  hdr_op;
   logic [15:0] hdr_count;
   logic        hdr_ready, hdr_fire, pay_fire;
-  logic [15:0] beat_left;    // words of the beat from pos_q on
-  logic [15:0] pay_rem;      // payload words still to come
-  logic        tri_payload;  // TRIANGLE coefficient words are due
-  logic [15:0] tail_n;
-  logic [15:0] hdr_pos;
-  logic        hdr_here;     // a header is looked at this cycle
-  logic [15:0] hdr_n;
-  logic        take_hdr;
-  logic [15:0] item_n;       // words the item of this cycle takes (0: none)
+  logic [NW-1:0] beat_left;  // words of the beat from pos_q on
+  logic          tri_payload;  // TRIANGLE coefficient words are due
+  logic [NW-1:0] tail_n;
+  logic [NW-1:0] hdr_pos;
+  logic          hdr_here;     // a header is looked at this cycle
+  logic [NW-1:0] hdr_n;
+  logic          take_hdr;
+  logic [NW-1:0] item_n;       // words the item of this cycle takes (0: none; <= beat_left)
   logic        beat_done;
   logic [PosW-1:0]  word_sel;
   logic [WordW-1:0] cmd_word;
-  assign beat_left   = 16'(PORT_WORDS) - 16'(pos_q);
-  assign pay_rem     = pay_last_q - pay_idx_q + 16'd1;
+  assign beat_left   = NW'(PORT_WORDS) - NW'(pos_q);
   assign tri_payload = in_payload_q && pay_op_q == PayTriangle;
-  assign tail_n      = !tri_payload ? 16'd0 : pay_rem < beat_left ? pay_rem : beat_left;
-  assign hdr_pos     = 16'(pos_q) + tail_n;
-  assign hdr_here    = (!in_payload_q || (tri_payload && pay_rem <= beat_left)) &&
-                       hdr_pos < 16'(PORT_WORDS);
+  assign tail_n      = !tri_payload ? '0 : pay_rem_q < 16'(beat_left) ? NW'(pay_rem_q) : beat_left;
+  assign hdr_pos     = NW'(pos_q) + tail_n;
+  assign hdr_here    = (!in_payload_q || (tri_payload && pay_rem_q <= 16'(beat_left))) &&
+                       hdr_pos < NW'(PORT_WORDS);
   assign word_sel    = hdr_here ? PosW'(hdr_pos) : pos_q;
   assign cmd_word    = cmd_data_i[word_sel * WordW +: WordW];
   assign hdr_op      = cmd_word[shade_pkg::OpcodeLsb +: 8];
   assign hdr_count   = cmd_word[shade_pkg::CountLsb +: shade_pkg::FieldW];
   // With a span queue, a run of SPAN headers goes into it together, as many as it has room for.
   logic [PORT_WORDS-1:0] word_is_span;
-  logic [15:0]           span_run;  // SPAN headers from hdr_pos on, back to back in the beat
+  logic [NW-1:0]         span_run;  // SPAN headers from hdr_pos on, back to back in the beat
   // SPAN headers back to back in the beat from word `from` on. (A function in a continuous
   // assignment: an always_comb loop with a local flag never settles in Icarus 11.)
-  function automatic logic [15:0] run_length(input logic [PORT_WORDS-1:0] is_span,
-                                             input logic [15:0] from);
+  function automatic logic [NW-1:0] run_length(input logic [PORT_WORDS-1:0] is_span,
+                                               input logic [NW-1:0] from);
     logic going;
     going      = 1'b1;
-    run_length = 16'd0;
+    run_length = '0;
     for (int k = 0; k < PORT_WORDS; k++) begin
-      if (16'(k) >= from) begin
-        if (going && is_span[k]) run_length = run_length + 16'd1;
+      if (NW'(k) >= from) begin
+        if (going && is_span[k]) run_length = run_length + 1'b1;
         else going = 1'b0;
       end
     end
@@ -100,23 +99,23 @@ module cmd_decoder #(
   end
   assign span_run = run_length(word_is_span, hdr_pos);
   if (PORT_WORDS > 1) begin : g_hdr_n
+    wire [NW-1:0] after = NW'(PORT_WORDS) - hdr_pos - NW'(1);  // beat words after the header
     always_comb begin
-      hdr_n = 16'd1;
+      hdr_n = NW'(1);  // (read only when a header is taken: hdr_pos < PORT_WORDS, no wrap)
       if (hdr_op == shade_pkg::OpNop) begin
-        hdr_n = 16'(PORT_WORDS) - hdr_pos;
+        hdr_n = NW'(PORT_WORDS) - hdr_pos;
       end else if (hdr_op == shade_pkg::OpTriangle) begin
-        hdr_n = 16'd1 + (hdr_count < 16'(PORT_WORDS) - hdr_pos - 16'd1
-                         ? hdr_count : 16'(PORT_WORDS) - hdr_pos - 16'd1);
+        hdr_n = NW'(1) + (hdr_count < 16'(after) ? NW'(hdr_count) : after);
       end else if (QUEUED && hdr_op == shade_pkg::OpSpan && hdr_here) begin
-        hdr_n = span_run < sq_room_i ? span_run : sq_room_i;
-        if (hdr_n == 16'd0) hdr_n = 16'd1;  // a full queue: hdr_ready holds the header
+        hdr_n = 16'(span_run) < sq_room_i ? span_run : NW'(sq_room_i);
+        if (hdr_n == '0) hdr_n = NW'(1);  // a full queue: hdr_ready holds the header
       end
     end
   end else begin : g_hdr_one
     // A one-word port: a header taken is the whole beat (a NOP pads nothing, a TRIANGLE's words
     // follow in later beats, a SPAN run is one header), so the rules above all give 1 whenever
     // a header is taken, which is the only time hdr_n is read. Not evaluated on every cycle.
-    assign hdr_n = 16'd1;
+    assign hdr_n = NW'(1);
     // verilator lint_off UNUSEDSIGNAL
     logic unused_hdr_n;  // reason: the run length and the queue's room matter on wide ports only
     assign unused_hdr_n = ^span_run ^ (^sq_room_i);
@@ -133,27 +132,26 @@ module cmd_decoder #(
                                          ? mat_cur_free_i : datapath_empty_i;
       // Without a span queue a SPAN's setup reads the coefficient registers as it is taken:
       // not on the edge that writes its triangle's last words.
-      shade_pkg::OpSpan:     hdr_ready = QUEUED ? !sq_full_i : s1_free_i && tail_n == 16'd0;
+      shade_pkg::OpSpan:     hdr_ready = QUEUED ? !sq_full_i : s1_free_i && tail_n == '0;
       shade_pkg::OpTriangle: hdr_ready = tri_bank_free_i;
       default:               hdr_ready = 1'b1;
     endcase
   end
   assign take_hdr    = hdr_here && hdr_ready;
-  assign item_n      = tail_n + (take_hdr ? hdr_n : 16'd0) +
-                       (in_payload_q && !tri_payload ? 16'd1 : 16'd0);
+  assign item_n      = tail_n + (take_hdr ? hdr_n : '0) + NW'(in_payload_q && !tri_payload);
   assign beat_done   = item_n == beat_left;
-  assign cmd_ready_o = item_n != 16'd0 && beat_done;
+  assign cmd_ready_o = item_n != '0 && beat_done;
   assign hdr_fire    = cmd_valid_i && take_hdr;
   assign pay_fire    = cmd_valid_i && in_payload_q;
   // The next word of the beat: after the item of this cycle, or word 0 of the next beat.
   if (PORT_WORDS > 1) begin : g_beat_pos
     logic item_fire;
-    assign item_fire = cmd_valid_i && item_n != 16'd0;
+    assign item_fire = cmd_valid_i && item_n != '0;
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
         pos_q <= '0;
       end else if (item_fire) begin
-        pos_q <= beat_done ? '0 : PosW'(16'(pos_q) + item_n);
+        pos_q <= beat_done ? '0 : PosW'(NW'(pos_q) + item_n);
       end
     end
   end else begin : g_one_word_beat
@@ -162,17 +160,17 @@ module cmd_decoder #(
   end
   // ---- payload FSM: which payload is being taken, and how far ------------------------------
   logic [15:0] pay_take;  // payload words taken: the tail, or one MATERIAL / TABLE word
-  assign pay_take = tri_payload ? tail_n : 16'd1;
+  assign pay_take = tri_payload ? 16'(tail_n) : 16'd1;
   always_comb begin
     in_payload_d = in_payload_q;
     pay_op_d     = pay_op_q;
     pay_idx_d    = pay_idx_q;
-    pay_last_d   = pay_last_q;
+    pay_rem_d    = pay_rem_q;
     tbl_base_d   = tbl_base_q;
     tbl_mat_d    = tbl_mat_q;
     if (hdr_fire) begin
       pay_idx_d  = 16'd0;
-      pay_last_d = hdr_count - 16'd1;
+      pay_rem_d  = hdr_count;
       tbl_base_d = cmd_word[shade_pkg::MidLsb +: shade_pkg::FieldW];
       tbl_mat_d  = cmd_word[shade_pkg::TableMatBit];
       unique case (hdr_op)
@@ -183,8 +181,9 @@ module cmd_decoder #(
         // The coefficient words that came with the header are already taken.
         shade_pkg::OpTriangle: begin
           pay_op_d     = PayTriangle;
-          pay_idx_d    = hdr_n - 16'd1;
-          in_payload_d = hdr_count > hdr_n - 16'd1;
+          pay_idx_d    = 16'(hdr_n) - 16'd1;
+          pay_rem_d    = hdr_count - 16'(hdr_n) + 16'd1;
+          in_payload_d = hdr_count > 16'(hdr_n) - 16'd1;
         end
         shade_pkg::OpTable: begin
           pay_op_d     = PayTable;
@@ -198,7 +197,8 @@ module cmd_decoder #(
       endcase
     end else if (pay_fire) begin  // the tail, or one MATERIAL / TABLE word
       pay_idx_d = pay_idx_q + pay_take;
-      if (pay_idx_q + pay_take - 16'd1 == pay_last_q) in_payload_d = 1'b0;
+      pay_rem_d = pay_rem_q - pay_take;
+      if (pay_take == pay_rem_q) in_payload_d = 1'b0;  // the payload's last word
     end
   end
 
@@ -207,14 +207,14 @@ module cmd_decoder #(
       in_payload_q <= 1'b0;
       pay_op_q     <= PaySkip;
       pay_idx_q    <= 16'd0;
-      pay_last_q   <= 16'd0;
+      pay_rem_q    <= 16'd1;
       tbl_base_q   <= 16'd0;
       tbl_mat_q    <= 1'b0;
     end else begin
       in_payload_q <= in_payload_d;
       pay_op_q     <= pay_op_d;
       pay_idx_q    <= pay_idx_d;
-      pay_last_q   <= pay_last_d;
+      pay_rem_q    <= pay_rem_d;
       tbl_base_q   <= tbl_base_d;
       tbl_mat_q    <= tbl_mat_d;
     end
@@ -225,7 +225,7 @@ module cmd_decoder #(
                            (pay_op_q == PayMaterial && pay_idx_q >= 16'(N_MAT_FIXED)));
   assign cfg_addr_o      = cfg_table_o ? tbl_base_q + pay_idx_q : pay_idx_q - 16'(N_MAT_FIXED);
   assign {word_o, word_sel_o, hdr_op_o, hdr_pos_o, hdr_n_o} =
-         {cmd_word, 16'(word_sel), hdr_op, hdr_pos, hdr_n};
+         {cmd_word, word_sel, hdr_op, hdr_pos, hdr_n};
   assign {hdr_fire_o, pos_o, tail_n_o, pay_idx_o} = {hdr_fire, pos_q, tail_n, pay_idx_q};
   assign span_fire_o = hdr_fire && hdr_op == shade_pkg::OpSpan;
   assign tri_fire_o  = hdr_fire && hdr_op == shade_pkg::OpTriangle;

@@ -20,19 +20,21 @@ module coef_bank #(
   parameter int OFS_BITS   = 17   // span setup's offset width (the origin's, read)
 ) (
   input  logic                                   clk_i,
-  // verilator lint_off UNUSEDSIGNAL
-  // reason: packed coefficient terms may leave the top bits of a payload word unused
-  input  logic [PORT_WORDS*shade_pkg::WordW-1:0] cmd_data_i,
-  // verilator lint_on UNUSEDSIGNAL
   input  logic                                   cmd_valid_i,
   input  logic                                   tri_fire_i,  // a TRIANGLE header is taken ...
+  // verilator lint_off UNUSEDSIGNAL
+  // reason: packed coefficient terms may leave the top bits of a payload word unused, and span
+  // setup reads only OFS_BITS bits of the origin
+  input  logic [PORT_WORDS*shade_pkg::WordW-1:0] cmd_data_i,
   input  logic signed [15:0]                     hdr_xo_i,    // ... its origin
   input  logic signed [15:0]                     hdr_yo_i,
+  // verilator lint_on UNUSEDSIGNAL
   input  logic [(PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1)-1:0] pos_i,
-  input  logic [15:0]                            tail_n_i,
+  // Counts and positions of beat words, 0..PORT_WORDS: $clog2(PORT_WORDS + 1) bits.
+  input  logic [$clog2(PORT_WORDS+1)-1:0]        tail_n_i,
   input  logic [15:0]                            pay_idx_i,
-  input  logic [15:0]                            hdr_pos_i,
-  input  logic [15:0]                            hdr_n_i,
+  input  logic [$clog2(PORT_WORDS+1)-1:0]        hdr_pos_i,
+  input  logic [$clog2(PORT_WORDS+1)-1:0]        hdr_n_i,
   input  logic [(TRI_QUEUE > 1 ? $clog2(TRI_QUEUE) : 1)-1:0] wr_bank_i,    // latest TRIANGLE's
   input  logic [(TRI_QUEUE > 1 ? $clog2(TRI_QUEUE) : 1)-1:0] next_bank_i,  // the next one's
   input  logic [(TRI_QUEUE > 1 ? $clog2(TRI_QUEUE) : 1)-1:0] rd_bank_i,    // span setup's
@@ -47,24 +49,29 @@ module coef_bank #(
                                                    COEF_T2_WL, COEF_T3_WL, COEF_T4_WL,
                                                    COEF_T5_WL) + 1;  // TRIANGLE payload
 
-  logic signed [15:0] xo_q [TRI_QUEUE];
-  logic signed [15:0] yo_q [TRI_QUEUE];
-  // An array, not one packed vector: a partial write of a 1000+-bit vector costs the Verilated
-  // model a full copy every clock.
-  logic [COEF_WL-1:0] coef_q [TRI_QUEUE*N_COEF];  // bank b at b * N_COEF
+  localparam int NW         = $clog2(PORT_WORDS + 1);  // a count of beat words
+  localparam int AW         = $clog2(NCoefWords + PORT_WORDS);  // a payload index + offset
 
-  logic [CoefAW-1:0]     rd_base;  // bank rd_bank_i's first coefficient
-  logic [15:0]           coef_idx [PORT_WORDS];
+  logic signed [OFS_BITS-1:0] xo_q [TRI_QUEUE];  // each bank's origin, as span setup reads it
+  logic signed [OFS_BITS-1:0] yo_q [TRI_QUEUE];
+
+  // Beat word k carries payload word coef_idx[k] of a TRIANGLE (coef_we[k]). A tail word's index
+  // is pay_idx_i + (k - pos_i) <= the payload's last, so it never wraps in 16 bits and is below
+  // NCoefWords only if pay_idx_i is: AW bits hold every index that is written.
+  logic                  pay_in;  // pay_idx_i < NCoefWords
+  logic [AW-1:0]         coef_idx [PORT_WORDS];
   logic [PORT_WORDS-1:0] coef_we, coef_tail;
   logic [BankW-1:0]      coef_bank [PORT_WORDS];
-  assign rd_base = CoefAW'(rd_bank_i * N_COEF);
+  assign pay_in = pay_idx_i < 16'(NCoefWords);
   always_comb begin
     for (int k = 0; k < PORT_WORDS; k++) begin
-      coef_tail[k] = 16'(k) - 16'(pos_i) < tail_n_i;  // pos_i <= k < hdr_pos_i
-      coef_idx[k]  = coef_tail[k] ? pay_idx_i + 16'(k) - 16'(pos_i) : 16'(k) - hdr_pos_i - 16'd1;
-      coef_we[k]   = (cmd_valid_i && coef_tail[k] ||
-                      tri_fire_i && 16'(k) > hdr_pos_i && 16'(k) < hdr_pos_i + hdr_n_i) &&
-                     coef_idx[k] < 16'(NCoefWords);
+      coef_tail[k] = NW'(k) >= NW'(pos_i) && NW'(k) - NW'(pos_i) < tail_n_i;
+      coef_idx[k]  = coef_tail[k] ? AW'(pay_idx_i) + AW'(k) - AW'(pos_i)
+                                  : AW'(k) - AW'(hdr_pos_i) - AW'(1);
+      coef_we[k]   = (cmd_valid_i && coef_tail[k] && pay_in ||
+                      tri_fire_i && NW'(k) > hdr_pos_i &&
+                      (NW + 1)'(k) < (NW + 1)'(hdr_pos_i) + (NW + 1)'(hdr_n_i)) &&
+                     coef_idx[k] < AW'(NCoefWords);
       coef_bank[k] = coef_tail[k] ? wr_bank_i : next_bank_i;
     end
   end
@@ -77,6 +84,11 @@ module coef_bank #(
                             COEF_T2_WL == COEF_T0_WL && COEF_T3_WL == COEF_T0_WL &&
                             COEF_T4_WL == COEF_T0_WL && COEF_T5_WL == COEF_T0_WL;
   if (CoefEach) begin : g_coef_each
+    // An array, not one packed vector: a partial write of a 1000+-bit vector costs the
+    // Verilated model a full copy every clock.
+    logic [COEF_WL-1:0] coef_q [TRI_QUEUE*N_COEF];  // bank b at b * N_COEF
+    logic [CoefAW-1:0]  rd_base;  // bank rd_bank_i's first coefficient
+    assign rd_base = CoefAW'(rd_bank_i * N_COEF);
     always_ff @(posedge clk_i) begin
       for (int k = 0; k < PORT_WORDS; k++) begin
         if (coef_we[k]) begin
@@ -85,64 +97,51 @@ module coef_bank #(
         end
       end
     end
+    for (genvar j = 0; j < N_COEF; j++) begin : g_read
+      assign coef_o[j*COEF_WL +: COEF_WL] = coef_q[rd_base + CoefAW'(j)];
+    end
   end else begin : g_coef_packed
-    logic [15:0] coef_word_of [N_COEF];  // payload word of coefficient j (constant)
-    for (genvar j = 0; j < N_COEF; j++) begin : g_coef_word
+    // Coefficient j loads from the one beat word (if any) that carries its payload word, and is
+    // kept in its term's width W (sign-extended to COEF_WL as span setup reads it). One process
+    // per coefficient: Verilator unrolls a loop of delayed array writes only up to 64.
+    for (genvar j = 0; j < N_COEF; j++) begin : g_coef_load
       localparam int Word = shade_pkg::coef_word(j, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL,
                                                  COEF_T3_WL, COEF_T4_WL, COEF_T5_WL);
-      assign coef_word_of[j] = 16'(Word);
-    end
-
-    // Coefficient j's field in beat word k, sign-extended.
-    logic [COEF_WL-1:0] coef_field [PORT_WORDS][N_COEF];
-    for (genvar k = 0; k < PORT_WORDS; k++) begin : g_beat_word
-      for (genvar j = 0; j < N_COEF; j++) begin : g_coef
-        localparam int Lsb = shade_pkg::coef_lsb(j, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL,
-                                                  COEF_T3_WL, COEF_T4_WL, COEF_T5_WL);
-        localparam int W   = shade_pkg::coef_term_wl(j, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL,
-                                                      COEF_T3_WL, COEF_T4_WL, COEF_T5_WL);
-        logic [W-1:0] field;
-        assign field            = cmd_data_i[k*WordW + Lsb +: W];
-        assign coef_field[k][j] = COEF_WL'($signed(field));
-      end
-    end
-
-    // Coefficient j loads from the one beat word (if any) that carries its payload word. One
-    // process per coefficient: Verilator unrolls a loop of delayed array writes only up to 64.
-    for (genvar j = 0; j < N_COEF; j++) begin : g_coef_load
+      localparam int Lsb  = shade_pkg::coef_lsb(j, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL,
+                                                COEF_T3_WL, COEF_T4_WL, COEF_T5_WL);
+      localparam int W    = shade_pkg::coef_term_wl(j, COEF_T0_WL, COEF_T1_WL, COEF_T2_WL,
+                                                    COEF_T3_WL, COEF_T4_WL, COEF_T5_WL);
       logic               load;
       logic [BankW-1:0]   bank;
-      logic [COEF_WL-1:0] value;
+      logic [W-1:0]       value;
+      logic [W-1:0]       q [TRI_QUEUE];  // each bank's coefficient j
       always_comb begin
         load  = 1'b0;
         bank  = '0;
         value = '0;
         for (int k = 0; k < PORT_WORDS; k++) begin
-          if (coef_we[k] && coef_idx[k] == coef_word_of[j]) begin
+          if (coef_we[k] && coef_idx[k] == AW'(Word)) begin
             load  = 1'b1;
             bank  = coef_bank[k];
-            value = coef_field[k][j];
+            value = cmd_data_i[k*WordW + Lsb +: W];
           end
         end
       end
       always_ff @(posedge clk_i) begin
-        if (load) coef_q[CoefAW'(bank * N_COEF + j)] <= value;
+        if (load) q[bank] <= value;
       end
+      assign coef_o[j*COEF_WL +: COEF_WL] = COEF_WL'($signed(q[rd_bank_i]));
     end
   end
 
   always_ff @(posedge clk_i) begin
     if (tri_fire_i) begin
-      xo_q[next_bank_i] <= hdr_xo_i;
-      yo_q[next_bank_i] <= hdr_yo_i;
+      xo_q[next_bank_i] <= OFS_BITS'(hdr_xo_i);
+      yo_q[next_bank_i] <= OFS_BITS'(hdr_yo_i);
     end
   end
-
-  for (genvar j = 0; j < N_COEF; j++) begin : g_read
-    assign coef_o[j*COEF_WL +: COEF_WL] = coef_q[rd_base + CoefAW'(j)];
-  end
-  assign xo_o = OFS_BITS'(xo_q[rd_bank_i]);
-  assign yo_o = OFS_BITS'(yo_q[rd_bank_i]);
+  assign xo_o = xo_q[rd_bank_i];
+  assign yo_o = yo_q[rd_bank_i];
 
 `ifndef SYNTHESIS
   initial begin

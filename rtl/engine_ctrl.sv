@@ -12,7 +12,7 @@ module engine_ctrl #(
   input  logic                  clk_i,
   input  logic                  rst_ni,
   input  logic                  span_valid_i,  // a span waits in setup stage 3 ...
-  input  logic [2*XY_BITS+16:0] span_i,        // ... this one: {y, x0, len[15:0], last}
+  input  logic [3*XY_BITS+1:0]  span_i,        // ... {y, x0, len[XY_BITS:0], last}
   input  logic                  adv_i,         // the pix register can take a beat
   input  logic                  spec_busy_i,   // an iterative specular unit cannot start
   output logic                  take_ready_o,  // the engines can take a span this cycle
@@ -28,20 +28,20 @@ module engine_ctrl #(
   typedef struct packed {
     logic [XY_BITS-1:0] y;
     logic [XY_BITS-1:0] x0;
-    logic [15:0]        len;
+    logic [XY_BITS:0]   len;  // 1..2^XY_BITS
     logic               last;
   } span_t;
 
   span_t              span;
   logic               run_q, run_d;
-  logic [15:0]        rem_q;
+  logic [XY_BITS:0]   rem_q;
   logic [XY_BITS-1:0] x_q, y_q;
   logic               last_q, last_pix, emit;
 
   assign span         = span_i;
   assign emit         = run_q && adv_i && !spec_busy_i;
   // 1 <= rem_q <= LANES on the last beat (LANES = 1: rem_q == 1).
-  assign last_pix     = rem_q - 16'd1 < 16'(LANES);
+  assign last_pix     = rem_q - 1'b1 < (XY_BITS + 1)'(LANES);
   assign take_ready_o = !run_q || (emit && last_pix);
   assign load_o       = span_valid_i && take_ready_o;
 
@@ -63,13 +63,13 @@ module engine_ctrl #(
       y_q    <= span.y;
       last_q <= span.last;
     end else if (emit) begin
-      rem_q <= rem_q - 16'(LANES);
+      rem_q <= rem_q - (XY_BITS + 1)'(LANES);
       x_q   <= x_q + XY_BITS'(LANES);
     end
   end
 
   for (genvar j = 0; j < LANES; j++) begin : g_mask
-    assign mask_o[j] = 16'(j) < rem_q;
+    assign mask_o[j] = (XY_BITS + 1)'(j) < rem_q;
   end
   assign emit_o     = emit;
   assign run_o      = run_q;

@@ -10,16 +10,16 @@ module setup_ctrl #(
   input  logic                 clk_i,
   input  logic                 rst_ni,
   input  logic                 s1_load_i,   // a span enters stage 1 ...
-  input  logic [2*XY_BITS+16:0] s1_span_i,  // ... this one: {y, x0, len[15:0], last}
+  input  logic [3*XY_BITS+1:0] s1_span_i,   // ... this one: {y, x0, len[XY_BITS:0], last}
   input  logic                 eng_load_i,  // the engines take stage 3's span
   output logic                 s1_free_o,   // stage 1 can take a span this cycle
   output logic                 s1_move_o,   // stage 1's span moves to stage 2
   output logic                 s2_move_o,   // stage 2's span moves to stage 3
   output logic                 s3_valid_o,  // stage 3 holds a span ...
-  output logic [2*XY_BITS+16:0] s3_span_o,  // ... this one
+  output logic [3*XY_BITS+1:0] s3_span_o,   // ... this one
   output logic                 busy_o       // some stage holds a span
 );
-  localparam int SpanW = 2 * XY_BITS + 16 + 1;
+  localparam int SpanW = 3 * XY_BITS + 2;
 
   logic             s1_v_q, s2_v_q, s3_v_q;
   logic [SpanW-1:0] s1_q, s2_q, s3_q;

@@ -66,11 +66,11 @@ module shade_unit #(
   localparam int SpanQ          = Queued ? 4 * TRI_QUEUE : 1;  // = CycleConfig::span_queue()
   localparam int BankW          = Queued ? $clog2(TRI_QUEUE) : 1;
   localparam int PosW           = PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1;
-  localparam int SpanW          = 2 * XY_BITS + 16 + 1;  // $bits(span_t)
+  localparam int SpanW          = 3 * XY_BITS + 2;  // $bits(span_t)
   typedef struct packed {
     logic [XY_BITS-1:0] y;
     logic [XY_BITS-1:0] x0;
-    logic [15:0]        len;
+    logic [XY_BITS:0]   len;  // 1..2^XY_BITS (CommandStream::validate)
     logic               last;
   } span_t;
   typedef struct packed {
@@ -87,8 +87,8 @@ module shade_unit #(
   logic [7:0]       hdr_op;  // reason: with hdr_fire, read by sim/harness/shade_cover.sv's bind
   logic             hdr_fire;
   // verilator lint_on UNUSEDSIGNAL
-  logic [15:0]      word_sel, hdr_pos, hdr_n, tail_n, pay_idx, sq_room, cfg_addr;
-  logic [PosW-1:0]  pos;
+  logic [15:0]      pay_idx, sq_room, cfg_addr;  logic [PosW-1:0] word_sel, pos;
+  logic [$clog2(PORT_WORDS+1)-1:0] hdr_pos, hdr_n, tail_n;  // counts of beat words
   logic span_fire, tri_fire, mat_fire, pay_mat, cfg_valid, cfg_table, cfg_all_banks, s1_free;
   logic datapath_empty, mat_other_free, mat_cur_free, sq_full, sq_empty, tri_bank_free;
   cmd_decoder #(
@@ -138,7 +138,7 @@ module shade_unit #(
     .SPEC_LATENCY(SpecLatency)
   ) u_material_bank (
     .clk_i, .rst_ni, .word_i(cmd_word), .mat_fire_i(mat_fire), .pay_mat_i(pay_mat),
-    .pay_idx_i(pay_idx), .span_fire_i(span_fire), .span_n_i(hdr_n), .s1_load_i(s1_load),
+    .pay_idx_i(pay_idx), .span_fire_i(span_fire), .span_n_i(16'(hdr_n)), .s1_load_i(s1_load),
     .s1_bank_i(s1_src_mat), .s1_move_i(s1_move), .s2_move_i(s2_move), .eng_load_i(load_eng),
     .eng_bank_o(mat_q), .leave_i(mat_leave), .leave_bank_i(meta_out.mat), .wr_bank_o(mat_wr),
     .other_free_o(mat_other_free), .cur_free_o(mat_cur_free), .rd_bank_i(meta_out.mat),

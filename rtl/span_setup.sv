@@ -64,29 +64,12 @@ module span_setup #(
                                                   input logic signed [OFS_W-1:0] b);
     ofs = a - b;
   endfunction
-  // t x d for an OFS_W-bit signed offset d, modulo 2^ProdW (mul_p) or 2^SumW (mul_s): radix-4
-  // Booth digits of d, so (OFS_W + 1) / 2 partial products, each 0, +-t or +-2t, instead of
-  // OFS_W; a negative one is its complement plus one, the one added with the sum. The same
-  // product, 16 % fewer GE for span setup under Yosys (`shadesim area`: it maps `*` to an array
-  // of OFS_W rows); the model multiplies (model/span_setup.h), and every co-simulation compares.
-  function automatic logic [ProdW-1:0] mul_p(input logic [ProdW-1:0] t,
-                                            input logic [OFS_W-1:0] d);
-    logic [OFS_W+1:0] e;
-    logic [ProdW-1:0] acc, mag;
-    logic             neg;
-    e = {d[OFS_W-1], d, 1'b0};
-    acc = '0;
-    for (int k = 0; k < (OFS_W + 1) / 2; k++) begin
-      unique case ({e[2*k+2], e[2*k+1], e[2*k]})
-        3'b001, 3'b010, 3'b101, 3'b110: mag = t;
-        3'b011, 3'b100:                 mag = t << 1;
-        default:                        mag = '0;
-      endcase
-      neg = e[2*k+2] && !(e[2*k+1] && e[2*k]);
-      acc = acc + ((neg ? ~mag : mag) << (2 * k)) + (ProdW'(neg) << (2 * k));
-    end
-    mul_p = acc;
-  endfunction
+  // t x d for an OFS_W-bit signed offset d, modulo 2^SumW (mul_s): radix-4 Booth digits of d,
+  // so (OFS_W + 1) / 2 partial products, each 0, +-t or +-2t, instead of OFS_W; a negative one
+  // is its complement plus one, the one added with the sum. The same product, 16 % fewer GE for
+  // span setup under Yosys (`shadesim area`: it maps `*` to an array of OFS_W rows); the model
+  // multiplies (model/span_setup.h), and every co-simulation compares. mul_p is the same
+  // product modulo 2^ProdW (SumW >= ProdW, so its low ProdW bits are mul_s's): one rule.
   function automatic logic [SumW-1:0] mul_s(input logic [SumW-1:0] t,
                                            input logic [OFS_W-1:0] d);
     logic [OFS_W+1:0] e;
@@ -104,6 +87,10 @@ module span_setup #(
       acc = acc + ((neg ? ~mag : mag) << (2 * k)) + (SumW'(neg) << (2 * k));
     end
     mul_s = acc;
+  endfunction
+  function automatic logic [ProdW-1:0] mul_p(input logic [ProdW-1:0] t,
+                                            input logic [OFS_W-1:0] d);
+    mul_p = ProdW'(mul_s(SumW'(t), d));
   endfunction
   logic signed [ProdW-1:0] p_t0_q, p_a_q, p_b_q, p_d_q, p_t5_q;
   logic signed [OFS_W-1:0] p_dx_q, p_dy_q;
