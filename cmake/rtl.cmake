@@ -129,28 +129,6 @@ if(YOSYS)
   add_test(NAME rtl_yosys_flat_outputs_lanes4
     COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_outputs_check.py ${YOSYS}
             ${CMAKE_BINARY_DIR}/rtl_yosys_flat_l4 ${RTL_SOURCES})
-  # Formal equivalence of shade_unit before and after its split into control modules (issue
-  # 22): the monolithic shade_unit of commit 14837f3 (git archive) against this tree's rtl/, each
-  # flattened, Yosys equiv_make / equiv_simple / equiv_induct, every $equiv cell proven
-  # (tests/rtl/equiv_split.py). Small widths keep the proofs to a minute or a few.
-  find_program(GIT git)
-  if(GIT)
-    # (Lists, not strings: separate_arguments would read SPEC_PARAMS's 256'h as a quote.)
-    set(_equiv_small -set XY_BITS 4 -set OFS_BITS 4 -set COEF_WL 8 -set COEF_IWL 2 -set SERIES_WL 6
-        -set SERIES_IWL 2 -set OUT_BITS 3 -set SPEC_COLOUR_WL 4 -set SPECULAR_OUT_WL 5
-        -set SPECULAR_OUT_IWL 1)
-    spec_params_literal(_equiv_wpow 4 4 0)
-    set(_equiv_ideal_p1_q1_l1 "")
-    set(_equiv_none_p1_q2_l1 -set SPECULAR_KIND 4 -set TRI_QUEUE 2)
-    set(_equiv_wpow_p4_q2_l2_m2 -set SPECULAR_KIND 3 -set SPEC_PARAMS ${_equiv_wpow}
-        -set PORT_WORDS 4 -set TRI_QUEUE 2 -set LANES 2 -set MATERIAL_BUFFERS 2)
-    foreach(_name ideal_p1_q1_l1 none_p1_q2_l1 wpow_p4_q2_l2_m2)
-      add_test(NAME rtl_equiv_split_${_name}
-        COMMAND ${CMAKE_SOURCE_DIR}/tests/rtl/equiv_split.py ${YOSYS}
-                ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR}/equiv_split/${_name} ${_equiv_small}
-                ${_equiv_${_name}})
-    endforeach()
-  endif()
   # The checker itself, on two netlists (sim/harness/yosys_outputs_fixtures): a correct one
   # passes, the pre-fix four-lane netlist's outputs fail.
   foreach(f good bad)

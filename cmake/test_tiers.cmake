@@ -40,8 +40,6 @@ set(SHADESIM_TIER_RULES
   "^explore_verify_"                                                regress
   # the libFuzzer harnesses (built by their own clang project) and their regression inputs
   "^fuzz_"                                                          fuzz
-  # the split's formal equivalence on units with a queue, lanes or a specular unit: minutes each
-  "^rtl_equiv_split_(none|wpow)_"                                   slow
   # Verilator lint and co-simulation, Icarus, Yosys, the RTL unit tests, on-demand builds
   "^rtl_"                                                           rtl
   "^icarus_"                                                        rtl

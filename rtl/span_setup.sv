@@ -72,6 +72,7 @@ module span_setup #(
   // product modulo 2^ProdW (SumW >= ProdW, so its low ProdW bits are mul_s's): one rule.
   function automatic logic [SumW-1:0] mul_s(input logic [SumW-1:0] t,
                                            input logic [OFS_W-1:0] d);
+`ifdef SYNTHESIS
     logic [OFS_W+1:0] e;
     logic [SumW-1:0] acc, mag;
     logic            neg;
@@ -87,6 +88,11 @@ module span_setup #(
       acc = acc + ((neg ? ~mag : mag) << (2 * k)) + (SumW'(neg) << (2 * k));
     end
     mul_s = acc;
+`else
+    // Simulators multiply: the same product (icarus_span_setup_booth checks the Booth form
+    // against `*` exhaustively; docs/rtl.md, "Synthesis and simulation views").
+    mul_s = t * SumW'($signed(d));
+`endif
   endfunction
   function automatic logic [ProdW-1:0] mul_p(input logic [ProdW-1:0] t,
                                             input logic [OFS_W-1:0] d);

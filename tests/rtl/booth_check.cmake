@@ -19,7 +19,8 @@ if(BREAK)
   set(setup ${WORK}/span_setup_broken.sv)
   file(WRITE ${setup} "${broken}")
 endif()
-execute_process(COMMAND ${IVERILOG} -g2012 -s tb_span_setup_booth -o ${WORK}/booth.vvp
+# -DSYNTHESIS: the Booth form is span_setup's synthesis view (simulators otherwise multiply).
+execute_process(COMMAND ${IVERILOG} -g2012 -DSYNTHESIS -s tb_span_setup_booth -o ${WORK}/booth.vvp
                         ${SRC}/rtl/shade_pkg.sv ${SRC}/rtl/fixed_round.sv ${SRC}/rtl/fixed_sat.sv
                         ${setup} ${SRC}/tests/rtl/tb_span_setup_booth.sv
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
