@@ -17,7 +17,8 @@ class InterruptGuard {
   static int signal_number();
 
  private:
-  struct sigaction old_int_ {}, old_term_ {};
+  struct sigaction old_int_ {
+  }, old_term_{};
 };
 
 }  // namespace shadesim

@@ -441,9 +441,10 @@ TEST(Scaleout, TheWatchdogReportsAnRtlThatStopsEmittingAsAHangWithAReplay) {
   const std::string replay = j["replay"];
   EXPECT_NE(replay.find("--watchdog " + std::to_string(limit)), std::string::npos) << replay;
   EXPECT_NE(replay.find("--config grey_s428w --fault hang@100"), std::string::npos) << replay;
-  // The replay command reproduces the hang.
+  // The replay command (it names the build cache) reproduces the hang.
   ASSERT_EQ(replay.rfind("shadesim ", 0), 0u);
-  r = run(replay.substr(9) + " --cache " + kCache + " --save-dir " + (d / "replayed").string());
+  EXPECT_NE(replay.find("--cache " + kCache), std::string::npos) << replay;
+  r = run(replay.substr(9) + " --save-dir " + (d / "replayed").string());
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("HANG: hang in configuration grey_s428w"), std::string::npos) << r.output;
 
