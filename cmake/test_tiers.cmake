@@ -102,6 +102,8 @@ set(SHADESIM_GTEST_CASE_TIERS
   cli_test       "^Cli\\.CosimRefusesAFaultOnARowWithNoPixels$"                     rtl
   # shadesim regress and cosim fail on a deliberate fault; their replay lines are run
   cli_test       "^Cli\\.ReplayLinesRunWhenPastedAndReproduceTheFailure$"           regress
+  # regress of every shipped scene's own unit against cycles and the README's table
+  cli_test       "^Cli\\.CyclesRegressAndTheReadmeAgreeOnEveryShippedScene$"         regress
   # Yosys: a direct run against shadesim area's cell count
   area_test      "^Area\\.CellCountEqualsADirectYosysRunAndTheCacheIsReused$"      rtl
   # Yosys on tiny modules (GE's closed forms) and a small LUT unit (its table RAM bits)

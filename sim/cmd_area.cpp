@@ -16,6 +16,7 @@
 #include "sim/area.h"
 #include "sim/commands.h"
 #include "sim/output_paths.h"
+#include "sim/unit_choice.h"
 
 namespace shadesim {
 namespace {
@@ -29,18 +30,17 @@ struct AreaCliOptions {
   std::string rtl_dir;  // empty: this tree's rtl/
 };
 
-// The one place that turns the command line into a UnitConfig. For now: a config file is read
-// as the command stream header's JSON, a scene gets prepare_frame's configuration; the common
-// loader / scene-derived configuration replaces both.
-// The unit a config file describes (load_unit_config: omitted fields keep UnitConfig's defaults),
-// or a scene's own configuration (derive_config, as regress and explore use it).
+// The unit --config names (sim/unit_choice.h): a build or a file alone, or own (the default) or
+// default for the SCENE given.
 UnitConfig unit_to_measure(const AreaCliOptions& o, std::string* source) {
-  if (!o.config_path.empty()) {
-    *source = o.config_path;
-    return load_unit_config(o.config_path);
-  }
-  *source = o.scene + " (its own configuration)";
-  return derive_config({o.scene}, DeriveOptions{}).config;
+  const std::string choice = o.config_path.empty() ? kOwnUnit : o.config_path;
+  if (o.scene.empty() && (choice == kOwnUnit || choice == kDefaultUnit))
+    throw std::invalid_argument("area: --config " + choice + " is a scene's unit: give the SCENE");
+  const RtlConfig unit = resolve_unit(choice, o.scene);
+  *source = choice == kOwnUnit       ? o.scene + " (its own configuration)"
+            : choice == kDefaultUnit ? o.scene + " (the default widths)"
+                                     : choice;
+  return unit.unit;
 }
 
 std::string grouped(int64_t v) {
@@ -235,13 +235,13 @@ void register_area(CLI::App& app, int& exit_code) {
       "Results are cached per configuration (key: parameters, RTL sources, tool versions, "
       "scripts).\n"
       "A cold run takes minutes (several Yosys runs side by side); a cache hit is instant.");
-  auto* config = sub->add_option("--config", o->config_path,
-                                 "unit configuration JSON (the command stream header's format)");
-  auto* scene =
-      sub->add_option("scene", o->scene, "scene JSON file: measure the unit it is shaded on")
-          ->check(CLI::ExistingFile);
-  config->excludes(scene);
-  scene->excludes(config);
+  sub->add_option("--config", o->config_path,
+                  "the unit: own (the default: SCENE's own unit, as `shadesim config` derives "
+                  "it), default\n(the default widths, SCENE's structure), a named build "
+                  "(shadesim cosim --list) or a UnitConfig\nFILE.json")
+      ->check(unit_choice_validator());
+  sub->add_option("scene", o->scene, "scene JSON file: measure the unit --config names for it")
+      ->check(CLI::ExistingFile);
   sub->add_option("--cache", o->cache_dir, "cache folder for results")->capture_default_str();
   sub->add_option("--json", o->json_path, "also write the report as JSON")->check(output_file());
   sub->add_option("--rtl-dir", o->rtl_dir,
@@ -253,7 +253,8 @@ void register_area(CLI::App& app, int& exit_code) {
   sub->callback([o, &exit_code]() {
     if (o->config_path.empty() && o->scene.empty()) {
       throw std::invalid_argument(
-          "area: give --config FILE.json or a SCENE (see shadesim area --help)");
+          "area: give a SCENE (its own unit), or --config NAME|FILE.json (see shadesim area "
+          "--help)");
     }
     exit_code = run_area(*o);
   });

@@ -31,16 +31,17 @@ struct CyclesOptions {
   std::string specular;
   int channels = 0;  // 0: what the scene needs
   int lights = 0;
-  int port_words = 0;  // 0: not given (1, or the --config file's)
+  int port_words = 0;  // 0: not given (the unit's)
   int tri_queue = 0;
   int lanes = 0;
   int material_buffers = 0;
   uint64_t seed = 1;
   int gap_pct = 0, max_gap = 1, stall_pct = 0;
+  bool regress_stimulus = false;  // --regress-stimulus: regress's gaps and back-pressure
   std::string json_path;
-  std::string config_path;  // --config: the unit is exactly this file's
-  bool clocked = false;     // also the clocked model when the closed form applies; must agree
-  int worst = 5;            // setup-bound triangles listed
+  std::string config;    // --config as in effect (sim/unit_choice.h): own, default, a build, a file
+  bool clocked = false;  // also the clocked model when the closed form applies; must agree
+  int worst = 5;         // setup-bound triangles listed
 };
 
 // The per-triangle figures of a no-gap run: how many triangles are setup- or fill-bound
@@ -135,11 +136,7 @@ nlohmann::json triangles_json(const std::vector<TriangleCost>& all, const Triang
 
 int run_cycles(const CyclesOptions& o) {
   FrameOptions fo;
-  if (!o.config_path.empty()) {
-    use_config_file(o.config_path, fo);
-  } else {
-    fo.base = o.widths.to_config();
-  }
+  use_unit_choice(o.config, o.scene, o.widths, fo);
   // The throughput knobs given on the command line win over the file's: "this unit, with a
   // wider port" is the question they answer.
   if (o.port_words > 0) fo.base.port_words = o.port_words;
@@ -155,7 +152,7 @@ int run_cycles(const CyclesOptions& o) {
     if (o.lights > 0) fo.base.lights = o.lights;
   }
   const auto t0 = std::chrono::steady_clock::now();
-  const PreparedFrame frame = prepare_frame_on(o.scene, fo, o.config_path);
+  const PreparedFrame frame = prepare_frame_on(o.scene, fo, o.config);
   const double host_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
@@ -227,7 +224,7 @@ int run_cycles(const CyclesOptions& o) {
       run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;
   std::cout << "scene        " << o.scene << " (" << frame.scene.width << "x" << frame.scene.height
             << ")\n"
-            << "unit         " << frame.config.to_string() << "\n"
+            << "unit         " << frame.config.to_string() << "  (--config " << o.config << ")\n"
             << "specular     " << frame.config.specular.describe() << ": latency " << timing.latency
             << ", " << timing.interval << " cycle(s) per pixel\n"
             << "command port " << unit_timing.port_words << " word(s) per beat, triangle queue "
@@ -299,6 +296,7 @@ int run_cycles(const CyclesOptions& o) {
     nlohmann::json j = {
         {"scene", o.scene},
         {"config", nlohmann::json::parse(config_to_json(frame.config))},
+        {"unit_choice", o.config},
         {"slot", {{"latency", timing.latency}, {"interval", timing.interval}}},
         {"stimulus",
          {{"seed", o.seed},
@@ -368,29 +366,36 @@ void register_cycles(CLI::App& app, int& exit_code) {
   sub->add_option("--lights", o->lights,
                   "build with series for this many lights (default: the scene's)")
       ->check(CLI::Range(1, 8));
-  sub->add_option(
-         "--port-words", o->port_words,
-         "command port width: 64-bit words per handshake (default 1, or the --config file's;\n"
-         "given, it overrides the file's)")
+  sub->add_option("--port-words", o->port_words,
+                  "command port width: 64-bit words per handshake (default: the unit's;\n"
+                  "given, it overrides the unit's)")
       ->check(CLI::IsMember({1, 2, 4, 8}));
-  sub->add_option(
-         "--tri-queue", o->tri_queue,
-         "triangle queue depth: coefficient banks; > 1 adds a span queue (default 1, or the\n"
-         "--config file's; given, it overrides the file's)")
+  sub->add_option("--tri-queue", o->tri_queue,
+                  "triangle queue depth: coefficient banks; > 1 adds a span queue (default: the\n"
+                  "unit's; given, it overrides the unit's)")
       ->check(CLI::Range(1, 8));
   sub->add_option(
          "--lanes", o->lanes,
          "pixel lanes: pixels of one span per clock (k-step forward differences, lane j at\n"
-         "x0 + j; default 1, or the --config file's; given, it overrides the file's)")
+         "x0 + j; default: the unit's; given, it overrides the unit's)")
       ->check(CLI::IsMember({1, 2, 4}));
   sub->add_option(
          "--material-buffers", o->material_buffers,
          "material buffers: 2 loads a MATERIAL, and a per-material TABLE (a per-exponent LUT's\n"
          "reload), into the bank no span in flight reads, so neither drains the datapath;\n"
-         "default 1, or the --config file's; given, it overrides the file's")
+         "default: the unit's; given, it overrides the unit's")
       ->check(CLI::IsMember({1, 2}));
   sub->add_option("--seed", o->seed, "stimulus seed")->capture_default_str();
   add_stimulus_options(sub, o->gap_pct, o->max_gap, o->stall_pct);
+  sub->add_flag("--regress-stimulus", o->regress_stimulus,
+                "the regression's gaps and back-pressure (" +
+                    std::to_string(kRegressStimulus.gap_pct) + "% gaps, max " +
+                    std::to_string(kRegressStimulus.max_gap) + ", " +
+                    std::to_string(kRegressStimulus.stall_pct) +
+                    "% back-pressure): with the run's --seed, the cycles `regress` reports")
+      ->excludes("--gap-pct")
+      ->excludes("--max-gap")
+      ->excludes("--stall-pct");
   sub->add_option("--json", o->json_path, "write the figures as JSON")->check(output_file());
   sub->add_flag(
       "--clocked", o->clocked,
@@ -400,8 +405,16 @@ void register_cycles(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   add_width_options(*sub, o->widths);
-  add_config_option(*sub, o->config_path, {"--specular", "--channels", "--lights"});
-  sub->callback([o, &exit_code]() { exit_code = run_cycles(*o); });
+  add_config_option(*sub, o->config, {"--specular", "--channels", "--lights"});
+  sub->callback([o, sub, &exit_code]() {
+    o->config = unit_choice_in_effect(*sub, o->config, {"--specular", "--channels", "--lights"});
+    if (o->regress_stimulus) {
+      o->gap_pct = kRegressStimulus.gap_pct;
+      o->max_gap = kRegressStimulus.max_gap;
+      o->stall_pct = kRegressStimulus.stall_pct;
+    }
+    exit_code = run_cycles(*o);
+  });
 }
 
 }  // namespace shadesim

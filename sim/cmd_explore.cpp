@@ -23,6 +23,7 @@
 #include "sim/number_checks.h"
 #include "sim/output_paths.h"
 #include "sim/process.h"
+#include "sim/unit_choice.h"
 
 namespace shadesim {
 namespace {
@@ -480,9 +481,9 @@ int run_explore(const ExploreCliOptions& o) {
   // The start: a given config file, else the scenes' own smallest configuration.
   UnitConfig start;
   std::string start_source;
-  if (!o.config_path.empty()) {
-    start = load_unit_config(o.config_path);
-    start_source = o.config_path;
+  if (!o.config_path.empty() && o.config_path != kOwnUnit) {
+    start = resolve_unit(o.config_path, o.scenes.front()).unit;
+    start_source = o.config_path == kDefaultUnit ? "the default widths" : o.config_path;
   } else {
     DeriveOptions d;
     d.budget_lsb = o.budget_lsb > 0 ? std::optional<double>(o.budget_lsb) : std::nullopt;
@@ -728,9 +729,11 @@ void register_explore(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0, 16))
       ->capture_default_str();
   sub->add_option(
-      "--config", o->config_path,
-      "start from this UnitConfig JSON file (default: the scenes' own configuration, as\n"
-      "shadesim config derives it)");
+         "--config", o->config_path,
+         "start from this unit: own (the default: the scenes' own configuration, as shadesim "
+         "config\nderives it), default (the default widths, the first scene's structure), a "
+         "named build or a\nUnitConfig FILE.json")
+      ->check(unit_choice_validator());
   sub->add_option("--out-bits", o->out_bits, "output bits per channel for the derived start")
       ->check(CLI::Range(1, 16))
       ->capture_default_str()

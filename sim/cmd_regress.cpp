@@ -43,6 +43,7 @@
 #include "sim/replay.h"
 #include "sim/rtl_build.h"
 #include "sim/stimulus_options.h"
+#include "sim/unit_choice.h"
 
 namespace shadesim {
 namespace {
@@ -56,7 +57,8 @@ struct RegressOptions {
   std::vector<std::string> backends{"cpp", "systemc"};
   uint64_t seed = 1;
   int jobs = 0;  // 0: hardware threads
-  int gap_pct = 20, max_gap = 8, stall_pct = 20;
+  int gap_pct = kRegressStimulus.gap_pct, max_gap = kRegressStimulus.max_gap,
+      stall_pct = kRegressStimulus.stall_pct;
   std::string out_dir = "out/regress";
   std::string junit_path;
   std::string json_path;
@@ -101,7 +103,8 @@ Shard parse_shard(const std::string& text) {
 
 // The stimulus and run limits a plan fixes; every process running part of it uses the same.
 struct RunSettings {
-  int gap_pct = 20, max_gap = 8, stall_pct = 20;
+  int gap_pct = kRegressStimulus.gap_pct, max_gap = kRegressStimulus.max_gap,
+      stall_pct = kRegressStimulus.stall_pct;
   double timeout = 1800;
   uint64_t watchdog = 0;
   std::string fault;  // SITE@Y or empty (sim/harness/fault_site.h)
@@ -219,23 +222,14 @@ void resolve_netlists(std::vector<Job>& jobs, NetlistSource& netlists) {
   }
 }
 
-// The scene's own configuration: the smallest unit that shades it within its error budget, with
-// real specular hardware, or none when the scene has no specular term (host/scene_config.h
-// states each rule).
-RtlConfig own_config(const std::string& scene) {
-  RtlConfig c;
-  c.name = "own:" + fs::path(scene).stem().string();
-  c.unit = derive_config({scene}, DeriveOptions{}).config;
-  return c;
-}
-
 // A path of a plan, from the folder the plan was made in.
 std::string from_base(const fs::path& base, const std::string& path) {
   return base.empty() || fs::path(path).is_absolute() ? path : (base / path).string();
 }
 
 RtlConfig resolve_config(const RunSpec& s, const fs::path& base) {
-  if (s.config_kind == "own") return own_config(from_base(base, s.scene));
+  if (s.config_kind == kOwnUnit) return own_unit(from_base(base, s.scene));
+  if (s.config_kind == kDefaultUnit) return resolve_unit(kDefaultUnit, from_base(base, s.scene));
   if (s.config_kind == "named") return named_build(named_builds_path(), s.config);
   return resolve_rtl_config(from_base(base, s.config), "--config");
 }
@@ -281,16 +275,23 @@ std::vector<RunSpec> full_run_list(const RegressOptions& o,
     named_build(named_builds_path(), name);  // an unknown name fails here, listing the names
     configs.push_back({"named", name});
   }
-  for (const auto& file : o.config_files) {
-    resolve_rtl_config(file, "--config");  // an unreadable file fails here, naming the field
-    configs.push_back({"file", file});
+  for (const auto& text : o.config_files) {  // --config: own | default | NAME | FILE.json
+    if (text == kOwnUnit || text == kDefaultUnit) {
+      configs.push_back({text, text});
+    } else if (fs::path(text).extension() == ".json") {
+      resolve_rtl_config(text, "--config");  // an unreadable file fails here, naming the field
+      configs.push_back({"file", text});
+    } else {
+      named_build(named_builds_path(), text);
+      configs.push_back({"named", text});
+    }
   }
+  if (configs.empty()) configs.push_back({kOwnUnit, kOwnUnit});
   std::vector<RunSpec> runs;
   uint64_t seed = o.seed;
   for (const auto& scene : scenes) {
-    auto mine = configs;
-    if (mine.empty()) mine.push_back({"own", "own:" + fs::path(scene).stem().string()});
-    for (const auto& [kind, name] : mine) {
+    for (auto [kind, name] : configs) {
+      if (kind == kOwnUnit) name = std::string(kOwnUnit) + ":" + fs::path(scene).stem().string();
       for (const auto& b : o.backends) runs.push_back({scene, kind, name, b, seed});
       ++seed;
     }
@@ -431,7 +432,8 @@ void emit_jobs(const RegressOptions& o, const RunSettings& settings, const fs::p
   for (const auto& s : selected) {
     std::vector<std::string> a = {"cd", fs::current_path().string(), "&&", exe, "regress", s.scene};
     if (s.config_kind == "named") a.insert(a.end(), {"--configs", s.config});
-    if (s.config_kind == "file") a.insert(a.end(), {"--config", s.config});
+    if (s.config_kind == "file" || s.config_kind == kDefaultUnit)
+      a.insert(a.end(), {"--config", s.config});
     a.insert(a.end(),
              {"--backends", s.backend, "--seed", std::to_string(s.seed), "--gap-pct",
               std::to_string(settings.gap_pct), "--max-gap", std::to_string(settings.max_gap),
@@ -471,7 +473,8 @@ void save_record(const Job& j) {
 // The replay command for a run the harness gave none for (a timeout, a crash).
 std::string replay_command(const Job& j, const RunSettings& settings, const RegressOptions& o) {
   std::string cmd = cosim_replay_prefix(j.spec.backend, o.cache, o.netlist, o.netlist_cache);
-  if (j.spec.config_kind != "own") cmd += " --config " + j.spec.config;
+  if (j.spec.config_kind == "named" || j.spec.config_kind == "file")
+    cmd += " --config " + j.spec.config;
   cmd += " --stream " + j.rec.stream + " --seed " + std::to_string(j.spec.seed) + " --gap-pct " +
          std::to_string(settings.gap_pct) + " --max-gap " + std::to_string(settings.max_gap) +
          " --stall-pct " + std::to_string(settings.stall_pct);
@@ -1127,7 +1130,10 @@ void register_regress(CLI::App& app, int& exit_code) {
       ->delimiter(',')
       ->allow_extra_args(false);
   sub->add_option("--config", o->config_files,
-                  "a UnitConfig FILE.json to run every scene on (repeatable)")
+                  "the unit to run every scene on (repeatable): own (the default: each scene's "
+                  "own unit), default\n(the default widths), a named build or a UnitConfig "
+                  "FILE.json")
+      ->check(unit_choice_validator())
       ->allow_extra_args(false);
   sub->add_option("--backends", o->backends, "cpp, systemc or both (comma-separated)")
       ->delimiter(',')

@@ -30,7 +30,7 @@ struct RenderOptions {
   std::string out_dir;
   std::string json_path;
   std::string stream_path;
-  std::string config_path;  // --config: the unit is exactly this file's
+  std::string config;  // --config as in effect (sim/unit_choice.h): own, default, a build, a file
   WidthOptions widths;
   double budget_lsb = std::nan("");
   int max_depth = 12;
@@ -101,11 +101,7 @@ std::string specular_models(const Scene& scene) {
 // The frame options and output directory both render modes share.
 FrameOptions frame_options(const RenderOptions& o) {
   FrameOptions fo;
-  if (o.config_path.empty()) {
-    fo.base = o.widths.to_config();
-  } else {
-    use_config_file(o.config_path, fo);
-  }
+  use_unit_choice(o.config, o.scene, o.widths, fo);
   if (!std::isnan(o.budget_lsb)) fo.budget_lsb = o.budget_lsb;
   fo.max_depth = o.max_depth;
   if (!o.specular.empty()) fo.specular_override = parse_specular_unit(o.specular, "--specular");
@@ -122,7 +118,7 @@ std::filesystem::path output_dir(const RenderOptions& o) {
 
 int run_render(const RenderOptions& o) {
   const FrameOptions fo = frame_options(o);
-  const PreparedFrame frame = prepare_frame_on(o.scene, fo, o.config_path);
+  const PreparedFrame frame = prepare_frame_on(o.scene, fo, o.config);
   const Scene& scene = frame.scene;
   const UnitConfig& cfg = frame.config;
 
@@ -170,7 +166,7 @@ int run_render(const RenderOptions& o) {
     std::cout << "scene        " << o.scene << "  (" << scene.width << "x" << scene.height << ", "
               << scene.lights.size() << " light(s), eye "
               << (scene.eye_at_infinity ? "at infinity" : "finite") << ")\n"
-              << "unit         " << cfg.to_string() << "\n"
+              << "unit         " << cfg.to_string() << "  (--config " << o.config << ")\n"
               << "specular     " << unit_label << "\n"
               << "triangles    " << frame.project.triangles_in << " in mesh, "
               << frame.project.emitted << " after culling; " << st.triangles_out << " after setup ("
@@ -222,6 +218,7 @@ int run_render(const RenderOptions& o) {
     j["width"] = scene.width;
     j["height"] = scene.height;
     j["config"] = nlohmann::json::parse(config_to_json(cfg));
+    j["unit_choice"] = o.config;
     j["specular_unit"] = unit_label;
     j["triangles"] = {{"mesh", frame.project.triangles_in},
                       {"projected", frame.project.emitted},
@@ -378,8 +375,9 @@ void register_render(CLI::App& app, int& exit_code) {
                 "the highlights side by side with the reference, and one error line per unit")
       ->excludes("--specular");
   add_width_options(*sub, opts->widths);
-  add_config_option(*sub, opts->config_path, {"--specular", "--all-units"});
-  sub->callback([opts, &exit_code]() {
+  add_config_option(*sub, opts->config, {"--specular", "--all-units"});
+  sub->callback([opts, sub, &exit_code]() {
+    opts->config = unit_choice_in_effect(*sub, opts->config, {"--specular", "--all-units"});
     exit_code = opts->all_units ? run_all_units(*opts) : run_render(*opts);
   });
 }

@@ -1,6 +1,7 @@
-// --config FILE.json for the commands that shade on a unit (render, cycles): the unit is then
-// exactly the file's (model/unit_config_file.h), so the options that would change it are
-// excluded, and a scene that needs more than the file gives is an error naming the field.
+// --config for the commands that shade on a unit (render, cycles): own, default, a named build
+// or a UnitConfig file (sim/unit_choice.h says what each means). Own, a build or a file fix the
+// unit, so the options that would change it are excluded; a scene that needs more than the unit
+// gives is an error naming the field.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -9,24 +10,22 @@
 #include <vector>
 
 #include "host/frame.h"
-#include "model/unit_config_file.h"
+#include "sim/unit_choice.h"
 #include "sim/width_options.h"
 
 namespace shadesim {
 
 // Call after add_width_options and after adding the options named in `also_excluded`.
-inline void add_config_option(CLI::App& sub, std::string& path,
+inline void add_config_option(CLI::App& sub, std::string& text,
                               const std::vector<std::string>& also_excluded) {
-  CLI::Option* config =
-      sub.add_option("--config", path,
-                     "shade on exactly this unit: a UnitConfig JSON file (as `shadesim config "
-                     "--json` writes or a\n"
-                     "stream header carries; omitted fields take UnitConfig's defaults: the width "
-                     "defaults listed\n"
-                     "here, 1 channel, 1 light, specular ideal). Excludes the width options. "
-                     "Without it the widths\n"
-                     "come from the options and the structure and specular unit from the scene.");
-  config->check(CLI::ExistingFile);
+  CLI::Option* config = sub.add_option(
+      "--config", text,
+      "the unit: own (the scene's own unit, as `shadesim config` derives it: the default when no\n"
+      "width or structure option is given), default (the width defaults listed here, with the\n"
+      "scene's channels, lights and specular unit: what the width options change), a named build\n"
+      "(shadesim cosim --list) or a UnitConfig FILE.json (omitted fields take the defaults).\n"
+      "Own, a build or a file is exactly the unit: width options are refused beside it.");
+  config->check(unit_choice_validator());
   for (CLI::Option* o : sub.get_options()) {
     if (o != config && (o->get_group() == kWidthGroup || o->get_group() == kUnitWidthGroup))
       config->excludes(o);
@@ -34,21 +33,43 @@ inline void add_config_option(CLI::App& sub, std::string& path,
   for (const auto& name : also_excluded) config->excludes(sub.get_option(name));
 }
 
-// FrameOptions for a --config file: the file's unit, fixed (structure and specular unit included).
-inline void use_config_file(const std::string& path, FrameOptions& fo) {
-  fo.base = load_unit_config(path);
-  fo.fixed_unit = true;
+// The --config in effect: as given, else `default` when a width option or one of `structure`
+// (options that choose the unit's structure or specular unit) was given, else `own`.
+inline std::string unit_choice_in_effect(const CLI::App& sub, const std::string& given,
+                                         const std::vector<std::string>& structure) {
+  if (!given.empty()) return given;
+  for (const CLI::Option* o : sub.get_options()) {
+    const bool width = o->get_group() == kWidthGroup || o->get_group() == kUnitWidthGroup;
+    if (width && o->count() > 0) return kDefaultUnit;
+  }
+  for (const auto& name : structure) {
+    if (sub.get_option(name)->count() > 0) return kDefaultUnit;
+  }
+  return kOwnUnit;
 }
 
-// prepare_frame, with the --config file named in a scene-does-not-fit error.
+// Sets `fo`'s unit from the --config in effect; returns its label (own:<scene>, default, the
+// build's name or the file).
+inline std::string use_unit_choice(const std::string& choice, const std::string& scene,
+                                   const WidthOptions& widths, FrameOptions& fo) {
+  if (choice == kDefaultUnit) {
+    fo.base = widths.to_config();
+    return kDefaultUnit;
+  }
+  const RtlConfig unit = resolve_unit(choice, scene);
+  fo.base = unit.unit;
+  fo.fixed_unit = true;
+  return unit.name;
+}
+
+// prepare_frame, with the --config unit named in a scene-does-not-fit error.
 inline PreparedFrame prepare_frame_on(const std::string& scene, const FrameOptions& fo,
-                                      const std::string& config_path) {
-  if (config_path.empty()) return prepare_frame(scene, fo);
+                                      const std::string& choice) {
+  if (choice == kDefaultUnit) return prepare_frame(scene, fo);
   try {
     return prepare_frame(scene, fo);
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(std::string(e.what()) + " (the unit of --config " + config_path +
-                                ")");
+    throw std::invalid_argument(std::string(e.what()) + " (the unit of --config " + choice + ")");
   }
 }
 

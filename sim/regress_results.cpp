@@ -74,10 +74,11 @@ const std::vector<std::string>& known_statuses() {
 RunSpec spec_from_json(const nlohmann::json& j, const std::string& where) {
   RunSpec s;
   s.scene = required<std::string>(j, "scene", where, "a scene path");
-  s.config_kind = required<std::string>(j, "config_kind", where, "own, named or file");
-  if (s.config_kind != "own" && s.config_kind != "named" && s.config_kind != "file") {
+  s.config_kind = required<std::string>(j, "config_kind", where, "own, default, named or file");
+  if (s.config_kind != "own" && s.config_kind != "default" && s.config_kind != "named" &&
+      s.config_kind != "file") {
     throw std::runtime_error(where + ": field 'config_kind' is '" + s.config_kind +
-                             "', expected own, named or file");
+                             "', expected own, default, named or file");
   }
   s.config = required<std::string>(j, "config", where, "a configuration name or file");
   s.backend = required<std::string>(j, "backend", where, "cpp or systemc");

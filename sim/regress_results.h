@@ -19,8 +19,8 @@ namespace shadesim {
 // What one run is: enough to plan it again in another process (regress --resume, a job line).
 struct RunSpec {
   std::string scene;        // path, as given
-  std::string config_kind;  // "own" (the scene's own configuration), "named" or "file"
-  std::string config;       // own:<scene>, a named build, or a UnitConfig file's path
+  std::string config_kind;  // "own" (the scene's own unit), "default", "named" or "file"
+  std::string config;       // own:<scene>, default, a named build, or a UnitConfig file's path
   std::string backend;      // cpp | systemc
   uint64_t seed = 0;
   std::string id() const;

@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iterator>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
@@ -26,8 +28,9 @@ const std::string kScenes = std::string(SHADESIM_SOURCE_DIR) + "/scenes/";
 
 TEST(Cli, RenderWritesImagesAndJsonFigures) {
   const auto dir = temp_dir("render");
-  const Result r = run("render " + kScenes + "sphere.json --out " + dir.string() + " --json " +
-                       (dir / "r.json").string() + " --save-stream " + (dir / "s.cmd").string());
+  const Result r =
+      run("render " + kScenes + "sphere.json --config default --out " + dir.string() + " --json " +
+          (dir / "r.json").string() + " --save-stream " + (dir / "s.cmd").string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("PSNR"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("ideal (exact pow"), std::string::npos)
@@ -145,6 +148,64 @@ TEST(Cli, CyclesEstimateEqualsTheRtlOnTheSameSceneAndStimulus) {
   std::filesystem::remove_all(dir);
 }
 
+// The README's own-unit table: scene -> its cycles/px cell, as printed.
+std::map<std::string, std::string> readme_cycles_per_pixel() {
+  std::ifstream readme(std::string(SHADESIM_SOURCE_DIR) + "/README.md");
+  std::map<std::string, std::string> rows;
+  bool in_table = false;
+  for (std::string line; std::getline(readme, line);) {
+    if (line.rfind("| scene | own unit | max LSB | cycles/px |", 0) == 0) in_table = true;
+    if (!in_table) continue;
+    if (line.empty() || line[0] != '|') break;
+    std::vector<std::string> cells;
+    std::stringstream cols(line);
+    for (std::string cell; std::getline(cols, cell, '|');) {
+      cells.push_back(cell.substr(
+          cell.find_first_not_of(' ') == std::string::npos ? 0 : cell.find_first_not_of(' ')));
+      while (!cells.back().empty() && cells.back().back() == ' ') cells.back().pop_back();
+    }
+    if (cells.size() >= 5 && cells[1] != "scene" && cells[1].rfind("---", 0) != 0)
+      rows[cells[1]] = cells[4];
+  }
+  return rows;
+}
+
+std::string three_decimals(double v) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(3) << v;
+  return os.str();
+}
+
+TEST(Cli, CyclesRegressAndTheReadmeAgreeOnEveryShippedScene) {
+#ifndef SHADESIM_HAVE_RTL
+  GTEST_SKIP() << "RTL not built (configure with -DSHADESIM_RTL=ON)";
+#endif
+  // One unit, one number (issue 23): `cycles SCENE` (the scene's own unit, no gaps) is the
+  // README's figure, and `cycles SCENE --regress-stimulus --seed S` is what `regress SCENE`
+  // measured on the RTL for the run with seed S.
+  const auto dir = temp_dir("one_number");
+  const auto readme = readme_cycles_per_pixel();
+  const auto regress =
+      run_json("regress --backends cpp -j 2 --out " + (dir / "reg").string(), dir / "r.json");
+  std::set<std::string> scenes_run;
+  for (const auto& job : regress["jobs"]) {
+    const std::string scene = job["scene"].get<std::string>();
+    const std::string stem = std::filesystem::path(scene).stem().string();
+    scenes_run.insert(stem);
+    ASSERT_EQ(job["status"], "pass") << job.dump(2);
+    const auto plain = run_json("cycles " + scene, dir / (stem + ".json"));
+    ASSERT_TRUE(readme.count(stem)) << stem << " has no row in the README's own-unit table";
+    EXPECT_EQ(readme.at(stem), three_decimals(plain["cycles_per_pixel"].get<double>())) << stem;
+    const auto pressed =
+        run_json("cycles " + scene + " --regress-stimulus --seed " + job["seed"].dump(),
+                 dir / (stem + "_regress.json"));
+    EXPECT_EQ(pressed["cycles"], job["cycles"]) << stem;
+    EXPECT_EQ(pressed["config"], plain["config"]) << stem;
+  }
+  EXPECT_EQ(scenes_run.size(), readme.size()) << "every README row is a shipped scene, once";
+  std::filesystem::remove_all(dir);
+}
+
 void expect_error(const std::string& args, const std::string& needle) {
   const Result r = run(args);
   EXPECT_NE(r.status, 0) << args;
@@ -242,11 +303,27 @@ TEST(Cli, ConfigDerivesAUnitThatRenderAndCyclesUseWithConfig) {
   const auto cycles = run_json("cycles " + kScenes + "sphere.json --config " + cfg, dir / "c.json");
   EXPECT_EQ(cycles["config"]["xy_bits"], 8);
   EXPECT_EQ(cycles["slot"]["latency"], 0);  // none: no slot between the engines and the output
-  // Without --config the defaults stay what the README's figures use.
+  // Without --config (and without width options) render and cycles shade on the scene's own
+  // unit, the one config derived above: one unit everywhere (issue 23).
   const auto plain = run_json("render " + kScenes + "sphere.json -q --out " + (dir / "p").string(),
                               dir / "p.json");
-  EXPECT_EQ(plain["config"]["series"], "s4.28:wrap");
-  EXPECT_EQ(plain["config"]["specular"]["kind"], "ideal");
+  EXPECT_EQ(plain["unit_choice"], "own");
+  EXPECT_EQ(plain["config"], rendered["config"]);
+  const auto own_cycles = run_json("cycles " + kScenes + "sphere.json", dir / "oc.json");
+  EXPECT_EQ(own_cycles["config"], cycles["config"]);
+  EXPECT_EQ(own_cycles["cycles"], cycles["cycles"]);
+  // The old defaults by name, and whenever a width option is given.
+  const auto defaults = run_json(
+      "render " + kScenes + "sphere.json -q --config default --out " + (dir / "d").string(),
+      dir / "d.json");
+  EXPECT_EQ(defaults["config"]["series"], "s4.28:wrap");
+  EXPECT_EQ(defaults["config"]["specular"]["kind"], "ideal");
+  const auto widened = run_json(
+      "render " + kScenes + "sphere.json -q --coef s4.30:rnd:wrap --out " + (dir / "w").string(),
+      dir / "w.json");
+  EXPECT_EQ(widened["unit_choice"], "default");
+  EXPECT_EQ(widened["config"]["series"], "s4.28:wrap");
+  EXPECT_EQ(widened["config"]["coef"], "s4.30:rnd:wrap");
   std::filesystem::remove_all(dir);
 }
 
