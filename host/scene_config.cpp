@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "host/frame.h"
+#include "host/scene_error.h"
 #include "host/specular_setup.h"
 #include "model/coef_packing.h"
 #include "model/command_stream.h"
@@ -146,7 +147,9 @@ int drift_fraction_bits(int longest_span, double gain, double share_lsb, int out
   return 61;
 }
 
-DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
+// Every field for one specular substitute (options.ideal_substitute); derive_config below tries
+// the fallbacks.
+DerivedConfig derive_widths(const std::vector<std::string>& scene_paths,
                             const DeriveOptions& options) {
   if (scene_paths.empty()) throw std::invalid_argument("derive_config: no scenes given");
   std::vector<SceneInfo> scenes;
@@ -238,13 +241,13 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
                                                 ", which adds 0 without a specular colour)");
   } else if (named == SpecularUnitKind::kIdeal) {
     cfg.specular = options.ideal_substitute;
+    out.substitute = cfg.specular.kind != SpecularUnitKind::kIdeal;
     specular_why = cfg.specular.kind == SpecularUnitKind::kIdeal
                        ? "the scenes name ideal, kept as asked: exact pow, not hardware (its RTL "
                          "slot outputs 0)"
                        : "the scenes name ideal, which is not hardware (its RTL slot outputs 0); "
                          "substituted by " +
-                             cfg.specular.describe() +
-                             ", the closest hardware unit to ideal in the README table";
+                             cfg.specular.describe();
   } else {
     cfg.specular.kind = named;
     specular_why = "the unit the scenes' materials name, default widths";
@@ -453,6 +456,70 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
   out.config = cfg;
   out.reasons = std::move(reasons);
   return out;
+}
+
+namespace {
+
+// The largest error of `config` over the scenes, in output codes.
+int max_code_error(const std::vector<std::string>& scene_paths, const UnitConfig& config,
+                   const DeriveOptions& options) {
+  int worst = 0;
+  for (const auto& path : scene_paths) {
+    worst = std::max(worst,
+                     scene_error(path, config, options.budget_lsb, options.max_depth).max_code_lsb);
+  }
+  return worst;
+}
+
+bool substituted(const DerivedConfig& d, const DeriveOptions& options) {
+  return d.substitute && d.config.specular.kind == options.ideal_substitute.kind;
+}
+
+}  // namespace
+
+DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
+                            const DeriveOptions& options) {
+  DerivedConfig first = derive_widths(scene_paths, options);
+  if (!substituted(first, options) || options.ideal_fallbacks.empty()) return first;
+  // The scenes name ideal: the substitute must meet the budget on them (measured, not bounded:
+  // a unit's approximation of t^n is not in the width rules), else the next fallback, each
+  // with the widths derived for it. The reason lists every unit tried.
+  std::string tried;
+  DeriveOptions o = options;
+  std::vector<SpecularConfig> units{options.ideal_substitute};
+  units.insert(units.end(), options.ideal_fallbacks.begin(), options.ideal_fallbacks.end());
+  for (size_t i = 0; i < units.size(); ++i) {
+    o.ideal_substitute = units[i];
+    DerivedConfig d = i == 0 ? first : derive_widths(scene_paths, o);
+    const int error = max_code_error(scene_paths, d.config, o);
+    tried += (tried.empty() ? "" : ", ") + d.config.specular.describe() + " " +
+             std::to_string(error) + " LSB";
+    const bool met = error <= code_budget(d.measured.budget_lsb);
+    // Where exact pow on the same widths misses the budget too, no unit will meet it: the widths,
+    // the Taylor setup or the N.L gate do not (shadesim config says so and exits 1).
+    bool hopeless = false;
+    if (!met && i == 0) {
+      UnitConfig exact = d.config;
+      exact.specular.kind = SpecularUnitKind::kIdeal;
+      hopeless = max_code_error(scene_paths, exact, o) > code_budget(d.measured.budget_lsb);
+    }
+    if (met || hopeless || i + 1 == units.size()) {
+      for (auto& r : d.reasons) {
+        if (r.field != "specular") continue;
+        r.reason += met ? "; measured against the budget on the scenes, smallest first: " + tried +
+                              " (the first within " +
+                              std::to_string(code_budget(d.measured.budget_lsb)) + " LSB)"
+                    : hopeless
+                        ? "; misses the " + fmt(d.measured.budget_lsb) +
+                              " LSB budget on the scenes (" + tried +
+                              "), and so does exact pow on its widths: no other unit is tried"
+                        : "; no hardware unit tried meets the " + fmt(d.measured.budget_lsb) +
+                              " LSB budget on the scenes: " + tried + " (the last is kept)";
+      }
+      return d;
+    }
+  }
+  return first;  // not reached: the loop returns on its last unit
 }
 
 }  // namespace shadesim

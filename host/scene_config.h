@@ -7,7 +7,10 @@
 //   specular           none when no material of any scene has a specular term (specular colour
 //                      times light colour is 0 in every channel): no unit and no specular series;
 //                      else the unit the scenes' materials name; `ideal` is not hardware (its RTL
-//                      slot outputs 0), so a scene naming it gets DeriveOptions::ideal_substitute.
+//                      slot outputs 0), so a scene naming it gets DeriveOptions::ideal_substitute,
+//                      or, where that misses the budget on the scenes (measured: max code error
+//                      <= budget), the first of DeriveOptions::ideal_fallbacks that meets it, each
+//                      with its own widths (the last one tried when none does).
 //   xy_bits            enough unsigned bits for the widest / tallest image (at least 4).
 //   series integer     the fewest (>= 2) that hold every series value at every pixel (and every
 //                      ambient word), measured on a trial unit wide enough that setup pre-shifts
@@ -29,6 +32,7 @@
 // half of it on top, so the real error stays below 1.5 budget + output rounding.
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,6 +53,23 @@ struct DeriveOptions {
     s.wpow.base_bits = 16;
     s.wpow.timing = UnitTiming::kPipelined;
     return s;
+  }();
+  // Tried in order when ideal_substitute misses the budget: W_32 (one more squaring), then
+  // per-exponent LUTs with linear interpolation (docs/specular.md measures their error and area).
+  std::vector<SpecularConfig> ideal_fallbacks = [] {
+    SpecularConfig w32;
+    w32.kind = SpecularUnitKind::kWpow;
+    w32.wpow.max_m = 32;
+    w32.wpow.base_bits = 16;
+    w32.wpow.timing = UnitTiming::kPipelined;
+    SpecularConfig lut12;
+    lut12.kind = SpecularUnitKind::kLut;
+    lut12.lut.entry_bits = 12;
+    lut12.lut.interp_bits = 4;
+    SpecularConfig lut16 = lut12;
+    lut16.lut.entry_bits = 16;
+    lut16.lut.interp_bits = 6;
+    return std::vector<SpecularConfig>{w32, lut12, lut16};
   }();
   int max_depth = 12;  // setup's subdivision depth limit, as FrameOptions
   // Throughput structure (pixels do not depend on it): a 4-word port and a 2-deep triangle
@@ -86,7 +107,13 @@ struct DerivedConfig {
   // field in config_to_json's order.
   std::vector<FieldReason> reasons;
   ConfigMeasurements measured;
+  bool substitute = false;  // the scenes name ideal; config.specular is the hardware in its place
 };
+
+// The largest output-code error a budget allows: codes differ by whole LSBs, and rounding the
+// model and the reference each to a code makes 1 LSB of difference from any real error, so a
+// budget of B LSB allows ceil(B) (0.9 and 1 both allow 1).
+inline int code_budget(double budget_lsb) { return static_cast<int>(std::ceil(budget_lsb)); }
 
 // Throws SceneError for bad scenes and std::invalid_argument for scenes no one unit can shade
 // (different specular units: the message names the scenes and units) or impossible budgets.

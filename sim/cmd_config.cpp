@@ -7,11 +7,14 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
 
 #include "host/frame.h"
 #include "host/metrics.h"
 #include "host/reference.h"
 #include "host/scene_config.h"
+#include "host/scene_error.h"
 #include "model/command_stream.h"
 #include "model/shade_unit.h"
 #include "model/specular_units.h"
@@ -32,25 +35,30 @@ struct ConfigOptions {
   std::string json_path;
 };
 
-struct SceneResult {
-  std::string scene;
-  ErrorStats error;
-};
-
 // The scene on exactly `config`, through the model and the reference, with render's metrics.
-SceneResult shade(const std::string& path, const UnitConfig& config, const DeriveOptions& d) {
-  FrameOptions fo;
-  fo.base = config;
-  fo.fixed_unit = true;
-  fo.budget_lsb = d.budget_lsb;
-  fo.max_depth = d.max_depth;
-  const PreparedFrame f = prepare_frame(path, fo);
-  const auto pixels = ShadeUnit(f.config).run(f.encoded.stream);
-  const ReferenceImage ref =
-      render_reference(f.setup.triangles, f.visibility, f.scene, f.config.channels);
-  const ErrorMap err = compare_to_reference(pixels, ref.values, f.visibility.owner, f.scene.width,
-                                            f.scene.height, f.config.channels, f.config.out_bits);
-  return {path, err.stats};
+ErrorStats shade(const std::string& path, const UnitConfig& config, const DeriveOptions& d) {
+  return scene_error(path, config, d.budget_lsb, d.max_depth);
+}
+
+// Why a scene misses the budget: the specular unit's function when exact pow on the same widths
+// meets it, else the widths, the Taylor setup or the N.L gate (exact pow misses it too).
+std::string missed_budget_part(const std::string& path, const ErrorStats& e,
+                               const std::optional<ErrorStats>& ideal, double budget) {
+  std::ostringstream os;
+  os << path << ": max " << e.max_code_lsb << " LSB, " << e.max_code_lsb - code_budget(budget)
+     << " LSB over the " << budget << " LSB budget (" << code_budget(budget)
+     << " in output codes): ";
+  if (ideal && ideal->max_code_lsb <= code_budget(budget)) {
+    os << "the specular unit's own approximation of t^n (exact pow on the same widths: "
+       << ideal->max_code_lsb << " LSB); try another unit or its fields (shadesim spec-error)";
+  } else {
+    os << "the widths, the Taylor setup or the N.L gate, not the specular unit"
+       << (ideal
+               ? " (exact pow on the same widths: " + std::to_string(ideal->max_code_lsb) + " LSB)"
+               : std::string())
+       << "; a lower --budget narrows the setup and widens the series";
+  }
+  return os.str();
 }
 
 int run_config(const ConfigOptions& o) {
@@ -63,6 +71,7 @@ int run_config(const ConfigOptions& o) {
   if (ideal_as != d.ideal_substitute.kind) {
     d.ideal_substitute = SpecularConfig{};  // that unit's default widths
     d.ideal_substitute.kind = ideal_as;
+    d.ideal_fallbacks.clear();  // the unit asked for, and no other
   }
   const DerivedConfig derived = derive_config(o.scenes, d);
   const UnitConfig& cfg = derived.config;
@@ -79,12 +88,12 @@ int run_config(const ConfigOptions& o) {
                "= before "
                "rounding the reference)\n";
   nlohmann::json scenes = nlohmann::json::array();
-  const bool substituted =
-      load_scene(o.scenes.front()).materials.front().unit == SpecularUnitKind::kIdeal &&
-      specular_unit(cfg.specular.kind).hardware;
+  // A hardware specular unit gets the exact-pow yardstick on the same widths: what of the error
+  // is the unit's own.
+  const bool hardware = specular_unit(cfg.specular.kind).hardware;
+  std::vector<std::string> missed;
   for (const auto& path : o.scenes) {
-    const SceneResult r = shade(path, cfg, d);
-    const ErrorStats& e = r.error;
+    const ErrorStats e = shade(path, cfg, d);
     std::cout << "  " << path << ": max " << e.max_code_lsb << " LSB, mean " << std::setprecision(4)
               << e.mean_code_lsb << " LSB, PSNR "
               << (std::isinf(e.psnr_db) ? std::string("inf")
@@ -92,11 +101,12 @@ int run_config(const ConfigOptions& o) {
               << ", max real " << std::setprecision(3) << e.max_real_lsb << " LSB, "
               << e.pixels_over_1lsb << " of " << e.pixels << " pixels off by more than 1\n";
     nlohmann::json yardstick = nullptr;
-    if (substituted) {
-      // The same widths with the exact-pow yardstick: what of the error is the substitute unit's.
+    std::optional<ErrorStats> with_ideal;
+    if (hardware) {
       UnitConfig ideal = cfg;
       ideal.specular.kind = SpecularUnitKind::kIdeal;
-      const ErrorStats y = shade(path, ideal, d).error;
+      const ErrorStats y = shade(path, ideal, d);
+      with_ideal = y;
       std::cout << "    with ideal (exact pow, not hardware) on the same widths: max "
                 << y.max_code_lsb << " LSB, max real " << std::setprecision(3) << y.max_real_lsb
                 << " LSB\n";
@@ -107,9 +117,12 @@ int run_config(const ConfigOptions& o) {
       }
       yardstick = {{"max_code_lsb", y.max_code_lsb}, {"max_real_lsb", y.max_real_lsb}};
     }
+    if (e.max_code_lsb > code_budget(derived.measured.budget_lsb))
+      missed.push_back(missed_budget_part(path, e, with_ideal, derived.measured.budget_lsb));
     scenes.push_back(
         {{"scene", path},
          {"with_ideal_specular", yardstick},
+         {"within_budget", e.max_code_lsb <= code_budget(derived.measured.budget_lsb)},
          {"pixels", e.pixels},
          {"max_code_lsb", e.max_code_lsb},
          {"mean_code_lsb", e.mean_code_lsb},
@@ -148,6 +161,12 @@ int run_config(const ConfigOptions& o) {
     if (!os) throw std::runtime_error(o.json_path + ": write failed");
     std::cout << "\nconfig       " << o.json_path << " (use with --config)\n";
   }
+  if (!missed.empty()) {
+    std::cerr << "shadesim config: the unit misses the budget on " << missed.size()
+              << " scene(s):\n";
+    for (const auto& m : missed) std::cerr << "  " << m << '\n';
+    return 1;
+  }
   return 0;
 }
 
@@ -167,8 +186,10 @@ void register_config(CLI::App& app, int& exit_code) {
       "  specular     none (no specular unit, no specular series) when no material has a\n"
       "               specular term (specular colour x light colour 0 in every channel); else\n"
       "               the unit the materials name (all must name one); `ideal` is not hardware\n"
-      "               (its RTL slot outputs 0), so it becomes W_16 B=16 pipelined, the closest\n"
-      "               hardware unit to ideal in the README table; the reason says so\n"
+      "               (its RTL slot outputs 0), so it becomes W_16 B=16 pipelined, or where\n"
+      "               that misses the budget on the scenes (measured), the first of W_32 B=16,\n"
+      "               LUT A=10 B=12 F=4, LUT A=10 B=16 F=6 that meets it; the reason lists each\n"
+      "               unit tried with its error\n"
       "  xy_bits      enough unsigned bits for the largest image width and height (at least 4)\n"
       "  offset_bits  enough signed bits for the largest |dx|, |dy| of a span's first pixel from\n"
       "               its triangle's origin, so no triangle is re-origined\n"
@@ -191,7 +212,9 @@ void register_config(CLI::App& app, int& exit_code) {
       "  spec_colour, specular widths: defaults\n"
       "  G = sum over lights of (1 + max specular colour x the unit's slope on its series), the\n"
       "  slope from t^n's <= n on [0, 1] through setup's pre-scaling. The Taylor error keeps the\n"
-      "  whole budget in setup; the fixed-point error adds at most half of it.");
+      "  whole budget in setup; the fixed-point error adds at most half of it.\n"
+      "Exits 1 when the unit misses the budget on a scene (measured), saying which part: the\n"
+      "specular unit's function, or the widths, Taylor setup or N.L gate.");
   sub->add_option("scenes", o->scenes, "scene JSON files")->required()->check(CLI::ExistingFile);
   sub->add_option(
          "--budget", o->budget_lsb,

@@ -327,6 +327,58 @@ TEST(Cli, ConfigDerivesAUnitThatRenderAndCyclesUseWithConfig) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Cli, ConfigExitsNonZeroNamingThePartThatMissesTheBudget) {
+  // Every shipped scene gets a unit within 1 LSB (README's own-unit table); where none can be
+  // had, config says which part misses and by how much, and exits 1 (issue 23).
+  const auto dir = temp_dir("config_budget");
+  auto spec = nlohmann::json::parse(std::ifstream(kScenes + "specular.json"));
+  spec["materials"][0]["unit"] = "schlick";  // n = 60: Schlick's divider is ~31 LSB off
+  const std::string schlick = (dir / "schlick.json").string();
+  std::ofstream(schlick) << spec.dump();
+  Result r = run("config " + schlick);
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("the specular unit's own approximation of t^n"), std::string::npos)
+      << r.output;
+  spec["materials"][0]["unit"] = "ideal";
+  spec["materials"][0]["exponent"] = 1;  // the N.L gate's step: exact pow misses too
+  const std::string n1 = (dir / "n1.json").string();
+  std::ofstream(n1) << spec.dump();
+  r = run("config " + n1);
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("the widths, the Taylor setup or the N.L gate"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("no other unit is tried"), std::string::npos) << r.output;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, ConfigBudgetOneHoldsOnEveryShippedAndHardScene) {
+  // config --budget 1 either derives a unit that render, an independent run of the model against
+  // the double reference, measures within 1 LSB, or exits non-zero; every shipped scene gets one.
+  const auto dir = temp_dir("config_budget_all");
+  std::vector<std::string> scenes;
+  for (const char* folder : {"", "hard/"}) {
+    for (const auto& e : std::filesystem::directory_iterator(kScenes + folder)) {
+      if (e.path().extension() == ".json") scenes.push_back(e.path().string());
+    }
+  }
+  ASSERT_GE(scenes.size(), 15u);
+  for (const auto& scene : scenes) {
+    const std::string unit = (dir / "unit.json").string();
+    const Result c = run("config " + scene + " --budget 1 --json " + unit);
+    const bool shipped = scene.find("/hard/") == std::string::npos;
+    if (c.status != 0) {
+      EXPECT_FALSE(shipped) << scene << " gets no unit within 1 LSB:\n" << c.output;
+      EXPECT_NE(c.output.find("misses the budget"), std::string::npos) << c.output;
+      continue;
+    }
+    const auto r = run_json(
+        "render " + scene + " -q --config " + unit + " --budget 1 --out " + (dir / "r").string(),
+        dir / "r.json");
+    EXPECT_LE(r["error"]["max_code_lsb"].get<int>(), 1) << scene;
+  }
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Cli, ConfigAndConfigFileErrorsNameTheProblem) {
   const auto dir = temp_dir("config_bad");
   const std::string grey = (dir / "grey.json").string();

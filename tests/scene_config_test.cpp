@@ -16,6 +16,7 @@
 #include "host/frame.h"
 #include "host/metrics.h"
 #include "host/reference.h"
+#include "host/scene_error.h"
 #include "model/shade_unit.h"
 #include "tests/support/render_at.h"
 
@@ -107,17 +108,34 @@ TEST(SceneConfig, StructureAndXyBitsFollowTheSceneJson) {
   EXPECT_EQ(derive_config({scene("sphere.json")}, out10).config.out_bits, 10);
 }
 
-TEST(SceneConfig, IdealBecomesTheStatedHardwareUnit) {
-  const DerivedConfig d = derive_config({scene("specular.json")}, {});
-  EXPECT_EQ(d.config.specular.kind, SpecularUnitKind::kWpow);
-  EXPECT_EQ(d.config.specular.wpow.max_m, 16);
-  EXPECT_EQ(d.config.specular.wpow.base_bits, 16);
-  EXPECT_EQ(d.config.specular.wpow.timing, UnitTiming::kPipelined);
-  const std::string why = reason_of(d, "specular").reason;
+TEST(SceneConfig, IdealBecomesTheFirstHardwareUnitThatMeetsTheBudget) {
+  // torus: W_16 B=16 pipelined meets 1 LSB and is kept.
+  const DerivedConfig torus = derive_config({scene("torus.json")}, {});
+  EXPECT_EQ(torus.config.specular.kind, SpecularUnitKind::kWpow);
+  EXPECT_EQ(torus.config.specular.wpow.max_m, 16);
+  EXPECT_EQ(torus.config.specular.wpow.base_bits, 16);
+  EXPECT_EQ(torus.config.specular.wpow.timing, UnitTiming::kPipelined);
+  const std::string why = reason_of(torus, "specular").reason;
   EXPECT_NE(why.find("ideal"), std::string::npos) << why;
   EXPECT_NE(why.find("not hardware"), std::string::npos) << why;
+  EXPECT_LE(scene_error(scene("torus.json"), torus.config, {}, 12).max_code_lsb, 1);
+  // specular: W_16 alone misses the budget (measured on its own derived unit), so the unit moves
+  // to the first fallback that meets it, and the reason names both with their errors.
+  DeriveOptions w16_only;
+  w16_only.ideal_fallbacks.clear();
+  const DerivedConfig w16 = derive_config({scene("specular.json")}, w16_only);
+  EXPECT_EQ(w16.config.specular.wpow.max_m, 16);
+  EXPECT_GT(scene_error(scene("specular.json"), w16.config, {}, 12).max_code_lsb, 1);
+  const DerivedConfig spec = derive_config({scene("specular.json")}, {});
+  EXPECT_NE(spec.config.specular.describe(), w16.config.specular.describe());
+  EXPECT_LE(scene_error(scene("specular.json"), spec.config, {}, 12).max_code_lsb, 1);
+  const std::string tried = reason_of(spec, "specular").reason;
+  EXPECT_NE(tried.find(w16.config.specular.describe()), std::string::npos) << tried;
+  EXPECT_NE(tried.find("the first within 1 LSB"), std::string::npos) << tried;
+  // An asked-for substitute and no fallbacks: kept as asked.
   DeriveOptions lut;
   lut.ideal_substitute.kind = SpecularUnitKind::kLut;
+  lut.ideal_fallbacks.clear();
   EXPECT_EQ(derive_config({scene("specular.json")}, lut).config.specular.kind,
             SpecularUnitKind::kLut);
 }

@@ -1,0 +1,25 @@
+#include "host/scene_error.h"
+
+#include "host/frame.h"
+#include "host/reference.h"
+#include "model/shade_unit.h"
+
+namespace shadesim {
+
+ErrorStats scene_error(const std::string& scene_path, const UnitConfig& config,
+                       std::optional<double> budget_lsb, int max_depth) {
+  FrameOptions fo;
+  fo.base = config;
+  fo.fixed_unit = true;
+  fo.budget_lsb = budget_lsb;
+  fo.max_depth = max_depth;
+  const PreparedFrame f = prepare_frame(scene_path, fo);
+  const auto pixels = ShadeUnit(f.config).run(f.encoded.stream);
+  const ReferenceImage ref =
+      render_reference(f.setup.triangles, f.visibility, f.scene, f.config.channels);
+  return compare_to_reference(pixels, ref.values, f.visibility.owner, f.scene.width, f.scene.height,
+                              f.config.channels, f.config.out_bits)
+      .stats;
+}
+
+}  // namespace shadesim

@@ -1,0 +1,18 @@
+// The error a unit reaches on a scene: the scene shaded on exactly that unit through the
+// bit-accurate model and the double-precision reference, with render's metrics. `config`
+// measures its derived unit with it; the derivation tries specular units with it.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "host/metrics.h"
+#include "model/unit_config.h"
+
+namespace shadesim {
+
+// budget_lsb: setup's Taylor budget (unset: the scene's); max_depth: its subdivision limit.
+ErrorStats scene_error(const std::string& scene_path, const UnitConfig& config,
+                       std::optional<double> budget_lsb, int max_depth);
+
+}  // namespace shadesim
