@@ -16,6 +16,7 @@
 #include "host/reference.h"
 #include "model/shade_unit.h"
 #include "model/specular_units.h"
+#include "sim/accuracy_warnings.h"
 #include "sim/commands.h"
 #include "sim/config_option.h"
 #include "sim/number_checks.h"
@@ -162,6 +163,8 @@ int run_render(const RenderOptions& o) {
                                  : cfg.specular.kind == SpecularUnitKind::kNone
                                      ? " (no specular term: highlights not shaded)"
                                      : "");
+  const std::vector<std::string> warnings =
+      accuracy_warnings(o.scene, cfg, fo.budget_lsb, fo.max_depth, frame.encoded.stream);
   if (!o.quiet) {
     std::cout << "scene        " << o.scene << "  (" << scene.width << "x" << scene.height << ", "
               << scene.lights.size() << " light(s), eye "
@@ -195,6 +198,7 @@ int run_render(const RenderOptions& o) {
               << " Mpixel/s), reference " << reference_s << " s\n"
               << "images       " << (out_dir / "compare.png").string()
               << " (model | reference | error, full scale " << o.heat_scale_lsb << " LSB)\n";
+    for (const auto& w : warnings) std::cout << "warning      " << w << "\n";
     if (frame.encoded.stats.narrow_terms_saturated > 0) {
       std::cout << "warning      " << frame.encoded.stats.narrow_terms_saturated
                 << " Taylor coefficient(s) saturated their term's narrowed format (coef_term_iwl);"
@@ -219,6 +223,7 @@ int run_render(const RenderOptions& o) {
     j["height"] = scene.height;
     j["config"] = nlohmann::json::parse(config_to_json(cfg));
     j["unit_choice"] = o.config;
+    j["warnings"] = warnings;
     j["specular_unit"] = unit_label;
     j["triangles"] = {{"mesh", frame.project.triangles_in},
                       {"projected", frame.project.emitted},

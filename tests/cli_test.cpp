@@ -103,6 +103,39 @@ nlohmann::json run_json(const std::string& args, const std::filesystem::path& js
   return nlohmann::json::parse(js);
 }
 
+TEST(Cli, RenderWarnsWhereTheWidthsCannotHoldTheScene) {
+  // Never a silently wrong image (issue 23): an overbright light drives the series past the
+  // default s4.28's range, and a 4096-pixel span outgrows its drift bound.
+  const auto dir = temp_dir("warnings");
+  auto bright = nlohmann::json::parse(std::ifstream(kScenes + "sphere.json"));
+  bright["lights"][0]["colour"] = {12, 12, 12};
+  std::ofstream(dir / "bright.json") << bright.dump();
+  const auto b = run_json("render " + (dir / "bright.json").string() +
+                              " -q --config default --out " + (dir / "b").string(),
+                          dir / "b.json");
+  ASSERT_EQ(b["warnings"].size(), 1u) << b["warnings"].dump();
+  EXPECT_NE(b["warnings"][0].get<std::string>().find("beyond s4.28:wrap's range"),
+            std::string::npos);
+  EXPECT_GT(b["error"]["max_code_lsb"].get<int>(), 100);  // the wrong image the warning names
+  auto wide = nlohmann::json::parse(std::ifstream(kScenes + "hard/long_span.json"));
+  wide["image"]["width"] = 4096;
+  std::filesystem::copy_file(kScenes + "hard/long_span_tri.obj", dir / "long_span_tri.obj");
+  std::ofstream(dir / "wide.json") << wide.dump();
+  const auto w = run_json("render " + (dir / "wide.json").string() + " -q --config default --out " +
+                              (dir / "w").string(),
+                          dir / "w.json");
+  ASSERT_EQ(w["warnings"].size(), 1u) << w["warnings"].dump();
+  EXPECT_NE(w["warnings"][0].get<std::string>().find("exceed the drift bound"), std::string::npos);
+  EXPECT_GT(w["error"]["max_code_lsb"].get<int>(), 1);
+  // No warning where the unit holds the scene: every shipped scene on its own unit.
+  for (const char* name : {"sphere", "specular", "multi", "suzanne", "torus"}) {
+    const auto own = run_json("render " + kScenes + name + ".json -q --out " + (dir / "o").string(),
+                              dir / "o.json");
+    EXPECT_TRUE(own["warnings"].empty()) << name << ": " << own["warnings"].dump();
+  }
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Cli, CyclesBreakdownPartitionsTheRunAndShowsBackPressure) {
   const auto dir = temp_dir("cycles");
   const auto free_run = run_json("cycles " + kScenes + "sphere.json", dir / "a.json");
