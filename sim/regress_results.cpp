@@ -1,5 +1,6 @@
 #include "sim/regress_results.h"
 
+#include <fmt/core.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -222,12 +223,6 @@ RunCounts count_runs(const std::vector<RunRecord>& records) {
 
 namespace {
 
-std::string fmt(double v, int precision) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(precision) << v;
-  return os.str();
-}
-
 // Column width: the longest entry (at least the header), so long names never run together.
 template <typename F>
 int column_width(const std::vector<RunRecord>& records, const std::string& header, F get) {
@@ -241,33 +236,38 @@ int column_width(const std::vector<RunRecord>& records, const std::string& heade
 void print_run_table(const std::vector<RunRecord>& records) {
   const int ws = column_width(records, "scene", [](const RunRecord& r) { return r.scene_name; });
   const int wc = column_width(records, "config", [](const RunRecord& r) { return r.spec.config; });
-  std::cout << '\n'
-            << std::left << std::setw(ws) << "scene" << std::setw(wc) << "config" << std::setw(9)
-            << "backend" << std::right << std::setw(6) << "seed" << std::setw(9) << "pixels"
-            << std::setw(11) << "cycles" << std::setw(8) << "cyc/px" << std::setw(10) << "result"
-            << std::setw(9) << "wall s" << std::setw(11) << "Mcycles/s" << '\n';
+  // {fmt}: the widths are the longest entries', so long build names never run together.
+  const auto row = [&](const auto& scene, const auto& config, const auto& backend, const auto& seed,
+                       const auto& pixels, const auto& cycles, const auto& per_pixel,
+                       const auto& result, const auto& wall, const auto& rate) {
+    fmt::print("{:<{}}{:<{}}{:<9}{:>6}{:>9}{:>11}{:>8}{:>10}{:>9}{:>11}\n", scene, ws, config, wc,
+               backend, seed, pixels, cycles, per_pixel, result, wall, rate);
+  };
+  std::cout << '\n' << std::flush;
+  row("scene", "config", "backend", "seed", "pixels", "cycles", "cyc/px", "result", "wall s",
+      "Mcycles/s");
   for (const auto& r : records) {
     // Only a completed run has a cycle count; a mismatch stops the run where it is found.
     const bool complete = r.status == "pass";
-    std::cout << std::left << std::setw(ws) << r.scene_name << std::setw(wc) << r.spec.config
-              << std::setw(9) << r.spec.backend << std::right << std::setw(6) << r.spec.seed
-              << std::setw(9) << r.pixels << std::setw(11)
-              << (complete ? std::to_string(r.cycles) : "-") << std::setw(8)
-              << (complete && r.pixels
-                      ? fmt(static_cast<double>(r.cycles) / static_cast<double>(r.pixels), 3)
-                      : "-")
-              << std::setw(10) << r.status << std::setw(9) << fmt(r.seconds, 2) << std::setw(11)
-              << (complete ? fmt(r.cycles_per_second / 1e6, 2) : "-") << '\n';
+    const std::string per_pixel =
+        complete && r.pixels
+            ? fmt::format("{:.3f}", static_cast<double>(r.cycles) / static_cast<double>(r.pixels))
+            : "-";
+    row(r.scene_name, r.spec.config, r.spec.backend, r.spec.seed, r.pixels,
+        complete ? std::to_string(r.cycles) : "-", per_pixel, r.status,
+        fmt::format("{:.2f}", r.seconds),
+        complete ? fmt::format("{:.2f}", r.cycles_per_second / 1e6) : "-");
   }
   // What each configuration is.
   std::vector<std::string> seen;
-  std::cout << "\nconfigurations:\n";
+  fmt::print("\nconfigurations:\n");
   for (const auto& r : records) {
     if (r.unit_text.empty() || std::find(seen.begin(), seen.end(), r.spec.config) != seen.end())
       continue;
     seen.push_back(r.spec.config);
-    std::cout << "  " << std::left << std::setw(wc) << r.spec.config << r.unit_text << '\n';
+    fmt::print("  {:<{}}{}\n", r.spec.config, wc, r.unit_text);
   }
+  std::fflush(stdout);
 }
 
 void write_json_report(const std::string& path, const std::vector<RunRecord>& records,
