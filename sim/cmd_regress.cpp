@@ -927,8 +927,6 @@ RunCounts report_runs(const std::vector<RunRecord>& records, const RegressOption
                 << '\n';
   }
   if (!o.junit_path.empty()) write_junit_report(o.junit_path, records);
-  if (!o.json_path.empty())
-    write_json_report(o.json_path, records, {{"seed", o.seed}, {"wall_seconds", wall}});
   return c;
 }
 
@@ -936,12 +934,46 @@ std::string percent(int hit, int total) {
   return total ? fmt(100.0 * hit / total, 1) + " %" : std::string("-");
 }
 
+// The coverage figures --json and OUT/coverage/summary.json carry: totals over rtl/, per file,
+// the files no run elaborated, and every user cover point with its count.
+nlohmann::json coverage_json(const CoverageSummary& sum, size_t runs) {
+  nlohmann::json files = nlohmann::json::array();
+  for (const auto& f : sum.files) {
+    files.push_back({{"file", fs::relative(f.path, source_dir()).string()},
+                     {"lines", f.lines},
+                     {"lines_hit", f.lines_hit},
+                     {"toggles", f.toggles},
+                     {"toggles_hit", f.toggles_hit}});
+  }
+  nlohmann::json not_elaborated = nlohmann::json::array();
+  for (const auto& f : sum.files_without_points)
+    not_elaborated.push_back(fs::relative(f, source_dir()).string());
+  nlohmann::json points = nlohmann::json::array();
+  int hit = 0;
+  for (const auto& u : sum.user) {
+    hit += u.count > 0;
+    points.push_back({{"name", u.name}, {"count", u.count}});
+  }
+  return {{"runs", runs},
+          {"rtl_lines", sum.lines},
+          {"rtl_lines_hit", sum.lines_hit},
+          {"rtl_line_pct", sum.line_pct()},
+          {"rtl_toggles", sum.toggles},
+          {"rtl_toggles_hit", sum.toggles_hit},
+          {"rtl_toggle_pct", sum.toggle_pct()},
+          {"user_points", sum.user.size()},
+          {"user_points_hit", hit},
+          {"files", files},
+          {"files_without_points", not_elaborated},
+          {"user_cover_points", points}};
+}
+
 // --coverage: merges the runs' coverage files into OUT/coverage/ (merged.dat, coverage.info for
 // lcov, annotated sources), prints line and toggle coverage per file, the uncovered lines of
 // rtl/, the user cover points and the exclusions. Returns whether rtl/ line coverage meets
 // --coverage-min (true without one).
 bool report_coverage(const std::vector<RunRecord>& records, const fs::path& out,
-                     const RegressOptions& o) {
+                     const RegressOptions& o, nlohmann::json* summary) {
   std::vector<std::string> dats;
   std::vector<std::string>
       without;  // runs that ran and left no coverage (killed, crashed, plain build)
@@ -1024,17 +1056,8 @@ bool report_coverage(const std::vector<RunRecord>& records, const fs::path& out,
             << ", the RTL's coverage_off pragmas): " << (dir / "exclusions.txt").string() << '\n'
             << "  lcov: " << info.string()
             << "; annotated sources (%000000: never run): " << annotated.string() << '\n';
-  std::ofstream(dir / "summary.json") << nlohmann::json{{"runs", dats.size()},
-                                                        {"rtl_lines", sum.lines},
-                                                        {"rtl_lines_hit", sum.lines_hit},
-                                                        {"rtl_line_pct", sum.line_pct()},
-                                                        {"rtl_toggles", sum.toggles},
-                                                        {"rtl_toggles_hit", sum.toggles_hit},
-                                                        {"rtl_toggle_pct", sum.toggle_pct()},
-                                                        {"user_points", sum.user.size()},
-                                                        {"user_points_hit", user_hit}}
-                                             .dump(2)
-                                      << '\n';
+  *summary = coverage_json(sum, dats.size());
+  std::ofstream(dir / "summary.json") << summary->dump(2) << '\n';
   if (o.coverage_min < 0) return true;
   const bool met = sum.lines > 0 && sum.line_pct() >= o.coverage_min;
   std::cout << "regress: coverage: rtl/ line coverage " << fmt(sum.line_pct(), 2) << " % "
@@ -1080,7 +1103,12 @@ int run_regress(const RegressOptions& o) {
   // Collect, report, exit code.
   const std::vector<RunRecord> records = collect_records(sel.earlier, jobs);
   const RunCounts c = report_runs(records, o, wall, workers);
-  const bool coverage_met = !o.coverage || report_coverage(records, sel.out, o);
+  nlohmann::json coverage = nullptr;
+  const bool coverage_met = !o.coverage || report_coverage(records, sel.out, o, &coverage);
+  if (!o.json_path.empty()) {
+    write_json_report(o.json_path, records,
+                      {{"seed", o.seed}, {"wall_seconds", wall}, {"coverage", coverage}});
+  }
 
   if (InterruptGuard::requested()) {
     std::cout << "regress: interrupted by signal " << InterruptGuard::signal_number() << ": "
