@@ -134,10 +134,11 @@ nlohmann::json triangles_json(const std::vector<TriangleCost>& all, const Triang
           {"each", each}};
 }
 
-int run_cycles(const CyclesOptions& o) {
+// The frame on the unit --config names, with the throughput and structure options applied.
+PreparedFrame cycles_frame(const CyclesOptions& o) {
   FrameOptions fo;
   use_unit_choice(o.config, o.scene, o.widths, fo);
-  // The throughput knobs given on the command line win over the file's: "this unit, with a
+  // The throughput knobs given on the command line win over the unit's: "this unit, with a
   // wider port" is the question they answer.
   if (o.port_words > 0) fo.base.port_words = o.port_words;
   if (o.tri_queue > 0) fo.base.tri_queue = o.tri_queue;
@@ -151,37 +152,49 @@ int run_cycles(const CyclesOptions& o) {
     if (o.channels > 0) fo.base.channels = o.channels;
     if (o.lights > 0) fo.base.lights = o.lights;
   }
-  const auto t0 = std::chrono::steady_clock::now();
-  const PreparedFrame frame = prepare_frame_on(o.scene, fo, o.config);
-  const double host_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return prepare_frame_on(o.scene, fo, o.config);
+}
 
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// Everything one `cycles` run counts.
+struct CyclesCount {
+  CycleConfig timing;
+  std::vector<uint64_t> words;
+  bool no_stimulus = true;
+  bool clocked = false;       // the clocked model ran
+  CycleEstimateRun estimate;  // the closed form (per-triangle costs with any stimulus)
+  CycleRun run;               // the figures reported
+  uint64_t cycles_one_bank = 0;
+  int64_t queue_hidden = 0;  // what the triangle queue hid
+  double estimate_s = 0, model_s = 0;
+};
+
+CyclesCount count_cycles(const CyclesOptions& o, const PreparedFrame& frame) {
+  CyclesCount c;
   Stimulus stim;
   stim.seed = o.seed;
   stim.gap_pct = o.gap_pct;
   stim.max_gap = o.max_gap;
   stim.stall_pct = o.stall_pct;
-  const CycleConfig unit_timing = CycleConfig::of(frame.config);
-  const SlotTiming& timing = unit_timing.slot;
-  const std::vector<uint64_t> words = frame.encoded.stream.encode();
-  const bool no_stimulus = o.gap_pct == 0 && o.stall_pct == 0;
+  c.timing = CycleConfig::of(frame.config);
+  c.words = frame.encoded.stream.encode();
+  c.no_stimulus = o.gap_pct == 0 && o.stall_pct == 0;
   // The closed form: every figure without gaps or back-pressure, and the per-triangle costs
   // (defined on that schedule, so given with any stimulus).
-  const CycleEstimate estimate(unit_timing);
   const auto t1 = std::chrono::steady_clock::now();
-  const CycleEstimateRun est = estimate.run(words, no_stimulus);
-  const double estimate_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  c.estimate = CycleEstimate(c.timing).run(c.words, c.no_stimulus);
+  c.estimate_s = seconds_since(t1);
   // The clocked model: every figure under gaps or back-pressure, and the check on request.
-  const bool clocked = o.clocked || !no_stimulus;
-  CycleRun run;
-  double model_s = 0;
-  if (clocked) {
+  c.clocked = o.clocked || !c.no_stimulus;
+  if (c.clocked) {
     const auto t2 = std::chrono::steady_clock::now();
-    run = run_cycle_model(words, stim, unit_timing);
-    model_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t2).count();
-    if (no_stimulus) {
-      const std::string diff = disagreement(est, run);
+    c.run = run_cycle_model(c.words, stim, c.timing);
+    c.model_s = seconds_since(t2);
+    if (c.no_stimulus) {
+      const std::string diff = disagreement(c.estimate, c.run);
       if (!diff.empty()) {
         throw std::logic_error(
             "the closed-form cycle estimate disagrees with the clocked cycle model on " + o.scene +
@@ -189,71 +202,85 @@ int run_cycles(const CyclesOptions& o) {
       }
     }
   } else {
-    run.cycles = est.cycles;
-    run.pixels = est.pixels;
-    run.words = est.words;
-    run.beats = est.beats;
-    run.breakdown = *est.breakdown;
+    c.run.cycles = c.estimate.cycles;
+    c.run.pixels = c.estimate.pixels;
+    c.run.words = c.estimate.words;
+    c.run.beats = c.estimate.beats;
+    c.run.breakdown = *c.estimate.breakdown;
   }
   // What the triangle queue hid: the same stream and stimulus on the same unit with one bank.
-  CycleConfig one_bank = unit_timing;
+  CycleConfig one_bank = c.timing;
   one_bank.tri_queue = 1;
-  const uint64_t cycles_one_bank = unit_timing.tri_queue == 1 ? run.cycles
-                                   : no_stimulus ? CycleEstimate(one_bank).run(words).cycles
-                                                 : run_cycle_model(words, stim, one_bank).cycles;
-  const int64_t queue_hid =
-      static_cast<int64_t>(cycles_one_bank) - static_cast<int64_t>(run.cycles);
-  const TriangleSummary tris(est.triangles, o.worst);
-  // Words per triangle by series (model/command_stream.h: a header, then T0..T5 per series).
-  // A triangle's words: the header and the packed coefficients (model/coef_packing.h), whose
-  // bits split by series.
-  const CoefLayout layout = CoefLayout::of(frame.config);
-  int series_bits = 0;
+  c.cycles_one_bank = c.timing.tri_queue == 1 ? c.run.cycles
+                      : c.no_stimulus         ? CycleEstimate(one_bank).run(c.words).cycles
+                                              : run_cycle_model(c.words, stim, one_bank).cycles;
+  c.queue_hidden = static_cast<int64_t>(c.cycles_one_bank) - static_cast<int64_t>(c.run.cycles);
+  return c;
+}
+
+// A triangle's words: the header and the packed coefficients (model/coef_packing.h), whose bits
+// split by series.
+struct TriangleWords {
+  CoefLayout layout;
+  int diffuse_bits = 0, specular_bits = 0, unpacked_words = 0;
   std::string term_bits;
   nlohmann::json term_bits_json = nlohmann::json::array();
-  for (int t = 0; t < kTermsPerSeries; ++t) {
-    series_bits += frame.config.coef_term_bits(t);
-    term_bits += (t ? "," : "") + std::to_string(frame.config.coef_term_bits(t));
-    term_bits_json.push_back(frame.config.coef_term_bits(t));
-  }
-  const int diffuse_bits = series_bits * frame.config.diffuse_series();
-  const int specular_bits = series_bits * frame.config.specular_series();
-  const int unpacked_words = kTermsPerSeries * frame.config.series_per_triangle();
 
-  const double cpp =
-      run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;
+  explicit TriangleWords(const UnitConfig& config) : layout(CoefLayout::of(config)) {
+    int series_bits = 0;
+    for (int t = 0; t < kTermsPerSeries; ++t) {
+      series_bits += config.coef_term_bits(t);
+      term_bits += (t ? "," : "") + std::to_string(config.coef_term_bits(t));
+      term_bits_json.push_back(config.coef_term_bits(t));
+    }
+    diffuse_bits = series_bits * config.diffuse_series();
+    specular_bits = series_bits * config.specular_series();
+    unpacked_words = kTermsPerSeries * config.series_per_triangle();
+  }
+};
+
+double cycles_per_pixel(const CycleRun& run) {
+  return run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;
+}
+
+void print_cycles(const CyclesOptions& o, const PreparedFrame& frame, const CyclesCount& c,
+                  const TriangleSummary& tris, double host_s) {
+  const SlotTiming& slot = c.timing.slot;
+  const CycleRun& run = c.run;
+  const TriangleWords tw(frame.config);
   std::cout << "scene        " << o.scene << " (" << frame.scene.width << "x" << frame.scene.height
             << ")\n"
             << "unit         " << frame.config.to_string() << "  (--config " << o.config << ")\n"
-            << "specular     " << frame.config.specular.describe() << ": latency " << timing.latency
-            << ", " << timing.interval << " cycle(s) per pixel\n"
-            << "command port " << unit_timing.port_words << " word(s) per beat, triangle queue "
-            << unit_timing.tri_queue << " (span queue " << unit_timing.span_queue() << "), "
-            << unit_timing.lanes << " pixel lane(s), " << unit_timing.material_buffers
+            << "specular     " << frame.config.specular.describe() << ": latency " << slot.latency
+            << ", " << slot.interval << " cycle(s) per pixel\n"
+            << "command port " << c.timing.port_words << " word(s) per beat, triangle queue "
+            << c.timing.tri_queue << " (span queue " << c.timing.span_queue() << "), "
+            << c.timing.lanes << " pixel lane(s), " << c.timing.material_buffers
             << " material buffer(s)\n"
             << "stimulus     seed " << o.seed << ", input gaps " << o.gap_pct << "% (max "
             << o.max_gap << "), back-pressure " << o.stall_pct << "%\n"
-            << "stream       " << words.size() << " words: " << frame.encoded.stats.triangles
+            << "stream       " << c.words.size() << " words: " << frame.encoded.stats.triangles
             << " tri (" << frame.encoded.stats.reorigins << " re-origin(s), offset_bits "
             << frame.encoded.stream.config.offset_bits << "), " << frame.encoded.stats.spans
             << " spans, " << frame.encoded.stats.materials << " material loads, "
             << frame.encoded.stats.table_words << " table words\n"
-            << "triangle     " << 1 + layout.words << " words: 1 header + " << layout.words
-            << " payload (one coefficient a word: " << unpacked_words << ") holding "
-            << diffuse_bits + specular_bits << " coefficient bits: diffuse " << diffuse_bits << " ("
-            << frame.config.diffuse_series() << " series), specular " << specular_bits << " ("
-            << frame.config.specular_series() << " series); T0..T5 " << term_bits << " bits\n"
+            << "triangle     " << 1 + tw.layout.words << " words: 1 header + " << tw.layout.words
+            << " payload (one coefficient a word: " << tw.unpacked_words << ") holding "
+            << tw.diffuse_bits + tw.specular_bits << " coefficient bits: diffuse "
+            << tw.diffuse_bits << " (" << frame.config.diffuse_series() << " series), specular "
+            << tw.specular_bits << " (" << frame.config.specular_series() << " series); T0..T5 "
+            << tw.term_bits << " bits\n"
             << "pixels       " << run.pixels
-            << (unit_timing.lanes > 1
+            << (c.timing.lanes > 1
                     ? " in " + std::to_string(run.breakdown.pixel) + " beats of up to " +
-                          std::to_string(unit_timing.lanes) + " (lanes within a span)"
+                          std::to_string(c.timing.lanes) + " (lanes within a span)"
                     : std::string())
             << "\n"
-            << "cycles       " << run.cycles << "  (" << std::fixed << std::setprecision(3) << cpp
-            << " cycles per pixel)\n"
-            << "queue        " << queue_hid
-            << " cycles hidden by the triangle queue (tri_queue 1: " << cycles_one_bank << ")\n"
-            << "triangles    " << est.triangles.size()
+            << "cycles       " << run.cycles << "  (" << std::fixed << std::setprecision(3)
+            << cycles_per_pixel(run) << " cycles per pixel)\n"
+            << "queue        " << c.queue_hidden
+            << " cycles hidden by the triangle queue (tri_queue 1: " << c.cycles_one_bank << ")\n"
+            << "triangles    " << c.estimate.triangles.size()
             << " (no gaps, no back-pressure): " << tris.setup_bound << " setup-bound ("
             << std::setprecision(1) << tris.share(tris.setup_bound) << " %), " << tris.fill_bound
             << " fill-bound (" << tris.share(tris.fill_bound)
@@ -269,7 +296,6 @@ int run_cycles(const CyclesOptions& o) {
                 << t.decoder_cycles - t.engine_cycles << ")\n";
     }
   }
-  nlohmann::json rows = nlohmann::json::array();
   std::cout << "\nbreakdown    (every cycle charged to one reason; the rows sum to the total)\n";
   for (const auto& r : run.breakdown.rows()) {
     const double pct =
@@ -277,60 +303,79 @@ int run_cycles(const CyclesOptions& o) {
     std::cout << "  " << std::left << std::setw(15) << r.name << std::right << std::setw(12)
               << r.cycles << std::setw(8) << std::setprecision(1) << pct << " %  " << r.meaning
               << '\n';
-    rows.push_back(
-        {{"name", r.name}, {"cycles", r.cycles}, {"percent", pct}, {"meaning", r.meaning}});
   }
   const auto rate = [&](double s) {
     return s > 0 ? static_cast<double>(run.cycles) / s / 1e6 : 0.0;
   };
   std::cout << "\ntime         host " << std::setprecision(3) << host_s
-            << " s, closed-form estimate " << estimate_s << " s (" << std::setprecision(1)
-            << rate(estimate_s) << " M cycles/s)";
-  if (clocked) {
-    std::cout << ", clocked cycle model " << std::setprecision(3) << model_s << " s ("
-              << std::setprecision(1) << rate(model_s) << " M cycles/s)";
-    if (no_stimulus) std::cout << "; the two agree";
+            << " s, closed-form estimate " << c.estimate_s << " s (" << std::setprecision(1)
+            << rate(c.estimate_s) << " M cycles/s)";
+  if (c.clocked) {
+    std::cout << ", clocked cycle model " << std::setprecision(3) << c.model_s << " s ("
+              << std::setprecision(1) << rate(c.model_s) << " M cycles/s)";
+    if (c.no_stimulus) std::cout << "; the two agree";
   }
   std::cout << "\n";
+}
+
+nlohmann::json cycles_json(const CyclesOptions& o, const PreparedFrame& frame, const CyclesCount& c,
+                           const TriangleSummary& tris, double host_s) {
+  const TriangleWords tw(frame.config);
+  const CycleRun& run = c.run;
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& r : run.breakdown.rows()) {
+    const double pct =
+        run.cycles ? 100.0 * static_cast<double>(r.cycles) / static_cast<double>(run.cycles) : 0.0;
+    rows.push_back(
+        {{"name", r.name}, {"cycles", r.cycles}, {"percent", pct}, {"meaning", r.meaning}});
+  }
+  return {{"scene", o.scene},
+          {"config", nlohmann::json::parse(config_to_json(frame.config))},
+          {"unit_choice", o.config},
+          {"slot", {{"latency", c.timing.slot.latency}, {"interval", c.timing.slot.interval}}},
+          {"stimulus",
+           {{"seed", o.seed},
+            {"gap_pct", o.gap_pct},
+            {"max_gap", o.max_gap},
+            {"stall_pct", o.stall_pct}}},
+          {"words", c.words.size()},
+          {"beats", run.beats},
+          {"triangle_words",
+           {{"header", 1},
+            {"payload", tw.layout.words},
+            {"unpacked_payload", tw.unpacked_words},
+            {"total", 1 + tw.layout.words},
+            {"diffuse_bits", tw.diffuse_bits},
+            {"specular_bits", tw.specular_bits},
+            {"term_bits", tw.term_bits_json}}},
+          {"material_buffers", c.timing.material_buffers},
+          {"queue_hidden_cycles", c.queue_hidden},
+          {"cycles_tri_queue_1", c.cycles_one_bank},
+          {"pixels", run.pixels},
+          {"pixel_beats", run.breakdown.pixel},
+          {"cycles", run.cycles},
+          {"cycles_per_pixel", cycles_per_pixel(run)},
+          {"figures_from", c.no_stimulus ? "closed-form estimate" : "clocked cycle model"},
+          {"clocked_check", c.no_stimulus && c.clocked},
+          {"triangles", triangles_json(c.estimate.triangles, tris)},
+          {"breakdown", rows},
+          {"seconds",
+           {{"host", host_s},
+            {"estimate", c.estimate_s},
+            {"cycle_model", c.clocked ? nlohmann::json(c.model_s) : nlohmann::json(nullptr)}}}};
+}
+
+int run_cycles(const CyclesOptions& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const PreparedFrame frame = cycles_frame(o);
+  const double host_s = seconds_since(t0);
+  const CyclesCount c = count_cycles(o, frame);
+  const TriangleSummary tris(c.estimate.triangles, o.worst);
+  print_cycles(o, frame, c, tris, host_s);
   if (!o.json_path.empty()) {
-    nlohmann::json j = {
-        {"scene", o.scene},
-        {"config", nlohmann::json::parse(config_to_json(frame.config))},
-        {"unit_choice", o.config},
-        {"slot", {{"latency", timing.latency}, {"interval", timing.interval}}},
-        {"stimulus",
-         {{"seed", o.seed},
-          {"gap_pct", o.gap_pct},
-          {"max_gap", o.max_gap},
-          {"stall_pct", o.stall_pct}}},
-        {"words", words.size()},
-        {"beats", run.beats},
-        {"triangle_words",
-         {{"header", 1},
-          {"payload", layout.words},
-          {"unpacked_payload", unpacked_words},
-          {"total", 1 + layout.words},
-          {"diffuse_bits", diffuse_bits},
-          {"specular_bits", specular_bits},
-          {"term_bits", term_bits_json}}},
-        {"material_buffers", unit_timing.material_buffers},
-        {"queue_hidden_cycles", queue_hid},
-        {"cycles_tri_queue_1", cycles_one_bank},
-        {"pixels", run.pixels},
-        {"pixel_beats", run.breakdown.pixel},
-        {"cycles", run.cycles},
-        {"cycles_per_pixel", cpp},
-        {"figures_from", no_stimulus ? "closed-form estimate" : "clocked cycle model"},
-        {"clocked_check", no_stimulus && clocked},
-        {"triangles", triangles_json(est.triangles, tris)},
-        {"breakdown", rows},
-        {"seconds",
-         {{"host", host_s},
-          {"estimate", estimate_s},
-          {"cycle_model", clocked ? nlohmann::json(model_s) : nlohmann::json(nullptr)}}}};
     std::ofstream os(o.json_path);
     if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
-    os << j.dump(2) << '\n';
+    os << cycles_json(o, frame, c, tris, host_s).dump(2) << '\n';
   }
   return 0;
 }
