@@ -117,9 +117,23 @@ std::filesystem::path output_dir(const RenderOptions& o) {
   return dir;
 }
 
-int run_render(const RenderOptions& o) {
-  const FrameOptions fo = frame_options(o);
-  const PreparedFrame frame = prepare_frame_on(o.scene, fo, o.config);
+// One render: the frame, the model's pixels against the reference, the images written.
+struct RenderRun {
+  FrameOptions fo;
+  PreparedFrame frame;
+  ErrorMap err;
+  double model_s = 0, reference_s = 0;
+  std::filesystem::path out_dir;
+  std::string unit_label;
+  std::vector<std::string> warnings;
+};
+
+RenderRun shade_and_compare(const RenderOptions& o) {
+  RenderRun r;
+  r.fo = frame_options(o);
+  r.frame = prepare_frame_on(o.scene, r.fo, o.config);
+  const FrameOptions& fo = r.fo;
+  const PreparedFrame& frame = r.frame;
   const Scene& scene = frame.scene;
   const UnitConfig& cfg = frame.config;
 
@@ -130,20 +144,20 @@ int run_render(const RenderOptions& o) {
   for (const auto& cmd : frame.encoded.stream.commands) {
     unit.consume(cmd, [&pixels](const PixelOut& p) { pixels.push_back(p); });
   }
-  const double model_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.model_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   const auto t1 = std::chrono::steady_clock::now();
   const ReferenceImage ref =
       render_reference(frame.setup.triangles, frame.visibility, scene, cfg.channels);
-  const double reference_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  r.reference_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
 
-  const ErrorMap err = compare_to_reference(pixels, ref.values, frame.visibility.owner, scene.width,
-                                            scene.height, cfg.channels, cfg.out_bits);
+  r.err = compare_to_reference(pixels, ref.values, frame.visibility.owner, scene.width,
+                               scene.height, cfg.channels, cfg.out_bits);
 
   // Images: model, reference, error heat map, and the three side by side.
-  const std::filesystem::path out_dir = output_dir(o);
+  r.out_dir = output_dir(o);
+  const std::filesystem::path& out_dir = r.out_dir;
+  const ErrorMap& err = r.err;
   const Image model_png =
       model_image(pixels, scene.width, scene.height, cfg.channels, cfg.out_bits);
   Image ref_png(scene.width, scene.height, cfg.channels);
@@ -155,123 +169,148 @@ int run_render(const RenderOptions& o) {
   write_png((out_dir / "compare.png").string(), hstack({model_png, ref_png, heat}, 4));
   if (!o.stream_path.empty()) frame.encoded.stream.save(o.stream_path);
 
+  r.unit_label = cfg.specular.describe() + (cfg.specular.kind == SpecularUnitKind::kIdeal
+                                                ? " (exact pow of the fixed-point t; not hardware)"
+                                            : cfg.specular.kind == SpecularUnitKind::kNone
+                                                ? " (no specular term: highlights not shaded)"
+                                                : "");
+  r.warnings = accuracy_warnings(o.scene, cfg, fo.budget_lsb, fo.max_depth, frame.encoded.stream);
+  return r;
+}
+
+// The figures, as lines.
+void print_render(const RenderOptions& o, const RenderRun& r) {
+  const Scene& scene = r.frame.scene;
+  const UnitConfig& cfg = r.frame.config;
+  const PreparedFrame& frame = r.frame;
+  const FrameOptions& fo = r.fo;
   const auto& st = frame.setup.stats;
-  const auto& es = err.stats;
-  const std::string unit_label =
-      cfg.specular.describe() + (cfg.specular.kind == SpecularUnitKind::kIdeal
-                                     ? " (exact pow of the fixed-point t; not hardware)"
-                                 : cfg.specular.kind == SpecularUnitKind::kNone
-                                     ? " (no specular term: highlights not shaded)"
-                                     : "");
-  const std::vector<std::string> warnings =
-      accuracy_warnings(o.scene, cfg, fo.budget_lsb, fo.max_depth, frame.encoded.stream);
-  if (!o.quiet) {
-    std::cout << "scene        " << o.scene << "  (" << scene.width << "x" << scene.height << ", "
-              << scene.lights.size() << " light(s), eye "
-              << (scene.eye_at_infinity ? "at infinity" : "finite") << ")\n"
-              << "unit         " << cfg.to_string() << "  (--config " << o.config << ")\n"
-              << "specular     " << unit_label << "\n"
-              << "triangles    " << frame.project.triangles_in << " in mesh, "
-              << frame.project.emitted << " after culling; " << st.triangles_out << " after setup ("
-              << st.inputs_split << " split, " << st.splits << " splits, " << st.over_budget
-              << " over budget at depth " << fo.max_depth << ")\n"
-              << "culled       " << frame.project.culled_back_face << " back-facing, "
-              << frame.project.culled_near << " wholly nearer than the near plane, "
-              << frame.project.dropped_out_of_range << " beyond the screen coordinate range\n"
-              << "clipped      " << frame.project.clipped_near
-              << " crossing the near plane, clipped into " << frame.project.clipped_pieces
-              << " triangle(s) before culling\n"
-              << "cosine       " << specular_models(scene) << "\n"
-              << "stream       " << frame.encoded.stats.triangles << " tri, "
-              << frame.encoded.stats.spans << " spans, " << frame.encoded.stats.materials
-              << " material loads, " << frame.encoded.stats.words << " words; "
-              << frame.encoded.stats.reorigins << " re-origin(s) (offset_bits " << cfg.offset_bits
-              << ")\n"
-              << "pixels       " << es.pixels << " shaded\n"
-              << error_lines(es) << "setup budget "
-              << (fo.budget_lsb ? *fo.budget_lsb : scene.error_budget_lsb)
-              << " LSB Taylor error per triangle; worst measured " << std::setprecision(3)
-              << st.worst_error_lsb << " LSB\n"
-              << "time         setup " << std::setprecision(3) << frame.timings.setup_s
-              << " s, visibility " << frame.timings.visibility_s << " s, model " << model_s
-              << " s (" << std::setprecision(3) << (model_s > 0 ? es.pixels / model_s / 1e6 : 0)
-              << " Mpixel/s), reference " << reference_s << " s\n"
-              << "images       " << (out_dir / "compare.png").string()
-              << " (model | reference | error, full scale " << o.heat_scale_lsb << " LSB)\n";
-    for (const auto& w : warnings) std::cout << "warning      " << w << "\n";
-    if (frame.encoded.stats.narrow_terms_saturated > 0) {
-      std::cout << "warning      " << frame.encoded.stats.narrow_terms_saturated
-                << " Taylor coefficient(s) saturated their term's narrowed format (coef_term_iwl);"
-                   " pixels of those triangles are wrong: give those terms more integer bits\n";
-    }
-    if (frame.encoded.stats.coefficients_out_of_range > 0) {
-      if (cfg.coef.overflow == Overflow::kSaturate) {
-        std::cout << "warning      " << frame.encoded.stats.coefficients_out_of_range
-                  << " Taylor coefficient(s) saturated the coef format " << cfg.coef.to_string()
-                  << "; pixels of those triangles are wrong: widen --coef or let it :wrap\n";
-      } else {
-        std::cout << "note         " << frame.encoded.stats.coefficients_out_of_range
-                  << " Taylor coefficient(s) wrapped in " << cfg.coef.to_string()
-                  << " (exact modulo 2^" << cfg.coef.iwl << "; sliver triangles)\n";
-      }
+  const auto& es = r.err.stats;
+  const std::filesystem::path& out_dir = r.out_dir;
+  const std::string& unit_label = r.unit_label;
+  const std::vector<std::string>& warnings = r.warnings;
+  const double model_s = r.model_s, reference_s = r.reference_s;
+  std::cout << "scene        " << o.scene << "  (" << scene.width << "x" << scene.height << ", "
+            << scene.lights.size() << " light(s), eye "
+            << (scene.eye_at_infinity ? "at infinity" : "finite") << ")\n"
+            << "unit         " << cfg.to_string() << "  (--config " << o.config << ")\n"
+            << "specular     " << unit_label << "\n"
+            << "triangles    " << frame.project.triangles_in << " in mesh, "
+            << frame.project.emitted << " after culling; " << st.triangles_out << " after setup ("
+            << st.inputs_split << " split, " << st.splits << " splits, " << st.over_budget
+            << " over budget at depth " << fo.max_depth << ")\n"
+            << "culled       " << frame.project.culled_back_face << " back-facing, "
+            << frame.project.culled_near << " wholly nearer than the near plane, "
+            << frame.project.dropped_out_of_range << " beyond the screen coordinate range\n"
+            << "clipped      " << frame.project.clipped_near
+            << " crossing the near plane, clipped into " << frame.project.clipped_pieces
+            << " triangle(s) before culling\n"
+            << "cosine       " << specular_models(scene) << "\n"
+            << "stream       " << frame.encoded.stats.triangles << " tri, "
+            << frame.encoded.stats.spans << " spans, " << frame.encoded.stats.materials
+            << " material loads, " << frame.encoded.stats.words << " words; "
+            << frame.encoded.stats.reorigins << " re-origin(s) (offset_bits " << cfg.offset_bits
+            << ")\n"
+            << "pixels       " << es.pixels << " shaded\n"
+            << error_lines(es) << "setup budget "
+            << (fo.budget_lsb ? *fo.budget_lsb : scene.error_budget_lsb)
+            << " LSB Taylor error per triangle; worst measured " << std::setprecision(3)
+            << st.worst_error_lsb << " LSB\n"
+            << "time         setup " << std::setprecision(3) << frame.timings.setup_s
+            << " s, visibility " << frame.timings.visibility_s << " s, model " << model_s << " s ("
+            << std::setprecision(3) << (model_s > 0 ? es.pixels / model_s / 1e6 : 0)
+            << " Mpixel/s), reference " << reference_s << " s\n"
+            << "images       " << (out_dir / "compare.png").string()
+            << " (model | reference | error, full scale " << o.heat_scale_lsb << " LSB)\n";
+  for (const auto& w : warnings) std::cout << "warning      " << w << "\n";
+  if (frame.encoded.stats.narrow_terms_saturated > 0) {
+    std::cout << "warning      " << frame.encoded.stats.narrow_terms_saturated
+              << " Taylor coefficient(s) saturated their term's narrowed format (coef_term_iwl);"
+                 " pixels of those triangles are wrong: give those terms more integer bits\n";
+  }
+  if (frame.encoded.stats.coefficients_out_of_range > 0) {
+    if (cfg.coef.overflow == Overflow::kSaturate) {
+      std::cout << "warning      " << frame.encoded.stats.coefficients_out_of_range
+                << " Taylor coefficient(s) saturated the coef format " << cfg.coef.to_string()
+                << "; pixels of those triangles are wrong: widen --coef or let it :wrap\n";
+    } else {
+      std::cout << "note         " << frame.encoded.stats.coefficients_out_of_range
+                << " Taylor coefficient(s) wrapped in " << cfg.coef.to_string()
+                << " (exact modulo 2^" << cfg.coef.iwl << "; sliver triangles)\n";
     }
   }
-  if (!o.json_path.empty()) {
-    nlohmann::json j;
-    j["scene"] = o.scene;
-    j["width"] = scene.width;
-    j["height"] = scene.height;
-    j["config"] = nlohmann::json::parse(config_to_json(cfg));
-    j["unit_choice"] = o.config;
-    j["warnings"] = warnings;
-    j["specular_unit"] = unit_label;
-    j["triangles"] = {{"mesh", frame.project.triangles_in},
-                      {"projected", frame.project.emitted},
-                      {"after_setup", st.triangles_out},
-                      {"inputs_split", st.inputs_split},
-                      {"splits", st.splits},
-                      {"over_budget", st.over_budget},
-                      {"worst_setup_error_lsb", st.worst_error_lsb},
-                      {"culled_back_face", frame.project.culled_back_face},
-                      {"culled_near", frame.project.culled_near},
-                      {"dropped_out_of_range", frame.project.dropped_out_of_range},
-                      {"clipped_near", frame.project.clipped_near},
-                      {"clipped_pieces", frame.project.clipped_pieces}};
-    nlohmann::json models = nlohmann::json::object();
-    for (const Material& m : scene.materials) models[m.name] = to_string(m.specular_model);
-    j["specular_model"] = models;
-    j["stream"] = {{"triangles", frame.encoded.stats.triangles},
-                   {"reorigins", frame.encoded.stats.reorigins},
-                   {"spans", frame.encoded.stats.spans},
-                   {"materials", frame.encoded.stats.materials},
-                   {"words", frame.encoded.stats.words},
-                   {"coefficients_out_of_range", frame.encoded.stats.coefficients_out_of_range}};
-    j["pixels"] = es.pixels;
-    j["empty_image"] = es.pixels == 0;
-    j["error"] = {
-        {"max_code_lsb", es.max_code_lsb},
-        {"mean_code_lsb", es.mean_code_lsb},
-        {"psnr_db", std::isinf(es.psnr_db) || es.pixels == 0 ? nlohmann::json(nullptr)
-                                                             : nlohmann::json(es.psnr_db)},
-        {"max_real_lsb", es.max_real_lsb},
-        {"pixels_over_1lsb", es.pixels_over_1lsb},
-        {"metric",
-         "output codes vs reference rounded by the same rule; real: before rounding the "
-         "reference"}};
-    j["time_s"] = {{"load", frame.timings.load_s},     {"project", frame.timings.project_s},
-                   {"setup", frame.timings.setup_s},   {"visibility", frame.timings.visibility_s},
-                   {"encode", frame.timings.encode_s}, {"model", model_s},
-                   {"reference", reference_s}};
-    j["model_mpixel_per_s"] = model_s > 0 ? es.pixels / model_s / 1e6 : 0.0;
-    j["images"] = {{"model", (out_dir / "model.png").string()},
-                   {"reference", (out_dir / "reference.png").string()},
-                   {"error", (out_dir / "error.png").string()},
-                   {"compare", (out_dir / "compare.png").string()}};
-    j["heat_scale_lsb"] = o.heat_scale_lsb;  // the error map's full scale (red), for its legend
-    std::ofstream os(o.json_path);
-    if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
-    os << j.dump(2) << '\n';
-  }
+}
+
+// The figures, as --json.
+void write_render_json(const RenderOptions& o, const RenderRun& r) {
+  const Scene& scene = r.frame.scene;
+  const UnitConfig& cfg = r.frame.config;
+  const PreparedFrame& frame = r.frame;
+  const auto& st = frame.setup.stats;
+  const auto& es = r.err.stats;
+  const std::filesystem::path& out_dir = r.out_dir;
+  const std::string& unit_label = r.unit_label;
+  const std::vector<std::string>& warnings = r.warnings;
+  const double model_s = r.model_s, reference_s = r.reference_s;
+  nlohmann::json j;
+  j["scene"] = o.scene;
+  j["width"] = scene.width;
+  j["height"] = scene.height;
+  j["config"] = nlohmann::json::parse(config_to_json(cfg));
+  j["unit_choice"] = o.config;
+  j["warnings"] = warnings;
+  j["specular_unit"] = unit_label;
+  j["triangles"] = {{"mesh", frame.project.triangles_in},
+                    {"projected", frame.project.emitted},
+                    {"after_setup", st.triangles_out},
+                    {"inputs_split", st.inputs_split},
+                    {"splits", st.splits},
+                    {"over_budget", st.over_budget},
+                    {"worst_setup_error_lsb", st.worst_error_lsb},
+                    {"culled_back_face", frame.project.culled_back_face},
+                    {"culled_near", frame.project.culled_near},
+                    {"dropped_out_of_range", frame.project.dropped_out_of_range},
+                    {"clipped_near", frame.project.clipped_near},
+                    {"clipped_pieces", frame.project.clipped_pieces}};
+  nlohmann::json models = nlohmann::json::object();
+  for (const Material& m : scene.materials) models[m.name] = to_string(m.specular_model);
+  j["specular_model"] = models;
+  j["stream"] = {{"triangles", frame.encoded.stats.triangles},
+                 {"reorigins", frame.encoded.stats.reorigins},
+                 {"spans", frame.encoded.stats.spans},
+                 {"materials", frame.encoded.stats.materials},
+                 {"words", frame.encoded.stats.words},
+                 {"coefficients_out_of_range", frame.encoded.stats.coefficients_out_of_range}};
+  j["pixels"] = es.pixels;
+  j["empty_image"] = es.pixels == 0;
+  j["error"] = {{"max_code_lsb", es.max_code_lsb},
+                {"mean_code_lsb", es.mean_code_lsb},
+                {"psnr_db", std::isinf(es.psnr_db) || es.pixels == 0 ? nlohmann::json(nullptr)
+                                                                     : nlohmann::json(es.psnr_db)},
+                {"max_real_lsb", es.max_real_lsb},
+                {"pixels_over_1lsb", es.pixels_over_1lsb},
+                {"metric",
+                 "output codes vs reference rounded by the same rule; real: before rounding the "
+                 "reference"}};
+  j["time_s"] = {{"load", frame.timings.load_s},     {"project", frame.timings.project_s},
+                 {"setup", frame.timings.setup_s},   {"visibility", frame.timings.visibility_s},
+                 {"encode", frame.timings.encode_s}, {"model", model_s},
+                 {"reference", reference_s}};
+  j["model_mpixel_per_s"] = model_s > 0 ? es.pixels / model_s / 1e6 : 0.0;
+  j["images"] = {{"model", (out_dir / "model.png").string()},
+                 {"reference", (out_dir / "reference.png").string()},
+                 {"error", (out_dir / "error.png").string()},
+                 {"compare", (out_dir / "compare.png").string()}};
+  j["heat_scale_lsb"] = o.heat_scale_lsb;  // the error map's full scale (red), for its legend
+  std::ofstream os(o.json_path);
+  if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
+  os << j.dump(2) << '\n';
+}
+
+int run_render(const RenderOptions& o) {
+  const RenderRun r = shade_and_compare(o);
+  if (!o.quiet) print_render(o, r);
+  if (!o.json_path.empty()) write_render_json(o, r);
   return 0;
 }
 
