@@ -12,6 +12,7 @@
 #include "host/frame.h"
 #include "host/scene_config.h"
 #include "model/command_stream.h"
+#include "model/text_file.h"
 #include "model/unit_config_file.h"
 #include "sim/area.h"
 #include "sim/commands.h"
@@ -196,9 +197,7 @@ int run_area(const AreaCliOptions& o) {
     nlohmann::json j = nlohmann::json::parse(area_report_to_json(r));
     j["source"] = source;
     j["config"] = nlohmann::json::parse(config_to_json(unit));
-    std::ofstream os(o.json_path);
-    if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
-    os << j.dump(2) << '\n';
+    write_text_file(o.json_path, j.dump(2) + '\n');
   }
   return 0;
 }

@@ -15,6 +15,7 @@
 #include "model/coef_packing.h"
 #include "model/cycle_estimate.h"
 #include "model/cycle_model.h"
+#include "model/text_file.h"
 #include "sim/commands.h"
 #include "sim/config_option.h"
 #include "sim/harness/cycle_run.h"
@@ -373,9 +374,7 @@ int run_cycles(const CyclesOptions& o) {
   const TriangleSummary tris(c.estimate.triangles, o.worst);
   print_cycles(o, frame, c, tris, host_s);
   if (!o.json_path.empty()) {
-    std::ofstream os(o.json_path);
-    if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
-    os << cycles_json(o, frame, c, tris, host_s).dump(2) << '\n';
+    write_text_file(o.json_path, cycles_json(o, frame, c, tris, host_s).dump(2) + '\n');
   }
   return 0;
 }

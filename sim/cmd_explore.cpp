@@ -17,6 +17,7 @@
 #include "host/explore.h"
 #include "host/scene_config.h"
 #include "model/command_stream.h"
+#include "model/text_file.h"
 #include "model/unit_config_file.h"
 #include "sim/area.h"
 #include "sim/commands.h"
@@ -534,9 +535,7 @@ int run_explore(const ExploreCliOptions& o) {
   std::vector<PointToVerify> to_verify;
   auto write_config = [&](const std::string& name, const UnitConfig& c) {
     const std::filesystem::path file = out_dir / (name + ".json");
-    std::ofstream os(file);
-    if (!os) throw std::runtime_error(file.string() + ": cannot open for writing");
-    os << config_to_json(c) << '\n';
+    write_text_file(file, config_to_json(c) + '\n');
     to_verify.push_back({name, c, file.string()});
   };
   write_config("start", start);
@@ -676,9 +675,7 @@ int run_explore(const ExploreCliOptions& o) {
                                    {"regress_json", v.report},
                                    {"log", v.log}});
     }
-    std::ofstream os(o.json_path);
-    if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
-    os << j.dump(2) << '\n';
+    write_text_file(o.json_path, j.dump(2) + '\n');
   }
   if (!o.csv_path.empty()) write_csv(o.csv_path, r, channels);
   const bool all_verified = std::all_of(verified.begin(), verified.end(),

@@ -32,6 +32,7 @@
 
 #include "host/frame.h"
 #include "host/scene_config.h"
+#include "model/text_file.h"
 #include "sim/area.h"
 #include "sim/commands.h"
 #include "sim/coverage.h"
@@ -451,10 +452,7 @@ void emit_jobs(const RegressOptions& o, const RunSettings& settings, const fs::p
     for (const auto& w : a) line += (line.empty() ? "" : " ") + (w == "&&" ? w : shell_quote(w));
     lines << line << '\n';
   }
-  std::ofstream os(o.emit_jobs);
-  if (!os) throw std::runtime_error("--emit-jobs " + o.emit_jobs + ": cannot open for writing");
-  os << lines.str();
-  if (!os) throw std::runtime_error("--emit-jobs " + o.emit_jobs + ": write failed");
+  write_text_file(o.emit_jobs, lines.str());
   // Every line's run is planned, so merge names a line that never ran.
   write_plan(out, "emitted", settings, "", all, selected);
   std::cout << "regress: wrote " << selected.size() << " job line(s) to " << o.emit_jobs
@@ -934,7 +932,7 @@ std::string percent(int hit, int total) {
   return total ? fmt(100.0 * hit / total, 1) + " %" : std::string("-");
 }
 
-// The coverage figures --json and OUT/coverage/summary.json carry: totals over rtl/, per file,
+// The coverage figures regress --json and the summary.json of OUT/coverage carry: totals over rtl/, per file,
 // the files no run elaborated, and every user cover point with its count.
 nlohmann::json coverage_json(const CoverageSummary& sum, size_t runs) {
   nlohmann::json files = nlohmann::json::array();

@@ -16,6 +16,7 @@
 #include "host/reference.h"
 #include "model/shade_unit.h"
 #include "model/specular_units.h"
+#include "model/text_file.h"
 #include "sim/accuracy_warnings.h"
 #include "sim/commands.h"
 #include "sim/config_option.h"
@@ -302,9 +303,7 @@ void write_render_json(const RenderOptions& o, const RenderRun& r) {
                  {"error", (out_dir / "error.png").string()},
                  {"compare", (out_dir / "compare.png").string()}};
   j["heat_scale_lsb"] = o.heat_scale_lsb;  // the error map's full scale (red), for its legend
-  std::ofstream os(o.json_path);
-  if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
-  os << j.dump(2) << '\n';
+  write_text_file(o.json_path, j.dump(2) + '\n');
 }
 
 int run_render(const RenderOptions& o) {
@@ -376,9 +375,8 @@ int run_all_units(const RenderOptions& o) {
               << o.heat_scale_lsb << " LSB)\n";
   }
   if (!o.json_path.empty()) {
-    std::ofstream os(o.json_path);
-    if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
-    os << nlohmann::json{{"scene", o.scene}, {"units", units}}.dump(2) << '\n';
+    write_text_file(o.json_path,
+                    nlohmann::json{{"scene", o.scene}, {"units", units}}.dump(2) + '\n');
   }
   return 0;
 }

@@ -8,6 +8,7 @@
 #include <memory>
 #include <sstream>
 
+#include "model/text_file.h"
 #include "sim/commands.h"
 #include "sim/output_paths.h"
 #include "sim/process.h"
@@ -168,10 +169,7 @@ int run_report(const ReportOptions& o) {
   page.generated = utc_now();
 
   const fs::path html = out_dir / "index.html";
-  std::ofstream os(html);
-  if (!os) throw std::runtime_error(html.string() + ": cannot open for writing (--out)");
-  os << report_html(page);
-  if (!os) throw std::runtime_error(html.string() + ": write failed");
+  write_text_file(html.string(), report_html(page));
 
   for (const auto& in : page.inputs.inputs)
     std::cout << "report: read " << in.path << " (" << writer_of(in.kind) << ")\n";

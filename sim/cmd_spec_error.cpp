@@ -24,6 +24,7 @@
 
 #include "host/specular_setup.h"
 #include "model/specular_units.h"
+#include "model/text_file.h"
 #include "sim/commands.h"
 #include "sim/output_paths.h"
 #include "sim/process.h"
@@ -444,10 +445,7 @@ void run(const std::string& exponents_text, const std::string& units, int points
                                         {"ours_after_pct", row.ours_after}});
       j["w16_fitted_zeta_epi_pct"] = 100 * papers.w16_fit_epi;
     }
-    std::ofstream os(json_out);
-    if (!os) throw std::runtime_error(json_out + ": cannot open for writing (--json)");
-    os << j.dump(1) << '\n';
-    if (!os) throw std::runtime_error(json_out + ": write failed (--json)");
+    write_text_file(json_out, j.dump(1) + '\n');
   }
   if (!csv_path.empty()) {
     std::ofstream os(csv_path);

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "model/text_file.h"
 #include "sim/junit.h"
 
 namespace shadesim {
@@ -285,10 +286,7 @@ void write_json_report(const std::string& path, const std::vector<RunRecord>& re
   doc["missing"] = c.missing;
   doc["interrupted"] = c.interrupted;
   doc["jobs"] = all;
-  std::ofstream os(path);
-  if (!os) throw std::runtime_error(path + ": cannot open for writing");
-  os << doc.dump(2) << '\n';
-  if (!os) throw std::runtime_error(path + ": write failed");
+  write_text_file(path, doc.dump(2) + '\n');
 }
 
 void write_junit_report(const std::string& path, const std::vector<RunRecord>& records) {
