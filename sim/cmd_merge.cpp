@@ -41,98 +41,108 @@ std::vector<fs::path> json_files(const fs::path& dir) {
   return files;
 }
 
-int run_merge(const MergeOptions& o) {
+// What the folders hold: every planned run, every result, and what is wrong with them.
+struct Gathered {
   std::vector<std::string> problems;
   std::map<std::string, Planned> planned;         // id -> the first plan naming it
   std::map<std::string, RunRecord> found;         // id -> its record
   std::map<std::string, std::string> found_at;    // id -> its run.json
   std::map<std::string, std::string> unfinished;  // id -> a run folder without run.json
-  for (const auto& d : o.dirs) {
+};
+
+void read_plans(const fs::path& dir, Gathered& g) {
+  for (const auto& f : json_files(dir / "plans")) {
+    try {
+      std::ifstream is(f);
+      const nlohmann::json j = nlohmann::json::parse(is);
+      if (!j.is_object() || !j.contains("runs") || !j.at("runs").is_array()) {
+        throw std::runtime_error(f.string() + ": expected a regress plan with a runs array");
+      }
+      for (size_t i = 0; i < j.at("runs").size(); ++i) {
+        const RunSpec s =
+            spec_from_json(j.at("runs")[i], f.string() + ": runs[" + std::to_string(i) + "]");
+        g.planned.emplace(s.id(), Planned{s, f.string()});
+      }
+    } catch (const nlohmann::json::exception& e) {
+      g.problems.push_back("malformed plan " + f.string() + ": not valid JSON (" + e.what() + ")");
+    } catch (const std::exception& e) {
+      g.problems.push_back(std::string("malformed plan ") + e.what());
+    }
+  }
+}
+
+void read_results(const fs::path& dir, Gathered& g) {
+  if (!fs::is_directory(dir / "runs")) return;
+  std::vector<fs::path> run_dirs;
+  for (const auto& e : fs::directory_iterator(dir / "runs")) {
+    if (e.is_directory()) run_dirs.push_back(e.path());
+  }
+  std::sort(run_dirs.begin(), run_dirs.end());
+  for (const auto& rd : run_dirs) {
+    const std::string id = rd.filename().string();
+    const fs::path file = rd / "run.json";
+    if (!fs::exists(file)) {
+      g.unfinished.emplace(id, rd.string());
+      continue;
+    }
+    RunRecord r;
+    try {
+      r = read_run_record(file.string());
+    } catch (const std::exception& e) {
+      g.problems.push_back(std::string("malformed result ") + e.what());
+      g.found_at.emplace(id, file.string());  // reported: not missing as well
+      continue;
+    }
+    if (r.spec.id() != id) {
+      g.problems.push_back("result " + file.string() + " is of run " + r.spec.id() +
+                           ", not of its folder's " + id);
+      continue;
+    }
+    if (g.found_at.count(id)) {
+      g.problems.push_back("duplicate run " + id + ": " + g.found_at.at(id) + " and " +
+                           file.string() + " (the first is reported)");
+      continue;
+    }
+    g.found_at.emplace(id, file.string());
+    g.found.emplace(id, r);
+  }
+}
+
+Gathered gather(const std::vector<std::string>& dirs) {
+  Gathered g;
+  for (const auto& d : dirs) {
     const fs::path dir(d);
     if (!fs::is_directory(dir)) throw std::invalid_argument("merge: " + d + ": no such folder");
     if (!fs::is_directory(dir / "plans") && !fs::is_directory(dir / "runs")) {
       throw std::invalid_argument(
           "merge: " + d + ": not a regress output folder (it has neither plans/ nor runs/)");
     }
-    for (const auto& f : json_files(dir / "plans")) {
-      try {
-        std::ifstream is(f);
-        const nlohmann::json j = nlohmann::json::parse(is);
-        if (!j.is_object() || !j.contains("runs") || !j.at("runs").is_array()) {
-          throw std::runtime_error(f.string() + ": expected a regress plan with a runs array");
-        }
-        for (size_t i = 0; i < j.at("runs").size(); ++i) {
-          const RunSpec s =
-              spec_from_json(j.at("runs")[i], f.string() + ": runs[" + std::to_string(i) + "]");
-          planned.emplace(s.id(), Planned{s, f.string()});
-        }
-      } catch (const nlohmann::json::exception& e) {
-        problems.push_back("malformed plan " + f.string() + ": not valid JSON (" + e.what() + ")");
-      } catch (const std::exception& e) {
-        problems.push_back(std::string("malformed plan ") + e.what());
-      }
-    }
-    if (!fs::is_directory(dir / "runs")) continue;
-    std::vector<fs::path> run_dirs;
-    for (const auto& e : fs::directory_iterator(dir / "runs")) {
-      if (e.is_directory()) run_dirs.push_back(e.path());
-    }
-    std::sort(run_dirs.begin(), run_dirs.end());
-    for (const auto& rd : run_dirs) {
-      const std::string id = rd.filename().string();
-      const fs::path file = rd / "run.json";
-      if (!fs::exists(file)) {
-        unfinished.emplace(id, rd.string());
-        continue;
-      }
-      RunRecord r;
-      try {
-        r = read_run_record(file.string());
-      } catch (const std::exception& e) {
-        problems.push_back(std::string("malformed result ") + e.what());
-        found_at.emplace(id, file.string());  // reported: not missing as well
-        continue;
-      }
-      if (r.spec.id() != id) {
-        problems.push_back("result " + file.string() + " is of run " + r.spec.id() +
-                           ", not of its folder's " + id);
-        continue;
-      }
-      if (found_at.count(id)) {
-        problems.push_back("duplicate run " + id + ": " + found_at.at(id) + " and " +
-                           file.string() + " (the first is reported)");
-        continue;
-      }
-      found_at.emplace(id, file.string());
-      found.emplace(id, r);
-    }
+    read_plans(dir, g);
+    read_results(dir, g);
   }
+  return g;
+}
 
-  std::vector<RunRecord> records;
-  for (const auto& [id, r] : found) records.push_back(r);
-  std::vector<std::string> missing;
-  for (const auto& [id, p] : planned) {
-    if (found_at.count(id)) continue;
-    RunRecord r;
-    r.spec = p.spec;
-    r.scene_name = fs::path(p.spec.scene).stem().string();
-    r.status = "missing";
-    const auto u = unfinished.find(id);
-    r.message = "planned in " + p.plan + ", but no folder holds its result: " +
-                (u == unfinished.end() ? std::string("never started")
-                 // regress prepares every run's folder (its stream) before any runs; a run that
-                 // started has its simulator's log there.
-                 : fs::exists(fs::path(u->second) / "cosim.log")
-                     ? u->second + " has no run.json (started, never finished: killed?)"
-                     : u->second + " was prepared but its run never started (the job was stopped)");
-    if (u != unfinished.end()) r.dir = u->second;
-    missing.push_back(id);
-    records.push_back(r);
-  }
-  sort_records(records);
-  check_backends_agree(records);
-  print_run_table(records);
-  const RunCounts c = count_runs(records);
+// A planned run without a result, with why: never started, prepared but stopped, or killed.
+RunRecord missing_run(const Planned& p, const std::map<std::string, std::string>& unfinished) {
+  RunRecord r;
+  r.spec = p.spec;
+  r.scene_name = fs::path(p.spec.scene).stem().string();
+  r.status = "missing";
+  const auto u = unfinished.find(p.spec.id());
+  r.message = "planned in " + p.plan + ", but no folder holds its result: " +
+              (u == unfinished.end() ? std::string("never started")
+               // regress prepares every run's folder (its stream) before any runs; a run that
+               // started has its simulator's log there.
+               : fs::exists(fs::path(u->second) / "cosim.log")
+                   ? u->second + " has no run.json (started, never finished: killed?)"
+                   : u->second + " was prepared but its run never started (the job was stopped)");
+  if (u != unfinished.end()) r.dir = u->second;
+  return r;
+}
+
+void print_merge_summary(const MergeOptions& o, const Gathered& g,
+                         const std::vector<RunRecord>& records, const RunCounts& c) {
   std::cout << "\nmerge: " << records.size() << " run(s) from " << o.dirs.size()
             << " folder(s): " << c.passed << " passed, " << c.mismatched << " mismatched, "
             << c.hangs << " hung, " << c.timeouts << " timed out, " << c.errors << " error(s), "
@@ -144,25 +154,44 @@ int run_merge(const MergeOptions& o) {
                 << (r.replay.empty() ? "" : "\n    replay: " + r.replay) << '\n';
     }
   }
-  if (planned.empty()) problems.push_back("no plan in any folder: missing runs cannot be named");
-  for (const auto& p : problems) std::cout << "  " << p << '\n';
-  for (const auto& [id, r] : found) {
-    if (!planned.empty() && !planned.count(id)) {
-      std::cout << "  note: " << id << " (" << found_at.at(id)
+  for (const auto& p : g.problems) std::cout << "  " << p << '\n';
+  for (const auto& [id, r] : g.found) {
+    if (!g.planned.empty() && !g.planned.count(id)) {
+      std::cout << "  note: " << id << " (" << g.found_at.at(id)
                 << ") is in no plan of these folders: an earlier regress into the same folder? It "
                    "is reported.\n";
     }
   }
+}
+
+int run_merge(const MergeOptions& o) {
+  Gathered g = gather(o.dirs);
+  std::vector<RunRecord> records;
+  for (const auto& [id, r] : g.found) records.push_back(r);
+  std::vector<std::string> missing;
+  for (const auto& [id, p] : g.planned) {
+    if (g.found_at.count(id)) continue;
+    missing.push_back(id);
+    records.push_back(missing_run(p, g.unfinished));
+  }
+  sort_records(records);
+  check_backends_agree(records);
+  print_run_table(records);
+  const RunCounts c = count_runs(records);
+  if (g.planned.empty())
+    g.problems.push_back("no plan in any folder: missing runs cannot be named");
+  print_merge_summary(o, g, records, c);
   if (!o.junit_path.empty()) write_junit_report(o.junit_path, records);
   if (!o.json_path.empty()) {
-    write_json_report(o.json_path, records,
-                      {{"merged_from", o.dirs}, {"missing_runs", missing}, {"problems", problems}});
+    write_json_report(
+        o.json_path, records,
+        {{"merged_from", o.dirs}, {"missing_runs", missing}, {"problems", g.problems}});
   }
   if (records.empty()) {
     std::cout << "merge: FAIL: no run found\n";
     return 1;
   }
-  if (!problems.empty() || c.failed()) {
+  if (!g.problems.empty() || c.failed()) {
     std::cout << "merge: FAIL"
               << (missing.empty() ? "" : ": " + std::to_string(missing.size()) + " run(s) missing")
               << '\n';

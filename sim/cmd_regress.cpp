@@ -932,8 +932,8 @@ std::string percent(int hit, int total) {
   return total ? fmt(100.0 * hit / total, 1) + " %" : std::string("-");
 }
 
-// The coverage figures regress --json and the summary.json of OUT/coverage carry: totals over rtl/, per file,
-// the files no run elaborated, and every user cover point with its count.
+// The coverage figures regress --json and the summary.json of OUT/coverage carry: totals over rtl/,
+// per file, the files no run elaborated, and every user cover point with its count.
 nlohmann::json coverage_json(const CoverageSummary& sum, size_t runs) {
   nlohmann::json files = nlohmann::json::array();
   for (const auto& f : sum.files) {
