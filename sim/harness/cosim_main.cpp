@@ -45,6 +45,7 @@
 #include "sim/harness/cosim_executable.h"
 #include "sim/harness/random_stream.h"
 #include "sim/harness/verilated_dut.h"
+#include "sim/number_checks.h"
 
 namespace shadesim {
 namespace {
@@ -630,7 +631,7 @@ int cosim_main(int argc, char** argv, const CosimExecutable& exe) {
   app.add_option("--seed", o.seed, "seed of the stream and of the stimulus (printed on every run)");
   app.add_option("--rows", o.rows, "override: scanlines per generated stream (for benchmarks)")
       ->check(CLI::Range(1, 32768));
-  app.add_option("--runs", o.runs, "consecutive seeds per scenario")->check(CLI::PositiveNumber);
+  app.add_option("--runs", o.runs, "consecutive seeds per scenario")->check(positive_number());
   app.add_option("--gap-pct", o.gap_pct, "override: chance of idle cycles before a command word")
       ->check(CLI::Range(0, 100));
   app.add_option("--max-gap", o.max_gap, "override: longest idle gap")
