@@ -25,6 +25,12 @@ foreach(config ideal_l1_q1 lut_l2_q2 schlick_l1_q2 wpow_l2_q1_mb2 none_l2_q1)
   _formal_test(${config} ${Python3_EXECUTABLE} ${_formal_dir}/run.py ${config} --mode prove
                --work ${_formal_work}/${config})
 endforeach()
+# The span scoreboard and END_FRAME: BMC, 12 cycles from reset (two whole spans and a drained
+# END_FRAME fit in it: docs/formal.md), on one lane without a queue and two lanes with one.
+foreach(config ideal_l1_q1 lut_l2_q2)
+  _formal_test(conservation_${config} ${Python3_EXECUTABLE} ${_formal_dir}/run.py ${config}
+               --mode bmc --depth 12 --check conservation --work ${_formal_work}/cons_${config})
+endforeach()
 foreach(bug queue_off_by_one pix_handshake)
   _formal_test(broken_${bug} ${_formal_dir}/broken.sh ${bug} ${_formal_work}/broken_${bug})
 endforeach()

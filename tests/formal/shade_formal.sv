@@ -274,8 +274,15 @@ module shade_formal #(
         end
       end
     end
-    // END_FRAME leaves the unit empty: DRAIN cycles after a quiet END_FRAME every span sent
-    // has left, and nothing is left inside.
+    // END_FRAME leaves the unit empty: once every pixel of the spans sent before a quiet
+    // END_FRAME has left, nothing is left inside (no stray beat, no span in a stage) ...
+    always @* begin
+      if (rst_ni && quiet && sb_n == '0) begin
+        a_empty_after_last: assert (p_datapath_empty && !pix_valid);
+      end
+    end
+    // ... and DRAIN cycles after it every span sent has left (a bound only a BMC depth beyond
+    // the frame plus DRAIN reaches: docs/formal.md).
     logic [7:0] since;
     always @(posedge clk_i) begin
       if (!rst_ni || !quiet) since <= '0;
