@@ -9,7 +9,7 @@ find_program(YOSYS_ABC yosys-abc)
 find_package(Python3 COMPONENTS Interpreter QUIET)
 if(NOT YOSYS OR NOT YOSYS_ABC OR NOT Python3_FOUND)
   # cmake/required_tools.cmake already refused a missing Yosys unless opted out.
-  shadesim_left_out(rtl_formal "formal checks: yosys, yosys-abc or python3 missing")
+  shadesim_left_out(formal "formal checks: yosys, yosys-abc or python3 missing")
   return()
 endif()
 
@@ -21,7 +21,7 @@ function(_formal_test name)
 endfunction()
 
 # One configuration per specular kind: lanes 1 and 2, queue 1 and 2, material buffers 1 and 2.
-foreach(config ideal_l1_q1 lut_l2_q2 schlick_l1_q2 wpow_l2_q1_mb2 none_l2_q1)
+foreach(config ideal_l1_q1 lut_l2_q2 schlick_l1_q1 wpow_l2_q1_mb2 none_l2_q1)
   _formal_test(${config} ${Python3_EXECUTABLE} ${_formal_dir}/run.py ${config} --mode prove
                --work ${_formal_work}/${config})
 endforeach()
@@ -31,6 +31,6 @@ foreach(config ideal_l1_q1 lut_l2_q2)
   _formal_test(conservation_${config} ${Python3_EXECUTABLE} ${_formal_dir}/run.py ${config}
                --mode bmc --depth 12 --check conservation --work ${_formal_work}/cons_${config})
 endforeach()
-foreach(bug queue_off_by_one pix_handshake)
+foreach(bug queue_off_by_one pix_handshake pix_valid_drop)
   _formal_test(broken_${bug} ${_formal_dir}/broken.sh ${bug} ${_formal_work}/broken_${bug})
 endforeach()

@@ -46,7 +46,7 @@ set(SHADESIM_TIER_RULES
   "^rtl_"                                                           rtl
   "^icarus_"                                                        rtl
   # what an opt-out left out (cmake/required_tools.cmake) sits in the tier it stands for
-  "^left_out_(rtl|tool_[0-9]+)$"                                    rtl
+  "^left_out_(rtl|tool_[0-9]+|formal)$"                             rtl
   "^left_out_fuzz$"                                                 fuzz
   "^left_out_assimp_testmodels$"                                    quick)
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A formal check must fail on a deliberately broken copy of the RTL (docs/formal.md):
-#   broken.sh BUG WORK   BUG: queue_off_by_one | pix_handshake
+#   broken.sh BUG WORK   BUG: queue_off_by_one | pix_handshake | pix_valid_drop
 # copies rtl/ into WORK/rtl, breaks it with one sed (which must change the file), and runs the
 # check of tests/formal/run.py that must catch it, requiring a failure with a VCD counterexample.
 set -euo pipefail
@@ -11,12 +11,16 @@ work=$2
 case $bug in
   # span_queue reports full one entry late: a SPAN header is taken into a full ring.
   queue_off_by_one)
-    file=span_queue.sv config=schlick_l1_q2
+    file=span_queue.sv config=lut_l2_q2
     expr="s/full_o *= count_q == CntW'(SpanQ);/full_o = count_q == CntW'(SpanQ + 1);/" ;;
   # the pix register takes a new beat while its beat waits for pix_ready_i (no back-pressure).
   pix_handshake)
     file=out_reg.sv config=ideal_l1_q1
     expr="s/assign adv_o = !pix_valid_o || pix_ready_i;/assign adv_o = 1'b1;/" ;;
+  # pix_valid_o drops while its beat waits for pix_ready_i (the beat is lost).
+  pix_valid_drop)
+    file=out_reg.sv config=ideal_l1_q1
+    expr="s/else if (adv_o) pix_valid_o <= load_i;/else pix_valid_o <= load_i \&\& adv_o;/" ;;
   *) echo "broken.sh: unknown bug '$bug'" >&2; exit 2 ;;
 esac
 rm -rf "$work"
