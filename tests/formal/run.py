@@ -7,7 +7,9 @@ configuration, through Yosys and yosys-smtbmc with z3.
   run.py CONFIG --mode bmc --depth N     bounded model check to N cycles (not a proof)
 
 --rtl DIR reads the RTL from DIR (a deliberately broken copy, tests/formal/broken.sh) instead of
-rtl/. --expect-fail inverts the verdict: the check must fail, with its counterexample as VCD.
+rtl/, --wrapper FILE another copy of shade_formal.sv. --expect-fail inverts the verdict: the
+check must fail, with its counterexample as VCD (and --expect-assert NAME: NAME among the
+assertions that fail in it).
 Prints one line per step with its time; exits 0 when the verdict is what was asked for.
 """
 import argparse
@@ -95,7 +97,7 @@ def rtl_files(rtl_dir):
     return names
 
 
-def yosys_script(cfg, rtl_dir, conserve, work):
+def yosys_script(cfg, rtl_dir, conserve, work, wrapper):
     params = dict(cfg)
     params["CONSERVE"] = 1 if conserve else 0
     probes = dict(PROBES)
@@ -106,7 +108,7 @@ def yosys_script(cfg, rtl_dir, conserve, work):
     # SYNTHESIS: the RTL's simulation-only code (plusargs, $fatal range checks) is left out,
     # as for every other Yosys run; read_verilog -formal does not define it.
     lines = ["read_verilog -sv -formal -DSYNTHESIS " + " ".join(rtl_files(rtl_dir)),
-             "read_verilog -sv -formal " + os.path.join(HERE, "shade_formal.sv")]
+             "read_verilog -sv -formal " + wrapper]
     lines += [f"chparam -set {k} {v} shade_formal" for k, v in params.items()]
     lines += ["hierarchy -check -top shade_formal", "proc", "flatten"]
     # Backslash names: flatten keeps the child's wires as `\u_dut.<path>`.
@@ -137,7 +139,11 @@ def run(cmd, log):
 def counterexample(work, frame):
     """The failing trace as VCD: Yosys replays ABC's witness on the model before AIGER."""
     vcd = os.path.join(work, "cex.vcd")
-    script = (f"read_rtlil {work}/model.il; sim -clock clk_i -r {work}/trace.aiw "
+    # The colour cut point ($anyseq) is not in the witness Yosys sim reads: left alone it is x,
+    # and every comparison of a colour with x "fails". Colour 0 instead: a failure the replay
+    # names is then never one of the colour alone.
+    script = (f"read_rtlil {work}/model.il; delete t:$anyseq; setundef -undriven -zero; "
+              f"sim -clock clk_i -r {work}/trace.aiw "
               f"-map {work}/model.aim -n {frame + 1} -vcd {vcd} shade_formal")
     rc, text, _ = run(["yosys", "-p", script], os.path.join(work, "cex.log"))
     failed = sorted(set(re.findall(r"Assert (\S+) \(.*?\) failed", text)))
@@ -173,7 +179,10 @@ def main():
     ap.add_argument("--depth", type=int, default=12, help="bmc: cycles from reset")
     ap.add_argument("--rtl", default=os.path.join(ROOT, "rtl"))
     ap.add_argument("--work", default=None, help="output folder")
+    ap.add_argument("--wrapper", default=os.path.join(HERE, "shade_formal.sv"))
     ap.add_argument("--expect-fail", action="store_true")
+    ap.add_argument("--expect-assert", default=None,
+                    help="with --expect-fail: this assertion must be among the failing ones")
     a = ap.parse_args()
 
     tag = f"{a.config}_{a.check}_{a.mode}"
@@ -181,7 +190,8 @@ def main():
     os.makedirs(work, exist_ok=True)
     ys = os.path.join(work, "model.ys")
     with open(ys, "w") as f:
-        f.write(yosys_script(CONFIGS[a.config], a.rtl, a.check == "conservation", work))
+        f.write(yosys_script(CONFIGS[a.config], a.rtl, a.check == "conservation", work,
+                             a.wrapper))
     rc, text, secs = run(["yosys", "-q", "-s", ys], os.path.join(work, "yosys.log"))
     print(f"{tag}: yosys {secs:.1f} s")
     if rc != 0:
@@ -206,8 +216,10 @@ def main():
         print(f"  failing at cycle {frame}: {' '.join(failed) or '(assertion names: see cex.log)'}")
         print(f"  counterexample: {vcd or 'NOT WRITTEN (see cex.log)'}")
         if a.expect_fail:
-            ok = vcd is not None
-            print(f"{tag}: failed as required" + ("" if ok else ", but no counterexample"))
+            named = a.expect_assert is None or f"shade_formal.{a.expect_assert}" in failed
+            ok = vcd is not None and named
+            print(f"{tag}: failed as required" + ("" if vcd else ", but no counterexample") +
+                  ("" if named else f", but not by {a.expect_assert}"))
             return 0 if ok else 1
         return 1
     if a.expect_fail:
