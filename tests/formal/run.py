@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """Formal checks of shade_unit (docs/formal.md): tests/formal/shade_formal.sv on one small
-configuration, through Yosys and yosys-smtbmc with z3.
+configuration. Yosys builds the model (AIGER and RTLIL); then
 
-  run.py CONFIG --mode prove --depth K   k-induction: the base case (BMC to K) and the inductive
-                                          step (K); both pass: proven for all time
-  run.py CONFIG --mode bmc --depth N     bounded model check to N cycles (not a proof)
+  run.py CONFIG --mode prove              ABC's pdr: PROVEN means for all time (unbounded)
+  run.py CONFIG --mode bmc --depth N      Yosys sat: N cycles from reset (bounded, not a proof)
+  --check protocol | conservation         the port and queue properties (default), or those
+                                          and the span scoreboard with END_FRAME
 
 --rtl DIR reads the RTL from DIR (a deliberately broken copy, tests/formal/broken.sh) instead of
 rtl/, --wrapper FILE another copy of shade_formal.sv. --expect-fail inverts the verdict: the
