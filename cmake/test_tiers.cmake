@@ -40,11 +40,13 @@ set(SHADESIM_TIER_RULES
   "^explore_verify_"                                                regress
   # the libFuzzer harnesses (built by their own clang project) and their regression inputs
   "^fuzz_"                                                          fuzz
+  # formal checks (cmake/formal.cmake, docs/formal.md): Yosys and ABC, <= 3 minutes on 2 cores
+  "^rtl_formal_"                                                    rtl
   # Verilator lint and co-simulation, Icarus, Yosys, the RTL unit tests, on-demand builds
   "^rtl_"                                                           rtl
   "^icarus_"                                                        rtl
   # what an opt-out left out (cmake/required_tools.cmake) sits in the tier it stands for
-  "^left_out_(rtl|tool_[0-9]+)$"                                    rtl
+  "^left_out_(rtl|tool_[0-9]+|formal)$"                             rtl
   "^left_out_fuzz$"                                                 fuzz
   "^left_out_assimp_testmodels$"                                    quick)
 

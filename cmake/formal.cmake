@@ -1,0 +1,36 @@
+# Formal checks of shade_unit (docs/formal.md): tests/formal/shade_formal.sv's properties on
+# small configurations, through Yosys and ABC (yosys-abc, shipped with Yosys). Each test labelled
+# `formal` besides its tier (cmake/test_tiers.cmake: rtl_formal_* are rtl).
+#
+#   rtl_formal_<config>          handshake and queue properties, proven for all time (pdr)
+#   rtl_formal_conservation_*    the span scoreboard and END_FRAME drain, BMC to a stated depth
+#   rtl_formal_broken_<bug>      a deliberately broken RTL copy: the check must fail, with a VCD
+find_program(YOSYS_ABC yosys-abc)
+find_package(Python3 COMPONENTS Interpreter QUIET)
+if(NOT YOSYS OR NOT YOSYS_ABC OR NOT Python3_FOUND)
+  # cmake/required_tools.cmake already refused a missing Yosys unless opted out.
+  shadesim_left_out(formal "formal checks: yosys, yosys-abc or python3 missing")
+  return()
+endif()
+
+set(_formal_dir ${CMAKE_SOURCE_DIR}/tests/formal)
+set(_formal_work ${CMAKE_BINARY_DIR}/formal)
+function(_formal_test name)
+  add_test(NAME rtl_formal_${name} COMMAND ${ARGN})
+  set_tests_properties(rtl_formal_${name} PROPERTIES LABELS formal)
+endfunction()
+
+# One configuration per specular kind: lanes 1 and 2, queue 1 and 2, material buffers 1 and 2.
+foreach(config ideal_l1_q1 lut_l2_q2 schlick_l1_q1 wpow_l2_q1_mb2 none_l2_q1)
+  _formal_test(${config} ${Python3_EXECUTABLE} ${_formal_dir}/run.py ${config} --mode prove
+               --work ${_formal_work}/${config})
+endforeach()
+# The span scoreboard and END_FRAME: BMC, 12 cycles from reset (two whole spans and a drained
+# END_FRAME fit in it: docs/formal.md), on one lane without a queue and two lanes with one.
+foreach(config ideal_l1_q1 lut_l2_q2)
+  _formal_test(conservation_${config} ${Python3_EXECUTABLE} ${_formal_dir}/run.py ${config}
+               --mode bmc --depth 12 --check conservation --work ${_formal_work}/cons_${config})
+endforeach()
+foreach(bug queue_off_by_one pix_handshake pix_valid_drop)
+  _formal_test(broken_${bug} ${_formal_dir}/broken.sh ${bug} ${_formal_work}/broken_${bug})
+endforeach()
