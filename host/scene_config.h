@@ -55,6 +55,11 @@ struct DeriveOptions {
   // queue bring every shipped scene to <= 1.1 cycles per pixel (README, "Throughput").
   int port_words = 4;
   int tri_queue = 2;
+  // Span setup site: unset derives it - host setup (always the smaller unit: no span setup, no
+  // coefficient banks) where every scene stays within max_cycles_per_pixel with it by the cycle
+  // model (no gaps, no back-pressure), else unit setup. Host setup takes tri_queue 1.
+  std::optional<SpanSetupSite> span_setup;
+  double max_cycles_per_pixel = 1.10;
 };
 
 struct FieldReason {

@@ -101,6 +101,36 @@ TEST(HostSetup, EveryShippedAndHardSceneShadesBitIdenticalToUnitSetup) {
   }
 }
 
+TEST(HostSetup, ConfigChoosesHostSetupWhereTheSceneStaysWithinTheCycleTarget) {
+  // The rule: host setup exactly where the host-setup unit's frame runs at <= the target cycles
+  // per pixel (the closed-form cycle model, no gaps), checked against the cycle model run here.
+  for (const std::string name : {"sphere", "multi"}) {
+    const std::string path = std::string(SHADESIM_SOURCE_DIR) + "/scenes/" + name + ".json";
+    for (const double target : {1.10, 1.25}) {
+      DeriveOptions d;
+      d.max_cycles_per_pixel = target;
+      const DerivedConfig derived = derive_config({path}, d);
+      FrameOptions o;
+      o.fixed_unit = true;
+      o.base = host_unit(derived.config);
+      const PreparedFrame f = prepare_frame(path, o);
+      const CycleRun run =
+          run_cycle_model(f.encoded.stream.encode(), Stimulus{}, CycleConfig::of(f.config));
+      const double cpp = static_cast<double>(run.cycles) / static_cast<double>(run.pixels);
+      EXPECT_EQ(derived.config.host_setup(), cpp <= target) << name << " at " << cpp;
+      EXPECT_EQ(derived.config.tri_queue, derived.config.host_setup() ? 1 : 2) << name;
+      bool reason = false;
+      for (const FieldReason& r : derived.reasons) {
+        if (r.field != "span_setup") continue;
+        reason = true;
+        EXPECT_EQ(r.value, derived.config.host_setup() ? "host" : "unit");
+        EXPECT_NE(r.reason.find("cycles/px"), std::string::npos) << r.reason;
+      }
+      EXPECT_TRUE(reason) << name;
+    }
+  }
+}
+
 TEST(HostSetup, TextFormRoundTrips) {
   UnitConfig c = host_unit(UnitConfig{});
   CommandStream s;
@@ -163,8 +193,7 @@ void expect_estimate_equals_clocked(const std::vector<uint64_t>& words, const Cy
   const std::string where = what + " port " + std::to_string(u.port_words) + " lanes " +
                             std::to_string(u.lanes) + " depth " + std::to_string(u.start_depth) +
                             " matbuf " + std::to_string(u.material_buffers) + " latency " +
-                            std::to_string(u.slot.latency) + "/" +
-                            std::to_string(u.slot.interval);
+                            std::to_string(u.slot.latency) + "/" + std::to_string(u.slot.interval);
   ASSERT_EQ(fast.cycles, clocked.cycles) << where;
   EXPECT_EQ(fast.pixels, clocked.pixels) << where;
   EXPECT_EQ(fast.beats, clocked.beats) << where;
@@ -200,9 +229,8 @@ void expect_estimate_on_grid(const CommandStream& host, const std::string& what)
 }
 
 TEST(HostSetup, CycleEstimateEqualsTheClockedModel) {
-  for (const std::string& path :
-       {std::string(SHADESIM_SOURCE_DIR) + "/scenes/sphere.json",
-        std::string(SHADESIM_SOURCE_DIR) + "/scenes/multi.json"}) {
+  for (const std::string& path : {std::string(SHADESIM_SOURCE_DIR) + "/scenes/sphere.json",
+                                  std::string(SHADESIM_SOURCE_DIR) + "/scenes/multi.json"}) {
     FrameOptions o;
     o.fixed_unit = true;
     DeriveOptions d;
