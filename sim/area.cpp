@@ -1218,6 +1218,9 @@ AreaEstimate estimate_area(const UnitConfig& unit, const std::vector<AreaReport>
       continue;
     const ParamMap ap = param_map(a.parameters);
     if (get(ap, "SPECULAR_KIND") != get(target, "SPECULAR_KIND")) continue;
+    // A host-setup anchor has no span setup, coefficient bank or span queue to scale: it is no
+    // anchor for a unit-setup target.
+    if (host_setup_of(ap) && !host_setup_of(target)) continue;
     // The other span setup site has other modules: only when no anchor of this one is there.
     constexpr int kOtherSite = 1000;
     int diff = host_setup_of(ap) != host_setup_of(target) ? kOtherSite : 0;
