@@ -238,7 +238,10 @@ set(_fault_tests
   # each specular unit's result (LUT, iterative Schlick, iterative W_16)
   spec_lut        lut_n             mixed 5  spec@18   pixel:18
   spec_schlick    schlick_iter_n    mixed 5  spec@18   pixel:18
-  spec_wpow       wpow16_n          mixed 5  spec@18   pixel:18)
+  spec_wpow       wpow16_n          mixed 5  spec@18   pixel:18
+  # host span setup: a start value from the start bank, and a stall behind it
+  start_host      lut_n_p4_host_l2_m2 mixed 5 setup@26 pixel:26
+  stall_host      lut_n_p4_host_l2_m2 mixed 3 stall@23 cycle:23)
 list(LENGTH _fault_tests _n)
 math(EXPR _last "${_n} / 6 - 1")
 foreach(i RANGE ${_last})
