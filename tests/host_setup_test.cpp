@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "host/explore.h"
 #include "host/frame.h"
 #include "host/scene_config.h"
 #include "model/cycle_estimate.h"
@@ -128,6 +129,31 @@ TEST(HostSetup, ConfigChoosesHostSetupWhereTheSceneStaysWithinTheCycleTarget) {
       }
       EXPECT_TRUE(reason) << name;
     }
+  }
+}
+
+TEST(HostSetup, ExploreSweepsTheKnobForTheFrontNotTheErrorSearch) {
+  // The knob changes area and cycles, never a pixel: swept, not searched; host takes queue 1.
+  for (const bool host : {false, true}) {
+    UnitConfig start;
+    start.tri_queue = 2;
+    if (host) start = host_unit(start);
+    size_t found = 0;
+    for (const Knob& k : knobs_for(start)) {
+      if (k.name != "span_setup") continue;
+      ++found;
+      EXPECT_FALSE(k.searched);
+      EXPECT_EQ(k.read(start), host ? 1 : 0);
+      UnitConfig c = start;
+      k.apply(c, 1);
+      EXPECT_TRUE(c.host_setup());
+      EXPECT_EQ(c.tri_queue, 1);
+      c.validate();
+      k.apply(c, 0);
+      EXPECT_FALSE(c.host_setup());
+      EXPECT_EQ(c.tri_queue, 2);
+    }
+    EXPECT_EQ(found, 1u);
   }
 }
 
