@@ -10,11 +10,13 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "host/frame.h"
 #include "model/coef_packing.h"
 #include "model/cycle_estimate.h"
 #include "model/cycle_model.h"
+#include "model/start_packing.h"
 #include "sim/commands.h"
 #include "sim/config_option.h"
 #include "sim/harness/cycle_run.h"
@@ -225,6 +227,21 @@ int run_cycles(const CyclesOptions& o) {
 
   const double cpp =
       run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;
+  // What each triangle's (unit setup) or span's (host setup) payload costs on the port.
+  std::ostringstream payload;
+  if (frame.config.host_setup()) {
+    const StartLayout starts = StartLayout::of(frame.config);
+    payload << "span         " << 1 + starts.words << " words (host span setup): 1 header + "
+            << starts.words << " payload holding v, d, d2 of " << frame.config.series_per_triangle()
+            << " series, " << starts.value_bits << " bits each; no TRIANGLE on the port\n";
+  } else {
+    payload << "triangle     " << 1 + layout.words << " words: 1 header + " << layout.words
+            << " payload (one coefficient a word: " << unpacked_words << ") holding "
+            << diffuse_bits + specular_bits << " coefficient bits: diffuse " << diffuse_bits << " ("
+            << frame.config.diffuse_series() << " series), specular " << specular_bits << " ("
+            << frame.config.specular_series() << " series); T0..T5 " << term_bits << " bits\n";
+  }
+  const std::string payload_line = payload.str();
   std::cout << "scene        " << o.scene << " (" << frame.scene.width << "x" << frame.scene.height
             << ")\n"
             << "unit         " << frame.config.to_string() << "\n"
@@ -241,12 +258,7 @@ int run_cycles(const CyclesOptions& o) {
             << frame.encoded.stream.config.offset_bits << "), " << frame.encoded.stats.spans
             << " spans, " << frame.encoded.stats.materials << " material loads, "
             << frame.encoded.stats.table_words << " table words\n"
-            << "triangle     " << 1 + layout.words << " words: 1 header + " << layout.words
-            << " payload (one coefficient a word: " << unpacked_words << ") holding "
-            << diffuse_bits + specular_bits << " coefficient bits: diffuse " << diffuse_bits << " ("
-            << frame.config.diffuse_series() << " series), specular " << specular_bits << " ("
-            << frame.config.specular_series() << " series); T0..T5 " << term_bits << " bits\n"
-            << "pixels       " << run.pixels
+            << payload_line << "pixels       " << run.pixels
             << (unit_timing.lanes > 1
                     ? " in " + std::to_string(run.breakdown.pixel) + " beats of up to " +
                           std::to_string(unit_timing.lanes) + " (lanes within a span)"
