@@ -71,10 +71,9 @@ module start_bank #(
     end
   end
 
-  // Beat word k carries payload word idx[k] of entry ent[k]: a tail word of the newest entry
-  // (words pos_i .. pos_i + tail_n_i - 1), or one after the SPAN header taken now (entry wr_q).
+  // Beat word k carries payload word idx[k]: a tail word of the newest entry (words pos_i ..
+  // pos_i + tail_n_i - 1), or one after the SPAN header taken now (entry wr_q).
   logic [AW-1:0]         idx [PORT_WORDS];
-  logic [PtrW-1:0]       ent [PORT_WORDS];
   logic [PORT_WORDS-1:0] we, tail;
   always_comb begin
     for (int k = 0; k < PORT_WORDS; k++) begin
@@ -84,7 +83,6 @@ module start_bank #(
                  span_fire_i && NW'(k) > hdr_pos_i &&
                  (NW + 1)'(k) < (NW + 1)'(hdr_pos_i) + (NW + 1)'(hdr_n_i)) &&
                 idx[k] < AW'(NWords);
-      ent[k]  = tail[k] ? newest : wr_q;
     end
   end
 
@@ -93,26 +91,32 @@ module start_bank #(
   // reason: the bits past the last value are zero and unread
   logic [NWords*WordW-1:0] head;  // the oldest entry's payload words
   // verilator lint_on UNUSEDSIGNAL
+  // A cycle may write the same word of two entries: a tail word of the newest entry and, from
+  // the SPAN header taken with it, a word of the next entry (a short payload: its indices
+  // overlap). Two write ports per word, then; with DEPTH 2 the two entries differ.
   for (genvar w = 0; w < NWords; w++) begin : g_word
     localparam int WW = Bits - w * WordW < WordW ? Bits - w * WordW : WordW;
-    logic             load;
-    logic [PtrW-1:0]  at;
-    logic [WW-1:0]    value;
+    logic             load_t, load_h;  // from the tail (entry newest), from the header (wr_q)
+    logic [WW-1:0]    value_t, value_h;
     logic [WW-1:0]    q [DEPTH];
     always_comb begin
-      load  = 1'b0;
-      at    = '0;
-      value = '0;
+      {load_t, load_h} = 2'b00;
+      {value_t, value_h} = '0;
       for (int k = 0; k < PORT_WORDS; k++) begin
         if (we[k] && idx[k] == AW'(w)) begin
-          load  = 1'b1;
-          at    = ent[k];
-          value = cmd_data_i[k*WordW +: WW];
+          if (tail[k]) begin
+            load_t  = 1'b1;
+            value_t = cmd_data_i[k*WordW +: WW];
+          end else begin
+            load_h  = 1'b1;
+            value_h = cmd_data_i[k*WordW +: WW];
+          end
         end
       end
     end
     always_ff @(posedge clk_i) begin
-      if (load) q[at] <= value;
+      if (load_t) q[newest] <= value_t;
+      if (load_h) q[wr_q] <= value_h;
     end
     assign head[w*WordW +: WordW] = WordW'(q[rd_q]);
   end
