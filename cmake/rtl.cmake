@@ -119,6 +119,11 @@ if(YOSYS)
     COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_check.sh ${YOSYS} ${CMAKE_BINARY_DIR}/rtl_yosys_l4.log ${RTL_SOURCES})
   set_tests_properties(rtl_yosys_no_latch_lanes4 PROPERTIES
     ENVIRONMENT "${_latch_passes};YOSYS_CHPARAM=-set LANES 4 -set SPECULAR_KIND 3 -set SPEC_PARAMS ${_yosys_wpow1}")
+  # Host span setup: the start bank (two entries) behind a four-word port, two lanes.
+  add_test(NAME rtl_yosys_no_latch_host_setup
+    COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/yosys_check.sh ${YOSYS} ${CMAKE_BINARY_DIR}/rtl_yosys_host.log ${RTL_SOURCES})
+  set_tests_properties(rtl_yosys_no_latch_host_setup PROPERTIES
+    ENVIRONMENT "${_latch_passes};YOSYS_CHPARAM=-set SPAN_SETUP 1 -set START_DEPTH 2 -set PORT_WORDS 4 -set LANES 2 -set MATERIAL_BUFFERS 2")
   # The flat netlist behaves like the RTL: every bit of pix_colour_o, pix_x_o and pix_y_o is its
   # own flip-flop (no constant or aliased lanes). A small four-lane unit with a pipelined slot
   # (LUT A 4, B 4: the metadata delay line) behind a four-word port and a triangle queue (the
@@ -238,7 +243,10 @@ set(_fault_tests
   # each specular unit's result (LUT, iterative Schlick, iterative W_16)
   spec_lut        lut_n             mixed 5  spec@18   pixel:18
   spec_schlick    schlick_iter_n    mixed 5  spec@18   pixel:18
-  spec_wpow       wpow16_n          mixed 5  spec@18   pixel:18)
+  spec_wpow       wpow16_n          mixed 5  spec@18   pixel:18
+  # host span setup: a start value from the start bank, and a stall behind it
+  start_host      lut_n_p4_host_l2_m2 mixed 5 setup@26 pixel:26
+  stall_host      lut_n_p4_host_l2_m2 mixed 3 stall@23 cycle:23)
 list(LENGTH _fault_tests _n)
 math(EXPR _last "${_n} / 6 - 1")
 foreach(i RANGE ${_last})

@@ -70,6 +70,7 @@ set(SHADESIM_GTEST_TIERS
   fuzz_regressions_test     quick
   golden_model_test         quick
   hard_scene_test           quick
+  host_setup_test           quick
   image_test                quick
   junit_test                quick
   lanes_test                quick

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "host/specular_setup.h"
+#include "model/host_setup.h"
 
 namespace shadesim {
 namespace {
@@ -232,13 +233,18 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
       ++stats.triangles;
       for (; i < group.end; ++i) {
         const Span& s = vis.spans[i];
-        cmds.emplace_back(SpanCmd{s.y, s.x0, s.length, s.last_in_row});
+        cmds.emplace_back(SpanCmd{s.y, s.x0, s.length, s.last_in_row, {}});
         ++stats.spans;
         stats.pixels += static_cast<size_t>(s.length);
       }
     }
   }
   cmds.emplace_back(EndFrameCmd{});
+  // Host span setup: the same frame, each span's start values in place of the coefficients.
+  if (config.host_setup()) {
+    frame.stream.config.span_setup = SpanSetupSite::kUnit;
+    frame.stream = with_host_setup(frame.stream);
+  }
   stats.words = frame.stream.encode().size();
   frame.stream.validate("encoder");
   return frame;

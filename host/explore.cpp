@@ -236,6 +236,21 @@ std::vector<Knob> knobs_for(const UnitConfig& start) {
   if (specular_term)
     k.push_back(
         frac_knob("specular colour", "spec_colour.frac", &UnitConfig::spec_colour, 2, 2, start));
+  // Span setup in the unit or on the host: the pixels are the same (model/host_setup.h), the
+  // area and the cycles per pixel are not, so it is swept for the table and the Pareto front
+  // (area against cycles per pixel), not chosen by the error search. Host setup has no
+  // coefficient banks to queue: tri_queue 1; back in the unit, the start's queue (2, config's
+  // default, when the start is a host-setup unit).
+  const int unit_queue = start.host_setup() ? 2 : start.tri_queue;
+  Knob setup = choice(
+      "span setup", "span_setup", {"unit", "host"},
+      [unit_queue](UnitConfig& c, int v) {
+        c.span_setup = v ? SpanSetupSite::kHost : SpanSetupSite::kUnit;
+        c.tri_queue = v ? 1 : unit_queue;
+      },
+      [](const UnitConfig& c) { return c.host_setup() ? 1 : 0; });
+  setup.searched = false;
+  k.push_back(std::move(setup));
   k.push_back(numeric(
       "output", "out_bits", std::max(1, start.out_bits - 2), std::min(16, start.out_bits + 2),
       [](UnitConfig& c, int v) { c.out_bits = v; }, [](const UnitConfig& c) { return c.out_bits; },

@@ -13,6 +13,7 @@
 #include "host/specular_setup.h"
 #include "model/coef_packing.h"
 #include "model/command_stream.h"
+#include "model/cycle_estimate.h"
 
 namespace shadesim {
 namespace {
@@ -26,6 +27,56 @@ constexpr int kTrialSeriesIwl = 12, kTrialSeriesFrac = 40;
 constexpr int kTrialCoefIwl = 24, kTrialCoefFrac = 36;
 
 double channel(const Vec3& v, int c) { return c == 0 ? v.x : (c == 1 ? v.y : v.z); }
+
+// The span setup site for `cfg` (its widths final) and why: `forced`, or host setup where every
+// scene's frame on the host-setup unit runs at <= max_cpp cycles per pixel (CycleEstimate: the
+// cycle model with no gaps and no back-pressure), else unit setup. Sets cfg.span_setup and, for
+// host setup, tri_queue 1. Pixels do not depend on it (model/host_setup.h).
+std::string choose_span_setup(const std::vector<std::string>& scene_paths,
+                              const DeriveOptions& options, UnitConfig& cfg) {
+  UnitConfig host = cfg;
+  host.span_setup = SpanSetupSite::kHost;
+  host.tri_queue = 1;
+  double worst = 0;
+  std::string worst_scene;
+  for (const auto& path : scene_paths) {
+    FrameOptions fo;
+    fo.base = host;
+    fo.fixed_unit = true;
+    fo.budget_lsb = options.budget_lsb;
+    fo.max_depth = options.max_depth;
+    const PreparedFrame frame = prepare_frame(path, fo);
+    const CycleEstimateRun run =
+        CycleEstimate(CycleConfig::of(host)).run(frame.encoded.stream.encode());
+    const double cpp =
+        run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;
+    if (worst_scene.empty() || cpp > worst) {
+      worst = cpp;
+      worst_scene = path;
+    }
+  }
+  std::ostringstream cost;
+  cost << std::fixed;
+  cost.precision(3);
+  cost << worst;
+  const std::string measured = "with host setup " + worst_scene + " takes " + cost.str() +
+                               " cycles/px (cycle model, no gaps)";
+  std::ostringstream target;
+  target.precision(3);
+  target << options.max_cycles_per_pixel;
+  const bool fits = worst <= options.max_cycles_per_pixel;
+  const SpanSetupSite site =
+      options.span_setup.value_or(fits ? SpanSetupSite::kHost : SpanSetupSite::kUnit);
+  cfg.span_setup = site;
+  if (site == SpanSetupSite::kHost) cfg.tri_queue = 1;
+  if (options.span_setup) return "as requested; " + measured;
+  if (fits)
+    return measured + " <= " + target.str() +
+           ": the host sends each span's start values, the unit has no span setup and no "
+           "coefficient banks (tri_queue 1)";
+  return measured + " > " + target.str() +
+         ": span setup stays in the unit (the port is too narrow for the start values)";
+}
 
 std::string fmt(double x, int precision = 4) {
   std::ostringstream os;
@@ -384,6 +435,8 @@ DerivedConfig derive_widths(const std::vector<std::string>& scene_paths,
                  std::to_string(iwl) + " integer bits (saturating)";
   }
   cfg.validate();
+  const std::string span_setup_why = choose_span_setup(scene_paths, options, cfg);
+  cfg.validate();
 
   // One reason per field, in config_to_json's order.
   const auto json = nlohmann::json::parse(config_to_json(cfg));
@@ -441,7 +494,10 @@ DerivedConfig derive_widths(const std::vector<std::string>& scene_paths,
       "port_words", value("port_words"),
       "as requested (throughput only: pixels do not depend on it); 4 with tri_queue 2 brings every "
       "shipped scene to <= 1.1 cycles per pixel");
-  reason("tri_queue", value("tri_queue"), "as requested (throughput only)");
+  reason("tri_queue", value("tri_queue"),
+         cfg.host_setup() ? "1: host span setup has no coefficient banks to queue"
+                          : "as requested (throughput only)");
+  reason("span_setup", to_string(cfg.span_setup), span_setup_why);
   reason("specular",
          cfg.specular.describe() + (cfg.specular.kind == SpecularUnitKind::kNone
                                         ? std::string()

@@ -25,6 +25,10 @@
 //                      sum of |monomials| 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 at any pixel from its
 //                      triangle's origin, times G, within another quarter of the budget.
 //   out_bits           as requested.
+//   span_setup         host (start values on every SPAN: no span setup, no coefficient banks,
+//                      tri_queue 1) where every scene's frame on that unit runs at <=
+//                      DeriveOptions::max_cycles_per_pixel by the cycle model, else unit; pixels
+//                      do not depend on it.
 // G = sum over lights of (1 + max spec colour x the specular unit's slope with respect to its
 // series): a diffuse series enters the output with gain 1 (colour is rolled in), a specular one
 // through the unit (t^n has slope <= n on [0, 1]; see unit_slope in scene_config.cpp).
@@ -76,6 +80,11 @@ struct DeriveOptions {
   // queue bring every shipped scene to <= 1.1 cycles per pixel (README, "Throughput").
   int port_words = 4;
   int tri_queue = 2;
+  // Span setup site: unset derives it - host setup (always the smaller unit: no span setup, no
+  // coefficient banks) where every scene stays within max_cycles_per_pixel with it by the cycle
+  // model (no gaps, no back-pressure), else unit setup. Host setup takes tri_queue 1.
+  std::optional<SpanSetupSite> span_setup;
+  double max_cycles_per_pixel = 1.10;
 };
 
 struct FieldReason {

@@ -12,6 +12,7 @@
 #include "model/coef_packing.h"
 #include "model/json_error.h"
 #include "model/specular_units.h"
+#include "model/start_packing.h"
 #include "model/unit_config_file.h"
 
 namespace shadesim {
@@ -62,6 +63,11 @@ void validate_command(const Command& cmd, const UnitConfig& cfg, const std::stri
                                " lights (0.." + std::to_string((1u << cfg.lights) - 1) + ")");
     }
   } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
+    if (cfg.host_setup()) {
+      throw CommandStreamError(loc +
+                               "tri: a unit with span_setup host takes no TRIANGLE (each "
+                               "SPAN carries its start values)");
+    }
     const size_t expected = static_cast<size_t>(cfg.series_per_triangle() * kTermsPerSeries);
     check_payload(loc, "tri.coef", t->coef, expected, cfg.coef);
     if (!cfg.coef_term_iwl.empty()) {
@@ -88,6 +94,9 @@ void validate_command(const Command& cmd, const UnitConfig& cfg, const std::stri
       throw CommandStreamError(loc + "span: length must be >= 1 and end inside the screen, got " +
                                std::to_string(s->length) + " from x0=" + std::to_string(s->x0));
     }
+    // Host span setup: v, d, d2 per series (start_packing.h); unit setup: none.
+    const size_t starts = cfg.host_setup() ? static_cast<size_t>(StartLayout::of(cfg).values) : 0;
+    check_payload(loc, "span.starts", s->starts, starts, cfg.series);
   } else if (const auto* tb = std::get_if<TableCmd>(&cmd)) {
     if (tb->entries.empty() || tb->entries.size() > kMask16 || tb->base > kMask16) {
       throw CommandStreamError(loc + "table: expected 1..65535 entries at base 0..65535");
@@ -135,6 +144,7 @@ void CommandStream::validate(const std::string& source) const {
 std::vector<uint64_t> CommandStream::encode() const {
   std::vector<uint64_t> words;
   const CoefLayout layout = CoefLayout::of(config);
+  const StartLayout start_layout = StartLayout::of(config);
   for (const auto& cmd : commands) {
     if (const auto* m = std::get_if<MaterialCmd>(&cmd)) {
       const size_t n = m->ambient.size() + m->spec_colour.size() + 1 + m->unit_params.size();
@@ -149,6 +159,9 @@ std::vector<uint64_t> CommandStream::encode() const {
       for (auto w : layout.pack(t->coef)) words.push_back(w);
     } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
       words.push_back(CommandWord::span(s->y, s->x0, s->length, s->last_in_row).bits);
+      if (config.host_setup()) {
+        for (auto w : start_layout.pack(s->starts)) words.push_back(w);
+      }
     } else if (const auto* tb = std::get_if<TableCmd>(&cmd)) {
       words.push_back(CommandWord::table(tb->base, tb->entries.size(), tb->per_material).bits);
       for (auto v : tb->entries) words.push_back(static_cast<uint64_t>(v));
@@ -222,7 +235,13 @@ CommandStream CommandStream::decode(const std::vector<uint64_t>& words, const Un
         s.y = h.span_y();
         s.x0 = h.span_x0();
         s.length = h.span_length();
-        cs.commands.emplace_back(s);
+        if (config.host_setup()) {
+          const StartLayout start_layout = StartLayout::of(config);
+          const auto payload = take(static_cast<size_t>(start_layout.words), at);
+          const std::vector<uint64_t> packed(payload.begin(), payload.end());
+          s.starts = start_layout.unpack(packed.data());
+        }
+        cs.commands.emplace_back(std::move(s));
         break;
       }
       case Opcode::kTable: {
@@ -271,8 +290,12 @@ void CommandStream::write_text(std::ostream& os) const {
       }
       os << '\n';
     } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
-      os << "span " << s->y << ' ' << s->x0 << ' ' << s->length << (s->last_in_row ? " last" : "")
-         << '\n';
+      os << "span " << s->y << ' ' << s->x0 << ' ' << s->length << (s->last_in_row ? " last" : "");
+      for (size_t k = 0; k < s->starts.size(); ++k) {
+        if (k % StartLayout::kValuesPerSeries == 0) os << " |";
+        os << ' ' << s->starts[k];
+      }
+      os << '\n';
     } else if (const auto* tb = std::get_if<TableCmd>(&cmd)) {
       os << "table " << tb->base;
       list(tb->entries);
@@ -402,13 +425,24 @@ CommandStream CommandStream::read_text(std::istream& is, const std::string& sour
       s.y = static_cast<int32_t>(read_int("y", 0, kField16));
       s.x0 = static_cast<int32_t>(read_int("x0", 0, kField16));
       s.length = static_cast<int32_t>(read_int("length", 1, kField16));
-      std::string flag;
-      if (ls >> flag) {
-        if (flag != "last")
-          throw CommandStreamError(loc + "span: expected 'last' or nothing, got '" + flag + "'");
-        s.last_in_row = true;
+      // Then 'last' and, with host span setup, "| v d d2" per series.
+      std::string tok;
+      while (ls >> tok) {
+        if (tok == "|") continue;
+        if (tok == "last" && s.starts.empty() && !s.last_in_row) {
+          s.last_in_row = true;
+          continue;
+        }
+        try {
+          size_t used = 0;
+          s.starts.push_back(std::stoll(tok, &used));
+          if (used != tok.size()) throw std::invalid_argument(tok);
+        } catch (const std::logic_error&) {
+          throw CommandStreamError(
+              loc + "span: expected 'last', '|' or an integer start value, got '" + tok + "'");
+        }
       }
-      cs.commands.emplace_back(s);
+      cs.commands.emplace_back(std::move(s));
     } else if (op == "table") {
       TableCmd tb;
       tb.base = static_cast<uint32_t>(read_int("base", 0, kField16));
@@ -466,6 +500,8 @@ std::string config_to_json(const UnitConfig& c) {
   j["lanes"] = c.lanes;
   // Only when not the default: streams and build keys of one-buffer units stay as they were.
   if (c.material_buffers != 1) j["material_buffers"] = c.material_buffers;
+  // Likewise span_setup: unit-setup streams and build keys stay as they were.
+  if (c.host_setup()) j["span_setup"] = to_string(c.span_setup);
   const SpecularConfig& sp = c.specular;
   j["specular"] = {{"kind", to_string(sp.kind)}, {"out", sp.out.to_string()}};
   for (const SpecularUnitDescriptor& u : specular_units()) {
@@ -501,7 +537,7 @@ class ConfigJsonReader {
     check_keys(j, "",
                {"channels", "lights", "xy_bits", "offset_bits", "coef", "series", "spec_colour",
                 "out_bits", "coef_term_iwl", "port_words", "tri_queue", "lanes", "material_buffers",
-                "specular", "derivation"});
+                "span_setup", "specular", "derivation"});
     read_int(j, "", "channels", 1, 3, require_top_, c.channels);
     read_int(j, "", "lights", 1, 8, require_top_, c.lights);
     read_int(j, "", "xy_bits", 1, 16, require_top_, c.xy_bits);
@@ -516,6 +552,7 @@ class ConfigJsonReader {
     read_int(j, "", "tri_queue", 1, 8, false, c.tri_queue);
     read_int(j, "", "lanes", 1, 4, false, c.lanes);
     read_int(j, "", "material_buffers", 1, 2, false, c.material_buffers);
+    read_enum(j, "", "span_setup", false, parse_span_setup, c.span_setup);
     if (!j.contains("specular")) {
       if (require_top_) fail("specular", "expected an object (missing)");
       return;

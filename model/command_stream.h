@@ -18,7 +18,10 @@
 //                  offsets dx = x - xo, dy = y - yo is
 //                  T0 + T1*dy + T2*dx + T3*dy^2 + T4*dx*dy + T5*dx^2.
 //   SPAN      0x03 header[55] = last span of its scanline in this frame, header[47:32] = y,
-//                  header[31:16] = x0, header[15:0] = length (>= 1). No payload.
+//                  header[31:16] = x0, header[15:0] = length (>= 1). No payload, except with
+//                  host span setup (UnitConfig::span_setup kHost): then StartLayout::words
+//                  payload words follow, v d d2 of every series packed densely
+//                  (model/start_packing.h), and the stream has no TRIANGLE.
 //   TABLE     0x04 header[55] = per-material table, header[31:16] = base address,
 //                  header[15:0] = entries; payload one entry/word. A per-material table belongs
 //                  to the latest MATERIAL (a per-exponent LUT's reload): with material_buffers 2
@@ -55,7 +58,7 @@
 //   material ambient A.. spec_colour S.. exponent E params P.. [gate_only MASK]
 //     (gate_only written when not 0; absent means 0)
 //   tri XO YO | T0 T1 T2 T3 T4 T5 | T0 ... (one group per series)
-//   span Y X0 LEN [last]
+//   span Y X0 LEN [last] [| V D D2 | ...]   (the start values with host span setup)
 //   table BASE E0 E1 ... [material]   (material: a per-material table)
 //   end
 #pragma once
@@ -90,6 +93,9 @@ struct TriangleCmd {
 struct SpanCmd {
   int32_t y = 0, x0 = 0, length = 1;
   bool last_in_row = false;
+  // Host span setup (UnitConfig::span_setup kHost) only: v, d, d2 of every series at the span's
+  // first pixel, series format raw, in series order (model/start_packing.h). Empty otherwise.
+  std::vector<int64_t> starts;
 };
 
 struct TableCmd {

@@ -21,8 +21,10 @@ class SpanPipe {
       : queued_(unit.tri_queue > 1),
         interval_(unit.slot.interval),
         latency_(unit.slot.latency),
-        lanes_(static_cast<uint64_t>(unit.lanes)) {
+        lanes_(static_cast<uint64_t>(unit.lanes)),
+        depth_(static_cast<size_t>(unit.start_depth)) {
     prev_.fill(kLongAgo);
+    loads_.fill(kLongAgo);
     // The entries of the last span_queue() spans are all the decoder asks for (room in the
     // queue); a power-of-two ring holds them.
     size_t ring = 1;
@@ -50,6 +52,25 @@ class SpanPipe {
     return last_leave_;
   }
 
+  // Host span setup: the span whose start values are all in on cycle `done` (its header's, or
+  // its last payload words'): the engines load it from the start bank on the next cycle once
+  // they idle or emit their last beat. Returns the cycle its last pixel leaves.
+  Cycle add_host(Cycle done, uint64_t len) {
+    const Cycle load = std::max(done + 1, last_emit_);
+    loads_[spans_ % loads_.size()] = load;
+    const Cycle first = std::max(load + 1, last_emit_ + interval_);
+    first_emit_ = first;
+    last_emit_ = first + static_cast<Cycle>(CycleEstimate::beats(len, lanes_) - 1) * interval_;
+    last_leave_ = last_emit_ + latency_ + 1;
+    ++spans_;
+    return last_leave_;
+  }
+  // Host span setup: the first cycle a SPAN header finds a start bank entry free - the entry
+  // of the span start_depth places back leaves for the engines on it (or left before).
+  Cycle start_entry_free() const {
+    return spans_ >= depth_ ? loads_[(spans_ - depth_) % loads_.size()] : 0;
+  }
+
   size_t spans() const { return spans_; }
   // Cycle span k entered s1 (queued units; one of the last span_queue() spans).
   Cycle entry(size_t k) const { return entry_[k & ring_mask_]; }
@@ -75,6 +96,8 @@ class SpanPipe {
   bool queued_;
   Cycle interval_, latency_;
   uint64_t lanes_;
+  size_t depth_;                  // start bank entries (host span setup)
+  std::array<Cycle, 2> loads_{};  // ... and the latest spans' engine loads from it
   std::array<Cycle, CycleEstimate::kSetupStages + 1> prev_;  // the previous span's stage entries
   Cycle first_emit_ = kLongAgo;
   Cycle last_emit_ = kLongAgo;
@@ -193,6 +216,8 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
   const uint64_t port = static_cast<uint64_t>(unit_.port_words);
   const int port_shift = port == 8 ? 3 : port == 4 ? 2 : port == 2 ? 1 : 0;
   const bool queued = unit_.tri_queue > 1;
+  const bool host = unit_.host_setup;
+  const uint64_t start_words = static_cast<uint64_t>(unit_.start_words);
   const size_t queue_size = static_cast<size_t>(unit_.span_queue());
   const Cycle interval = unit_.slot.interval;
 
@@ -215,13 +240,34 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
   int mat_wr = 0;
   std::array<Cycle, 2> mat_leave = {kLongAgo, kLongAgo};
   TriangleCost* tri = nullptr;  // the latest TRIANGLE's: its SPANs follow it
+  // Host setup: the span's part once its start values are all in (cycle `done`).
+  const auto add_span = [&](const CommandWord& s, Cycle done, uint64_t at) {
+    const uint64_t len = static_cast<uint64_t>(s.span_length());
+    if (len == 0) throw std::invalid_argument(at_word(at) + "SPAN of length 0 (lengths are >= 1)");
+    const Cycle leave = host ? pipe.add_host(done, len) : pipe.add(done, len);
+    mat_leave[static_cast<size_t>(mat_wr)] = leave;
+    if (rec) rec->span(pipe.first_emit(), pipe.last_emit());
+    if (queued) bank_free[static_cast<size_t>(wr_bank)] = pipe.last_entry();
+    r.pixels += len;
+    pixel_beats += beats(len, static_cast<uint64_t>(unit_.lanes));
+    if (s.span_last())
+      r.scanlines.push_back(
+          {s.span_y(), static_cast<uint64_t>(leave), s.span_x0() + s.span_length() - 1});
+    if (tri) {
+      ++tri->spans;
+      tri->pixels += len;
+      tri->engine_cycles +=
+          beats(len, static_cast<uint64_t>(unit_.lanes)) * static_cast<uint64_t>(interval);
+    }
+  };
 
   // The first cycle on which a header of this opcode may go (model/command_stream.h).
   const auto ready = [&](const CommandWord& word) -> Cycle {
     switch (static_cast<Opcode>(word.opcode())) {
       case Opcode::kSpan:
-        // Without a queue: s1 free. With one: room, i.e. the span queue_size places earlier
-        // has entered s1.
+        // Host setup: a free start bank entry. Without a queue: s1 free. With one: room, i.e.
+        // the span queue_size places earlier has entered s1.
+        if (host) return pipe.start_entry_free();
         if (!queued) return pipe.s1_free();
         return pipe.spans() >= queue_size ? pipe.entry(pipe.spans() - queue_size) + 1 : 0;
       case Opcode::kTriangle: {
@@ -253,8 +299,10 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
     if (rec) rec->port(t, header_category(op));  // waiting for it, then taking it
     last_item = c;
     t = c + 1;
-    uint64_t payload = 0;  // words after the header item
-    bool tri_payload = false;
+    uint64_t payload = 0;      // words after the header item
+    bool tri_payload = false;  // TRIANGLE coefficients or a host-setup SPAN's start values
+    std::optional<CommandWord> host_span;  // its header, until its start values are all in
+    uint64_t host_span_at = 0;
     switch (op) {
       case Opcode::kNop:
         w = beat_end(w);
@@ -276,6 +324,17 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
         break;
       }
       case Opcode::kSpan: {
+        if (host) {
+          // Its start values: as many as follow it in the beat now, the rest as a tail.
+          const uint64_t with_header = std::min<uint64_t>(start_words, beat_end(w) - w - 1);
+          host_span = word;
+          host_span_at = w;
+          w += 1 + with_header;
+          payload = start_words - with_header;
+          tri_payload = true;
+          if (payload == 0) add_span(word, c, host_span_at);
+          break;
+        }
         // With a queue, the SPAN headers right behind this one in the beat go too, as far as
         // the queue has room on this cycle.
         uint64_t n = 1;
@@ -284,27 +343,7 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
           const uint64_t end = beat_end(w);
           while (n < room && w + n < end && word_at(w + n).is(Opcode::kSpan)) ++n;
         }
-        for (uint64_t k = 0; k < n; ++k) {
-          const CommandWord s = word_at(w + k);
-          const uint64_t len = static_cast<uint64_t>(s.span_length());
-          if (len == 0)
-            throw std::invalid_argument(at_word(w + k) + "SPAN of length 0 (lengths are >= 1)");
-          const Cycle leave = pipe.add(c, len);
-          mat_leave[static_cast<size_t>(mat_wr)] = leave;
-          if (rec) rec->span(pipe.first_emit(), pipe.last_emit());
-          if (queued) bank_free[static_cast<size_t>(wr_bank)] = pipe.last_entry();
-          r.pixels += len;
-          pixel_beats += beats(len, static_cast<uint64_t>(unit_.lanes));
-          if (s.span_last())
-            r.scanlines.push_back(
-                {s.span_y(), static_cast<uint64_t>(leave), s.span_x0() + s.span_length() - 1});
-          if (tri) {
-            ++tri->spans;
-            tri->pixels += len;
-            tri->engine_cycles +=
-                beats(len, static_cast<uint64_t>(unit_.lanes)) * static_cast<uint64_t>(interval);
-          }
-        }
+        for (uint64_t k = 0; k < n; ++k) add_span(word_at(w + k), c, w + k);
         if (tri) ++tri->decoder_cycles;
         w += n;
         break;
@@ -338,23 +377,26 @@ CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool wit
     const uint64_t first = std::min(payload, beat_end(w) - w);
     const uint64_t rest = payload - first;
     const Cycle items = 1 + static_cast<Cycle>((rest + in_beat) >> port_shift);
-    tri->decoder_cycles += static_cast<uint64_t>(items);
+    if (tri) tri->decoder_cycles += static_cast<uint64_t>(items);
     if (rec) rec->port(t, CycleModel::Category::kCommandWords);
     const Cycle tail_cycle = t + items - 1;
     w += payload;
     last_item = tail_cycle;
     t = tail_cycle + 1;
+    // A host-setup SPAN's start values are all in with its last tail.
+    if (host_span) add_span(*host_span, tail_cycle, host_span_at);
     if ((w & in_beat) == 0 || w >= padded) continue;
     // A header follows the tail in its beat: it goes on the tail's cycle if it may and is ready.
     const CommandWord next = word_at(w);
     const Opcode nop = static_cast<Opcode>(next.opcode());
     // Without a queue a SPAN's setup reads the coefficients as it is taken: never with them.
-    const bool joins = !(nop == Opcode::kSpan && !queued) && ready(next) <= tail_cycle;
+    // (With host setup the start values are no coefficients: a SPAN may join them.)
+    const bool joins = !(nop == Opcode::kSpan && !queued && !host) && ready(next) <= tail_cycle;
     if (joins) {
       // Take it on the tail's cycle: the header logic above runs with t = tail_cycle and the
       // item's cycle is already counted for this triangle.
       t = tail_cycle;
-      if (nop == Opcode::kSpan) --tri->decoder_cycles;  // same item, same triangle
+      if (nop == Opcode::kSpan && tri) --tri->decoder_cycles;  // same item, same triangle
     }
   }
   r.cycles =

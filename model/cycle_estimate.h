@@ -36,6 +36,13 @@
 //   MATERIAL, two       the bank it switches to is free: cycle >= E_m + latency + 1 for the
 //   material buffers    latest span m of that bank (spans carry the bank of the MATERIAL
 //                       before them; MATERIALs alternate the banks)
+// Host span setup (CycleConfig::host_setup): no setup stages. A SPAN's start values are taken
+// like a TRIANGLE's coefficients (with the header, then the rest of the beat a cycle); D_k is
+// the cycle its last words are taken (P_k when they all come with the header). Then
+//   L_k = max(D_k + 1, E_{k-1})         (the start bank's entry is complete the cycle after)
+//   F_k, E_k as above; and the header waits for a free entry of the start_depth-entry bank:
+//   SPAN, host setup    cycle >= L_{k-start_depth} (that entry leaves for the engines then),
+//                       and may go on its predecessor's last tail cycle.
 // The run ends on the cycle after the later of the last beat's acceptance and the last pixel's
 // leaving.
 //

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "model/specular_units.h"
+#include "model/start_packing.h"
 
 namespace shadesim {
 
@@ -14,6 +15,8 @@ SlotTiming SlotTiming::of(const SpecularConfig& config) {
 CycleConfig CycleConfig::of(const UnitConfig& config) {
   CycleConfig c(SlotTiming::of(config.specular), config.port_words, config.tri_queue, config.lanes);
   c.material_buffers = config.material_buffers;
+  c.host_setup = config.host_setup();
+  if (c.host_setup) c.start_words = StartLayout::of(config).words;
   return c;
 }
 
@@ -47,7 +50,8 @@ std::vector<CycleBreakdown::Row> CycleBreakdown::rows() const {
       {"command_gap", command_gap, "bubble: no command word was offered in time"},
       {"material", material, "bubble: MATERIAL drain, words and refill"},
       {"table", table, "bubble: TABLE words"},
-      {"command_words", command_words, "bubble: TRIANGLE / END_FRAME / other words"},
+      {"command_words", command_words,
+       "bubble: TRIANGLE / span start values / END_FRAME / other words"},
       {"setup_load", setup_load, "bubble: span setup and engine load latency not hidden"},
   };
 }
@@ -63,7 +67,15 @@ CycleModel::CycleModel(CycleConfig unit)
       port_words_(static_cast<unsigned>(unit.port_words)),
       tri_queue_(unit.tri_queue),
       lanes_(static_cast<unsigned>(unit.lanes)),
+      host_(unit.host_setup),
+      start_words_(static_cast<unsigned>(unit.start_words)),
       mat_banked_(unit.material_buffers == 2) {
+  if (unit.host_setup && (unit.tri_queue != 1 || unit.start_depth < 1 || unit.start_depth > 2 ||
+                          unit.start_words < 1)) {
+    throw std::invalid_argument(
+        "CycleModel: host span setup needs tri_queue 1, start_depth 1 or 2 and start_words >= 1");
+  }
+  if (unit.host_setup) sb_.resize(static_cast<size_t>(unit.start_depth));
   if (unit.material_buffers != 1 && unit.material_buffers != 2) {
     throw std::invalid_argument("CycleModel: material_buffers must be 1 or 2, got " +
                                 std::to_string(unit.material_buffers));

@@ -49,6 +49,18 @@ struct CycleConfig {
   int tri_queue = 1;         // UnitConfig::tri_queue
   int lanes = 1;             // UnitConfig::lanes: pixels per beat
   int material_buffers = 1;  // UnitConfig::material_buffers
+  // Host span setup (UnitConfig::span_setup kHost): each SPAN header brings start_words payload
+  // words (StartLayout::words) into the start bank of start_depth entries, which the engines load
+  // from; there are no setup stages and no coefficient banks (tri_queue is 1).
+  bool host_setup = false;
+  int start_words = 0;
+  int start_depth = kStartDepth;
+  // A host-setup unit's start bank entries (shade_unit START_DEPTH, from rtl_parameters.cpp):
+  // two, so the next span's words stream in while one span waits and one runs. Measured with
+  // this model on the shipped scenes' own units: one entry gives specular 1.233, torus 1.133,
+  // suzanne 1.176 cycles/px, two 1.001 each; more than two do not help multi (1.205 at two,
+  // 1.201 at eight), whose many short spans are bound by the 13 words each needs.
+  static constexpr int kStartDepth = 2;
 
   CycleConfig() = default;
   // A unit with the default structure around this slot.
@@ -84,7 +96,8 @@ struct ScanlineDone {
 //                  buffers for its bank's last span to leave the slot - or accepted) or its
 //                  payload: the drain, the words, and the refill after them
 //   table          a TABLE header or payload word
-//   command_words  TRIANGLE, END_FRAME or unknown words (command bandwidth)
+//   command_words  TRIANGLE, a SPAN's start values (host span setup), END_FRAME or unknown
+//                  words (command bandwidth)
 //   setup_load     a SPAN header was offered then (or the run had not been going that long):
 //                  the span's setup and engine-load latency was not hidden - the first span's
 //                  fill, or the schedule shifted by back-pressure / unit stalls
@@ -164,8 +177,9 @@ class CycleModel {
   bool idle() const { return !in_payload_ && pos_ == 0 && datapath_empty() && !pix_.valid; }
 
   // Cycles from a SPAN header's acceptance to its first pixel leaving, with nothing stalled
-  // (a span queue adds its register).
-  int span_latency() const { return 5 + (queued() ? 1 : 0) + timing_.latency; }
+  // (a span queue adds its register; host span setup has no setup stages, and its payload
+  // words, when they come later than the header, add theirs).
+  int span_latency() const { return (host_ ? 3 : 5) + (queued() ? 1 : 0) + timing_.latency; }
 
   // A whole stream under a testbench's gaps and back-pressure: run_cycle_model
   // (sim/harness/cycle_run.h); with none, CycleEstimate (model/cycle_estimate.h).
@@ -185,13 +199,14 @@ class CycleModel {
     int mat = 0;            // material bank of its span
     bool span_end = false;  // the span's last beat: its bank's count drops when it leaves the slot
   };
-  enum class Payload { kSkip, kMaterial, kTriangle, kTable };
+  enum class Payload { kSkip, kMaterial, kTriangle, kTable, kSpan };
 
   bool iterative() const { return timing_.interval > 1; }
   bool queued() const { return tri_queue_ > 1; }
   bool slot_empty() const;
   bool datapath_empty() const {
-    return sq_count_ == 0 && !s_[0].valid && !s_[1].valid && !s_[2].valid && !run_ && slot_empty();
+    return sq_count_ == 0 && sb_count_ == 0 && !s_[0].valid && !s_[1].valid && !s_[2].valid &&
+           !run_ && slot_empty();
   }
   // What the command port does this cycle, as a bubble category (kSetupLoad for SPAN headers).
   // header: the cycle is about a header (taken, or waited for), not payload words.
@@ -201,6 +216,12 @@ class CycleModel {
   unsigned port_words_ = 1;
   int tri_queue_ = 1;
   unsigned lanes_ = 1;
+  // Host span setup: the start bank, a ring of sb_.size() entries, sb_count_ of them from
+  // sb_head_ (the newest still filling while its SPAN's payload words come).
+  bool host_ = false;
+  unsigned start_words_ = 0;
+  std::vector<Span> sb_;
+  size_t sb_head_ = 0, sb_count_ = 0;
   // Triangle queue (tri_queue > 1): the span queue (a ring of sq_.size(), sq_count_ entries from
   // sq_head_), each span with the coefficient bank of its triangle; spans queued per bank; the
   // bank the latest TRIANGLE loads.
@@ -291,7 +312,10 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   const bool emit = run_ && adv && !busy;
   // The span's last beat: 1 <= rem <= lanes (rem - 1 < lanes, as the RTL compares it).
   const bool last_pix = rem_ - 1 < lanes_;
-  const bool load_eng = s_[2].valid && (!run_ || (emit && last_pix));
+  // Host span setup: the engines load the start bank's oldest entry once its payload is in.
+  const bool sb_filling = in_payload_ && pay_op_ == Payload::kSpan;
+  const bool sb_ready = sb_count_ > (sb_filling ? 1u : 0u);
+  const bool load_eng = (host_ ? sb_ready : s_[2].valid) && (!run_ || (emit && last_pix));
   const bool s3_free = !s_[2].valid || load_eng;
   const bool s2_move = s_[1].valid && s3_free;
   const bool s1_move = s_[0].valid && (!s_[1].valid || s2_move);
@@ -305,18 +329,22 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   // words after it in the beat), or one MATERIAL / TABLE payload word; n words from pos_.
   const unsigned beat_left = port_words_ - pos_;
   const unsigned pay_rem = pay_rem_;
-  const bool tri_payload = in_payload_ && pay_op_ == Payload::kTriangle;
+  // Coefficient words of a TRIANGLE, or start values of a SPAN (host setup): a tail per beat.
+  const bool tri_payload =
+      in_payload_ && (pay_op_ == Payload::kTriangle || pay_op_ == Payload::kSpan);
   const unsigned tail = tri_payload ? std::min(pay_rem, beat_left) : 0;
   const unsigned hdr_pos = pos_ + tail;
   const bool hdr_here =
       (!in_payload_ || (tri_payload && pay_rem <= beat_left)) && hdr_pos < port_words_;
   const CommandWord word{beat[hdr_here ? hdr_pos : pos_]};
   const Opcode op = static_cast<Opcode>(word.opcode());
-  const unsigned count = word.count();
+  // Payload words: the header's count, but a host-setup SPAN's count is its length.
+  const bool host_span = host_ && op == Opcode::kSpan;
+  const unsigned count = host_span ? start_words_ : word.count();
   unsigned hdr_n = 1;
   if (op == Opcode::kNop) {
     hdr_n = port_words_ - hdr_pos;
-  } else if (op == Opcode::kTriangle) {
+  } else if (op == Opcode::kTriangle || host_span) {
     hdr_n = 1 + std::min(count, port_words_ - hdr_pos - 1);
   } else if (op == Opcode::kSpan && queued() && hdr_here) {
     // A run of SPAN headers goes into the span queue together, as many as it has room for.
@@ -336,6 +364,8 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   // Without a span queue a SPAN's setup reads the coefficients as it is taken: not on the edge
   // that writes its triangle's last words.
   if (op == Opcode::kSpan) hdr_ready = queued() ? sq_count_ < sq_.size() : s1_free && tail == 0;
+  // Host setup: a free start bank entry, or the oldest one leaving for the engines now.
+  if (host_span) hdr_ready = sb_count_ < sb_.size() || load_eng;
   // A TRIANGLE loads the next bank once no queued span needs that bank's coefficients.
   if (op == Opcode::kTriangle && queued())
     hdr_ready = bank_spans_[static_cast<size_t>(next_bank)] == 0;
@@ -401,12 +431,13 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   // later MATERIAL changes.
   if (to_pix && pix_.valid && pix_.span_end) --mat_spans_[pix_.mat];
   if (load_eng) {
+    const Span& next = host_ ? sb_[sb_head_] : s_[2];
     run_ = true;
-    rem_ = static_cast<unsigned>(s_[2].len);
-    x_ = s_[2].x0;
-    y_ = s_[2].y;
-    last_ = s_[2].last;
-    mat_ = s_[2].mat;
+    rem_ = static_cast<unsigned>(next.len);
+    x_ = next.x0;
+    y_ = next.y;
+    last_ = next.last;
+    mat_ = next.mat;
   } else if (emit) {
     if (last_pix) run_ = false;
     rem_ -= lanes_;  // wraps after the last beat, as the RTL's rem_q; reloaded before use
@@ -427,8 +458,24 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   header_span.len = word.span_length();
   header_span.last = word.span_last();
   header_span.mat = mat_wr_;
-  if (span_fire) mat_spans_[mat_wr_] += static_cast<int>(hdr_n);
-  if (!queued()) {
+  if (host_) {
+    if (load_eng) {
+      if (++sb_head_ == sb_.size()) sb_head_ = 0;
+      --sb_count_;
+    }
+    if (span_fire) {
+      ++mat_spans_[mat_wr_];
+      size_t tail = sb_head_ + sb_count_;
+      if (tail >= sb_.size()) tail -= sb_.size();
+      sb_[tail] = header_span;
+      ++sb_count_;
+    }
+  } else if (span_fire) {
+    mat_spans_[mat_wr_] += static_cast<int>(hdr_n);
+  }
+  if (host_) {
+    // The start bank above: no setup stages, no span queue.
+  } else if (!queued()) {
     if (span_fire)
       s_[0] = header_span;
     else if (s1_move)
@@ -478,6 +525,18 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
       case Opcode::kTable:
         pay_op_ = Payload::kTable;
         in_payload_ = count != 0;
+        break;
+      case Opcode::kSpan:
+        // Host setup: the start values that came with the header are already taken.
+        if (host_) {
+          pay_op_ = Payload::kSpan;
+          pay_idx_ = hdr_n - 1;
+          pay_rem_ = (count - hdr_n + 1) & CommandWord::kFieldMask;
+          in_payload_ = count > hdr_n - 1;
+        } else {
+          pay_op_ = Payload::kSkip;
+          in_payload_ = false;
+        }
         break;
       default:
         pay_op_ = Payload::kSkip;

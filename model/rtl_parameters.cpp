@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "model/cycle_model.h"
 #include "model/specular_units.h"
 
 namespace shadesim {
@@ -41,9 +42,16 @@ std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u, const I
   // shade_unit's default is 1: one-buffer units keep their parameter list (and build key).
   if (u.material_buffers != 1) p.push_back({"MATERIAL_BUFFERS", u.material_buffers});
   // Likewise OFS_BITS, whose default is the screen-sized 17.
-  if (u.offset_bits != UnitConfig::kMaxOffsetBits) p.push_back({"OFS_BITS", u.offset_bits});
+  // (Host span setup has no span setup to size: the offsets and terms size no hardware.)
+  if (u.offset_bits != UnitConfig::kMaxOffsetBits && !u.host_setup())
+    p.push_back({"OFS_BITS", u.offset_bits});
+  // Host span setup (shade_pkg::SetupHost = 1); unit-setup units keep their parameter list.
+  if (u.host_setup()) {
+    p.push_back({"SPAN_SETUP", 1});
+    p.push_back({"START_DEPTH", CycleConfig::kStartDepth});
+  }
   // Narrowed coefficient terms (coef packing); shade_unit's defaults are COEF_WL.
-  if (!u.coef_term_iwl.empty()) {
+  if (!u.coef_term_iwl.empty() && !u.host_setup()) {
     for (int t = 0; t < 6; ++t)
       p.push_back({"COEF_T" + std::to_string(t) + "_WL", u.coef_term_bits(t)});
   }

@@ -1,7 +1,8 @@
 // ShadeUnit: the bit-accurate model of the whole shading unit (rtl/shade_unit.sv). It consumes
 // the command stream and emits one output pixel per span pixel, in stream order.
 //
-// Per SPAN: SpanSetup forms (v, d, d2) for every series of the current triangle; LaneFanout
+// Per SPAN: SpanSetup forms (v, d, d2) for every series of the current triangle (with host span
+// setup, UnitConfig::span_setup kHost, StartBank reads them from the SPAN instead); LaneFanout
 // forms each lane's start from them (UnitConfig::lanes; one lane: unchanged); then per beat of
 // `lanes` pixels SpecularUnit and PixelCombine read each valid lane's series values, in lane
 // order, and every lane's SeriesEngines step. Every lane's specular slot holds the same
@@ -19,6 +20,7 @@
 #include "model/series_engine.h"
 #include "model/span_setup.h"
 #include "model/specular_unit.h"
+#include "model/start_bank.h"
 #include "model/unit_config.h"
 
 namespace shadesim {
@@ -48,6 +50,7 @@ class ShadeUnit {
 
   UnitConfig config_;
   SpanSetup span_setup_;
+  StartBank start_bank_;  // host span setup
   SpecularUnit specular_;
   PixelCombine combine_;
   LaneFanout fanout_;
@@ -64,8 +67,13 @@ class ShadeUnit {
 template <typename Sink>
 void ShadeUnit::consume(const Command& cmd, Sink&& sink) {
   if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
-    if (!have_triangle_ || !have_material_) {
-      throw CommandStreamError("span before any tri/material command");
+    const bool host = config_.host_setup();
+    if ((!host && !have_triangle_) || !have_material_) {
+      throw CommandStreamError(host ? "span before any material command"
+                                    : "span before any tri/material command");
+    }
+    if (host && s->starts.size() != static_cast<size_t>(StartLayout::of(config_).values)) {
+      throw CommandStreamError("span: host span setup needs its start values");
     }
     const int32_t dx = s->x0 - triangle_.xo;
     const int32_t dy = s->y - triangle_.yo;
@@ -73,7 +81,8 @@ void ShadeUnit::consume(const Command& cmd, Sink&& sink) {
     const int n_series = lanes_.front().size();
     for (int i = 0; i < n_series; ++i) {
       const SeriesStart start =
-          span_setup_(&triangle_.coef[static_cast<size_t>(i) * kTermsPerSeries], dx, dy);
+          host ? start_bank_(s->starts, i)
+               : span_setup_(&triangle_.coef[static_cast<size_t>(i) * kTermsPerSeries], dx, dy);
       if (n_lanes == 1) {
         lanes_.front().load(i, start);
       } else {
@@ -111,6 +120,8 @@ void ShadeUnit::consume(const Command& cmd, Sink&& sink) {
       }
     }
   } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
+    if (config_.host_setup())
+      throw CommandStreamError("tri: a unit with host span setup takes no TRIANGLE");
     triangle_ = *t;
     have_triangle_ = true;
   } else if (const auto* m = std::get_if<MaterialCmd>(&cmd)) {

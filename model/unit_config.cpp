@@ -24,6 +24,12 @@ void UnitConfig::validate() const {
     fail("lanes must be 1, 2 or 4, got " + std::to_string(lanes));
   if (material_buffers != 1 && material_buffers != 2)
     fail("material_buffers must be 1 or 2, got " + std::to_string(material_buffers));
+  if (span_setup != SpanSetupSite::kUnit && span_setup != SpanSetupSite::kHost)
+    fail("span_setup must be unit or host");
+  if (host_setup() && tri_queue != 1)
+    fail("tri_queue must be 1 with span_setup host, got " + std::to_string(tri_queue) +
+         ": the unit holds no triangle coefficients to queue (the host sends every span's start "
+         "values)");
   coef.validate("unit config: coef");
   series.validate("unit config: series");
   spec_colour.validate("unit config: spec_colour");
@@ -63,6 +69,14 @@ FixedFormat UnitConfig::coef_term(int t) const {
   return {coef.frac_bits() + iwl, iwl, true, coef.quant, Overflow::kSaturate};
 }
 
+std::string to_string(SpanSetupSite s) { return s == SpanSetupSite::kHost ? "host" : "unit"; }
+
+SpanSetupSite parse_span_setup(const std::string& text, const std::string& what) {
+  if (text == "unit") return SpanSetupSite::kUnit;
+  if (text == "host") return SpanSetupSite::kHost;
+  throw std::invalid_argument(what + ": unknown span setup '" + text + "'; expected unit or host");
+}
+
 std::string UnitConfig::to_string() const {
   std::ostringstream os;
   os << (channels == 1 ? "grey" : "rgb") << '/' << lights << "L coef=" << coef.to_string();
@@ -77,6 +91,7 @@ std::string UnitConfig::to_string() const {
   if (tri_queue != 1) os << " triq=" << tri_queue;
   if (lanes != 1) os << " lanes=" << lanes;
   if (material_buffers != 1) os << " matbuf=" << material_buffers;
+  if (host_setup()) os << " setup=host";
   return os.str();
 }
 

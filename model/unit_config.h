@@ -12,6 +12,11 @@
 
 namespace shadesim {
 
+// Where a span's series start values (v, d, d2) are formed: in the unit's span setup from the
+// triangle's coefficients (kUnit), or by the host, which sends them after each SPAN header
+// (kHost; model/start_packing.h): the unit then has no coefficient bank and no span setup.
+enum class SpanSetupSite : uint8_t { kUnit, kHost };
+
 struct UnitConfig {
   // Structure: "model only what a scene needs" - a grey scene uses one channel, one light.
   int channels = 1;  // 1 (grey) or 3 (RGB)
@@ -70,6 +75,15 @@ struct UnitConfig {
   // Each MATERIAL defines every other banked field, so the encoder's pixels do not depend on
   // this either.
   int material_buffers = 1;
+  // Span setup in the unit (default) or on the host. With kHost the stream has no TRIANGLE
+  // command; every SPAN carries its start values (3 x series_per_triangle in the series format),
+  // which the host computes with the model's own SpanSetup, so pixels are those of kUnit for the
+  // same widths. The unit trades its span setup and coefficient banks for a start-value register
+  // set and more command words per span (cycles per pixel: the cycle model counts them).
+  // offset_bits keeps its meaning for the encoder's origins (so pixels do not change with the
+  // knob) but sizes no hardware; tri_queue must be 1 (there are no coefficient banks).
+  SpanSetupSite span_setup = SpanSetupSite::kUnit;
+  bool host_setup() const { return span_setup == SpanSetupSite::kHost; }
 
   // Term t's format (0..5): coef's, or coef narrowed to coef_term_iwl[t] integer bits.
   FixedFormat coef_term(int t) const;
@@ -90,5 +104,9 @@ struct UnitConfig {
   // One line, e.g. "rgb/1L coef=s4.32:rnd series=s4.28:wrap out=8 spec=ideal".
   std::string to_string() const;
 };
+
+std::string to_string(SpanSetupSite s);  // "unit" or "host"
+// Throws std::invalid_argument naming `what` for anything but "unit" and "host".
+SpanSetupSite parse_span_setup(const std::string& text, const std::string& what);
 
 }  // namespace shadesim

@@ -3,12 +3,16 @@
 // coefficient words due in it (the tail), then at most one header (with a TRIANGLE's words after
 // it, or a run of SPAN headers into a span queue), or one MATERIAL / TABLE payload word, or a NOP
 // (the rest is padding) - and accepted with its last item. A header waits while the part of the
-// unit it changes is busy (the *_i conditions below).
+// unit it changes is busy (the *_i conditions below). With host span setup (HOST_SETUP) a SPAN
+// header brings START_WORDS payload words, taken like a TRIANGLE's (with the header, then a
+// tail per beat) into the start bank.
 module cmd_decoder #(
   parameter int PORT_WORDS  = 1,     // 64-bit words per beat: 1, 2, 4 or 8
   parameter bit QUEUED      = 1'b0,  // SPAN headers go into a span queue (TRI_QUEUE > 1)
   parameter bit MAT_BANKED  = 1'b0,  // two material buffers
-  parameter int N_MAT_FIXED = 2      // MATERIAL payload words before the slots' (ambient, colour)
+  parameter int N_MAT_FIXED = 2,     // MATERIAL payload words before the slots' (ambient, colour)
+  parameter bit HOST_SETUP  = 1'b0,  // SPAN headers carry start values (start_bank.sv)
+  parameter int START_WORDS = 1      // ... in this many payload words
 ) (
   input  logic                                  clk_i,
   input  logic                                  rst_ni,
@@ -23,6 +27,7 @@ module cmd_decoder #(
   input  logic [15:0]                           sq_room_i,         // ... its free entries
   input  logic                                  s1_free_i,         // setup stage 1 free
   input  logic                                  tri_bank_free_i,   // next coefficient bank free
+  input  logic                                  start_free_i,      // a start bank entry free
   // The item taken this cycle.
   output logic [shade_pkg::WordW-1:0]           word_o,       // header, else payload word
   output logic [(PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1)-1:0] word_sel_o,  // ... its word
@@ -36,6 +41,7 @@ module cmd_decoder #(
   output logic [(PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1)-1:0] pos_o,  // first word not taken
   output logic [$clog2(PORT_WORDS+1)-1:0]       tail_n_o,     // TRIANGLE words due in beat
   output logic [15:0]                           pay_idx_o,    // payload index of pos_o's word
+  output logic                                  span_pay_o,   // the tail is a SPAN's (host)
   output logic                                  pay_mat_o,    // a MATERIAL payload word taken
   // Configuration words for the specular slots: MATERIAL exponent (index 0) and unit
   // parameters (1..), TABLE entries at base + index.
@@ -47,7 +53,7 @@ module cmd_decoder #(
   localparam int WordW = shade_pkg::WordW;
   localparam int PosW  = PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1;
   localparam int NW    = $clog2(PORT_WORDS + 1);  // a count of beat words: 0..PORT_WORDS
-  typedef enum logic [1:0] {PaySkip, PayMaterial, PayTriangle, PayTable} pay_e;
+  typedef enum logic [2:0] {PaySkip, PayMaterial, PayTriangle, PayTable, PaySpan} pay_e;
   logic        in_payload_q, in_payload_d;
   pay_e        pay_op_q, pay_op_d;
   logic [15:0] pay_idx_q, pay_idx_d, pay_rem_q, pay_rem_d, tbl_base_q, tbl_base_d;  // rem: left
@@ -55,6 +61,8 @@ module cmd_decoder #(
   logic [PosW-1:0] pos_q;
   logic [7:0]  hdr_op;
   logic [15:0] hdr_count;
+  logic        host_span;  // a SPAN header with start values (HOST_SETUP)
+  logic [15:0] pay_count;  // payload words of the header: its count, a host SPAN's START_WORDS
   logic        hdr_ready, hdr_fire, pay_fire;
   logic [NW-1:0] beat_left;  // words of the beat from pos_q on
   logic          tri_payload;  // TRIANGLE coefficient words are due
@@ -68,7 +76,7 @@ module cmd_decoder #(
   logic [PosW-1:0]  word_sel;
   logic [WordW-1:0] cmd_word;
   assign beat_left   = NW'(PORT_WORDS) - NW'(pos_q);
-  assign tri_payload = in_payload_q && pay_op_q == PayTriangle;
+  assign tri_payload = in_payload_q && (pay_op_q == PayTriangle || pay_op_q == PaySpan);
   assign tail_n      = !tri_payload ? '0 : pay_rem_q < 16'(beat_left) ? NW'(pay_rem_q) : beat_left;
   assign hdr_pos     = NW'(pos_q) + tail_n;
   assign hdr_here    = (!in_payload_q || (tri_payload && pay_rem_q <= 16'(beat_left))) &&
@@ -77,6 +85,8 @@ module cmd_decoder #(
   assign cmd_word    = cmd_data_i[word_sel * WordW +: WordW];
   assign hdr_op      = cmd_word[shade_pkg::OpcodeLsb +: 8];
   assign hdr_count   = cmd_word[shade_pkg::CountLsb +: shade_pkg::FieldW];
+  assign host_span   = HOST_SETUP && hdr_op == shade_pkg::OpSpan;
+  assign pay_count   = host_span ? 16'(START_WORDS) : hdr_count;
   // With a span queue, a run of SPAN headers goes into it together, as many as it has room for.
   logic [PORT_WORDS-1:0] word_is_span;
   logic [NW-1:0]         span_run;  // SPAN headers from hdr_pos on, back to back in the beat
@@ -104,8 +114,8 @@ module cmd_decoder #(
       hdr_n = NW'(1);  // (read only when a header is taken: hdr_pos < PORT_WORDS, no wrap)
       if (hdr_op == shade_pkg::OpNop) begin
         hdr_n = NW'(PORT_WORDS) - hdr_pos;
-      end else if (hdr_op == shade_pkg::OpTriangle) begin
-        hdr_n = NW'(1) + (hdr_count < 16'(after) ? NW'(hdr_count) : after);
+      end else if (hdr_op == shade_pkg::OpTriangle || host_span) begin
+        hdr_n = NW'(1) + (pay_count < 16'(after) ? NW'(pay_count) : after);
       end else if (QUEUED && hdr_op == shade_pkg::OpSpan && hdr_here) begin
         hdr_n = 16'(span_run) < sq_room_i ? span_run : NW'(sq_room_i);
         if (hdr_n == '0) hdr_n = NW'(1);  // a full queue: hdr_ready holds the header
@@ -132,7 +142,9 @@ module cmd_decoder #(
                                          ? mat_cur_free_i : datapath_empty_i;
       // Without a span queue a SPAN's setup reads the coefficient registers as it is taken:
       // not on the edge that writes its triangle's last words.
-      shade_pkg::OpSpan:     hdr_ready = QUEUED ? !sq_full_i : s1_free_i && tail_n == '0;
+      // With host setup a SPAN needs a start bank entry, and may follow the previous one's tail.
+      shade_pkg::OpSpan:     hdr_ready = HOST_SETUP ? start_free_i :
+                                         QUEUED ? !sq_full_i : s1_free_i && tail_n == '0;
       shade_pkg::OpTriangle: hdr_ready = tri_bank_free_i;
       default:               hdr_ready = 1'b1;
     endcase
@@ -189,6 +201,18 @@ module cmd_decoder #(
           pay_op_d     = PayTable;
           in_payload_d = hdr_count != 16'd0;
         end
+        // Host setup: the start values that came with the header are already taken.
+        shade_pkg::OpSpan: begin
+          if (HOST_SETUP) begin
+            pay_op_d     = PaySpan;
+            pay_idx_d    = 16'(hdr_n) - 16'd1;
+            pay_rem_d    = pay_count - 16'(hdr_n) + 16'd1;
+            in_payload_d = pay_count > 16'(hdr_n) - 16'd1;
+          end else begin
+            pay_op_d     = PaySkip;
+            in_payload_d = 1'b0;
+          end
+        end
         // END_FRAME and unknown opcodes carry no payload.
         default: begin
           pay_op_d     = PaySkip;
@@ -231,6 +255,7 @@ module cmd_decoder #(
   assign tri_fire_o  = hdr_fire && hdr_op == shade_pkg::OpTriangle;
   assign mat_fire_o  = hdr_fire && hdr_op == shade_pkg::OpMaterial;
   assign pay_mat_o   = pay_fire && pay_op_q == PayMaterial;
+  assign span_pay_o  = in_payload_q && pay_op_q == PaySpan;
 
 `ifndef SYNTHESIS
   initial begin

@@ -14,6 +14,7 @@ wpow_unit.sv
 specular_unit.sv
 cmd_decoder.sv
 coef_bank.sv
+start_bank.sv
 span_queue.sv
 material_bank.sv
 setup_ctrl.sv

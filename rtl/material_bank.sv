@@ -13,7 +13,8 @@ module material_bank #(
   parameter int SPEC_COLOUR_WL   = 13,
   parameter int MATERIAL_BUFFERS = 1,
   parameter int SPAN_Q           = 1,  // span queue entries (1: none)
-  parameter int SPEC_LATENCY     = 0   // the specular slot's latency
+  parameter int SPEC_LATENCY     = 0,  // the specular slot's latency
+  parameter bit HOST_SETUP       = 1'b0  // no setup stages: spans wait in the start bank
 ) (
   input  logic                                  clk_i,
   input  logic                                  rst_ni,
@@ -23,7 +24,9 @@ module material_bank #(
   input  logic [15:0]                           pay_idx_i,   // ... its index
   input  logic                                  span_fire_i,  // SPAN headers are taken ...
   input  logic [15:0]                           span_n_i,     // ... this many
-  // The bank moving with a span: into setup stage 1, along the stages, into the engines.
+  // The bank moving with a span: into setup stage 1, along the stages, into the engines. With
+  // host setup the start bank holds each span's bank: s1_bank_i is the bank of the span the
+  // engines load (eng_load_i), and the stage enables are unused.
   input  logic                                  s1_load_i,
   input  logic                                  s1_bank_i,
   input  logic                                  s1_move_i,
@@ -106,7 +109,7 @@ module material_bank #(
       if (s1_load_i)  s1_mat_q  <= s1_bank_i;
       if (s1_move_i)  s2_mat_q  <= s1_mat_q;
       if (s2_move_i)  s3_mat_q  <= s2_mat_q;
-      if (eng_load_i) eng_mat_q <= s3_mat_q;
+      if (eng_load_i) eng_mat_q <= HOST_SETUP ? s1_bank_i : s3_mat_q;
     end
 `ifndef SYNTHESIS
 `ifdef VERILATOR

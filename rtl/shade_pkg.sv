@@ -64,6 +64,17 @@ package shade_pkg;
     coef_lsb = lsb;
   endfunction
 
+  // ---- span setup site (SpanSetupSite of model/unit_config.h; shade_unit's SPAN_SETUP) -------
+  localparam int SetupUnit = 0;  // span setup in the unit, from TRIANGLE coefficients
+  localparam int SetupHost = 1;  // start values on each SPAN (start_bank.sv)
+
+  // ---- host span setup: a SPAN's start values (model/start_packing.h, StartLayout: the twin) --
+  // Series by series, v, d, d2, each SERIES_WL bits, packed densely: value j is bits
+  // [j*SERIES_WL +: SERIES_WL] of the payload words read as one bit string (word 0 lowest).
+  function automatic int start_words(input int n_ser, input int series_wl);
+    start_words = (3 * n_ser * series_wl + WordW - 1) / WordW;
+  endfunction
+
   // ---- specular units (SpecularUnitKind, UnitTiming codes of model/rtl_parameters.cpp) --------
   localparam int SpecIdeal       = 0;
   localparam int SpecLut         = 1;

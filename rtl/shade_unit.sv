@@ -34,6 +34,10 @@ module shade_unit #(
   parameter int SPECULAR_OUT_QUANT    = 0,  // Quantization: 0 truncate, 1 round to nearest
   parameter int SPECULAR_OUT_OVERFLOW = 0,  // Overflow: 0 saturate, 1 wrap
   parameter logic [shade_pkg::SpecParamW-1:0] SPEC_PARAMS = '0,
+  // Span setup: shade_pkg::SetupUnit (coefficient banks and span setup in the unit) or
+  // SetupHost (each SPAN carries its start values into start_bank; TRI_QUEUE must be 1).
+  parameter int SPAN_SETUP       = 0,
+  parameter int START_DEPTH      = 1,  // host setup: start bank entries, 1 or 2
   // 1: the harness's deliberate faults can be injected (fault_hooks). 0 (every unit): none.
   parameter int FAULT_HOOKS      = 0
 ) (
@@ -62,6 +66,8 @@ module shade_unit #(
   localparam int LaneSerW       = NSer * SERIES_WL;  // one lane's series values
   localparam int LaneDiffW      = NDiff * SERIES_WL;  // ... of them the diffuse ones
   localparam int LaneColW       = CHANNELS * OUT_BITS;
+  localparam bit Host           = SPAN_SETUP == shade_pkg::SetupHost;
+  localparam int StartWords     = shade_pkg::start_words(NSer, SERIES_WL);  // per SPAN (host)
   localparam bit Queued         = TRI_QUEUE > 1;
   localparam int SpanQ          = Queued ? 4 * TRI_QUEUE : 1;  // = CycleConfig::span_queue()
   localparam int BankW          = Queued ? $clog2(TRI_QUEUE) : 1;
@@ -91,13 +97,15 @@ module shade_unit #(
   logic [$clog2(PORT_WORDS+1)-1:0] hdr_pos, hdr_n, tail_n;  // counts of beat words
   logic span_fire, tri_fire, mat_fire, pay_mat, cfg_valid, cfg_table, cfg_all_banks, s1_free;
   logic datapath_empty, mat_other_free, mat_cur_free, sq_full, sq_empty, tri_bank_free;
+  logic start_free, span_pay;  // host setup: a start bank entry free; its payload words due
   cmd_decoder #(
     .PORT_WORDS(PORT_WORDS), .QUEUED(Queued), .MAT_BANKED(MATERIAL_BUFFERS == 2),
-    .N_MAT_FIXED(NMatFixed)
+    .N_MAT_FIXED(NMatFixed), .HOST_SETUP(Host), .START_WORDS(StartWords)
   ) u_decoder (
     .clk_i, .rst_ni, .cmd_data_i, .cmd_valid_i, .cmd_ready_o, .datapath_empty_i(datapath_empty),
     .mat_other_free_i(mat_other_free), .mat_cur_free_i(mat_cur_free), .sq_full_i(sq_full),
     .sq_room_i(sq_room), .s1_free_i(s1_free), .tri_bank_free_i(tri_bank_free),
+    .start_free_i(start_free), .span_pay_o(span_pay),
     .word_o(cmd_word), .word_sel_o(word_sel), .hdr_op_o(hdr_op), .hdr_pos_o(hdr_pos),
     .hdr_n_o(hdr_n), .hdr_fire_o(hdr_fire), .span_fire_o(span_fire), .tri_fire_o(tri_fire),
     .mat_fire_o(mat_fire), .pos_o(pos), .tail_n_o(tail_n), .pay_idx_o(pay_idx),
@@ -107,58 +115,89 @@ module shade_unit #(
   logic [BankW-1:0] wr_bank, next_bank, rd_bank;
   logic             s1_load, s1_src_mat, mat_wr;
   span_t            s1_src;
-  span_queue #(.PORT_WORDS(PORT_WORDS), .XY_BITS(XY_BITS), .TRI_QUEUE(TRI_QUEUE)) u_span_queue (
-    .clk_i, .rst_ni, .cmd_data_i, .span_fire_i(span_fire), .span_n_i(hdr_n), .hdr_pos_i(hdr_pos),
-    .word_sel_i(word_sel), .tri_fire_i(tri_fire), .mat_wr_i(mat_wr), .s1_free_i(s1_free),
-    .full_o(sq_full), .room_o(sq_room), .empty_o(sq_empty), .s1_load_o(s1_load),
-    .s1_span_o(s1_src), .rd_bank_o(rd_bank), .s1_mat_o(s1_src_mat), .wr_bank_o(wr_bank),
-    .next_bank_o(next_bank), .tri_bank_free_o(tri_bank_free)
-  );
   logic [NCoef*COEF_WL-1:0] coef;  // bank rd_bank's, coefficient j at j * COEF_WL; its origin:
   logic signed [OFS_BITS-1:0] xo, yo;
-  coef_bank #(
-    .PORT_WORDS(PORT_WORDS), .TRI_QUEUE(TRI_QUEUE), .N_COEF(NCoef), .COEF_WL(COEF_WL),
-    .COEF_T0_WL(COEF_T0_WL), .COEF_T1_WL(COEF_T1_WL), .COEF_T2_WL(COEF_T2_WL),
-    .COEF_T3_WL(COEF_T3_WL), .COEF_T4_WL(COEF_T4_WL), .COEF_T5_WL(COEF_T5_WL),
-    .OFS_BITS(OFS_BITS)
-  ) u_coef_bank (
-    .clk_i, .cmd_data_i, .cmd_valid_i, .tri_fire_i(tri_fire), .pos_i(pos),
-    .hdr_xo_i(cmd_word[shade_pkg::HighLsb +: 16]), .hdr_yo_i(cmd_word[shade_pkg::MidLsb +: 16]),
-    .tail_n_i(tail_n), .pay_idx_i(pay_idx), .hdr_pos_i(hdr_pos), .hdr_n_i(hdr_n),
-    .wr_bank_i(wr_bank), .next_bank_i(next_bank), .rd_bank_i(rd_bank), .coef_o(coef),
-    .xo_o(xo), .yo_o(yo)
-  );
   logic s1_move, s2_move, load_eng, mat_q, mat_leave;
+  logic  s3_v, setup_busy;  span_t s3_span;  // the span the engines take next
+  logic [NSer*SERIES_WL-1:0] bank_v, bank_d, bank_d2;  // ... its start values (host setup)
+  if (!Host) begin : g_unit_setup
+    span_queue #(.PORT_WORDS(PORT_WORDS), .XY_BITS(XY_BITS), .TRI_QUEUE(TRI_QUEUE)) u_span_queue (
+      .clk_i, .rst_ni, .cmd_data_i, .span_fire_i(span_fire), .span_n_i(hdr_n),
+      .hdr_pos_i(hdr_pos), .word_sel_i(word_sel), .tri_fire_i(tri_fire), .mat_wr_i(mat_wr),
+      .s1_free_i(s1_free), .full_o(sq_full), .room_o(sq_room), .empty_o(sq_empty),
+      .s1_load_o(s1_load), .s1_span_o(s1_src), .rd_bank_o(rd_bank), .s1_mat_o(s1_src_mat),
+      .wr_bank_o(wr_bank), .next_bank_o(next_bank), .tri_bank_free_o(tri_bank_free)
+    );
+    coef_bank #(
+      .PORT_WORDS(PORT_WORDS), .TRI_QUEUE(TRI_QUEUE), .N_COEF(NCoef), .COEF_WL(COEF_WL),
+      .COEF_T0_WL(COEF_T0_WL), .COEF_T1_WL(COEF_T1_WL), .COEF_T2_WL(COEF_T2_WL),
+      .COEF_T3_WL(COEF_T3_WL), .COEF_T4_WL(COEF_T4_WL), .COEF_T5_WL(COEF_T5_WL),
+      .OFS_BITS(OFS_BITS)
+    ) u_coef_bank (
+      .clk_i, .cmd_data_i, .cmd_valid_i, .tri_fire_i(tri_fire), .pos_i(pos),
+      .hdr_xo_i(cmd_word[shade_pkg::HighLsb +: 16]), .hdr_yo_i(cmd_word[shade_pkg::MidLsb +: 16]),
+      .tail_n_i(tail_n), .pay_idx_i(pay_idx), .hdr_pos_i(hdr_pos), .hdr_n_i(hdr_n),
+      .wr_bank_i(wr_bank), .next_bank_i(next_bank), .rd_bank_i(rd_bank), .coef_o(coef),
+      .xo_o(xo), .yo_o(yo)
+    );
+    setup_ctrl #(.XY_BITS(XY_BITS)) u_setup_ctrl (
+      .clk_i, .rst_ni, .s1_load_i(s1_load), .s1_span_i(s1_src), .eng_load_i(load_eng),
+      .s1_free_o(s1_free), .s1_move_o(s1_move), .s2_move_o(s2_move), .s3_valid_o(s3_v),
+      .s3_span_o(s3_span), .busy_o(setup_busy)
+    );
+    assign {start_free, bank_v, bank_d, bank_d2} = '0;
+    // verilator lint_off UNUSEDSIGNAL
+    logic unused_host;  // reason: the start bank's payload state, for host setup only
+    assign unused_host = span_pay;
+    // verilator lint_on UNUSEDSIGNAL
+  end else begin : g_host_setup
+    logic start_empty;
+    start_bank #(
+      .PORT_WORDS(PORT_WORDS), .N_SER(NSer), .SERIES_WL(SERIES_WL), .XY_BITS(XY_BITS),
+      .DEPTH(START_DEPTH)
+    ) u_start_bank (
+      .clk_i, .rst_ni, .cmd_valid_i, .cmd_data_i, .hdr_i(cmd_word), .span_fire_i(span_fire),
+      .mat_i(mat_wr), .pos_i(pos), .tail_n_i(tail_n), .pay_idx_i(pay_idx), .hdr_pos_i(hdr_pos),
+      .hdr_n_i(hdr_n), .filling_i(span_pay), .load_i(load_eng), .free_o(start_free),
+      .valid_o(s3_v), .empty_o(start_empty), .span_o(s3_span), .mat_o(s1_src_mat),
+      .v_o(bank_v), .d_o(bank_d), .d2_o(bank_d2)
+    );
+    // No span queue, coefficient banks or setup stages: their handshakes are idle.
+    assign {sq_full, sq_room, sq_empty, tri_bank_free, s1_free} = {1'b0, 16'd0, 1'b1, 1'b1, 1'b0};
+    assign {s1_load, s1_move, s2_move, s1_src, coef, xo, yo} = '0;
+    assign {wr_bank, next_bank, rd_bank} = '0;
+    assign setup_busy = !start_empty;
+    // verilator lint_off UNUSEDSIGNAL
+    logic unused_unit;  // reason: TRIANGLE headers and their words have nowhere to go
+    assign unused_unit = tri_fire ^ (^word_sel) ^ (^{wr_bank, next_bank, rd_bank, s1_src});
+    // verilator lint_on UNUSEDSIGNAL
+  end
   meta_t meta_in, meta_out;  // from the engines; at the slot's output
   logic [CHANNELS*SERIES_WL-1:0] ambient;  logic [NDiff*SPEC_COLOUR_WL-1:0] spec_colour;
   logic [LIGHTS-1:0]             gate_only;
   material_bank #(
     .CHANNELS(CHANNELS), .LIGHTS(LIGHTS), .SERIES_WL(SERIES_WL),
-    .SPEC_COLOUR_WL(SPEC_COLOUR_WL), .MATERIAL_BUFFERS(MATERIAL_BUFFERS), .SPAN_Q(SpanQ),
-    .SPEC_LATENCY(SpecLatency)
+    .SPEC_COLOUR_WL(SPEC_COLOUR_WL), .MATERIAL_BUFFERS(MATERIAL_BUFFERS),
+    .SPAN_Q(Host ? START_DEPTH : SpanQ), .SPEC_LATENCY(SpecLatency), .HOST_SETUP(Host)
   ) u_material_bank (
     .clk_i, .rst_ni, .word_i(cmd_word), .mat_fire_i(mat_fire), .pay_mat_i(pay_mat),
-    .pay_idx_i(pay_idx), .span_fire_i(span_fire), .span_n_i(16'(hdr_n)), .s1_load_i(s1_load),
+    .pay_idx_i(pay_idx), .span_fire_i(span_fire), .span_n_i(Host ? 16'd1 : 16'(hdr_n)),
+    .s1_load_i(s1_load),
     .s1_bank_i(s1_src_mat), .s1_move_i(s1_move), .s2_move_i(s2_move), .eng_load_i(load_eng),
     .eng_bank_o(mat_q), .leave_i(mat_leave), .leave_bank_i(meta_out.mat), .wr_bank_o(mat_wr),
     .other_free_o(mat_other_free), .cur_free_o(mat_cur_free), .rd_bank_i(meta_out.mat),
     .ambient_o(ambient), .spec_colour_o(spec_colour), .gate_only_o(gate_only)
-  );
-  logic  s3_v, setup_busy;  span_t s3_span;
-  setup_ctrl #(.XY_BITS(XY_BITS)) u_setup_ctrl (
-    .clk_i, .rst_ni, .s1_load_i(s1_load), .s1_span_i(s1_src), .eng_load_i(load_eng),
-    .s1_free_o(s1_free), .s1_move_o(s1_move), .s2_move_o(s2_move), .s3_valid_o(s3_v),
-    .s3_span_o(s3_span), .busy_o(setup_busy)
   );
   logic [NSer*SERIES_WL-1:0] setup_v, start_v;
   logic [LANES*LaneSerW-1:0] eng_v;  logic emit, adv, spec_busy;  // eng_v: lane j at j*LaneSerW
   series_path #(
     .N_SER(NSer), .LANES(LANES), .COEF_WL(COEF_WL), .COEF_IWL(COEF_IWL), .SERIES_WL(SERIES_WL),
     .SERIES_IWL(SERIES_IWL), .SERIES_QUANT(SERIES_QUANT), .SERIES_OVERFLOW(SERIES_OVERFLOW),
-    .OFS_BITS(OFS_BITS)
+    .OFS_BITS(OFS_BITS), .HOST_SETUP(Host)
   ) u_series (
     .clk_i, .s1_en_i(s1_load), .s2_en_i(s1_move), .s3_en_i(s2_move), .coef_i(coef),
     .x_i(OFS_BITS'(s1_src.x0)), .y_i(OFS_BITS'(s1_src.y)), .xo_i(xo), .yo_i(yo),
+    .bank_v_i(bank_v), .bank_d_i(bank_d), .bank_d2_i(bank_d2),
     .setup_v_o(setup_v), .start_v_i(start_v), .load_i(load_eng), .step_i(emit), .v_o(eng_v)
   );
   logic eng_span_valid, eng_take_ready, run, eng_span_end, eng_eor;
@@ -243,6 +282,11 @@ module shade_unit #(
   initial begin
     if (FAULT_HOOKS != 0 && FAULT_HOOKS != 1)
       $fatal(1, "shade_unit: FAULT_HOOKS %0d is not 0 or 1", FAULT_HOOKS);
+    if (SPAN_SETUP != shade_pkg::SetupUnit && SPAN_SETUP != shade_pkg::SetupHost)
+      $fatal(1, "shade_unit: SPAN_SETUP %0d is not 0 (unit) or 1 (host)", SPAN_SETUP);
+    if (Host && TRI_QUEUE != 1)
+      $fatal(1, "shade_unit: TRI_QUEUE %0d with host span setup (no coefficient banks)",
+             TRI_QUEUE);
     if ($bits(meta_t) != MetaW || $bits(span_t) != SpanW)
       $fatal(1, "shade_unit: MetaW or SpanW is not $bits of its struct");
   end

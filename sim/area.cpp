@@ -70,6 +70,7 @@ constexpr const char* kBreakdownScript =
     "setattr -mod -set keep_hierarchy 1 *span_setup *series_engine *specular_unit *pixel_combine\n"
     // shade_unit's control modules (rtl/files.f), each its own row.
     "setattr -mod -set keep_hierarchy 1 *cmd_decoder *coef_bank *span_queue *material_bank\n"
+    "setattr -mod -set keep_hierarchy 1 *start_bank\n"
     // (setup_ctrl's one parameter stays in its name: $paramod\setup_ctrl\XY_BITS=...)
     "setattr -mod -set keep_hierarchy 1 *setup_ctrl* *engine_ctrl *slot_meta *out_reg\n"
     "synth -flatten -top shade_unit\n"
@@ -397,10 +398,16 @@ void check_series(AreaReport& r) {
   const int64_t expected =
       p.at("CHANNELS") * p.at("LIGHTS") +
       (kind == 0 ? 0 : p.at("LIGHTS") * specular_config_of_parameters(p).series_per_light());
+  // Each series has a span_setup, or with host span setup (SPAN_SETUP 1) engines of its own.
+  const auto host = p.find("SPAN_SETUP");
+  const bool host_setup = host != p.end() && host->second == 1;
+  const auto lanes_it = p.find("LANES");
+  const int64_t per_series = host_setup && lanes_it != p.end() ? lanes_it->second : 1;
   int64_t kept = 0;
   for (const auto& m : r.modules) {
-    if (m.module == "span_setup") kept += m.instances;
+    if (m.module == (host_setup ? "series_engine" : "span_setup")) kept += m.instances;
   }
+  kept /= per_series;
   r.warnings.clear();
   if (r.has_gate_equivalents() && r.ram_bits != r.ram_bits_expected) {
     r.warnings.push_back("Yosys found " + std::to_string(r.ram_bits) +
@@ -411,7 +418,8 @@ void check_series(AreaReport& r) {
   if (kept < expected) {
     r.warnings.push_back(
         "Yosys kept " + std::to_string(kept) + " of the " + std::to_string(expected) +
-        " series (span_setup instances) this unit uses: the others did not reach an output "
+        " series (span_setup or, with host setup, series_engine instances) this unit uses: the "
+        "others did not reach an output "
         "in Yosys's elaboration, so these figures are understated");
   }
 }
@@ -1120,6 +1128,12 @@ int64_t lanes_of(const ParamMap& p) {
   return it == p.end() ? 1 : it->second;
 }
 
+// Host span setup (SPAN_SETUP 1): no span setup, coefficient banks or span queue; a start bank.
+bool host_setup_of(const ParamMap& p) {
+  const auto it = p.find("SPAN_SETUP");
+  return it != p.end() && it->second == 1;
+}
+
 // OFS_BITS, 17 (screen-sized) when the unit does not set it.
 int64_t offset_bits_of(const ParamMap& p) {
   const auto it = p.find("OFS_BITS");
@@ -1132,7 +1146,11 @@ int64_t instances_of(const std::string& module, const ParamMap& p) {
   const int64_t ch = get(p, "CHANNELS"), l = get(p, "LIGHTS");
   const int64_t per_light = specular_config_of_parameters(p).series_per_light();
   const int64_t lanes = lanes_of(p);
-  if (module == "span_setup") return ch * l + l * per_light;
+  const bool host = host_setup_of(p);
+  if (module == "span_setup") return host ? 0 : ch * l + l * per_light;
+  if (module == "coef_bank" || module == "span_queue" || module == "setup_ctrl")
+    return host ? 0 : 1;
+  if (module == "start_bank") return host ? 1 : 0;
   if (module == "series_engine") return (ch * l + l * per_light) * lanes;
   if (module == "specular_unit") return per_light == 0 ? 0 : l * lanes;  // none: no slot
   if (module == "pixel_combine") return lanes;
@@ -1163,6 +1181,8 @@ double size_of(const std::string& module, const ParamMap& p) {
     return 4 * product(c, o) + 2 * product(c + o, o) + 8 * w + 2 * o + 3 * s;
   }
   if (module == "series_engine") return s;
+  // The start bank: v, d, d2 of every series (and the payload steering per bit).
+  if (module == "start_bank") return 3 * static_cast<double>(instances_of("series_engine", p)) * s;
   if (module == "pixel_combine") return ch * (l * so * sc + (l + 1) * (s + 4));
   if (module == "specular_unit") {
     // The unit's own size (model/specular_units.cpp), from its parameters.
@@ -1171,12 +1191,13 @@ double size_of(const std::string& module, const ParamMap& p) {
   }
   // shade_unit glue: coefficient, ambient and specular-colour registers, the metadata line,
   // decoder and span pipeline (a fixed part).
-  const double nser = static_cast<double>(instances_of("span_setup", p));
+  const double nser = static_cast<double>(instances_of("series_engine", p) / lanes_of(p));
+  const double coef_regs = host_setup_of(p) ? 0 : 6 * nser * c;  // host: no coefficients
   const double xy = static_cast<double>(get(p, "XY_BITS"));
   // Lanes add each lane's fan-out (three constant-multiplier adders per series, ~6 adder bits
   // per series bit) and widen the metadata line and the pix register.
   const double extra_lanes = static_cast<double>(lanes_of(p) - 1);
-  return 6 * nser * c + ch * s + ch * l * sc + 2 * (2 * xy + ch * l * s) + 400 +
+  return coef_regs + ch * s + ch * l * sc + 2 * (2 * xy + ch * l * s) + 400 +
          extra_lanes * (6 * nser * s + 2 * ch * l * s);
 }
 
@@ -1197,7 +1218,12 @@ AreaEstimate estimate_area(const UnitConfig& unit, const std::vector<AreaReport>
       continue;
     const ParamMap ap = param_map(a.parameters);
     if (get(ap, "SPECULAR_KIND") != get(target, "SPECULAR_KIND")) continue;
-    int diff = 0;
+    // A host-setup anchor has no span setup, coefficient bank or span queue to scale: it is no
+    // anchor for a unit-setup target.
+    if (host_setup_of(ap) && !host_setup_of(target)) continue;
+    // The other span setup site has other modules: only when no anchor of this one is there.
+    constexpr int kOtherSite = 1000;
+    int diff = host_setup_of(ap) != host_setup_of(target) ? kOtherSite : 0;
     for (const auto& [name, value] : target) {
       const auto it = ap.find(name);
       if (it == ap.end() || it->second != value) ++diff;
@@ -1221,6 +1247,15 @@ AreaEstimate estimate_area(const UnitConfig& unit, const std::vector<AreaReport>
     kept += static_cast<double>(m.cells_each) * ratio *
             static_cast<double>(instances_of(m.module, target));
   }
+  // A host-setup target from a unit-setup anchor: the start bank the anchor lacks, at the
+  // anchor's series engine cells per register bit (an engine is three registers and adders).
+  if (host_setup_of(target) && !host_setup_of(ap)) {
+    for (const auto& m : best->modules) {
+      if (m.module != "series_engine" || size_of(m.module, ap) <= 0) continue;
+      kept += static_cast<double>(m.cells_each) / (3 * size_of(m.module, ap)) *
+              size_of("start_bank", target);
+    }
+  }
   const double flat =
       kept * static_cast<double>(best->cells) / static_cast<double>(best->breakdown_cells);
   AreaEstimate e;
@@ -1232,7 +1267,7 @@ AreaEstimate estimate_area(const UnitConfig& unit, const std::vector<AreaReport>
         flat * static_cast<double>(best->gate_equivalents()) / static_cast<double>(best->cells)));
   }
   e.anchor_key = best->key;
-  e.differing_parameters = best_diff;
+  e.differing_parameters = best_diff % 1000;  // (without the other site's penalty)
   return e;
 }
 

@@ -32,6 +32,8 @@ struct ConfigOptions {
   int port_words = 4;
   int tri_queue = 2;
   std::string ideal_unit = "wpow";
+  std::string span_setup;  // empty: derived
+  double max_cycles_per_pixel = 1.10;
   std::string json_path;
 };
 
@@ -67,6 +69,8 @@ int run_config(const ConfigOptions& o) {
   d.out_bits = o.out_bits;
   d.port_words = o.port_words;
   d.tri_queue = o.tri_queue;
+  d.max_cycles_per_pixel = o.max_cycles_per_pixel;
+  if (!o.span_setup.empty()) d.span_setup = parse_span_setup(o.span_setup, "--span-setup");
   const SpecularUnitKind ideal_as = parse_specular_unit(o.ideal_unit, "--ideal-unit");
   if (ideal_as != d.ideal_substitute.kind) {
     d.ideal_substitute = SpecularConfig{};  // that unit's default widths
@@ -209,6 +213,10 @@ void register_config(CLI::App& app, int& exit_code) {
       "               fewest saturating integer bits holding every measured |T_t| + 1 LSB\n"
       "  out_bits     as requested (--out-bits)\n"
       "  port_words, tri_queue  as requested (--port-words 4, --tri-queue 2 by default)\n"
+      "  span_setup   host (the host sends each span's start values: no span setup, no\n"
+      "               coefficient banks, tri_queue 1) where every scene stays <= 1.10 cycles per\n"
+      "               pixel with it by the cycle model (--max-cycles-per-pixel), else unit\n"
+      "               (--span-setup to choose)\n"
       "  spec_colour, specular widths: defaults\n"
       "  G = sum over lights of (1 + max specular colour x the unit's slope on its series), the\n"
       "  slope from t^n's <= n on [0, 1] through setup's pre-scaling. The Taylor error keeps the\n"
@@ -229,6 +237,13 @@ void register_config(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   sub->add_option("--tri-queue", o->tri_queue, "triangle queue depth of the unit (throughput only)")
       ->check(CLI::Range(1, 8))
+      ->capture_default_str();
+  sub->add_option("--span-setup", o->span_setup,
+                  "span setup in the unit or on the host (default: derived, see above)")
+      ->check(CLI::IsMember({"unit", "host"}));
+  sub->add_option("--max-cycles-per-pixel", o->max_cycles_per_pixel,
+                  "the cycles/pixel host span setup may take (cycle model) for config to choose it")
+      ->check(positive_number())
       ->capture_default_str();
   sub->add_option(
          "--ideal-unit", o->ideal_unit,

@@ -10,11 +10,13 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "host/frame.h"
 #include "model/coef_packing.h"
 #include "model/cycle_estimate.h"
 #include "model/cycle_model.h"
+#include "model/start_packing.h"
 #include "model/text_file.h"
 #include "sim/commands.h"
 #include "sim/config_option.h"
@@ -244,6 +246,25 @@ double cycles_per_pixel(const CycleRun& run) {
   return run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;
 }
 
+// What each triangle's (unit setup) or span's (host setup) payload costs on the port.
+std::string payload_line(const UnitConfig& config, const TriangleWords& tw) {
+  std::ostringstream payload;
+  if (config.host_setup()) {
+    const StartLayout starts = StartLayout::of(config);
+    payload << "span         " << 1 + starts.words << " words (host span setup): 1 header + "
+            << starts.words << " payload holding v, d, d2 of " << config.series_per_triangle()
+            << " series, " << starts.value_bits << " bits each; no TRIANGLE on the port\n";
+  } else {
+    payload << "triangle     " << 1 + tw.layout.words << " words: 1 header + " << tw.layout.words
+            << " payload (one coefficient a word: " << tw.unpacked_words << ") holding "
+            << tw.diffuse_bits + tw.specular_bits << " coefficient bits: diffuse "
+            << tw.diffuse_bits << " (" << config.diffuse_series() << " series), specular "
+            << tw.specular_bits << " (" << config.specular_series() << " series); T0..T5 "
+            << tw.term_bits << " bits\n";
+  }
+  return payload.str();
+}
+
 void print_cycles(const CyclesOptions& o, const PreparedFrame& frame, const CyclesCount& c,
                   const TriangleSummary& tris, double host_s) {
   const SlotTiming& slot = c.timing.slot;
@@ -265,13 +286,7 @@ void print_cycles(const CyclesOptions& o, const PreparedFrame& frame, const Cycl
             << frame.encoded.stream.config.offset_bits << "), " << frame.encoded.stats.spans
             << " spans, " << frame.encoded.stats.materials << " material loads, "
             << frame.encoded.stats.table_words << " table words\n"
-            << "triangle     " << 1 + tw.layout.words << " words: 1 header + " << tw.layout.words
-            << " payload (one coefficient a word: " << tw.unpacked_words << ") holding "
-            << tw.diffuse_bits + tw.specular_bits << " coefficient bits: diffuse "
-            << tw.diffuse_bits << " (" << frame.config.diffuse_series() << " series), specular "
-            << tw.specular_bits << " (" << frame.config.specular_series() << " series); T0..T5 "
-            << tw.term_bits << " bits\n"
-            << "pixels       " << run.pixels
+            << payload_line(frame.config, tw) << "pixels       " << run.pixels
             << (c.timing.lanes > 1
                     ? " in " + std::to_string(run.breakdown.pixel) + " beats of up to " +
                           std::to_string(c.timing.lanes) + " (lanes within a span)"

@@ -55,24 +55,34 @@ struct ExploreCliOptions {
 // cached for every later run).
 AreaFunction area_model(const UnitConfig& start, const std::string& cache_dir) {
   std::vector<AreaReport> anchors = load_area_reports(cache_dir);
-  const bool have_anchor = std::any_of(anchors.begin(), anchors.end(), [&](const AreaReport& r) {
-    try {
-      (void)estimate_area(start, {r});
-      return true;
-    } catch (const std::runtime_error&) {
-      return false;
-    }
-  });
-  if (!have_anchor) {
-    std::cerr << "explore: no measured " << to_string(start.specular.kind) << " unit in "
-              << cache_dir
-              << " to scale areas from: synthesising the start with Yosys once (minutes; cached)\n";
+  // The sweep's span_setup knob needs a unit-setup anchor too: a host-setup unit has no span
+  // setup to scale from (a unit-setup anchor serves both sites).
+  std::vector<UnitConfig> needed = {start};
+  if (start.host_setup()) {
+    UnitConfig unit = start;
+    unit.span_setup = SpanSetupSite::kUnit;
+    unit.tri_queue = 2;  // config's default queue
+    needed.push_back(unit);
+  }
+  for (const UnitConfig& u : needed) {
+    const bool have_anchor = std::any_of(anchors.begin(), anchors.end(), [&](const AreaReport& r) {
+      try {
+        (void)estimate_area(u, {r});
+        return true;
+      } catch (const std::runtime_error&) {
+        return false;
+      }
+    });
+    if (have_anchor) continue;
+    std::cerr << "explore: no measured " << to_string(u.specular.kind) << " unit with "
+              << to_string(u.span_setup) << " span setup in " << cache_dir
+              << " to scale areas from: synthesising it with Yosys once (minutes; cached)\n";
     AreaOptions ao;
     ao.cache_dir = cache_dir;
     ao.place_and_route = false;
     ao.breakdown = true;  // estimate_area scales the per-module cells
     ao.progress = &std::cerr;
-    anchors.push_back(unit_area(start, ao));
+    anchors.push_back(unit_area(u, ao));
   }
   auto shared = std::make_shared<const std::vector<AreaReport>>(std::move(anchors));
   return [shared](const UnitConfig& c) {

@@ -85,11 +85,24 @@ class SceneStreams : public ::testing::TestWithParam<std::string> {};
 TEST_P(SceneStreams, EqualsClockedModelOnOwnConfigAndKnobGrid) {
   const std::string scene = GetParam();
   FrameOptions o;
-  o.base = derive_config({scene}, DeriveOptions{}).config;
+  // Unit span setup: the grid below varies the unit-setup structure (a host-setup stream, with
+  // its start values after each SPAN, is another stream; tests/host_setup_test.cpp has its grid).
+  DeriveOptions unit_setup;
+  unit_setup.span_setup = SpanSetupSite::kUnit;
+  o.base = derive_config({scene}, unit_setup).config;
   o.fixed_unit = true;
   const PreparedFrame f = prepare_frame(scene, o);
   const std::vector<uint64_t> words = f.encoded.stream.encode();
   ASSERT_GT(f.encoded.stats.spans, 0u) << scene;
+  // The same unit with host span setup, on its own stream.
+  o.base.span_setup = SpanSetupSite::kHost;
+  o.base.tri_queue = 1;
+  const PreparedFrame h = prepare_frame(scene, o);
+  for (int mb : {1, 2}) {
+    EXPECT_GT(expect_same(h.encoded.stream.encode(), buffered(CycleConfig::of(h.config), mb),
+                          scene + " (host span setup)"),
+              0u);
+  }
 
   // Its own configuration as derived (port 4, queue 2, its specular unit's timing).
   for (int mb : {1, 2}) {

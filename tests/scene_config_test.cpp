@@ -283,8 +283,11 @@ size_t differing_pixels(const PreparedFrame& fa, const PreparedFrame& fb) {
 }
 
 TEST(SceneConfig, OffsetBitsAreTheFewestThatHoldEverySpanStart) {
+  // Unit span setup: the stream's TRIANGLEs carry the origins the offsets are measured from.
+  DeriveOptions unit_setup;
+  unit_setup.span_setup = SpanSetupSite::kUnit;
   for (const std::string& path : shipped_and_hard_scenes()) {
-    const DerivedConfig d = derive_config({path}, {});
+    const DerivedConfig d = derive_config({path}, unit_setup);
     FrameOptions o;
     o.base = d.config;
     o.base.offset_bits = UnitConfig::kMaxOffsetBits;
@@ -312,9 +315,12 @@ TEST(SceneConfig, OffsetBitsAreTheFewestThatHoldEverySpanStart) {
 
 TEST(SceneConfig, SizedOffsetsShadeEveryPixelAsScreenSizedOnes) {
   // The same unit with offset_bits 17 (the screen-sized span setup every unit had before) and
-  // with its derived offset_bits: the same stream, and every pixel bit-identical.
+  // with its derived offset_bits: the same stream, and every pixel bit-identical (unit setup,
+  // whose span setup the offsets size).
+  DeriveOptions unit_setup;
+  unit_setup.span_setup = SpanSetupSite::kUnit;
   for (const std::string& path : shipped_and_hard_scenes()) {
-    const DerivedConfig d = derive_config({path}, {});
+    const DerivedConfig d = derive_config({path}, unit_setup);
     FrameOptions o;
     o.fixed_unit = true;
     o.base = d.config;

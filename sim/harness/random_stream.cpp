@@ -5,6 +5,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "model/host_setup.h"
 #include "model/wpow_unit.h"
 
 namespace shadesim {
@@ -93,6 +94,9 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
 
   CommandStream cs;
   cs.config = config;
+  // Host span setup: the same frame with unit setup, then each span's start values from its
+  // triangle (model/host_setup.h), so a seed's pixels do not depend on the knob.
+  cs.config.span_setup = SpanSetupSite::kUnit;
   const int width = 1 << config.xy_bits;
   const int series = config.series_per_triangle();
 
@@ -294,6 +298,11 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
   }
   cs.commands.emplace_back(EndFrameCmd{});
   cs.validate("random_stream");
+  if (config.host_setup()) {
+    CommandStream host = with_host_setup(cs);
+    host.validate("random_stream");
+    return host;
+  }
   return cs;
 }
 

@@ -52,6 +52,8 @@ module tb_shade_unit #(
   parameter int SPECULAR_OUT_OVERFLOW = 0,
   parameter logic [shade_pkg::SpecParamW-1:0] SPEC_PARAMS = '0,
   parameter int MATERIAL_BUFFERS = 1,
+  parameter int SPAN_SETUP       = 0,
+  parameter int START_DEPTH      = 1,
   parameter int FAULT_HOOKS      = 0,
   // Capacity of the word memory (Icarus allocates it all: ~45 bytes a word); a longer stream
   // is a hard error, never a silent truncation.
@@ -90,6 +92,7 @@ module tb_shade_unit #(
     .SPECULAR_OUT_QUANT(SPECULAR_OUT_QUANT), .SPECULAR_OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW),
     .SPEC_PARAMS(SPEC_PARAMS),
     .MATERIAL_BUFFERS(MATERIAL_BUFFERS),
+    .SPAN_SETUP(SPAN_SETUP), .START_DEPTH(START_DEPTH),
     .FAULT_HOOKS(FAULT_HOOKS)
   ) dut (
     .clk_i(clk), .rst_ni(rst_n),
