@@ -248,7 +248,7 @@ void expect_error(const std::string& args, const std::string& needle) {
 
 TEST(Cli, CyclesClosedFormEqualsClockedAndClassifiesEveryTriangle) {
   const auto dir = temp_dir("cycles_closed_form");
-  const std::string knobs = " --port-words 4 --tri-queue 2";
+  const std::string knobs = " --config default --port-words 4 --tri-queue 2";
   const auto fast =
       run_json("cycles " + kScenes + "sphere.json" + knobs + " --worst 3", dir / "a.json");
   const auto both =

@@ -261,7 +261,10 @@ class Lockstep {
   CosimResult result(double seconds) const {
     CosimResult r;
     r.first = board_.first_mismatch();
-    r.cycles = board_.cycles();
+    // A whole run: until the stream is consumed and the unit idle, as `shadesim cycles` and the
+    // closed form count it (the last pixel may leave before the END_FRAME word is taken);
+    // otherwise, until the last pixel that left.
+    r.cycles = idle_end_ > 0 ? idle_end_ : board_.cycles();
     r.pixels = board_.pixels_checked();
     r.scanlines = board_.scanlines_checked();
     r.seconds = seconds;
@@ -292,6 +295,7 @@ class Lockstep {
     if (!draining_ && board_.complete() && model_driver_.done() && model_.idle()) {
       draining_ = true;
       drain_end_ = cycle + drain_cycles_;
+      idle_end_ = cycle + 1;
     }
     if (board_.failed() && !window_open) return false;
     if (draining_) return cycle < drain_end_ || window_open;
@@ -320,6 +324,7 @@ class Lockstep {
   const WaveWindow* waves_;
   bool draining_ = false;
   uint64_t drain_end_ = 0;
+  uint64_t idle_end_ = 0;  // the cycle after the one the stream was consumed and the unit idle
   Drive drive_;
   std::array<uint64_t, 8> noise_{};
   std::array<uint64_t, 8> zeros_{};
