@@ -31,7 +31,7 @@ struct ConfigOptions {
   int out_bits = 8;
   int port_words = 4;
   int tri_queue = 2;
-  std::string ideal_unit = "wpow";
+  std::string ideal_unit;  // empty: W_16, then the fallbacks that meet the budget
   std::string span_setup;  // empty: derived
   double max_cycles_per_pixel = 1.10;
   std::string json_path;
@@ -71,10 +71,12 @@ int run_config(const ConfigOptions& o) {
   d.tri_queue = o.tri_queue;
   d.max_cycles_per_pixel = o.max_cycles_per_pixel;
   if (!o.span_setup.empty()) d.span_setup = parse_span_setup(o.span_setup, "--span-setup");
-  const SpecularUnitKind ideal_as = parse_specular_unit(o.ideal_unit, "--ideal-unit");
-  if (ideal_as != d.ideal_substitute.kind) {
-    d.ideal_substitute = SpecularConfig{};  // that unit's default widths
-    d.ideal_substitute.kind = ideal_as;
+  if (!o.ideal_unit.empty()) {
+    const SpecularUnitKind ideal_as = parse_specular_unit(o.ideal_unit, "--ideal-unit");
+    if (ideal_as != d.ideal_substitute.kind) {
+      d.ideal_substitute = SpecularConfig{};  // that unit's default widths
+      d.ideal_substitute.kind = ideal_as;
+    }
     d.ideal_fallbacks.clear();  // the unit asked for, and no other
   }
   const DerivedConfig derived = derive_config(o.scenes, d);
@@ -246,10 +248,10 @@ void register_config(CLI::App& app, int& exit_code) {
       ->check(positive_number())
       ->capture_default_str();
   sub->add_option(
-         "--ideal-unit", o->ideal_unit,
-         "hardware unit for scenes that name ideal: wpow (W_16 B=16 pipelined), lut or schlick\n"
-         "(their default widths), or ideal to keep the yardstick (no RTL)")
-      ->capture_default_str();
+      "--ideal-unit", o->ideal_unit,
+      "hardware unit for scenes that name ideal, and no other: wpow (W_16 B=16 pipelined),\n"
+      "lut or schlick (their default widths), or ideal to keep the yardstick (no RTL); default:\n"
+      "W_16, else the first of W_32 and two interpolating LUTs that meets the budget");
   sub->add_option(
          "--json", o->json_path,
          "write the UnitConfig JSON (loadable by --config) with a \"derivation\" block: reasons, "
