@@ -2,6 +2,7 @@
 
 #include "host/frame.h"
 #include "host/reference.h"
+#include "model/cycle_estimate.h"
 #include "model/shade_unit.h"
 
 namespace shadesim {
@@ -20,6 +21,19 @@ ErrorStats scene_error(const std::string& scene_path, const UnitConfig& config,
   return compare_to_reference(pixels, ref.values, f.visibility.owner, f.scene.width, f.scene.height,
                               f.config.channels, f.config.out_bits)
       .stats;
+}
+
+double scene_cycles_per_pixel(const std::string& scene_path, const UnitConfig& config,
+                              std::optional<double> budget_lsb, int max_depth) {
+  FrameOptions fo;
+  fo.base = config;
+  fo.fixed_unit = true;
+  fo.budget_lsb = budget_lsb;
+  fo.max_depth = max_depth;
+  const PreparedFrame f = prepare_frame(scene_path, fo);
+  const CycleEstimateRun run =
+      CycleEstimate(CycleConfig::of(f.config)).run(f.encoded.stream.encode());
+  return run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;
 }
 
 }  // namespace shadesim

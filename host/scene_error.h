@@ -15,4 +15,9 @@ namespace shadesim {
 ErrorStats scene_error(const std::string& scene_path, const UnitConfig& config,
                        std::optional<double> budget_lsb, int max_depth);
 
+// The cycles per pixel of the scene on exactly `config` (the closed-form cycle model: no gaps, no
+// back-pressure), as `shadesim cycles` counts them.
+double scene_cycles_per_pixel(const std::string& scene_path, const UnitConfig& config,
+                              std::optional<double> budget_lsb, int max_depth);
+
 }  // namespace shadesim

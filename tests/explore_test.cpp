@@ -356,9 +356,13 @@ TEST(ExploreCli, BadInputIsAClearError) {
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("seriess"), std::string::npos) << r.output;
 
-  // W_16's lobe (the derived unit) is ~2 LSB from t^n on this highlight: no width meets 1 LSB,
-  // and the output says which part no width can fix.
-  r = run("explore " + kScenes + "specular.json --estimate-only --out " + dir.string());
+  // W_16's lobe is ~2 LSB from t^n on this highlight: no width meets 1 LSB, and the output says
+  // which part no width can fix. (The derived unit takes W_32 there; --ideal-unit asks for W_16,
+  // and config writes that unit before it exits 1 over the budget.)
+  const std::string w16 = (dir / "w16.json").string();
+  EXPECT_EQ(run("config " + kScenes + "specular.json --ideal-unit wpow --json " + w16).status, 1);
+  r = run("explore " + kScenes + "specular.json --config " + w16 + " --estimate-only --out " +
+          dir.string());
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("no width can fix"), std::string::npos) << r.output;
   std::filesystem::remove_all(dir);
