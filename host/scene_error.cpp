@@ -6,15 +6,24 @@
 #include "model/shade_unit.h"
 
 namespace shadesim {
+namespace {
 
-ErrorStats scene_error(const std::string& scene_path, const UnitConfig& config,
+// The scene's frame on exactly `config`.
+PreparedFrame frame_on(const std::string& scene_path, const UnitConfig& config,
                        std::optional<double> budget_lsb, int max_depth) {
   FrameOptions fo;
   fo.base = config;
   fo.fixed_unit = true;
   fo.budget_lsb = budget_lsb;
   fo.max_depth = max_depth;
-  const PreparedFrame f = prepare_frame(scene_path, fo);
+  return prepare_frame(scene_path, fo);
+}
+
+}  // namespace
+
+ErrorStats scene_error(const std::string& scene_path, const UnitConfig& config,
+                       std::optional<double> budget_lsb, int max_depth) {
+  const PreparedFrame f = frame_on(scene_path, config, budget_lsb, max_depth);
   const auto pixels = ShadeUnit(f.config).run(f.encoded.stream);
   const ReferenceImage ref =
       render_reference(f.setup.triangles, f.visibility, f.scene, f.config.channels);
@@ -25,12 +34,7 @@ ErrorStats scene_error(const std::string& scene_path, const UnitConfig& config,
 
 double scene_cycles_per_pixel(const std::string& scene_path, const UnitConfig& config,
                               std::optional<double> budget_lsb, int max_depth) {
-  FrameOptions fo;
-  fo.base = config;
-  fo.fixed_unit = true;
-  fo.budget_lsb = budget_lsb;
-  fo.max_depth = max_depth;
-  const PreparedFrame f = prepare_frame(scene_path, fo);
+  const PreparedFrame f = frame_on(scene_path, config, budget_lsb, max_depth);
   const CycleEstimateRun run =
       CycleEstimate(CycleConfig::of(f.config)).run(f.encoded.stream.encode());
   return run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;

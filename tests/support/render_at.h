@@ -7,22 +7,13 @@
 
 #include "host/frame.h"
 #include "host/metrics.h"
-#include "host/reference.h"
-#include "model/shade_unit.h"
+#include "host/scene_error.h"
 
 namespace shadesim {
 
+// The scene on exactly `config` against the reference (the scene's own budget, depth 12).
 inline ErrorStats render_at(const std::string& scene, const UnitConfig& config) {
-  FrameOptions o;
-  o.base = config;
-  o.fixed_unit = true;
-  const PreparedFrame f = prepare_frame(scene, o);
-  const auto pixels = ShadeUnit(f.config).run(f.encoded.stream);
-  const ReferenceImage ref =
-      render_reference(f.setup.triangles, f.visibility, f.scene, f.config.channels);
-  return compare_to_reference(pixels, ref.values, f.visibility.owner, f.scene.width, f.scene.height,
-                              f.config.channels, f.config.out_bits)
-      .stats;
+  return scene_error(scene, config, std::nullopt, FrameOptions{}.max_depth);
 }
 
 }  // namespace shadesim
