@@ -65,6 +65,17 @@ MaterialCmd material_command(const Scene& scene, const UnitConfig& config, const
   }
   cmd.exponent = kExponentFormat.from_double(m.exponent);
   cmd.unit_params = plan.unit_params;
+  if (config.diffuse_multiply()) {
+    // The colour the unit multiplies each light's N.L series by; that series gates its light.
+    for (int l = 0; l < config.lights; ++l) {
+      for (int c = 0; c < config.channels; ++c) {
+        const bool present = l < static_cast<int>(scene.lights.size());
+        cmd.diffuse_colour.push_back(
+            config.spec_colour.from_double(present ? diffuse_scale(scene, m, l, c) : 0.0));
+      }
+    }
+    return cmd;
+  }
   // The specular gate reads light l's diffuse series (model/pixel_combine.h): a light with a
   // specular colour and no diffuse colour gets channel 0's series unscaled, gate only.
   for (int l = 0; l < config.lights && l < static_cast<int>(scene.lights.size()); ++l) {
@@ -122,6 +133,10 @@ TriangleCmd triangle_command(const UnitConfig& config, int scene_lights,
   for (int l = 0; l < config.lights; ++l) {
     const bool present = l < scene_lights;
     const Quadratic q = present ? series.diffuse[static_cast<size_t>(l)].recentred(ox, oy) : zero;
+    if (config.diffuse_multiply()) {  // N.L itself: the unit multiplies by the colour
+      writer.append(q, 1.0, 0.0, t.coef);
+      continue;
+    }
     for (int c = 0; c < config.channels; ++c) {
       // A gate-only light: channel 0 carries N.L itself (its colour is 0 in every channel).
       double scale = 0.0;

@@ -253,6 +253,18 @@ DerivedConfig derive_widths(const std::vector<std::string>& scene_paths,
   }
   cfg.channels = colour_scene.empty() ? 1 : 3;
   cfg.lights = lights;
+  // One N.L series per light in place of one per light and channel, where that removes series.
+  cfg.diffuse_colour = options.diffuse_colour.value_or(cfg.channels > 1 ? DiffuseColour::kMultiply
+                                                                        : DiffuseColour::kSeries);
+  const std::string diffuse_why =
+      options.diffuse_colour
+          ? "as requested (--diffuse-colour)"
+          : (cfg.channels > 1
+                 ? "multiply: one N.L series per light (" + std::to_string(cfg.lights) +
+                       ") in place of one per light and channel (" +
+                       std::to_string(cfg.lights * cfg.channels) +
+                       "); each pixel multiplies max(0, N.L) by kd_c L_c from the MATERIAL"
+                 : "series: one channel, so a multiply would remove no series");
 
   // Specular unit: one for all scenes; none when no material of any scene has a specular term
   // (a non-zero specular colour under a light of non-zero colour in some channel).
@@ -363,10 +375,22 @@ DerivedConfig derive_widths(const std::vector<std::string>& scene_paths,
   cfg.series.wl =
       series_iwl + cfg.out_bits;  // fraction bits set below; only iwl matters for the plan
 
-  // Gain of the series into one output channel.
+  // Gain of the series into one output channel: a diffuse series enters with gain 1 (its colour
+  // rolled in) or, multiplied, with the largest kd_c L_c it is multiplied by.
   double gain = 0;
   std::string gain_detail;
   for (int l = 0; l < cfg.lights; ++l) {
+    double diffuse = cfg.diffuse_multiply() ? 0.0 : 1.0;
+    for (const auto& s : scenes) {
+      if (!cfg.diffuse_multiply() || l >= static_cast<int>(s.scene.lights.size())) continue;
+      for (const auto& m : s.scene.materials) {
+        for (int c = 0; c < 3; ++c) {
+          diffuse =
+              std::max(diffuse, channel(m.diffuse, c) *
+                                    channel(s.scene.lights[static_cast<size_t>(l)].colour, c));
+        }
+      }
+    }
     double spec = 0;
     for (const auto& s : scenes) {
       if (l >= static_cast<int>(s.scene.lights.size())) continue;
@@ -379,8 +403,9 @@ DerivedConfig derive_widths(const std::vector<std::string>& scene_paths,
         if (colour > 0) spec = std::max(spec, colour * unit_slope(cfg, m.exponent));
       }
     }
-    gain += 1.0 + spec;
-    gain_detail += (gain_detail.empty() ? "" : " + ") + std::string("(1 + ") + fmt(spec) + ")";
+    gain += diffuse + spec;
+    gain_detail += (gain_detail.empty() ? "" : " + ") + std::string("(") + fmt(diffuse) + " + " +
+                   fmt(spec) + ")";
   }
   ms.gain = gain;
 
@@ -486,8 +511,10 @@ DerivedConfig derive_widths(const std::vector<std::string>& scene_paths,
              ", drift bound 2^-F (1 + L(L-1)/2) = 2^-F x " + fmt(steps, 8) +
              (series_rounds ? " / 2 (rounding)" : "") + " x gain " + fmt(gain) + " = " +
              gain_detail +
-             " (lights x (1 + spec colour x unit slope)) <= " + fmt(ms.drift_share_lsb) +
-             " LSB (budget/4)" + (series_frac == cfg.out_bits ? " (at least out_bits)" : ""));
+             (cfg.diffuse_multiply() ? " (per light: max kd L + spec colour x unit slope) <= "
+                                     : " (per light: 1 + spec colour x unit slope) <= ") +
+             fmt(ms.drift_share_lsb) + " LSB (budget/4)" +
+             (series_frac == cfg.out_bits ? " (at least out_bits)" : ""));
   reason("spec_colour", value("spec_colour"), "default (not derived)");
   reason("out_bits", value("out_bits"), "as requested");
   reason(
@@ -498,6 +525,7 @@ DerivedConfig derive_widths(const std::vector<std::string>& scene_paths,
          cfg.host_setup() ? "1: host span setup has no coefficient banks to queue"
                           : "as requested (throughput only)");
   reason("span_setup", to_string(cfg.span_setup), span_setup_why);
+  reason("diffuse_colour", to_string(cfg.diffuse_colour), diffuse_why);
   reason("specular",
          cfg.specular.describe() + (cfg.specular.kind == SpecularUnitKind::kNone
                                         ? std::string()

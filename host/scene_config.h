@@ -29,8 +29,11 @@
 //                      tri_queue 1) where every scene's frame on that unit runs at <=
 //                      DeriveOptions::max_cycles_per_pixel by the cycle model, else unit; pixels
 //                      do not depend on it.
+//   diffuse_colour     multiply with three channels (one N.L series per light, a multiply per
+//                      light and channel in the unit), series with one.
 // G = sum over lights of (1 + max spec colour x the specular unit's slope with respect to its
-// series): a diffuse series enters the output with gain 1 (colour is rolled in), a specular one
+// series): a diffuse series enters the output with gain 1 (colour is rolled in; multiplied, with
+// the largest kd_c L_c instead of 1), a specular one
 // through the unit (t^n has slope <= n on [0, 1]; see unit_slope in scene_config.cpp).
 // The Taylor error keeps the whole budget in setup (subdivision); the fixed-point error gets
 // half of it on top, so the real error stays below 1.5 budget + output rounding.
@@ -84,6 +87,9 @@ struct DeriveOptions {
   // coefficient banks) where every scene stays within max_cycles_per_pixel with it by the cycle
   // model (no gaps, no back-pressure), else unit setup. Host setup takes tri_queue 1.
   std::optional<SpanSetupSite> span_setup;
+  // Diffuse colour: unset derives it - multiply (one N.L series per light) with three channels,
+  // series with one (a multiply would remove nothing there).
+  std::optional<DiffuseColour> diffuse_colour;
   double max_cycles_per_pixel = 1.10;
 };
 

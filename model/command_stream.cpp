@@ -46,16 +46,24 @@ void validate_command(const Command& cmd, const UnitConfig& cfg, const std::stri
   const int64_t xy_max = (int64_t{1} << cfg.xy_bits) - 1;
   if (const auto* m = std::get_if<MaterialCmd>(&cmd)) {
     check_payload(loc, "material.ambient", m->ambient, cfg.channels, cfg.series);
-    check_payload(loc, "material.spec_colour", m->spec_colour,
-                  static_cast<size_t>(cfg.lights * cfg.channels), cfg.spec_colour);
+    check_payload(loc, "material.spec_colour", m->spec_colour, static_cast<size_t>(cfg.colours()),
+                  cfg.spec_colour);
+    // Diffuse colour multiply: kd_c L_c per light and channel; rolled into the series: none.
+    check_payload(loc, "material.diffuse_colour", m->diffuse_colour,
+                  cfg.diffuse_multiply() ? static_cast<size_t>(cfg.colours()) : 0, cfg.spec_colour);
     const int64_t exp_max = (int64_t{1000}) << kExponentFracBits;
     if (m->exponent < 0 || m->exponent > exp_max) {
       throw CommandStreamError(loc + "material.exponent = " + std::to_string(m->exponent) +
                                ": expected 0..1000 in u10.16 (raw 0.." + std::to_string(exp_max) +
                                ")");
     }
-    if (m->ambient.size() + m->spec_colour.size() + 1 + m->unit_params.size() > kMask16) {
+    if (m->payload_words() > kMask16) {
       throw CommandStreamError(loc + "material: too many payload words");
+    }
+    if (cfg.diffuse_multiply() && m->gate_only != 0) {
+      throw CommandStreamError(loc + "material.gate_only = " + std::to_string(m->gate_only) +
+                               ": expected 0 with diffuse_colour multiply (each light's one "
+                               "series is N.L itself and gates its specular term)");
     }
     if (m->gate_only >> cfg.lights != 0) {
       throw CommandStreamError(loc + "material.gate_only = " + std::to_string(m->gate_only) +
@@ -147,10 +155,10 @@ std::vector<uint64_t> CommandStream::encode() const {
   const StartLayout start_layout = StartLayout::of(config);
   for (const auto& cmd : commands) {
     if (const auto* m = std::get_if<MaterialCmd>(&cmd)) {
-      const size_t n = m->ambient.size() + m->spec_colour.size() + 1 + m->unit_params.size();
-      words.push_back(CommandWord::material(n, m->gate_only).bits);
+      words.push_back(CommandWord::material(m->payload_words(), m->gate_only).bits);
       for (auto v : m->ambient) words.push_back(static_cast<uint64_t>(v));
       for (auto v : m->spec_colour) words.push_back(static_cast<uint64_t>(v));
+      for (auto v : m->diffuse_colour) words.push_back(static_cast<uint64_t>(v));
       words.push_back(static_cast<uint64_t>(m->exponent));
       for (auto v : m->unit_params) words.push_back(static_cast<uint64_t>(v));
     } else if (const auto* t = std::get_if<TriangleCmd>(&cmd)) {
@@ -196,8 +204,9 @@ CommandStream CommandStream::decode(const std::vector<uint64_t>& words, const Un
     const size_t count = h.count();
     switch (static_cast<Opcode>(op)) {
       case Opcode::kMaterial: {
-        const size_t fixed =
-            static_cast<size_t>(config.channels + config.lights * config.channels + 1);
+        const auto colours = static_cast<long>(config.colours());
+        const long diffuse = config.diffuse_multiply() ? colours : 0;
+        const size_t fixed = static_cast<size_t>(config.channels + colours + diffuse + 1);
         if (count < fixed) {
           throw CommandStreamError(where(source, at, "word") + "material: expected at least " +
                                    std::to_string(fixed) + " payload words, header says " +
@@ -206,7 +215,9 @@ CommandStream CommandStream::decode(const std::vector<uint64_t>& words, const Un
         auto p = take(count, at);
         MaterialCmd m;
         m.ambient.assign(p.begin(), p.begin() + config.channels);
-        m.spec_colour.assign(p.begin() + config.channels, p.begin() + static_cast<long>(fixed) - 1);
+        const auto spec_at = p.begin() + config.channels;
+        m.spec_colour.assign(spec_at, spec_at + colours);
+        m.diffuse_colour.assign(spec_at + colours, spec_at + colours + diffuse);
         m.exponent = p[fixed - 1];
         m.unit_params.assign(p.begin() + static_cast<long>(fixed), p.end());
         m.gate_only = h.material_gate_only();
@@ -278,6 +289,10 @@ void CommandStream::write_text(std::ostream& os) const {
       list(m->ambient);
       os << " spec_colour";
       list(m->spec_colour);
+      if (!m->diffuse_colour.empty()) {
+        os << " diffuse_colour";
+        list(m->diffuse_colour);
+      }
       os << " exponent " << m->exponent << " params";
       list(m->unit_params);
       if (m->gate_only != 0) os << " gate_only " << m->gate_only;
@@ -392,6 +407,7 @@ CommandStream CommandStream::read_text(std::istream& is, const std::string& sour
       m.ambient = read_list(&kw);
       expect_keyword(kw, "spec_colour");
       m.spec_colour = read_list(&kw);
+      if (kw == "diffuse_colour") m.diffuse_colour = read_list(&kw);
       expect_keyword(kw, "exponent");
       m.exponent = read_int("exponent");
       ls >> kw;
@@ -502,6 +518,7 @@ std::string config_to_json(const UnitConfig& c) {
   if (c.material_buffers != 1) j["material_buffers"] = c.material_buffers;
   // Likewise span_setup: unit-setup streams and build keys stay as they were.
   if (c.host_setup()) j["span_setup"] = to_string(c.span_setup);
+  if (c.diffuse_multiply()) j["diffuse_colour"] = to_string(c.diffuse_colour);
   const SpecularConfig& sp = c.specular;
   j["specular"] = {{"kind", to_string(sp.kind)}, {"out", sp.out.to_string()}};
   for (const SpecularUnitDescriptor& u : specular_units()) {
@@ -537,7 +554,7 @@ class ConfigJsonReader {
     check_keys(j, "",
                {"channels", "lights", "xy_bits", "offset_bits", "coef", "series", "spec_colour",
                 "out_bits", "coef_term_iwl", "port_words", "tri_queue", "lanes", "material_buffers",
-                "span_setup", "specular", "derivation"});
+                "span_setup", "diffuse_colour", "specular", "derivation"});
     read_int(j, "", "channels", 1, 3, require_top_, c.channels);
     read_int(j, "", "lights", 1, 8, require_top_, c.lights);
     read_int(j, "", "xy_bits", 1, 16, require_top_, c.xy_bits);
@@ -553,6 +570,7 @@ class ConfigJsonReader {
     read_int(j, "", "lanes", 1, 4, false, c.lanes);
     read_int(j, "", "material_buffers", 1, 2, false, c.material_buffers);
     read_enum(j, "", "span_setup", false, parse_span_setup, c.span_setup);
+    read_enum(j, "", "diffuse_colour", false, parse_diffuse_colour, c.diffuse_colour);
     if (!j.contains("specular")) {
       if (require_top_) fail("specular", "expected an object (missing)");
       return;

@@ -7,8 +7,10 @@
 //   MATERIAL  0x01 header[31:16] = gate-only light mask (bit l: light l's first diffuse series
 //                  is N.L for the specular gate, not added; model/pixel_combine.h),
 //                  header[15:0] = payload words. Payload: ambient[channels] (series format),
-//                  spec_colour[lights*channels] (spec_colour format, light-major),
-//                  exponent (u10.16), then unit parameters (SpecularUnit-defined, may be empty).
+//                  spec_colour[lights*channels] (spec_colour format, light-major), with
+//                  UnitConfig::diffuse_colour multiply diffuse_colour[lights*channels] (the
+//                  same format and order), exponent (u10.16), then unit parameters
+//                  (SpecularUnit-defined, may be empty).
 //   TRIANGLE  0x02 header[47:32] = xo, header[31:16] = yo (signed 16-bit origin pixel),
 //                  header[15:0] = payload words (model/coef_packing.h). Payload: for each
 //                  series (diffuse l-major/c-minor, then specular per light), T0 T1 T2 T3 T4 T5,
@@ -55,8 +57,9 @@
 // Text form: one command per line, '#' starts a comment, a first line
 // "shadesim-commands 1 <config json>" carries the unit configuration so a saved stream replays
 // on its own.
-//   material ambient A.. spec_colour S.. exponent E params P.. [gate_only MASK]
-//     (gate_only written when not 0; absent means 0)
+//   material ambient A.. spec_colour S.. [diffuse_colour D..] exponent E params P..
+//     [gate_only MASK] (gate_only written when not 0; absent means 0; diffuse_colour with
+//     diffuse_colour multiply only)
 //   tri XO YO | T0 T1 T2 T3 T4 T5 | T0 ... (one group per series)
 //   span Y X0 LEN [last] [| V D D2 | ...]   (the start values with host span setup)
 //   table BASE E0 E1 ... [material]   (material: a per-material table)
@@ -78,11 +81,18 @@ namespace shadesim {
 struct MaterialCmd {
   std::vector<int64_t> ambient;      // [channels], series format
   std::vector<int64_t> spec_colour;  // [lights * channels], spec_colour format
+  // kd_c L_c [lights * channels], spec_colour format, with UnitConfig::diffuse_colour multiply;
+  // empty when the colour is rolled into the series.
+  std::vector<int64_t> diffuse_colour;
   int64_t exponent = 0;              // u10.16
   std::vector<int64_t> unit_params;  // specular-unit defined
   // Bit l: light l's diffuse series of channel 0 carries N.L for the specular gate only
   // (PixelCombine does not add it). Bits at and above `lights` must be 0.
   uint32_t gate_only = 0;
+
+  size_t payload_words() const {
+    return ambient.size() + spec_colour.size() + diffuse_colour.size() + 1 + unit_params.size();
+  }
 };
 
 struct TriangleCmd {

@@ -20,8 +20,18 @@
 //            >= 1 - 2^-(out_bits+1) -> all ones). A code c stands for c / 2^out_bits.
 // Specular kind none (no specular term): stage 1 has no products and no gates, stage 2 no
 // specular sum; spec and spec_colour are not read (pixel_combine.sv's SPECULAR = 0 branch).
+// Diffuse colour multiply (UnitConfig::diffuse_colour kMultiply): light l has one diffuse
+// series, N_l = (N.L)/|N| itself. Stage 1 forms max(0, N_l) x kd_lc per channel, brought to the
+// series fraction bits by the series rule like the specular product (kd_lc = kd_c L_c in the
+// spec_colour format, from the MATERIAL), and the gate is g_l = N_l > 0; stage 2 adds these
+// products in place of max(0, D_lc). There is no gate-only light: N_l always gates. The
+// multiplier takes N_l truncated to the colour's fraction bits (where the series has more):
+// only those reach an output code (an error below 2^-F_colour x kd), and the multiply is
+// about colour-sized instead of series-sized - the six of an RGB two-light unit would be
+// most of its area at full width.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 
@@ -39,7 +49,10 @@ class PixelCombine {
         lights_(c.lights),
         specular_(c.specular.kind != SpecularUnitKind::kNone),
         series_(c.series),
+        multiply_(c.diffuse_multiply()),
         product_frac_(c.specular.out.frac_bits() + c.spec_colour.frac_bits()),
+        nl_drop_(std::max(0, c.series.frac_bits() - c.spec_colour.frac_bits())),
+        diffuse_frac_(c.series.frac_bits() - nl_drop_ + c.spec_colour.frac_bits()),
         out_(output_format(c.out_bits)) {}
 
   // The output code's format: u0.out_bits, round to nearest, saturating. The reference's codes
@@ -48,17 +61,21 @@ class PixelCombine {
     return {out_bits, 0, false, Quantization::kRoundNearest, Overflow::kSaturate};
   }
 
-  // The specular gate of light l (stage 1): the sum of its channels' diffuse values is > 0.
+  // The specular gate of light l (stage 1): the sum of its channels' diffuse values is > 0 (with
+  // the diffuse colour multiply: its one series is > 0).
   bool gate(const int64_t* diffuse, int l) const {
+    if (multiply_) return diffuse[l] > 0;
     Int128 sum = 0;
     for (int c = 0; c < channels_; ++c) sum += diffuse[l * channels_ + c];
     return sum > 0;
   }
 
-  // diffuse[l * channels + c], spec[l], ambient[c], spec_colour[l * channels + c]; gate_only:
-  // the MATERIAL's mask (bit l: light l's diffuse series gate only, not added).
+  // diffuse[l * channels + c] (with the multiply diffuse[l]), spec[l], ambient[c],
+  // spec_colour[l * channels + c], diffuse_colour[l * channels + c] (read with the multiply
+  // only); gate_only: the MATERIAL's mask (bit l: light l's diffuse series gate only, not added).
   std::array<uint16_t, kMaxChannels> operator()(const int64_t* diffuse, const int64_t* spec,
                                                 const int64_t* ambient, const int64_t* spec_colour,
+                                                const int64_t* diffuse_colour,
                                                 uint32_t gate_only) const {
     std::array<bool, kMaxLights> lit{};
     for (int l = 0; specular_ && l < lights_; ++l) lit[static_cast<size_t>(l)] = gate(diffuse, l);
@@ -66,8 +83,7 @@ class PixelCombine {
     for (int c = 0; c < channels_; ++c) {
       Int128 acc = ambient[c];
       for (int l = 0; l < lights_; ++l) {
-        const int64_t d = diffuse[l * channels_ + c];
-        if ((gate_only >> l & 1) == 0) acc += d > 0 ? d : 0;
+        acc += diffuse_term(diffuse, diffuse_colour, gate_only, l, c);
         if (!lit[static_cast<size_t>(l)]) continue;
         const Int128 product = Int128{spec[l]} * spec_colour[l * channels_ + c];
         acc += series_.quantize(product, product_frac_);
@@ -78,11 +94,28 @@ class PixelCombine {
   }
 
  private:
+  // Stage 1's diffuse value of light l in channel c: max(0, D_lc) unless gate-only, or with the
+  // multiply max(0, N_l) (to the colour's fraction bits) x kd_lc by the series rule.
+  Int128 diffuse_term(const int64_t* diffuse, const int64_t* diffuse_colour, uint32_t gate_only,
+                      int l, int c) const {
+    if (multiply_) {
+      const int64_t n = diffuse[l];
+      if (n <= 0) return 0;
+      const Int128 operand = Int128{n} >> nl_drop_;  // n > 0: truncation drops the low bits
+      return series_.quantize(operand * diffuse_colour[l * channels_ + c], diffuse_frac_);
+    }
+    const int64_t d = diffuse[l * channels_ + c];
+    return (gate_only >> l & 1) == 0 && d > 0 ? d : 0;
+  }
+
   int channels_;
   int lights_;
   bool specular_;  // false for specular kind none: no specular term at all
   FixedFormat series_;
+  bool multiply_;  // UnitConfig::diffuse_colour kMultiply
   int product_frac_;
+  int nl_drop_;       // low bits of N_l the multiplier does not take
+  int diffuse_frac_;  // fraction bits of N_l x kd_lc
   FixedFormat out_;
 };
 

@@ -50,6 +50,8 @@ std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u, const I
     p.push_back({"SPAN_SETUP", 1});
     p.push_back({"START_DEPTH", CycleConfig::kStartDepth});
   }
+  // Diffuse colour multiply; units that roll the colour into the series keep their list.
+  if (u.diffuse_multiply()) p.push_back({"DIFFUSE_MULTIPLY", 1});
   // Narrowed coefficient terms (coef packing); shade_unit's defaults are COEF_WL.
   if (!u.coef_term_iwl.empty() && !u.host_setup()) {
     for (int t = 0; t < 6; ++t)

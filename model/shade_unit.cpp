@@ -20,12 +20,14 @@ ShadeUnit::ShadeUnit(const UnitConfig& config)
       lanes_(static_cast<size_t>(config.lanes),
              SeriesBank(config.series, config.series_per_triangle())),
       ambient_(static_cast<size_t>(config.channels), 0),
-      spec_colour_(static_cast<size_t>(config.lights * config.channels), 0),
+      spec_colour_(static_cast<size_t>(config.colours()), 0),
+      diffuse_colour_(static_cast<size_t>(config.colours()), 0),
       spec_(static_cast<size_t>(config.lights), 0) {}
 
 void ShadeUnit::load_material(const MaterialCmd& m) {
   ambient_ = m.ambient;
   spec_colour_ = m.spec_colour;
+  if (config_.diffuse_multiply()) diffuse_colour_ = m.diffuse_colour;
   gate_only_ = m.gate_only;
   specular_.load_material(m);
   have_material_ = true;

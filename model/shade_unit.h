@@ -57,7 +57,8 @@ class ShadeUnit {
   std::vector<SeriesBank> lanes_;  // per lane: diffuse (l-major, c-minor) then specular per light
   std::vector<int64_t> ambient_;
   std::vector<int64_t> spec_colour_;
-  uint32_t gate_only_ = 0;  // the MATERIAL's gate-only light mask
+  std::vector<int64_t> diffuse_colour_;  // diffuse colour multiply only
+  uint32_t gate_only_ = 0;               // the MATERIAL's gate-only light mask
   TriangleCmd triangle_;
   bool have_material_ = false;
   bool have_triangle_ = false;
@@ -101,7 +102,8 @@ void ShadeUnit::consume(const Command& cmd, Sink&& sink) {
       }
       px.x = static_cast<uint16_t>(s->x0 + k);
       px.lane = lane;
-      px.colour = combine_(values, spec_.data(), ambient_.data(), spec_colour_.data(), gate_only_);
+      px.colour = combine_(values, spec_.data(), ambient_.data(), spec_colour_.data(),
+                           diffuse_colour_.data(), gate_only_);
       px.end_of_row = s->last_in_row && k == s->length - 1;
       sink(static_cast<const PixelOut&>(px));
     };

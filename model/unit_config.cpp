@@ -30,6 +30,8 @@ void UnitConfig::validate() const {
     fail("tri_queue must be 1 with span_setup host, got " + std::to_string(tri_queue) +
          ": the unit holds no triangle coefficients to queue (the host sends every span's start "
          "values)");
+  if (diffuse_colour != DiffuseColour::kSeries && diffuse_colour != DiffuseColour::kMultiply)
+    fail("diffuse_colour must be series or multiply");
   coef.validate("unit config: coef");
   series.validate("unit config: series");
   spec_colour.validate("unit config: spec_colour");
@@ -77,6 +79,17 @@ SpanSetupSite parse_span_setup(const std::string& text, const std::string& what)
   throw std::invalid_argument(what + ": unknown span setup '" + text + "'; expected unit or host");
 }
 
+std::string to_string(DiffuseColour d) {
+  return d == DiffuseColour::kMultiply ? "multiply" : "series";
+}
+
+DiffuseColour parse_diffuse_colour(const std::string& text, const std::string& what) {
+  if (text == "series") return DiffuseColour::kSeries;
+  if (text == "multiply") return DiffuseColour::kMultiply;
+  throw std::invalid_argument(what + ": unknown diffuse colour '" + text +
+                              "'; expected series or multiply");
+}
+
 std::string UnitConfig::to_string() const {
   std::ostringstream os;
   os << (channels == 1 ? "grey" : "rgb") << '/' << lights << "L coef=" << coef.to_string();
@@ -92,6 +105,7 @@ std::string UnitConfig::to_string() const {
   if (lanes != 1) os << " lanes=" << lanes;
   if (material_buffers != 1) os << " matbuf=" << material_buffers;
   if (host_setup()) os << " setup=host";
+  if (diffuse_multiply()) os << " diffuse=multiply";
   return os.str();
 }
 

@@ -17,6 +17,14 @@ namespace shadesim {
 // (kHost; model/start_packing.h): the unit then has no coefficient bank and no span setup.
 enum class SpanSetupSite : uint8_t { kUnit, kHost };
 
+// How a material's diffuse colour kd_c L_c reaches the pixel: rolled into the series (kSeries:
+// one diffuse series per light and channel, the host scales each by its colour), or multiplied
+// in PixelCombine (kMultiply: one N.L series per light; the MATERIAL carries kd_c L_c per light
+// and channel in the spec_colour format, and each pixel takes max(0, N.L) x kd_c L_c). With
+// three channels kMultiply has a third of the diffuse series, so a third of their span setup,
+// engines and start values, for a small multiply per light and channel.
+enum class DiffuseColour : uint8_t { kSeries, kMultiply };
+
 struct UnitConfig {
   // Structure: "model only what a scene needs" - a grey scene uses one channel, one light.
   int channels = 1;  // 1 (grey) or 3 (RGB)
@@ -84,6 +92,8 @@ struct UnitConfig {
   // knob) but sizes no hardware; tri_queue must be 1 (there are no coefficient banks).
   SpanSetupSite span_setup = SpanSetupSite::kUnit;
   bool host_setup() const { return span_setup == SpanSetupSite::kHost; }
+  DiffuseColour diffuse_colour = DiffuseColour::kSeries;
+  bool diffuse_multiply() const { return diffuse_colour == DiffuseColour::kMultiply; }
 
   // Term t's format (0..5): coef's, or coef narrowed to coef_term_iwl[t] integer bits.
   FixedFormat coef_term(int t) const;
@@ -94,7 +104,9 @@ struct UnitConfig {
     return dx >= lo && dx <= hi && dy >= lo && dy <= hi;
   }
 
-  int diffuse_series() const { return lights * channels; }
+  int diffuse_series() const { return diffuse_multiply() ? lights : lights * channels; }
+  // Colour words per light and channel (spec_colour; with kMultiply the diffuse ones too).
+  int colours() const { return lights * channels; }
   int specular_series() const { return lights * specular.series_per_light(); }
   int series_per_triangle() const { return diffuse_series() + specular_series(); }
 
@@ -108,5 +120,8 @@ struct UnitConfig {
 std::string to_string(SpanSetupSite s);  // "unit" or "host"
 // Throws std::invalid_argument naming `what` for anything but "unit" and "host".
 SpanSetupSite parse_span_setup(const std::string& text, const std::string& what);
+std::string to_string(DiffuseColour d);  // "series" or "multiply"
+// Throws std::invalid_argument naming `what` for anything but "series" and "multiply".
+DiffuseColour parse_diffuse_colour(const std::string& text, const std::string& what);
 
 }  // namespace shadesim

@@ -13,17 +13,20 @@ module combine_lanes #(
   parameter int SPECULAR_OUT_WL  = 17,
   parameter int SPECULAR_OUT_IWL = 1,
   parameter int OUT_BITS         = 8,
-  parameter bit SPECULAR         = 1'b1  // a specular term
+  parameter bit SPECULAR         = 1'b1,  // a specular term
+  parameter bit DIFFUSE_MULTIPLY = 1'b0   // one N.L series per light, times kd_lc
 ) (
-  input  logic [LANES*LIGHTS*CHANNELS*SERIES_WL-1:0] diffuse_i,  // lane j's at j * LaneDiffW
+  // lane j's at j * LaneDiffW
+  input  logic [LANES*(DIFFUSE_MULTIPLY ? LIGHTS : LIGHTS*CHANNELS)*SERIES_WL-1:0] diffuse_i,
   input  logic [LANES*LIGHTS*SPECULAR_OUT_WL-1:0]    spec_i,     // lane j, light l: j*LIGHTS+l
   input  logic [CHANNELS*SERIES_WL-1:0]              ambient_i,
   input  logic [LIGHTS*CHANNELS*SPEC_COLOUR_WL-1:0]  spec_colour_i,
+  input  logic [LIGHTS*CHANNELS*SPEC_COLOUR_WL-1:0]  diffuse_colour_i,  // multiply only
   input  logic [LIGHTS-1:0]                          gate_only_i,
   input  logic                                       trunc_i,  // truncate (a fault hook)
   output logic [LANES*CHANNELS*OUT_BITS-1:0]         colour_o  // lane j's at j * LaneColW
 );
-  localparam int LaneDiffW = LIGHTS * CHANNELS * SERIES_WL;
+  localparam int LaneDiffW = (DIFFUSE_MULTIPLY ? LIGHTS : LIGHTS * CHANNELS) * SERIES_WL;
   localparam int LaneColW  = CHANNELS * OUT_BITS;
   for (genvar j = 0; j < LANES; j++) begin : g_combine
     pixel_combine #(
@@ -31,11 +34,12 @@ module combine_lanes #(
       .SERIES_QUANT(SERIES_QUANT), .SERIES_OVERFLOW(SERIES_OVERFLOW),
       .SPEC_COLOUR_WL(SPEC_COLOUR_WL), .SPEC_COLOUR_IWL(SPEC_COLOUR_IWL),
       .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL), .OUT_BITS(OUT_BITS),
-      .SPECULAR(SPECULAR)
+      .SPECULAR(SPECULAR), .DIFFUSE_MULTIPLY(DIFFUSE_MULTIPLY)
     ) u_combine (
       .diffuse_i(diffuse_i[j*LaneDiffW +: LaneDiffW]),
       .spec_i(spec_i[j*LIGHTS*SPECULAR_OUT_WL +: LIGHTS*SPECULAR_OUT_WL]), .ambient_i,
-      .spec_colour_i, .gate_only_i, .trunc_i, .colour_o(colour_o[j*LaneColW +: LaneColW])
+      .spec_colour_i, .diffuse_colour_i, .gate_only_i, .trunc_i,
+      .colour_o(colour_o[j*LaneColW +: LaneColW])
     );
   end
 endmodule

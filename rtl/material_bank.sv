@@ -1,6 +1,6 @@
-// material_bank: shade_unit's per-material registers - ambient, specular colours and the
-// gate-only light mask - in MATERIAL_BUFFERS banks, and the bookkeeping that keeps a MATERIAL
-// from changing what an in-flight pixel reads.
+// material_bank: shade_unit's per-material registers - ambient, specular colours (and diffuse
+// colours with DIFFUSE_MULTIPLY) and the gate-only light mask - in MATERIAL_BUFFERS banks, and
+// the bookkeeping that keeps a MATERIAL from changing what an in-flight pixel reads.
 //
 // MATERIAL_BUFFERS = 2: a MATERIAL header switches the write bank (wr_bank_o); each span carries
 // the bank current when its SPAN header was taken down the setup stages to the engines
@@ -14,7 +14,8 @@ module material_bank #(
   parameter int MATERIAL_BUFFERS = 1,
   parameter int SPAN_Q           = 1,  // span queue entries (1: none)
   parameter int SPEC_LATENCY     = 0,  // the specular slot's latency
-  parameter bit HOST_SETUP       = 1'b0  // no setup stages: spans wait in the start bank
+  parameter bit HOST_SETUP       = 1'b0,  // no setup stages: spans wait in the start bank
+  parameter bit DIFFUSE_MULTIPLY = 1'b0   // kd_lc words follow spec_colour's in the payload
 ) (
   input  logic                                  clk_i,
   input  logic                                  rst_ni,
@@ -42,16 +43,17 @@ module material_bank #(
   input  logic                                  rd_bank_i,     // the bank read below
   output logic [CHANNELS*SERIES_WL-1:0]         ambient_o,
   output logic [LIGHTS*CHANNELS*SPEC_COLOUR_WL-1:0] spec_colour_o,
+  output logic [LIGHTS*CHANNELS*SPEC_COLOUR_WL-1:0] diffuse_colour_o,  // '0 without multiply
   output logic [LIGHTS-1:0]                     gate_only_o  // diffuse series gate only
 );
-  localparam int NDiff = LIGHTS * CHANNELS;
+  localparam int NColours = LIGHTS * CHANNELS;  // colour words of each kind
   // verilator lint_off UNUSEDSIGNAL
   logic unused_word;  // reason: each register takes the low bits of its word, not all 64
   assign unused_word = ^word_i;
   // verilator lint_on UNUSEDSIGNAL
 
   logic [CHANNELS*SERIES_WL-1:0]    ambient_q [MATERIAL_BUFFERS];
-  logic [NDiff*SPEC_COLOUR_WL-1:0]  spec_colour_q [MATERIAL_BUFFERS];
+  logic [NColours*SPEC_COLOUR_WL-1:0] spec_colour_q [MATERIAL_BUFFERS];
   logic [LIGHTS-1:0]                gate_only_q [MATERIAL_BUFFERS];
   logic                             hdr_bank;  // bank a MATERIAL header taken now writes
   logic                             mat_wr;
@@ -66,7 +68,7 @@ module material_bank #(
           ambient_q[mat_wr][i*SERIES_WL +: SERIES_WL] <= word_i[SERIES_WL-1:0];
         end
       end
-      for (int i = 0; i < NDiff; i++) begin
+      for (int i = 0; i < NColours; i++) begin
         if (pay_idx_i == 16'(CHANNELS + i)) begin
           spec_colour_q[mat_wr][i*SPEC_COLOUR_WL +: SPEC_COLOUR_WL] <=
               word_i[SPEC_COLOUR_WL-1:0];
@@ -77,6 +79,23 @@ module material_bank #(
 
   assign ambient_o     = ambient_q[rd_bank_i];
   assign spec_colour_o = spec_colour_q[rd_bank_i];
+
+  if (DIFFUSE_MULTIPLY) begin : g_diffuse_colour
+    logic [NColours*SPEC_COLOUR_WL-1:0] diffuse_colour_q [MATERIAL_BUFFERS];
+    always_ff @(posedge clk_i) begin
+      if (pay_mat_i) begin
+        for (int i = 0; i < NColours; i++) begin
+          if (pay_idx_i == 16'(CHANNELS + NColours + i)) begin
+            diffuse_colour_q[mat_wr][i*SPEC_COLOUR_WL +: SPEC_COLOUR_WL] <=
+                word_i[SPEC_COLOUR_WL-1:0];
+          end
+        end
+      end
+    end
+    assign diffuse_colour_o = diffuse_colour_q[rd_bank_i];
+  end else begin : g_no_diffuse_colour
+    assign diffuse_colour_o = '0;
+  end
   assign gate_only_o   = gate_only_q[rd_bank_i];
   assign wr_bank_o     = mat_wr;
 

@@ -9,6 +9,10 @@
 //   stage 3  round to nearest into u0.OUT_BITS, saturating
 // SPECULAR = 0 (specular kind none): no specular term - no gates, products or specular sums;
 // spec_i and spec_colour_i are not read.
+// DIFFUSE_MULTIPLY = 1 (UnitConfig::diffuse_colour multiply): one diffuse series per light,
+// N_l = N.L itself; stage 1 forms max(0, N_l) x kd_lc per channel by the series rule, like the
+// specular product, and the gate is N_l > 0; the multiplier takes N_l truncated to the colour's
+// fraction bits (the model says why). diffuse_colour_i is read only then, gate_only_i never.
 module pixel_combine #(
   parameter int CHANNELS         = 1,
   parameter int LIGHTS           = 1,
@@ -21,12 +25,15 @@ module pixel_combine #(
   parameter int SPECULAR_OUT_WL  = 17,
   parameter int SPECULAR_OUT_IWL = 1,
   parameter int OUT_BITS         = 8,
-  parameter bit SPECULAR         = 1   // 0: no specular term (SpecularUnitKind none)
+  parameter bit SPECULAR         = 1,  // 0: no specular term (SpecularUnitKind none)
+  parameter bit DIFFUSE_MULTIPLY = 0   // 1: one N.L series per light, times kd_lc
 ) (
-  input  logic [LIGHTS*CHANNELS*SERIES_WL-1:0]      diffuse_i,      // [l*CHANNELS + c]
+  // [l*CHANNELS + c], or [l] with DIFFUSE_MULTIPLY
+  input  logic [(DIFFUSE_MULTIPLY ? LIGHTS : LIGHTS*CHANNELS)*SERIES_WL-1:0] diffuse_i,
   input  logic [LIGHTS*SPECULAR_OUT_WL-1:0]         spec_i,         // [l]
   input  logic [CHANNELS*SERIES_WL-1:0]             ambient_i,      // [c]
   input  logic [LIGHTS*CHANNELS*SPEC_COLOUR_WL-1:0] spec_colour_i,  // [l*CHANNELS + c]
+  input  logic [LIGHTS*CHANNELS*SPEC_COLOUR_WL-1:0] diffuse_colour_i,  // [l*CHANNELS + c]: kd_lc
   input  logic [LIGHTS-1:0]                         gate_only_i,    // [l]: D_l0 gates only
   // A test hook (shade_unit's FaultRounding): truncate the output instead of rounding it. 0 in
   // every unit; under synthesis it is not read at all.
@@ -44,6 +51,15 @@ module pixel_combine #(
   localparam int OutRndW    = AccW + 1 - OutDrop;
 
   localparam int GateW      = SERIES_WL + $clog2(CHANNELS + 1);  // sum of a light's channels
+  // The diffuse product max(0, N_l) x kd_lc: N_l without its sign and its NlDrop lowest bits,
+  // times the colour, then a sign bit.
+  localparam int ColourFrac   = SPEC_COLOUR_WL - SPEC_COLOUR_IWL;
+  localparam int NlDrop       = SeriesFrac > ColourFrac ? SeriesFrac - ColourFrac : 0;
+  localparam int NlW          = SERIES_WL - 1 - NlDrop;
+  localparam int DiffProdW    = NlW + SPEC_COLOUR_WL + 1;
+  localparam int DiffDrop     = ColourFrac - NlDrop;
+  localparam int DiffRndW     = DiffProdW + 1 - DiffDrop;
+  localparam int GateChannels = DIFFUSE_MULTIPLY ? 1 : CHANNELS;  // series summed by a gate
 
   // The specular gate per light: the sum of its channels' diffuse values is > 0 (none without a
   // specular term).
@@ -51,22 +67,22 @@ module pixel_combine #(
   if (!SPECULAR) begin : g_no_gate
     assign lit = '0;
     // verilator lint_off UNUSEDSIGNAL
-    logic unused_spec;
+    logic unused_spec;  // reason: no specular term reads them
     assign unused_spec = (^spec_i) ^ (^spec_colour_i) ^ (^lit);
     // verilator lint_on UNUSEDSIGNAL
   end else begin : g_gates
     for (genvar l = 0; l < LIGHTS; l++) begin : g_gate
       // Running sum over the channels (continuous assignments: Icarus 11 does not settle an
       // always_comb that reads back what it writes).
-      logic [(CHANNELS + 1)*GateW-1:0] part /*verilator split_var*/;
+      logic [(GateChannels + 1)*GateW-1:0] part /*verilator split_var*/;
       assign part[0 +: GateW] = '0;
-      for (genvar c = 0; c < CHANNELS; c++) begin : g_sum
+      for (genvar c = 0; c < GateChannels; c++) begin : g_sum
         logic signed [SERIES_WL-1:0] d;
-        assign d = $signed(diffuse_i[(l*CHANNELS + c)*SERIES_WL +: SERIES_WL]);
+        assign d = $signed(diffuse_i[(l*GateChannels + c)*SERIES_WL +: SERIES_WL]);
         assign part[(c + 1)*GateW +: GateW] = part[c*GateW +: GateW] + GateW'(d);
       end
       logic signed [GateW-1:0] n_dot_l;
-      assign n_dot_l = $signed(part[CHANNELS*GateW +: GateW]);
+      assign n_dot_l = $signed(part[GateChannels*GateW +: GateW]);
       assign lit[l]  = !n_dot_l[GateW-1] && n_dot_l != '0;
     end
   end
@@ -77,10 +93,8 @@ module pixel_combine #(
     assign sums[0 +: AccW] = AccW'($signed(ambient_i[c*SERIES_WL +: SERIES_WL]));
 
     for (genvar l = 0; l < LIGHTS; l++) begin : g_light
-      logic signed [SERIES_WL-1:0] diffuse;
       logic signed [AccW-1:0]      diffuse_term, spec_term;
 
-      assign diffuse = $signed(diffuse_i[(l*CHANNELS + c)*SERIES_WL +: SERIES_WL]);
       if (SPECULAR) begin : g_spec
         logic [SPECULAR_OUT_WL-1:0]  spec;
         logic [SPEC_COLOUR_WL-1:0]   colour;
@@ -102,7 +116,30 @@ module pixel_combine #(
         assign spec_term = '0;
       end
 
-      assign diffuse_term = diffuse[SERIES_WL-1] || gate_only_i[l] ? '0 : AccW'(diffuse);
+      if (DIFFUSE_MULTIPLY) begin : g_diff_mul
+        logic signed [SERIES_WL-1:0] n_dot_l;
+        logic [SPEC_COLOUR_WL-1:0]   colour;
+        logic signed [DiffProdW-1:0] product;
+        logic signed [DiffRndW-1:0]  product_rnd;
+        logic [SERIES_WL-1:0]        product_fit;
+
+        assign n_dot_l = $signed(diffuse_i[l*SERIES_WL +: SERIES_WL]);
+        assign colour  = diffuse_colour_i[(l*CHANNELS + c)*SPEC_COLOUR_WL +: SPEC_COLOUR_WL];
+        assign product = $signed({1'b0, (DiffProdW - 1)'(n_dot_l[SERIES_WL-2:NlDrop]) *
+                                        (DiffProdW - 1)'(colour)});
+
+        fixed_round #(.IN_W(DiffProdW), .DROP(DiffDrop), .ROUND(SERIES_QUANT))
+          u_round (.in_i(product), .out_o(product_rnd));
+        fixed_sat #(.IN_W(DiffRndW), .OUT_W(SERIES_WL), .OUT_SIGNED(1), .WRAP(SERIES_OVERFLOW))
+          u_sat (.in_i(product_rnd), .out_o(product_fit));
+
+        assign diffuse_term = n_dot_l[SERIES_WL-1] || n_dot_l == '0 ? '0
+                                                                     : AccW'($signed(product_fit));
+      end else begin : g_diff_series
+        logic signed [SERIES_WL-1:0] diffuse;
+        assign diffuse = $signed(diffuse_i[(l*CHANNELS + c)*SERIES_WL +: SERIES_WL]);
+        assign diffuse_term = diffuse[SERIES_WL-1] || gate_only_i[l] ? '0 : AccW'(diffuse);
+      end
       assign sums[(l + 1)*AccW +: AccW] = $signed(sums[l*AccW +: AccW]) + diffuse_term + spec_term;
     end
 
@@ -121,5 +158,16 @@ module pixel_combine #(
 `endif
     fixed_sat #(.IN_W(OutRndW), .OUT_W(OUT_BITS), .OUT_SIGNED(0), .WRAP(0))
       u_sat_out (.in_i(out_q), .out_o(colour_o[c*OUT_BITS +: OUT_BITS]));
+  end
+  if (DIFFUSE_MULTIPLY) begin : g_no_gate_only
+    // verilator lint_off UNUSEDSIGNAL
+    logic unused_gate_only;  // reason: every light's one series is N.L and gates itself
+    assign unused_gate_only = ^gate_only_i;
+    // verilator lint_on UNUSEDSIGNAL
+  end else begin : g_no_diffuse_colour
+    // verilator lint_off UNUSEDSIGNAL
+    logic unused_diffuse_colour;  // reason: the colour is rolled into the series
+    assign unused_diffuse_colour = ^diffuse_colour_i;
+    // verilator lint_on UNUSEDSIGNAL
   end
 endmodule

@@ -38,6 +38,9 @@ module shade_unit #(
   // SetupHost (each SPAN carries its start values into start_bank; TRI_QUEUE must be 1).
   parameter int SPAN_SETUP       = 0,
   parameter int START_DEPTH      = 1,  // host setup: start bank entries, 1 or 2
+  // DiffuseColour: 0 rolled into the series (a series per light and channel), 1 multiplied in
+  // pixel_combine (one N.L series per light; the MATERIAL carries kd_c L_c).
+  parameter int DIFFUSE_MULTIPLY = 0,
   // 1: the harness's deliberate faults can be injected (fault_hooks). 0 (every unit): none.
   parameter int FAULT_HOOKS      = 0
 ) (
@@ -56,10 +59,13 @@ module shade_unit #(
 );
   localparam bit Specular       = SPECULAR_KIND != shade_pkg::SpecNone;  // a specular term
   localparam int SeriesPerLight = SPECULAR_KIND == shade_pkg::SpecSchlick ? 2 : Specular ? 1 : 0;
-  localparam int NDiff          = LIGHTS * CHANNELS;
+  localparam int NColours       = LIGHTS * CHANNELS;  // colour words per MATERIAL and kind
+  localparam bit Multiply       = DIFFUSE_MULTIPLY != 0;
+  localparam int NDiff          = Multiply ? LIGHTS : NColours;  // diffuse series
   localparam int NSer           = NDiff + LIGHTS * SeriesPerLight;
   localparam int NCoef          = 6 * NSer;
-  localparam int NMatFixed      = CHANNELS + LIGHTS * CHANNELS;  // ambient + spec_colour words
+  // ambient + spec_colour (+ diffuse_colour) words
+  localparam int NMatFixed      = CHANNELS + (Multiply ? 2 : 1) * NColours;
   // The slot's timing (shade_pkg, the one definition; specular_unit's contract).
   localparam int SpecLatency    = shade_pkg::spec_latency(SPECULAR_KIND, SPEC_PARAMS);
   localparam bit Iterative      = shade_pkg::spec_interval(SPECULAR_KIND, SPEC_PARAMS) > 1;
@@ -173,12 +179,14 @@ module shade_unit #(
     // verilator lint_on UNUSEDSIGNAL
   end
   meta_t meta_in, meta_out;  // from the engines; at the slot's output
-  logic [CHANNELS*SERIES_WL-1:0] ambient;  logic [NDiff*SPEC_COLOUR_WL-1:0] spec_colour;
+  logic [CHANNELS*SERIES_WL-1:0] ambient;
+  logic [NColours*SPEC_COLOUR_WL-1:0] spec_colour, diffuse_colour;
   logic [LIGHTS-1:0]             gate_only;
   material_bank #(
     .CHANNELS(CHANNELS), .LIGHTS(LIGHTS), .SERIES_WL(SERIES_WL),
     .SPEC_COLOUR_WL(SPEC_COLOUR_WL), .MATERIAL_BUFFERS(MATERIAL_BUFFERS),
-    .SPAN_Q(Host ? START_DEPTH : SpanQ), .SPEC_LATENCY(SpecLatency), .HOST_SETUP(Host)
+    .SPAN_Q(Host ? START_DEPTH : SpanQ), .SPEC_LATENCY(SpecLatency), .HOST_SETUP(Host),
+    .DIFFUSE_MULTIPLY(Multiply)
   ) u_material_bank (
     .clk_i, .rst_ni, .word_i(cmd_word), .mat_fire_i(mat_fire), .pay_mat_i(pay_mat),
     .pay_idx_i(pay_idx), .span_fire_i(span_fire), .span_n_i(Host ? 16'd1 : 16'(hdr_n)),
@@ -186,7 +194,8 @@ module shade_unit #(
     .s1_bank_i(s1_src_mat), .s1_move_i(s1_move), .s2_move_i(s2_move), .eng_load_i(load_eng),
     .eng_bank_o(mat_q), .leave_i(mat_leave), .leave_bank_i(meta_out.mat), .wr_bank_o(mat_wr),
     .other_free_o(mat_other_free), .cur_free_o(mat_cur_free), .rd_bank_i(meta_out.mat),
-    .ambient_o(ambient), .spec_colour_o(spec_colour), .gate_only_o(gate_only)
+    .ambient_o(ambient), .spec_colour_o(spec_colour), .diffuse_colour_o(diffuse_colour),
+    .gate_only_o(gate_only)
   );
   logic [NSer*SERIES_WL-1:0] setup_v, start_v;
   logic [LANES*LaneSerW-1:0] eng_v;  logic emit, adv, spec_busy;  // eng_v: lane j at j*LaneSerW
@@ -243,10 +252,11 @@ module shade_unit #(
     .SERIES_IWL(SERIES_IWL), .SERIES_QUANT(SERIES_QUANT), .SERIES_OVERFLOW(SERIES_OVERFLOW),
     .SPEC_COLOUR_WL(SPEC_COLOUR_WL), .SPEC_COLOUR_IWL(SPEC_COLOUR_IWL),
     .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL), .OUT_BITS(OUT_BITS),
-    .SPECULAR(Specular)
+    .SPECULAR(Specular), .DIFFUSE_MULTIPLY(Multiply)
   ) u_combine_lanes (
     .diffuse_i(meta_out.diffuse), .spec_i(spec), .ambient_i(ambient),
-    .spec_colour_i(spec_colour), .gate_only_i(gate_only), .trunc_i(trunc), .colour_o(colour)
+    .spec_colour_i(spec_colour), .diffuse_colour_i(diffuse_colour), .gate_only_i(gate_only),
+    .trunc_i(trunc), .colour_o(colour)
   );
   logic [XY_BITS-1:0] out_x, out_y;
   logic               out_eor;
@@ -284,6 +294,8 @@ module shade_unit #(
       $fatal(1, "shade_unit: FAULT_HOOKS %0d is not 0 or 1", FAULT_HOOKS);
     if (SPAN_SETUP != shade_pkg::SetupUnit && SPAN_SETUP != shade_pkg::SetupHost)
       $fatal(1, "shade_unit: SPAN_SETUP %0d is not 0 (unit) or 1 (host)", SPAN_SETUP);
+    if (DIFFUSE_MULTIPLY != 0 && DIFFUSE_MULTIPLY != 1)
+      $fatal(1, "shade_unit: DIFFUSE_MULTIPLY %0d is not 0 or 1", DIFFUSE_MULTIPLY);
     if (Host && TRI_QUEUE != 1)
       $fatal(1, "shade_unit: TRI_QUEUE %0d with host span setup (no coefficient banks)",
              TRI_QUEUE);

@@ -395,8 +395,11 @@ void check_series(AreaReport& r) {
   }
   const std::map<std::string, int64_t> p = parameter_map(r.parameters);
   const int64_t kind = p.at("SPECULAR_KIND");
+  // Diffuse series: one per light and channel, or one per light with the colour multiply.
+  const auto multiply = p.find("DIFFUSE_MULTIPLY");
+  const bool diffuse_multiply = multiply != p.end() && multiply->second == 1;
   const int64_t expected =
-      p.at("CHANNELS") * p.at("LIGHTS") +
+      (diffuse_multiply ? 1 : p.at("CHANNELS")) * p.at("LIGHTS") +
       (kind == 0 ? 0 : p.at("LIGHTS") * specular_config_of_parameters(p).series_per_light());
   // Each series has a span_setup, or with host span setup (SPAN_SETUP 1) engines of its own.
   const auto host = p.find("SPAN_SETUP");
@@ -1142,16 +1145,23 @@ int64_t offset_bits_of(const ParamMap& p) {
 
 // Instances of each module (shade_unit.sv: NSer series, one slot per light, one combine; with
 // LANES > 1 an engine per series, a slot per light and a combine per lane, one span setup).
+// Diffuse series: one per light and channel, or one per light with DIFFUSE_MULTIPLY.
+int64_t diffuse_series_of(const ParamMap& p) {
+  const auto it = p.find("DIFFUSE_MULTIPLY");
+  const bool multiply = it != p.end() && it->second == 1;
+  return (multiply ? 1 : get(p, "CHANNELS")) * get(p, "LIGHTS");
+}
+
 int64_t instances_of(const std::string& module, const ParamMap& p) {
-  const int64_t ch = get(p, "CHANNELS"), l = get(p, "LIGHTS");
+  const int64_t l = get(p, "LIGHTS"), diffuse = diffuse_series_of(p);
   const int64_t per_light = specular_config_of_parameters(p).series_per_light();
   const int64_t lanes = lanes_of(p);
   const bool host = host_setup_of(p);
-  if (module == "span_setup") return host ? 0 : ch * l + l * per_light;
+  if (module == "span_setup") return host ? 0 : diffuse + l * per_light;
   if (module == "coef_bank" || module == "span_queue" || module == "setup_ctrl")
     return host ? 0 : 1;
   if (module == "start_bank") return host ? 1 : 0;
-  if (module == "series_engine") return (ch * l + l * per_light) * lanes;
+  if (module == "series_engine") return (diffuse + l * per_light) * lanes;
   if (module == "specular_unit") return per_light == 0 ? 0 : l * lanes;  // none: no slot
   if (module == "pixel_combine") return lanes;
   return 1;  // shade_unit glue
@@ -1183,7 +1193,14 @@ double size_of(const std::string& module, const ParamMap& p) {
   if (module == "series_engine") return s;
   // The start bank: v, d, d2 of every series (and the payload steering per bit).
   if (module == "start_bank") return 3 * static_cast<double>(instances_of("series_engine", p)) * s;
-  if (module == "pixel_combine") return ch * (l * so * sc + (l + 1) * (s + 4));
+  if (module == "pixel_combine") {
+    // With the diffuse multiply, a (series integer + colour fraction bits) x colour product per
+    // light and channel too (rtl/pixel_combine.sv truncates N.L to the colour's fraction).
+    const bool multiply = diffuse_series_of(p) != static_cast<int64_t>(ch * l);
+    const double nl =
+        si - 1 + std::min(s - si, sc - static_cast<double>(get(p, "SPEC_COLOUR_IWL")));
+    return ch * (l * so * sc + (multiply ? l * nl * sc : 0) + (l + 1) * (s + 4));
+  }
   if (module == "specular_unit") {
     // The unit's own size (model/specular_units.cpp), from its parameters.
     const SpecularConfig unit = specular_config_of_parameters(p);
@@ -1197,8 +1214,9 @@ double size_of(const std::string& module, const ParamMap& p) {
   // Lanes add each lane's fan-out (three constant-multiplier adders per series, ~6 adder bits
   // per series bit) and widen the metadata line and the pix register.
   const double extra_lanes = static_cast<double>(lanes_of(p) - 1);
-  return coef_regs + ch * s + ch * l * sc + 2 * (2 * xy + ch * l * s) + 400 +
-         extra_lanes * (6 * nser * s + 2 * ch * l * s);
+  const double diffuse_bits = static_cast<double>(diffuse_series_of(p)) * s;  // metadata line
+  return coef_regs + ch * s + ch * l * sc + 2 * (2 * xy + diffuse_bits) + 400 +
+         extra_lanes * (6 * nser * s + 2 * diffuse_bits);
 }
 
 }  // namespace

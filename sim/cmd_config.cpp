@@ -31,8 +31,9 @@ struct ConfigOptions {
   int out_bits = 8;
   int port_words = 4;
   int tri_queue = 2;
-  std::string ideal_unit;  // empty: W_16, then the fallbacks that meet the budget
-  std::string span_setup;  // empty: derived
+  std::string ideal_unit;      // empty: W_16, then the fallbacks that meet the budget
+  std::string span_setup;      // empty: derived
+  std::string diffuse_colour;  // empty: derived
   double max_cycles_per_pixel = 1.10;
   std::string json_path;
 };
@@ -71,6 +72,8 @@ int run_config(const ConfigOptions& o) {
   d.tri_queue = o.tri_queue;
   d.max_cycles_per_pixel = o.max_cycles_per_pixel;
   if (!o.span_setup.empty()) d.span_setup = parse_span_setup(o.span_setup, "--span-setup");
+  if (!o.diffuse_colour.empty())
+    d.diffuse_colour = parse_diffuse_colour(o.diffuse_colour, "--diffuse-colour");
   if (!o.ideal_unit.empty()) {
     const SpecularUnitKind ideal_as = parse_specular_unit(o.ideal_unit, "--ideal-unit");
     if (ideal_as != d.ideal_substitute.kind) {
@@ -219,8 +222,11 @@ void register_config(CLI::App& app, int& exit_code) {
       "               coefficient banks, tri_queue 1) where every scene stays <= 1.10 cycles per\n"
       "               pixel with it by the cycle model (--max-cycles-per-pixel), else unit\n"
       "               (--span-setup to choose)\n"
+      "  diffuse_colour  multiply with 3 channels (one N.L series per light, times kd_c L_c per\n"
+      "               pixel and channel), series with 1 (--diffuse-colour to choose)\n"
       "  spec_colour, specular widths: defaults\n"
-      "  G = sum over lights of (1 + max specular colour x the unit's slope on its series), the\n"
+      "  G = sum over lights of (1, or max kd_c L_c multiplied, + max specular colour x the\n"
+      "  unit's slope on its series), the\n"
       "  slope from t^n's <= n on [0, 1] through setup's pre-scaling. The Taylor error keeps the\n"
       "  whole budget in setup; the fixed-point error adds at most half of it.\n"
       "Exits 1 when the unit misses the budget on a scene (measured), saying which part: the\n"
@@ -243,6 +249,10 @@ void register_config(CLI::App& app, int& exit_code) {
   sub->add_option("--span-setup", o->span_setup,
                   "span setup in the unit or on the host (default: derived, see above)")
       ->check(CLI::IsMember({"unit", "host"}));
+  sub->add_option(
+         "--diffuse-colour", o->diffuse_colour,
+         "diffuse colour rolled into the series or multiplied per pixel (default: derived)")
+      ->check(CLI::IsMember({"series", "multiply"}));
   sub->add_option("--max-cycles-per-pixel", o->max_cycles_per_pixel,
                   "the cycles/pixel host span setup may take (cycle model) for config to choose it")
       ->check(positive_number())

@@ -295,14 +295,20 @@ void print_cycles(const CyclesOptions& o, const PreparedFrame& frame, const Cycl
             << "cycles       " << run.cycles << "  (" << std::fixed << std::setprecision(3)
             << cycles_per_pixel(run) << " cycles per pixel)\n"
             << "queue        " << c.queue_hidden
-            << " cycles hidden by the triangle queue (tri_queue 1: " << c.cycles_one_bank << ")\n"
-            << "triangles    " << c.estimate.triangles.size()
-            << " (no gaps, no back-pressure): " << tris.setup_bound << " setup-bound ("
-            << std::setprecision(1) << tris.share(tris.setup_bound) << " %), " << tris.fill_bound
-            << " fill-bound (" << tris.share(tris.fill_bound)
-            << " %); setup-bound: more decoder cycles for its\n"
-            << "             words than engine cycles for its pixels. The setup-bound ones need "
-            << tris.setup_bound_excess << " decoder cycles more than their pixels.\n";
+            << " cycles hidden by the triangle queue (tri_queue 1: " << c.cycles_one_bank << ")\n";
+  if (frame.config.host_setup()) {
+    // No TRIANGLE on the port: every span's start values are its own command words.
+    std::cout << "triangles    none on the port (host span setup: each SPAN brings its start "
+                 "values; their words are command_words below)\n";
+  } else {
+    std::cout << "triangles    " << c.estimate.triangles.size()
+              << " (no gaps, no back-pressure): " << tris.setup_bound << " setup-bound ("
+              << std::setprecision(1) << tris.share(tris.setup_bound) << " %), " << tris.fill_bound
+              << " fill-bound (" << tris.share(tris.fill_bound)
+              << " %); setup-bound: more decoder cycles for its\n"
+              << "             words than engine cycles for its pixels. The setup-bound ones need "
+              << tris.setup_bound_excess << " decoder cycles more than their pixels.\n";
+  }
   if (!tris.worst.empty()) {
     std::cout << "worst setup-bound triangles (decoder cycles - engine cycles):\n";
     for (const TriangleCost& t : tris.worst) {

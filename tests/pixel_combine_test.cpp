@@ -37,7 +37,7 @@ TEST(PixelCombine, MatchesDoubleSumAndOutputRule) {
       }
     }
     const uint32_t gate_only = static_cast<uint32_t>(rng() % 4);
-    const auto out = combine(diffuse, spec, ambient, colour, gate_only);
+    const auto out = combine(diffuse, spec, ambient, colour, nullptr, gate_only);
     for (int ch = 0; ch < 3; ++ch) {
       double x = c.series.to_double(ambient[ch]);
       for (int l = 0; l < 2; ++l) {
@@ -62,7 +62,8 @@ TEST(PixelCombine, GreyUsesOneChannelAndClampsNegativeDiffuse) {
   const int64_t diffuse = c.series.from_double(-0.75);
   const int64_t spec = 0, colour = 0;
   const int64_t ambient = c.series.from_double(0.25);
-  EXPECT_EQ(combine(&diffuse, &spec, &ambient, &colour, 0)[0], 64);  // 0.25 * 256, diffuse clamped
+  EXPECT_EQ(combine(&diffuse, &spec, &ambient, &colour, nullptr, 0)[0],
+            64);  // 0.25 * 256, diffuse clamped
 }
 
 TEST(PixelCombine, SpecularOnlyWhereSomeDiffuseIsPositive) {
@@ -72,14 +73,14 @@ TEST(PixelCombine, SpecularOnlyWhereSomeDiffuseIsPositive) {
   const int64_t colour = c.spec_colour.from_double(0.5);
   const int64_t ambient = 0;
   const int64_t behind = c.series.from_double(-0.001), zero = 0, lit = 1;  // lit: one LSB
-  EXPECT_EQ(combine(&behind, &spec, &ambient, &colour, 0)[0], 0);
-  EXPECT_EQ(combine(&zero, &spec, &ambient, &colour, 0)[0], 0);  // N.L = 0 is not lit
-  EXPECT_EQ(combine(&lit, &spec, &ambient, &colour, 0)[0], 64);  // 0.25 * 256
+  EXPECT_EQ(combine(&behind, &spec, &ambient, &colour, nullptr, 0)[0], 0);
+  EXPECT_EQ(combine(&zero, &spec, &ambient, &colour, nullptr, 0)[0], 0);  // N.L = 0 is not lit
+  EXPECT_EQ(combine(&lit, &spec, &ambient, &colour, nullptr, 0)[0], 64);  // 0.25 * 256
   // Gate only: the diffuse value opens the gate and is not added.
   const int64_t half = c.series.from_double(0.5);
-  EXPECT_EQ(combine(&half, &spec, &ambient, &colour, 1)[0], 64);
-  EXPECT_EQ(combine(&half, &spec, &ambient, &colour, 0)[0], 192);  // (0.5 + 0.25) * 256
-  EXPECT_EQ(combine(&behind, &spec, &ambient, &colour, 1)[0], 0);
+  EXPECT_EQ(combine(&half, &spec, &ambient, &colour, nullptr, 1)[0], 64);
+  EXPECT_EQ(combine(&half, &spec, &ambient, &colour, nullptr, 0)[0], 192);  // (0.5 + 0.25) * 256
+  EXPECT_EQ(combine(&behind, &spec, &ambient, &colour, nullptr, 1)[0], 0);
 }
 
 TEST(PixelCombine, GateIsTheSignOfTheLightsChannelSum) {
@@ -94,14 +95,51 @@ TEST(PixelCombine, GateIsTheSignOfTheLightsChannelSum) {
   const int64_t ambient[3] = {0, 0, 0};
   const int64_t k = c.spec_colour.from_double(0.5);
   const int64_t colour[6] = {k, k, k, k, k, k};
-  const auto out = combine(diffuse, spec, ambient, colour, 0);
+  const auto out = combine(diffuse, spec, ambient, colour, nullptr, 0);
   EXPECT_EQ(out[0], 64);  // light 0's specular only: 0.25
   EXPECT_EQ(out[1], 64);
   EXPECT_EQ(out[2], 64 + 64);  // + blue diffuse 0.25
   // Channels that disagree near the terminator: the sum decides (a small scale's rounding
   // cannot open the gate on its own).
   const int64_t mixed[6] = {1, -one, -one, 0, 0, 0};
-  EXPECT_EQ(combine(mixed, spec, ambient, colour, 0)[0], 0);
+  EXPECT_EQ(combine(mixed, spec, ambient, colour, nullptr, 0)[0], 0);
+}
+
+// Diffuse colour multiply: one N.L series per light; each channel adds max(0, N.L), truncated to
+// the colour's 12 fraction bits, times kd_lc (24 fraction bits: within the series' 28, so
+// exact), and N.L > 0 alone gates the light's specular term.
+TEST(PixelCombine, MultipliedDiffuseIsTheTruncatedProductAndGatesOnNDotL) {
+  UnitConfig c;
+  c.channels = 3;
+  c.lights = 2;
+  c.diffuse_colour = DiffuseColour::kMultiply;
+  ASSERT_EQ(c.diffuse_series(), 2);
+  const PixelCombine combine(c);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> series(-1.2, 1.2);
+  for (int trial = 0; trial < 20000; ++trial) {
+    int64_t n_dot_l[2], spec[2], ambient[3], spec_colour[6], diffuse_colour[6];
+    for (auto& n : n_dot_l) n = c.series.from_double(series(rng));
+    if (trial % 7 == 0) n_dot_l[trial % 2] = 0;  // N.L = 0: neither lit nor added
+    for (auto& a : ambient) a = c.series.from_double(0.2 * std::fabs(series(rng)));
+    for (auto& s : spec) s = static_cast<int64_t>(rng() % (c.specular.out.raw_max() + 1));
+    for (auto& k : spec_colour) k = static_cast<int64_t>(rng() % (c.spec_colour.raw_max() + 1));
+    for (auto& k : diffuse_colour) k = static_cast<int64_t>(rng() % (c.spec_colour.raw_max() + 1));
+    // A gate-only mask means nothing here: every light's series is N.L and is added.
+    const auto out = combine(n_dot_l, spec, ambient, spec_colour, diffuse_colour, 3);
+    for (int ch = 0; ch < 3; ++ch) {
+      double x = c.series.to_double(ambient[ch]);
+      for (int l = 0; l < 2; ++l) {
+        const double nl = c.series.to_double(n_dot_l[l]);
+        if (nl <= 0.0) continue;
+        const double nl_12 = std::floor(nl * 4096.0) / 4096.0;
+        x += nl_12 * c.spec_colour.to_double(diffuse_colour[l * 3 + ch]);
+        x += c.specular.out.to_double(spec[l]) * c.spec_colour.to_double(spec_colour[l * 3 + ch]);
+      }
+      const double code = std::clamp(std::floor(x * 256.0 + 0.5), 0.0, 255.0);
+      ASSERT_EQ(out[ch], code) << "trial " << trial << " x=" << x;
+    }
+  }
 }
 
 }  // namespace

@@ -147,6 +147,15 @@ CommandStream random_stream(const UnitConfig& config, const StreamShape& shape, 
     if (spec_colours && gate_rng() % 4 == 0) {
       m.gate_only = static_cast<uint32_t>(gate_rng() % (uint64_t{1} << config.lights));
     }
+    // Diffuse colour multiply: every light's one series gates itself (no gate-only light), and
+    // the colours it is multiplied by go up to 2 (an edge beyond kd L <= 1).
+    if (config.diffuse_multiply()) {
+      m.gate_only = 0;
+      for (int i = 0; i < config.colours(); ++i) {
+        m.diffuse_colour.push_back(
+            config.spec_colour.from_double(shape.edge ? uni(0.0, 1.99) : uni(0.0, 1.0)));
+      }
+    }
     m.exponent = int64_t{irange(1, 200)} << kExponentFracBits;
     // Edge: fractional exponents over the whole u10.16 range, every shift the units accept.
     if (shape.edge) {

@@ -62,7 +62,7 @@ Int128 quadratic(const int64_t* t, Int128 dx, Int128 dy) {
 
 // State of the unit between commands, as the command stream's documentation defines it.
 struct State {
-  std::vector<int64_t> ambient, spec_colour, unit_params;
+  std::vector<int64_t> ambient, spec_colour, diffuse_colour, unit_params;
   uint32_t gate_only = 0;  // MATERIAL header: lights whose diffuse series only gates specular
   double exponent = 0;
   // The LUT's tables, one per material bank (command_stream.h, TABLE): each MATERIAL switches
@@ -166,6 +166,7 @@ std::vector<Pixel> shade(const CommandStream& stream) {
     if (const auto* m = std::get_if<MaterialCmd>(&cmd)) {
       st.ambient = m->ambient;
       st.spec_colour = m->spec_colour;
+      st.diffuse_colour = m->diffuse_colour;
       st.unit_params = m->unit_params;
       st.gate_only = m->gate_only;
       st.exponent = static_cast<double>(m->exponent) / 65536.0;  // u10.16
@@ -236,13 +237,27 @@ std::vector<Pixel> shade(const CommandStream& stream) {
         for (int ch = 0; ch < c.channels; ++ch) {
           Int128 sum = st.ambient[ch];
           for (int l = 0; l < c.lights; ++l) {
-            if ((st.gate_only & (1u << l)) == 0)
-              sum += std::max<int64_t>(0, values[l * c.channels + ch]);
-            if (per_light == 0) continue;  // specular kind none: no series, no specular term
-            // The gate (model/pixel_combine.h): specular only where light l's channels' diffuse
-            // values sum to more than 0.
             Int128 n_dot_l = 0;
-            for (int k = 0; k < c.channels; ++k) n_dot_l += values[l * c.channels + k];
+            if (c.diffuse_multiply()) {
+              // One N.L series per light, truncated to the colour's fraction bits, times kd_lc
+              // into the series format; it gates too.
+              n_dot_l = values[l];
+              if (n_dot_l > 0) {
+                const int fc = std::min(fs, c.spec_colour.frac_bits());
+                const FixedFormat operand{c.series.iwl + fc, c.series.iwl, true,
+                                          Quantization::kTruncate, Overflow::kWrap};
+                sum += sc_quantize(Int128{sc_quantize(n_dot_l, fs, operand)} *
+                                       st.diffuse_colour[l * c.channels + ch],
+                                   fc + c.spec_colour.frac_bits(), c.series);
+              }
+            } else {
+              if ((st.gate_only & (1u << l)) == 0)
+                sum += std::max<int64_t>(0, values[l * c.channels + ch]);
+              // The gate (model/pixel_combine.h): specular only where light l's channels'
+              // diffuse values sum to more than 0.
+              for (int k = 0; k < c.channels; ++k) n_dot_l += values[l * c.channels + k];
+            }
+            if (per_light == 0) continue;  // specular kind none: no series, no specular term
             if (n_dot_l <= 0) continue;
             const int64_t spec = specular(c, st, &values[diffuse + l * per_light]);
             sum += sc_quantize(Int128{spec} * st.spec_colour[l * c.channels + ch], product_frac,
