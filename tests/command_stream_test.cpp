@@ -100,6 +100,49 @@ TEST(CommandStream, MaterialGateOnlyMaskIsHeaderBits31To16) {
   }
 }
 
+// Diffuse colour multiply: the MATERIAL's payload is ambient, spec_colour, then diffuse_colour
+// (lights x channels words), then the exponent; both forms round-trip it, the JSON header keeps
+// the knob, and a MATERIAL without the colours (or with a gate-only light) is refused.
+TEST(CommandStream, DiffuseColourFollowsSpecColourAndRoundTrips) {
+  UnitConfig c = rgb_two_lights();
+  c.diffuse_colour = DiffuseColour::kMultiply;
+  CommandStream cs;
+  cs.config = c;
+  MaterialCmd m;
+  m.ambient = {1, 2, 3};
+  m.spec_colour = {10, 11, 12, 13, 14, 15};
+  m.diffuse_colour = {20, 21, 22, 23, 24, 25};
+  m.exponent = int64_t{8} << kExponentFracBits;
+  cs.commands.emplace_back(m);
+  const auto w = cs.encode();
+  ASSERT_EQ(w.size(), 1u + 3 + 6 + 6 + 1);
+  EXPECT_EQ(w[0] & 0xFFFF, 16u);
+  EXPECT_EQ(w[1 + 3 + 6], 20u);  // the first diffuse colour right after the specular ones
+  EXPECT_EQ(w[1 + 3 + 6 + 6], static_cast<uint64_t>(m.exponent));
+  const auto back = CommandStream::decode(w, c, "<test>");
+  EXPECT_EQ(std::get<MaterialCmd>(back.commands[0]).diffuse_colour, m.diffuse_colour);
+  EXPECT_EQ(std::get<MaterialCmd>(back.commands[0]).exponent, m.exponent);
+  std::stringstream ss;
+  cs.write_text(ss);
+  const auto text = CommandStream::read_text(ss, "<text>");
+  EXPECT_TRUE(text.config.diffuse_multiply());
+  EXPECT_EQ(text.encode(), w);
+
+  CommandStream missing = cs;
+  std::get<MaterialCmd>(missing.commands[0]).diffuse_colour.clear();
+  try {
+    missing.validate("s.txt");
+    FAIL();
+  } catch (const CommandStreamError& e) {
+    EXPECT_NE(std::string(e.what()).find("material.diffuse_colour: expected 6 values, got 0"),
+              std::string::npos)
+        << e.what();
+  }
+  CommandStream gated = cs;
+  std::get<MaterialCmd>(gated.commands[0]).gate_only = 1;
+  EXPECT_THROW(gated.validate("s.txt"), CommandStreamError);
+}
+
 TEST(CommandStream, HeaderWordLayoutMatchesDocumentation) {
   CommandStream cs;
   cs.commands.emplace_back(SpanCmd{7, 9, 300, true});

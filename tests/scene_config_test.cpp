@@ -397,6 +397,28 @@ TEST(SceneConfig, DiffuseOnlyScenesShadeOnNoSpecularUnitAsOnTheW16One) {
   ASSERT_GE(diffuse_only, 1) << "no shipped or hard scene without a specular term";
 }
 
+// With colour, config multiplies the diffuse colour in the unit (one N.L series per light in
+// place of one per light and channel) and the unit still meets the budget against the double
+// reference; grey scenes keep the colour in their one series; --diffuse-colour overrides.
+TEST(SceneConfig, ColourScenesMultiplyTheDiffuseColourAndMeetTheBudget) {
+  const std::string multi = scene("multi.json");
+  const DerivedConfig d = derive_config({multi}, DeriveOptions{});
+  EXPECT_TRUE(d.config.diffuse_multiply());
+  EXPECT_EQ(d.config.diffuse_series(), d.config.lights);
+  EXPECT_EQ(d.config.series_per_triangle(), d.config.lights + d.config.specular_series());
+  EXPECT_LE(scene_error(multi, d.config, std::nullopt, 12).max_code_lsb,
+            code_budget(d.measured.budget_lsb));
+  EXPECT_NE(reason_of(d, "diffuse_colour").reason.find("N.L"), std::string::npos);
+
+  DeriveOptions in_series;
+  in_series.diffuse_colour = DiffuseColour::kSeries;
+  const DerivedConfig s = derive_config({multi}, in_series);
+  EXPECT_FALSE(s.config.diffuse_multiply());
+  EXPECT_EQ(s.config.diffuse_series(), s.config.lights * s.config.channels);
+
+  EXPECT_FALSE(derive_config({scene("sphere.json")}, {}).config.diffuse_multiply());
+}
+
 TEST(SceneConfig, BadBudgetIsAnError) {
   DeriveOptions o;
   o.budget_lsb = 0;
