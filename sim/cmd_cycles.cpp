@@ -38,6 +38,8 @@ struct CyclesOptions {
   int tri_queue = 0;
   int lanes = 0;
   int material_buffers = 0;
+  std::string span_setup;      // empty: the unit's
+  std::string diffuse_colour;  // empty: the unit's
   uint64_t seed = 1;
   int gap_pct = 0, max_gap = 1, stall_pct = 0;
   bool regress_stimulus = false;  // --regress-stimulus: regress's gaps and back-pressure
@@ -147,6 +149,13 @@ PreparedFrame cycles_frame(const CyclesOptions& o) {
   if (o.tri_queue > 0) fo.base.tri_queue = o.tri_queue;
   if (o.lanes > 0) fo.base.lanes = o.lanes;
   if (o.material_buffers > 0) fo.base.material_buffers = o.material_buffers;
+  if (!o.span_setup.empty()) {
+    fo.base.span_setup = parse_span_setup(o.span_setup, "--span-setup");
+    // Host setup has no coefficient banks to queue; an explicit --tri-queue > 1 is refused.
+    if (fo.base.host_setup() && o.tri_queue <= 0) fo.base.tri_queue = 1;
+  }
+  if (!o.diffuse_colour.empty())
+    fo.base.diffuse_colour = parse_diffuse_colour(o.diffuse_colour, "--diffuse-colour");
   if (!o.specular.empty()) fo.specular_override = parse_specular_unit(o.specular, "--specular");
   if (o.channels > 0 || o.lights > 0) {
     // A fixed unit, as built: the scene must fit it.
@@ -450,6 +459,14 @@ void register_cycles(CLI::App& app, int& exit_code) {
          "reload), into the bank no span in flight reads, so neither drains the datapath;\n"
          "default: the unit's; given, it overrides the unit's")
       ->check(CLI::IsMember({1, 2}));
+  sub->add_option("--span-setup", o->span_setup,
+                  "span setup in the unit (coefficients on the port) or on the host (start\n"
+                  "values on every SPAN, tri_queue 1); default: the unit's")
+      ->check(CLI::IsMember({"unit", "host"}));
+  sub->add_option("--diffuse-colour", o->diffuse_colour,
+                  "diffuse colour rolled into the series (one per light and channel) or\n"
+                  "multiplied in the unit (one N.L series per light); default: the unit's")
+      ->check(CLI::IsMember({"series", "multiply"}));
   sub->add_option("--seed", o->seed, "stimulus seed")->capture_default_str();
   add_stimulus_options(sub, o->gap_pct, o->max_gap, o->stall_pct);
   sub->add_flag("--regress-stimulus", o->regress_stimulus,

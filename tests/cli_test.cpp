@@ -160,6 +160,33 @@ TEST(Cli, CyclesBreakdownPartitionsTheRunAndShowsBackPressure) {
   std::filesystem::remove_all(dir);
 }
 
+// The structure knobs of cycles answer "this unit, with its span setup / diffuse colour
+// changed": the same count as the unit config derives with that choice, written to a file.
+TEST(Cli, CyclesSpanSetupAndDiffuseColourOptionsEqualTheDerivedUnits) {
+  const auto dir = temp_dir("cycles_knobs");
+  const std::string multi = kScenes + "multi.json";
+  struct Case {
+    std::string cycles_options, config_options;
+  };
+  for (const Case& c :
+       {Case{"--span-setup unit --tri-queue 2", "--span-setup unit"},
+        Case{"--diffuse-colour series", "--diffuse-colour series --span-setup host"},
+        Case{"--diffuse-colour series --span-setup unit --tri-queue 2",
+             "--diffuse-colour series --span-setup unit"}}) {
+    const std::string unit = (dir / "u.json").string();
+    const Result derived = run("config " + multi + " " + c.config_options + " --json " + unit);
+    ASSERT_EQ(derived.status, 0) << derived.output;
+    const auto by_option = run_json("cycles " + multi + " " + c.cycles_options, dir / "a.json");
+    const auto by_file = run_json("cycles " + multi + " --config " + unit, dir / "b.json");
+    EXPECT_EQ(by_option["cycles"], by_file["cycles"]) << c.cycles_options;
+  }
+  const Result refused = run("cycles " + multi + " --span-setup host --tri-queue 2");
+  EXPECT_NE(refused.status, 0);
+  EXPECT_NE(refused.output.find("tri_queue must be 1 with span_setup host"), std::string::npos)
+      << refused.output;
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Cli, CyclesEstimateEqualsTheRtlOnTheSameSceneAndStimulus) {
 #ifndef SHADESIM_HAVE_RTL
   GTEST_SKIP() << "RTL not built (configure with -DSHADESIM_RTL=ON)";
