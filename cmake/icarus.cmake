@@ -137,7 +137,7 @@ target_link_libraries(icarus_stream_tool PRIVATE shadesim_harness CLI11::CLI11)
 
 set(ICARUS_DIR ${CMAKE_BINARY_DIR}/icarus)
 set(ICARUS_TB ${CMAKE_SOURCE_DIR}/sim/icarus/tb_shade_unit.sv)
-string(REPLACE ";" "," _rtl_list "${RTL_SOURCES}")
+string(REPLACE ";" "," _rtl_list "${RTL_SIM_SOURCES}")
 # Every named build (sim/harness/builds.json, so renamed or added builds follow) on one random
 # `edge` stream (the value-space corners, three frames, commands after END_FRAME) under that
 # scenario's gaps and back-pressure: Icarus pixels and exit cycles = the models', bit for bit and

@@ -19,6 +19,10 @@ set(RTL_DIR ${CMAKE_SOURCE_DIR}/rtl)
 # Dependency order (leaves first), from the one list rtl/files.f every tool reads.
 include(${CMAKE_SOURCE_DIR}/cmake/rtl_files.cmake)
 rtl_files(RTL_SOURCES)
+# The harness's deliberate-fault hooks (test apparatus, outside rtl/): a simulation of a build
+# with fault hooks compiles them after the RTL; synthesis never reads them.
+set(RTL_SIM_SOURCES ${RTL_SOURCES} ${CMAKE_SOURCE_DIR}/sim/harness/fault_select.sv
+    ${CMAKE_SOURCE_DIR}/sim/harness/fault_hooks.sv)
 
 # The named builds (and what the tests iterate over), read from the same file shadesim reads.
 file(READ ${CMAKE_SOURCE_DIR}/sim/harness/builds.json _builds_json)
@@ -72,7 +76,7 @@ _cosim(COSIM_SC systemc)
 foreach(name ${RTL_BUILD_NAMES})
   add_test(NAME rtl_lint_${name}
     COMMAND sh -c "exec ${VERILATOR_BIN} --lint-only -Wall $(\"$0\" rtl-params --config ${name}) --top-module shade_unit \"$@\""
-            ${SHADESIM_CLI} ${RTL_SOURCES})
+            ${SHADESIM_CLI} ${RTL_SIM_SOURCES})
 endforeach()
 if(IVERILOG)
   add_test(NAME rtl_iverilog

@@ -24,6 +24,4 @@ out_reg.sv
 combine_lanes.sv
 series_path.sv
 spec_slots.sv
-fault_select.sv
-fault_hooks.sv
 shade_unit.sv

@@ -41,7 +41,8 @@ module shade_unit #(
   // DiffuseColour: 0 rolled into the series (a series per light and channel), 1 multiplied in
   // pixel_combine (one N.L series per light; the MATERIAL carries kd_c L_c).
   parameter int DIFFUSE_MULTIPLY = 0,
-  // 1: the harness's deliberate faults can be injected (fault_hooks). 0 (every unit): none.
+  // 1: the harness's deliberate faults can be injected (sim/harness/fault_hooks.sv, test
+  // apparatus a simulation compiles after rtl/). 0 (every unit, and synthesis): none.
   parameter int FAULT_HOOKS      = 0
 ) (
   input  logic                         clk_i,

@@ -941,11 +941,14 @@ nlohmann::json coverage_json(const CoverageSummary& sum, size_t runs) {
                      {"lines", f.lines},
                      {"lines_hit", f.lines_hit},
                      {"toggles", f.toggles},
-                     {"toggles_hit", f.toggles_hit}});
+                     {"toggles_hit", f.toggles_hit},
+                     {"elaborated", f.elaborated}});
   }
   nlohmann::json not_elaborated = nlohmann::json::array();
   for (const auto& f : sum.files_without_points)
     not_elaborated.push_back(fs::relative(f, source_dir()).string());
+  nlohmann::json packages = nlohmann::json::array();
+  for (const auto& f : sum.packages) packages.push_back(fs::relative(f, source_dir()).string());
   nlohmann::json points = nlohmann::json::array();
   int hit = 0;
   for (const auto& u : sum.user) {
@@ -963,6 +966,7 @@ nlohmann::json coverage_json(const CoverageSummary& sum, size_t runs) {
           {"user_points_hit", hit},
           {"files", files},
           {"files_without_points", not_elaborated},
+          {"packages", packages},
           {"user_cover_points", points}};
 }
 
@@ -1017,19 +1021,22 @@ bool report_coverage(const std::vector<RunRecord>& records, const fs::path& out,
               << (std::to_string(f.lines_hit) + "/" + std::to_string(f.lines)) << std::setw(10)
               << percent(f.lines_hit, f.lines) << std::setw(10)
               << (std::to_string(f.toggles_hit) + "/" + std::to_string(f.toggles)) << std::setw(10)
-              << percent(f.toggles_hit, f.toggles) << '\n';
+              << percent(f.toggles_hit, f.toggles)
+              << (f.elaborated ? "" : "  (no run elaborated it: its code lines count, none hit)")
+              << '\n';
   }
   std::cout << "  " << std::left << std::setw(28) << "rtl/ (total)" << std::right << std::setw(8)
             << (std::to_string(sum.lines_hit) + "/" + std::to_string(sum.lines)) << std::setw(10)
             << percent(sum.lines_hit, sum.lines) << std::setw(10)
             << (std::to_string(sum.toggles_hit) + "/" + std::to_string(sum.toggles))
             << std::setw(10) << percent(sum.toggles_hit, sum.toggles) << '\n';
-  for (const auto& f : sum.files_without_points) {
-    std::cout << "  no points (a package, or not elaborated by any run; not counted): "
+  for (const auto& f : sum.packages) {
+    std::cout << "  no points (a package: constants and constant functions, nothing to run): "
               << fs::relative(f, source_dir()).string() << '\n';
   }
   for (const auto& f : sum.files) {
-    if (f.uncovered_lines.empty() || fs::path(f.path).parent_path() != rtl_dir) continue;
+    if (!f.elaborated || f.uncovered_lines.empty() || fs::path(f.path).parent_path() != rtl_dir)
+      continue;
     std::ifstream src(f.path);
     std::vector<std::string> text;
     for (std::string l; std::getline(src, l);) text.push_back(l);

@@ -70,6 +70,30 @@ std::vector<int> line_list(const std::string& s, int fallback) {
   return out;
 }
 
+struct UnelaboratedSource {
+  bool is_package = false;
+  int code_lines = 0;  // non-blank lines from `module` to `endmodule` that are not only comments
+};
+
+// An rtl/ file no run elaborated: a package, or a module whose code lines count as uncovered.
+UnelaboratedSource read_unelaborated(const std::string& path) {
+  std::ifstream is(path);
+  if (!is) throw std::runtime_error("coverage: cannot read " + path + " (an rtl/files.f source)");
+  UnelaboratedSource out;
+  bool in_module = false;
+  for (std::string line; std::getline(is, line);) {
+    const size_t first = line.find_first_not_of(" \t");
+    if (first == std::string::npos || line.compare(first, 2, "//") == 0) continue;
+    const std::string code = line.substr(first);
+    if (!in_module && code.rfind("package", 0) == 0) out.is_package = true;
+    if (code.rfind("module", 0) == 0) in_module = true;
+    if (in_module) ++out.code_lines;
+    if (code.rfind("endmodule", 0) == 0) in_module = false;
+  }
+  if (out.code_lines > 0) out.is_package = false;
+  return out;
+}
+
 bool under(const std::string& file, const std::string& dir) {
   const std::string d = fs::path(dir).lexically_normal().string();
   const std::string f = fs::path(file).lexically_normal().string();
@@ -169,8 +193,22 @@ CoverageSummary summarize_coverage(const std::string& dat_path, const std::strin
     const bool seen = std::any_of(s.files.begin(), s.files.end(), [&](const CoverageFile& c) {
       return fs::path(c.path).lexically_normal().string() == norm;
     });
-    if (!seen) s.files_without_points.push_back(f);
+    if (seen) continue;
+    const UnelaboratedSource src = read_unelaborated(f);
+    if (src.is_package) {
+      s.packages.push_back(f);
+      continue;
+    }
+    s.files_without_points.push_back(f);
+    CoverageFile row;
+    row.path = f;
+    row.lines = src.code_lines;
+    row.elaborated = false;
+    if (under(f, rtl_dir)) s.lines += row.lines;
+    s.files.push_back(row);
   }
+  std::sort(s.files.begin(), s.files.end(),
+            [](const CoverageFile& a, const CoverageFile& b) { return a.path < b.path; });
   return s;
 }
 

@@ -8,8 +8,11 @@
 //           of the points that name it counted at least once.
 //   toggle  --coverage-toggle's points, one per signal bit: covered when it toggled at least once.
 //   user    the named cover properties of sim/harness/shade_cover.sv (--coverage-user).
-// Only elaborated code has points: a generate branch or a module no configuration of the run
-// instantiates is not counted (the summary names the rtl/ files that have no points at all).
+// Only elaborated code has points. A generate branch no configuration of the run instantiates
+// has none and is not counted; a whole rtl/ module no run elaborates counts as 0 %: its code
+// lines (every non-blank line from `module` to `endmodule` that is not only a comment, more than
+// Verilator would instrument) join the line total, none hit. A package (shade_pkg: constants
+// and constant functions, which Verilator does not instrument) has no points and is named.
 //
 // Exclusions are `/* verilator coverage_off */ // reason` ... `/* verilator coverage_on */`
 // pragmas in the RTL (Verilator then makes no points there); list_exclusions() reads them back
@@ -26,6 +29,7 @@ struct CoverageFile {
   int lines = 0, lines_hit = 0;
   int toggles = 0, toggles_hit = 0;
   std::vector<int> uncovered_lines;
+  bool elaborated = true;  // false: no run elaborated it; its code lines count, none hit
 };
 
 struct CoverPoint {
@@ -37,7 +41,8 @@ struct CoverPoint {
 struct CoverageSummary {
   std::vector<CoverageFile> files;                // sorted by path
   std::vector<CoverPoint> user;                   // merged over instances, sorted by name
-  std::vector<std::string> files_without_points;  // rtl/ files no run elaborated
+  std::vector<std::string> files_without_points;  // rtl/ modules no run elaborated (0 %)
+  std::vector<std::string> packages;              // rtl/ packages: no points, not counted
   int lines = 0, lines_hit = 0, toggles = 0, toggles_hit = 0;  // over `rtl_dir` only
   double line_pct() const { return lines ? 100.0 * lines_hit / lines : 0.0; }
   double toggle_pct() const { return toggles ? 100.0 * toggles_hit / toggles : 0.0; }

@@ -41,6 +41,17 @@ std::vector<fs::path> rtl_sources() {
   return rtl_file_list(rtl.string());
 }
 
+// What a simulation build compiles: the RTL, then the harness's deliberate-fault hooks (test
+// apparatus, outside rtl/: only a FAULT_HOOKS build instantiates them, and nothing synthesises
+// them).
+std::vector<fs::path> simulation_sources() {
+  std::vector<fs::path> out = rtl_sources();
+  const fs::path harness = fs::path(source_dir()) / "sim" / "harness";
+  out.push_back(harness / "fault_select.sv");
+  out.push_back(harness / "fault_hooks.sv");
+  return out;
+}
+
 // The contents of `files`, each with its name, into `h`; a missing one is an error naming it.
 void add_files(ContentHash& h, const std::vector<fs::path>& files) {
   for (const auto& p : files) {
@@ -85,7 +96,7 @@ std::string runtime_key(const Flavour& f, const Toolchain& t) {
 const std::string& rtl_digest() {
   static const std::string digest = [] {
     ContentHash h;
-    add_files(h, rtl_sources());
+    add_files(h, simulation_sources());
     return h.hex();
   }();
   return digest;
@@ -254,7 +265,9 @@ bool ensure_verilated(const fs::path& dir, const fs::path& cache, const RtlConfi
   std::ofstream(log, std::ios::trunc).flush();
   make_atomically(dir, cache, log, [&](const fs::path& tmp) {
     fs::create_directories(tmp);
-    verilate(tmp, build, flavour, tools, rtl_source_files(), cover_points_file(), log);
+    std::vector<std::string> sources;
+    for (const auto& p : simulation_sources()) sources.push_back(p.string());
+    verilate(tmp, build, flavour, tools, sources, cover_points_file(), log);
   });
   return true;
 }

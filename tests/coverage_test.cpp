@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -57,9 +58,14 @@ TEST_F(CoverageTest, CountsLinesTogglesAndUserPointsPerFile) {
           point(other, 30, "v_user/c", "cov_edge", "", 2) +
           point(other, 30, "v_user/c", "cov_edge", "", 3) +
           point(other, 31, "v_user/c", "cov_never", "", 0));
-  const std::string missing = (dir / "rtl" / "never.sv").string();
-  const CoverageSummary s = summarize_coverage(dat, (dir / "rtl").string(), {a, b, missing});
-  ASSERT_EQ(s.files.size(), 3u);
+  // never.sv: a module no run elaborated, 5 code lines (its comments and blank line are not);
+  // pkg.sv: a package, no points and not counted.
+  const std::string missing = write("rtl/never.sv",
+                                    "// a header\nmodule never (\n  input logic a_i\n);\n\n"
+                                    "  // why\n  assign x = a_i;\nendmodule\n");
+  const std::string pkg = write("rtl/pkg.sv", "// constants\npackage p;\nendpackage\n");
+  const CoverageSummary s = summarize_coverage(dat, (dir / "rtl").string(), {a, b, missing, pkg});
+  ASSERT_EQ(s.files.size(), 4u);
   const CoverageFile& fa = s.files[1].path == a ? s.files[1] : s.files[0];
   ASSERT_EQ(fa.path, a);
   EXPECT_EQ(fa.lines, 6);  // 10, 11, 12, 14, 20, 21
@@ -67,17 +73,24 @@ TEST_F(CoverageTest, CountsLinesTogglesAndUserPointsPerFile) {
   EXPECT_EQ(fa.uncovered_lines, std::vector<int>{14});
   EXPECT_EQ(fa.toggles, 2);
   EXPECT_EQ(fa.toggles_hit, 1);
-  EXPECT_EQ(s.lines, 7);  // a's 6 + b's 1; cover.sv's line is not rtl/
+  EXPECT_EQ(s.lines, 7 + 5);  // a's 6 + b's 1 + never's 5; cover.sv's line is not rtl/
   EXPECT_EQ(s.lines_hit, 6);
   EXPECT_EQ(s.toggles, 5);
   EXPECT_EQ(s.toggles_hit, 3);
-  EXPECT_NEAR(s.line_pct(), 100.0 * 6 / 7, 1e-9);
+  EXPECT_NEAR(s.line_pct(), 100.0 * 6 / 12, 1e-9);
   ASSERT_EQ(s.user.size(), 2u);
   EXPECT_EQ(s.user[0].name, "cov_edge");
   EXPECT_EQ(s.user[0].count, 5);
   EXPECT_EQ(s.user[1].name, "cov_never");
   EXPECT_EQ(s.user[1].count, 0);
   EXPECT_EQ(s.files_without_points, std::vector<std::string>{missing});
+  EXPECT_EQ(s.packages, std::vector<std::string>{pkg});
+  const auto never = std::find_if(s.files.begin(), s.files.end(),
+                                  [&](const CoverageFile& f) { return f.path == missing; });
+  ASSERT_NE(never, s.files.end());
+  EXPECT_FALSE(never->elaborated);
+  EXPECT_EQ(never->lines, 5);
+  EXPECT_EQ(never->lines_hit, 0);
 }
 
 TEST_F(CoverageTest, NamesTheLineOfAMalformedPoint) {

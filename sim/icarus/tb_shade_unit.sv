@@ -54,6 +54,7 @@ module tb_shade_unit #(
   parameter int MATERIAL_BUFFERS = 1,
   parameter int SPAN_SETUP       = 0,
   parameter int START_DEPTH      = 1,
+  parameter int DIFFUSE_MULTIPLY = 0,
   parameter int FAULT_HOOKS      = 0,
   // Capacity of the word memory (Icarus allocates it all: ~45 bytes a word); a longer stream
   // is a hard error, never a silent truncation.
@@ -92,7 +93,7 @@ module tb_shade_unit #(
     .SPECULAR_OUT_QUANT(SPECULAR_OUT_QUANT), .SPECULAR_OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW),
     .SPEC_PARAMS(SPEC_PARAMS),
     .MATERIAL_BUFFERS(MATERIAL_BUFFERS),
-    .SPAN_SETUP(SPAN_SETUP), .START_DEPTH(START_DEPTH),
+    .SPAN_SETUP(SPAN_SETUP), .START_DEPTH(START_DEPTH), .DIFFUSE_MULTIPLY(DIFFUSE_MULTIPLY),
     .FAULT_HOOKS(FAULT_HOOKS)
   ) dut (
     .clk_i(clk), .rst_ni(rst_n),
