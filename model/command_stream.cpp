@@ -13,6 +13,7 @@
 #include "model/json_error.h"
 #include "model/specular_units.h"
 #include "model/start_packing.h"
+#include "model/text_file.h"
 #include "model/unit_config_file.h"
 
 namespace shadesim {
@@ -471,10 +472,9 @@ CommandStream CommandStream::read_text(std::istream& is, const std::string& sour
 }
 
 void CommandStream::save(const std::string& path) const {
-  std::ofstream os(path);
-  if (!os) throw CommandStreamError(path + ": cannot open for writing");
-  write_text(os);
-  if (!os) throw CommandStreamError(path + ": write failed");
+  std::ostringstream text;
+  write_text(text);
+  write_text_file(path, text.str());
 }
 
 CommandStream CommandStream::load(const std::string& path) {

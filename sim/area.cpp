@@ -23,6 +23,7 @@
 
 #include "model/exponent_lut.h"
 #include "model/specular_units.h"
+#include "model/text_file.h"
 #include "sim/content_hash.h"
 #include "sim/process.h"
 #include "sim/rtl_files.h"
@@ -114,12 +115,7 @@ void write_atomically(const fs::path& p, const std::string& text) {
   // A unique temporary name in the same folder, then rename(2): readers see all or nothing.
   const fs::path tmp = p.string() + ".tmp." + std::to_string(::getpid()) + "." +
                        std::to_string(std::chrono::steady_clock::now().time_since_epoch().count());
-  {
-    std::ofstream os(tmp, std::ios::binary);
-    if (!os) throw std::runtime_error(tmp.string() + ": cannot open for writing");
-    os << text;
-    if (!os.flush()) throw std::runtime_error(tmp.string() + ": write failed");
-  }
+  write_text_file(tmp.string(), text);
   std::error_code ec;
   fs::rename(tmp, p, ec);
   if (ec) {

@@ -2,7 +2,6 @@
 // budget (host/scene_config.h), print each field with how it was derived, and the error the
 // bit-accurate model reaches on each scene with it.
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -18,6 +17,7 @@
 #include "model/command_stream.h"
 #include "model/shade_unit.h"
 #include "model/specular_units.h"
+#include "model/text_file.h"
 #include "sim/commands.h"
 #include "sim/number_checks.h"
 #include "sim/output_paths.h"
@@ -161,10 +161,7 @@ int run_config(const ConfigOptions& o) {
                          {"drift_share_lsb", m.drift_share_lsb},
                          {"coef_share_lsb", m.coef_share_lsb}}},
                        {"error", scenes}};
-    std::ofstream os(o.json_path);
-    if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
-    os << j.dump(2) << '\n';
-    if (!os) throw std::runtime_error(o.json_path + ": write failed");
+    write_text_file(o.json_path, j.dump(2) + '\n');
     std::cout << "\nconfig       " << o.json_path << " (use with --config)\n";
   }
   if (!missed.empty()) {

@@ -402,8 +402,7 @@ std::string csv_quote(const std::string& s) {
 }
 
 void write_csv(const std::string& path, const ExploreResult& r, int channels) {
-  std::ofstream os(path);
-  if (!os) throw std::runtime_error(path + ": cannot open for writing");
+  std::ostringstream os;
   os << "index,phase,stage,knob,value,valid,config,max_code_lsb";
   for (int c = 0; c < channels; ++c) os << ",max_code_lsb_ch" << c;
   os << ",mean_code_lsb";
@@ -429,6 +428,7 @@ void write_csv(const std::string& path, const ExploreResult& r, int channels) {
        << p.figures.area.cells << ',' << (p.meets_budget ? 1 : 0) << ',' << (p.pareto ? 1 : 0)
        << ',' << (r.chosen == i ? 1 : 0) << '\n';
   }
+  write_text_file(path, os.str());
 }
 
 void print_table(std::ostream& os, const std::vector<const ExplorePoint*>& rows, int channels,
