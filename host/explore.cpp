@@ -429,30 +429,40 @@ EstimateError estimate_error(const ExploreResult& result) {
   return e;
 }
 
-ExploreResult explore(ExploreScenes& scenes, const UnitConfig& start, const AreaFunction& area,
-                      const ExploreOptions& options, const ExploreProgress& progress) {
+namespace {
+
+void check_options(const ExploreOptions& options) {
   if (!(options.budget_lsb >= 0) || !std::isfinite(options.budget_lsb)) {
     throw std::invalid_argument("explore: budget " + std::to_string(options.budget_lsb) +
                                 " LSB, expected a finite value >= 0");
   }
   if (options.jobs < 1) throw std::invalid_argument("explore: jobs must be >= 1");
-  ExploreResult r;
-  r.start = start;
-  Evaluator eval(scenes, area, options, progress, r.points);
+}
 
+// The start point, evaluated and logged; an invalid start is an error.
+std::size_t evaluate_start(Evaluator& eval, ExploreResult& r, const UnitConfig& start) {
   ExplorePoint sp;
   sp.config = start;
-  r.start_index = eval.run("start", {sp}).front();
-  const ExplorePoint start_point = r.points[r.start_index];
+  const std::size_t index = eval.run("start", {sp}).front();
+  const ExplorePoint start_point = r.points[index];
   if (!start_point.valid)
     throw std::invalid_argument("explore: start " + start_point.invalid_reason);
   r.log.push_back("start " + start.to_string() + ": " + describe(start_point) +
                   (start_point.meets_budget ? "" : " - breaks the budget"));
+  return index;
+}
 
-  // 1. Per-stage sweep: each knob alone.
-  const std::vector<Knob> knobs = knobs_for(start);
+// The per-stage sweep's points (indices into the result's points) and the knob each sweeps.
+struct StageSweep {
+  std::vector<std::size_t> points;
+  std::vector<std::size_t> knob;
+};
+
+// 1. Every knob's values alone, the other knobs at the start configuration.
+StageSweep sweep_each_knob(Evaluator& eval, const std::vector<Knob>& knobs,
+                           const UnitConfig& start) {
   std::vector<ExplorePoint> batch;
-  std::vector<std::pair<std::size_t, std::size_t>> owner;  // (knob, value index) per batch entry
+  StageSweep sweep;
   for (std::size_t k = 0; k < knobs.size(); ++k) {
     for (std::size_t v = 0; v < knobs[k].values.size(); ++v) {
       ExplorePoint p;
@@ -462,21 +472,33 @@ ExploreResult explore(ExploreScenes& scenes, const UnitConfig& start, const Area
       p.knob = knobs[k].name;
       p.value = knobs[k].labels[v];
       batch.push_back(std::move(p));
-      owner.emplace_back(k, v);
+      sweep.knob.push_back(k);
     }
   }
-  const std::vector<std::size_t> swept = eval.run("per-stage", std::move(batch));
+  sweep.points = eval.run("per-stage", std::move(batch));
+  return sweep;
+}
 
+// Knob k's cheapest swept value that meets the budget alone, if any.
+std::optional<std::size_t> cheapest_meeting_budget(const std::vector<ExplorePoint>& points,
+                                                   const StageSweep& sweep, std::size_t k) {
+  std::optional<std::size_t> best;
+  for (std::size_t i = 0; i < sweep.points.size(); ++i) {
+    if (sweep.knob[i] != k) continue;
+    const ExplorePoint& p = points[sweep.points[i]];
+    if (!p.valid || !p.meets_budget) continue;
+    if (!best || cheaper(p, points[*best])) best = sweep.points[i];
+  }
+  return best;
+}
+
+// The start with each searched knob at its per-stage minimum (else its start value), logged.
+UnitConfig combine_minima(ExploreResult& r, const std::vector<Knob>& knobs, const UnitConfig& start,
+                          const StageSweep& sweep) {
   UnitConfig joint = start;
   for (std::size_t k = 0; k < knobs.size(); ++k) {
     if (!knobs[k].searched) continue;
-    std::optional<std::size_t> best;
-    for (std::size_t i = 0; i < swept.size(); ++i) {
-      if (owner[i].first != k) continue;
-      const ExplorePoint& p = r.points[swept[i]];
-      if (!p.valid || !p.meets_budget) continue;
-      if (!best || cheaper(p, r.points[*best])) best = swept[i];
-    }
+    const std::optional<std::size_t> best = cheapest_meeting_budget(r.points, sweep, k);
     if (best) {
       knobs[k].apply(joint, knobs[k].read(r.points[*best].config));
       r.log.push_back("stage " + knobs[k].stage + ": " + knobs[k].name + " = " +
@@ -487,8 +509,71 @@ ExploreResult explore(ExploreScenes& scenes, const UnitConfig& start, const Area
                       " - no value meets the budget alone; kept " + knob_setting(knobs[k], start));
     }
   }
+  return joint;
+}
 
-  // 2. Joint refinement.
+// Each searched knob one step wider than in `cur` (numeric knobs the next value, choices back to
+// the start's), as candidate points.
+std::vector<ExplorePoint> wider_steps(const std::vector<Knob>& knobs, const UnitConfig& cur,
+                                      const UnitConfig& start) {
+  std::vector<ExplorePoint> candidates;
+  for (const Knob& k : knobs) {
+    if (!k.searched) continue;
+    const int v = k.read(cur);
+    const auto it = std::find(k.values.begin(), k.values.end(), v);
+    std::optional<int> wider;
+    if (k.choice) {
+      if (v != k.read(start)) wider = k.read(start);
+    } else if (it != k.values.end() && it + 1 != k.values.end()) {
+      wider = *(it + 1);
+    }
+    if (!wider) continue;
+    ExplorePoint c;
+    c.config = cur;
+    k.apply(c.config, *wider);
+    c.stage = k.stage;
+    c.knob = k.name;
+    c.value = knob_setting(k, c.config);
+    candidates.push_back(std::move(c));
+  }
+  return candidates;
+}
+
+// The step to take among the points tried from `current`: the cheapest that meets the budget,
+// else the most error reduction per area added, else (all invalid) the first, so widening still
+// ends. `why` says which.
+std::size_t pick_step(const std::vector<ExplorePoint>& points,
+                      const std::vector<std::size_t>& tried, std::size_t current,
+                      std::string& why) {
+  std::optional<std::size_t> pick;
+  for (std::size_t i : tried) {
+    const ExplorePoint& p = points[i];
+    if (p.valid && p.meets_budget && (!pick || cheaper(p, points[*pick]))) pick = i;
+  }
+  why = "meets the budget, cheapest such step";
+  if (pick) return *pick;
+  const bool cur_valid = points[current].valid;
+  const double cur_err = cur_valid ? points[current].figures.error.max_real_lsb +
+                                         points[current].figures.error.mean_code_lsb
+                                   : std::numeric_limits<double>::infinity();
+  const double cur_area = cur_valid ? points[current].figures.area.cells : 0.0;
+  double best_score = -std::numeric_limits<double>::infinity();
+  for (std::size_t i : tried) {
+    const ExplorePoint& p = points[i];
+    if (!p.valid) continue;
+    const double gain = cur_err - (p.figures.error.max_real_lsb + p.figures.error.mean_code_lsb);
+    const double cost = std::max(p.figures.area.cells - cur_area, 1e-9);
+    const double score = std::isinf(gain) ? -p.figures.area.cells : gain / cost;
+    if (!pick || score > best_score) best_score = score, pick = i;
+  }
+  why = "most error reduction per area added";
+  return pick ? *pick : tried.front();
+}
+
+// 2. Joint refinement: the per-stage minima combined, then one knob a step wider at a time until
+// the budget is met or no step is left. Returns the last point.
+std::size_t refine_jointly(Evaluator& eval, ExploreResult& r, const std::vector<Knob>& knobs,
+                           const UnitConfig& start, const UnitConfig& joint) {
   ExplorePoint jp;
   jp.config = joint;
   std::size_t current = eval.run("joint", {jp}).front();
@@ -502,27 +587,7 @@ ExploreResult explore(ExploreScenes& scenes, const UnitConfig& start, const Area
                     describe(r.points[current]));
   }
   for (int step = 1; !(r.points[current].valid && r.points[current].meets_budget); ++step) {
-    const UnitConfig& cur = r.points[current].config;
-    std::vector<ExplorePoint> candidates;
-    for (const Knob& k : knobs) {
-      if (!k.searched) continue;
-      const int v = k.read(cur);
-      const auto it = std::find(k.values.begin(), k.values.end(), v);
-      std::optional<int> wider;
-      if (k.choice) {
-        if (v != k.read(start)) wider = k.read(start);
-      } else if (it != k.values.end() && it + 1 != k.values.end()) {
-        wider = *(it + 1);
-      }
-      if (!wider) continue;
-      ExplorePoint c;
-      c.config = cur;
-      k.apply(c.config, *wider);
-      c.stage = k.stage;
-      c.knob = k.name;
-      c.value = knob_setting(k, c.config);
-      candidates.push_back(std::move(c));
-    }
+    std::vector<ExplorePoint> candidates = wider_steps(knobs, r.points[current].config, start);
     if (candidates.empty()) {
       r.log.push_back(
           "joint: every knob is at its widest swept value and the budget is still broken");
@@ -530,45 +595,34 @@ ExploreResult explore(ExploreScenes& scenes, const UnitConfig& start, const Area
     }
     const std::vector<std::size_t> tried =
         eval.run("joint step " + std::to_string(step), std::move(candidates));
-    // Prefer the cheapest candidate that meets the budget; otherwise the most error bought per
-    // area.
-    std::optional<std::size_t> pick;
-    for (std::size_t i : tried) {
-      const ExplorePoint& p = r.points[i];
-      if (p.valid && p.meets_budget && (!pick || cheaper(p, r.points[*pick]))) pick = i;
-    }
-    std::string why = "meets the budget, cheapest such step";
-    if (!pick) {
-      const bool cur_valid = r.points[current].valid;
-      const double cur_err = cur_valid ? r.points[current].figures.error.max_real_lsb +
-                                             r.points[current].figures.error.mean_code_lsb
-                                       : std::numeric_limits<double>::infinity();
-      const double cur_area = cur_valid ? r.points[current].figures.area.cells : 0.0;
-      double best_score = -std::numeric_limits<double>::infinity();
-      for (std::size_t i : tried) {
-        const ExplorePoint& p = r.points[i];
-        if (!p.valid) continue;
-        const double gain =
-            cur_err - (p.figures.error.max_real_lsb + p.figures.error.mean_code_lsb);
-        const double cost = std::max(p.figures.area.cells - cur_area, 1e-9);
-        const double score = std::isinf(gain) ? -p.figures.area.cells : gain / cost;
-        if (!pick || score > best_score) best_score = score, pick = i;
-      }
-      why = "most error reduction per area added";
-      if (!pick) pick = tried.front();  // all invalid: move anyway, widening terminates
-    }
-    if (*pick == current) {
+    std::string why;
+    const std::size_t pick = pick_step(r.points, tried, current, why);
+    if (pick == current) {
       r.log.push_back("joint: no step changes the configuration; stopping");
       break;
     }
-    current = *pick;
+    current = pick;
     r.log.push_back(
         "joint step " + std::to_string(step) + ": " + r.points[current].knob + " -> " +
         r.points[current].value + " (" + why + "): " +
         (r.points[current].valid ? describe(r.points[current]) : r.points[current].invalid_reason));
   }
-  if (r.points[current].valid && r.points[current].meets_budget) r.chosen = current;
+  return current;
+}
 
+}  // namespace
+
+ExploreResult explore(ExploreScenes& scenes, const UnitConfig& start, const AreaFunction& area,
+                      const ExploreOptions& options, const ExploreProgress& progress) {
+  check_options(options);
+  ExploreResult r;
+  r.start = start;
+  Evaluator eval(scenes, area, options, progress, r.points);
+  r.start_index = evaluate_start(eval, r, start);
+  const std::vector<Knob> knobs = knobs_for(start);
+  const UnitConfig joint = combine_minima(r, knobs, start, sweep_each_knob(eval, knobs, start));
+  const std::size_t last = refine_jointly(eval, r, knobs, start, joint);
+  if (r.points[last].valid && r.points[last].meets_budget) r.chosen = last;
   mark_pareto(r.points, start.out_bits);
   return r;
 }

@@ -177,6 +177,176 @@ ViewPoint plane_point(const ViewPoint& inside, const ViewPoint& outside, const C
   return p;
 }
 
+// The camera's view of a scene: mesh vertices to view space and on to the screen, and the
+// planes a triangle that crosses the near plane is clipped to.
+class Projection {
+ public:
+  explicit Projection(const Scene& scene);
+  ViewPoint view_point(const Vec3& position, const Vec3& normal) const;
+  ProjectedVertex project(const ViewPoint& p) const;
+  // Clips the convex polygon's `corners` points to each plane in turn (Sutherland-Hodgman),
+  // keeping the vertex order (so the winding); returns the corners left.
+  int clip(ViewPoint* polygon, int corners) const;
+
+ private:
+  const Scene& scene_;
+  const Camera& camera_;
+  const ViewBasis basis_;
+  const bool perspective_;
+  const double pixels_per_unit_;
+  const double near_, far_;
+  // The near plane, then the guard band, kGuardBandPixels beyond each image edge.
+  ClipPlane planes_[kClipPlanes];
+};
+
+Projection::Projection(const Scene& scene)
+    : scene_(scene),
+      camera_(scene.camera),
+      basis_(view_basis(camera_)),
+      perspective_(camera_.kind == Camera::Kind::kPerspective),
+      pixels_per_unit_(perspective_
+                           ? (scene.height / 2.0) / std::tan(camera_.fov_y_deg * kPi / 360.0)
+                           : scene.height / camera_.ortho_height),
+      near_(camera_.near_plane),
+      far_(camera_.far_plane) {
+  const double gx = (scene.width / 2.0 + kGuardBandPixels) / pixels_per_unit_;
+  const double gy = (scene.height / 2.0 + kGuardBandPixels) / pixels_per_unit_;
+  const double gd = perspective_ ? 1.0 : 0.0, gc = perspective_ ? 0.0 : 1.0;
+  const ClipPlane planes[kClipPlanes] = {
+      {0, 0, 1, -near_, true},          {1, 0, gx * gd, gx * gc, false},  // right >= -gx (depth)
+      {-1, 0, gx * gd, gx * gc, false},                                   // right <= gx (depth)
+      {0, 1, gy * gd, gy * gc, false},                                    // up >= -gy (depth)
+      {0, -1, gy * gd, gy * gc, false},                                   // up <= gy (depth)
+  };
+  std::copy(planes, planes + kClipPlanes, planes_);
+}
+
+ViewPoint Projection::view_point(const Vec3& position, const Vec3& normal) const {
+  const Vec3 rel = position - camera_.position;
+  ViewPoint p;
+  p.right = dot(rel, basis_.right);
+  p.up = dot(rel, basis_.up);
+  p.depth = dot(rel, basis_.forward);
+  p.world = position;
+  p.normal = normal;
+  return p;
+}
+
+ProjectedVertex Projection::project(const ViewPoint& p) const {
+  ProjectedVertex pv;
+  pv.behind_near = !(p.depth >= near_);
+  if (pv.behind_near) return pv;
+  const double scale = perspective_ ? pixels_per_unit_ / p.depth : pixels_per_unit_;
+  pv.screen.x = snap(scene_.width / 2.0 + p.right * scale);
+  pv.screen.y = snap(scene_.height / 2.0 - p.up * scale);
+  pv.screen.z = perspective_ ? far_ * (p.depth - near_) / (p.depth * (far_ - near_)) : p.depth;
+  pv.screen.normal = p.normal;
+  pv.screen.to_eye = normalize(camera_.position - p.world);
+  pv.out_of_range = !(std::fabs(pv.screen.x) <= kMaxScreenCoordinate &&
+                      std::fabs(pv.screen.y) <= kMaxScreenCoordinate);
+  return pv;
+}
+
+int Projection::clip(ViewPoint* polygon, int corners) const {
+  ViewPoint next_polygon[3 + kClipPlanes];
+  for (int q = 0; q < kClipPlanes && corners > 0; ++q) {
+    const ClipPlane& plane = planes_[q];
+    int kept = 0;
+    for (int k = 0; k < corners; ++k) {
+      const ViewPoint& cur = polygon[k];
+      const ViewPoint& nxt = polygon[(k + 1) % corners];
+      const bool cur_in = plane.inside(cur), nxt_in = plane.inside(nxt);
+      if (cur_in) next_polygon[kept++] = cur;
+      if (cur_in != nxt_in) {
+        next_polygon[kept++] =
+            cur_in ? plane_point(cur, nxt, plane, near_) : plane_point(nxt, cur, plane, near_);
+      }
+    }
+    corners = kept;
+    std::copy(next_polygon, next_polygon + kept, polygon);
+  }
+  return corners;
+}
+
+// The screen triangles of a scene, counted into ProjectStats as they are kept or dropped.
+class TriangleSink {
+ public:
+  TriangleSink(ProjectStats& stats, std::vector<ScreenTriangle>& out) : s_(stats), out_(out) {}
+
+  // One triangle wholly in front of the near plane: range check, back-face cull, emit.
+  void emit(const ProjectedVertex& a, const ProjectedVertex& b, const ProjectedVertex& c,
+            int material, int object) {
+    if (a.out_of_range || b.out_of_range || c.out_of_range) {
+      ++s_.dropped_out_of_range;
+      return;
+    }
+    // Exact sign of the snapped area: counter-clockwise from outside is negative on a y-down
+    // screen.
+    constexpr double kGrid = double(1 << kSubpixelBits);
+    auto grid = [](double v) { return static_cast<int64_t>(v * kGrid); };
+    const int64_t ax = grid(a.screen.x), ay = grid(a.screen.y);
+    const int64_t bx = grid(b.screen.x), by = grid(b.screen.y);
+    const int64_t cx = grid(c.screen.x), cy = grid(c.screen.y);
+    const Int128 area = Int128(bx - ax) * (cy - ay) - Int128(by - ay) * (cx - ax);
+    if (area >= 0) {
+      ++s_.culled_back_face;
+      return;
+    }
+    ScreenTriangle st;
+    st.v = {a.screen, b.screen, c.screen};
+    st.material = material;
+    st.object = object;
+    st.parent = -1;
+    out_.push_back(st);
+    ++s_.emitted;
+  }
+
+ private:
+  ProjectStats& s_;
+  std::vector<ScreenTriangle>& out_;
+};
+
+// A triangle that crosses the near plane (or has a NaN depth, which counts as behind). Its clip
+// points land up to (extent / near) pixels off-screen, so it is clipped to the guard band as
+// well, then fanned into triangles.
+void clip_and_emit(const Projection& projection, const ViewPoint (&corners)[3], int material,
+                   int object, ProjectStats& s, TriangleSink& sink) {
+  ++s.clipped_near;
+  ViewPoint polygon[3 + kClipPlanes];
+  std::copy(corners, corners + 3, polygon);
+  const int n = projection.clip(polygon, 3);
+  ProjectedVertex corner[3 + kClipPlanes];
+  for (int k = 0; k < n; ++k) corner[k] = projection.project(polygon[k]);
+  for (int k = 1; k + 1 < n; ++k) {
+    ++s.clipped_pieces;
+    sink.emit(corner[0], corner[k], corner[k + 1], material, object);
+  }
+}
+
+void project_object(const Projection& projection, const Object& object, int object_id,
+                    ProjectStats& s, TriangleSink& sink) {
+  const Mesh& mesh = object.mesh;
+  std::vector<ViewPoint> view(mesh.positions.size());
+  std::vector<ProjectedVertex> projected(mesh.positions.size());
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    view[i] = projection.view_point(mesh.positions[i], mesh.normals[i]);
+    projected[i] = projection.project(view[i]);
+  }
+  for (const auto& t : mesh.triangles) {
+    ++s.triangles_in;
+    const int behind = int(projected[t[0]].behind_near) + int(projected[t[1]].behind_near) +
+                       int(projected[t[2]].behind_near);
+    if (behind == 0) {
+      sink.emit(projected[t[0]], projected[t[1]], projected[t[2]], object.material, object_id);
+    } else if (behind == 3) {
+      ++s.culled_near;
+    } else {
+      const ViewPoint corners[3] = {view[t[0]], view[t[1]], view[t[2]]};
+      clip_and_emit(projection, corners, object.material, object_id, s, sink);
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<CoveredRow> covered_rows(const ScreenTriangle& triangle, int width, int height) {
@@ -191,130 +361,12 @@ std::vector<ScreenTriangle> project_scene(const Scene& scene, ProjectStats* stat
   ProjectStats local;
   ProjectStats& s = stats ? *stats : local;
   s = ProjectStats{};
-  const Camera& camera = scene.camera;
-  const ViewBasis basis = view_basis(camera);
-  const bool perspective = camera.kind == Camera::Kind::kPerspective;
-  const double pixels_per_unit =
-      perspective ? (scene.height / 2.0) / std::tan(camera.fov_y_deg * kPi / 360.0)
-                  : scene.height / camera.ortho_height;
-  const double near = camera.near_plane, far = camera.far_plane;
-
-  // For triangles crossing the near plane: the near plane, then the guard band,
-  // kGuardBandPixels beyond each image edge.
-  const double gx = (scene.width / 2.0 + kGuardBandPixels) / pixels_per_unit;
-  const double gy = (scene.height / 2.0 + kGuardBandPixels) / pixels_per_unit;
-  const double gd = perspective ? 1.0 : 0.0, gc = perspective ? 0.0 : 1.0;
-  const ClipPlane planes[kClipPlanes] = {
-      {0, 0, 1, -near, true},           {1, 0, gx * gd, gx * gc, false},  // right >= -gx (depth)
-      {-1, 0, gx * gd, gx * gc, false},                                   // right <= gx (depth)
-      {0, 1, gy * gd, gy * gc, false},                                    // up >= -gy (depth)
-      {0, -1, gy * gd, gy * gc, false},                                   // up <= gy (depth)
-  };
-  auto project = [&](const ViewPoint& p) {
-    ProjectedVertex pv;
-    pv.behind_near = !(p.depth >= near);
-    if (pv.behind_near) return pv;
-    const double scale = perspective ? pixels_per_unit / p.depth : pixels_per_unit;
-    pv.screen.x = snap(scene.width / 2.0 + p.right * scale);
-    pv.screen.y = snap(scene.height / 2.0 - p.up * scale);
-    pv.screen.z = perspective ? far * (p.depth - near) / (p.depth * (far - near)) : p.depth;
-    pv.screen.normal = p.normal;
-    pv.screen.to_eye = normalize(camera.position - p.world);
-    pv.out_of_range = !(std::fabs(pv.screen.x) <= kMaxScreenCoordinate &&
-                        std::fabs(pv.screen.y) <= kMaxScreenCoordinate);
-    return pv;
-  };
-
+  const Projection projection(scene);
   std::vector<ScreenTriangle> out;
-  // One triangle wholly in front of the near plane: range check, back-face cull, emit.
-  auto emit = [&](const ProjectedVertex& a, const ProjectedVertex& b, const ProjectedVertex& c,
-                  int material, int object) {
-    if (a.out_of_range || b.out_of_range || c.out_of_range) {
-      ++s.dropped_out_of_range;
-      return;
-    }
-    // Exact sign of the snapped area: counter-clockwise from outside is negative on a y-down
-    // screen.
-    constexpr double kGrid = double(1 << kSubpixelBits);
-    auto grid = [](double v) { return static_cast<int64_t>(v * kGrid); };
-    const int64_t ax = grid(a.screen.x), ay = grid(a.screen.y);
-    const int64_t bx = grid(b.screen.x), by = grid(b.screen.y);
-    const int64_t cx = grid(c.screen.x), cy = grid(c.screen.y);
-    const Int128 area = Int128(bx - ax) * (cy - ay) - Int128(by - ay) * (cx - ax);
-    if (area >= 0) {
-      ++s.culled_back_face;
-      return;
-    }
-    ScreenTriangle st;
-    st.v = {a.screen, b.screen, c.screen};
-    st.material = material;
-    st.object = object;
-    st.parent = -1;
-    out.push_back(st);
-    ++s.emitted;
-  };
-
-  std::vector<ViewPoint> view;
-  std::vector<ProjectedVertex> projected;
+  TriangleSink sink(s, out);
   for (size_t object_index = 0; object_index < scene.objects.size(); ++object_index) {
-    const Object& object = scene.objects[object_index];
-    const int object_id = static_cast<int>(object_index);
-    const Mesh& mesh = object.mesh;
-    view.assign(mesh.positions.size(), ViewPoint{});
-    projected.assign(mesh.positions.size(), ProjectedVertex{});
-    for (size_t i = 0; i < mesh.positions.size(); ++i) {
-      const Vec3 rel = mesh.positions[i] - camera.position;
-      ViewPoint& p = view[i];
-      p.right = dot(rel, basis.right);
-      p.up = dot(rel, basis.up);
-      p.depth = dot(rel, basis.forward);
-      p.world = mesh.positions[i];
-      p.normal = mesh.normals[i];
-      projected[i] = project(p);
-    }
-    for (const auto& t : mesh.triangles) {
-      ++s.triangles_in;
-      const int behind = int(projected[t[0]].behind_near) + int(projected[t[1]].behind_near) +
-                         int(projected[t[2]].behind_near);
-      if (behind == 0) {
-        emit(projected[t[0]], projected[t[1]], projected[t[2]], object.material, object_id);
-        continue;
-      }
-      if (behind == 3) {
-        ++s.culled_near;
-        continue;
-      }
-      // Crosses the near plane (or has a NaN depth, which counts as behind). Its clip points land
-      // up to (extent / near) pixels off-screen, so it is clipped to the guard band as well: the
-      // polygon is clipped to each plane in turn (Sutherland-Hodgman), keeping the vertex order
-      // (so the winding), then fanned into triangles.
-      ++s.clipped_near;
-      ViewPoint polygon[3 + kClipPlanes], next_polygon[3 + kClipPlanes];
-      int corners = 3;
-      for (int k = 0; k < 3; ++k) polygon[k] = view[t[k]];
-      for (int q = 0; q < kClipPlanes && corners > 0; ++q) {
-        const ClipPlane& plane = planes[q];
-        int kept = 0;
-        for (int k = 0; k < corners; ++k) {
-          const ViewPoint& cur = polygon[k];
-          const ViewPoint& nxt = polygon[(k + 1) % corners];
-          const bool cur_in = plane.inside(cur), nxt_in = plane.inside(nxt);
-          if (cur_in) next_polygon[kept++] = cur;
-          if (cur_in != nxt_in) {
-            next_polygon[kept++] =
-                cur_in ? plane_point(cur, nxt, plane, near) : plane_point(nxt, cur, plane, near);
-          }
-        }
-        corners = kept;
-        std::copy(next_polygon, next_polygon + kept, polygon);
-      }
-      ProjectedVertex corner[3 + kClipPlanes];
-      for (int k = 0; k < corners; ++k) corner[k] = project(polygon[k]);
-      for (int k = 1; k + 1 < corners; ++k) {
-        ++s.clipped_pieces;
-        emit(corner[0], corner[k], corner[k + 1], object.material, object_id);
-      }
-    }
+    project_object(projection, scene.objects[object_index], static_cast<int>(object_index), s,
+                   sink);
   }
   return out;
 }

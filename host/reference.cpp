@@ -25,13 +25,9 @@ std::array<double, 3> barycentric(const ScreenTriangle& t, double x, double y) {
   return w;
 }
 
-}  // namespace
-
-// One body for the reference and its variants, so they differ only in what the variant swaps.
-static ReferenceImage render_shading(const std::vector<ScreenTriangle>& triangles,
-                                     const std::vector<int32_t>& owner, int width, int height,
-                                     const Scene& scene, int channels,
-                                     const ShadingVariant& variant) {
+void check_shading_inputs(const std::vector<ScreenTriangle>& triangles,
+                          const std::vector<int32_t>& owner, int width, int height,
+                          const Scene& scene, int channels, const ShadingVariant& variant) {
   if (channels != 1 && channels != 3) {
     throw std::invalid_argument("render_reference: channels " + std::to_string(channels) +
                                 ", expected 1 or 3");
@@ -61,13 +57,82 @@ static ReferenceImage render_shading(const std::vector<ScreenTriangle>& triangle
                                 " specular functions for " +
                                 std::to_string(scene.materials.size()) + " materials");
   }
-  std::vector<Vec3> L, H_inf;
-  const Vec3 V = normalize(scene.camera.position - scene.camera.target);
-  for (const DirectionalLight& light : scene.lights) {
-    L.push_back(normalize(light.direction));
-    H_inf.push_back(normalize(L.back() + V));
-  }
+}
 
+// The scene's fixed directions: V toward an eye at infinity, and per light L and the halfway
+// vector H for that eye.
+struct LightDirections {
+  Vec3 V;
+  std::vector<Vec3> L, H_inf;
+};
+
+LightDirections light_directions(const Scene& scene) {
+  LightDirections d;
+  d.V = normalize(scene.camera.position - scene.camera.target);
+  for (const DirectionalLight& light : scene.lights) {
+    d.L.push_back(normalize(light.direction));
+    d.H_inf.push_back(normalize(d.L.back() + d.V));
+  }
+  return d;
+}
+
+// One pixel's colour, unclamped, at (x, y) in triangle t: the exact cosines from the
+// interpolated normal and to-eye vectors, or the variant's quadratics `q` when given.
+Vec3 shade_pixel(const ScreenTriangle& t, const TriangleSeries* q, double x, double y,
+                 const Scene& scene, const LightDirections& d, const ShadingVariant& variant) {
+  const Material& mat = scene.materials[static_cast<std::size_t>(t.material)];
+  const auto w = barycentric(t, x, y);
+  const Vec3 n = t.v[0].normal * w[0] + t.v[1].normal * w[1] + t.v[2].normal * w[2];
+  const Vec3 e = t.v[0].to_eye * w[0] + t.v[1].to_eye * w[1] + t.v[2].to_eye * w[2];
+  const double n_len = length(n);
+  Vec3 colour{mat.ambient.x * scene.ambient_light.x, mat.ambient.y * scene.ambient_light.y,
+              mat.ambient.z * scene.ambient_light.z};
+  const bool phong = mat.specular_model == SpecularModel::kPhong;
+  // Phong's V: unit toward the eye; the interpolated to-eye vector is not unit.
+  const double e_len = length(e);
+  const Vec3 V_phong = scene.eye_at_infinity ? d.V : (e_len > 0 ? e / e_len : Vec3{});
+  for (std::size_t l = 0; l < d.L.size(); ++l) {
+    double t_d = 0.0, t_s = 0.0;
+    if (q) {
+      t_d = q->degenerate ? 0.0 : q->diffuse[l].eval(x, y);
+      t_s = q->degenerate ? 0.0 : q->specular[l].eval(x, y);
+    } else if (n_len > 0) {
+      t_d = dot(n, d.L[l]) / n_len;
+      if (phong) {
+        // R = L reflected about the unit normal.
+        const Vec3 n_unit = n / n_len;
+        const Vec3 R = n_unit * (2.0 * dot(n_unit, d.L[l])) - d.L[l];
+        t_s = dot(R, V_phong);
+      } else {
+        const Vec3 H = scene.eye_at_infinity ? d.H_inf[l] : normalize(e + d.L[l]);
+        t_s = dot(n, H) / n_len;
+      }
+    }
+    const double diffuse = std::max(0.0, t_d);
+    // No specular where N.L <= 0: a highlight never shines through the terminator.
+    double specular = 0.0;
+    if (t_d > 0) {
+      specular = variant.specular.empty()
+                     ? std::pow(q ? clamp01(t_s) : std::max(0.0, t_s), mat.exponent)
+                     : variant.specular[static_cast<std::size_t>(t.material)](t_s);
+    }
+    const Vec3& lc = scene.lights[l].colour;
+    colour.x += lc.x * (mat.diffuse.x * diffuse + mat.specular.x * specular);
+    colour.y += lc.y * (mat.diffuse.y * diffuse + mat.specular.y * specular);
+    colour.z += lc.z * (mat.diffuse.z * diffuse + mat.specular.z * specular);
+  }
+  return colour;
+}
+
+}  // namespace
+
+// One body for the reference and its variants, so they differ only in what the variant swaps.
+static ReferenceImage render_shading(const std::vector<ScreenTriangle>& triangles,
+                                     const std::vector<int32_t>& owner, int width, int height,
+                                     const Scene& scene, int channels,
+                                     const ShadingVariant& variant) {
+  check_shading_inputs(triangles, owner, width, height, scene, channels, variant);
+  const LightDirections directions = light_directions(scene);
   ReferenceImage img;
   img.width = width;
   img.height = height;
@@ -84,51 +149,10 @@ static ReferenceImage render_shading(const std::vector<ScreenTriangle>& triangle
                                     std::to_string(o) + ", expected -1.." +
                                     std::to_string(triangles.size()) + " - 1");
       }
-      const ScreenTriangle& t = triangles[static_cast<std::size_t>(o)];
-      const Material& mat = scene.materials[static_cast<std::size_t>(t.material)];
-      const auto w = barycentric(t, px + 0.5, py + 0.5);
-      const Vec3 n = t.v[0].normal * w[0] + t.v[1].normal * w[1] + t.v[2].normal * w[2];
-      const Vec3 e = t.v[0].to_eye * w[0] + t.v[1].to_eye * w[1] + t.v[2].to_eye * w[2];
-      const double n_len = length(n);
-      Vec3 colour{mat.ambient.x * scene.ambient_light.x, mat.ambient.y * scene.ambient_light.y,
-                  mat.ambient.z * scene.ambient_light.z};
-      const bool phong = mat.specular_model == SpecularModel::kPhong;
-      // Phong's V: unit toward the eye; the interpolated to-eye vector is not unit.
-      const double e_len = length(e);
-      const Vec3 V_phong = scene.eye_at_infinity ? V : (e_len > 0 ? e / e_len : Vec3{});
       const TriangleSeries* q =
           variant.quadratics ? &(*variant.quadratics)[static_cast<std::size_t>(o)] : nullptr;
-      const double x = px + 0.5, y = py + 0.5;
-      for (std::size_t l = 0; l < L.size(); ++l) {
-        double t_d = 0.0, t_s = 0.0;
-        if (q) {
-          t_d = q->degenerate ? 0.0 : q->diffuse[l].eval(x, y);
-          t_s = q->degenerate ? 0.0 : q->specular[l].eval(x, y);
-        } else if (n_len > 0) {
-          t_d = dot(n, L[l]) / n_len;
-          if (phong) {
-            // R = L reflected about the unit normal.
-            const Vec3 n_unit = n / n_len;
-            const Vec3 R = n_unit * (2.0 * dot(n_unit, L[l])) - L[l];
-            t_s = dot(R, V_phong);
-          } else {
-            const Vec3 H = scene.eye_at_infinity ? H_inf[l] : normalize(e + L[l]);
-            t_s = dot(n, H) / n_len;
-          }
-        }
-        const double diffuse = std::max(0.0, t_d);
-        // No specular where N.L <= 0: a highlight never shines through the terminator.
-        double specular = 0.0;
-        if (t_d > 0) {
-          specular = variant.specular.empty()
-                         ? std::pow(q ? clamp01(t_s) : std::max(0.0, t_s), mat.exponent)
-                         : variant.specular[static_cast<std::size_t>(t.material)](t_s);
-        }
-        const Vec3& lc = scene.lights[l].colour;
-        colour.x += lc.x * (mat.diffuse.x * diffuse + mat.specular.x * specular);
-        colour.y += lc.y * (mat.diffuse.y * diffuse + mat.specular.y * specular);
-        colour.z += lc.z * (mat.diffuse.z * diffuse + mat.specular.z * specular);
-      }
+      const Vec3 colour = shade_pixel(triangles[static_cast<std::size_t>(o)], q, px + 0.5, py + 0.5,
+                                      scene, directions, variant);
       double* out = &img.values[pixel * static_cast<std::size_t>(channels)];
       out[0] = clamp01(colour.x);
       if (channels == 3) {

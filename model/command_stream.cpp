@@ -13,6 +13,7 @@
 #include "model/json_error.h"
 #include "model/specular_units.h"
 #include "model/start_packing.h"
+#include "model/text_file.h"
 #include "model/unit_config_file.h"
 
 namespace shadesim {
@@ -321,6 +322,180 @@ void CommandStream::write_text(std::ostream& os) const {
   }
 }
 
+namespace {
+
+constexpr int64_t kField16 = 0xFFFF;
+
+// One line of the text form after its first word `op`, and where it is (file:line: ) for the
+// errors.
+struct TextLine {
+  std::istringstream& ls;
+  const std::string& loc;
+  const std::string& op;
+
+  // Reads one integer of a bounded field; a value outside [lo, hi] is an error, never truncated.
+  int64_t read_int(const char* field, int64_t lo = INT64_MIN, int64_t hi = INT64_MAX) {
+    long long v = 0;
+    if (!(ls >> v)) throw CommandStreamError(loc + op + ": expected an integer for " + field);
+    if (v < lo || v > hi) {
+      throw CommandStreamError(loc + op + ": " + field + " = " + std::to_string(v) +
+                               " is outside " + std::to_string(lo) + ".." + std::to_string(hi));
+    }
+    return static_cast<int64_t>(v);
+  }
+  // Reads integers until the next keyword (or end of line); leaves the keyword in `next`.
+  std::vector<int64_t> read_list(std::string* next) {
+    std::vector<int64_t> v;
+    std::string tok;
+    next->clear();
+    while (ls >> tok) {
+      try {
+        size_t used = 0;
+        const long long x = std::stoll(tok, &used);
+        if (used != tok.size()) throw std::invalid_argument(tok);
+        v.push_back(x);
+      } catch (const std::logic_error&) {
+        *next = tok;
+        break;
+      }
+    }
+    return v;
+  }
+  void expect_keyword(const std::string& got, const char* want) const {
+    if (got != want) {
+      throw CommandStreamError(loc + op + ": expected keyword '" + want + "', got '" + got + "'");
+    }
+  }
+};
+
+// The header line, 'shadesim-commands 1 {config}' (`line`, line number `line_no`): the unit.
+UnitConfig read_header(TextLine& in, const std::string& line, const std::string& source,
+                       size_t line_no) {
+  if (in.op != "shadesim-commands") {
+    throw CommandStreamError(in.loc + "expected the header 'shadesim-commands 1 {config}', got '" +
+                             in.op + "'");
+  }
+  int version = 0;
+  if (!(in.ls >> version) || version != 1) {
+    throw CommandStreamError(in.loc + "unsupported command-stream version; expected 1");
+  }
+  // The JSON's first column in the line, so a syntax error names its column in the file.
+  std::streamoff json_at = in.ls.tellg();
+  if (json_at < 0) json_at = static_cast<std::streamoff>(line.size());  // nothing after
+  std::string json;
+  std::getline(in.ls, json);
+  if (json.find_first_not_of(" \t\r") == std::string::npos) {
+    throw CommandStreamError(source + ":" + std::to_string(line_no) + ":" +
+                             std::to_string(json_at + 1) +
+                             ": expected the unit's config JSON object after "
+                             "'shadesim-commands 1', got the end of the line");
+  }
+  return header_config(json, in.loc, [&](const JsonTextError& error) {
+    // The header is one line: the error's column in the JSON, moved to the file's column.
+    const size_t colon = error.place.rfind(':');
+    if (colon == std::string::npos || colon == 0) return in.loc;
+    return source + ":" + std::to_string(line_no) + ":" +
+           std::to_string(static_cast<size_t>(json_at) +
+                          std::stoul(error.place.substr(colon + 1))) +
+           ": ";
+  });
+}
+
+MaterialCmd read_material(TextLine& in) {
+  MaterialCmd m;
+  std::string kw;
+  in.ls >> kw;
+  in.expect_keyword(kw, "ambient");
+  m.ambient = in.read_list(&kw);
+  in.expect_keyword(kw, "spec_colour");
+  m.spec_colour = in.read_list(&kw);
+  if (kw == "diffuse_colour") m.diffuse_colour = in.read_list(&kw);
+  in.expect_keyword(kw, "exponent");
+  m.exponent = in.read_int("exponent");
+  in.ls >> kw;
+  in.expect_keyword(kw, "params");
+  m.unit_params = in.read_list(&kw);
+  if (kw == "gate_only") {
+    m.gate_only = static_cast<uint32_t>(in.read_int("gate_only", 0, kField16));
+    kw.clear();
+    in.ls >> kw;
+  }
+  if (!kw.empty()) throw CommandStreamError(in.loc + "material: unexpected '" + kw + "'");
+  return m;
+}
+
+TriangleCmd read_triangle(TextLine& in) {
+  TriangleCmd t;
+  t.xo = static_cast<int32_t>(in.read_int("xo", -32768, 32767));
+  t.yo = static_cast<int32_t>(in.read_int("yo", -32768, 32767));
+  std::string tok;
+  while (in.ls >> tok) {
+    if (tok == "|") continue;
+    try {
+      size_t used = 0;
+      t.coef.push_back(std::stoll(tok, &used));
+      if (used != tok.size()) throw std::invalid_argument(tok);
+    } catch (const std::logic_error&) {
+      throw CommandStreamError(in.loc + "tri: expected an integer coefficient, got '" + tok + "'");
+    }
+  }
+  return t;
+}
+
+SpanCmd read_span(TextLine& in) {
+  SpanCmd s;
+  s.y = static_cast<int32_t>(in.read_int("y", 0, kField16));
+  s.x0 = static_cast<int32_t>(in.read_int("x0", 0, kField16));
+  s.length = static_cast<int32_t>(in.read_int("length", 1, kField16));
+  // Then 'last' and, with host span setup, "| v d d2" per series.
+  std::string tok;
+  while (in.ls >> tok) {
+    if (tok == "|") continue;
+    if (tok == "last" && s.starts.empty() && !s.last_in_row) {
+      s.last_in_row = true;
+      continue;
+    }
+    try {
+      size_t used = 0;
+      s.starts.push_back(std::stoll(tok, &used));
+      if (used != tok.size()) throw std::invalid_argument(tok);
+    } catch (const std::logic_error&) {
+      throw CommandStreamError(
+          in.loc + "span: expected 'last', '|' or an integer start value, got '" + tok + "'");
+    }
+  }
+  return s;
+}
+
+TableCmd read_table(TextLine& in) {
+  TableCmd tb;
+  tb.base = static_cast<uint32_t>(in.read_int("base", 0, kField16));
+  std::string kw;
+  tb.entries = in.read_list(&kw);
+  if (kw == "material") {
+    tb.per_material = true;
+    std::string rest;
+    if (in.ls >> rest)
+      throw CommandStreamError(in.loc + "table: expected nothing after 'material', got '" + rest +
+                               "'");
+  } else if (!kw.empty()) {
+    throw CommandStreamError(in.loc + "table: expected integers or 'material', got '" + kw + "'");
+  }
+  return tb;
+}
+
+Command read_command(TextLine& in) {
+  if (in.op == "material") return read_material(in);
+  if (in.op == "tri") return read_triangle(in);
+  if (in.op == "span") return read_span(in);
+  if (in.op == "table") return read_table(in);
+  if (in.op == "end") return EndFrameCmd{};
+  throw CommandStreamError(in.loc + "unknown command '" + in.op +
+                           "'; expected material, tri, span, table or end");
+}
+
+}  // namespace
+
 CommandStream CommandStream::read_text(std::istream& is, const std::string& source) {
   CommandStream cs;
   std::string line;
@@ -333,153 +508,13 @@ CommandStream CommandStream::read_text(std::istream& is, const std::string& sour
     std::istringstream ls(line);
     std::string op;
     if (!(ls >> op)) continue;
+    TextLine in{ls, loc, op};
     if (!have_header) {
-      if (op != "shadesim-commands") {
-        throw CommandStreamError(loc + "expected the header 'shadesim-commands 1 {config}', got '" +
-                                 op + "'");
-      }
-      int version = 0;
-      if (!(ls >> version) || version != 1) {
-        throw CommandStreamError(loc + "unsupported command-stream version; expected 1");
-      }
-      // The JSON's first column in the line, so a syntax error names its column in the file.
-      std::streamoff json_at = ls.tellg();
-      if (json_at < 0) json_at = static_cast<std::streamoff>(line.size());  // nothing after
-      std::string json;
-      std::getline(ls, json);
-      if (json.find_first_not_of(" \t\r") == std::string::npos) {
-        throw CommandStreamError(source + ":" + std::to_string(line_no) + ":" +
-                                 std::to_string(json_at + 1) +
-                                 ": expected the unit's config JSON object after "
-                                 "'shadesim-commands 1', got the end of the line");
-      }
-      cs.config = header_config(json, loc, [&](const JsonTextError& error) {
-        // The header is one line: the error's column in the JSON, moved to the file's column.
-        const size_t colon = error.place.rfind(':');
-        if (colon == std::string::npos || colon == 0) return loc;
-        return source + ":" + std::to_string(line_no) + ":" +
-               std::to_string(static_cast<size_t>(json_at) +
-                              std::stoul(error.place.substr(colon + 1))) +
-               ": ";
-      });
+      cs.config = read_header(in, line, source, line_no);
       have_header = true;
       continue;
     }
-    // Reads one integer of a bounded field; a value outside [lo, hi] is an error, never truncated.
-    auto read_int = [&](const char* field, int64_t lo = INT64_MIN, int64_t hi = INT64_MAX) {
-      long long v = 0;
-      if (!(ls >> v)) throw CommandStreamError(loc + op + ": expected an integer for " + field);
-      if (v < lo || v > hi) {
-        throw CommandStreamError(loc + op + ": " + field + " = " + std::to_string(v) +
-                                 " is outside " + std::to_string(lo) + ".." + std::to_string(hi));
-      }
-      return static_cast<int64_t>(v);
-    };
-    constexpr int64_t kField16 = 0xFFFF;
-    // Reads integers until the next keyword (or end of line); leaves the keyword in `next`.
-    auto read_list = [&](std::string* next) {
-      std::vector<int64_t> v;
-      std::string tok;
-      next->clear();
-      while (ls >> tok) {
-        try {
-          size_t used = 0;
-          const long long x = std::stoll(tok, &used);
-          if (used != tok.size()) throw std::invalid_argument(tok);
-          v.push_back(x);
-        } catch (const std::logic_error&) {
-          *next = tok;
-          break;
-        }
-      }
-      return v;
-    };
-    auto expect_keyword = [&](const std::string& got, const char* want) {
-      if (got != want) {
-        throw CommandStreamError(loc + op + ": expected keyword '" + want + "', got '" + got + "'");
-      }
-    };
-    if (op == "material") {
-      MaterialCmd m;
-      std::string kw;
-      ls >> kw;
-      expect_keyword(kw, "ambient");
-      m.ambient = read_list(&kw);
-      expect_keyword(kw, "spec_colour");
-      m.spec_colour = read_list(&kw);
-      if (kw == "diffuse_colour") m.diffuse_colour = read_list(&kw);
-      expect_keyword(kw, "exponent");
-      m.exponent = read_int("exponent");
-      ls >> kw;
-      expect_keyword(kw, "params");
-      m.unit_params = read_list(&kw);
-      if (kw == "gate_only") {
-        m.gate_only = static_cast<uint32_t>(read_int("gate_only", 0, kField16));
-        kw.clear();
-        ls >> kw;
-      }
-      if (!kw.empty()) throw CommandStreamError(loc + "material: unexpected '" + kw + "'");
-      cs.commands.emplace_back(std::move(m));
-    } else if (op == "tri") {
-      TriangleCmd t;
-      t.xo = static_cast<int32_t>(read_int("xo", -32768, 32767));
-      t.yo = static_cast<int32_t>(read_int("yo", -32768, 32767));
-      std::string tok;
-      while (ls >> tok) {
-        if (tok == "|") continue;
-        try {
-          size_t used = 0;
-          t.coef.push_back(std::stoll(tok, &used));
-          if (used != tok.size()) throw std::invalid_argument(tok);
-        } catch (const std::logic_error&) {
-          throw CommandStreamError(loc + "tri: expected an integer coefficient, got '" + tok + "'");
-        }
-      }
-      cs.commands.emplace_back(std::move(t));
-    } else if (op == "span") {
-      SpanCmd s;
-      s.y = static_cast<int32_t>(read_int("y", 0, kField16));
-      s.x0 = static_cast<int32_t>(read_int("x0", 0, kField16));
-      s.length = static_cast<int32_t>(read_int("length", 1, kField16));
-      // Then 'last' and, with host span setup, "| v d d2" per series.
-      std::string tok;
-      while (ls >> tok) {
-        if (tok == "|") continue;
-        if (tok == "last" && s.starts.empty() && !s.last_in_row) {
-          s.last_in_row = true;
-          continue;
-        }
-        try {
-          size_t used = 0;
-          s.starts.push_back(std::stoll(tok, &used));
-          if (used != tok.size()) throw std::invalid_argument(tok);
-        } catch (const std::logic_error&) {
-          throw CommandStreamError(
-              loc + "span: expected 'last', '|' or an integer start value, got '" + tok + "'");
-        }
-      }
-      cs.commands.emplace_back(std::move(s));
-    } else if (op == "table") {
-      TableCmd tb;
-      tb.base = static_cast<uint32_t>(read_int("base", 0, kField16));
-      std::string kw;
-      tb.entries = read_list(&kw);
-      if (kw == "material") {
-        tb.per_material = true;
-        std::string rest;
-        if (ls >> rest)
-          throw CommandStreamError(loc + "table: expected nothing after 'material', got '" + rest +
-                                   "'");
-      } else if (!kw.empty()) {
-        throw CommandStreamError(loc + "table: expected integers or 'material', got '" + kw + "'");
-      }
-      cs.commands.emplace_back(std::move(tb));
-    } else if (op == "end") {
-      cs.commands.emplace_back(EndFrameCmd{});
-    } else {
-      throw CommandStreamError(loc + "unknown command '" + op +
-                               "'; expected material, tri, span, table or end");
-    }
+    cs.commands.push_back(read_command(in));
     validate_command(cs.commands.back(), cs.config, loc);
   }
   if (!have_header) throw CommandStreamError(source + ": empty command stream (no header line)");
@@ -487,10 +522,9 @@ CommandStream CommandStream::read_text(std::istream& is, const std::string& sour
 }
 
 void CommandStream::save(const std::string& path) const {
-  std::ofstream os(path);
-  if (!os) throw CommandStreamError(path + ": cannot open for writing");
-  write_text(os);
-  if (!os) throw CommandStreamError(path + ": write failed");
+  std::ostringstream text;
+  write_text(text);
+  write_text_file(path, text.str());
 }
 
 CommandStream CommandStream::load(const std::string& path) {

@@ -204,208 +204,298 @@ CycleModel::Category header_category(Opcode op) {
 
 std::string at_word(uint64_t i) { return "CycleEstimate: word " + std::to_string(i) + ": "; }
 
+// One pass of CycleEstimate::run over a stream: the decoder's items header by header (each on
+// the first cycle it may go), with the spans' pipe beside them.
+class EstimateWalk {
+ public:
+  EstimateWalk(const CycleConfig& unit, int span_latency, const std::vector<uint64_t>& words,
+               bool with_breakdown);
+  CycleEstimateRun run();
+
+ private:
+  // What a header taken leaves for the items after it.
+  struct Payload {
+    uint64_t words = 0;  // words after the header item
+    bool tail = false;   // TRIANGLE coefficients or a host-setup SPAN's start values: by beats
+    std::optional<CommandWord> host_span;  // its header, until its start values are all in
+    uint64_t host_span_at = 0;
+  };
+
+  CommandWord word_at(uint64_t i) const { return CommandWord{i < words_.size() ? words_[i] : 0}; }
+  uint64_t beat_end(uint64_t i) const { return (i | in_beat_) + 1; }
+  int next_bank(int bank) const { return bank + 1 == unit_.tri_queue ? 0 : bank + 1; }
+  Cycle ready(const CommandWord& word) const;
+  void add_span(const CommandWord& s, Cycle done, uint64_t at);
+  Payload take_header(const CommandWord& word, Cycle c);
+  Payload take_triangle(const CommandWord& word);
+  Payload take_host_span(const CommandWord& word, Cycle c);
+  void take_spans(const CommandWord& word, Cycle c);
+  void check_payload_fits(uint64_t payload) const;
+  void take_word_payload(Opcode op, uint64_t payload);
+  void take_tail(const Payload& p);
+  void join_next_header(Cycle tail_cycle);
+  CycleEstimateRun finish();
+
+  const CycleConfig& unit_;
+  const std::vector<uint64_t>& words_;
+  const uint64_t port_;
+  const int port_shift_;
+  const uint64_t in_beat_;  // port_words is a power of two
+  const uint64_t padded_;   // the last beat is padded with NOP words
+  const bool queued_;
+  const bool host_;
+  const uint64_t start_words_;
+  const size_t queue_size_;
+  const Cycle interval_;
+  std::optional<BreakdownRecorder> rec_;
+  uint64_t pixel_beats_ = 0;  // beats that leave the engines (CycleBreakdown::pixel)
+  CycleEstimateRun r_;
+  SpanPipe pipe_;
+  // Per coefficient bank: the cycle its last queued span entered s1.
+  std::vector<Cycle> bank_free_;
+  int wr_bank_ = 0;
+  // Two material buffers: the bank the latest MATERIAL writes, and per bank the cycle the last
+  // pixel of its latest span leaves the slot (spans leave in order).
+  const bool mat_banked_;
+  int mat_wr_ = 0;
+  std::array<Cycle, 2> mat_leave_ = {kLongAgo, kLongAgo};
+  TriangleCost* tri_ = nullptr;  // the latest TRIANGLE's: its SPANs follow it
+  Cycle t_ = 0;                  // earliest cycle of the next item
+  Cycle last_item_ = -1;         // the cycle the last word was taken
+  uint64_t w_ = 0;               // next word to take
+};
+
+EstimateWalk::EstimateWalk(const CycleConfig& unit, int span_latency,
+                           const std::vector<uint64_t>& words, bool with_breakdown)
+    : unit_(unit),
+      words_(words),
+      port_(static_cast<uint64_t>(unit.port_words)),
+      port_shift_(port_ == 8   ? 3
+                  : port_ == 4 ? 2
+                  : port_ == 2 ? 1
+                               : 0),
+      in_beat_(port_ - 1),
+      padded_((words.size() + port_ - 1) / port_ * port_),
+      queued_(unit.tri_queue > 1),
+      host_(unit.host_setup),
+      start_words_(static_cast<uint64_t>(unit.start_words)),
+      queue_size_(static_cast<size_t>(unit.span_queue())),
+      interval_(unit.slot.interval),
+      pipe_(unit),
+      bank_free_(static_cast<size_t>(unit.tri_queue), kLongAgo),
+      mat_banked_(unit.material_buffers == 2) {
+  if (with_breakdown) rec_.emplace(unit, span_latency);
+  r_.words = words.size();
+  r_.beats = (words.size() + port_ - 1) / port_;
+}
+
+// The first cycle on which a header of this opcode may go (model/command_stream.h).
+Cycle EstimateWalk::ready(const CommandWord& word) const {
+  switch (static_cast<Opcode>(word.opcode())) {
+    case Opcode::kSpan:
+      // Host setup: a free start bank entry. Without a queue: s1 free. With one: room, i.e.
+      // the span queue_size places earlier has entered s1.
+      if (host_) return pipe_.start_entry_free();
+      if (!queued_) return pipe_.s1_free();
+      return pipe_.spans() >= queue_size_ ? pipe_.entry(pipe_.spans() - queue_size_) + 1 : 0;
+    case Opcode::kTriangle: {
+      // A free bank: the last span queued with the bank it loads has entered s1.
+      if (!queued_) return 0;
+      return bank_free_[static_cast<size_t>(next_bank(wr_bank_))] + 1;
+    }
+    case Opcode::kMaterial:
+      // Two buffers: no span of the bank it switches to in flight.
+      if (mat_banked_) return mat_leave_[static_cast<size_t>(1 - mat_wr_)];
+      return pipe_.empty();
+    case Opcode::kTable:
+      // Two buffers, a per-material table: no span of the latest MATERIAL's bank in flight.
+      if (mat_banked_ && word.table_per_material()) return mat_leave_[static_cast<size_t>(mat_wr_)];
+      return pipe_.empty();
+    default:
+      return 0;
+  }
+}
+
+// Host setup: the span's part once its start values are all in (cycle `done`).
+void EstimateWalk::add_span(const CommandWord& s, Cycle done, uint64_t at) {
+  const uint64_t len = static_cast<uint64_t>(s.span_length());
+  if (len == 0) throw std::invalid_argument(at_word(at) + "SPAN of length 0 (lengths are >= 1)");
+  const Cycle leave = host_ ? pipe_.add_host(done, len) : pipe_.add(done, len);
+  mat_leave_[static_cast<size_t>(mat_wr_)] = leave;
+  if (rec_) rec_->span(pipe_.first_emit(), pipe_.last_emit());
+  if (queued_) bank_free_[static_cast<size_t>(wr_bank_)] = pipe_.last_entry();
+  const uint64_t lanes = static_cast<uint64_t>(unit_.lanes);
+  r_.pixels += len;
+  pixel_beats_ += CycleEstimate::beats(len, lanes);
+  if (s.span_last())
+    r_.scanlines.push_back(
+        {s.span_y(), static_cast<uint64_t>(leave), s.span_x0() + s.span_length() - 1});
+  if (tri_) {
+    ++tri_->spans;
+    tri_->pixels += len;
+    tri_->engine_cycles += CycleEstimate::beats(len, lanes) * static_cast<uint64_t>(interval_);
+  }
+}
+
+CycleEstimateRun EstimateWalk::run() {
+  while (w_ < padded_) {
+    // ---- the header at w: it goes on the first cycle >= t on which it may ----
+    const CommandWord word = word_at(w_);
+    const Opcode op = static_cast<Opcode>(word.opcode());
+    const Cycle c = std::max(t_, ready(word));
+    if (rec_) rec_->port(t_, header_category(op));  // waiting for it, then taking it
+    last_item_ = c;
+    t_ = c + 1;
+    const Payload payload = take_header(word, c);
+    check_payload_fits(payload.words);
+    if (payload.words == 0) continue;
+    if (payload.tail)
+      take_tail(payload);
+    else
+      take_word_payload(op, payload.words);
+  }
+  return finish();
+}
+
+EstimateWalk::Payload EstimateWalk::take_header(const CommandWord& word, Cycle c) {
+  Payload p;
+  switch (static_cast<Opcode>(word.opcode())) {
+    case Opcode::kNop:
+      w_ = beat_end(w_);
+      break;
+    case Opcode::kTriangle:
+      return take_triangle(word);
+    case Opcode::kSpan:
+      if (host_) return take_host_span(word, c);
+      take_spans(word, c);
+      break;
+    case Opcode::kMaterial:
+      if (mat_banked_) mat_wr_ = 1 - mat_wr_;
+      w_ += 1;
+      p.words = word.count();
+      break;
+    case Opcode::kTable:
+      w_ += 1;
+      p.words = word.count();
+      break;
+    default:
+      w_ += 1;
+      break;
+  }
+  return p;
+}
+
+EstimateWalk::Payload EstimateWalk::take_triangle(const CommandWord& word) {
+  const uint64_t count = word.count();
+  const uint64_t with_header = std::min<uint64_t>(count, beat_end(w_) - w_ - 1);
+  r_.triangles.push_back({});
+  tri_ = &r_.triangles.back();
+  tri_->index = static_cast<uint32_t>(r_.triangles.size() - 1);
+  tri_->xo = word.tri_xo();
+  tri_->yo = word.tri_yo();
+  tri_->words = static_cast<uint32_t>(1 + count);
+  tri_->decoder_cycles = 1;
+  w_ += 1 + with_header;
+  if (queued_) wr_bank_ = next_bank(wr_bank_);
+  Payload p;
+  p.words = count - with_header;
+  p.tail = true;
+  return p;
+}
+
+// Its start values: as many as follow it in the beat now, the rest as a tail.
+EstimateWalk::Payload EstimateWalk::take_host_span(const CommandWord& word, Cycle c) {
+  const uint64_t with_header = std::min<uint64_t>(start_words_, beat_end(w_) - w_ - 1);
+  Payload p;
+  p.host_span = word;
+  p.host_span_at = w_;
+  w_ += 1 + with_header;
+  p.words = start_words_ - with_header;
+  p.tail = true;
+  if (p.words == 0) add_span(word, c, p.host_span_at);
+  return p;
+}
+
+// With a queue, the SPAN headers right behind this one in the beat go too, as far as the queue
+// has room on this cycle.
+void EstimateWalk::take_spans(const CommandWord& word, Cycle c) {
+  uint64_t n = 1;
+  if (queued_) {
+    const uint64_t room = queue_size_ - pipe_.queued_on(c);
+    const uint64_t end = beat_end(w_);
+    while (n < room && w_ + n < end && word_at(w_ + n).is(Opcode::kSpan)) ++n;
+  }
+  for (uint64_t k = 0; k < n; ++k) add_span(word_at(w_ + k), c, w_ + k);
+  if (tri_) ++tri_->decoder_cycles;
+  w_ += n;
+}
+
+void EstimateWalk::check_payload_fits(uint64_t payload) const {
+  if (w_ + payload > padded_) {
+    throw std::invalid_argument(at_word(w_ - 1) + "the command's payload runs " +
+                                std::to_string(w_ + payload - padded_) +
+                                " word(s) past the end of the stream");
+  }
+}
+
+// MATERIAL / TABLE payload: one word a cycle, never with a header.
+void EstimateWalk::take_word_payload(Opcode op, uint64_t payload) {
+  if (rec_) rec_->port(t_, header_category(op));
+  last_item_ = t_ + static_cast<Cycle>(payload) - 1;
+  t_ = last_item_ + 1;
+  w_ += payload;
+}
+
+// Triangle coefficient words still due: the rest of this beat, then a beat a cycle; the item of
+// the last ones may carry the next header.
+void EstimateWalk::take_tail(const Payload& p) {
+  const uint64_t first = std::min(p.words, beat_end(w_) - w_);
+  const uint64_t rest = p.words - first;
+  const Cycle items = 1 + static_cast<Cycle>((rest + in_beat_) >> port_shift_);
+  if (tri_) tri_->decoder_cycles += static_cast<uint64_t>(items);
+  if (rec_) rec_->port(t_, CycleModel::Category::kCommandWords);
+  const Cycle tail_cycle = t_ + items - 1;
+  w_ += p.words;
+  last_item_ = tail_cycle;
+  t_ = tail_cycle + 1;
+  // A host-setup SPAN's start values are all in with its last tail.
+  if (p.host_span) add_span(*p.host_span, tail_cycle, p.host_span_at);
+  if ((w_ & in_beat_) == 0 || w_ >= padded_) return;
+  join_next_header(tail_cycle);
+}
+
+// A header follows the tail in its beat: it goes on the tail's cycle if it may and is ready (the
+// header loop then takes it with t = that cycle).
+void EstimateWalk::join_next_header(Cycle tail_cycle) {
+  const CommandWord next = word_at(w_);
+  const Opcode op = static_cast<Opcode>(next.opcode());
+  // Without a queue a SPAN's setup reads the coefficients as it is taken: never with them.
+  // (With host setup the start values are no coefficients: a SPAN may join them.)
+  const bool joins = !(op == Opcode::kSpan && !queued_ && !host_) && ready(next) <= tail_cycle;
+  if (joins) {
+    // Take it on the tail's cycle: the item's cycle is already counted for this triangle.
+    t_ = tail_cycle;
+    if (op == Opcode::kSpan && tri_) --tri_->decoder_cycles;  // same item, same triangle
+  }
+}
+
+CycleEstimateRun EstimateWalk::finish() {
+  r_.cycles =
+      static_cast<uint64_t>(std::max(last_item_ + 1, pipe_.spans() ? pipe_.last_leave() + 1 : 0));
+  if (rec_) {
+    rec_->port(last_item_ + 1, CycleModel::Category::kCommandGap);  // no beat left to offer
+    r_.breakdown = rec_->finish(static_cast<Cycle>(r_.cycles), pixel_beats_);
+  }
+  return std::move(r_);
+}
+
 }  // namespace
 
 CycleEstimate::CycleEstimate(CycleConfig unit)
     : unit_(unit), span_latency_(CycleModel(unit).span_latency()) {}
 
 CycleEstimateRun CycleEstimate::run(const std::vector<uint64_t>& words, bool with_breakdown) const {
-  std::optional<BreakdownRecorder> rec;
-  if (with_breakdown) rec.emplace(unit_, span_latency_);
-  uint64_t pixel_beats = 0;  // beats that leave the engines (CycleBreakdown::pixel)
-  const uint64_t port = static_cast<uint64_t>(unit_.port_words);
-  const int port_shift = port == 8 ? 3 : port == 4 ? 2 : port == 2 ? 1 : 0;
-  const bool queued = unit_.tri_queue > 1;
-  const bool host = unit_.host_setup;
-  const uint64_t start_words = static_cast<uint64_t>(unit_.start_words);
-  const size_t queue_size = static_cast<size_t>(unit_.span_queue());
-  const Cycle interval = unit_.slot.interval;
-
-  CycleEstimateRun r;
-  r.words = words.size();
-  r.beats = (words.size() + port - 1) / port;
-  const uint64_t padded = r.beats * port;  // the last beat is padded with NOP words
-  const auto word_at = [&](uint64_t i) { return CommandWord{i < words.size() ? words[i] : 0}; };
-  const uint64_t in_beat = port - 1;  // port_words is a power of two
-  const auto beat_end = [&](uint64_t i) { return (i | in_beat) + 1; };
-  const auto next_bank = [&](int bank) { return bank + 1 == unit_.tri_queue ? 0 : bank + 1; };
-
-  SpanPipe pipe(unit_);
-  // Per coefficient bank: the cycle its last queued span entered s1.
-  std::vector<Cycle> bank_free(static_cast<size_t>(unit_.tri_queue), kLongAgo);
-  int wr_bank = 0;
-  // Two material buffers: the bank the latest MATERIAL writes, and per bank the cycle the last
-  // pixel of its latest span leaves the slot (spans leave in order).
-  const bool mat_banked = unit_.material_buffers == 2;
-  int mat_wr = 0;
-  std::array<Cycle, 2> mat_leave = {kLongAgo, kLongAgo};
-  TriangleCost* tri = nullptr;  // the latest TRIANGLE's: its SPANs follow it
-  // Host setup: the span's part once its start values are all in (cycle `done`).
-  const auto add_span = [&](const CommandWord& s, Cycle done, uint64_t at) {
-    const uint64_t len = static_cast<uint64_t>(s.span_length());
-    if (len == 0) throw std::invalid_argument(at_word(at) + "SPAN of length 0 (lengths are >= 1)");
-    const Cycle leave = host ? pipe.add_host(done, len) : pipe.add(done, len);
-    mat_leave[static_cast<size_t>(mat_wr)] = leave;
-    if (rec) rec->span(pipe.first_emit(), pipe.last_emit());
-    if (queued) bank_free[static_cast<size_t>(wr_bank)] = pipe.last_entry();
-    r.pixels += len;
-    pixel_beats += beats(len, static_cast<uint64_t>(unit_.lanes));
-    if (s.span_last())
-      r.scanlines.push_back(
-          {s.span_y(), static_cast<uint64_t>(leave), s.span_x0() + s.span_length() - 1});
-    if (tri) {
-      ++tri->spans;
-      tri->pixels += len;
-      tri->engine_cycles +=
-          beats(len, static_cast<uint64_t>(unit_.lanes)) * static_cast<uint64_t>(interval);
-    }
-  };
-
-  // The first cycle on which a header of this opcode may go (model/command_stream.h).
-  const auto ready = [&](const CommandWord& word) -> Cycle {
-    switch (static_cast<Opcode>(word.opcode())) {
-      case Opcode::kSpan:
-        // Host setup: a free start bank entry. Without a queue: s1 free. With one: room, i.e.
-        // the span queue_size places earlier has entered s1.
-        if (host) return pipe.start_entry_free();
-        if (!queued) return pipe.s1_free();
-        return pipe.spans() >= queue_size ? pipe.entry(pipe.spans() - queue_size) + 1 : 0;
-      case Opcode::kTriangle: {
-        // A free bank: the last span queued with the bank it loads has entered s1.
-        if (!queued) return 0;
-        return bank_free[static_cast<size_t>(next_bank(wr_bank))] + 1;
-      }
-      case Opcode::kMaterial:
-        // Two buffers: no span of the bank it switches to in flight.
-        if (mat_banked) return mat_leave[static_cast<size_t>(1 - mat_wr)];
-        return pipe.empty();
-      case Opcode::kTable:
-        // Two buffers, a per-material table: no span of the latest MATERIAL's bank in flight.
-        if (mat_banked && word.table_per_material()) return mat_leave[static_cast<size_t>(mat_wr)];
-        return pipe.empty();
-      default:
-        return 0;
-    }
-  };
-
-  Cycle t = 0;           // earliest cycle of the next item
-  Cycle last_item = -1;  // the cycle the last word was taken
-  uint64_t w = 0;        // next word to take
-  while (w < padded) {
-    // ---- the header at w: it goes on the first cycle >= t on which it may ----
-    const CommandWord word = word_at(w);
-    const Opcode op = static_cast<Opcode>(word.opcode());
-    const Cycle c = std::max(t, ready(word));
-    if (rec) rec->port(t, header_category(op));  // waiting for it, then taking it
-    last_item = c;
-    t = c + 1;
-    uint64_t payload = 0;      // words after the header item
-    bool tri_payload = false;  // TRIANGLE coefficients or a host-setup SPAN's start values
-    std::optional<CommandWord> host_span;  // its header, until its start values are all in
-    uint64_t host_span_at = 0;
-    switch (op) {
-      case Opcode::kNop:
-        w = beat_end(w);
-        break;
-      case Opcode::kTriangle: {
-        const uint64_t count = word.count();
-        const uint64_t with_header = std::min<uint64_t>(count, beat_end(w) - w - 1);
-        r.triangles.push_back({});
-        tri = &r.triangles.back();
-        tri->index = static_cast<uint32_t>(r.triangles.size() - 1);
-        tri->xo = word.tri_xo();
-        tri->yo = word.tri_yo();
-        tri->words = static_cast<uint32_t>(1 + count);
-        tri->decoder_cycles = 1;
-        w += 1 + with_header;
-        payload = count - with_header;
-        tri_payload = true;
-        if (queued) wr_bank = next_bank(wr_bank);
-        break;
-      }
-      case Opcode::kSpan: {
-        if (host) {
-          // Its start values: as many as follow it in the beat now, the rest as a tail.
-          const uint64_t with_header = std::min<uint64_t>(start_words, beat_end(w) - w - 1);
-          host_span = word;
-          host_span_at = w;
-          w += 1 + with_header;
-          payload = start_words - with_header;
-          tri_payload = true;
-          if (payload == 0) add_span(word, c, host_span_at);
-          break;
-        }
-        // With a queue, the SPAN headers right behind this one in the beat go too, as far as
-        // the queue has room on this cycle.
-        uint64_t n = 1;
-        if (queued) {
-          const uint64_t room = queue_size - pipe.queued_on(c);
-          const uint64_t end = beat_end(w);
-          while (n < room && w + n < end && word_at(w + n).is(Opcode::kSpan)) ++n;
-        }
-        for (uint64_t k = 0; k < n; ++k) add_span(word_at(w + k), c, w + k);
-        if (tri) ++tri->decoder_cycles;
-        w += n;
-        break;
-      }
-      case Opcode::kMaterial:
-      case Opcode::kTable:
-        if (op == Opcode::kMaterial && mat_banked) mat_wr = 1 - mat_wr;
-        w += 1;
-        payload = word.count();
-        break;
-      default:
-        w += 1;
-        break;
-    }
-    if (w + payload > padded) {
-      throw std::invalid_argument(at_word(w - 1) + "the command's payload runs " +
-                                  std::to_string(w + payload - padded) +
-                                  " word(s) past the end of the stream");
-    }
-    if (payload == 0) continue;
-    if (!tri_payload) {
-      // MATERIAL / TABLE payload: one word a cycle, never with a header.
-      if (rec) rec->port(t, header_category(op));
-      last_item = t + static_cast<Cycle>(payload) - 1;
-      t = last_item + 1;
-      w += payload;
-      continue;
-    }
-    // Triangle coefficient words still due: the rest of this beat, then a beat a cycle; the
-    // item of the last ones may carry the next header (the loop takes it with t = that cycle).
-    const uint64_t first = std::min(payload, beat_end(w) - w);
-    const uint64_t rest = payload - first;
-    const Cycle items = 1 + static_cast<Cycle>((rest + in_beat) >> port_shift);
-    if (tri) tri->decoder_cycles += static_cast<uint64_t>(items);
-    if (rec) rec->port(t, CycleModel::Category::kCommandWords);
-    const Cycle tail_cycle = t + items - 1;
-    w += payload;
-    last_item = tail_cycle;
-    t = tail_cycle + 1;
-    // A host-setup SPAN's start values are all in with its last tail.
-    if (host_span) add_span(*host_span, tail_cycle, host_span_at);
-    if ((w & in_beat) == 0 || w >= padded) continue;
-    // A header follows the tail in its beat: it goes on the tail's cycle if it may and is ready.
-    const CommandWord next = word_at(w);
-    const Opcode nop = static_cast<Opcode>(next.opcode());
-    // Without a queue a SPAN's setup reads the coefficients as it is taken: never with them.
-    // (With host setup the start values are no coefficients: a SPAN may join them.)
-    const bool joins = !(nop == Opcode::kSpan && !queued && !host) && ready(next) <= tail_cycle;
-    if (joins) {
-      // Take it on the tail's cycle: the header logic above runs with t = tail_cycle and the
-      // item's cycle is already counted for this triangle.
-      t = tail_cycle;
-      if (nop == Opcode::kSpan && tri) --tri->decoder_cycles;  // same item, same triangle
-    }
-  }
-  r.cycles =
-      static_cast<uint64_t>(std::max(last_item + 1, pipe.spans() ? pipe.last_leave() + 1 : 0));
-  if (rec) {
-    rec->port(last_item + 1, CycleModel::Category::kCommandGap);  // no beat left to offer
-    r.breakdown = rec->finish(static_cast<Cycle>(r.cycles), pixel_beats);
-  }
-  return r;
+  return EstimateWalk(unit_, span_latency_, words, with_breakdown).run();
 }
 
 }  // namespace shadesim

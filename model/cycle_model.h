@@ -212,6 +212,71 @@ class CycleModel {
   // header: the cycle is about a header (taken, or waited for), not payload words.
   Category port_category(bool cmd_valid, bool header, CommandWord word) const;
 
+  // The control's handshakes on this cycle: combinational, from the state before the edge, with
+  // the RTL's equations.
+  struct Flow {
+    bool adv = false;       // the pix register takes the slot's output (!pix.valid || pix_ready)
+    bool busy = false;      // an iterative slot still computes its pixel
+    bool emit = false;      // the engines give a beat to the slot
+    bool last_pix = false;  // the engines' beat is their span's last
+    bool load_eng = false;  // the engines load the next span (setup stage 3 or the start bank)
+    bool s2_move = false;   // setup stage 2 moves to stage 3
+    bool s1_move = false;   // setup stage 1 moves to stage 2
+    bool s1_free = false;   // setup stage 1 can take a span
+    bool sq_pop = false;    // setup stage 1 takes the span queue's head
+    int next_bank = 0;      // the coefficient bank the next TRIANGLE loads
+  };
+  // The item the decoder takes from the beat on the port this cycle (model/command_stream.h):
+  // the triangle coefficient words due in the beat (tail), then at most one header (a
+  // TRIANGLE's with its coefficient words after it in the beat), or one MATERIAL / TABLE
+  // payload word; n words from pos_. Taken on the edge only when cmd_valid.
+  struct Item {
+    // Coefficient words of a TRIANGLE, or start values of a SPAN (host setup), are due: these
+    // come as a tail per beat.
+    bool tri_payload = false;
+    unsigned tail = 0;      // such words taken before the header
+    unsigned hdr_pos = 0;   // the header's word in the beat
+    bool hdr_here = false;  // a header is in the beat
+    CommandWord word;       // the header, or the payload word at pos_ without one
+    Opcode op = Opcode::kNop;
+    bool host_span = false;  // a host-setup SPAN header: its payload is its start values
+    unsigned count = 0;      // the header's payload words
+    unsigned hdr_n = 1;      // words taken with the header
+    bool take_hdr = false;   // the header is here and ready
+    unsigned n = 0;          // words taken
+    bool beat_done = false;  // ... the rest of the beat
+
+    bool span_header() const { return take_hdr && op == Opcode::kSpan; }
+  };
+
+  Flow handshakes(bool pix_ready) const;
+  Item decode(const uint64_t* beat, const Flow& flow) const;
+  unsigned header_words(const uint64_t* beat, const Item& item) const;
+  bool header_ready(const Item& item, const Flow& flow) const;
+  // Charges this cycle (needs the state before the edge) and records the port's category.
+  Category charge_cycle(bool cmd_valid, const Item& item, bool pix_fire);
+  // The edge, stage by stage from the pix register back to the decoder: each stage reads the
+  // state of the stage upstream of it as it was before the edge, so clock() keeps this order.
+  void clock_slot(const Flow& flow);
+  bool clock_iterative_slot(const Flow& flow, const Pix& from_engines);
+  bool clock_pipelined_slot(bool adv, const Pix& from_engines);
+  void clock_engines(const Flow& flow);
+  void clock_setup_stages(const Flow& flow);
+  void clock_span_intake(const uint64_t* beat, const Item& item, const Flow& flow, bool span_fire);
+  void clock_start_bank(CommandWord header, bool load_eng, bool span_fire);
+  void clock_span_queue(const uint64_t* beat, const Item& item, bool sq_pop, bool s1_move,
+                        bool span_fire);
+  // A SPAN header's span, in the bank the latest MATERIAL writes.
+  Span span_of(CommandWord header) const {
+    const int y = header.span_y(), x0 = header.span_x0(), len = header.span_length();
+    return Span{true, y, x0, len, header.span_last(), mat_wr_};
+  }
+  void take_item(const Item& item, int next_bank);
+  void start_payload(const Item& item, int next_bank);
+  // A TRIANGLE or host-setup SPAN: the payload words that came with the header are taken.
+  void start_tail_payload(Payload op, const Item& item);
+  void advance_payload(unsigned taken);
+
   SlotTiming timing_;
   unsigned port_words_ = 1;
   int tri_queue_ = 1;
@@ -305,132 +370,166 @@ inline CycleModel::Category CycleModel::port_category(bool cmd_valid, bool heade
 }
 
 inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, bool pix_ready) {
+  const Flow flow = handshakes(pix_ready);
+  const Item item = decode(beat, flow);
   Edge e;
-  // ---- combinational, from the state before the edge (same equations as the RTL) ----
-  const bool adv = !pix_.valid || pix_ready;
-  const bool busy = busy_ > 0;
-  const bool emit = run_ && adv && !busy;
-  // The span's last beat: 1 <= rem <= lanes (rem - 1 < lanes, as the RTL compares it).
-  const bool last_pix = rem_ - 1 < lanes_;
-  // Host span setup: the engines load the start bank's oldest entry once its payload is in.
-  const bool sb_filling = in_payload_ && pay_op_ == Payload::kSpan;
-  const bool sb_ready = sb_count_ > (sb_filling ? 1u : 0u);
-  const bool load_eng = (host_ ? sb_ready : s_[2].valid) && (!run_ || (emit && last_pix));
-  const bool s3_free = !s_[2].valid || load_eng;
-  const bool s2_move = s_[1].valid && s3_free;
-  const bool s1_move = s_[0].valid && (!s_[1].valid || s2_move);
-  const bool s1_free = !s_[0].valid || s1_move;
-  // With a triangle queue, span setup takes its spans from the span queue.
-  const bool sq_pop = queued() && sq_count_ > 0 && s1_free;
-  const int next_bank = queued() ? (wr_bank_ + 1) % tri_queue_ : 0;
-
-  // The item taken from the beat this cycle (model/command_stream.h): the triangle coefficient
-  // words due in the beat (tail), then at most one header (a TRIANGLE's with its coefficient
-  // words after it in the beat), or one MATERIAL / TABLE payload word; n words from pos_.
-  const unsigned beat_left = port_words_ - pos_;
-  const unsigned pay_rem = pay_rem_;
-  // Coefficient words of a TRIANGLE, or start values of a SPAN (host setup): a tail per beat.
-  const bool tri_payload =
-      in_payload_ && (pay_op_ == Payload::kTriangle || pay_op_ == Payload::kSpan);
-  const unsigned tail = tri_payload ? std::min(pay_rem, beat_left) : 0;
-  const unsigned hdr_pos = pos_ + tail;
-  const bool hdr_here =
-      (!in_payload_ || (tri_payload && pay_rem <= beat_left)) && hdr_pos < port_words_;
-  const CommandWord word{beat[hdr_here ? hdr_pos : pos_]};
-  const Opcode op = static_cast<Opcode>(word.opcode());
-  // Payload words: the header's count, but a host-setup SPAN's count is its length.
-  const bool host_span = host_ && op == Opcode::kSpan;
-  const unsigned count = host_span ? start_words_ : word.count();
-  unsigned hdr_n = 1;
-  if (op == Opcode::kNop) {
-    hdr_n = port_words_ - hdr_pos;
-  } else if (op == Opcode::kTriangle || host_span) {
-    hdr_n = 1 + std::min(count, port_words_ - hdr_pos - 1);
-  } else if (op == Opcode::kSpan && queued() && hdr_here) {
-    // A run of SPAN headers goes into the span queue together, as many as it has room for.
-    const unsigned room = static_cast<unsigned>(sq_.size() - sq_count_);
-    unsigned run = 1;
-    while (hdr_pos + run < port_words_ && CommandWord{beat[hdr_pos + run]}.is(Opcode::kSpan)) ++run;
-    hdr_n = std::max(1u, std::min(run, room));
-  }
-  bool hdr_ready = true;
-  // Only MATERIAL and TABLE headers wait for the empty datapath; the check walks the delay line.
-  // With two material buffers a MATERIAL waits only for the bank it switches to, and a
-  // per-material TABLE (it writes the latest MATERIAL's bank only) for that bank.
-  if (op == Opcode::kMaterial || op == Opcode::kTable) hdr_ready = datapath_empty();
-  if (op == Opcode::kMaterial && mat_banked_) hdr_ready = mat_spans_[1 - mat_wr_] == 0;
-  if (op == Opcode::kTable && mat_banked_ && word.table_per_material())
-    hdr_ready = mat_spans_[mat_wr_] == 0;
-  // Without a span queue a SPAN's setup reads the coefficients as it is taken: not on the edge
-  // that writes its triangle's last words.
-  if (op == Opcode::kSpan) hdr_ready = queued() ? sq_count_ < sq_.size() : s1_free && tail == 0;
-  // Host setup: a free start bank entry, or the oldest one leaving for the engines now.
-  if (host_span) hdr_ready = sb_count_ < sb_.size() || load_eng;
-  // A TRIANGLE loads the next bank once no queued span needs that bank's coefficients.
-  if (op == Opcode::kTriangle && queued())
-    hdr_ready = bank_spans_[static_cast<size_t>(next_bank)] == 0;
-  const bool take_hdr = hdr_here && hdr_ready;
-  const unsigned n = tail + (take_hdr ? hdr_n : 0) + (in_payload_ && !tri_payload ? 1 : 0);
-  const bool item_fire = cmd_valid && n > 0;
-  const bool beat_done = n == beat_left;
-  e.cmd_ready = n > 0 && beat_done;
+  e.cmd_ready = item.n > 0 && item.beat_done;
   e.cmd_fire = cmd_valid && e.cmd_ready;
-  const bool hdr_fire = cmd_valid && take_hdr;
-  const bool pay_fire = cmd_valid && in_payload_;
-  const bool span_fire = hdr_fire && op == Opcode::kSpan;
-
   e.pix_fire = pix_.valid && pix_ready;
   e.pix_eor = pix_.eor;
   e.pix_x = pix_.x;
   e.pix_y = pix_.y;
   e.pix_count = pix_.count;
+  if (track_categories_) e.category = charge_cycle(cmd_valid, item, e.pix_fire);
 
-  // ---- where this cycle went ----
-  if (track_categories_) {
-    const size_t slot = history_pos_;
-    if (e.pix_fire) {
-      e.category = Category::kPixel;
-    } else if (pix_.valid) {
-      e.category = Category::kBackPressure;
-    } else if (iterative() && inflight_.valid) {
-      e.category = Category::kUnitStall;
-    } else {
-      e.category = port_history_[slot];  // the port's category span_latency() cycles ago
-    }
-    port_history_[slot] = port_category(cmd_valid, take_hdr || !in_payload_, word);
-    if (++history_pos_ == port_history_.size()) history_pos_ = 0;
+  clock_slot(flow);
+  clock_engines(flow);
+  clock_setup_stages(flow);
+  clock_span_intake(beat, item, flow, cmd_valid && item.span_header());
+  if (cmd_valid) take_item(item, flow.next_bank);
+  return e;
+}
+
+inline CycleModel::Flow CycleModel::handshakes(bool pix_ready) const {
+  Flow f;
+  f.adv = !pix_.valid || pix_ready;
+  f.busy = busy_ > 0;
+  f.emit = run_ && f.adv && !f.busy;
+  // The span's last beat: 1 <= rem <= lanes (rem - 1 < lanes, as the RTL compares it).
+  f.last_pix = rem_ - 1 < lanes_;
+  // Host span setup: the engines load the start bank's oldest entry once its payload is in.
+  const bool sb_filling = in_payload_ && pay_op_ == Payload::kSpan;
+  const bool sb_ready = sb_count_ > (sb_filling ? 1u : 0u);
+  f.load_eng = (host_ ? sb_ready : s_[2].valid) && (!run_ || (f.emit && f.last_pix));
+  const bool s3_free = !s_[2].valid || f.load_eng;
+  f.s2_move = s_[1].valid && s3_free;
+  f.s1_move = s_[0].valid && (!s_[1].valid || f.s2_move);
+  f.s1_free = !s_[0].valid || f.s1_move;
+  // With a triangle queue, span setup takes its spans from the span queue.
+  f.sq_pop = queued() && sq_count_ > 0 && f.s1_free;
+  f.next_bank = queued() ? (wr_bank_ + 1) % tri_queue_ : 0;
+  return f;
+}
+
+inline CycleModel::Item CycleModel::decode(const uint64_t* beat, const Flow& flow) const {
+  Item item;
+  const unsigned beat_left = port_words_ - pos_;
+  item.tri_payload = in_payload_ && (pay_op_ == Payload::kTriangle || pay_op_ == Payload::kSpan);
+  item.tail = item.tri_payload ? std::min(pay_rem_, beat_left) : 0;
+  item.hdr_pos = pos_ + item.tail;
+  item.hdr_here =
+      (!in_payload_ || (item.tri_payload && pay_rem_ <= beat_left)) && item.hdr_pos < port_words_;
+  item.word = CommandWord{beat[item.hdr_here ? item.hdr_pos : pos_]};
+  item.op = static_cast<Opcode>(item.word.opcode());
+  // Payload words: the header's count, but a host-setup SPAN's count is its length.
+  item.host_span = host_ && item.op == Opcode::kSpan;
+  item.count = item.host_span ? start_words_ : item.word.count();
+  item.hdr_n = header_words(beat, item);
+  item.take_hdr = item.hdr_here && header_ready(item, flow);
+  item.n =
+      item.tail + (item.take_hdr ? item.hdr_n : 0) + (in_payload_ && !item.tri_payload ? 1 : 0);
+  item.beat_done = item.n == beat_left;
+  return item;
+}
+
+inline unsigned CycleModel::header_words(const uint64_t* beat, const Item& item) const {
+  if (item.op == Opcode::kNop) return port_words_ - item.hdr_pos;
+  if (item.op == Opcode::kTriangle || item.host_span)
+    return 1 + std::min(item.count, port_words_ - item.hdr_pos - 1);
+  if (item.op == Opcode::kSpan && queued() && item.hdr_here) {
+    // A run of SPAN headers goes into the span queue together, as many as it has room for.
+    const unsigned room = static_cast<unsigned>(sq_.size() - sq_count_);
+    unsigned run = 1;
+    while (item.hdr_pos + run < port_words_ &&
+           CommandWord{beat[item.hdr_pos + run]}.is(Opcode::kSpan))
+      ++run;
+    return std::max(1u, std::min(run, room));
   }
+  return 1;
+}
 
-  // ---- the edge: engines -> slot -> pix register ----
+inline bool CycleModel::header_ready(const Item& item, const Flow& flow) const {
+  switch (item.op) {
+    // Only MATERIAL and TABLE headers wait for the empty datapath; the check walks the delay
+    // line. With two material buffers a MATERIAL waits only for the bank it switches to, and a
+    // per-material TABLE (it writes the latest MATERIAL's bank only) for that bank.
+    case Opcode::kMaterial:
+      return mat_banked_ ? mat_spans_[1 - mat_wr_] == 0 : datapath_empty();
+    case Opcode::kTable:
+      return mat_banked_ && item.word.table_per_material() ? mat_spans_[mat_wr_] == 0
+                                                           : datapath_empty();
+    case Opcode::kSpan:
+      // Host setup: a free start bank entry, or the oldest one leaving for the engines now.
+      if (host_) return sb_count_ < sb_.size() || flow.load_eng;
+      // Without a span queue a SPAN's setup reads the coefficients as it is taken: not on the
+      // edge that writes its triangle's last words.
+      return queued() ? sq_count_ < sq_.size() : flow.s1_free && item.tail == 0;
+    case Opcode::kTriangle:
+      // A TRIANGLE loads the next bank once no queued span needs that bank's coefficients.
+      return !queued() || bank_spans_[static_cast<size_t>(flow.next_bank)] == 0;
+    default:
+      return true;
+  }
+}
+
+inline CycleModel::Category CycleModel::charge_cycle(bool cmd_valid, const Item& item,
+                                                     bool pix_fire) {
+  const size_t slot = history_pos_;
+  Category category = port_history_[slot];  // the port's category span_latency() cycles ago
+  if (pix_fire) {
+    category = Category::kPixel;
+  } else if (pix_.valid) {
+    category = Category::kBackPressure;
+  } else if (iterative() && inflight_.valid) {
+    category = Category::kUnitStall;
+  }
+  port_history_[slot] = port_category(cmd_valid, item.take_hdr || !in_payload_, item.word);
+  if (++history_pos_ == port_history_.size()) history_pos_ = 0;
+  return category;
+}
+
+inline void CycleModel::clock_slot(const Flow& flow) {
   const Pix from_engines{
-      run_, x_, y_, last_ && last_pix, static_cast<int>(std::min(rem_, lanes_)), mat_, last_pix};
-  bool to_pix = false;  // pix_ takes the slot's output on this edge
-  if (iterative()) {
-    if (adv && !busy) {
-      pix_ = inflight_;
-      inflight_ = from_engines;  // valid == emit
-      to_pix = true;
-    } else if (adv) {
-      pix_.valid = false;
-    }
-    if (emit)
-      busy_ = timing_.interval - 1;
-    else if (busy_ > 0)
-      --busy_;
-  } else if (adv) {
-    to_pix = true;
-    if (dl_.empty()) {
-      pix_ = from_engines;
-    } else {
-      pix_ = dl_.back();
-      for (size_t i = dl_.size() - 1; i > 0; --i) dl_[i] = dl_[i - 1];
-      dl_[0] = from_engines;
-    }
-  }
+      run_, x_,           y_, last_ && flow.last_pix, static_cast<int>(std::min(rem_, lanes_)),
+      mat_, flow.last_pix};
+  const bool to_pix = iterative() ? clock_iterative_slot(flow, from_engines)
+                                  : clock_pipelined_slot(flow.adv, from_engines);
   // A span's last beat out of the slot: the pix register holds finished colours, which no
   // later MATERIAL changes.
   if (to_pix && pix_.valid && pix_.span_end) --mat_spans_[pix_.mat];
-  if (load_eng) {
+}
+
+// Both return whether the pix register took the slot's output.
+inline bool CycleModel::clock_iterative_slot(const Flow& flow, const Pix& from_engines) {
+  bool to_pix = false;
+  if (flow.adv && !flow.busy) {
+    pix_ = inflight_;
+    inflight_ = from_engines;  // valid == emit
+    to_pix = true;
+  } else if (flow.adv) {
+    pix_.valid = false;
+  }
+  if (flow.emit)
+    busy_ = timing_.interval - 1;
+  else if (busy_ > 0)
+    --busy_;
+  return to_pix;
+}
+
+inline bool CycleModel::clock_pipelined_slot(bool adv, const Pix& from_engines) {
+  if (!adv) return false;
+  if (dl_.empty()) {
+    pix_ = from_engines;
+  } else {
+    pix_ = dl_.back();
+    for (size_t i = dl_.size() - 1; i > 0; --i) dl_[i] = dl_[i - 1];
+    dl_[0] = from_engines;
+  }
+  return true;
+}
+
+inline void CycleModel::clock_engines(const Flow& flow) {
+  if (flow.load_eng) {
     const Span& next = host_ ? sb_[sb_head_] : s_[2];
     run_ = true;
     rem_ = static_cast<unsigned>(next.len);
@@ -438,118 +537,128 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
     y_ = next.y;
     last_ = next.last;
     mat_ = next.mat;
-  } else if (emit) {
-    if (last_pix) run_ = false;
+  } else if (flow.emit) {
+    if (flow.last_pix) run_ = false;
     rem_ -= lanes_;  // wraps after the last beat, as the RTL's rem_q; reloaded before use
     x_ += static_cast<int>(lanes_);
   }
-  if (s2_move)
-    s_[2] = s_[1];
-  else if (load_eng)
-    s_[2].valid = false;
-  if (s1_move)
-    s_[1] = s_[0];
-  else if (s2_move)
-    s_[1].valid = false;
-  Span header_span;
-  header_span.valid = true;
-  header_span.y = word.span_y();
-  header_span.x0 = word.span_x0();
-  header_span.len = word.span_length();
-  header_span.last = word.span_last();
-  header_span.mat = mat_wr_;
-  if (host_) {
-    if (load_eng) {
-      if (++sb_head_ == sb_.size()) sb_head_ = 0;
-      --sb_count_;
-    }
-    if (span_fire) {
-      ++mat_spans_[mat_wr_];
-      size_t tail = sb_head_ + sb_count_;
-      if (tail >= sb_.size()) tail -= sb_.size();
-      sb_[tail] = header_span;
-      ++sb_count_;
-    }
-  } else if (span_fire) {
-    mat_spans_[mat_wr_] += static_cast<int>(hdr_n);
-  }
-  if (host_) {
-    // The start bank above: no setup stages, no span queue.
-  } else if (!queued()) {
-    if (span_fire)
-      s_[0] = header_span;
-    else if (s1_move)
-      s_[0].valid = false;
-  } else {
-    if (sq_pop) {
-      const QueuedSpan& head = sq_[sq_head_];
-      s_[0] = head.span;
-      --bank_spans_[static_cast<size_t>(head.bank)];
-      if (++sq_head_ == sq_.size()) sq_head_ = 0;
-      --sq_count_;
-    } else if (s1_move) {
-      s_[0].valid = false;
-    }
-    if (span_fire) {
-      for (unsigned k = 0; k < hdr_n; ++k) {
-        const CommandWord w{beat[hdr_pos + k]};
-        size_t tail = sq_head_ + sq_count_;
-        if (tail >= sq_.size()) tail -= sq_.size();
-        sq_[tail] = {Span{true, w.span_y(), w.span_x0(), w.span_length(), w.span_last(), mat_wr_},
-                     wr_bank_};
-        ++bank_spans_[static_cast<size_t>(wr_bank_)];
-        ++sq_count_;
-      }
-    }
-  }
+}
 
-  if (item_fire) pos_ = beat_done ? 0 : pos_ + n;
-  if (hdr_fire) {
-    pay_idx_ = 0;
-    pay_rem_ = count;
-    switch (op) {
-      case Opcode::kMaterial:
-        // Its payload writes the other bank, which no span in flight reads.
-        if (mat_banked_) mat_wr_ = 1 - mat_wr_;
-        pay_op_ = Payload::kMaterial;
-        in_payload_ = count != 0;
-        break;
-      case Opcode::kTriangle:
-        // The coefficient words that came with the header are already taken.
-        wr_bank_ = next_bank;
-        pay_op_ = Payload::kTriangle;
-        pay_idx_ = hdr_n - 1;
-        pay_rem_ = (count - hdr_n + 1) & CommandWord::kFieldMask;
-        in_payload_ = count > hdr_n - 1;
-        break;
-      case Opcode::kTable:
-        pay_op_ = Payload::kTable;
-        in_payload_ = count != 0;
-        break;
-      case Opcode::kSpan:
-        // Host setup: the start values that came with the header are already taken.
-        if (host_) {
-          pay_op_ = Payload::kSpan;
-          pay_idx_ = hdr_n - 1;
-          pay_rem_ = (count - hdr_n + 1) & CommandWord::kFieldMask;
-          in_payload_ = count > hdr_n - 1;
-        } else {
-          pay_op_ = Payload::kSkip;
-          in_payload_ = false;
-        }
-        break;
-      default:
+inline void CycleModel::clock_setup_stages(const Flow& flow) {
+  if (flow.s2_move)
+    s_[2] = s_[1];
+  else if (flow.load_eng)
+    s_[2].valid = false;
+  if (flow.s1_move)
+    s_[1] = s_[0];
+  else if (flow.s2_move)
+    s_[1].valid = false;
+}
+
+// Where spans enter: the start bank (host setup), setup stage 1, or the span queue.
+inline void CycleModel::clock_span_intake(const uint64_t* beat, const Item& item, const Flow& flow,
+                                          bool span_fire) {
+  if (host_) {
+    clock_start_bank(item.word, flow.load_eng, span_fire);
+    return;
+  }
+  if (span_fire) mat_spans_[mat_wr_] += static_cast<int>(item.hdr_n);
+  if (queued()) {
+    clock_span_queue(beat, item, flow.sq_pop, flow.s1_move, span_fire);
+  } else if (span_fire) {
+    s_[0] = span_of(item.word);
+  } else if (flow.s1_move) {
+    s_[0].valid = false;
+  }
+}
+
+inline void CycleModel::clock_start_bank(CommandWord header, bool load_eng, bool span_fire) {
+  if (load_eng) {
+    if (++sb_head_ == sb_.size()) sb_head_ = 0;
+    --sb_count_;
+  }
+  if (span_fire) {
+    ++mat_spans_[mat_wr_];
+    size_t newest = sb_head_ + sb_count_;
+    if (newest >= sb_.size()) newest -= sb_.size();
+    sb_[newest] = span_of(header);
+    ++sb_count_;
+  }
+}
+
+inline void CycleModel::clock_span_queue(const uint64_t* beat, const Item& item, bool sq_pop,
+                                         bool s1_move, bool span_fire) {
+  if (sq_pop) {
+    const QueuedSpan& head = sq_[sq_head_];
+    s_[0] = head.span;
+    --bank_spans_[static_cast<size_t>(head.bank)];
+    if (++sq_head_ == sq_.size()) sq_head_ = 0;
+    --sq_count_;
+  } else if (s1_move) {
+    s_[0].valid = false;
+  }
+  if (!span_fire) return;
+  for (unsigned k = 0; k < item.hdr_n; ++k) {
+    size_t newest = sq_head_ + sq_count_;
+    if (newest >= sq_.size()) newest -= sq_.size();
+    sq_[newest] = {span_of(CommandWord{beat[item.hdr_pos + k]}), wr_bank_};
+    ++bank_spans_[static_cast<size_t>(wr_bank_)];
+    ++sq_count_;
+  }
+}
+
+inline void CycleModel::take_item(const Item& item, int next_bank) {
+  if (item.n > 0) pos_ = item.beat_done ? 0 : pos_ + item.n;
+  if (item.take_hdr)
+    start_payload(item, next_bank);
+  else if (in_payload_)
+    advance_payload(item.tri_payload ? item.tail : 1);
+}
+
+inline void CycleModel::start_payload(const Item& item, int next_bank) {
+  pay_idx_ = 0;
+  pay_rem_ = item.count;
+  switch (item.op) {
+    case Opcode::kMaterial:
+      // Its payload writes the other bank, which no span in flight reads.
+      if (mat_banked_) mat_wr_ = 1 - mat_wr_;
+      pay_op_ = Payload::kMaterial;
+      in_payload_ = item.count != 0;
+      break;
+    case Opcode::kTriangle:
+      wr_bank_ = next_bank;
+      start_tail_payload(Payload::kTriangle, item);
+      break;
+    case Opcode::kTable:
+      pay_op_ = Payload::kTable;
+      in_payload_ = item.count != 0;
+      break;
+    case Opcode::kSpan:
+      if (host_) {
+        start_tail_payload(Payload::kSpan, item);
+      } else {
         pay_op_ = Payload::kSkip;
         in_payload_ = false;
-        break;
-    }
-  } else if (pay_fire) {
-    const unsigned taken = tri_payload ? tail : 1;
-    if (taken == pay_rem_) in_payload_ = false;  // the payload's last word
-    pay_idx_ = (pay_idx_ + taken) & CommandWord::kFieldMask;
-    pay_rem_ = (pay_rem_ - taken) & CommandWord::kFieldMask;
+      }
+      break;
+    default:
+      pay_op_ = Payload::kSkip;
+      in_payload_ = false;
+      break;
   }
-  return e;
+}
+
+inline void CycleModel::start_tail_payload(Payload op, const Item& item) {
+  pay_op_ = op;
+  pay_idx_ = item.hdr_n - 1;
+  pay_rem_ = (item.count - item.hdr_n + 1) & CommandWord::kFieldMask;
+  in_payload_ = item.count > item.hdr_n - 1;
+}
+
+inline void CycleModel::advance_payload(unsigned taken) {
+  if (taken == pay_rem_) in_payload_ = false;  // the payload's last word
+  pay_idx_ = (pay_idx_ + taken) & CommandWord::kFieldMask;
+  pay_rem_ = (pay_rem_ - taken) & CommandWord::kFieldMask;
 }
 
 }  // namespace shadesim

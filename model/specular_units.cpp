@@ -68,155 +68,167 @@ SpecularUnitDescriptor unit_without_hardware(SpecularUnitKind kind, const char* 
           [](const SpecularConfig&, int) { return 0.0; }};
 }
 
+SpecularUnitDescriptor lut_unit() {
+  return {SpecularUnitKind::kLut,
+          "lut",
+          1,
+          true,
+          1,
+          {
+              {"addr_bits", "--lut-addr-bits", "LUT: address bits A (2^A entries)", "ADDR_BITS", 0,
+               1, 20, false, nullptr, get<kLut, &L::addr_bits>, set<kLut, &L::addr_bits>, 4,
+               [](int v) { return std::min(v + 2, 20); }},
+              {"entry_bits", "--lut-entry-bits", "LUT: entry bits B", "ENTRY_BITS", 1, 1, 32, false,
+               nullptr, get<kLut, &L::entry_bits>, set<kLut, &L::entry_bits>, 4,
+               [](int v) { return std::min(v + 4, 32); }},
+              {"interp_bits", "--lut-interp-bits", "LUT: interpolation fraction bits (0 = off)",
+               "INTERP_BITS", 2, 0, 16, false, nullptr, get<kLut, &L::interp_bits>,
+               set<kLut, &L::interp_bits>, 0, [](int v) { return std::max(v, 4); }},
+              {"index", "--lut-index", "LUT: address rounding", "INDEX", 3, 0, 1, false,
+               name_of<LutIndex>, get<kLut, &L::index>, set<kLut, &L::index>},
+              {"addressing", "--lut-addressing",
+               "LUT: a table per exponent (reloaded per material) or one shared", "", -1, 0, 1,
+               false, name_of<LutAddressing>, get<kLut, &L::addressing>, set<kLut, &L::addressing>},
+              {"shared_range_log2", "--lut-shared-range-log2",
+               "LUT, shared table: log2 of the range U of u = k (1 - t) it spans", "", -1, 0, 6,
+               false, nullptr, get<kLut, &L::shared_range_log2>, set<kLut, &L::shared_range_log2>},
+              {"fit", "--fit", kFitHelp, "", -1, 0, kFitHi, false, name_of<FitObjective>,
+               get<kLut, &L::fit>, set<kLut, &L::fit>},
+          },
+          [](const SpecularConfig& c) { return ExponentLut::latency(c.lut); },
+          [](const SpecularConfig& c) { return ExponentLut::cycles_per_pixel(c.lut); },
+          [](const SpecularConfig& c) {
+            SpecularCost k;
+            const LutConfig& l = c.lut;
+            k.table_bits = ExponentLut::table_bits(l);
+            k.multipliers = ExponentLut::multipliers(l);
+            k.reload_cycles = ExponentLut::reload_cycles(l);
+            // The interpolator: an (F+1) x (B+1) multiplier plus a (B+F)-bit adder.
+            k.area =
+                static_cast<double>(k.table_bits) +
+                (l.interp_bits > 0 ? kFullAdderArea * ((l.interp_bits + 1) * (l.entry_bits + 1) +
+                                                       l.entry_bits + l.interp_bits)
+                                   : 0.0);
+            return k;
+          },
+          [](const SpecularConfig& c) {
+            const LutConfig& l = c.lut;
+            std::ostringstream os;
+            os << (l.addressing == LutAddressing::kShared ? " shared" : " per-n")
+               << " A=" << l.addr_bits << " B=" << l.entry_bits
+               << (l.index == LutIndex::kTruncate ? " trn" : " near");
+            if (l.interp_bits > 0) os << " F=" << l.interp_bits;
+            if (l.addressing == LutAddressing::kShared)
+              os << " U=2^" << l.shared_range_log2 << fit_tag(l.fit);
+            return os.str();
+          },
+          [](const SpecularConfig& c, int series_wl) {
+            // The table's bits, plus the address and interpolation datapath.
+            const LutConfig& l = c.lut;
+            return std::ldexp(static_cast<double>(l.entry_bits), l.addr_bits) +
+                   static_cast<double>(l.entry_bits * (l.interp_bits + 1)) * series_wl;
+          },
+          [](const SpecularConfig& c) {
+            if (c.lut.interp_bits > 0 && c.lut.addr_bits < 2)
+              throw std::invalid_argument(
+                  "lut.addr_bits must be >= 2 with interpolation (two entries per interval)");
+          }};
+}
+
+SpecularUnitDescriptor schlick_unit() {
+  return {
+      SpecularUnitKind::kSchlick,
+      "schlick",
+      2,
+      true,
+      2,  // numerator and denominator series
+      {
+          {"quotient_bits", "--schlick-quotient-bits",
+           "Schlick: quotient bits Q (divider iterations)", "QUOTIENT_BITS", 0, 1, 32, false,
+           nullptr, get<kSchlick, &S::quotient_bits>, set<kSchlick, &S::quotient_bits>, 4,
+           [](int v) { return std::min(v + 2, 32); }},
+          {"operand_bits", "--schlick-operand-bits",
+           "Schlick: fraction bits D of the divider's operands", "OPERAND_BITS", 1, 2, 48, false,
+           nullptr, get<kSchlick, &S::operand_bits>, set<kSchlick, &S::operand_bits>, 8,
+           [](int v) { return std::min(v + 4, 48); }},
+          {"timing", "--schlick-timing", "Schlick: iterative = Q cycles/pixel, pipelined = 1",
+           "TIMING", 2, 0, 1, false, name_of<UnitTiming>, get<kSchlick, &S::timing>,
+           set<kSchlick, &S::timing>},
+          {"fit", "--fit", kFitHelp, "", -1, 0, kFitHi, false, name_of<FitObjective>,
+           get<kSchlick, &S::fit>, set<kSchlick, &S::fit>},
+      },
+      [](const SpecularConfig& c) { return SchlickDivider::latency(c.schlick); },
+      [](const SpecularConfig& c) { return SchlickDivider::cycles_per_pixel(c.schlick); },
+      [](const SpecularConfig& c) {
+        SpecularCost k;
+        k.divider_iterations = SchlickDivider::iterations(c.schlick);
+        // Each subtract/compare stage is D + 3 bits wide.
+        k.area = kFullAdderArea * SchlickDivider::subtractor_stages(c.schlick) *
+                 (c.schlick.operand_bits + 3);
+        return k;
+      },
+      [](const SpecularConfig& c) {
+        std::ostringstream os;
+        os << " Q=" << c.schlick.quotient_bits << " D=" << c.schlick.operand_bits
+           << timing_tag(c.schlick.timing) << fit_tag(c.schlick.fit);
+        return os.str();
+      },
+      [](const SpecularConfig& c, int) {
+        // Q x D divider bits, once (iterative) or per stage (pipelined).
+        const SchlickConfig& d = c.schlick;
+        return static_cast<double>(d.quotient_bits * d.operand_bits) *
+               (d.timing == UnitTiming::kIterative ? 1.0 : static_cast<double>(d.quotient_bits));
+      }};
+}
+
+SpecularUnitDescriptor wpow_unit() {
+  return {SpecularUnitKind::kWpow,
+          "wpow",
+          3,
+          true,
+          1,
+          {
+              {"max_m", "--wpow-m", "W_m: m (4, 8 or 16)", "MAX_M", 0, 1, 32, true, nullptr,
+               get<kWpow, &W::max_m>, set<kWpow, &W::max_m>},
+              {"base_bits", "--wpow-bits", "W_m: fraction bits B of the base and squares",
+               "BASE_BITS", 1, 2, 30, false, nullptr, get<kWpow, &W::base_bits>,
+               set<kWpow, &W::base_bits>, 6, [](int v) { return std::min(v + 4, 30); }},
+              {"timing", "--wpow-timing", "W_m: pipelined = 1 cycle/pixel, iterative = log2(m) + 1",
+               "TIMING", 2, 0, 1, false, name_of<UnitTiming>, get<kWpow, &W::timing>,
+               set<kWpow, &W::timing>},
+              {"fit", "--fit", kFitHelp, "", -1, 0, kFitHi, false, name_of<FitObjective>,
+               get<kWpow, &W::fit>, set<kWpow, &W::fit>},
+          },
+          [](const SpecularConfig& c) { return WpowUnit::latency(c.wpow); },
+          [](const SpecularConfig& c) { return WpowUnit::cycles_per_pixel(c.wpow); },
+          [](const SpecularConfig& c) {
+            SpecularCost k;
+            k.multipliers = WpowUnit::multipliers(c.wpow);
+            const double b = c.wpow.base_bits + 1;
+            k.area = kFullAdderArea * k.multipliers * b * b /
+                     2.0;  // a squarer is about half a multiplier
+            return k;
+          },
+          [](const SpecularConfig& c) {
+            std::ostringstream os;
+            os << " m=" << c.wpow.max_m << " B=" << c.wpow.base_bits << timing_tag(c.wpow.timing)
+               << fit_tag(c.wpow.fit);
+            return os.str();
+          },
+          [](const SpecularConfig& c, int series_wl) {
+            // B x B squarers, one (iterative) or log2(m) (pipelined), plus the base stage.
+            const double b = c.wpow.base_bits;
+            const double k = WpowUnit::stages(c.wpow);
+            return b * b * (c.wpow.timing == UnitTiming::kIterative ? 1.0 : k) + b * series_wl;
+          }};
+}
+
 std::vector<SpecularUnitDescriptor> make_table() {
   std::vector<SpecularUnitDescriptor> t;
   t.push_back(unit_without_hardware(SpecularUnitKind::kIdeal, "ideal", 0, 1));
-  t.push_back(
-      {SpecularUnitKind::kLut,
-       "lut",
-       1,
-       true,
-       1,
-       {
-           {"addr_bits", "--lut-addr-bits", "LUT: address bits A (2^A entries)", "ADDR_BITS", 0, 1,
-            20, false, nullptr, get<kLut, &L::addr_bits>, set<kLut, &L::addr_bits>, 4,
-            [](int v) { return std::min(v + 2, 20); }},
-           {"entry_bits", "--lut-entry-bits", "LUT: entry bits B", "ENTRY_BITS", 1, 1, 32, false,
-            nullptr, get<kLut, &L::entry_bits>, set<kLut, &L::entry_bits>, 4,
-            [](int v) { return std::min(v + 4, 32); }},
-           {"interp_bits", "--lut-interp-bits", "LUT: interpolation fraction bits (0 = off)",
-            "INTERP_BITS", 2, 0, 16, false, nullptr, get<kLut, &L::interp_bits>,
-            set<kLut, &L::interp_bits>, 0, [](int v) { return std::max(v, 4); }},
-           {"index", "--lut-index", "LUT: address rounding", "INDEX", 3, 0, 1, false,
-            name_of<LutIndex>, get<kLut, &L::index>, set<kLut, &L::index>},
-           {"addressing", "--lut-addressing",
-            "LUT: a table per exponent (reloaded per material) or one shared", "", -1, 0, 1, false,
-            name_of<LutAddressing>, get<kLut, &L::addressing>, set<kLut, &L::addressing>},
-           {"shared_range_log2", "--lut-shared-range-log2",
-            "LUT, shared table: log2 of the range U of u = k (1 - t) it spans", "", -1, 0, 6, false,
-            nullptr, get<kLut, &L::shared_range_log2>, set<kLut, &L::shared_range_log2>},
-           {"fit", "--fit", kFitHelp, "", -1, 0, kFitHi, false, name_of<FitObjective>,
-            get<kLut, &L::fit>, set<kLut, &L::fit>},
-       },
-       [](const SpecularConfig& c) { return ExponentLut::latency(c.lut); },
-       [](const SpecularConfig& c) { return ExponentLut::cycles_per_pixel(c.lut); },
-       [](const SpecularConfig& c) {
-         SpecularCost k;
-         const LutConfig& l = c.lut;
-         k.table_bits = ExponentLut::table_bits(l);
-         k.multipliers = ExponentLut::multipliers(l);
-         k.reload_cycles = ExponentLut::reload_cycles(l);
-         // The interpolator: an (F+1) x (B+1) multiplier plus a (B+F)-bit adder.
-         k.area = static_cast<double>(k.table_bits) +
-                  (l.interp_bits > 0 ? kFullAdderArea * ((l.interp_bits + 1) * (l.entry_bits + 1) +
-                                                         l.entry_bits + l.interp_bits)
-                                     : 0.0);
-         return k;
-       },
-       [](const SpecularConfig& c) {
-         const LutConfig& l = c.lut;
-         std::ostringstream os;
-         os << (l.addressing == LutAddressing::kShared ? " shared" : " per-n")
-            << " A=" << l.addr_bits << " B=" << l.entry_bits
-            << (l.index == LutIndex::kTruncate ? " trn" : " near");
-         if (l.interp_bits > 0) os << " F=" << l.interp_bits;
-         if (l.addressing == LutAddressing::kShared)
-           os << " U=2^" << l.shared_range_log2 << fit_tag(l.fit);
-         return os.str();
-       },
-       [](const SpecularConfig& c, int series_wl) {
-         // The table's bits, plus the address and interpolation datapath.
-         const LutConfig& l = c.lut;
-         return std::ldexp(static_cast<double>(l.entry_bits), l.addr_bits) +
-                static_cast<double>(l.entry_bits * (l.interp_bits + 1)) * series_wl;
-       },
-       [](const SpecularConfig& c) {
-         if (c.lut.interp_bits > 0 && c.lut.addr_bits < 2)
-           throw std::invalid_argument(
-               "lut.addr_bits must be >= 2 with interpolation (two entries per interval)");
-       }});
-  t.push_back({SpecularUnitKind::kSchlick,
-               "schlick",
-               2,
-               true,
-               2,  // numerator and denominator series
-               {
-                   {"quotient_bits", "--schlick-quotient-bits",
-                    "Schlick: quotient bits Q (divider iterations)", "QUOTIENT_BITS", 0, 1, 32,
-                    false, nullptr, get<kSchlick, &S::quotient_bits>,
-                    set<kSchlick, &S::quotient_bits>, 4, [](int v) { return std::min(v + 2, 32); }},
-                   {"operand_bits", "--schlick-operand-bits",
-                    "Schlick: fraction bits D of the divider's operands", "OPERAND_BITS", 1, 2, 48,
-                    false, nullptr, get<kSchlick, &S::operand_bits>,
-                    set<kSchlick, &S::operand_bits>, 8, [](int v) { return std::min(v + 4, 48); }},
-                   {"timing", "--schlick-timing",
-                    "Schlick: iterative = Q cycles/pixel, pipelined = 1", "TIMING", 2, 0, 1, false,
-                    name_of<UnitTiming>, get<kSchlick, &S::timing>, set<kSchlick, &S::timing>},
-                   {"fit", "--fit", kFitHelp, "", -1, 0, kFitHi, false, name_of<FitObjective>,
-                    get<kSchlick, &S::fit>, set<kSchlick, &S::fit>},
-               },
-               [](const SpecularConfig& c) { return SchlickDivider::latency(c.schlick); },
-               [](const SpecularConfig& c) { return SchlickDivider::cycles_per_pixel(c.schlick); },
-               [](const SpecularConfig& c) {
-                 SpecularCost k;
-                 k.divider_iterations = SchlickDivider::iterations(c.schlick);
-                 // Each subtract/compare stage is D + 3 bits wide.
-                 k.area = kFullAdderArea * SchlickDivider::subtractor_stages(c.schlick) *
-                          (c.schlick.operand_bits + 3);
-                 return k;
-               },
-               [](const SpecularConfig& c) {
-                 std::ostringstream os;
-                 os << " Q=" << c.schlick.quotient_bits << " D=" << c.schlick.operand_bits
-                    << timing_tag(c.schlick.timing) << fit_tag(c.schlick.fit);
-                 return os.str();
-               },
-               [](const SpecularConfig& c, int) {
-                 // Q x D divider bits, once (iterative) or per stage (pipelined).
-                 const SchlickConfig& d = c.schlick;
-                 return static_cast<double>(d.quotient_bits * d.operand_bits) *
-                        (d.timing == UnitTiming::kIterative ? 1.0
-                                                            : static_cast<double>(d.quotient_bits));
-               }});
-  t.push_back({SpecularUnitKind::kWpow,
-               "wpow",
-               3,
-               true,
-               1,
-               {
-                   {"max_m", "--wpow-m", "W_m: m (4, 8 or 16)", "MAX_M", 0, 1, 32, true, nullptr,
-                    get<kWpow, &W::max_m>, set<kWpow, &W::max_m>},
-                   {"base_bits", "--wpow-bits", "W_m: fraction bits B of the base and squares",
-                    "BASE_BITS", 1, 2, 30, false, nullptr, get<kWpow, &W::base_bits>,
-                    set<kWpow, &W::base_bits>, 6, [](int v) { return std::min(v + 4, 30); }},
-                   {"timing", "--wpow-timing",
-                    "W_m: pipelined = 1 cycle/pixel, iterative = log2(m) + 1", "TIMING", 2, 0, 1,
-                    false, name_of<UnitTiming>, get<kWpow, &W::timing>, set<kWpow, &W::timing>},
-                   {"fit", "--fit", kFitHelp, "", -1, 0, kFitHi, false, name_of<FitObjective>,
-                    get<kWpow, &W::fit>, set<kWpow, &W::fit>},
-               },
-               [](const SpecularConfig& c) { return WpowUnit::latency(c.wpow); },
-               [](const SpecularConfig& c) { return WpowUnit::cycles_per_pixel(c.wpow); },
-               [](const SpecularConfig& c) {
-                 SpecularCost k;
-                 k.multipliers = WpowUnit::multipliers(c.wpow);
-                 const double b = c.wpow.base_bits + 1;
-                 k.area = kFullAdderArea * k.multipliers * b * b /
-                          2.0;  // a squarer is about half a multiplier
-                 return k;
-               },
-               [](const SpecularConfig& c) {
-                 std::ostringstream os;
-                 os << " m=" << c.wpow.max_m << " B=" << c.wpow.base_bits
-                    << timing_tag(c.wpow.timing) << fit_tag(c.wpow.fit);
-                 return os.str();
-               },
-               [](const SpecularConfig& c, int series_wl) {
-                 // B x B squarers, one (iterative) or log2(m) (pipelined), plus the base stage.
-                 const double b = c.wpow.base_bits;
-                 const double k = WpowUnit::stages(c.wpow);
-                 return b * b * (c.wpow.timing == UnitTiming::kIterative ? 1.0 : k) + b * series_wl;
-               }});
+  t.push_back(lut_unit());
+  t.push_back(schlick_unit());
+  t.push_back(wpow_unit());
   // No specular term: shade_unit instantiates no specular_unit and no specular series (nor their
   // span setup and engines), and pixel_combine adds nothing; MATERIAL carries no unit parameters.
   t.push_back(unit_without_hardware(SpecularUnitKind::kNone, "none", 4, 0));

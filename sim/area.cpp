@@ -23,6 +23,7 @@
 
 #include "model/exponent_lut.h"
 #include "model/specular_units.h"
+#include "model/text_file.h"
 #include "sim/content_hash.h"
 #include "sim/process.h"
 #include "sim/rtl_files.h"
@@ -114,12 +115,7 @@ void write_atomically(const fs::path& p, const std::string& text) {
   // A unique temporary name in the same folder, then rename(2): readers see all or nothing.
   const fs::path tmp = p.string() + ".tmp." + std::to_string(::getpid()) + "." +
                        std::to_string(std::chrono::steady_clock::now().time_since_epoch().count());
-  {
-    std::ofstream os(tmp, std::ios::binary);
-    if (!os) throw std::runtime_error(tmp.string() + ": cannot open for writing");
-    os << text;
-    if (!os.flush()) throw std::runtime_error(tmp.string() + ": write failed");
-  }
+  write_text_file(tmp.string(), text);
   std::error_code ec;
   fs::rename(tmp, p, ec);
   if (ec) {
@@ -751,113 +747,104 @@ AreaReport area_report_from_json(const std::string& text, const std::string& sou
   }
 }
 
-AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
-  AreaReport r;
-  r.parameters = shade_unit_parameters(unit);  // validates `unit`
-  const std::string chparam = yosys_chparam_args(r.parameters);
-  const std::string yosys = find_program(o.yosys, "yosys");
-  const std::string nextpnr = o.place_and_route ? find_program(o.nextpnr, "nextpnr-ice40") : "";
-  const std::vector<fs::path> files =
-      rtl_sources(o.rtl_dir.empty() ? SHADESIM_SOURCE_DIR "/rtl" : o.rtl_dir);
+namespace {
 
-  r.yosys_version = first_line(run_process({yosys, "-V"}, "").output);
-  if (o.place_and_route)
-    r.nextpnr_version = first_line(run_process({nextpnr, "--version"}, "").output);
+// A synthesis run's tools and inputs: the figures depend on these and on the scripts only.
+struct AreaInputs {
+  std::string yosys, nextpnr;  // the programs; nextpnr empty without place and route
+  std::vector<fs::path> files;
+  std::string chparam;
+  std::string yosys_version;
+};
 
-  // Cache key: everything the figures depend on. The file names are in the script text.
-  auto key_for = [&](bool breakdown, bool pnr, const std::string& nextpnr_version) {
-    ContentHash h;
-    h.add("shadesim-area-v2");  // 2: gate equivalents and RAM bits measured
-    h.add(chparam);
-    for (const auto& f : files) {
-      h.add(f.filename().string());
-      h.add(read_text(f));
-    }
-    h.add(r.yosys_version);
-    h.add(kFlatScript);
-    h.add(kIce40Script);
-    h.add(kMemoryScript);
-    if (breakdown) h.add(kBreakdownScript);
-    if (pnr) {
-      h.add(nextpnr_version);
-      h.add(kPnrArgs);
-      h.add(kShellVersion).add(kShellScript);
-    }
-    return h.hex();
-  };
-  r.key = key_for(o.breakdown, o.place_and_route, r.nextpnr_version);
+AreaInputs area_inputs(const std::vector<VerilogParameter>& parameters, const AreaOptions& o) {
+  AreaInputs in;
+  in.chparam = yosys_chparam_args(parameters);
+  in.yosys = find_program(o.yosys, "yosys");
+  in.nextpnr = o.place_and_route ? find_program(o.nextpnr, "nextpnr-ice40") : "";
+  in.files = rtl_sources(o.rtl_dir.empty() ? SHADESIM_SOURCE_DIR "/rtl" : o.rtl_dir);
+  in.yosys_version = first_line(run_process({in.yosys, "-V"}, "").output);
+  return in;
+}
 
-  fs::path entry;
-  if (!o.cache_dir.empty()) {
-    fs::create_directories(o.cache_dir);
-    entry = fs::path(o.cache_dir) / (r.key + ".json");
-    // An entry that ran more (breakdown, place and route) also answers a request for less.
-    std::vector<fs::path> candidates = {entry};
-    std::string np_version = r.nextpnr_version;
-    if (!o.place_and_route) {
-      try {
-        np_version = first_line(
-            run_process({find_program(o.nextpnr, "nextpnr-ice40"), "--version"}, "").output);
-      } catch (const MissingToolError&) {
-        // no nextpnr: only entries without place and route can be wanted
-      }
-    }
-    for (const bool b : {o.breakdown, true}) {
-      for (const bool pnr : {o.place_and_route, true}) {
-        if (pnr && np_version.empty()) continue;
-        candidates.push_back(fs::path(o.cache_dir) / (key_for(b, pnr, np_version) + ".json"));
-      }
-    }
-    for (const auto& c : candidates) {
-      if (!fs::exists(c)) continue;
-      AreaReport cached = area_report_from_json(read_text(c), c.string());
-      cached.from_cache = true;
-      check_series(cached);
-      if (o.progress) *o.progress << "[area] cache hit " << c.string() << "\n";
-      return cached;
+// Cache key: everything the figures depend on. The file names are in the script text.
+std::string area_key(const AreaInputs& in, bool breakdown, bool pnr,
+                     const std::string& nextpnr_version) {
+  ContentHash h;
+  h.add("shadesim-area-v2");  // 2: gate equivalents and RAM bits measured
+  h.add(in.chparam);
+  for (const auto& f : in.files) {
+    h.add(f.filename().string());
+    h.add(read_text(f));
+  }
+  h.add(in.yosys_version);
+  h.add(kFlatScript);
+  h.add(kIce40Script);
+  h.add(kMemoryScript);
+  if (breakdown) h.add(kBreakdownScript);
+  if (pnr) {
+    h.add(nextpnr_version);
+    h.add(kPnrArgs);
+    h.add(kShellVersion).add(kShellScript);
+  }
+  return h.hex();
+}
+
+// The cache entries that answer the request `r` stands for: its own, then any that ran more
+// (breakdown, place and route), which also answer a request for less.
+std::vector<fs::path> cache_candidates(const AreaInputs& in, const AreaReport& r,
+                                       const AreaOptions& o) {
+  std::vector<fs::path> candidates = {fs::path(o.cache_dir) / (r.key + ".json")};
+  std::string np_version = r.nextpnr_version;
+  if (!o.place_and_route) {
+    try {
+      np_version = first_line(
+          run_process({find_program(o.nextpnr, "nextpnr-ice40"), "--version"}, "").output);
+    } catch (const MissingToolError&) {
+      // no nextpnr: only entries without place and route can be wanted
     }
   }
+  for (const bool b : {o.breakdown, true}) {
+    for (const bool pnr : {o.place_and_route, true}) {
+      if (pnr && np_version.empty()) continue;
+      candidates.push_back(fs::path(o.cache_dir) / (area_key(in, b, pnr, np_version) + ".json"));
+    }
+  }
+  return candidates;
+}
 
-  // A fresh work folder; kept when a tool fails (its logs say why), removed on success.
+std::optional<AreaReport> cached_area(const AreaInputs& in, const AreaReport& r,
+                                      const AreaOptions& o) {
+  for (const auto& c : cache_candidates(in, r, o)) {
+    if (!fs::exists(c)) continue;
+    AreaReport cached = area_report_from_json(read_text(c), c.string());
+    cached.from_cache = true;
+    check_series(cached);
+    if (o.progress) *o.progress << "[area] cache hit " << c.string() << "\n";
+    return cached;
+  }
+  return std::nullopt;
+}
+
+// A fresh work folder; kept when a tool fails (its logs say why), removed on success.
+fs::path make_work_folder(const AreaOptions& o, const std::string& key) {
   const fs::path work_root =
       o.cache_dir.empty() ? fs::temp_directory_path() : fs::path(o.cache_dir);
-  std::string tmpl = (work_root / ("work-" + r.key + "-XXXXXX")).string();
+  std::string tmpl = (work_root / ("work-" + key + "-XXXXXX")).string();
   if (!::mkdtemp(tmpl.data())) throw std::runtime_error(tmpl + ": cannot create a work folder");
-  const fs::path work = tmpl;
+  return tmpl;
+}
 
-  const auto t0 = std::chrono::steady_clock::now();
-  struct rusage before {};
-  ::getrusage(RUSAGE_CHILDREN, &before);
-  // The syntheses are independent: run them side by side.
-  auto run_yosys = [&](const std::string& name, const char* flow, const std::string& label,
-                       std::ostream* progress) {
-    const fs::path script = work / (name + ".ys");
-    write_atomically(script, yosys_script(files, chparam, flow, work));
-    run_tool({yosys, "-q", "-l", (work / (name + ".log")).string(), script.string()},
-             work / (name + ".out"), label, progress);
-  };
-  // One progress line for all of them: which are still running and for how long.
-  struct Job {
-    std::string label;
-    std::future<void> done;
-    bool finished = false;
-  };
-  std::vector<Job> jobs;
-  jobs.push_back({"flat synthesis", std::async(std::launch::async, [&] {
-                    run_yosys("flat", kFlatScript, "yosys flat synthesis", nullptr);
-                  })});
-  jobs.push_back({"synth_ice40", std::async(std::launch::async, [&] {
-                    run_yosys("ice40", kIce40Script, "yosys synth_ice40", nullptr);
-                  })});
-  jobs.push_back({"table memories", std::async(std::launch::async, [&] {
-                    run_yosys("memory", kMemoryScript, "yosys table memories", nullptr);
-                  })});
-  if (o.breakdown) {
-    jobs.push_back({"per-module synthesis", std::async(std::launch::async, [&] {
-                      run_yosys("breakdown", kBreakdownScript, "yosys per-module synthesis",
-                                nullptr);
-                    })});
-  }
+struct SynthesisJob {
+  std::string label;
+  std::future<void> done;
+  bool finished = false;
+};
+
+// Waits for every job, with one progress line for all of them: which are still running and for
+// how long. Rethrows the first failure.
+void wait_for_syntheses(std::vector<SynthesisJob>& jobs, const AreaOptions& o,
+                        std::chrono::steady_clock::time_point t0) {
   const bool terminal = o.progress == &std::cerr && ::isatty(STDERR_FILENO);
   for (int ticks = 0;; ++ticks) {
     std::string running;
@@ -890,7 +877,39 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
                 << (terminal ? "                                        " : "") << "\n";
   }
   if (error) std::rethrow_exception(error);
+}
 
+// The flat, iCE40, table-memory and (with o.breakdown) per-module syntheses, into `work`. They
+// are independent: they run side by side.
+void run_syntheses(const AreaInputs& in, const fs::path& work, const AreaOptions& o,
+                   std::chrono::steady_clock::time_point t0) {
+  const auto run_yosys = [&](const std::string& name, const char* flow, const std::string& label) {
+    const fs::path script = work / (name + ".ys");
+    write_atomically(script, yosys_script(in.files, in.chparam, flow, work));
+    run_tool({in.yosys, "-q", "-l", (work / (name + ".log")).string(), script.string()},
+             work / (name + ".out"), label, nullptr);
+  };
+  std::vector<SynthesisJob> jobs;
+  jobs.push_back({"flat synthesis", std::async(std::launch::async, [&] {
+                    run_yosys("flat", kFlatScript, "yosys flat synthesis");
+                  })});
+  jobs.push_back({"synth_ice40", std::async(std::launch::async, [&] {
+                    run_yosys("ice40", kIce40Script, "yosys synth_ice40");
+                  })});
+  jobs.push_back({"table memories", std::async(std::launch::async, [&] {
+                    run_yosys("memory", kMemoryScript, "yosys table memories");
+                  })});
+  if (o.breakdown) {
+    jobs.push_back({"per-module synthesis", std::async(std::launch::async, [&] {
+                      run_yosys("breakdown", kBreakdownScript, "yosys per-module synthesis");
+                    })});
+  }
+  wait_for_syntheses(jobs, o, t0);
+}
+
+// The syntheses' figures into r: cells, flip-flops, GE and RAM bits, logic depth, the
+// per-module rows, the iCE40 resources and whether they fit.
+void read_syntheses(const fs::path& work, bool breakdown, AreaReport& r) {
   {
     const fs::path p = work / "flat_stat.txt";
     const auto stat = read_stat_text(p);
@@ -904,7 +923,7 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
     r.ram_bits_expected = ram_bits_of_parameters(r.parameters);
     r.logic_depth = read_logic_depth((work / "flat_ltp.txt").string());
   }
-  if (o.breakdown) {
+  if (breakdown) {
     read_breakdown(read_stat_text(work / "breakdown_stat.txt"), work / "breakdown_stat.txt", r);
   }
   check_series(r);
@@ -914,6 +933,71 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
     read_ice40_stat(stat.at(top_name(stat, p)), r.ice40);
   }
   check_fit(r.ice40);
+}
+
+// Places and routes the unit in its Fmax shell on an HX8K for r.ice40's Fmax. Returns whether
+// the work folder must be kept: a failed placement, whose log says why.
+bool place_and_route(const AreaInputs& in, const fs::path& work, const AreaOptions& o,
+                     AreaReport& r) {
+  std::vector<std::string> argv = {in.nextpnr};
+  std::istringstream args(kPnrArgs);
+  for (std::string a; args >> a;) argv.push_back(a);
+  argv.insert(argv.end(), {"--json", (work / "shell.json").string(), "--asc",
+                           (work / "shell.asc").string(), "-l", (work / "pnr.log").string()});
+  // The shell's synthesis failing is the flow's fault, not a finding: it throws.
+  write_atomically(work / "fmax_shell.sv", fmax_shell_verilog(r.parameters));
+  std::vector<fs::path> shell_files = in.files;
+  shell_files.push_back(work / "fmax_shell.sv");
+  const fs::path script = work / "shell.ys";
+  write_atomically(script, yosys_script(shell_files, "", kShellScript, work));
+  run_tool({in.yosys, "-q", "-l", (work / "shell.log").string(), script.string()},
+           work / "shell.out", "yosys synth_ice40 of the unit in its Fmax shell", o.progress);
+  try {
+    run_tool(argv, work / "pnr.out", "nextpnr-ice40 place and route (HX8K)", o.progress);
+    r.ice40.fmax_mhz = read_fmax(read_text(work / "pnr.log"));
+    if (!r.ice40.fmax_mhz) r.ice40.pnr_note = "nextpnr-ice40 reported no Fmax";
+    return false;
+  } catch (const std::runtime_error& e) {
+    // A failed placement (no room once packed, too many I/O) is a finding about the design.
+    r.ice40.fits_hx8k = false;
+    r.ice40.fit_note = "does not fit an iCE40 HX8K: nextpnr-ice40 failed (log " +
+                       (work / "pnr.log").string() + ")";
+    r.ice40.pnr_note = "no Fmax: " + first_line(e.what());
+    return true;
+  }
+}
+
+// CPU seconds of the finished child processes so far.
+double children_cpu_seconds() {
+  struct rusage u {};
+  ::getrusage(RUSAGE_CHILDREN, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+}  // namespace
+
+AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
+  AreaReport r;
+  r.parameters = shade_unit_parameters(unit);  // validates `unit`
+  const AreaInputs in = area_inputs(r.parameters, o);
+  r.yosys_version = in.yosys_version;
+  if (o.place_and_route)
+    r.nextpnr_version = first_line(run_process({in.nextpnr, "--version"}, "").output);
+  r.key = area_key(in, o.breakdown, o.place_and_route, r.nextpnr_version);
+
+  fs::path entry;
+  if (!o.cache_dir.empty()) {
+    fs::create_directories(o.cache_dir);
+    entry = fs::path(o.cache_dir) / (r.key + ".json");
+    if (std::optional<AreaReport> cached = cached_area(in, r, o)) return *cached;
+  }
+
+  const fs::path work = make_work_folder(o, r.key);
+  const auto t0 = std::chrono::steady_clock::now();
+  const double cpu_before = children_cpu_seconds();
+  run_syntheses(in, work, o, t0);
+  read_syntheses(work, o.breakdown, r);
 
   bool keep_work = false;
   if (!o.place_and_route) {
@@ -921,40 +1005,10 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
   } else if (!r.ice40.fits_hx8k) {
     r.ice40.pnr_note = "no Fmax: the design does not fit an HX8K";
   } else {
-    std::vector<std::string> argv = {nextpnr};
-    std::istringstream args(kPnrArgs);
-    for (std::string a; args >> a;) argv.push_back(a);
-    argv.insert(argv.end(), {"--json", (work / "shell.json").string(), "--asc",
-                             (work / "shell.asc").string(), "-l", (work / "pnr.log").string()});
-    // The shell's synthesis failing is the flow's fault, not a finding: it throws.
-    write_atomically(work / "fmax_shell.sv", fmax_shell_verilog(r.parameters));
-    std::vector<fs::path> shell_files = files;
-    shell_files.push_back(work / "fmax_shell.sv");
-    const fs::path script = work / "shell.ys";
-    write_atomically(script, yosys_script(shell_files, "", kShellScript, work));
-    run_tool({yosys, "-q", "-l", (work / "shell.log").string(), script.string()},
-             work / "shell.out", "yosys synth_ice40 of the unit in its Fmax shell", o.progress);
-    try {
-      run_tool(argv, work / "pnr.out", "nextpnr-ice40 place and route (HX8K)", o.progress);
-      r.ice40.fmax_mhz = read_fmax(read_text(work / "pnr.log"));
-      if (!r.ice40.fmax_mhz) r.ice40.pnr_note = "nextpnr-ice40 reported no Fmax";
-    } catch (const std::runtime_error& e) {
-      // A failed placement (no room once packed, too many I/O) is a finding about the design.
-      keep_work = true;
-      r.ice40.fits_hx8k = false;
-      r.ice40.fit_note = "does not fit an iCE40 HX8K: nextpnr-ice40 failed (log " +
-                         (work / "pnr.log").string() + ")";
-      r.ice40.pnr_note = "no Fmax: " + first_line(e.what());
-    }
+    keep_work = place_and_route(in, work, o, r);
   }
-  struct rusage after {};
-  ::getrusage(RUSAGE_CHILDREN, &after);
-  auto cpu = [](const struct rusage& u) {
-    return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-           1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-  };
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.cpu_seconds = cpu(after) - cpu(before);
+  r.cpu_seconds = children_cpu_seconds() - cpu_before;
 
   if (!entry.empty()) write_atomically(entry, area_report_to_json(r));
   if (!keep_work) {

@@ -2,7 +2,6 @@
 // budget (host/scene_config.h), print each field with how it was derived, and the error the
 // bit-accurate model reaches on each scene with it.
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -18,6 +17,7 @@
 #include "model/command_stream.h"
 #include "model/shade_unit.h"
 #include "model/specular_units.h"
+#include "model/text_file.h"
 #include "sim/commands.h"
 #include "sim/number_checks.h"
 #include "sim/output_paths.h"
@@ -64,7 +64,7 @@ std::string missed_budget_part(const std::string& path, const ErrorStats& e,
   return os.str();
 }
 
-int run_config(const ConfigOptions& o) {
+DeriveOptions derive_options(const ConfigOptions& o) {
   DeriveOptions d;
   if (!std::isnan(o.budget_lsb)) d.budget_lsb = o.budget_lsb;
   d.out_bits = o.out_bits;
@@ -82,10 +82,12 @@ int run_config(const ConfigOptions& o) {
     }
     d.ideal_fallbacks.clear();  // the unit asked for, and no other
   }
-  const DerivedConfig derived = derive_config(o.scenes, d);
-  const UnitConfig& cfg = derived.config;
+  return d;
+}
 
-  std::cout << "unit         " << cfg.to_string() << "\n\n";
+// The unit, and each field with how it was derived.
+void print_derivation(const DerivedConfig& derived) {
+  std::cout << "unit         " << derived.config.to_string() << "\n\n";
   size_t width = 0;
   for (const auto& r : derived.reasons)
     width = std::max(width, r.field.size() + r.value.size() + 3);
@@ -93,81 +95,93 @@ int run_config(const ConfigOptions& o) {
     std::cout << "  " << std::left << std::setw(static_cast<int>(width))
               << (r.field + " = " + r.value) << "  " << r.reason << '\n';
   }
+}
+
+// One scene on the derived unit: its error printed, and as JSON. A hardware specular unit gets
+// the exact-pow yardstick on the same widths: what of the error is the unit's own. A scene over
+// the budget adds why to `missed`.
+nlohmann::json check_scene(const std::string& path, const DerivedConfig& derived,
+                           const DeriveOptions& d, std::vector<std::string>& missed) {
+  const UnitConfig& cfg = derived.config;
+  const double budget = derived.measured.budget_lsb;
+  const ErrorStats e = shade(path, cfg, d);
+  std::cout << "  " << path << ": max " << e.max_code_lsb << " LSB, mean " << std::setprecision(4)
+            << e.mean_code_lsb << " LSB, PSNR "
+            << (std::isinf(e.psnr_db) ? std::string("inf")
+                                      : std::to_string(e.psnr_db).substr(0, 5) + " dB")
+            << ", max real " << std::setprecision(3) << e.max_real_lsb << " LSB, "
+            << e.pixels_over_1lsb << " of " << e.pixels << " pixels off by more than 1\n";
+  nlohmann::json yardstick = nullptr;
+  std::optional<ErrorStats> with_ideal;
+  if (specular_unit(cfg.specular.kind).hardware) {
+    UnitConfig ideal = cfg;
+    ideal.specular.kind = SpecularUnitKind::kIdeal;
+    const ErrorStats y = shade(path, ideal, d);
+    with_ideal = y;
+    std::cout << "    with ideal (exact pow, not hardware) on the same widths: max "
+              << y.max_code_lsb << " LSB, max real " << std::setprecision(3) << y.max_real_lsb
+              << " LSB\n";
+    if (y.max_code_lsb < e.max_code_lsb) {
+      std::cout << "    the difference is the " << to_string(cfg.specular.kind)
+                << " unit's own approximation of t^n, not the widths' (see shadesim spec-error, "
+                   "--fit)\n";
+    }
+    yardstick = {{"max_code_lsb", y.max_code_lsb}, {"max_real_lsb", y.max_real_lsb}};
+  }
+  if (e.max_code_lsb > code_budget(budget))
+    missed.push_back(missed_budget_part(path, e, with_ideal, budget));
+  return {{"scene", path},
+          {"with_ideal_specular", yardstick},
+          {"within_budget", e.max_code_lsb <= code_budget(budget)},
+          {"pixels", e.pixels},
+          {"max_code_lsb", e.max_code_lsb},
+          {"mean_code_lsb", e.mean_code_lsb},
+          {"psnr_db", std::isinf(e.psnr_db) ? nlohmann::json(nullptr) : nlohmann::json(e.psnr_db)},
+          {"max_real_lsb", e.max_real_lsb},
+          {"pixels_over_1lsb", e.pixels_over_1lsb}};
+}
+
+// The UnitConfig's own fields (load_unit_config and --config read them), and beside them the
+// "derivation" annotation, which the loader ignores.
+nlohmann::json config_json(const ConfigOptions& o, const DerivedConfig& derived,
+                           const nlohmann::json& scenes) {
+  nlohmann::json j = nlohmann::json::parse(config_to_json(derived.config));
+  nlohmann::json reasons = nlohmann::json::array();
+  for (const auto& r : derived.reasons)
+    reasons.push_back({{"field", r.field}, {"value", r.value}, {"reason", r.reason}});
+  const ConfigMeasurements& m = derived.measured;
+  j["derivation"] = {{"scenes", o.scenes},
+                     {"reasons", reasons},
+                     {"measured",
+                      {{"budget_lsb", m.budget_lsb},
+                       {"max_width", m.max_width},
+                       {"max_height", m.max_height},
+                       {"longest_span", m.longest_span},
+                       {"max_offset", m.max_offset},
+                       {"max_monomial_sum", m.max_monomial_sum},
+                       {"series_min", m.series_min},
+                       {"series_max", m.series_max},
+                       {"difference_max", m.difference_max},
+                       {"coef_max", m.coef_max},
+                       {"gain", m.gain},
+                       {"drift_share_lsb", m.drift_share_lsb},
+                       {"coef_share_lsb", m.coef_share_lsb}}},
+                     {"error", scenes}};
+  return j;
+}
+
+int run_config(const ConfigOptions& o) {
+  const DeriveOptions d = derive_options(o);
+  const DerivedConfig derived = derive_config(o.scenes, d);
+  print_derivation(derived);
   std::cout << "\nerror on this unit (8-bit codes vs the reference rounded by the same rule; real "
                "= before "
                "rounding the reference)\n";
   nlohmann::json scenes = nlohmann::json::array();
-  // A hardware specular unit gets the exact-pow yardstick on the same widths: what of the error
-  // is the unit's own.
-  const bool hardware = specular_unit(cfg.specular.kind).hardware;
   std::vector<std::string> missed;
-  for (const auto& path : o.scenes) {
-    const ErrorStats e = shade(path, cfg, d);
-    std::cout << "  " << path << ": max " << e.max_code_lsb << " LSB, mean " << std::setprecision(4)
-              << e.mean_code_lsb << " LSB, PSNR "
-              << (std::isinf(e.psnr_db) ? std::string("inf")
-                                        : std::to_string(e.psnr_db).substr(0, 5) + " dB")
-              << ", max real " << std::setprecision(3) << e.max_real_lsb << " LSB, "
-              << e.pixels_over_1lsb << " of " << e.pixels << " pixels off by more than 1\n";
-    nlohmann::json yardstick = nullptr;
-    std::optional<ErrorStats> with_ideal;
-    if (hardware) {
-      UnitConfig ideal = cfg;
-      ideal.specular.kind = SpecularUnitKind::kIdeal;
-      const ErrorStats y = shade(path, ideal, d);
-      with_ideal = y;
-      std::cout << "    with ideal (exact pow, not hardware) on the same widths: max "
-                << y.max_code_lsb << " LSB, max real " << std::setprecision(3) << y.max_real_lsb
-                << " LSB\n";
-      if (y.max_code_lsb < e.max_code_lsb) {
-        std::cout << "    the difference is the " << to_string(cfg.specular.kind)
-                  << " unit's own approximation of t^n, not the widths' (see shadesim spec-error, "
-                     "--fit)\n";
-      }
-      yardstick = {{"max_code_lsb", y.max_code_lsb}, {"max_real_lsb", y.max_real_lsb}};
-    }
-    if (e.max_code_lsb > code_budget(derived.measured.budget_lsb))
-      missed.push_back(missed_budget_part(path, e, with_ideal, derived.measured.budget_lsb));
-    scenes.push_back(
-        {{"scene", path},
-         {"with_ideal_specular", yardstick},
-         {"within_budget", e.max_code_lsb <= code_budget(derived.measured.budget_lsb)},
-         {"pixels", e.pixels},
-         {"max_code_lsb", e.max_code_lsb},
-         {"mean_code_lsb", e.mean_code_lsb},
-         {"psnr_db", std::isinf(e.psnr_db) ? nlohmann::json(nullptr) : nlohmann::json(e.psnr_db)},
-         {"max_real_lsb", e.max_real_lsb},
-         {"pixels_over_1lsb", e.pixels_over_1lsb}});
-  }
+  for (const auto& path : o.scenes) scenes.push_back(check_scene(path, derived, d, missed));
   if (!o.json_path.empty()) {
-    // The UnitConfig's own fields (load_unit_config and --config read them), and beside them the
-    // "derivation" annotation, which the loader ignores.
-    nlohmann::json j = nlohmann::json::parse(config_to_json(cfg));
-    nlohmann::json reasons = nlohmann::json::array();
-    for (const auto& r : derived.reasons)
-      reasons.push_back({{"field", r.field}, {"value", r.value}, {"reason", r.reason}});
-    const ConfigMeasurements& m = derived.measured;
-    j["derivation"] = {{"scenes", o.scenes},
-                       {"reasons", reasons},
-                       {"measured",
-                        {{"budget_lsb", m.budget_lsb},
-                         {"max_width", m.max_width},
-                         {"max_height", m.max_height},
-                         {"longest_span", m.longest_span},
-                         {"max_offset", m.max_offset},
-                         {"max_monomial_sum", m.max_monomial_sum},
-                         {"series_min", m.series_min},
-                         {"series_max", m.series_max},
-                         {"difference_max", m.difference_max},
-                         {"coef_max", m.coef_max},
-                         {"gain", m.gain},
-                         {"drift_share_lsb", m.drift_share_lsb},
-                         {"coef_share_lsb", m.coef_share_lsb}}},
-                       {"error", scenes}};
-    std::ofstream os(o.json_path);
-    if (!os) throw std::runtime_error(o.json_path + ": cannot open for writing");
-    os << j.dump(2) << '\n';
-    if (!os) throw std::runtime_error(o.json_path + ": write failed");
+    write_text_file(o.json_path, config_json(o, derived, scenes).dump(2) + '\n');
     std::cout << "\nconfig       " << o.json_path << " (use with --config)\n";
   }
   if (!missed.empty()) {

@@ -252,9 +252,31 @@ int run_rtl_build(const RtlBuildCliOptions& o) {
   return failed == 0 ? 0 : 1;
 }
 
-}  // namespace
+// The co-simulation's own outputs (forwarded options) are checked before any build starts.
+void check_forwarded_outputs(const std::vector<std::string>& rest) {
+  for (size_t i = 0; i < rest.size(); ++i) {
+    for (const auto& [option, folder] : {std::pair<std::string, bool>{"--json", false},
+                                         std::pair<std::string, bool>{"--save-dir", true}}) {
+      if (rest[i] == option && i + 1 < rest.size()) {
+        check_output_path(rest[i + 1], folder, option);
+      } else if (rest[i].rfind(option + "=", 0) == 0) {
+        check_output_path(rest[i].substr(option.size() + 1), folder, option);
+      }
+    }
+  }
+}
 
-void register_cosim(CLI::App& app, int& exit_code) {
+// Failed before the co-simulation started: its --json file still says why.
+void write_failure_json(const std::vector<std::string>& rest, const std::exception& e) {
+  for (size_t i = 0; i + 1 < rest.size(); ++i) {
+    if (rest[i] == "--json") {
+      std::ofstream os(rest[i + 1]);
+      if (os) os << nlohmann::json{{"passed", false}, {"error", e.what()}}.dump(2) << '\n';
+    }
+  }
+}
+
+void register_cosim_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<CosimOptions>();
   CLI::App* sub = app.add_subcommand(
       "cosim",
@@ -298,31 +320,17 @@ void register_cosim(CLI::App& app, int& exit_code) {
   sub->allow_extras();
   sub->callback([o, sub, &exit_code]() {
     const std::vector<std::string> rest = sub->remaining();
-    // The co-simulation's own outputs (forwarded options) are checked before any build starts.
-    for (size_t i = 0; i < rest.size(); ++i) {
-      for (const auto& [option, folder] : {std::pair<std::string, bool>{"--json", false},
-                                           std::pair<std::string, bool>{"--save-dir", true}}) {
-        if (rest[i] == option && i + 1 < rest.size()) {
-          check_output_path(rest[i + 1], folder, option);
-        } else if (rest[i].rfind(option + "=", 0) == 0) {
-          check_output_path(rest[i].substr(option.size() + 1), folder, option);
-        }
-      }
-    }
+    check_forwarded_outputs(rest);
     try {
       exit_code = run_cosim(*o, rest);
     } catch (const std::exception& e) {
-      // Failed before the co-simulation started: its --json file still says why.
-      for (size_t i = 0; i + 1 < rest.size(); ++i) {
-        if (rest[i] == "--json") {
-          std::ofstream os(rest[i + 1]);
-          if (os) os << nlohmann::json{{"passed", false}, {"error", e.what()}}.dump(2) << '\n';
-        }
-      }
+      write_failure_json(rest, e);
       throw;
     }
   });
+}
 
+void register_rtl_build(CLI::App& app, int& exit_code) {
   auto b = std::make_shared<RtlBuildCliOptions>();
   CLI::App* build = app.add_subcommand(
       "rtl-build",
@@ -352,7 +360,9 @@ void register_cosim(CLI::App& app, int& exit_code) {
   build->add_flag("--print-rtl-sources", b->print_rtl_sources,
                   "print shade_unit's sources, leaves first");
   build->callback([b, &exit_code]() { exit_code = run_rtl_build(*b); });
+}
 
+void register_rtl_params(CLI::App& app, int& exit_code) {
   auto p = std::make_shared<std::pair<std::string, std::string>>("", "verilator");
   CLI::App* params = app.add_subcommand(
       "rtl-params",
@@ -376,6 +386,14 @@ void register_cosim(CLI::App& app, int& exit_code) {
     }
     exit_code = 0;
   });
+}
+
+}  // namespace
+
+void register_cosim(CLI::App& app, int& exit_code) {
+  register_cosim_command(app, exit_code);
+  register_rtl_build(app, exit_code);
+  register_rtl_params(app, exit_code);
 }
 
 }  // namespace shadesim

@@ -402,8 +402,7 @@ std::string csv_quote(const std::string& s) {
 }
 
 void write_csv(const std::string& path, const ExploreResult& r, int channels) {
-  std::ofstream os(path);
-  if (!os) throw std::runtime_error(path + ": cannot open for writing");
+  std::ostringstream os;
   os << "index,phase,stage,knob,value,valid,config,max_code_lsb";
   for (int c = 0; c < channels; ++c) os << ",max_code_lsb_ch" << c;
   os << ",mean_code_lsb";
@@ -429,6 +428,7 @@ void write_csv(const std::string& path, const ExploreResult& r, int channels) {
        << p.figures.area.cells << ',' << (p.meets_budget ? 1 : 0) << ',' << (p.pareto ? 1 : 0)
        << ',' << (r.chosen == i ? 1 : 0) << '\n';
   }
+  write_text_file(path, os.str());
 }
 
 void print_table(std::ostream& os, const std::vector<const ExplorePoint*>& rows, int channels,
@@ -483,214 +483,288 @@ void print_budget(std::ostream& os, const ErrorBudget& b, const std::string& wha
      << "   model vs reference; per pixel <= (1) + (2) + (3)\n";
 }
 
-int run_explore(const ExploreCliOptions& o) {
-  const std::filesystem::path out_dir = o.out_dir.empty()
-                                            ? std::filesystem::path("out") / "explore" /
-                                                  std::filesystem::path(o.scenes.front()).stem()
-                                            : std::filesystem::path(o.out_dir);
-  const auto t0 = std::chrono::steady_clock::now();
-  // The start: a given config file, else the scenes' own smallest configuration.
+// ---------------------------------------------------------------- the run
+
+// What one explore run found: what it prints, writes as JSON and verifies in RTL.
+struct ExploreRun {
+  std::filesystem::path out_dir;
   UnitConfig start;
-  std::string start_source;
+  std::string start_source;  // where the start came from, for the reader
+  ExploreResult result;
+  std::vector<ErrorBudget> chosen_budget, start_budget;  // one per scene
+  std::vector<PointToVerify> config_files;        // written into out_dir: start, chosen, the front
+  double host_s = 0, sweep_s = 0, measure_s = 0;  // wall-clock seconds of the phases
+
+  int channels() const { return start.channels; }
+  const std::string& area_metric() const {
+    return result.points[result.start_index].figures.area.metric;
+  }
+  const ExplorePoint* chosen() const {
+    return result.chosen ? &result.points[*result.chosen] : nullptr;
+  }
+};
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+std::filesystem::path explore_out_dir(const ExploreCliOptions& o) {
+  if (!o.out_dir.empty()) return o.out_dir;
+  return std::filesystem::path("out") / "explore" / std::filesystem::path(o.scenes.front()).stem();
+}
+
+// The start: a given config file, else the scenes' own smallest configuration.
+void choose_start(const ExploreCliOptions& o, ExploreRun& run) {
   if (!o.config_path.empty() && o.config_path != kOwnUnit) {
-    start = resolve_unit(o.config_path, o.scenes.front()).unit;
-    start_source = o.config_path == kDefaultUnit ? "the default widths" : o.config_path;
+    run.start = resolve_unit(o.config_path, o.scenes.front()).unit;
+    run.start_source = o.config_path == kDefaultUnit ? "the default widths" : o.config_path;
   } else {
     DeriveOptions d;
     d.budget_lsb = o.budget_lsb > 0 ? std::optional<double>(o.budget_lsb) : std::nullopt;
     d.out_bits = o.out_bits;
     d.max_depth = o.max_depth;
-    start = derive_config(o.scenes, d).config;
-    start_source = "the scenes' own configuration (shadesim config)";
+    run.start = derive_config(o.scenes, d).config;
+    run.start_source = "the scenes' own configuration (shadesim config)";
   }
   if (!o.specular.empty()) {
-    start.specular.kind = parse_specular_unit(o.specular, "--specular");
-    start_source += ", specular unit " + o.specular + " (--specular)";
+    run.start.specular.kind = parse_specular_unit(o.specular, "--specular");
+    run.start_source += ", specular unit " + o.specular + " (--specular)";
   }
-  start.validate();
-  std::optional<double> setup_budget;
-  if (!std::isnan(o.setup_budget_lsb)) setup_budget = o.setup_budget_lsb;
-  ExploreScenes scenes(o.scenes, start, setup_budget, o.max_depth);
-  const double host_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  run.start.validate();
+}
 
+// The sweep from the start, then (unless --estimate-only) Yosys on its front.
+void sweep_and_measure(const ExploreCliOptions& o, ExploreScenes& scenes, ExploreRun& run) {
   ExploreOptions eo;
   eo.budget_lsb = o.budget_lsb;
   eo.jobs = o.jobs;
   ProgressBar bar;
-  const AreaFunction area = area_model(start, o.area_cache);
-  const auto t1 = std::chrono::steady_clock::now();
-  ExploreResult r = explore(scenes, start, area, eo, std::ref(bar));
-  const double sweep_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-  const auto t2 = std::chrono::steady_clock::now();
+  const AreaFunction area = area_model(run.start, o.area_cache);
+  const auto sweep_start = std::chrono::steady_clock::now();
+  run.result = explore(scenes, run.start, area, eo, std::ref(bar));
+  run.sweep_s = seconds_since(sweep_start);
+  const auto measure_start = std::chrono::steady_clock::now();
   if (!o.estimate_only) {
-    measure_front(r, front_measure(o), [&](std::size_t i, std::size_t done, std::size_t total) {
-      if (!o.quiet)
-        std::cerr << "explore: Yosys on Pareto point " << i << " (" << done + 1 << " of " << total
-                  << " so far)\n";
-    });
+    measure_front(run.result, front_measure(o),
+                  [&](std::size_t i, std::size_t done, std::size_t total) {
+                    if (!o.quiet)
+                      std::cerr << "explore: Yosys on Pareto point " << i << " (" << done + 1
+                                << " of " << total << " so far)\n";
+                  });
   }
-  const double measure_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t2).count();
+  run.measure_s = seconds_since(measure_start);
+}
 
-  std::vector<ErrorBudget> chosen_budget, start_budget;
-  for (std::size_t s = 0; s < o.scenes.size(); ++s) {
-    start_budget.push_back(error_budget(scenes, s, start));
-    if (r.chosen) chosen_budget.push_back(error_budget(scenes, s, r.points[*r.chosen].config));
+void budget_errors(const ExploreScenes& scenes, std::size_t scene_count, ExploreRun& run) {
+  for (std::size_t s = 0; s < scene_count; ++s) {
+    run.start_budget.push_back(error_budget(scenes, s, run.start));
+    if (run.chosen()) run.chosen_budget.push_back(error_budget(scenes, s, run.chosen()->config));
   }
+}
 
-  // Config files of the points to verify, into --out.
-  std::filesystem::create_directories(out_dir);
-  std::vector<PointToVerify> to_verify;
-  auto write_config = [&](const std::string& name, const UnitConfig& c) {
-    const std::filesystem::path file = out_dir / (name + ".json");
+// Config files of the start, the chosen point and the front, into --out, so any of them can be
+// co-simulated or synthesised by file.
+void write_point_configs(ExploreRun& run) {
+  std::filesystem::create_directories(run.out_dir);
+  const auto write_config = [&](const std::string& name, const UnitConfig& c) {
+    const std::filesystem::path file = run.out_dir / (name + ".json");
     write_text_file(file, config_to_json(c) + '\n');
-    to_verify.push_back({name, c, file.string()});
+    run.config_files.push_back({name, c, file.string()});
   };
-  write_config("start", start);
-  if (r.chosen) write_config("chosen", r.points[*r.chosen].config);
-  // The front too, so any of its points can be co-simulated or synthesised by file.
-  for (std::size_t i = 0; i < r.points.size(); ++i) {
-    if (r.points[i].pareto) write_config("pareto_" + std::to_string(i), r.points[i].config);
+  write_config("start", run.start);
+  if (run.chosen()) write_config("chosen", run.chosen()->config);
+  for (std::size_t i = 0; i < run.result.points.size(); ++i) {
+    if (run.result.points[i].pareto)
+      write_config("pareto_" + std::to_string(i), run.result.points[i].config);
   }
-  const int channels = start.channels;
-  const std::string area_metric = r.points[r.start_index].figures.area.metric;
+}
 
-  if (!o.quiet) {
-    std::cout << "scenes       ";
-    for (const auto& s : o.scenes) std::cout << s << ' ';
-    std::cout << "\nstart        " << start.to_string() << "\n             from " << start_source
-              << "\nbudget       max " << o.budget_lsb
-              << " LSB (output codes vs the reference rounded by the same rule, every pixel and "
-                 "channel)\n"
-              << "area         " << area_metric << "\n\n";
-    std::vector<const ExplorePoint*> rows;
-    for (const auto& p : r.points) rows.push_back(&p);
-    print_table(std::cout, rows, channels, r.chosen, r.points);
-    std::cout << "\nsearch\n";
-    for (const auto& line : r.log) std::cout << "  " << line << '\n';
-    std::vector<const ExplorePoint*> front;
-    for (const auto& p : r.points) {
-      if (p.pareto) front.push_back(&p);
-    }
-    std::sort(front.begin(), front.end(), [](const ExplorePoint* a, const ExplorePoint* b) {
-      return a->front_area() < b->front_area();
-    });
-    std::cout << "\nPareto front (max LSB, mean LSB vs area and cycles/pixel), by area"
-              << (o.estimate_only ? " - ESTIMATED areas (--estimate-only): not measured by Yosys"
-                                  : "; area: Yosys-measured cells")
-              << "\n";
-    print_table(std::cout, front, channels, r.chosen, r.points);
-    std::cout << '\n';
-    if (!o.estimate_only) {
-      print_measured_front(std::cout, r);
-      std::cout << '\n';
-    }
-    if (r.chosen) {
-      const ExplorePoint& c = r.points[*r.chosen];
-      std::cout << "chosen       " << c.config.to_string() << "\n             "
-                << c.config.specular.describe() << ", spec_colour "
-                << c.config.spec_colour.to_string() << "\n             max "
-                << c.figures.error.max_code_lsb << " LSB, mean " << std::setprecision(4)
-                << c.figures.error.mean_code_lsb << ", " << std::setprecision(3)
-                << c.figures.cycles_per_pixel << " cycles/pixel, area " << std::setprecision(0)
-                << c.figures.area.cells << " (start " << r.points[r.start_index].figures.area.cells
-                << ")\n\n";
-      for (const auto& b : chosen_budget) print_budget(std::cout, b, "chosen point");
-    } else {
-      std::cout << "chosen       none: no evaluated point meets max " << o.budget_lsb << " LSB\n";
-      for (const auto& b : start_budget) {
-        // Widths move only the quantization part; the rest is there at any width.
-        const double fixed = b.function.max_lsb + b.taylor.max_lsb;
-        if (fixed > o.budget_lsb) {
-          std::cout << "             " << b.scene << ": the shading function ("
-                    << std::setprecision(3) << b.function.max_lsb
-                    << " LSB) and the Taylor truncation (" << b.taylor.max_lsb
-                    << " LSB) are there at any width - no width can fix them; change the specular "
-                       "unit or\n"
-                    << "             its fit (function), or lower --setup-budget (Taylor)\n";
-        }
-      }
-      std::cout << '\n';
-    }
-    for (const auto& b : start_budget) print_budget(std::cout, b, "start point");
-    std::cout << "\nconfigs      " << (out_dir / "start.json").string()
-              << (r.chosen ? ", " + (out_dir / "chosen.json").string() : std::string())
-              << ", pareto_<point>.json for the front (in " << out_dir.string() << ")\n"
-              << "time         host setup " << std::setprecision(2) << host_s << " s, "
-              << r.points.size() << " points in " << sweep_s << " s on " << o.jobs << " thread(s)"
-              << (o.estimate_only ? std::string()
-                                  : ", Yosys on the front " + fixed1(measure_s) + " s")
-              << "\n";
-    if (!o.json_path.empty()) std::cout << "plot         scripts/plot " << o.json_path << "\n";
+// ---------------------------------------------------------------- the printed run
+// One stream throughout: each part leaves its number format to the next, as they always have.
+
+void print_start(std::ostream& os, const ExploreCliOptions& o, const ExploreRun& run) {
+  os << "scenes       ";
+  for (const auto& s : o.scenes) os << s << ' ';
+  os << "\nstart        " << run.start.to_string() << "\n             from " << run.start_source
+     << "\nbudget       max " << o.budget_lsb
+     << " LSB (output codes vs the reference rounded by the same rule, every pixel and "
+        "channel)\n"
+     << "area         " << run.area_metric() << "\n\n";
+}
+
+// Every point, the search log, and the Pareto front (measured by Yosys unless --estimate-only).
+void print_points(std::ostream& os, const ExploreCliOptions& o, const ExploreRun& run) {
+  const ExploreResult& r = run.result;
+  std::vector<const ExplorePoint*> rows;
+  for (const auto& p : r.points) rows.push_back(&p);
+  print_table(os, rows, run.channels(), r.chosen, r.points);
+  os << "\nsearch\n";
+  for (const auto& line : r.log) os << "  " << line << '\n';
+  std::vector<const ExplorePoint*> front;
+  for (const auto& p : r.points) {
+    if (p.pareto) front.push_back(&p);
   }
+  std::sort(front.begin(), front.end(), [](const ExplorePoint* a, const ExplorePoint* b) {
+    return a->front_area() < b->front_area();
+  });
+  os << "\nPareto front (max LSB, mean LSB vs area and cycles/pixel), by area"
+     << (o.estimate_only ? " - ESTIMATED areas (--estimate-only): not measured by Yosys"
+                         : "; area: Yosys-measured cells")
+     << "\n";
+  print_table(os, front, run.channels(), r.chosen, r.points);
+  os << '\n';
+  if (!o.estimate_only) {
+    print_measured_front(os, r);
+    os << '\n';
+  }
+}
 
-  // --verify: the chosen point (or, when none meets the budget, the start) in RTL.
+void print_chosen(std::ostream& os, const ExploreRun& run) {
+  const ExplorePoint& c = *run.chosen();
+  os << "chosen       " << c.config.to_string() << "\n             " << c.config.specular.describe()
+     << ", spec_colour " << c.config.spec_colour.to_string() << "\n             max "
+     << c.figures.error.max_code_lsb << " LSB, mean " << std::setprecision(4)
+     << c.figures.error.mean_code_lsb << ", " << std::setprecision(3) << c.figures.cycles_per_pixel
+     << " cycles/pixel, area " << std::setprecision(0) << c.figures.area.cells << " (start "
+     << run.result.points[run.result.start_index].figures.area.cells << ")\n\n";
+  for (const auto& b : run.chosen_budget) print_budget(os, b, "chosen point");
+}
+
+// No point meets the budget: which scenes no width can bring within it.
+void print_no_choice(std::ostream& os, const ExploreCliOptions& o, const ExploreRun& run) {
+  os << "chosen       none: no evaluated point meets max " << o.budget_lsb << " LSB\n";
+  for (const auto& b : run.start_budget) {
+    // Widths move only the quantization part; the rest is there at any width.
+    const double fixed = b.function.max_lsb + b.taylor.max_lsb;
+    if (fixed > o.budget_lsb) {
+      os << "             " << b.scene << ": the shading function (" << std::setprecision(3)
+         << b.function.max_lsb << " LSB) and the Taylor truncation (" << b.taylor.max_lsb
+         << " LSB) are there at any width - no width can fix them; change the specular "
+            "unit or\n"
+         << "             its fit (function), or lower --setup-budget (Taylor)\n";
+    }
+  }
+  os << '\n';
+}
+
+void print_files_and_time(std::ostream& os, const ExploreCliOptions& o, const ExploreRun& run) {
+  const std::filesystem::path& out_dir = run.out_dir;
+  os << "\nconfigs      " << (out_dir / "start.json").string()
+     << (run.chosen() ? ", " + (out_dir / "chosen.json").string() : std::string())
+     << ", pareto_<point>.json for the front (in " << out_dir.string() << ")\n"
+     << "time         host setup " << std::setprecision(2) << run.host_s << " s, "
+     << run.result.points.size() << " points in " << run.sweep_s << " s on " << o.jobs
+     << " thread(s)"
+     << (o.estimate_only ? std::string() : ", Yosys on the front " + fixed1(run.measure_s) + " s")
+     << "\n";
+  if (!o.json_path.empty()) os << "plot         scripts/plot " << o.json_path << "\n";
+}
+
+void print_run(std::ostream& os, const ExploreCliOptions& o, const ExploreRun& run) {
+  print_start(os, o, run);
+  print_points(os, o, run);
+  if (run.chosen())
+    print_chosen(os, run);
+  else
+    print_no_choice(os, o, run);
+  for (const auto& b : run.start_budget) print_budget(os, b, "start point");
+  print_files_and_time(os, o, run);
+}
+
+// --verify: the chosen point (or, when none meets the budget, the start) in RTL; --emit-jobs:
+// the runs that would do it, written instead (then none is verified).
+std::vector<Verification> verify_choice(const ExploreCliOptions& o, const ExploreRun& run) {
   std::vector<Verification> verified;
-  if (o.verify || !o.emit_jobs.empty()) {
-    std::vector<PointToVerify> points;
-    for (const auto& v : to_verify) {
-      if (v.name == (r.chosen ? "chosen" : "start")) points.push_back(v);
-    }
-    if (!o.emit_jobs.empty()) {
-      emit_verify_jobs(points, o.scenes, out_dir.string(), o.emit_jobs);
-    } else {
-      verified = verify_in_rtl(points, o.scenes, out_dir.string());
-    }
-    for (const auto& v : verified) {
-      std::cout << "verified     " << v.name << ": "
-                << (v.verified ? "yes - bit- and cycle-exact in RTL" : "NO") << " (" << v.passed
-                << " runs passed, " << v.mismatched << " mismatched, " << v.errors << " error(s), "
-                << v.skipped << " skipped; both backends, every scene; " << v.report << ")\n";
-    }
+  if (!o.verify && o.emit_jobs.empty()) return verified;
+  std::vector<PointToVerify> points;
+  for (const auto& v : run.config_files) {
+    if (v.name == (run.chosen() ? "chosen" : "start")) points.push_back(v);
   }
+  if (!o.emit_jobs.empty()) {
+    emit_verify_jobs(points, o.scenes, run.out_dir.string(), o.emit_jobs);
+  } else {
+    verified = verify_in_rtl(points, o.scenes, run.out_dir.string());
+  }
+  for (const auto& v : verified) {
+    std::cout << "verified     " << v.name << ": "
+              << (v.verified ? "yes - bit- and cycle-exact in RTL" : "NO") << " (" << v.passed
+              << " runs passed, " << v.mismatched << " mismatched, " << v.errors << " error(s), "
+              << v.skipped << " skipped; both backends, every scene; " << v.report << ")\n";
+  }
+  return verified;
+}
 
-  if (!o.json_path.empty()) {
-    nlohmann::json points = nlohmann::json::array();
-    for (std::size_t i = 0; i < r.points.size(); ++i)
-      points.push_back(point_json(r.points[i], i, channels));
-    nlohmann::json cb = nlohmann::json::array(), sb = nlohmann::json::array();
-    for (const auto& b : chosen_budget) cb.push_back(budget_json(b));
-    for (const auto& b : start_budget) sb.push_back(budget_json(b));
-    nlohmann::json j = {
-        {"kind", "explore"},
-        {"scenes", o.scenes},
-        {"budget_lsb", o.budget_lsb},
-        {"area_metric", area_metric},
-        {"start", nlohmann::json::parse(config_to_json(start))},
-        {"start_source", start_source},
-        {"start_index", r.start_index},
-        {"chosen_index", r.chosen ? nlohmann::json(*r.chosen) : nlohmann::json(nullptr)},
-        {"points", points},
-        {"search_log", r.log},
-        {"error_budget", {{"chosen", cb}, {"start", sb}}},
-        {"config_files", nlohmann::json::array()},
-        {"seconds", {{"host_setup", host_s}, {"sweep", sweep_s}, {"measure_front", measure_s}}},
-        {"front_measured", !o.estimate_only},
-        {"jobs", o.jobs}};
-    for (const auto& v : to_verify)
-      j["config_files"].push_back({{"name", v.name}, {"file", v.config_file}});
-    const EstimateError ee = estimate_error(r);
-    j["estimate_error"] = {
-        {"points", ee.count}, {"median_pct", ee.median_pct}, {"max_pct", ee.max_pct}};
-    j["verification"] = nlohmann::json::array();
-    for (const auto& v : verified) {
-      j["verification"].push_back({{"name", v.name},
-                                   {"verified", v.verified},
-                                   {"passed", v.passed},
-                                   {"mismatched", v.mismatched},
-                                   {"errors", v.errors},
-                                   {"skipped", v.skipped},
-                                   {"regress_json", v.report},
-                                   {"log", v.log}});
-    }
-    write_text_file(o.json_path, j.dump(2) + '\n');
+nlohmann::json verification_json(const std::vector<Verification>& verified) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& v : verified) {
+    j.push_back({{"name", v.name},
+                 {"verified", v.verified},
+                 {"passed", v.passed},
+                 {"mismatched", v.mismatched},
+                 {"errors", v.errors},
+                 {"skipped", v.skipped},
+                 {"regress_json", v.report},
+                 {"log", v.log}});
   }
-  if (!o.csv_path.empty()) write_csv(o.csv_path, r, channels);
+  return j;
+}
+
+nlohmann::json explore_json(const ExploreCliOptions& o, const ExploreRun& run,
+                            const std::vector<Verification>& verified) {
+  const ExploreResult& r = run.result;
+  nlohmann::json points = nlohmann::json::array();
+  for (std::size_t i = 0; i < r.points.size(); ++i)
+    points.push_back(point_json(r.points[i], i, run.channels()));
+  nlohmann::json cb = nlohmann::json::array(), sb = nlohmann::json::array();
+  for (const auto& b : run.chosen_budget) cb.push_back(budget_json(b));
+  for (const auto& b : run.start_budget) sb.push_back(budget_json(b));
+  nlohmann::json j = {
+      {"kind", "explore"},
+      {"scenes", o.scenes},
+      {"budget_lsb", o.budget_lsb},
+      {"area_metric", run.area_metric()},
+      {"start", nlohmann::json::parse(config_to_json(run.start))},
+      {"start_source", run.start_source},
+      {"start_index", r.start_index},
+      {"chosen_index", r.chosen ? nlohmann::json(*r.chosen) : nlohmann::json(nullptr)},
+      {"points", points},
+      {"search_log", r.log},
+      {"error_budget", {{"chosen", cb}, {"start", sb}}},
+      {"config_files", nlohmann::json::array()},
+      {"seconds",
+       {{"host_setup", run.host_s}, {"sweep", run.sweep_s}, {"measure_front", run.measure_s}}},
+      {"front_measured", !o.estimate_only},
+      {"jobs", o.jobs}};
+  for (const auto& v : run.config_files)
+    j["config_files"].push_back({{"name", v.name}, {"file", v.config_file}});
+  const EstimateError ee = estimate_error(r);
+  j["estimate_error"] = {
+      {"points", ee.count}, {"median_pct", ee.median_pct}, {"max_pct", ee.max_pct}};
+  j["verification"] = verification_json(verified);
+  return j;
+}
+
+int run_explore(const ExploreCliOptions& o) {
+  ExploreRun run;
+  run.out_dir = explore_out_dir(o);
+  const auto t0 = std::chrono::steady_clock::now();
+  choose_start(o, run);
+  std::optional<double> setup_budget;
+  if (!std::isnan(o.setup_budget_lsb)) setup_budget = o.setup_budget_lsb;
+  ExploreScenes scenes(o.scenes, run.start, setup_budget, o.max_depth);
+  run.host_s = seconds_since(t0);
+  sweep_and_measure(o, scenes, run);
+  budget_errors(scenes, o.scenes.size(), run);
+  write_point_configs(run);
+
+  if (!o.quiet) print_run(std::cout, o, run);
+  const std::vector<Verification> verified = verify_choice(o, run);
+  if (!o.json_path.empty())
+    write_text_file(o.json_path, explore_json(o, run, verified).dump(2) + '\n');
+  if (!o.csv_path.empty()) write_csv(o.csv_path, run.result, run.channels());
   const bool all_verified = std::all_of(verified.begin(), verified.end(),
                                         [](const Verification& v) { return v.verified; });
-  return r.chosen && all_verified ? 0 : 1;
+  return run.chosen() && all_verified ? 0 : 1;
 }
 
 }  // namespace

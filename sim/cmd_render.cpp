@@ -118,15 +118,40 @@ std::filesystem::path output_dir(const RenderOptions& o) {
   return dir;
 }
 
-// One render: the frame, the model's pixels against the reference, the images written.
+// PSNR for JSON: null where the summary prints no number (identical images, no pixels).
+nlohmann::json psnr_json(const ErrorStats& e) {
+  return std::isinf(e.psnr_db) || e.pixels == 0 ? nlohmann::json(nullptr)
+                                                : nlohmann::json(e.psnr_db);
+}
+
+// The images one render writes.
+struct RenderImages {
+  std::string model, reference, error, compare;
+};
+
+RenderImages render_images(const std::filesystem::path& dir) {
+  return {(dir / "model.png").string(), (dir / "reference.png").string(),
+          (dir / "error.png").string(), (dir / "compare.png").string()};
+}
+
+// One render: the frame, the model's pixels against the reference, the images written. The
+// summary and --json both report from here, so each figure is computed once.
 struct RenderRun {
   FrameOptions fo;
   PreparedFrame frame;
   ErrorMap err;
   double model_s = 0, reference_s = 0;
-  std::filesystem::path out_dir;
+  RenderImages images;
   std::string unit_label;
   std::vector<std::string> warnings;
+
+  const Scene& scene() const { return frame.scene; }
+  const UnitConfig& config() const { return frame.config; }
+  const ProjectStats& projected() const { return frame.project; }
+  const SetupStats& setup() const { return frame.setup.stats; }
+  const EncodeStats& stream() const { return frame.encoded.stats; }
+  const ErrorStats& error() const { return err.stats; }
+  double model_mpixel_per_s() const { return model_s > 0 ? error().pixels / model_s / 1e6 : 0.0; }
 };
 
 RenderRun shade_and_compare(const RenderOptions& o) {
@@ -156,18 +181,17 @@ RenderRun shade_and_compare(const RenderOptions& o) {
                                scene.height, cfg.channels, cfg.out_bits);
 
   // Images: model, reference, error heat map, and the three side by side.
-  r.out_dir = output_dir(o);
-  const std::filesystem::path& out_dir = r.out_dir;
-  const ErrorMap& err = r.err;
+  r.images = render_images(output_dir(o));
   const Image model_png =
       model_image(pixels, scene.width, scene.height, cfg.channels, cfg.out_bits);
   Image ref_png(scene.width, scene.height, cfg.channels);
   ref_png.pixels = reference_codes(ref.values, cfg.out_bits);
-  const Image heat = error_heat_map(err.per_pixel_lsb, scene.width, scene.height, o.heat_scale_lsb);
-  write_png((out_dir / "model.png").string(), model_png);
-  write_png((out_dir / "reference.png").string(), ref_png);
-  write_png((out_dir / "error.png").string(), heat);
-  write_png((out_dir / "compare.png").string(), hstack({model_png, ref_png, heat}, 4));
+  const Image heat =
+      error_heat_map(r.err.per_pixel_lsb, scene.width, scene.height, o.heat_scale_lsb);
+  write_png(r.images.model, model_png);
+  write_png(r.images.reference, ref_png);
+  write_png(r.images.error, heat);
+  write_png(r.images.compare, hstack({model_png, ref_png, heat}, 4));
   if (!o.stream_path.empty()) frame.encoded.stream.save(o.stream_path);
 
   r.unit_label = cfg.specular.describe() + (cfg.specular.kind == SpecularUnitKind::kIdeal
@@ -181,61 +205,54 @@ RenderRun shade_and_compare(const RenderOptions& o) {
 
 // The figures, as lines.
 void print_render(const RenderOptions& o, const RenderRun& r) {
-  const Scene& scene = r.frame.scene;
-  const UnitConfig& cfg = r.frame.config;
-  const PreparedFrame& frame = r.frame;
-  const FrameOptions& fo = r.fo;
-  const auto& st = frame.setup.stats;
-  const auto& es = r.err.stats;
-  const std::filesystem::path& out_dir = r.out_dir;
-  const std::string& unit_label = r.unit_label;
-  const std::vector<std::string>& warnings = r.warnings;
-  const double model_s = r.model_s, reference_s = r.reference_s;
+  const Scene& scene = r.scene();
+  const UnitConfig& cfg = r.config();
+  const ProjectStats& pr = r.projected();
+  const SetupStats& st = r.setup();
+  const EncodeStats& stream = r.stream();
+  const ErrorStats& es = r.error();
+  const FrameTimings& timings = r.frame.timings;
   std::cout << "scene        " << o.scene << "  (" << scene.width << "x" << scene.height << ", "
             << scene.lights.size() << " light(s), eye "
             << (scene.eye_at_infinity ? "at infinity" : "finite") << ")\n"
             << "unit         " << cfg.to_string() << "  (--config " << o.config << ")\n"
-            << "specular     " << unit_label << "\n"
-            << "triangles    " << frame.project.triangles_in << " in mesh, "
-            << frame.project.emitted << " after culling; " << st.triangles_out << " after setup ("
-            << st.inputs_split << " split, " << st.splits << " splits, " << st.over_budget
-            << " over budget at depth " << fo.max_depth << ")\n"
-            << "culled       " << frame.project.culled_back_face << " back-facing, "
-            << frame.project.culled_near << " wholly nearer than the near plane, "
-            << frame.project.dropped_out_of_range << " beyond the screen coordinate range\n"
-            << "clipped      " << frame.project.clipped_near
-            << " crossing the near plane, clipped into " << frame.project.clipped_pieces
-            << " triangle(s) before culling\n"
+            << "specular     " << r.unit_label << "\n"
+            << "triangles    " << pr.triangles_in << " in mesh, " << pr.emitted
+            << " after culling; " << st.triangles_out << " after setup (" << st.inputs_split
+            << " split, " << st.splits << " splits, " << st.over_budget << " over budget at depth "
+            << r.fo.max_depth << ")\n"
+            << "culled       " << pr.culled_back_face << " back-facing, " << pr.culled_near
+            << " wholly nearer than the near plane, " << pr.dropped_out_of_range
+            << " beyond the screen coordinate range\n"
+            << "clipped      " << pr.clipped_near << " crossing the near plane, clipped into "
+            << pr.clipped_pieces << " triangle(s) before culling\n"
             << "cosine       " << specular_models(scene) << "\n"
-            << "stream       " << frame.encoded.stats.triangles << " tri, "
-            << frame.encoded.stats.spans << " spans, " << frame.encoded.stats.materials
-            << " material loads, " << frame.encoded.stats.words << " words; "
-            << frame.encoded.stats.reorigins << " re-origin(s) (offset_bits " << cfg.offset_bits
-            << ")\n"
+            << "stream       " << stream.triangles << " tri, " << stream.spans << " spans, "
+            << stream.materials << " material loads, " << stream.words << " words; "
+            << stream.reorigins << " re-origin(s) (offset_bits " << cfg.offset_bits << ")\n"
             << "pixels       " << es.pixels << " shaded\n"
             << error_lines(es) << "setup budget "
-            << (fo.budget_lsb ? *fo.budget_lsb : scene.error_budget_lsb)
+            << (r.fo.budget_lsb ? *r.fo.budget_lsb : scene.error_budget_lsb)
             << " LSB Taylor error per triangle; worst measured " << std::setprecision(3)
             << st.worst_error_lsb << " LSB\n"
-            << "time         setup " << std::setprecision(3) << frame.timings.setup_s
-            << " s, visibility " << frame.timings.visibility_s << " s, model " << model_s << " s ("
-            << std::setprecision(3) << (model_s > 0 ? es.pixels / model_s / 1e6 : 0)
-            << " Mpixel/s), reference " << reference_s << " s\n"
-            << "images       " << (out_dir / "compare.png").string()
-            << " (model | reference | error, full scale " << o.heat_scale_lsb << " LSB)\n";
-  for (const auto& w : warnings) std::cout << "warning      " << w << "\n";
-  if (frame.encoded.stats.narrow_terms_saturated > 0) {
-    std::cout << "warning      " << frame.encoded.stats.narrow_terms_saturated
+            << "time         setup " << std::setprecision(3) << timings.setup_s << " s, visibility "
+            << timings.visibility_s << " s, model " << r.model_s << " s (" << std::setprecision(3)
+            << r.model_mpixel_per_s() << " Mpixel/s), reference " << r.reference_s << " s\n"
+            << "images       " << r.images.compare << " (model | reference | error, full scale "
+            << o.heat_scale_lsb << " LSB)\n";
+  for (const auto& w : r.warnings) std::cout << "warning      " << w << "\n";
+  if (stream.narrow_terms_saturated > 0) {
+    std::cout << "warning      " << stream.narrow_terms_saturated
               << " Taylor coefficient(s) saturated their term's narrowed format (coef_term_iwl);"
                  " pixels of those triangles are wrong: give those terms more integer bits\n";
   }
-  if (frame.encoded.stats.coefficients_out_of_range > 0) {
+  if (stream.coefficients_out_of_range > 0) {
     if (cfg.coef.overflow == Overflow::kSaturate) {
-      std::cout << "warning      " << frame.encoded.stats.coefficients_out_of_range
+      std::cout << "warning      " << stream.coefficients_out_of_range
                 << " Taylor coefficient(s) saturated the coef format " << cfg.coef.to_string()
                 << "; pixels of those triangles are wrong: widen --coef or let it :wrap\n";
     } else {
-      std::cout << "note         " << frame.encoded.stats.coefficients_out_of_range
+      std::cout << "note         " << stream.coefficients_out_of_range
                 << " Taylor coefficient(s) wrapped in " << cfg.coef.to_string()
                 << " (exact modulo 2^" << cfg.coef.iwl << "; sliver triangles)\n";
     }
@@ -244,64 +261,59 @@ void print_render(const RenderOptions& o, const RenderRun& r) {
 
 // The figures, as --json.
 void write_render_json(const RenderOptions& o, const RenderRun& r) {
-  const Scene& scene = r.frame.scene;
-  const UnitConfig& cfg = r.frame.config;
-  const PreparedFrame& frame = r.frame;
-  const auto& st = frame.setup.stats;
-  const auto& es = r.err.stats;
-  const std::filesystem::path& out_dir = r.out_dir;
-  const std::string& unit_label = r.unit_label;
-  const std::vector<std::string>& warnings = r.warnings;
-  const double model_s = r.model_s, reference_s = r.reference_s;
+  const ProjectStats& pr = r.projected();
+  const SetupStats& st = r.setup();
+  const EncodeStats& stream = r.stream();
+  const ErrorStats& es = r.error();
+  const FrameTimings& timings = r.frame.timings;
   nlohmann::json j;
   j["scene"] = o.scene;
-  j["width"] = scene.width;
-  j["height"] = scene.height;
-  j["config"] = nlohmann::json::parse(config_to_json(cfg));
+  j["width"] = r.scene().width;
+  j["height"] = r.scene().height;
+  j["config"] = nlohmann::json::parse(config_to_json(r.config()));
   j["unit_choice"] = o.config;
-  j["warnings"] = warnings;
-  j["specular_unit"] = unit_label;
-  j["triangles"] = {{"mesh", frame.project.triangles_in},
-                    {"projected", frame.project.emitted},
+  j["warnings"] = r.warnings;
+  j["specular_unit"] = r.unit_label;
+  j["triangles"] = {{"mesh", pr.triangles_in},
+                    {"projected", pr.emitted},
                     {"after_setup", st.triangles_out},
                     {"inputs_split", st.inputs_split},
                     {"splits", st.splits},
                     {"over_budget", st.over_budget},
                     {"worst_setup_error_lsb", st.worst_error_lsb},
-                    {"culled_back_face", frame.project.culled_back_face},
-                    {"culled_near", frame.project.culled_near},
-                    {"dropped_out_of_range", frame.project.dropped_out_of_range},
-                    {"clipped_near", frame.project.clipped_near},
-                    {"clipped_pieces", frame.project.clipped_pieces}};
+                    {"culled_back_face", pr.culled_back_face},
+                    {"culled_near", pr.culled_near},
+                    {"dropped_out_of_range", pr.dropped_out_of_range},
+                    {"clipped_near", pr.clipped_near},
+                    {"clipped_pieces", pr.clipped_pieces}};
   nlohmann::json models = nlohmann::json::object();
-  for (const Material& m : scene.materials) models[m.name] = to_string(m.specular_model);
+  for (const Material& m : r.scene().materials) models[m.name] = to_string(m.specular_model);
   j["specular_model"] = models;
-  j["stream"] = {{"triangles", frame.encoded.stats.triangles},
-                 {"reorigins", frame.encoded.stats.reorigins},
-                 {"spans", frame.encoded.stats.spans},
-                 {"materials", frame.encoded.stats.materials},
-                 {"words", frame.encoded.stats.words},
-                 {"coefficients_out_of_range", frame.encoded.stats.coefficients_out_of_range}};
+  j["stream"] = {{"triangles", stream.triangles},
+                 {"reorigins", stream.reorigins},
+                 {"spans", stream.spans},
+                 {"materials", stream.materials},
+                 {"words", stream.words},
+                 {"coefficients_out_of_range", stream.coefficients_out_of_range}};
   j["pixels"] = es.pixels;
   j["empty_image"] = es.pixels == 0;
   j["error"] = {{"max_code_lsb", es.max_code_lsb},
                 {"mean_code_lsb", es.mean_code_lsb},
-                {"psnr_db", std::isinf(es.psnr_db) || es.pixels == 0 ? nlohmann::json(nullptr)
-                                                                     : nlohmann::json(es.psnr_db)},
+                {"psnr_db", psnr_json(es)},
                 {"max_real_lsb", es.max_real_lsb},
                 {"pixels_over_1lsb", es.pixels_over_1lsb},
                 {"metric",
                  "output codes vs reference rounded by the same rule; real: before rounding the "
                  "reference"}};
-  j["time_s"] = {{"load", frame.timings.load_s},     {"project", frame.timings.project_s},
-                 {"setup", frame.timings.setup_s},   {"visibility", frame.timings.visibility_s},
-                 {"encode", frame.timings.encode_s}, {"model", model_s},
-                 {"reference", reference_s}};
-  j["model_mpixel_per_s"] = model_s > 0 ? es.pixels / model_s / 1e6 : 0.0;
-  j["images"] = {{"model", (out_dir / "model.png").string()},
-                 {"reference", (out_dir / "reference.png").string()},
-                 {"error", (out_dir / "error.png").string()},
-                 {"compare", (out_dir / "compare.png").string()}};
+  j["time_s"] = {{"load", timings.load_s},     {"project", timings.project_s},
+                 {"setup", timings.setup_s},   {"visibility", timings.visibility_s},
+                 {"encode", timings.encode_s}, {"model", r.model_s},
+                 {"reference", r.reference_s}};
+  j["model_mpixel_per_s"] = r.model_mpixel_per_s();
+  j["images"] = {{"model", r.images.model},
+                 {"reference", r.images.reference},
+                 {"error", r.images.error},
+                 {"compare", r.images.compare}};
   j["heat_scale_lsb"] = o.heat_scale_lsb;  // the error map's full scale (red), for its legend
   write_text_file(o.json_path, j.dump(2) + '\n');
 }
@@ -354,16 +366,14 @@ int run_all_units(const RenderOptions& o) {
                 << format_db(e.psnr_db, e.pixels) << description
                 << (unit.hardware ? "" : " (exact pow; not hardware)") << "\n";
     }
-    units.push_back(
-        {{"unit", to_string(kind)},
-         {"configuration", description},
-         {"max_code_lsb", e.max_code_lsb},
-         {"mean_code_lsb", e.mean_code_lsb},
-         {"psnr_db", std::isinf(e.psnr_db) || e.pixels == 0 ? nlohmann::json(nullptr)
-                                                            : nlohmann::json(e.psnr_db)},
-         {"max_real_lsb", e.max_real_lsb},
-         {"table_load_cycles", frame.encoded.stats.table_load_cycles},
-         {"stream_words", frame.encoded.stats.words}});
+    units.push_back({{"unit", to_string(kind)},
+                     {"configuration", description},
+                     {"max_code_lsb", e.max_code_lsb},
+                     {"mean_code_lsb", e.mean_code_lsb},
+                     {"psnr_db", psnr_json(e)},
+                     {"max_real_lsb", e.max_real_lsb},
+                     {"table_load_cycles", frame.encoded.stats.table_load_cycles},
+                     {"stream_words", frame.encoded.stats.words}});
   }
   write_png((out_dir / "units.png").string(), hstack(images, 4));
   write_png((out_dir / "units_error.png").string(), hstack(heats, 4));

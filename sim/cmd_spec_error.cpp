@@ -17,6 +17,7 @@
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -324,11 +325,8 @@ void print_paper(std::ostream& os, const PaperFigures& p) {
      << fmt(100 * p.w16_fit_epi, 2) << " %\n";
 }
 
-void run(const std::string& exponents_text, const std::string& units, int points,
-         const std::string& json_path, const std::string& csv_path, const std::string& plot_path,
-         bool no_papers, int& exit_code) {
-  const std::vector<double> exponents = parse_exponents(exponents_text);
-  if (points < 16 || points > 1000000) throw std::invalid_argument("--points must be 16..1000000");
+// The built-in configurations of the units `units` names (all, or a comma list of kinds).
+std::vector<Candidate> select_candidates(const std::string& units) {
   std::vector<Candidate> cands;
   for (const Candidate& c : builtin_candidates()) {
     const std::string kind = to_string(c.spec.kind);
@@ -345,49 +343,149 @@ void run(const std::string& exponents_text, const std::string& units, int points
                                   specular_unit_names(true));
   }
   if (cands.empty()) throw std::invalid_argument("--units: no configuration selected");
+  return cands;
+}
 
-  UnitConfig base;  // default series format and output: what the shading unit feeds the slot
-  const auto start = std::chrono::steady_clock::now();
-  auto last = start;
-  std::vector<Result> results;
-  const size_t total = cands.size() * exponents.size();
-  size_t done = 0;
-  for (const Candidate& c : cands) {
-    Result r;
-    r.cand = c;
-    r.cost = specular_cost(c.spec);
-    UnitConfig cfg = base;
-    cfg.specular = c.spec;
-    bool all_ok = true;
-    for (double n : exponents) {
-      const SpecErrors e = measure_unit(cfg, n, points);
-      r.per_n.push_back({n, e});
-      if (e.epi_rel > r.worst.epi_rel) r.worst.epi_rel = e.epi_rel, r.worst_epi_n = n;
-      if (e.bloom_rel > r.worst.bloom_rel) r.worst.bloom_rel = e.bloom_rel, r.worst_bloom_n = n;
-      if (e.abs_lsb > r.worst.abs_lsb) r.worst.abs_lsb = e.abs_lsb, r.worst_abs_n = n;
-      all_ok = all_ok && e.abs_lsb <= 2.56;
-      if (all_ok) r.n_within_1pct = n;
-      ++done;
-      const auto now = std::chrono::steady_clock::now();
-      if (now - last > std::chrono::seconds(2)) {
-        last = now;
-        std::cerr << "spec-error: " << done << "/" << total << " (" << c.name << ", n = " << n
-                  << ")\n";
-      }
+// A progress line on stderr at most every 2 s while the runs go.
+class SweepProgress {
+ public:
+  explicit SweepProgress(size_t total) : total_(total), last_(std::chrono::steady_clock::now()) {}
+  void ran(const std::string& name, double n) {
+    ++done_;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_ > std::chrono::seconds(2)) {
+      last_ = now;
+      std::cerr << "spec-error: " << done_ << "/" << total_ << " (" << name << ", n = " << n
+                << ")\n";
     }
-    results.push_back(std::move(r));
   }
-  const std::string range =
-      exponents.size() == 1
-          ? exp_label(exponents[0])
-          : "in [" + exp_label(*std::min_element(exponents.begin(), exponents.end())) + ", " +
-                exp_label(*std::max_element(exponents.begin(), exponents.end())) + "] (" +
-                std::to_string(exponents.size()) + " values)";
-  print_table(std::cout, results, range);
-  PaperFigures papers{};
+
+ private:
+  size_t done_ = 0;
+  const size_t total_;
+  std::chrono::steady_clock::time_point last_;
+};
+
+// One configuration at every exponent: its errors per exponent, the worst of each, its cost.
+Result measure_candidate(const Candidate& c, const std::vector<double>& exponents, int points,
+                         SweepProgress& progress) {
+  Result r;
+  r.cand = c;
+  r.cost = specular_cost(c.spec);
+  UnitConfig cfg;  // default series format and output: what the shading unit feeds the slot
+  cfg.specular = c.spec;
+  bool all_ok = true;
+  for (double n : exponents) {
+    const SpecErrors e = measure_unit(cfg, n, points);
+    r.per_n.push_back({n, e});
+    if (e.epi_rel > r.worst.epi_rel) r.worst.epi_rel = e.epi_rel, r.worst_epi_n = n;
+    if (e.bloom_rel > r.worst.bloom_rel) r.worst.bloom_rel = e.bloom_rel, r.worst_bloom_n = n;
+    if (e.abs_lsb > r.worst.abs_lsb) r.worst.abs_lsb = e.abs_lsb, r.worst_abs_n = n;
+    all_ok = all_ok && e.abs_lsb <= 2.56;
+    if (all_ok) r.n_within_1pct = n;
+    progress.ran(c.name, n);
+  }
+  return r;
+}
+
+std::string exponent_range(const std::vector<double>& exponents) {
+  if (exponents.size() == 1) return exp_label(exponents[0]);
+  return "in [" + exp_label(*std::min_element(exponents.begin(), exponents.end())) + ", " +
+         exp_label(*std::max_element(exponents.begin(), exponents.end())) + "] (" +
+         std::to_string(exponents.size()) + " values)";
+}
+
+nlohmann::json unit_json(const Result& r, bool pareto) {
+  nlohmann::json per_n = nlohmann::json::array();
+  for (const auto& [n, e] : r.per_n)
+    per_n.push_back(
+        {{"n", n}, {"epi_rel", e.epi_rel}, {"bloom_rel", e.bloom_rel}, {"abs_lsb", e.abs_lsb}});
+  return {{"name", r.cand.name},
+          {"config", r.cand.spec.describe()},
+          {"epi_rel", r.worst.epi_rel},
+          {"epi_rel_n", r.worst_epi_n},
+          {"bloom_rel", r.worst.bloom_rel},
+          {"bloom_rel_n", r.worst_bloom_n},
+          {"abs_lsb", r.worst.abs_lsb},
+          {"abs_lsb_n", r.worst_abs_n},
+          {"n_within_1pct", r.n_within_1pct},
+          {"table_bits", r.cost.table_bits},
+          {"multipliers", r.cost.multipliers},
+          {"divider_iterations", r.cost.divider_iterations},
+          {"cycles_per_pixel", r.cost.cycles_per_pixel},
+          {"latency", r.cost.latency},
+          {"reload_cycles", r.cost.reload_cycles},
+          {"area", r.cost.area},
+          {"pareto", pareto},
+          {"per_n", per_n}};
+}
+
+void add_paper_json(nlohmann::json& j, const PaperFigures& papers) {
+  j["bishop"] = {
+      {"metric", "nearest-entry (cell-centre) indexing, max abs error vs full scale, 1 %"},
+      {"paper", {20, 164}},
+      {"ours_exact_entries", {papers.bishop_exact_1k, papers.bishop_exact_8k}},
+      {"closed_form", {papers.bishop_closed_1k, papers.bishop_closed_8k}},
+      {"ours_8bit_entries", {papers.bishop_round_1k, papers.bishop_round_8k}}};
+  for (const auto& row : papers.romanyuk)
+    j["romanyuk_table1"].push_back({{"function", row.name},
+                                    {"paper_before_pct", row.paper_before},
+                                    {"ours_before_pct", row.ours_before},
+                                    {"paper_after_pct", row.paper_after},
+                                    {"ours_after_pct", row.ours_after}});
+  j["w16_fitted_zeta_epi_pct"] = 100 * papers.w16_fit_epi;
+}
+
+// papers: the papers' figures, when they were computed.
+nlohmann::json spec_error_json(const std::vector<double>& exponents,
+                               const std::vector<Result>& results,
+                               const std::optional<PaperFigures>& papers) {
+  nlohmann::json j;
+  j["exponents"] = exponents;
+  j["metrics"] = {{"epi_rel", "max relative error where t^n >= 0.5"},
+                  {"bloom_rel", "max relative error where 2^-8 <= t^n < 0.5"},
+                  {"abs_lsb", "max |unit - t^n| over t in [0,1], in 8-bit LSBs"},
+                  {"area", "proxy: ROM bit 1, full-adder bit 8"}};
+  const std::vector<bool> front = pareto_front(results);
+  for (size_t i = 0; i < results.size(); ++i)
+    j["units"].push_back(unit_json(results[i], static_cast<bool>(front[i])));
+  if (papers) add_paper_json(j, *papers);
+  return j;
+}
+
+void write_csv(const std::string& csv_path, const std::vector<Result>& results) {
+  std::ofstream os(csv_path);
+  if (!os) throw std::runtime_error(csv_path + ": cannot open for writing (--csv)");
+  os << "unit,config,n,epi_rel,bloom_rel,abs_lsb,table_bits,multipliers,divider_iterations,"
+        "cycles_per_pixel,latency,reload_cycles,area\n";
+  os << std::setprecision(9);
+  for (const Result& r : results)
+    for (const auto& [n, e] : r.per_n)
+      os << '"' << r.cand.name << "\",\"" << r.cand.spec.describe() << "\"," << n << ','
+         << e.epi_rel << ',' << e.bloom_rel << ',' << e.abs_lsb << ',' << r.cost.table_bits << ','
+         << r.cost.multipliers << ',' << r.cost.divider_iterations << ',' << r.cost.cycles_per_pixel
+         << ',' << r.cost.latency << ',' << r.cost.reload_cycles << ',' << r.cost.area << '\n';
+  if (!os) throw std::runtime_error(csv_path + ": write failed (--csv)");
+}
+
+void run(const std::string& exponents_text, const std::string& units, int points,
+         const std::string& json_path, const std::string& csv_path, const std::string& plot_path,
+         bool no_papers, int& exit_code) {
+  const std::vector<double> exponents = parse_exponents(exponents_text);
+  if (points < 16 || points > 1000000) throw std::invalid_argument("--points must be 16..1000000");
+  const std::vector<Candidate> cands = select_candidates(units);
+
+  const auto start = std::chrono::steady_clock::now();
+  const size_t total = cands.size() * exponents.size();
+  SweepProgress progress(total);
+  std::vector<Result> results;
+  for (const Candidate& c : cands)
+    results.push_back(measure_candidate(c, exponents, points, progress));
+  print_table(std::cout, results, exponent_range(exponents));
+  std::optional<PaperFigures> papers;
   if (!no_papers) {
     papers = paper_figures();
-    print_paper(std::cout, papers);
+    print_paper(std::cout, *papers);
   }
   const double secs =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -397,71 +495,9 @@ void run(const std::string& exponents_text, const std::string& units, int points
   const std::string json_out = !json_path.empty()  ? json_path
                                : plot_path.empty() ? ""
                                                    : plot_path + ".json";
-  if (!json_out.empty()) {
-    nlohmann::json j;
-    j["exponents"] = exponents;
-    j["metrics"] = {{"epi_rel", "max relative error where t^n >= 0.5"},
-                    {"bloom_rel", "max relative error where 2^-8 <= t^n < 0.5"},
-                    {"abs_lsb", "max |unit - t^n| over t in [0,1], in 8-bit LSBs"},
-                    {"area", "proxy: ROM bit 1, full-adder bit 8"}};
-    const std::vector<bool> front = pareto_front(results);
-    for (size_t i = 0; i < results.size(); ++i) {
-      const Result& r = results[i];
-      nlohmann::json per_n = nlohmann::json::array();
-      for (const auto& [n, e] : r.per_n)
-        per_n.push_back(
-            {{"n", n}, {"epi_rel", e.epi_rel}, {"bloom_rel", e.bloom_rel}, {"abs_lsb", e.abs_lsb}});
-      j["units"].push_back({{"name", r.cand.name},
-                            {"config", r.cand.spec.describe()},
-                            {"epi_rel", r.worst.epi_rel},
-                            {"epi_rel_n", r.worst_epi_n},
-                            {"bloom_rel", r.worst.bloom_rel},
-                            {"bloom_rel_n", r.worst_bloom_n},
-                            {"abs_lsb", r.worst.abs_lsb},
-                            {"abs_lsb_n", r.worst_abs_n},
-                            {"n_within_1pct", r.n_within_1pct},
-                            {"table_bits", r.cost.table_bits},
-                            {"multipliers", r.cost.multipliers},
-                            {"divider_iterations", r.cost.divider_iterations},
-                            {"cycles_per_pixel", r.cost.cycles_per_pixel},
-                            {"latency", r.cost.latency},
-                            {"reload_cycles", r.cost.reload_cycles},
-                            {"area", r.cost.area},
-                            {"pareto", static_cast<bool>(front[i])},
-                            {"per_n", per_n}});
-    }
-    if (!no_papers) {
-      j["bishop"] = {
-          {"metric", "nearest-entry (cell-centre) indexing, max abs error vs full scale, 1 %"},
-          {"paper", {20, 164}},
-          {"ours_exact_entries", {papers.bishop_exact_1k, papers.bishop_exact_8k}},
-          {"closed_form", {papers.bishop_closed_1k, papers.bishop_closed_8k}},
-          {"ours_8bit_entries", {papers.bishop_round_1k, papers.bishop_round_8k}}};
-      for (const auto& row : papers.romanyuk)
-        j["romanyuk_table1"].push_back({{"function", row.name},
-                                        {"paper_before_pct", row.paper_before},
-                                        {"ours_before_pct", row.ours_before},
-                                        {"paper_after_pct", row.paper_after},
-                                        {"ours_after_pct", row.ours_after}});
-      j["w16_fitted_zeta_epi_pct"] = 100 * papers.w16_fit_epi;
-    }
-    write_text_file(json_out, j.dump(1) + '\n');
-  }
-  if (!csv_path.empty()) {
-    std::ofstream os(csv_path);
-    if (!os) throw std::runtime_error(csv_path + ": cannot open for writing (--csv)");
-    os << "unit,config,n,epi_rel,bloom_rel,abs_lsb,table_bits,multipliers,divider_iterations,"
-          "cycles_per_pixel,latency,reload_cycles,area\n";
-    os << std::setprecision(9);
-    for (const Result& r : results)
-      for (const auto& [n, e] : r.per_n)
-        os << '"' << r.cand.name << "\",\"" << r.cand.spec.describe() << "\"," << n << ','
-           << e.epi_rel << ',' << e.bloom_rel << ',' << e.abs_lsb << ',' << r.cost.table_bits << ','
-           << r.cost.multipliers << ',' << r.cost.divider_iterations << ','
-           << r.cost.cycles_per_pixel << ',' << r.cost.latency << ',' << r.cost.reload_cycles << ','
-           << r.cost.area << '\n';
-    if (!os) throw std::runtime_error(csv_path + ": write failed (--csv)");
-  }
+  if (!json_out.empty())
+    write_text_file(json_out, spec_error_json(exponents, results, papers).dump(1) + '\n');
+  if (!csv_path.empty()) write_csv(csv_path, results);
   if (!plot_path.empty()) write_plot(plot_path, json_out);
   exit_code = 0;
 }

@@ -1,7 +1,8 @@
 #include "sim/junit.h"
 
-#include <fstream>
-#include <stdexcept>
+#include <sstream>
+
+#include "model/text_file.h"
 
 namespace shadesim {
 
@@ -45,8 +46,7 @@ void write_junit(const std::string& path, const JUnitSuite& suite) {
     skipped += !c.skipped.empty();
     total += c.seconds;
   }
-  std::ofstream os(path);
-  if (!os) throw std::runtime_error(path + ": cannot open for writing");
+  std::ostringstream os;
   os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
      << "<testsuites>\n<testsuite name=\"" << xml_escape(suite.name) << "\" tests=\""
      << suite.cases.size() << "\" failures=\"" << failures << "\" errors=\"0\" skipped=\""
@@ -67,7 +67,7 @@ void write_junit(const std::string& path, const JUnitSuite& suite) {
     os << "  </testcase>\n";
   }
   os << "</testsuite>\n</testsuites>\n";
-  if (!os) throw std::runtime_error(path + ": write failed");
+  write_text_file(path, os.str());
 }
 
 }  // namespace shadesim

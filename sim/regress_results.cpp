@@ -160,13 +160,7 @@ void write_file_atomically(const std::string& path, const std::string& text) {
   char host[256] = {0};
   gethostname(host, sizeof host - 1);
   const fs::path tmp = target.string() + ".tmp." + host + "." + std::to_string(getpid());
-  {
-    std::ofstream os(tmp);
-    if (!os) throw std::runtime_error(tmp.string() + ": cannot open for writing");
-    os << text;
-    os.flush();
-    if (!os) throw std::runtime_error(tmp.string() + ": write failed");
-  }
+  write_text_file(tmp.string(), text);
   std::error_code ec;
   fs::rename(tmp, target, ec);
   if (ec) {
