@@ -51,8 +51,8 @@ class PixelCombine {
         series_(c.series),
         multiply_(c.diffuse_multiply()),
         product_frac_(c.specular.out.frac_bits() + c.spec_colour.frac_bits()),
-        nl_drop_(std::max(0, c.series.frac_bits() - c.spec_colour.frac_bits())),
-        diffuse_frac_(c.series.frac_bits() - nl_drop_ + c.spec_colour.frac_bits()),
+        nl_operand_(nl_operand_format(c)),
+        diffuse_frac_(nl_operand_.frac_bits() + c.spec_colour.frac_bits()),
         out_(output_format(c.out_bits)) {}
 
   // The output code's format: u0.out_bits, round to nearest, saturating. The reference's codes
@@ -94,6 +94,13 @@ class PixelCombine {
   }
 
  private:
+  // N_l truncated to the colour's fraction bits (all of the series' where it has fewer), with the
+  // series' integer bits.
+  static FixedFormat nl_operand_format(const UnitConfig& c) {
+    const int frac = std::min(c.series.frac_bits(), c.spec_colour.frac_bits());
+    return {c.series.iwl + frac, c.series.iwl, true, Quantization::kTruncate, Overflow::kWrap};
+  }
+
   // Stage 1's diffuse value of light l in channel c: max(0, D_lc) unless gate-only, or with the
   // multiply max(0, N_l) (to the colour's fraction bits) x kd_lc by the series rule.
   Int128 diffuse_term(const int64_t* diffuse, const int64_t* diffuse_colour, uint32_t gate_only,
@@ -101,8 +108,8 @@ class PixelCombine {
     if (multiply_) {
       const int64_t n = diffuse[l];
       if (n <= 0) return 0;
-      const Int128 operand = Int128{n} >> nl_drop_;  // n > 0: truncation drops the low bits
-      return series_.quantize(operand * diffuse_colour[l * channels_ + c], diffuse_frac_);
+      const int64_t operand = nl_operand_.quantize(n, series_.frac_bits());
+      return series_.quantize(Int128{operand} * diffuse_colour[l * channels_ + c], diffuse_frac_);
     }
     const int64_t d = diffuse[l * channels_ + c];
     return (gate_only >> l & 1) == 0 && d > 0 ? d : 0;
@@ -114,8 +121,8 @@ class PixelCombine {
   FixedFormat series_;
   bool multiply_;  // UnitConfig::diffuse_colour kMultiply
   int product_frac_;
-  int nl_drop_;       // low bits of N_l the multiplier does not take
-  int diffuse_frac_;  // fraction bits of N_l x kd_lc
+  FixedFormat nl_operand_;  // N_l as the multiplier takes it
+  int diffuse_frac_;        // fraction bits of N_l x kd_lc
   FixedFormat out_;
 };
 

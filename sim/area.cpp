@@ -376,6 +376,14 @@ void read_ice40_stat(const StatSection& s, Ice40Area& a) {
   }
 }
 
+// Diffuse series of a unit's parameters: one per light and channel, or one per light with
+// DIFFUSE_MULTIPLY.
+int64_t diffuse_series_of(const std::map<std::string, int64_t>& p) {
+  const auto it = p.find("DIFFUSE_MULTIPLY");
+  const bool multiply = it != p.end() && it->second == 1;
+  return (multiply ? 1 : p.at("CHANNELS")) * p.at("LIGHTS");
+}
+
 // Every series the unit uses must survive synthesis (the ideal slot outputs 0, so its specular
 // series legitimately go). Fewer means Yosys's netlist is not the unit the co-simulation checks
 // and its area is understated: say so.
@@ -391,11 +399,8 @@ void check_series(AreaReport& r) {
   }
   const std::map<std::string, int64_t> p = parameter_map(r.parameters);
   const int64_t kind = p.at("SPECULAR_KIND");
-  // Diffuse series: one per light and channel, or one per light with the colour multiply.
-  const auto multiply = p.find("DIFFUSE_MULTIPLY");
-  const bool diffuse_multiply = multiply != p.end() && multiply->second == 1;
   const int64_t expected =
-      (diffuse_multiply ? 1 : p.at("CHANNELS")) * p.at("LIGHTS") +
+      diffuse_series_of(p) +
       (kind == 0 ? 0 : p.at("LIGHTS") * specular_config_of_parameters(p).series_per_light());
   // Each series has a span_setup, or with host span setup (SPAN_SETUP 1) engines of its own.
   const auto host = p.find("SPAN_SETUP");
@@ -1199,13 +1204,6 @@ int64_t offset_bits_of(const ParamMap& p) {
 
 // Instances of each module (shade_unit.sv: NSer series, one slot per light, one combine; with
 // LANES > 1 an engine per series, a slot per light and a combine per lane, one span setup).
-// Diffuse series: one per light and channel, or one per light with DIFFUSE_MULTIPLY.
-int64_t diffuse_series_of(const ParamMap& p) {
-  const auto it = p.find("DIFFUSE_MULTIPLY");
-  const bool multiply = it != p.end() && it->second == 1;
-  return (multiply ? 1 : get(p, "CHANNELS")) * get(p, "LIGHTS");
-}
-
 int64_t instances_of(const std::string& module, const ParamMap& p) {
   const int64_t l = get(p, "LIGHTS"), diffuse = diffuse_series_of(p);
   const int64_t per_light = specular_config_of_parameters(p).series_per_light();
