@@ -133,6 +133,7 @@ if(NOT SHADESIM_HAVE_RTL)
 endif()
 
 add_executable(icarus_stream_tool ${CMAKE_SOURCE_DIR}/sim/icarus/stream_tool.cpp)
+shadesim_compile_lighter(icarus_stream_tool)
 target_link_libraries(icarus_stream_tool PRIVATE shadesim_harness CLI11::CLI11)
 
 set(ICARUS_DIR ${CMAKE_BINARY_DIR}/icarus)

@@ -57,9 +57,11 @@ set(SHADESIM_CLI $<TARGET_FILE:shadesim>)
 set(RTL_CACHE ${CMAKE_BINARY_DIR}/rtl-cache)
 # Every named build on its own backends, plus the traced builds of the waveform tests. Always
 # run: a build whose inputs have not changed is a cache hit (hashing the inputs takes < 1 s).
+# Quick (-O0): the tests' runs are short (cosim picks quick for its random scenarios, regress by
+# each run's length), and a quick build compiles in about a third of a fast one's time.
 add_custom_target(rtl_builds ALL
-  COMMAND shadesim rtl-build --runtime --all --cache ${RTL_CACHE}
-  COMMAND shadesim rtl-build --config grey_s428w --backends cpp_trace --cache ${RTL_CACHE}
+  COMMAND shadesim rtl-build --runtime --all --opt quick --cache ${RTL_CACHE}
+  COMMAND shadesim rtl-build --config grey_s428w --backends cpp_trace --opt quick --cache ${RTL_CACHE}
   DEPENDS shadesim shadesim_harness shadesim_model
   COMMENT "Verilating the named RTL builds into ${RTL_CACHE} (cache hits are instant)"
   USES_TERMINAL)
@@ -275,6 +277,7 @@ endforeach()
 
 # The scoreboard's lane checks (a beat the model did not expect is a mismatch).
 add_executable(rtl_scoreboard_lanes_test ${CMAKE_SOURCE_DIR}/tests/rtl/scoreboard_lanes_test.cpp)
+shadesim_compile_lighter(rtl_scoreboard_lanes_test)
 target_link_libraries(rtl_scoreboard_lanes_test PRIVATE shadesim_harness GTest::gtest_main)
 add_test(NAME rtl_scoreboard_lanes_test COMMAND rtl_scoreboard_lanes_test)
 

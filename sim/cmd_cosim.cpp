@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 #include <utility>
+#include <variant>
 
 #include "model/command_stream.h"
 #include "sim/area.h"
@@ -34,13 +35,27 @@ struct CosimOptions {
   std::string stream;
   std::string waves;
   std::string cache;
-  std::string coverage;  // FILE.dat: run the covered build, write its coverage there
-  std::string optimization = "fast";
+  std::string coverage;       // FILE.dat: run the covered build, write its coverage there
+  std::string optimization;   // quick | fast; empty: by the run's length (cosim_optimization)
   bool netlist = false;       // Yosys's gate-level netlist in place of the RTL
   std::string netlist_cache;  // empty: <build>/netlist-cache
   bool list = false;
   bool list_json = false;
 };
+
+// How hard to compile a build this run needs, when --opt does not say: a --stream by its length
+// (4 cycles a pixel, regress's upper estimate), the random scenarios quick - they are short by
+// design (every scenario of one seed is under 0.3 M cycles on grey_s428w, 0.1 s of simulation
+// on a fast build and about 1 s on a quick one, which compiles about 5 s sooner).
+RtlOptimization cosim_optimization(const std::string& optimization, const std::string& stream) {
+  if (!optimization.empty()) return parse_rtl_optimization(optimization);
+  if (stream.empty()) return RtlOptimization::kQuick;
+  uint64_t pixels = 0;
+  for (const Command& c : CommandStream::load(stream).commands) {
+    if (const auto* s = std::get_if<SpanCmd>(&c)) pixels += static_cast<uint64_t>(s->length);
+  }
+  return choose_optimization(4 * pixels);
+}
 
 // The unit file the executable reads (--unit): content-addressed, written atomically.
 std::string write_unit_file(const fs::path& cache, const UnitConfig& unit) {
@@ -108,7 +123,7 @@ int run_cosim(const CosimOptions& o, std::vector<std::string> passthrough) {
   bo.cache_dir = o.cache;
   bo.make_jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   bo.coverage = !o.coverage.empty();
-  bo.optimization = parse_rtl_optimization(o.optimization);
+  bo.optimization = cosim_optimization(o.optimization, o.stream);
   if (bo.coverage && backend == CosimBackend::kCppTrace) {
     throw std::invalid_argument(
         "--coverage and --waves: a traced build has no coverage; run them one at a time");
@@ -307,8 +322,9 @@ void register_cosim_command(CLI::App& app, int& exit_code) {
       ->check(output_file());
   sub->add_option("--opt", o->optimization,
                   "compile a new build quick (-O0: builds fastest) or fast (-O2: simulates "
-                  "fastest); a cached fast build is used either way")
-      ->capture_default_str()
+                  "fastest); a cached fast build is used either way. Default: quick for the "
+                  "random scenarios (short), by the stream's length for --stream (quick under " +
+                      std::to_string(kQuickBuildCycles) + " cycles)")
       ->check(CLI::IsMember({"quick", "fast"}));
   sub->add_flag("--netlist", o->netlist,
                 "simulate the unit's gate-level netlist from Yosys (what `shadesim area` "

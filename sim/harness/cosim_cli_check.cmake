@@ -184,7 +184,7 @@ if(MODE STREQUAL "json")
     message(FATAL_ERROR "--waves on the SystemC backend is not refused with a reason:\n${out}")
   endif()
   # A unit that maps to other parameters than the executable's is refused by the executable.
-  run(0 out ${SHADESIM} rtl-build --config grey_s428w --cache ${CACHE})
+  run(0 out ${SHADESIM} rtl-build --config grey_s428w --opt quick --cache ${CACHE})
   string(REGEX MATCH "/[^ \n]*/cosim-[a-z]+-[0-9a-f]+" grey_exe "${out}")
   file(WRITE ${WORK}/rgb.json "{\"channels\": 3, \"lights\": 2}")
   run(2 out ${grey_exe} --unit ${WORK}/rgb.json --scenario short)

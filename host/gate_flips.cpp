@@ -1,0 +1,107 @@
+#include "host/gate_flips.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstdlib>
+#include <vector>
+
+#include "host/encode.h"
+#include "model/shade_unit.h"
+
+namespace shadesim {
+namespace {
+
+// Every visible pixel's output codes and specular gates, indexed y * width + x.
+struct ShadedFrame {
+  std::vector<std::array<uint16_t, kMaxChannels>> colour;
+  std::vector<uint8_t> gates;
+  std::vector<bool> shaded;
+};
+
+ShadedFrame shade(const PreparedFrame& frame, const UnitConfig& unit) {
+  const int width = frame.scene.width;
+  const size_t n = static_cast<size_t>(width) * static_cast<size_t>(frame.scene.height);
+  ShadedFrame out{std::vector<std::array<uint16_t, kMaxChannels>>(n), std::vector<uint8_t>(n, 0),
+                  std::vector<bool>(n, false)};
+  const EncodedFrame encoded = encode_frame(frame.scene, unit, frame.setup, frame.visibility);
+  ShadeUnit model(unit);
+  for (const Command& cmd : encoded.stream.commands) {
+    model.consume(cmd, [&](const PixelOut& p) {
+      const size_t at = static_cast<size_t>(p.y) * static_cast<size_t>(width) + p.x;
+      out.colour[at] = p.colour;
+      out.gates[at] = p.spec_gates;
+      out.shaded[at] = true;
+    });
+  }
+  return out;
+}
+
+// Flips of `shaded` against `widest` more than `budget_codes` off.
+GateFlips count_flips(const ShadedFrame& shaded, const ShadedFrame& widest, int channels,
+                      int budget_codes) {
+  GateFlips f;
+  for (size_t i = 0; i < shaded.gates.size(); ++i) {
+    if (!shaded.shaded[i] || shaded.gates[i] == widest.gates[i]) continue;
+    int diff = 0;
+    for (int c = 0; c < channels; ++c) {
+      diff = std::max(diff, std::abs(int{shaded.colour[i][static_cast<size_t>(c)]} -
+                                     int{widest.colour[i][static_cast<size_t>(c)]}));
+    }
+    if (diff <= budget_codes) continue;
+    ++f.pixels;
+    f.max_lsb = std::max(f.max_lsb, diff);
+  }
+  return f;
+}
+
+// The most fraction bits with_more_fraction_bits can add: FixedFormat's 62-bit words and 60
+// fraction bits, and span setup's 120-bit intermediate (UnitConfig::validate).
+int most_fraction_bits(const UnitConfig& u) {
+  const int setup_room = 120 - 4 - 2 * (u.xy_bits + 2) - u.coef.wl;
+  return std::max(0, std::min({62 - u.series.wl, 60 - u.series.frac_bits(), 62 - u.coef.wl,
+                               60 - u.coef.frac_bits(), setup_room}));
+}
+
+}  // namespace
+
+UnitConfig with_more_fraction_bits(const UnitConfig& unit, int bits) {
+  UnitConfig u = unit;
+  const int add = std::min(bits, most_fraction_bits(unit));
+  u.series.wl += add;
+  u.coef.wl += add;
+  u.validate();
+  return u;
+}
+
+GateFlips measure_gate_flips(const PreparedFrame& frame, const UnitConfig& unit,
+                             int budget_codes) {
+  const int most = most_fraction_bits(unit);
+  const ShadedFrame widest = shade(frame, with_more_fraction_bits(unit, most));
+  GateFlips f = count_flips(shade(frame, unit), widest, unit.channels, budget_codes);
+  f.fixed = unit;
+  if (f.pixels == 0) return f;
+  auto holds = [&](int bits) {
+    return count_flips(shade(frame, with_more_fraction_bits(unit, bits)), widest, unit.channels,
+                       budget_codes)
+               .pixels == 0;
+  };
+  // The fewest bits that hold: doubling to a width that holds, then halving the interval (a
+  // handful of shadings of the frame, not one per bit).
+  // Only short of the widest formats (the yardstick itself) is a width that holds meaningful.
+  int lo = 0, hi = 1;
+  while (hi < most && !holds(hi)) lo = hi, hi = std::min(2 * hi, most);
+  if (hi >= most) {
+    f.fix_bits = -1;
+    return f;
+  }
+  while (hi - lo > 1) {
+    const int mid = (lo + hi) / 2;
+    (holds(mid) ? hi : lo) = mid;
+  }
+  f.fix_bits = hi;
+  f.fixed = with_more_fraction_bits(unit, hi);
+  return f;
+}
+
+}  // namespace shadesim
