@@ -103,14 +103,6 @@ constexpr const char* kShellScript =
     "write_json @WORK@/shell.json\n";
 constexpr const char* kShellVersion = "fmax_shell v2";
 
-std::string read_text(const fs::path& p) {
-  std::ifstream is(p, std::ios::binary);
-  if (!is) throw std::runtime_error(p.string() + ": cannot read");
-  std::stringstream ss;
-  ss << is.rdbuf();
-  return ss.str();
-}
-
 void write_atomically(const fs::path& p, const std::string& text) {
   // A unique temporary name in the same folder, then rename(2): readers see all or nothing.
   const fs::path tmp = p.string() + ".tmp." + std::to_string(::getpid()) + "." +
@@ -142,11 +134,6 @@ std::string find_program(const std::string& name, const std::string& package) {
   throw MissingToolError(
       "'" + name + "' not found" + (name.find('/') != std::string::npos ? "" : " on PATH") +
       ": shadesim area needs it (Debian package " + package + "; scripts/setup installs it)");
-}
-
-std::string first_line(const std::string& s) {
-  const auto nl = s.find('\n');
-  return s.substr(0, nl);
 }
 
 std::vector<fs::path> rtl_sources(const std::string& dir) {
@@ -200,7 +187,7 @@ void run_tool(const std::vector<std::string>& argv, const fs::path& log, const s
   if (r.exit_code != 0) {
     std::string tail;
     try {
-      const std::string text = read_text(log);
+      const std::string text = read_text_file(log.string());
       const auto from = text.size() > 800 ? text.size() - 800 : 0;
       tail = text.substr(from);
     } catch (const std::exception&) {
@@ -251,7 +238,7 @@ struct StatSection {
 };
 
 std::map<std::string, StatSection> read_stat_text(const fs::path& p) {
-  std::istringstream is(read_text(p));
+  std::istringstream is(read_text_file(p.string()));
   std::map<std::string, StatSection> out;
   StatSection* cur = nullptr;
   bool in_types = false;
@@ -463,7 +450,7 @@ void check_fit(Ice40Area& a) {
 LogicDepth read_logic_depth(const std::string& ltp_file) {
   // "Longest topological path in shade_unit (length=87):", then "    0: \\cmd_data_i [16]",
   // one "  n: wire (via cell)" line per cell, and "ff: \\q (via $dff)" where it ends at one.
-  std::istringstream is(read_text(ltp_file));
+  std::istringstream is(read_text_file(ltp_file));
   static const std::regex head(R"(Longest topological path in \S+ \(length=([0-9]+)\))");
   static const std::regex step(R"(^\s*([0-9]+|ff):\s*\\?(.*?)(\s+\(via .*\))?\s*$)");
   LogicDepth d;
@@ -593,7 +580,7 @@ int64_t read_memory_bits(const std::string& dump_file) {
   // "  cell $mem_v2 \name" then its "    parameter \SIZE n" and "    parameter \WIDTH n".
   // Only the tables count: register arrays (shade_unit's coef_q, ambient_q, ...) are $mem cells
   // too at this point, and are logic.
-  std::istringstream is(read_text(dump_file));
+  std::istringstream is(read_text_file(dump_file));
   static const std::regex cell(R"(^\s*cell \$mem(_v2)? \\(\S*\.)?)" +
                                std::string(kTableMemoryName) + R"(\s*$)");
   static const std::regex any_cell(R"(^\s*cell )");
@@ -780,7 +767,7 @@ std::string area_key(const AreaInputs& in, bool breakdown, bool pnr,
   h.add(in.chparam);
   for (const auto& f : in.files) {
     h.add(f.filename().string());
-    h.add(read_text(f));
+    h.add(read_text_file(f.string()));
   }
   h.add(in.yosys_version);
   h.add(kFlatScript);
@@ -822,7 +809,7 @@ std::optional<AreaReport> cached_area(const AreaInputs& in, const AreaReport& r,
                                       const AreaOptions& o) {
   for (const auto& c : cache_candidates(in, r, o)) {
     if (!fs::exists(c)) continue;
-    AreaReport cached = area_report_from_json(read_text(c), c.string());
+    AreaReport cached = area_report_from_json(read_text_file(c.string()), c.string());
     cached.from_cache = true;
     check_series(cached);
     if (o.progress) *o.progress << "[area] cache hit " << c.string() << "\n";
@@ -959,7 +946,7 @@ bool place_and_route(const AreaInputs& in, const fs::path& work, const AreaOptio
            work / "shell.out", "yosys synth_ice40 of the unit in its Fmax shell", o.progress);
   try {
     run_tool(argv, work / "pnr.out", "nextpnr-ice40 place and route (HX8K)", o.progress);
-    r.ice40.fmax_mhz = read_fmax(read_text(work / "pnr.log"));
+    r.ice40.fmax_mhz = read_fmax(read_text_file((work / "pnr.log").string()));
     if (!r.ice40.fmax_mhz) r.ice40.pnr_note = "nextpnr-ice40 reported no Fmax";
     return false;
   } catch (const std::runtime_error& e) {
@@ -1054,7 +1041,7 @@ std::map<std::string, std::pair<std::string, int64_t>> expected_ports(
 // Throws naming the netlist and the port when its top is not shade_unit with exactly the ports
 // (direction, width) the glue drives.
 void check_netlist_ports(const fs::path& netlist, const std::vector<VerilogParameter>& params) {
-  std::istringstream is(read_text(netlist));
+  std::istringstream is(read_text_file(netlist.string()));
   static const std::regex module_re(R"(^\s*module\s+(\S+?)\s*\()");
   static const std::regex port_re(
       R"(^\s*(input|output|inout)\s+(\[(-?[0-9]+):(-?[0-9]+)\]\s+)?(\S+)\s*;)");
@@ -1115,7 +1102,7 @@ UnitNetlist unit_netlist(const UnitConfig& unit, const NetlistOptions& o) {
   h.add("shadesim-netlist-v1").add(chparam);
   for (const auto& f : files) {
     h.add(f.filename().string());
-    h.add(read_text(f));
+    h.add(read_text_file(f.string()));
   }
   h.add(version).add(kFlatScript).add(kNetlistWrite);
   UnitNetlist n;
@@ -1126,7 +1113,7 @@ UnitNetlist unit_netlist(const UnitConfig& unit, const NetlistOptions& o) {
   const fs::path info = cache / ("netlist-" + n.key + ".json");
   n.path = path.string();
   auto read_info = [&] {
-    const Json j = Json::parse(read_text(info));
+    const Json j = Json::parse(read_text_file(info.string()));
     n.cells = j.at("cells");
     n.flip_flops = j.at("flip_flops");
     n.gate_equivalents = j.at("gate_equivalents");
@@ -1154,7 +1141,7 @@ UnitNetlist unit_netlist(const UnitConfig& unit, const NetlistOptions& o) {
   n.gate_equivalents = gate_equivalents(c.logic_transistors, c.flip_flops, n.ram_bits);
   n.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // The netlist first, then its stat: an entry is complete once the .json exists.
-  write_atomically(path, read_text(work / "netlist.v"));
+  write_atomically(path, read_text_file((work / "netlist.v").string()));
   const Json j = {{"unit", unit.to_string()},   {"key", n.key},
                   {"yosys_version", version},   {"cells", n.cells},
                   {"flip_flops", n.flip_flops}, {"gate_equivalents", n.gate_equivalents},
@@ -1347,7 +1334,7 @@ std::vector<AreaReport> load_area_reports(const std::string& cache_dir) {
   for (const auto& e : fs::directory_iterator(cache_dir, ec)) {
     if (!e.is_regular_file() || e.path().extension() != ".json") continue;
     try {
-      AreaReport r = area_report_from_json(read_text(e.path()), e.path().string());
+      AreaReport r = area_report_from_json(read_text_file((e.path()).string()), e.path().string());
       check_series(r);
       out.push_back(std::move(r));
     } catch (const std::exception&) {

@@ -20,6 +20,7 @@
 #include "model/text_file.h"
 #include "sim/commands.h"
 #include "sim/config_option.h"
+#include "sim/elapsed.h"
 #include "sim/harness/cycle_run.h"
 #include "sim/output_paths.h"
 #include "sim/stimulus_options.h"
@@ -165,10 +166,6 @@ PreparedFrame cycles_frame(const CyclesOptions& o) {
     if (o.lights > 0) fo.base.lights = o.lights;
   }
   return prepare_frame_on(o.scene, fo, o.config);
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
 // Everything one `cycles` run counts.

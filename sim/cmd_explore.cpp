@@ -21,6 +21,8 @@
 #include "model/unit_config_file.h"
 #include "sim/area.h"
 #include "sim/commands.h"
+#include "sim/elapsed.h"
+#include "sim/fixed_text.h"
 #include "sim/number_checks.h"
 #include "sim/output_paths.h"
 #include "sim/process.h"
@@ -90,12 +92,6 @@ AreaFunction area_model(const UnitConfig& start, const std::string& cache_dir) {
     return AreaFigure{static_cast<double>(e.cells), static_cast<double>(e.lut4),
                       "generic cells, " + e.label()};
   };
-}
-
-std::string fixed1(double v) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(1) << v;
-  return os.str();
 }
 
 // The front's measurement: shadesim area on the point's unit (cached like `area`), with the
@@ -504,10 +500,6 @@ struct ExploreRun {
   }
 };
 
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
 std::filesystem::path explore_out_dir(const ExploreCliOptions& o) {
   if (!o.out_dir.empty()) return o.out_dir;
   return std::filesystem::path("out") / "explore" / std::filesystem::path(o.scenes.front()).stem();
@@ -655,7 +647,8 @@ void print_files_and_time(std::ostream& os, const ExploreCliOptions& o, const Ex
      << "time         host setup " << std::setprecision(2) << run.host_s << " s, "
      << run.result.points.size() << " points in " << run.sweep_s << " s on " << o.jobs
      << " thread(s)"
-     << (o.estimate_only ? std::string() : ", Yosys on the front " + fixed1(run.measure_s) + " s")
+     << (o.estimate_only ? std::string()
+                         : ", Yosys on the front " + fixed_text(run.measure_s, 1) + " s")
      << "\n";
   if (!o.json_path.empty()) os << "plot         scripts/plot " << o.json_path << "\n";
 }

@@ -36,6 +36,7 @@
 #include "sim/area.h"
 #include "sim/commands.h"
 #include "sim/coverage.h"
+#include "sim/fixed_text.h"
 #include "sim/interrupt.h"
 #include "sim/number_checks.h"
 #include "sim/output_paths.h"
@@ -745,12 +746,6 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
                 " (log: " + rec.log + ")";
 }
 
-std::string fmt(double v, int precision) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(precision) << v;
-  return os.str();
-}
-
 // Runs the pending jobs; each writes its record the moment it ends, so a killed regression keeps
 // every finished run.
 void run_jobs(std::vector<Job>& jobs, const RegressOptions& o, const RunSettings& settings,
@@ -791,7 +786,7 @@ void run_jobs(std::vector<Job>& jobs, const RegressOptions& o, const RunSettings
     const RunRecord& r = j.rec;
     std::lock_guard<std::mutex> lock(print_mutex);
     std::cout << "[" << n << "/" << jobs.size() << "] " << r.spec.id() << ": " << r.status << ", "
-              << r.cycles << " cycles, " << fmt(r.seconds, 2) << " s";
+              << r.cycles << " cycles, " << fixed_text(r.seconds, 2) << " s";
     if (r.status != "pass")
       std::cout << "\n    " << r.message << (r.replay.empty() ? "" : "\n    replay: " + r.replay);
     if (!r.waves.empty()) std::cout << "\n    waves: " << r.waves;
@@ -918,7 +913,7 @@ RunCounts report_runs(const std::vector<RunRecord>& records, const RegressOption
             << c.hangs << " hung, " << c.timeouts << " timed out, " << c.errors << " error(s), "
             << (c.interrupted > 0 ? std::to_string(c.interrupted) + " interrupted, " : "")
             << c.skipped << " skipped (the scene does not fit the configuration) in "
-            << fmt(wall, 1) << " s with " << workers << " job(s)\n";
+            << fixed_text(wall, 1) << " s with " << workers << " job(s)\n";
   for (const auto& r : records) {
     if (r.status == "skipped")
       std::cout << "  skipped " << r.scene_name << " x " << r.spec.config << ": " << r.message
@@ -929,7 +924,7 @@ RunCounts report_runs(const std::vector<RunRecord>& records, const RegressOption
 }
 
 std::string percent(int hit, int total) {
-  return total ? fmt(100.0 * hit / total, 1) + " %" : std::string("-");
+  return total ? fixed_text(100.0 * hit / total, 1) + " %" : std::string("-");
 }
 
 // The coverage figures regress --json and the summary.json of OUT/coverage carry: totals over rtl/,
@@ -1065,7 +1060,7 @@ bool report_coverage(const std::vector<RunRecord>& records, const fs::path& out,
   std::ofstream(dir / "summary.json") << summary->dump(2) << '\n';
   if (o.coverage_min < 0) return true;
   const bool met = sum.lines > 0 && sum.line_pct() >= o.coverage_min;
-  std::cout << "regress: coverage: rtl/ line coverage " << fmt(sum.line_pct(), 2) << " % "
+  std::cout << "regress: coverage: rtl/ line coverage " << fixed_text(sum.line_pct(), 2) << " % "
             << (met ? ">= " : "is below ") << "--coverage-min " << number_text(o.coverage_min)
             << " %" << (met ? "" : ": FAIL") << '\n';
   return met;

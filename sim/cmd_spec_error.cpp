@@ -27,6 +27,7 @@
 #include "model/specular_units.h"
 #include "model/text_file.h"
 #include "sim/commands.h"
+#include "sim/fixed_text.h"
 #include "sim/output_paths.h"
 #include "sim/process.h"
 #include "sim/rtl_build.h"
@@ -200,12 +201,6 @@ void write_plot(const std::string& png_path, const std::string& json_path) {
 }
 
 // ------------------------------------------------------------------ output
-std::string fmt(double v, int prec) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(prec) << v;
-  return os.str();
-}
-
 std::string exp_label(double n) {
   std::ostringstream os;
   os << n;
@@ -231,13 +226,14 @@ void print_table(std::ostream& os, const std::vector<Result>& rs, const std::str
     const Result& r = rs[i];
     os << std::left << std::setw(4) << (std::to_string(i + 1) + (front[i] ? "*" : ""))
        << std::setw(30) << r.cand.name << std::right << std::setw(9)
-       << fmt(100 * r.worst.epi_rel, 3) << std::setw(7) << exp_label(r.worst_epi_n) << std::setw(10)
-       << fmt(100 * r.worst.bloom_rel, 1) << std::setw(7) << exp_label(r.worst_bloom_n)
-       << std::setw(9) << fmt(r.worst.abs_lsb, 2) << std::setw(7) << exp_label(r.worst_abs_n)
-       << std::setw(8) << exp_label(r.n_within_1pct) << std::setw(10) << r.cost.table_bits
-       << std::setw(5) << r.cost.multipliers << std::setw(5) << r.cost.divider_iterations
-       << std::setw(7) << r.cost.cycles_per_pixel << std::setw(5) << r.cost.latency << std::setw(8)
-       << r.cost.reload_cycles << std::setw(9) << fmt(r.cost.area, 0) << '\n';
+       << fixed_text(100 * r.worst.epi_rel, 3) << std::setw(7) << exp_label(r.worst_epi_n)
+       << std::setw(10) << fixed_text(100 * r.worst.bloom_rel, 1) << std::setw(7)
+       << exp_label(r.worst_bloom_n) << std::setw(9) << fixed_text(r.worst.abs_lsb, 2)
+       << std::setw(7) << exp_label(r.worst_abs_n) << std::setw(8) << exp_label(r.n_within_1pct)
+       << std::setw(10) << r.cost.table_bits << std::setw(5) << r.cost.multipliers << std::setw(5)
+       << r.cost.divider_iterations << std::setw(7) << r.cost.cycles_per_pixel << std::setw(5)
+       << r.cost.latency << std::setw(8) << r.cost.reload_cycles << std::setw(9)
+       << fixed_text(r.cost.area, 0) << '\n';
   }
   os << "  (* = on the Pareto front of worst absLSB against area x cycles/pixel)\n";
 }
@@ -311,18 +307,19 @@ void print_paper(std::ostream& os, const PaperFigures& p) {
      << "              paper before  ours before   paper after  ours after\n";
   for (const auto& r : p.romanyuk) {
     os << "  " << std::left << std::setw(10) << r.name << std::right << std::setw(12)
-       << fmt(r.paper_before, 1) << std::setw(13) << fmt(r.ours_before, 2) << std::setw(14)
-       << fmt(r.paper_after, 1) << std::setw(12) << fmt(r.ours_after, 1) << '\n';
+       << fixed_text(r.paper_before, 1) << std::setw(13) << fixed_text(r.ours_before, 2)
+       << std::setw(14) << fixed_text(r.paper_after, 1) << std::setw(12)
+       << fixed_text(r.ours_after, 1) << '\n';
   }
   os << "  The table does NOT reproduce: our epicentre figures differ from the paper's (W16 "
-     << fmt(p.romanyuk[2].ours_before, 2) << " vs 1.0, Schlick "
-     << fmt(p.romanyuk[3].ours_before, 1)
+     << fixed_text(p.romanyuk[2].ours_before, 2) << " vs 1.0, Schlick "
+     << fixed_text(p.romanyuk[3].ours_before, 1)
      << " vs 22.4),\n  and in the blooming zone W_m reaches zero while t^n >= 2^-8 (100 % for W4),"
      << " Schlick's\n  slow tail gives errors far above 100 %. We report what this metric measures "
         "and"
      << " do not tune it.\n"
      << "  W16 with zeta fitted per exponent for the epicentre (n in [16, 1000] step 8): "
-     << fmt(100 * p.w16_fit_epi, 2) << " %\n";
+     << fixed_text(100 * p.w16_fit_epi, 2) << " %\n";
 }
 
 // The built-in configurations of the units `units` names (all, or a comma list of kinds).
@@ -489,7 +486,7 @@ void run(const std::string& exponents_text, const std::string& units, int points
   }
   const double secs =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::cout << "\n(" << total << " unit x exponent runs, " << fmt(secs, 1) << " s)\n";
+  std::cout << "\n(" << total << " unit x exponent runs, " << fixed_text(secs, 1) << " s)\n";
 
   // --plot draws from the JSON: without --json it goes beside the PNG.
   const std::string json_out = !json_path.empty()  ? json_path

@@ -7,6 +7,8 @@
 
 namespace shadesim {
 
-inline std::string fixed_text(double v, int decimals) { return fmt::format("{:.{}f}", v, decimals); }
+inline std::string fixed_text(double v, int decimals) {
+  return fmt::format("{:.{}f}", v, decimals);
+}
 
 }  // namespace shadesim

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "model/rtl_parameters.h"
+#include "model/text_file.h"
 #include "sim/process.h"
 
 namespace shadesim {
@@ -29,8 +30,6 @@ void write_text(const fs::path& p, const std::string& text) {
   os << text;
   if (!os) throw std::runtime_error("rtl build: cannot write " + p.string());
 }
-
-std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
 
 std::string opt_flag(RtlOptimization o) { return o == RtlOptimization::kFast ? "-O2" : "-O0"; }
 
