@@ -74,8 +74,7 @@ UnitConfig with_more_fraction_bits(const UnitConfig& unit, int bits) {
   return u;
 }
 
-GateFlips measure_gate_flips(const PreparedFrame& frame, const UnitConfig& unit,
-                             int budget_codes) {
+GateFlips measure_gate_flips(const PreparedFrame& frame, const UnitConfig& unit, int budget_codes) {
   const int most = most_fraction_bits(unit);
   const ShadedFrame widest = shade(frame, with_more_fraction_bits(unit, most));
   GateFlips f = count_flips(shade(frame, unit), widest, unit.channels, budget_codes);

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "host/frame.h"
+#include "host/gate_flips.h"
 #include "host/scene_error.h"
 #include "host/specular_setup.h"
 #include "model/coef_packing.h"
@@ -555,6 +556,45 @@ int max_code_error(const std::vector<std::string>& scene_paths, const UnitConfig
   return worst;
 }
 
+// The N.L gate's step (host/gate_flips.h): where the derived widths flip a scene's gate with an
+// output over the budget, series and coef get the fraction bits that hold every scene's gate.
+void hold_the_gate(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
+                   DerivedConfig& d) {
+  int bits = 0;
+  std::string why;
+  for (const auto& path : scene_paths) {
+    FrameOptions fo;
+    fo.base = d.config;
+    fo.fixed_unit = true;
+    fo.budget_lsb = options.budget_lsb;
+    fo.max_depth = options.max_depth;
+    const GateFlips f =
+        measure_gate_flips(prepare_frame(path, fo), d.config, code_budget(d.measured.budget_lsb));
+    if (f.pixels == 0 || f.fix_bits <= bits) continue;  // fix_bits -1: no width holds it
+    bits = f.fix_bits;
+    why = "; +" + std::to_string(bits) +
+          " fraction bits for the N.L gate: " + std::to_string(f.pixels) + " pixel(s) of " + path +
+          " near the terminator flipped it against the widest formats, up to " +
+          std::to_string(f.max_lsb) + " LSB off, and these hold it";
+  }
+  if (bits == 0) return;
+  d.config = with_more_fraction_bits(d.config, bits);
+  const auto json = nlohmann::json::parse(config_to_json(d.config));
+  for (auto& r : d.reasons) {
+    if (r.field != "series" && r.field != "coef") continue;
+    r.value = json.at(r.field).get<std::string>();
+    r.reason += why;
+  }
+}
+
+// derive_widths, with the gate held.
+DerivedConfig derive_held(const std::vector<std::string>& scene_paths,
+                          const DeriveOptions& options) {
+  DerivedConfig d = derive_widths(scene_paths, options);
+  if (options.hold_gate) hold_the_gate(scene_paths, options, d);
+  return d;
+}
+
 bool substituted(const DerivedConfig& d, const DeriveOptions& options) {
   return d.substitute && d.config.specular.kind == options.ideal_substitute.kind;
 }
@@ -563,7 +603,7 @@ bool substituted(const DerivedConfig& d, const DeriveOptions& options) {
 
 DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
                             const DeriveOptions& options) {
-  DerivedConfig first = derive_widths(scene_paths, options);
+  DerivedConfig first = derive_held(scene_paths, options);
   if (!substituted(first, options) || options.ideal_fallbacks.empty()) return first;
   // The scenes name ideal: the substitute must meet the budget on them (measured, not bounded:
   // a unit's approximation of t^n is not in the width rules), else the next fallback, each
@@ -599,7 +639,7 @@ DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
     DeriveOptions o = options;
     for (const SpecularConfig& unit : options.ideal_fallbacks) {
       o.ideal_substitute = unit;
-      DerivedConfig d = derive_widths(scene_paths, o);
+      DerivedConfig d = derive_held(scene_paths, o);
       const int error = max_code_error(scene_paths, d.config, o);
       double cpp = 0;
       for (const auto& path : scene_paths) {

@@ -30,6 +30,7 @@ struct PixelOut {
   std::array<uint16_t, kMaxChannels> colour{};
   bool end_of_row = false;  // last pixel of a span marked last_in_row
   int lane = 0;             // the lane of its beat (its index in the span mod UnitConfig::lanes)
+  uint8_t spec_gates = 0;   // bit l: light l's specular gate was open (PixelCombine::gate)
 };
 
 class ShadeUnit {
@@ -97,8 +98,10 @@ void ShadeUnit::consume(const Command& cmd, Sink&& sink) {
     // Pixel k of the span, on `lane` of its beat, from that lane's series values.
     auto shade = [&](const int64_t* values, int32_t k, int lane) {
       // Kind none (no specular series): spec_ stays 0, and PixelCombine adds no specular term.
+      px.spec_gates = 0;
       for (int l = 0; per_light > 0 && l < config_.lights; ++l) {
         spec_[l] = specular_.evaluate(&values[diffuse + l * per_light]);
+        px.spec_gates |= static_cast<uint8_t>(combine_.gate(values, l) ? 1u << l : 0u);
       }
       px.x = static_cast<uint16_t>(s->x0 + k);
       px.lane = lane;

@@ -5,9 +5,13 @@
 //   series range   values beyond the series format's integer range wrap or saturate: wrong
 //                  pixels wherever they occur (an overbright light, say);
 //   drift          spans longer than the series fraction bits' drift bound allows within a
-//                  quarter of the budget (a very wide image at narrow widths).
+//                  quarter of the budget (a very wide image at narrow widths);
+//   N.L gate       pixels near the terminator whose specular gate flips against the widest
+//                  formats with an output over the budget (host/gate_flips.h).
 // Each warning names the width that would hold the scene.
 #pragma once
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +20,8 @@
 #include <variant>
 #include <vector>
 
+#include "host/frame.h"
+#include "host/gate_flips.h"
 #include "host/scene_config.h"
 #include "model/command_stream.h"
 
@@ -43,10 +49,29 @@ inline int longest_span_within_drift(const FixedFormat& series, double gain, dou
   return longest;
 }
 
+// Pixels whose N.L gate flips over the budget, with the fraction bits that hold them.
+inline std::optional<std::string> gate_flip_warning(const PreparedFrame& frame,
+                                                    const UnitConfig& unit, double budget_lsb) {
+  const GateFlips f = measure_gate_flips(frame, unit, code_budget(budget_lsb));
+  if (f.pixels == 0) return std::nullopt;
+  std::string w = std::to_string(f.pixels) +
+                  " pixel(s) near the terminator open or close the specular N.L gate against the "
+                  "widest formats (their N.L is within the series' truncation and the "
+                  "coefficients' rounding of 0), up to " +
+                  std::to_string(f.max_lsb) + " LSB off, over the " +
+                  fmt::format("{:g}", budget_lsb) + " LSB budget: ";
+  if (f.fix_bits < 0) {
+    return w + "no narrower series and coef than the widest hold them";
+  }
+  return w + std::to_string(f.fix_bits) + " more fraction bits in series and coef (" +
+         f.fixed.series.to_string() + ", " + f.fixed.coef.to_string() + ") hold them";
+}
+
 inline std::vector<std::string> accuracy_warnings(const std::string& scene_path,
                                                   const UnitConfig& unit,
                                                   std::optional<double> budget_lsb, int max_depth,
-                                                  const CommandStream& stream) {
+                                                  const PreparedFrame& frame) {
+  const CommandStream& stream = frame.encoded.stream;
   DeriveOptions d;
   d.budget_lsb = budget_lsb;
   d.out_bits = unit.out_bits;
@@ -55,6 +80,7 @@ inline std::vector<std::string> accuracy_warnings(const std::string& scene_path,
   // naming ideal keeps the unit's, and no stand-in is tried.
   d.ideal_substitute = unit.specular;
   d.ideal_fallbacks.clear();
+  d.hold_gate = false;  // measured below, on the unit itself
   std::optional<DerivedConfig> needed;
   try {
     needed = derive_config({scene_path}, d);
@@ -64,7 +90,8 @@ inline std::vector<std::string> accuracy_warnings(const std::string& scene_path,
   const ConfigMeasurements& m = needed->measured;
   std::vector<std::string> out;
   const double half = std::ldexp(1.0, unit.series.iwl - 1);
-  if (m.series_min < -half || m.series_max >= half) {
+  const bool out_of_range = m.series_min < -half || m.series_max >= half;
+  if (out_of_range) {
     out.push_back("series values at the pixels reach [" + std::to_string(m.series_min) + ", " +
                   std::to_string(m.series_max) + "], beyond " + unit.series.to_string() +
                   "'s range [-" + std::to_string(half) + ", " + std::to_string(half) +
@@ -91,6 +118,10 @@ inline std::vector<std::string> accuracy_warnings(const std::string& scene_path,
                   unit.series.to_string() + " within " + std::to_string(m.drift_share_lsb) +
                   " LSB (budget/4, gain " + std::to_string(m.gain) + "): " + std::to_string(frac) +
                   " series fraction bits would hold them");
+  }
+  // Out of range, the series wraps or saturates everywhere: that warning says it all.
+  if (!out_of_range) {
+    if (auto w = gate_flip_warning(frame, unit, m.budget_lsb)) out.push_back(*w);
   }
   return out;
 }

@@ -199,7 +199,7 @@ RenderRun shade_and_compare(const RenderOptions& o) {
                                             : cfg.specular.kind == SpecularUnitKind::kNone
                                                 ? " (no specular term: highlights not shaded)"
                                                 : "");
-  r.warnings = accuracy_warnings(o.scene, cfg, fo.budget_lsb, fo.max_depth, frame.encoded.stream);
+  r.warnings = accuracy_warnings(o.scene, cfg, fo.budget_lsb, fo.max_depth, frame);
   return r;
 }
 

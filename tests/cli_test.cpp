@@ -439,6 +439,40 @@ TEST(Cli, ConfigBudgetOneHoldsOnEveryShippedAndHardScene) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Cli, TheNDotLGateIsHeldByConfigAndNamedByRender) {
+  // At n = 1 a highlight is bright right up to the terminator, so a pixel whose fixed-point N.L
+  // takes the other sign than the exact one gains or loses the whole specular term (issue 23).
+  const auto dir = temp_dir("gate");
+  auto scene = nlohmann::json::parse(std::ifstream(kScenes + "specular.json"));
+  scene["materials"][0]["exponent"] = 1;
+  const std::string n1 = (dir / "n1.json").string();
+  std::ofstream(n1) << scene.dump();
+  // The widths the drift and rounding rules alone give this scene (config before the gate
+  // was part of the derivation): s2.16 series and coefficients.
+  const std::string narrow = (dir / "narrow.json").string();
+  std::ofstream(narrow) << R"({"channels": 1, "lights": 1, "xy_bits": 8, "offset_bits": 4,
+    "coef": "s2.16:rnd:wrap", "coef_term_iwl": [2, 1, 1, 1, 1, 1], "series": "s2.16:wrap",
+    "span_setup": "host", "port_words": 4, "specular": {"kind": "wpow"}})";
+  const auto bad = run_json(
+      "render " + n1 + " -q --config " + narrow + " --budget 1 --out " + (dir / "a").string(),
+      dir / "a.json");
+  ASSERT_GT(bad["error"]["max_code_lsb"].get<int>(), 8) << "no gate flip left to name";
+  ASSERT_EQ(bad["warnings"].size(), 1u) << bad["warnings"].dump();
+  const std::string w = bad["warnings"][0].get<std::string>();
+  EXPECT_NE(w.find("N.L gate"), std::string::npos) << w;
+  EXPECT_NE(w.find("more fraction bits in series and coef"), std::string::npos) << w;
+  // config derives a unit that holds the gate: the double reference finds it within 1 LSB.
+  const std::string held = (dir / "held.json").string();
+  const Result c = run("config " + n1 + " --budget 1 --json " + held);
+  ASSERT_EQ(c.status, 0) << c.output;
+  const auto good = run_json(
+      "render " + n1 + " -q --config " + held + " --budget 1 --out " + (dir / "b").string(),
+      dir / "b.json");
+  EXPECT_LE(good["error"]["max_code_lsb"].get<int>(), 1);
+  EXPECT_TRUE(good["warnings"].empty()) << good["warnings"].dump();
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Cli, ConfigAndConfigFileErrorsNameTheProblem) {
   const auto dir = temp_dir("config_bad");
   const std::string grey = (dir / "grey.json").string();
