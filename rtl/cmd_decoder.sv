@@ -5,7 +5,7 @@
 // (the rest is padding) - and accepted with its last item. A header waits while the part of the
 // unit it changes is busy (the *_i conditions below). With host span setup (HOST_SETUP) a SPAN
 // header brings START_WORDS payload words, taken like a TRIANGLE's (with the header, then a
-// tail per beat) into the start bank.
+// tail per beat) into the start bank. The payload FSM is a module of its own (cmd_payload.sv).
 module cmd_decoder #(
   parameter int PORT_WORDS  = 1,     // 64-bit words per beat: 1, 2, 4 or 8
   parameter bit QUEUED      = 1'b0,  // SPAN headers go into a span queue (TRI_QUEUE > 1)
@@ -53,19 +53,15 @@ module cmd_decoder #(
   localparam int WordW = shade_pkg::WordW;
   localparam int PosW  = PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1;
   localparam int NW    = $clog2(PORT_WORDS + 1);  // a count of beat words: 0..PORT_WORDS
-  typedef enum logic [2:0] {PaySkip, PayMaterial, PayTriangle, PayTable, PaySpan} pay_e;
-  logic        in_payload_q, in_payload_d;
-  pay_e        pay_op_q, pay_op_d;
-  logic [15:0] pay_idx_q, pay_idx_d, pay_rem_q, pay_rem_d, tbl_base_q, tbl_base_d;  // rem: left
-  logic        tbl_mat_q, tbl_mat_d;  // the TABLE being loaded is per-material
   logic [PosW-1:0] pos_q;
   logic [7:0]  hdr_op;
   logic [15:0] hdr_count;
   logic        host_span;  // a SPAN header with start values (HOST_SETUP)
   logic [15:0] pay_count;  // payload words of the header: its count, a host SPAN's START_WORDS
-  logic        hdr_ready, hdr_fire, pay_fire;
+  logic        hdr_ready, hdr_fire;
+  logic        in_payload, tri_payload;  // payload words are due; ... as a tail
+  logic [15:0] pay_rem;                  // ... this many still to come
   logic [NW-1:0] beat_left;  // words of the beat from pos_q on
-  logic          tri_payload;  // TRIANGLE coefficient words are due
   logic [NW-1:0] tail_n;
   logic [NW-1:0] hdr_pos;
   logic          hdr_here;     // a header is looked at this cycle
@@ -76,10 +72,9 @@ module cmd_decoder #(
   logic [PosW-1:0]  word_sel;
   logic [WordW-1:0] cmd_word;
   assign beat_left   = NW'(PORT_WORDS) - NW'(pos_q);
-  assign tri_payload = in_payload_q && (pay_op_q == PayTriangle || pay_op_q == PaySpan);
-  assign tail_n      = !tri_payload ? '0 : pay_rem_q < 16'(beat_left) ? NW'(pay_rem_q) : beat_left;
+  assign tail_n      = !tri_payload ? '0 : pay_rem < 16'(beat_left) ? NW'(pay_rem) : beat_left;
   assign hdr_pos     = NW'(pos_q) + tail_n;
-  assign hdr_here    = (!in_payload_q || (tri_payload && pay_rem_q <= 16'(beat_left))) &&
+  assign hdr_here    = (!in_payload || (tri_payload && pay_rem <= 16'(beat_left))) &&
                        hdr_pos < NW'(PORT_WORDS);
   assign word_sel    = hdr_here ? PosW'(hdr_pos) : pos_q;
   assign cmd_word    = cmd_data_i[word_sel * WordW +: WordW];
@@ -150,11 +145,10 @@ module cmd_decoder #(
     endcase
   end
   assign take_hdr    = hdr_here && hdr_ready;
-  assign item_n      = tail_n + (take_hdr ? hdr_n : '0) + NW'(in_payload_q && !tri_payload);
+  assign item_n      = tail_n + (take_hdr ? hdr_n : '0) + NW'(in_payload && !tri_payload);
   assign beat_done   = item_n == beat_left;
   assign cmd_ready_o = item_n != '0 && beat_done;
   assign hdr_fire    = cmd_valid_i && take_hdr;
-  assign pay_fire    = cmd_valid_i && in_payload_q;
   // The next word of the beat: after the item of this cycle, or word 0 of the next beat.
   if (PORT_WORDS > 1) begin : g_beat_pos
     logic item_fire;
@@ -170,92 +164,18 @@ module cmd_decoder #(
     // A one-word port: every item takes the whole beat, so the next word is always word 0.
     assign pos_q = '0;
   end
-  // ---- payload FSM: which payload is being taken, and how far ------------------------------
-  logic [15:0] pay_take;  // payload words taken: the tail, or one MATERIAL / TABLE word
-  assign pay_take = tri_payload ? 16'(tail_n) : 16'd1;
-  always_comb begin
-    in_payload_d = in_payload_q;
-    pay_op_d     = pay_op_q;
-    pay_idx_d    = pay_idx_q;
-    pay_rem_d    = pay_rem_q;
-    tbl_base_d   = tbl_base_q;
-    tbl_mat_d    = tbl_mat_q;
-    if (hdr_fire) begin
-      pay_idx_d  = 16'd0;
-      pay_rem_d  = hdr_count;
-      tbl_base_d = cmd_word[shade_pkg::MidLsb +: shade_pkg::FieldW];
-      tbl_mat_d  = cmd_word[shade_pkg::TableMatBit];
-      unique case (hdr_op)
-        shade_pkg::OpMaterial: begin
-          pay_op_d     = PayMaterial;
-          in_payload_d = hdr_count != 16'd0;
-        end
-        // The coefficient words that came with the header are already taken.
-        shade_pkg::OpTriangle: begin
-          pay_op_d     = PayTriangle;
-          pay_idx_d    = 16'(hdr_n) - 16'd1;
-          pay_rem_d    = hdr_count - 16'(hdr_n) + 16'd1;
-          in_payload_d = hdr_count > 16'(hdr_n) - 16'd1;
-        end
-        shade_pkg::OpTable: begin
-          pay_op_d     = PayTable;
-          in_payload_d = hdr_count != 16'd0;
-        end
-        // Host setup: the start values that came with the header are already taken.
-        shade_pkg::OpSpan: begin
-          if (HOST_SETUP) begin
-            pay_op_d     = PaySpan;
-            pay_idx_d    = 16'(hdr_n) - 16'd1;
-            pay_rem_d    = pay_count - 16'(hdr_n) + 16'd1;
-            in_payload_d = pay_count > 16'(hdr_n) - 16'd1;
-          end else begin
-            pay_op_d     = PaySkip;
-            in_payload_d = 1'b0;
-          end
-        end
-        // END_FRAME and unknown opcodes carry no payload.
-        default: begin
-          pay_op_d     = PaySkip;
-          in_payload_d = 1'b0;
-        end
-      endcase
-    end else if (pay_fire) begin  // the tail, or one MATERIAL / TABLE word
-      pay_idx_d = pay_idx_q + pay_take;
-      pay_rem_d = pay_rem_q - pay_take;
-      if (pay_take == pay_rem_q) in_payload_d = 1'b0;  // the payload's last word
-    end
-  end
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      in_payload_q <= 1'b0;
-      pay_op_q     <= PaySkip;
-      pay_idx_q    <= 16'd0;
-      pay_rem_q    <= 16'd1;
-      tbl_base_q   <= 16'd0;
-      tbl_mat_q    <= 1'b0;
-    end else begin
-      in_payload_q <= in_payload_d;
-      pay_op_q     <= pay_op_d;
-      pay_idx_q    <= pay_idx_d;
-      pay_rem_q    <= pay_rem_d;
-      tbl_base_q   <= tbl_base_d;
-      tbl_mat_q    <= tbl_mat_d;
-    end
-  end
-  assign cfg_table_o     = pay_op_q == PayTable;
-  assign cfg_all_banks_o = cfg_table_o && !tbl_mat_q;
-  assign cfg_valid_o     = pay_fire && (cfg_table_o ||
-                           (pay_op_q == PayMaterial && pay_idx_q >= 16'(N_MAT_FIXED)));
-  assign cfg_addr_o      = cfg_table_o ? tbl_base_q + pay_idx_q : pay_idx_q - 16'(N_MAT_FIXED);
+  cmd_payload #(.PORT_WORDS(PORT_WORDS), .N_MAT_FIXED(N_MAT_FIXED)) u_payload (
+    .clk_i, .rst_ni, .cmd_valid_i, .hdr_fire_i(hdr_fire), .hdr_i(cmd_word), .host_span_i(host_span),
+    .pay_count_i(pay_count), .hdr_n_i(hdr_n), .tail_n_i(tail_n), .in_payload_o(in_payload),
+    .tri_payload_o(tri_payload), .pay_idx_o, .pay_rem_o(pay_rem), .pay_mat_o, .span_pay_o,
+    .cfg_valid_o, .cfg_table_o, .cfg_all_banks_o, .cfg_addr_o
+  );
   assign {word_o, word_sel_o, hdr_op_o, hdr_pos_o, hdr_n_o} =
          {cmd_word, word_sel, hdr_op, hdr_pos, hdr_n};
-  assign {hdr_fire_o, pos_o, tail_n_o, pay_idx_o} = {hdr_fire, pos_q, tail_n, pay_idx_q};
+  assign {hdr_fire_o, pos_o, tail_n_o} = {hdr_fire, pos_q, tail_n};
   assign span_fire_o = hdr_fire && hdr_op == shade_pkg::OpSpan;
   assign tri_fire_o  = hdr_fire && hdr_op == shade_pkg::OpTriangle;
   assign mat_fire_o  = hdr_fire && hdr_op == shade_pkg::OpMaterial;
-  assign pay_mat_o   = pay_fire && pay_op_q == PayMaterial;
-  assign span_pay_o  = in_payload_q && pay_op_q == PaySpan;
 
 `ifndef SYNTHESIS
   initial begin

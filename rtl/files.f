@@ -12,12 +12,14 @@ exponent_lut.sv
 schlick_divider.sv
 wpow_unit.sv
 specular_unit.sv
+cmd_payload.sv
 cmd_decoder.sv
 coef_bank.sv
 start_bank.sv
 span_queue.sv
 material_bank.sv
 setup_ctrl.sv
+span_source.sv
 engine_ctrl.sv
 slot_meta.sv
 out_reg.sv

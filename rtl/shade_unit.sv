@@ -77,7 +77,6 @@ module shade_unit #(
   localparam int StartWords     = shade_pkg::start_words(NSer, SERIES_WL);  // per SPAN (host)
   localparam bit Queued         = TRI_QUEUE > 1;
   localparam int SpanQ          = Queued ? 4 * TRI_QUEUE : 1;  // = CycleConfig::span_queue()
-  localparam int BankW          = Queued ? $clog2(TRI_QUEUE) : 1;
   localparam int PosW           = PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1;
   localparam int SpanW          = 3 * XY_BITS + 2;  // $bits(span_t)
   typedef struct packed {
@@ -119,66 +118,32 @@ module shade_unit #(
     .pay_mat_o(pay_mat), .cfg_valid_o(cfg_valid), .cfg_table_o(cfg_table),
     .cfg_all_banks_o(cfg_all_banks), .cfg_addr_o(cfg_addr)
   );
-  logic [BankW-1:0] wr_bank, next_bank, rd_bank;
   logic             s1_load, s1_src_mat, mat_wr;
-  span_t            s1_src;
-  logic [NCoef*COEF_WL-1:0] coef;  // bank rd_bank's, coefficient j at j * COEF_WL; its origin:
+  // verilator lint_off UNUSEDSIGNAL
+  span_t            s1_src;  // reason: the series path reads x0 and y (span_source the rest)
+  // verilator lint_on UNUSEDSIGNAL
+  logic [NCoef*COEF_WL-1:0] coef;  // s1_src's triangle's, coefficient j at j * COEF_WL; origin:
   logic signed [OFS_BITS-1:0] xo, yo;
   logic s1_move, s2_move, load_eng, mat_q, mat_leave;
   logic  s3_v, setup_busy;  span_t s3_span;  // the span the engines take next
   logic [NSer*SERIES_WL-1:0] bank_v, bank_d, bank_d2;  // ... its start values (host setup)
-  if (!Host) begin : g_unit_setup
-    span_queue #(.PORT_WORDS(PORT_WORDS), .XY_BITS(XY_BITS), .TRI_QUEUE(TRI_QUEUE)) u_span_queue (
-      .clk_i, .rst_ni, .cmd_data_i, .span_fire_i(span_fire), .span_n_i(hdr_n),
-      .hdr_pos_i(hdr_pos), .word_sel_i(word_sel), .tri_fire_i(tri_fire), .mat_wr_i(mat_wr),
-      .s1_free_i(s1_free), .full_o(sq_full), .room_o(sq_room), .empty_o(sq_empty),
-      .s1_load_o(s1_load), .s1_span_o(s1_src), .rd_bank_o(rd_bank), .s1_mat_o(s1_src_mat),
-      .wr_bank_o(wr_bank), .next_bank_o(next_bank), .tri_bank_free_o(tri_bank_free)
-    );
-    coef_bank #(
-      .PORT_WORDS(PORT_WORDS), .TRI_QUEUE(TRI_QUEUE), .N_COEF(NCoef), .COEF_WL(COEF_WL),
-      .COEF_T0_WL(COEF_T0_WL), .COEF_T1_WL(COEF_T1_WL), .COEF_T2_WL(COEF_T2_WL),
-      .COEF_T3_WL(COEF_T3_WL), .COEF_T4_WL(COEF_T4_WL), .COEF_T5_WL(COEF_T5_WL),
-      .OFS_BITS(OFS_BITS)
-    ) u_coef_bank (
-      .clk_i, .cmd_data_i, .cmd_valid_i, .tri_fire_i(tri_fire), .pos_i(pos),
-      .hdr_xo_i(cmd_word[shade_pkg::HighLsb +: 16]), .hdr_yo_i(cmd_word[shade_pkg::MidLsb +: 16]),
-      .tail_n_i(tail_n), .pay_idx_i(pay_idx), .hdr_pos_i(hdr_pos), .hdr_n_i(hdr_n),
-      .wr_bank_i(wr_bank), .next_bank_i(next_bank), .rd_bank_i(rd_bank), .coef_o(coef),
-      .xo_o(xo), .yo_o(yo)
-    );
-    setup_ctrl #(.XY_BITS(XY_BITS)) u_setup_ctrl (
-      .clk_i, .rst_ni, .s1_load_i(s1_load), .s1_span_i(s1_src), .eng_load_i(load_eng),
-      .s1_free_o(s1_free), .s1_move_o(s1_move), .s2_move_o(s2_move), .s3_valid_o(s3_v),
-      .s3_span_o(s3_span), .busy_o(setup_busy)
-    );
-    assign {start_free, bank_v, bank_d, bank_d2} = '0;
-    // verilator lint_off UNUSEDSIGNAL
-    logic unused_host;  // reason: the start bank's payload state, for host setup only
-    assign unused_host = span_pay;
-    // verilator lint_on UNUSEDSIGNAL
-  end else begin : g_host_setup
-    logic start_empty;
-    start_bank #(
-      .PORT_WORDS(PORT_WORDS), .N_SER(NSer), .SERIES_WL(SERIES_WL), .XY_BITS(XY_BITS),
-      .DEPTH(START_DEPTH)
-    ) u_start_bank (
-      .clk_i, .rst_ni, .cmd_valid_i, .cmd_data_i, .hdr_i(cmd_word), .span_fire_i(span_fire),
-      .mat_i(mat_wr), .pos_i(pos), .tail_n_i(tail_n), .pay_idx_i(pay_idx), .hdr_pos_i(hdr_pos),
-      .hdr_n_i(hdr_n), .filling_i(span_pay), .load_i(load_eng), .free_o(start_free),
-      .valid_o(s3_v), .empty_o(start_empty), .span_o(s3_span), .mat_o(s1_src_mat),
-      .v_o(bank_v), .d_o(bank_d), .d2_o(bank_d2)
-    );
-    // No span queue, coefficient banks or setup stages: their handshakes are idle.
-    assign {sq_full, sq_room, sq_empty, tri_bank_free, s1_free} = {1'b0, 16'd0, 1'b1, 1'b1, 1'b0};
-    assign {s1_load, s1_move, s2_move, s1_src, coef, xo, yo} = '0;
-    assign {wr_bank, next_bank, rd_bank} = '0;
-    assign setup_busy = !start_empty;
-    // verilator lint_off UNUSEDSIGNAL
-    logic unused_unit;  // reason: TRIANGLE headers and their words have nowhere to go
-    assign unused_unit = tri_fire ^ (^word_sel) ^ (^{wr_bank, next_bank, rd_bank, s1_src});
-    // verilator lint_on UNUSEDSIGNAL
-  end
+  span_source #(
+    .HOST_SETUP(Host), .PORT_WORDS(PORT_WORDS), .XY_BITS(XY_BITS), .TRI_QUEUE(TRI_QUEUE),
+    .N_COEF(NCoef), .COEF_WL(COEF_WL), .COEF_T0_WL(COEF_T0_WL), .COEF_T1_WL(COEF_T1_WL),
+    .COEF_T2_WL(COEF_T2_WL), .COEF_T3_WL(COEF_T3_WL), .COEF_T4_WL(COEF_T4_WL),
+    .COEF_T5_WL(COEF_T5_WL), .OFS_BITS(OFS_BITS), .N_SER(NSer), .SERIES_WL(SERIES_WL),
+    .START_DEPTH(START_DEPTH)
+  ) u_span_source (
+    .clk_i, .rst_ni, .cmd_data_i, .cmd_valid_i, .word_i(cmd_word), .word_sel_i(word_sel),
+    .pos_i(pos), .hdr_pos_i(hdr_pos), .hdr_n_i(hdr_n), .tail_n_i(tail_n), .pay_idx_i(pay_idx),
+    .span_fire_i(span_fire), .tri_fire_i(tri_fire), .span_pay_i(span_pay), .mat_wr_i(mat_wr),
+    .eng_load_i(load_eng), .sq_full_o(sq_full), .sq_empty_o(sq_empty),
+    .tri_bank_free_o(tri_bank_free), .sq_room_o(sq_room), .s1_free_o(s1_free),
+    .start_free_o(start_free), .s1_load_o(s1_load), .s1_move_o(s1_move), .s2_move_o(s2_move),
+    .s1_span_o(s1_src), .s1_mat_o(s1_src_mat), .coef_o(coef), .xo_o(xo), .yo_o(yo),
+    .bank_v_o(bank_v), .bank_d_o(bank_d), .bank_d2_o(bank_d2), .s3_valid_o(s3_v),
+    .s3_span_o(s3_span), .busy_o(setup_busy)
+  );
   meta_t meta_in, meta_out;  // from the engines; at the slot's output
   logic [CHANNELS*SERIES_WL-1:0] ambient;
   logic [NColours*SPEC_COLOUR_WL-1:0] spec_colour, diffuse_colour;
@@ -297,9 +262,6 @@ module shade_unit #(
       $fatal(1, "shade_unit: SPAN_SETUP %0d is not 0 (unit) or 1 (host)", SPAN_SETUP);
     if (DIFFUSE_MULTIPLY != 0 && DIFFUSE_MULTIPLY != 1)
       $fatal(1, "shade_unit: DIFFUSE_MULTIPLY %0d is not 0 or 1", DIFFUSE_MULTIPLY);
-    if (Host && TRI_QUEUE != 1)
-      $fatal(1, "shade_unit: TRI_QUEUE %0d with host span setup (no coefficient banks)",
-             TRI_QUEUE);
     if ($bits(meta_t) != MetaW || $bits(span_t) != SpanW)
       $fatal(1, "shade_unit: MetaW or SpanW is not $bits of its struct");
   end

@@ -52,7 +52,7 @@ CONFIGS = {
 # Probe (shade_formal's p_* wire) -> shade_unit's signal, after flatten. u = the wrapper's DUT.
 PROBES = {
     "p_hdr_fire": "u_dut.hdr_fire",
-    "p_pay_fire": "u_dut.u_decoder.pay_fire",
+    "p_pay_fire": "u_dut.u_decoder.u_payload.pay_fire",
     "p_item_n": "u_dut.u_decoder.item_n",
     "p_beat_left": "u_dut.u_decoder.beat_left",
     "p_span_fire": "u_dut.span_fire",
@@ -60,9 +60,9 @@ PROBES = {
     "p_tri_bank_free": "u_dut.tri_bank_free",
     "p_s1_load": "u_dut.s1_load",
     "p_s1_free": "u_dut.s1_free",
-    "p_s1_v": "u_dut.g_unit_setup.u_setup_ctrl.s1_v_q",
-    "p_s2_v": "u_dut.g_unit_setup.u_setup_ctrl.s2_v_q",
-    "p_s3_v": "u_dut.g_unit_setup.u_setup_ctrl.s3_v_q",
+    "p_s1_v": "u_dut.u_span_source.g_unit_setup.u_setup_ctrl.s1_v_q",
+    "p_s2_v": "u_dut.u_span_source.g_unit_setup.u_setup_ctrl.s2_v_q",
+    "p_s3_v": "u_dut.u_span_source.g_unit_setup.u_setup_ctrl.s3_v_q",
     "p_eng_load": "u_dut.load_eng",
     "p_run": "u_dut.run",
     "p_rem": "u_dut.u_engine_ctrl.rem_q",
@@ -70,7 +70,7 @@ PROBES = {
     "p_out_adv": "u_dut.adv",
     "p_datapath_empty": "u_dut.datapath_empty",
 }
-SQ = "u_dut.g_unit_setup.u_span_queue.g_span_queue."
+SQ = "u_dut.u_span_source.g_unit_setup.u_span_queue.g_span_queue."
 PROBES_SQ = {
     "g_sq.p_count": SQ + "count_q",
     "g_sq.p_head": SQ + "head_q",
