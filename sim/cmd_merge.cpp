@@ -127,7 +127,7 @@ Gathered gather(const std::vector<std::string>& dirs) {
 RunRecord missing_run(const Planned& p, const std::map<std::string, std::string>& unfinished) {
   RunRecord r;
   r.spec = p.spec;
-  r.scene_name = fs::path(p.spec.scene).stem().string();
+  r.scene_name = scene_label(p.spec.scene);
   r.status = "missing";
   const auto u = unfinished.find(p.spec.id());
   r.message = "planned in " + p.plan + ", but no folder holds its result: " +

@@ -37,6 +37,7 @@
 #include "sim/commands.h"
 #include "sim/coverage.h"
 #include "sim/fixed_text.h"
+#include "sim/harness/random_stream.h"
 #include "sim/interrupt.h"
 #include "sim/number_checks.h"
 #include "sim/output_paths.h"
@@ -54,6 +55,8 @@ namespace fs = std::filesystem;
 
 struct RegressOptions {
   std::vector<std::string> scenes;
+  std::vector<std::string> random;        // --random SCENARIO: random runs after the scene runs
+  bool random_only = false;               // --random-only: no scene runs
   std::vector<std::string> configs;       // named builds (--configs)
   std::vector<std::string> config_files;  // UnitConfig files (--config)
   std::vector<std::string> backends{"cpp", "systemc"};
@@ -298,6 +301,17 @@ std::vector<RunSpec> full_run_list(const RegressOptions& o,
       ++seed;
     }
   }
+  // --random: after every scene run, each scenario on each configuration that is a unit without a
+  // scene (a named build or a FILE.json; own and default are derived from a scene), seeds
+  // numbered on.
+  for (const auto& scenario : o.random) {
+    for (const auto& [kind, name] : configs) {
+      if (kind == kOwnUnit || kind == kDefaultUnit) continue;
+      for (const auto& b : o.backends)
+        runs.push_back({kRandomScenePrefix + scenario, kind, name, b, seed});
+      ++seed;
+    }
+  }
   return runs;
 }
 
@@ -432,7 +446,11 @@ void emit_jobs(const RegressOptions& o, const RunSettings& settings, const fs::p
   const std::string exe = self_path();
   std::ostringstream lines;
   for (const auto& s : selected) {
-    std::vector<std::string> a = {"cd", fs::current_path().string(), "&&", exe, "regress", s.scene};
+    std::vector<std::string> a = {"cd", fs::current_path().string(), "&&", exe, "regress"};
+    if (is_random_scene(s.scene))
+      a.insert(a.end(), {"--random-only", "--random", random_scenario(s.scene)});
+    else
+      a.push_back(s.scene);
     if (s.config_kind == "named") a.insert(a.end(), {"--configs", s.config});
     if (s.config_kind == "file" || s.config_kind == kDefaultUnit)
       a.insert(a.end(), {"--config", s.config});
@@ -496,7 +514,7 @@ std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& ou
     Job j;
     j.spec = spec;
     j.rec.spec = spec;
-    j.rec.scene_name = fs::path(spec.scene).stem().string();
+    j.rec.scene_name = scene_label(spec.scene);
     j.rec.dir = run_dir(out, spec).string();
     j.rec.stream = (fs::path(j.rec.dir) / "stream.cmds").string();
     j.unit_path = (fs::path(j.rec.dir) / "unit.json").string();
@@ -535,23 +553,33 @@ std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& ou
         FrameOptions fo;
         fo.base = j.build.unit;
         fo.fixed_unit = true;
-        try {
-          const PreparedFrame f = prepare_frame(from_base(base, spec.scene), fo);
-          j.rec.pixels = f.encoded.stats.pixels;
-          if (j.build.unit.specular.kind == SpecularUnitKind::kIdeal &&
-              has_highlights(f.encoded.stream)) {
-            j.rec.status = "skipped";
-            j.rec.message =
-                "configuration " + spec.config +
-                " has no specular hardware (the ideal unit's RTL slot outputs 0) and the scene has "
-                "highlights: its pixels cannot match the model";
-          } else {
-            f.encoded.stream.save(j.rec.stream);
+        if (is_random_scene(spec.scene)) {
+          // The co-simulation's random stream for this unit and seed, saved like a scene's.
+          const CommandStream s = random_stream(
+              j.build.unit, scenario_by_name(random_scenario(spec.scene)).shape, spec.seed);
+          for (const auto& cmd : s.commands) {
+            if (const auto* span = std::get_if<SpanCmd>(&cmd))
+              j.rec.pixels += static_cast<uint64_t>(span->length);
           }
-        } catch (const std::invalid_argument& e) {
-          j.rec.status = "skipped";  // the scene needs more than this build has (lights, channels,
-                                     // coordinates)
-          j.rec.message = e.what();
+          s.save(j.rec.stream);
+        } else {
+          try {
+            const PreparedFrame f = prepare_frame(from_base(base, spec.scene), fo);
+            j.rec.pixels = f.encoded.stats.pixels;
+            if (j.build.unit.specular.kind == SpecularUnitKind::kIdeal &&
+                has_highlights(f.encoded.stream)) {
+              j.rec.status = "skipped";
+              j.rec.message = "configuration " + spec.config +
+                              " has no specular hardware (the ideal unit's RTL slot outputs 0) "
+                              "and the scene has highlights: its pixels cannot match the model";
+            } else {
+              f.encoded.stream.save(j.rec.stream);
+            }
+          } catch (const std::invalid_argument& e) {
+            j.rec.status = "skipped";  // the scene needs more than this build has (lights,
+                                       // channels, coordinates)
+            j.rec.message = e.what();
+          }
         }
       } catch (const std::exception& e) {
         j.rec.status = "error";
@@ -818,10 +846,10 @@ struct Selection {
 // --resume DIR: the runs DIR's plans name that have no result there (or ended in an error).
 Selection select_resumed(const RegressOptions& o) {
   if (!o.scenes.empty() || !o.configs.empty() || !o.config_files.empty() || !o.shard.empty() ||
-      !o.emit_jobs.empty()) {
+      !o.emit_jobs.empty() || !o.random.empty()) {
     throw std::invalid_argument(
         "--resume " + o.resume + " takes its runs and settings from " + o.resume +
-        "/plans/; give no scenes, --configs, --config, --shard or --emit-jobs with it");
+        "/plans/; give no scenes, --configs, --config, --random, --shard or --emit-jobs with it");
   }
   Selection sel;
   sel.out = o.resume;
@@ -854,14 +882,28 @@ Selection select_planned(const RegressOptions& o) {
   Selection sel;
   sel.out = o.out_dir;
   sel.settings = RunSettings{o.gap_pct, o.max_gap, o.stall_pct, o.timeout, o.watchdog, o.fault};
-  sel.scenes = o.scenes.empty() ? default_scenes() : o.scenes;
+  if (!o.random_only) sel.scenes = o.scenes.empty() ? default_scenes() : o.scenes;
   sel.all = full_run_list(o, sel.scenes);
+  if (!o.random.empty() && std::none_of(sel.all.begin(), sel.all.end(), [](const RunSpec& r) {
+        return is_random_scene(r.scene);
+      })) {
+    throw std::invalid_argument(
+        "--random: no configuration to run it on: a random stream needs a unit without a scene, "
+        "a named build (--configs, --config NAME) or a UnitConfig FILE.json (own and default are "
+        "derived from a scene)");
+  }
   const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
   for (size_t i = 0; i < sel.all.size(); ++i) {
     if (static_cast<int>(i % static_cast<size_t>(shard.count)) == shard.index - 1)
       sel.selected.push_back(sel.all[i]);
   }
   return sel;
+}
+
+std::string join(const std::vector<std::string>& words) {
+  std::string s;
+  for (const auto& w : words) s += (s.empty() ? "" : ", ") + w;
+  return s;
 }
 
 // The plan, written into OUT/plans/ before anything runs, and what it holds.
@@ -878,6 +920,9 @@ void write_and_announce_plan(const RegressOptions& o, const Selection& sel) {
                     : std::to_string(o.configs.size() + o.config_files.size()) +
                           " configuration(s)")
             << " x " << o.backends.size() << " backend(s)"
+            << (o.random.empty() ? ""
+                                 : "; random scenario(s) " + join(o.random) +
+                                       " on each named or file configuration")
             << (o.shard.empty()
                     ? ""
                     : "; shard " + o.shard + ": " + std::to_string(sel.selected.size()) + " of " +
@@ -1127,6 +1172,15 @@ int run_regress(const RegressOptions& o) {
 void add_run_options(CLI::App* sub, RegressOptions& o) {
   sub->add_option("scenes", o.scenes, "scene files (default: scenes/*.json)")
       ->check(CLI::ExistingFile);
+  sub->add_option("--random", o.random,
+                  "SCENARIO (repeatable): also co-simulate this random scenario of `shadesim cosim "
+                  "--scenario`\n(" +
+                      join(scenario_names()) +
+                      ") on each named or file configuration, after the scene runs: its seeded "
+                      "stream\nunder the regression's stimulus, a run of its own "
+                      "(random-SCENARIO__<config>__<backend>__seed<S>)")
+      ->allow_extra_args(false);
+  sub->add_flag("--random-only", o.random_only, "with --random: run no scenes");
   sub->add_option("--configs", o.configs, "named builds to run every scene on (see --list)")
       ->delimiter(',')
       ->allow_extra_args(false);
@@ -1218,6 +1272,18 @@ void add_check_options(CLI::App* sub, RegressOptions& o) {
 // --coverage-min implies --coverage; a netlist has neither coverage nor fault hooks.
 void check_options(RegressOptions& o) {
   if (o.coverage_min >= 0) o.coverage = true;
+  for (const auto& name : o.random) {
+    try {
+      scenario_by_name(name);
+    } catch (const std::invalid_argument&) {
+      throw std::invalid_argument("--random '" + name + "': unknown scenario; expected one of " +
+                                  join(scenario_names()));
+    }
+  }
+  if (o.random_only && o.random.empty())
+    throw std::invalid_argument("--random-only: name a scenario with --random SCENARIO");
+  if (o.random_only && !o.scenes.empty())
+    throw std::invalid_argument("--random-only runs no scenes; drop the scene files");
   if (o.netlist && o.coverage)
     throw std::invalid_argument(
         "--netlist: a gate-level netlist has no RTL coverage; drop "

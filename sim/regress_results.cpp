@@ -29,8 +29,19 @@ std::string file_label(const std::string& config) {
   return s;
 }
 
+bool is_random_scene(const std::string& scene) { return scene.rfind(kRandomScenePrefix, 0) == 0; }
+
+std::string random_scenario(const std::string& scene) {
+  return is_random_scene(scene) ? scene.substr(std::string(kRandomScenePrefix).size()) : "";
+}
+
+std::string scene_label(const std::string& scene) {
+  return is_random_scene(scene) ? "random-" + random_scenario(scene)
+                                : fs::path(scene).stem().string();
+}
+
 std::string RunSpec::id() const {
-  return fs::path(scene).stem().string() + "__" + file_label(config) + "__" + backend + "__seed" +
+  return scene_label(scene) + "__" + file_label(config) + "__" + backend + "__seed" +
          std::to_string(seed);
 }
 
@@ -128,8 +139,8 @@ RunRecord read_run_record(const std::string& path) {
   }
   RunRecord r;
   r.spec = spec_from_json(j, path);
-  r.scene_name = optional<std::string>(j, "scene_name", fs::path(r.spec.scene).stem().string(),
-                                       path, "a string");
+  r.scene_name =
+      optional<std::string>(j, "scene_name", scene_label(r.spec.scene), path, "a string");
   r.unit = j.contains("unit") ? j.at("unit") : nlohmann::json();
   r.unit_text = optional<std::string>(j, "unit_text", "", path, "a string");
   r.status = required<std::string>(j, "status", path,

@@ -16,9 +16,17 @@
 
 namespace shadesim {
 
+// A random run's `scene`: this prefix and the co-simulation scenario's name (random:edge). Its
+// stream is sim/harness/random_stream.h's for the run's unit and seed.
+constexpr const char* kRandomScenePrefix = "random:";
+bool is_random_scene(const std::string& scene);
+std::string random_scenario(const std::string& scene);  // "edge" for random:edge
+// The scene's name in ids, tables and JUnit: its stem, or random-<scenario> for a random run.
+std::string scene_label(const std::string& scene);
+
 // What one run is: enough to plan it again in another process (regress --resume, a job line).
 struct RunSpec {
-  std::string scene;        // path, as given
+  std::string scene;        // path, as given, or random:<scenario>
   std::string config_kind;  // "own" (the scene's own unit), "default", "named" or "file"
   std::string config;       // own:<scene>, default, a named build, or a UnitConfig file's path
   std::string backend;      // cpp | systemc

@@ -126,6 +126,11 @@ std::string model_key(const RtlConfig& build, const Flavour& f, const Toolchain&
   if (f.coverage) {
     h.add("coverage: line toggle user");
     add_files(h, {cover_points_file()});
+    // Verilator writes the sources' paths into coverage.dat and regress --coverage matches them
+    // against its own checkout's rtl/: a covered build of another checkout's (identical) sources
+    // is not this one's.
+    for (const auto& p : simulation_sources()) h.add(fs::absolute(p).string());
+    h.add(fs::absolute(cover_points_file()).string());
   }
   return h.hex();
 }

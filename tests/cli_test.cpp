@@ -806,6 +806,36 @@ TEST(Cli, ReplayLinesRunWhenPastedAndReproduceTheFailure) {
   std::filesystem::remove_all(dir);
 }
 
+// A random run of regress (--random) prints its replay line like a scene's: pasted in the same
+// folder, it runs the run's saved random stream under its stimulus and fails at the same place.
+TEST(Cli, ReplayLineOfARandomRegressRunRunsWhenPasted) {
+#ifndef SHADESIM_HAVE_RTL
+  GTEST_SKIP() << "RTL not built (configure with -DSHADESIM_RTL=ON)";
+#endif
+  const auto dir = temp_dir("replay_random");
+  const std::string cd = "cd " + dir.string() + " && ";
+  const std::string cache = std::string(SHADESIM_BINARY_DIR) + "/rtl-cache";
+  const std::string shadesim = std::string(SHADESIM_BINARY_DIR) + "/shadesim ";
+  const Result regress = run_shell(cd + shadesim +
+                                   "regress --random edge --random-only --configs grey_s428w "
+                                   "--backends cpp -j 1 --seed 5 --fault lsb@2 --cache " +
+                                   cache + " --out reg");
+  EXPECT_EQ(regress.status, 1) << regress.output;
+  EXPECT_NE(regress.output.find("random-edge__grey_s428w__cpp__seed5: mismatch"), std::string::npos)
+      << regress.output;
+  const std::vector<std::string> lines = replay_lines(regress.output);
+  ASSERT_EQ(lines.size(), 1u) << regress.output;
+  const std::string place = mismatch_place(regress.output);
+  ASSERT_FALSE(place.empty()) << regress.output;
+  // The stream it names is in the run's folder (the failing stream the harness saved there).
+  EXPECT_NE(lines[0].find("reg/runs/random-edge__grey_s428w__cpp__seed5/"), std::string::npos)
+      << lines[0];
+  const Result replayed = run_shell(cd + lines[0]);
+  EXPECT_EQ(replayed.status, 1) << lines[0] << "\n" << replayed.output;
+  EXPECT_EQ(mismatch_place(replayed.output), place) << lines[0] << "\n" << replayed.output;
+  std::filesystem::remove_all(dir);
+}
+
 // A width option without an overflow suffix saturates, where SystemC's sc_fix would wrap: the
 // command says so, naming the option, and is silent when the suffix is written.
 TEST(Cli, WidthWithoutOverflowSuffixSaysItSaturates) {

@@ -210,6 +210,75 @@ TEST(Regress, EmitsOneSelfContainedLinePerRunNamingSceneConfigBackendSeed) {
   EXPECT_EQ(count_lines_matching(m.output, "never started"), 8u) << m.output;
 }
 
+// --random: each scenario on each named or file configuration, after every scene run, the seeds
+// numbered on; own has no unit without a scene, so it gets none. Ids name the scenario.
+TEST(Regress, PlansRandomRunsPerConfigurationAfterTheSceneRunsWithStableIds) {
+  const fs::path d = temp_dir("scaleout", "emit_random");
+  std::vector<std::string> ids[2];
+  for (int pass = 0; pass < 2; ++pass) {
+    const fs::path out = d / ("out" + std::to_string(pass));
+    const Result r =
+        in_source(kShadesim +
+                  " regress scenes/sphere.json --configs lut_d,wpow16_n --config own --random edge"
+                  " --backends cpp --seed 7 --emit-jobs " +
+                  (d / "jobs.txt").string() + " --out " + out.string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    std::ifstream is(d / "jobs.txt");
+    std::vector<std::string> lines;
+    for (std::string l; std::getline(is, l);) lines.push_back(l);
+    // sphere on lut_d (seed 7), wpow16_n (8), its own unit (9); edge on lut_d (10), wpow16_n (11).
+    ASSERT_EQ(lines.size(), 5u) << r.output;
+    EXPECT_NE(lines[2].find("regress scenes/sphere.json --backends cpp --seed 9"),
+              std::string::npos)
+        << lines[2];
+    EXPECT_NE(lines[3].find("regress --random-only --random edge --configs lut_d --backends cpp "
+                            "--seed 10"),
+              std::string::npos)
+        << lines[3];
+    EXPECT_NE(lines[4].find("--random edge --configs wpow16_n --backends cpp --seed 11"),
+              std::string::npos)
+        << lines[4];
+    const nlohmann::json plan = read_json(out / "plans" / "emitted.json");
+    for (const auto& run : plan.at("runs")) ids[pass].push_back(run.at("id").get<std::string>());
+  }
+  const std::vector<std::string> expected = {
+      "sphere__lut_d__cpp__seed7", "sphere__wpow16_n__cpp__seed8", "sphere__own_sphere__cpp__seed9",
+      "random-edge__lut_d__cpp__seed10", "random-edge__wpow16_n__cpp__seed11"};
+  EXPECT_EQ(ids[0], expected);
+  EXPECT_EQ(ids[1], expected);  // the same command plans the same ids
+  // Sharding splits the random runs with the rest: shard 2/2 is runs 2 and 4.
+  const Result sh =
+      in_source(kShadesim +
+                " regress scenes/sphere.json --configs lut_d,wpow16_n --config own --random edge"
+                " --backends cpp --seed 7 --shard 2/2 --emit-jobs " +
+                (d / "shard.txt").string() + " --out " + (d / "shard").string());
+  ASSERT_EQ(sh.status, 0) << sh.output;
+  const nlohmann::json plan = read_json(d / "shard" / "plans" / "emitted.json");
+  EXPECT_EQ(plan.at("selected"),
+            nlohmann::json({"sphere__wpow16_n__cpp__seed8", "random-edge__lut_d__cpp__seed10"}));
+  // Every planned run, random ones too, is named by merge before any ran.
+  const Result m = run("merge " + (d / "out0").string());
+  EXPECT_EQ(m.status, 1);
+  EXPECT_EQ(count_lines_matching(m.output, "never started"), 5u) << m.output;
+  EXPECT_NE(m.output.find("random-edge__wpow16_n__cpp__seed11"), std::string::npos) << m.output;
+}
+
+TEST(Regress, RefusesAnUnknownRandomScenarioNamingTheValidOnes) {
+  const Result r = in_source(kShadesim + " regress --random nosuch --out /tmp/shadesim_never");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--random 'nosuch': unknown scenario"), std::string::npos) << r.output;
+  for (const char* name : {"mixed", "long", "short", "slow", "maxbp", "switch", "tiny", "edge"})
+    EXPECT_NE(r.output.find(name), std::string::npos) << name << ": " << r.output;
+  EXPECT_FALSE(fs::exists("/tmp/shadesim_never/plans"));
+  // Only the own unit: a random stream has no unit to run on.
+  const Result own = in_source(kShadesim +
+                               " regress --random edge --random-only --config own --emit-jobs "
+                               "/tmp/shadesim_never.txt --out /tmp/shadesim_never");
+  EXPECT_EQ(own.status, 2) << own.output;
+  EXPECT_NE(own.output.find("--random: no configuration to run it on"), std::string::npos)
+      << own.output;
+}
+
 TEST(Explore, EmitsTheRunsOfItsVerificationAsRegressJobLines) {
   // The model-only search, then the chosen point's regress runs as lines instead of in RTL (the
   // area estimate's anchor is synthesised into the build's area cache once, as explore_test does).
