@@ -25,13 +25,15 @@ class MaterialBank {
   // the slot.
   void clock(bool mat_fire, bool span_fire, int span_n, bool s1_load, int s1_bank, bool s1_move,
              bool s2_move, bool eng_load, bool leave, int leave_bank) {
-    if (span_fire) spans_[wr_] += span_n;
-    if (leave) --spans_[leave_bank];
-    if (mat_fire) wr_ = 1 - wr_;
-    if (eng_load) eng_ = host_ ? s1_bank : s_mat_[2];
-    if (s2_move) s_mat_[2] = s_mat_[1];
-    if (s1_move) s_mat_[1] = s_mat_[0];
-    if (s1_load) s_mat_[0] = s1_bank;
+    // Written as selects, not branches: these follow the spans and pixels, which a branch
+    // predictor guesses badly, and each is one register's next value.
+    spans_[wr_] += span_fire ? span_n : 0;
+    spans_[leave_bank] -= leave ? 1 : 0;
+    wr_ ^= mat_fire ? 1 : 0;
+    eng_ = eng_load ? (host_ ? s1_bank : s_mat_[2]) : eng_;
+    s_mat_[2] = s2_move ? s_mat_[1] : s_mat_[2];
+    s_mat_[1] = s1_move ? s_mat_[0] : s_mat_[1];
+    s_mat_[0] = s1_load ? s1_bank : s_mat_[0];
   }
 
  private:

@@ -16,13 +16,12 @@ class OutReg {
   const BeatMeta& beat() const { return q_; }
 
   // The edge: on adv the register takes `in` when load (the slot's output is a beat), else
-  // empties. An empty register's data is never read, so it is left as it was (as the RTL's).
+  // empties. An empty register's data is never read, so it takes `in`'s fields either way: one
+  // copy and no branch on load, which follows the pixel stream and predicts badly.
   void clock(bool adv, bool load, const BeatMeta& in) {
     if (!adv) return;
-    if (load)
-      q_ = in;
-    else
-      q_.valid = false;
+    q_ = in;
+    q_.valid = load;
   }
 
  private:
