@@ -2,7 +2,11 @@
 //   CycleEstimate:  the closed form (model/cycle_estimate.h): cycles, scanlines, per triangle
 //   CycleEstimateWithBreakdown: the same and the breakdown (what `shadesim cycles` runs)
 //   CycleModel:     the clocked model, clock by clock (model/cycle_model.h)
-// both with no gaps and no back-pressure. The stream is bench/scenes/sphere_1024.json on its own
+// both with no gaps and no back-pressure.
+//   CycleModelUnit/<structure>: the clocked model on one control structure each - a span queue on
+//     a 4-word port, 4 pixel lanes, two material buffers (material_switch, a MATERIAL per few
+//     triangles), host span setup - so each control module's path is timed on its own.
+// The stream is bench/scenes/sphere_1024.json on its own
 // configuration (derive_config), or the saved stream named by SHADESIM_CYCLE_BENCH_STREAM (text
 // form, its header names the unit): scripts/bench-cycles passes the one it co-simulates, so the
 // ratio against co-simulation is on the same words.
@@ -96,6 +100,67 @@ void BM_CycleModel(benchmark::State& state) {
   report(state, cycles);
 }
 BENCHMARK(BM_CycleModel)->Unit(benchmark::kMicrosecond);
+
+// A scene rendered on its own configuration with `structure` applied, the stream saved once.
+template <class Structure>
+BenchStream structured_stream(const char* scene_path, Structure structure) {
+  const std::string scene = std::string(SHADESIM_SOURCE_DIR) + "/" + scene_path;
+  FrameOptions o;
+  o.base = derive_config({scene}, DeriveOptions{}).config;
+  structure(o.base);
+  o.fixed_unit = true;
+  const PreparedFrame f = prepare_frame(scene, o);
+  return BenchStream{f.config, f.encoded.stream.encode()};
+}
+
+void run_structured(benchmark::State& state, const BenchStream& s) {
+  const CycleConfig unit = CycleConfig::of(s.config);
+  uint64_t cycles = 0;
+  for (auto _ : state) {
+    const CycleRun r = run_cycle_model(s.words, Stimulus{}, unit);
+    cycles = r.cycles;
+    benchmark::DoNotOptimize(r.scanlines.data());
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * cycles));
+  state.counters["cycles"] = static_cast<double>(cycles);
+}
+
+void BM_CycleModelQueue(benchmark::State& state) {
+  static const BenchStream s =
+      structured_stream("bench/scenes/sphere_1024.json", [](UnitConfig& c) {
+        c.port_words = 4;
+        c.tri_queue = 4;
+        c.span_setup = SpanSetupSite::kUnit;
+      });
+  run_structured(state, s);
+}
+BENCHMARK(BM_CycleModelQueue)->Name("CycleModelUnit/queue")->Unit(benchmark::kMicrosecond);
+
+void BM_CycleModelLanes(benchmark::State& state) {
+  static const BenchStream s =
+      structured_stream("bench/scenes/sphere_1024.json", [](UnitConfig& c) { c.lanes = 4; });
+  run_structured(state, s);
+}
+BENCHMARK(BM_CycleModelLanes)->Name("CycleModelUnit/lanes")->Unit(benchmark::kMicrosecond);
+
+void BM_CycleModelMaterialBank(benchmark::State& state) {
+  static const BenchStream s = structured_stream("scenes/hard/material_switch.json",
+                                                 [](UnitConfig& c) { c.material_buffers = 2; });
+  run_structured(state, s);
+}
+BENCHMARK(BM_CycleModelMaterialBank)
+    ->Name("CycleModelUnit/material_bank")
+    ->Unit(benchmark::kMicrosecond);
+
+void BM_CycleModelHostSetup(benchmark::State& state) {
+  static const BenchStream s =
+      structured_stream("bench/scenes/sphere_1024.json", [](UnitConfig& c) {
+        c.span_setup = SpanSetupSite::kHost;
+        c.tri_queue = 1;
+      });
+  run_structured(state, s);
+}
+BENCHMARK(BM_CycleModelHostSetup)->Name("CycleModelUnit/host_setup")->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace shadesim

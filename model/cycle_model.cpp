@@ -1,5 +1,6 @@
 #include "model/cycle_model.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "model/specular_units.h"
@@ -62,20 +63,16 @@ uint64_t CycleBreakdown::total() const {
   return t;
 }
 
-CycleModel::CycleModel(CycleConfig unit)
-    : timing_(unit.slot),
-      port_words_(static_cast<unsigned>(unit.port_words)),
-      tri_queue_(unit.tri_queue),
-      lanes_(static_cast<unsigned>(unit.lanes)),
-      host_(unit.host_setup),
-      start_words_(static_cast<unsigned>(unit.start_words)),
-      mat_banked_(unit.material_buffers == 2) {
-  if (unit.host_setup && (unit.tri_queue != 1 || unit.start_depth < 1 || unit.start_depth > 2 ||
-                          unit.start_words < 1)) {
+namespace {
+
+// The configuration's checks, before any module is built from it.
+const CycleConfig& checked(const CycleConfig& unit) {
+  if (unit.host_setup &&
+      (unit.tri_queue != 1 || unit.start_depth < 1 ||
+       unit.start_depth > static_cast<int>(StartBank::kMaxDepth) || unit.start_words < 1)) {
     throw std::invalid_argument(
         "CycleModel: host span setup needs tri_queue 1, start_depth 1 or 2 and start_words >= 1");
   }
-  if (unit.host_setup) sb_.resize(static_cast<size_t>(unit.start_depth));
   if (unit.material_buffers != 1 && unit.material_buffers != 2) {
     throw std::invalid_argument("CycleModel: material_buffers must be 1 or 2, got " +
                                 std::to_string(unit.material_buffers));
@@ -84,12 +81,10 @@ CycleModel::CycleModel(CycleConfig unit)
     throw std::invalid_argument("CycleModel: lanes must be 1, 2 or 4, got " +
                                 std::to_string(unit.lanes));
   }
-  if (unit.tri_queue < 1 || unit.tri_queue > 8) {
+  if (unit.tri_queue < 1 || unit.tri_queue > SpanQueue::kMaxBanks) {
     throw std::invalid_argument("CycleModel: tri_queue must be 1..8, got " +
                                 std::to_string(unit.tri_queue));
   }
-  sq_.resize(static_cast<size_t>(unit.span_queue()));
-  bank_spans_.assign(static_cast<size_t>(unit.tri_queue), 0);
   const SlotTiming& timing = unit.slot;
   if (unit.port_words != 1 && unit.port_words != 2 && unit.port_words != 4 &&
       unit.port_words != 8) {
@@ -106,7 +101,24 @@ CycleModel::CycleModel(CycleConfig unit)
         "CycleModel: an iterative slot (interval " + std::to_string(timing.interval) +
         ") must have latency == interval, got latency " + std::to_string(timing.latency));
   }
-  if (!iterative()) dl_.resize(static_cast<size_t>(timing.latency));
+  return unit;
+}
+
+}  // namespace
+
+CycleModel::CycleModel(CycleConfig timing)
+    : latency_(checked(timing).slot.latency),
+      queued_(timing.tri_queue > 1),
+      host_(timing.host_setup),
+      mat_banked_(timing.material_buffers == 2),
+      decoder_(static_cast<unsigned>(timing.port_words), queued_, mat_banked_, host_,
+               static_cast<unsigned>(timing.start_words)),
+      queue_(std::max(timing.tri_queue, 2)),  // (one bank: no queue, built but never clocked)
+      start_(static_cast<unsigned>(timing.start_depth)),
+      mat_(host_),
+      engines_(static_cast<unsigned>(timing.lanes)),
+      slots_(timing.slot.interval),
+      meta_(timing.slot.latency, timing.slot.interval > 1) {
   // Before the first cycle the port was "doing" nothing the pipe waited for: the first
   // span's latency is fill (setup_load).
   port_history_.assign(static_cast<size_t>(span_latency()), Category::kSetupLoad);

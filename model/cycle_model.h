@@ -4,19 +4,25 @@
 // lockstep with the RTL (clock()), where every
 // scanline's completion cycle must match exactly.
 //
-// Mirrored structure (names as in the RTL): a command decoder (a beat of port_words words taken
-// apart one item per cycle, model/command_stream.h; headers, payload counting; MATERIAL and TABLE
-// wait for an empty datapath - with material_buffers 2 a MATERIAL waits only until no span of
-// the material bank it switches to is in flight, and a per-material TABLE until no span of the
-// latest MATERIAL's bank is: spans carry their material bank to the pix register, counted per
-// bank), with tri_queue > 1 a span queue whose spans carry their
-// triangle's coefficient bank (a TRIANGLE waits until no queued span reads the bank it
-// loads), three span-setup stages s1..s3 with valid bits, the
-// engines' run state (run, rem: pixels left, `lanes` of them per beat), the specular slot's timing
-// (a LATENCY-deep delay line for a pipelined unit, one in-flight pixel and a busy count for an
-// iterative one), and the pix output register with advance = !valid || ready. The pix register
-// holds a beat: up to `lanes` pixels of one span (lane j = pixel x + j), one beat per cycle at
-// most.
+// It is the composition of one model class per control module of the RTL, under model/control/
+// (and StartBank's timing in model/start_bank.h), each with the module's registers and
+// next-state logic, clocked each cycle in the RTL's order (clock()):
+//   CmdDecoder (cmd_decoder.sv)   beats taken apart one item per cycle, headers held back while
+//                                 the part of the unit they change is busy, payload counting
+//   SpanQueue (span_queue.sv)     tri_queue > 1: queued spans and the coefficient banks' use
+//   SetupCtrl (setup_ctrl.sv)     the three span setup stages' valid bits and spans
+//   StartBank (start_bank.sv)     host span setup: spans waiting with their start values
+//   MaterialBank (material_bank)  material_buffers 2: the banks' writer and spans in flight
+//   EngineCtrl (engine_ctrl.sv)   the engines' span: run, pixels left, `lanes` per beat
+//   SpecSlots (spec_slots.sv)     an iterative specular unit's busy count
+//   SlotMeta (slot_meta.sv)       the beats beside the slot: a LATENCY-deep line, or one
+//                                 pending beat for an iterative unit
+//   OutReg (out_reg.sv)           the pix register, advance = !valid || ready; a beat is up to
+//                                 `lanes` pixels of one span (lane j = pixel x + j)
+// Modules the configuration does not elaborate are not clocked (decided once, at construction).
+// coef_bank.sv has no model class here: it holds coefficients, which never hold a cycle back
+// (which bank a TRIANGLE writes and when it may is span_queue's, the SPAN-after-TRIANGLE rule
+// cmd_decoder's).
 #pragma once
 
 #include <algorithm>
@@ -25,7 +31,18 @@
 #include <vector>
 
 #include "model/command_word.h"
+#include "model/control/beat_meta.h"
+#include "model/control/cmd_decoder.h"
+#include "model/control/engine_ctrl.h"
+#include "model/control/material_bank.h"
+#include "model/control/out_reg.h"
+#include "model/control/setup_ctrl.h"
+#include "model/control/slot_meta.h"
+#include "model/control/span_desc.h"
+#include "model/control/span_queue.h"
+#include "model/control/spec_slots.h"
 #include "model/specular_config.h"
+#include "model/start_bank.h"
 #include "model/unit_config.h"
 
 namespace shadesim {
@@ -69,7 +86,7 @@ struct CycleConfig {
       : slot(s), port_words(words), tri_queue(queue), lanes(pixel_lanes) {}
   // Spans the span queue holds with tri_queue > 1 (none with 1).
   int span_queue() const { return tri_queue > 1 ? kSpansPerQueuedTriangle * tri_queue : 0; }
-  static constexpr int kSpansPerQueuedTriangle = 4;
+  static constexpr int kSpansPerQueuedTriangle = SpanQueue::kSpansPerTriangle;
   static CycleConfig of(const UnitConfig& config);
 };
 
@@ -174,155 +191,64 @@ class CycleModel {
   void track_categories(bool on) { track_categories_ = on; }
 
   // Nothing in flight, no pixel waiting, and no beat half taken apart.
-  bool idle() const { return !in_payload_ && pos_ == 0 && datapath_empty() && !pix_.valid; }
+  bool idle() const { return decoder_.idle() && datapath_empty() && !out_.valid(); }
 
   // Cycles from a SPAN header's acceptance to its first pixel leaving, with nothing stalled
   // (a span queue adds its register; host span setup has no setup stages, and its payload
   // words, when they come later than the header, add theirs).
-  int span_latency() const { return (host_ ? 3 : 5) + (queued() ? 1 : 0) + timing_.latency; }
+  int span_latency() const { return (host_ ? 3 : 5) + (queued_ ? 1 : 0) + latency_; }
 
   // A whole stream under a testbench's gaps and back-pressure: run_cycle_model
   // (sim/harness/cycle_run.h); with none, CycleEstimate (model/cycle_estimate.h).
 
  private:
-  struct Span {
-    bool valid = false;
-    int y = 0, x0 = 0, len = 0;
-    bool last = false;
-    int mat = 0;  // material bank (material_buffers 2)
-  };
-  struct Pix {
-    bool valid = false;
-    int x = 0, y = 0;  // lane 0's pixel
-    bool eor = false;
-    int count = 0;          // valid lanes
-    int mat = 0;            // material bank of its span
-    bool span_end = false;  // the span's last beat: its bank's count drops when it leaves the slot
-  };
-  enum class Payload { kSkip, kMaterial, kTriangle, kTable, kSpan };
+  using Item = CmdDecoder::Item;
+  // The decoder's *_i inputs (shade_unit.sv's wiring), read only for the header that waits on
+  // them: a view of the modules' outputs before the edge.
+  struct DecoderInputs {
+    const CycleModel& unit;
+    bool s1_free_o;  // setup_ctrl's, this cycle
+    bool eng_load;   // engine_ctrl's load_o, this cycle
 
-  bool iterative() const { return timing_.interval > 1; }
-  bool queued() const { return tri_queue_ > 1; }
-  bool slot_empty() const;
+    bool datapath_empty() const { return unit.datapath_empty(); }
+    bool mat_other_free() const { return unit.mat_.other_free(); }
+    bool mat_cur_free() const { return unit.mat_.cur_free(); }
+    bool sq_full() const { return unit.queue_.full(); }
+    unsigned sq_room() const { return unit.queue_.room(); }
+    bool s1_free() const { return s1_free_o; }
+    // Without a span queue there is one bank, always free.
+    bool tri_bank_free() const { return !unit.queued_ || unit.queue_.tri_bank_free(); }
+    bool start_free() const { return unit.start_.free(eng_load); }
+  };
+
+  // shade_unit.sv's datapath_empty: no span queued, in setup (or in the start bank), in the
+  // engines or in the slot.
   bool datapath_empty() const {
-    return sq_count_ == 0 && sb_count_ == 0 && !s_[0].valid && !s_[1].valid && !s_[2].valid &&
-           !run_ && slot_empty();
+    const bool queue_empty = !queued_ || queue_.empty();
+    const bool setup_busy = host_ ? !start_.empty() : setup_.busy();
+    return queue_empty && !setup_busy && !engines_.run() && meta_.empty();
   }
   // What the command port does this cycle, as a bubble category (kSetupLoad for SPAN headers).
   // header: the cycle is about a header (taken, or waited for), not payload words.
   Category port_category(bool cmd_valid, bool header, CommandWord word) const;
-
-  // The control's handshakes on this cycle: combinational, from the state before the edge, with
-  // the RTL's equations.
-  struct Flow {
-    bool adv = false;       // the pix register takes the slot's output (!pix.valid || pix_ready)
-    bool busy = false;      // an iterative slot still computes its pixel
-    bool emit = false;      // the engines give a beat to the slot
-    bool last_pix = false;  // the engines' beat is their span's last
-    bool load_eng = false;  // the engines load the next span (setup stage 3 or the start bank)
-    bool s2_move = false;   // setup stage 2 moves to stage 3
-    bool s1_move = false;   // setup stage 1 moves to stage 2
-    bool s1_free = false;   // setup stage 1 can take a span
-    bool sq_pop = false;    // setup stage 1 takes the span queue's head
-    int next_bank = 0;      // the coefficient bank the next TRIANGLE loads
-  };
-  // The item the decoder takes from the beat on the port this cycle (model/command_stream.h):
-  // the triangle coefficient words due in the beat (tail), then at most one header (a
-  // TRIANGLE's with its coefficient words after it in the beat), or one MATERIAL / TABLE
-  // payload word; n words from pos_. Taken on the edge only when cmd_valid.
-  struct Item {
-    // Coefficient words of a TRIANGLE, or start values of a SPAN (host setup), are due: these
-    // come as a tail per beat.
-    bool tri_payload = false;
-    unsigned tail = 0;      // such words taken before the header
-    unsigned hdr_pos = 0;   // the header's word in the beat
-    bool hdr_here = false;  // a header is in the beat
-    CommandWord word;       // the header, or the payload word at pos_ without one
-    Opcode op = Opcode::kNop;
-    bool host_span = false;  // a host-setup SPAN header: its payload is its start values
-    unsigned count = 0;      // the header's payload words
-    unsigned hdr_n = 1;      // words taken with the header
-    bool take_hdr = false;   // the header is here and ready
-    unsigned n = 0;          // words taken
-    bool beat_done = false;  // ... the rest of the beat
-
-    bool span_header() const { return take_hdr && op == Opcode::kSpan; }
-  };
-
-  Flow handshakes(bool pix_ready) const;
-  Item decode(const uint64_t* beat, const Flow& flow) const;
-  unsigned header_words(const uint64_t* beat, const Item& item) const;
-  bool header_ready(const Item& item, const Flow& flow) const;
   // Charges this cycle (needs the state before the edge) and records the port's category.
   Category charge_cycle(bool cmd_valid, const Item& item, bool pix_fire);
-  // The edge, stage by stage from the pix register back to the decoder: each stage reads the
-  // state of the stage upstream of it as it was before the edge, so clock() keeps this order.
-  void clock_slot(const Flow& flow);
-  bool clock_iterative_slot(const Flow& flow, const Pix& from_engines);
-  bool clock_pipelined_slot(bool adv, const Pix& from_engines);
-  void clock_engines(const Flow& flow);
-  void clock_setup_stages(const Flow& flow);
-  void clock_span_intake(const uint64_t* beat, const Item& item, const Flow& flow, bool span_fire);
-  void clock_start_bank(CommandWord header, bool load_eng, bool span_fire);
-  void clock_span_queue(const uint64_t* beat, const Item& item, bool sq_pop, bool s1_move,
-                        bool span_fire);
-  // A SPAN header's span, in the bank the latest MATERIAL writes.
-  Span span_of(CommandWord header) const {
-    const int y = header.span_y(), x0 = header.span_x0(), len = header.span_length();
-    return Span{true, y, x0, len, header.span_last(), mat_wr_};
-  }
-  void take_item(const Item& item, int next_bank);
-  void start_payload(const Item& item, int next_bank);
-  // A TRIANGLE or host-setup SPAN: the payload words that came with the header are taken.
-  void start_tail_payload(Payload op, const Item& item);
-  void advance_payload(unsigned taken);
 
-  SlotTiming timing_;
-  unsigned port_words_ = 1;
-  int tri_queue_ = 1;
-  unsigned lanes_ = 1;
-  // Host span setup: the start bank, a ring of sb_.size() entries, sb_count_ of them from
-  // sb_head_ (the newest still filling while its SPAN's payload words come).
-  bool host_ = false;
-  unsigned start_words_ = 0;
-  std::vector<Span> sb_;
-  size_t sb_head_ = 0, sb_count_ = 0;
-  // Triangle queue (tri_queue > 1): the span queue (a ring of sq_.size(), sq_count_ entries from
-  // sq_head_), each span with the coefficient bank of its triangle; spans queued per bank; the
-  // bank the latest TRIANGLE loads.
-  struct QueuedSpan {
-    Span span;
-    int bank = 0;
-  };
-  std::vector<QueuedSpan> sq_;
-  size_t sq_head_ = 0, sq_count_ = 0;
-  std::vector<int> bank_spans_;
-  int wr_bank_ = 0;
-  // Material buffers (material_buffers 2): the bank the latest MATERIAL writes, and per bank the
-  // spans taken and not yet out of the slot (all of them in flight with one buffer).
-  bool mat_banked_ = false;
-  int mat_wr_ = 0;
-  int mat_spans_[2] = {0, 0};
-  int mat_ = 0;  // the engines' span's bank
-  // Decoder: pos_ is the next word of the beat on the port still to be taken.
-  unsigned pos_ = 0;
-  bool in_payload_ = false;
-  Payload pay_op_ = Payload::kSkip;
-  unsigned pay_idx_ = 0, pay_rem_ = 1;  // pay_rem_: payload words still to come
-  // Span setup stages 1..3
-  Span s_[3];
-  // Engines: rem_ pixels of the span still to leave them, lanes_ per beat
-  bool run_ = false;
-  unsigned rem_ = 0;
-  int x_ = 0, y_ = 0;
-  bool last_ = false;
-  // Specular slot: delay line (pipelined; dl_[latency-1] feeds the pix register) or the one
-  // in-flight pixel and the cycles it stays busy (iterative).
-  std::vector<Pix> dl_;
-  Pix inflight_;
-  int busy_ = 0;
-  // Output register
-  Pix pix_;
+  // The configuration, fixed at construction: which modules the unit elaborates.
+  int latency_ = 0;          // the specular slot's
+  bool queued_ = false;      // tri_queue > 1: SpanQueue
+  bool host_ = false;        // host span setup: StartBank instead of SetupCtrl (and no queue)
+  bool mat_banked_ = false;  // material_buffers 2: MaterialBank
+  // The control modules, named as shade_unit.sv's instances.
+  CmdDecoder decoder_;  // u_decoder
+  SpanQueue queue_;     // u_span_queue (queued_ only)
+  SetupCtrl setup_;     // u_setup_ctrl (not with host_)
+  StartBank start_;     // u_start_bank (host_ only)
+  MaterialBank mat_;    // u_material_bank (its bank control: mat_banked_ only)
+  EngineCtrl engines_;  // u_engine_ctrl
+  SpecSlots slots_;     // u_slots (timing)
+  SlotMeta meta_;       // u_slot_meta
+  OutReg out_;          // u_out_reg
   // The command port's category on each of the last span_latency() cycles (ring), for bubbles;
   // history_pos_ is the slot of the current cycle (cycle mod size, kept without a division).
   std::vector<Category> port_history_;
@@ -336,22 +262,14 @@ std::string to_string(CycleModel::Category c);
 // cycle next to the RTL's eval, and inlining them into that loop removes the call and the
 // packing of Edge into registers.
 
-inline bool CycleModel::slot_empty() const {
-  if (iterative()) return !inflight_.valid;
-  for (const Pix& p : dl_) {
-    if (p.valid) return false;
-  }
-  return true;
-}
-
 inline CycleModel::Category CycleModel::port_category(bool cmd_valid, bool header,
                                                       CommandWord word) const {
   if (!cmd_valid) return Category::kCommandGap;
   if (!header) {
-    switch (pay_op_) {
-      case Payload::kMaterial:
+    switch (decoder_.payload()) {
+      case CmdDecoder::Payload::kMaterial:
         return Category::kMaterial;
-      case Payload::kTable:
+      case CmdDecoder::Payload::kTable:
         return Category::kTable;
       default:
         return Category::kCommandWords;
@@ -369,107 +287,65 @@ inline CycleModel::Category CycleModel::port_category(bool cmd_valid, bool heade
   }
 }
 
+// One clock: first every module's outputs before the edge, in the order their combinational
+// paths run in shade_unit.sv (out_reg's advance -> the slots' busy -> engine_ctrl -> setup_ctrl
+// -> span_queue -> cmd_decoder), then the edge, module by module from the pix register back to
+// the decoder: each reads its upstream module's registers as they were before the edge, so
+// that order is the one that keeps them unclobbered.
 inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, bool pix_ready) {
-  const Flow flow = handshakes(pix_ready);
-  const Item item = decode(beat, flow);
+  // ---- before the edge
+  const bool adv = out_.adv(pix_ready);
+  const bool spec_busy = slots_.busy();
+  const bool span_valid = host_ ? start_.valid(decoder_.span_pay()) : setup_.s3_valid();
+  const EngineCtrl::Out eng = engines_.outputs(span_valid, adv, spec_busy);
+  const SetupCtrl::Moves moves = host_ ? SetupCtrl::Moves{} : setup_.moves(eng.load);
+  const bool sq_pop = queued_ && queue_.pop(moves.s1_free);
+  const Item item = decoder_.decode(beat, DecoderInputs{*this, moves.s1_free, eng.load});
+  const bool span_fire = cmd_valid && item.span_header();
+
   Edge e;
-  e.cmd_ready = item.n > 0 && item.beat_done;
+  e.cmd_ready = item.cmd_ready();
   e.cmd_fire = cmd_valid && e.cmd_ready;
-  e.pix_fire = pix_.valid && pix_ready;
-  e.pix_eor = pix_.eor;
-  e.pix_x = pix_.x;
-  e.pix_y = pix_.y;
-  e.pix_count = pix_.count;
+  const BeatMeta& pix = out_.beat();
+  e.pix_fire = pix.valid && pix_ready;
+  e.pix_eor = pix.eor;
+  e.pix_x = pix.x;
+  e.pix_y = pix.y;
+  e.pix_count = pix.count;
   if (track_categories_) e.category = charge_cycle(cmd_valid, item, e.pix_fire);
 
-  clock_slot(flow);
-  clock_engines(flow);
-  clock_setup_stages(flow);
-  clock_span_intake(beat, item, flow, cmd_valid && item.span_header());
-  if (cmd_valid) take_item(item, flow.next_bank);
+  // ---- the edge
+  const int mat_wr = mat_.wr_bank();  // the latest MATERIAL's bank, before the edge
+  const BeatMeta from_engines = engines_.beat(eng, mat_.eng_bank());
+  const bool out_adv = meta_.out_adv(adv, spec_busy);
+  const BeatMeta& slot_out = meta_.out(from_engines);
+  const bool load_pix = out_adv && slot_out.valid;
+  if (mat_banked_) {
+    // A span's last beat out of the slot: the pix register holds finished colours, which no
+    // later MATERIAL changes. A span enters setup stage 1 from the span queue, or straight
+    // from the decoder in the latest MATERIAL's bank; with host setup the engines load the
+    // start bank's oldest.
+    const bool s1_load = queued_ ? sq_pop : span_fire && !host_;
+    const int s1_bank = host_ ? start_.head_mat() : queued_ ? queue_.head_mat() : mat_wr;
+    mat_.clock(cmd_valid && item.mat_header(), span_fire, host_ ? 1 : static_cast<int>(item.hdr_n),
+               s1_load, s1_bank, moves.s1_move, moves.s2_move, eng.load,
+               load_pix && slot_out.span_end, slot_out.mat);
+  }
+  out_.clock(adv, load_pix, slot_out);  // before the line moves: slot_out may be its entry
+  meta_.clock(out_adv, from_engines);
+  slots_.clock(eng.emit);
+  engines_.clock(eng, host_ ? start_.head_span() : setup_.s3_span());
+  if (host_) {
+    start_.clock(eng.load, span_fire, item.word, mat_wr);
+  } else if (queued_) {
+    setup_.clock(sq_pop, queue_.head(), moves, eng.load);
+    queue_.clock(sq_pop, span_fire, beat, item.hdr_pos, item.hdr_n, mat_wr,
+                 cmd_valid && item.tri_header());
+  } else {
+    setup_.clock(span_fire, SpanDesc::of(item.word), moves, eng.load);
+  }
+  if (cmd_valid) decoder_.clock(item);
   return e;
-}
-
-inline CycleModel::Flow CycleModel::handshakes(bool pix_ready) const {
-  Flow f;
-  f.adv = !pix_.valid || pix_ready;
-  f.busy = busy_ > 0;
-  f.emit = run_ && f.adv && !f.busy;
-  // The span's last beat: 1 <= rem <= lanes (rem - 1 < lanes, as the RTL compares it).
-  f.last_pix = rem_ - 1 < lanes_;
-  // Host span setup: the engines load the start bank's oldest entry once its payload is in.
-  const bool sb_filling = in_payload_ && pay_op_ == Payload::kSpan;
-  const bool sb_ready = sb_count_ > (sb_filling ? 1u : 0u);
-  f.load_eng = (host_ ? sb_ready : s_[2].valid) && (!run_ || (f.emit && f.last_pix));
-  const bool s3_free = !s_[2].valid || f.load_eng;
-  f.s2_move = s_[1].valid && s3_free;
-  f.s1_move = s_[0].valid && (!s_[1].valid || f.s2_move);
-  f.s1_free = !s_[0].valid || f.s1_move;
-  // With a triangle queue, span setup takes its spans from the span queue.
-  f.sq_pop = queued() && sq_count_ > 0 && f.s1_free;
-  f.next_bank = queued() ? (wr_bank_ + 1) % tri_queue_ : 0;
-  return f;
-}
-
-inline CycleModel::Item CycleModel::decode(const uint64_t* beat, const Flow& flow) const {
-  Item item;
-  const unsigned beat_left = port_words_ - pos_;
-  item.tri_payload = in_payload_ && (pay_op_ == Payload::kTriangle || pay_op_ == Payload::kSpan);
-  item.tail = item.tri_payload ? std::min(pay_rem_, beat_left) : 0;
-  item.hdr_pos = pos_ + item.tail;
-  item.hdr_here =
-      (!in_payload_ || (item.tri_payload && pay_rem_ <= beat_left)) && item.hdr_pos < port_words_;
-  item.word = CommandWord{beat[item.hdr_here ? item.hdr_pos : pos_]};
-  item.op = static_cast<Opcode>(item.word.opcode());
-  // Payload words: the header's count, but a host-setup SPAN's count is its length.
-  item.host_span = host_ && item.op == Opcode::kSpan;
-  item.count = item.host_span ? start_words_ : item.word.count();
-  item.hdr_n = header_words(beat, item);
-  item.take_hdr = item.hdr_here && header_ready(item, flow);
-  item.n =
-      item.tail + (item.take_hdr ? item.hdr_n : 0) + (in_payload_ && !item.tri_payload ? 1 : 0);
-  item.beat_done = item.n == beat_left;
-  return item;
-}
-
-inline unsigned CycleModel::header_words(const uint64_t* beat, const Item& item) const {
-  if (item.op == Opcode::kNop) return port_words_ - item.hdr_pos;
-  if (item.op == Opcode::kTriangle || item.host_span)
-    return 1 + std::min(item.count, port_words_ - item.hdr_pos - 1);
-  if (item.op == Opcode::kSpan && queued() && item.hdr_here) {
-    // A run of SPAN headers goes into the span queue together, as many as it has room for.
-    const unsigned room = static_cast<unsigned>(sq_.size() - sq_count_);
-    unsigned run = 1;
-    while (item.hdr_pos + run < port_words_ &&
-           CommandWord{beat[item.hdr_pos + run]}.is(Opcode::kSpan))
-      ++run;
-    return std::max(1u, std::min(run, room));
-  }
-  return 1;
-}
-
-inline bool CycleModel::header_ready(const Item& item, const Flow& flow) const {
-  switch (item.op) {
-    // Only MATERIAL and TABLE headers wait for the empty datapath; the check walks the delay
-    // line. With two material buffers a MATERIAL waits only for the bank it switches to, and a
-    // per-material TABLE (it writes the latest MATERIAL's bank only) for that bank.
-    case Opcode::kMaterial:
-      return mat_banked_ ? mat_spans_[1 - mat_wr_] == 0 : datapath_empty();
-    case Opcode::kTable:
-      return mat_banked_ && item.word.table_per_material() ? mat_spans_[mat_wr_] == 0
-                                                           : datapath_empty();
-    case Opcode::kSpan:
-      // Host setup: a free start bank entry, or the oldest one leaving for the engines now.
-      if (host_) return sb_count_ < sb_.size() || flow.load_eng;
-      // Without a span queue a SPAN's setup reads the coefficients as it is taken: not on the
-      // edge that writes its triangle's last words.
-      return queued() ? sq_count_ < sq_.size() : flow.s1_free && item.tail == 0;
-    case Opcode::kTriangle:
-      // A TRIANGLE loads the next bank once no queued span needs that bank's coefficients.
-      return !queued() || bank_spans_[static_cast<size_t>(flow.next_bank)] == 0;
-    default:
-      return true;
-  }
 }
 
 inline CycleModel::Category CycleModel::charge_cycle(bool cmd_valid, const Item& item,
@@ -478,187 +354,15 @@ inline CycleModel::Category CycleModel::charge_cycle(bool cmd_valid, const Item&
   Category category = port_history_[slot];  // the port's category span_latency() cycles ago
   if (pix_fire) {
     category = Category::kPixel;
-  } else if (pix_.valid) {
+  } else if (out_.valid()) {
     category = Category::kBackPressure;
-  } else if (iterative() && inflight_.valid) {
-    category = Category::kUnitStall;
+  } else if (slots_.iterative() && !meta_.empty()) {
+    category = Category::kUnitStall;  // the pix register is empty, the unit holds a beat
   }
-  port_history_[slot] = port_category(cmd_valid, item.take_hdr || !in_payload_, item.word);
+  port_history_[slot] =
+      port_category(cmd_valid, item.take_hdr || !decoder_.in_payload(), item.word);
   if (++history_pos_ == port_history_.size()) history_pos_ = 0;
   return category;
-}
-
-inline void CycleModel::clock_slot(const Flow& flow) {
-  const Pix from_engines{
-      run_, x_,           y_, last_ && flow.last_pix, static_cast<int>(std::min(rem_, lanes_)),
-      mat_, flow.last_pix};
-  const bool to_pix = iterative() ? clock_iterative_slot(flow, from_engines)
-                                  : clock_pipelined_slot(flow.adv, from_engines);
-  // A span's last beat out of the slot: the pix register holds finished colours, which no
-  // later MATERIAL changes.
-  if (to_pix && pix_.valid && pix_.span_end) --mat_spans_[pix_.mat];
-}
-
-// Both return whether the pix register took the slot's output.
-inline bool CycleModel::clock_iterative_slot(const Flow& flow, const Pix& from_engines) {
-  bool to_pix = false;
-  if (flow.adv && !flow.busy) {
-    pix_ = inflight_;
-    inflight_ = from_engines;  // valid == emit
-    to_pix = true;
-  } else if (flow.adv) {
-    pix_.valid = false;
-  }
-  if (flow.emit)
-    busy_ = timing_.interval - 1;
-  else if (busy_ > 0)
-    --busy_;
-  return to_pix;
-}
-
-inline bool CycleModel::clock_pipelined_slot(bool adv, const Pix& from_engines) {
-  if (!adv) return false;
-  if (dl_.empty()) {
-    pix_ = from_engines;
-  } else {
-    pix_ = dl_.back();
-    for (size_t i = dl_.size() - 1; i > 0; --i) dl_[i] = dl_[i - 1];
-    dl_[0] = from_engines;
-  }
-  return true;
-}
-
-inline void CycleModel::clock_engines(const Flow& flow) {
-  if (flow.load_eng) {
-    const Span& next = host_ ? sb_[sb_head_] : s_[2];
-    run_ = true;
-    rem_ = static_cast<unsigned>(next.len);
-    x_ = next.x0;
-    y_ = next.y;
-    last_ = next.last;
-    mat_ = next.mat;
-  } else if (flow.emit) {
-    if (flow.last_pix) run_ = false;
-    rem_ -= lanes_;  // wraps after the last beat, as the RTL's rem_q; reloaded before use
-    x_ += static_cast<int>(lanes_);
-  }
-}
-
-inline void CycleModel::clock_setup_stages(const Flow& flow) {
-  if (flow.s2_move)
-    s_[2] = s_[1];
-  else if (flow.load_eng)
-    s_[2].valid = false;
-  if (flow.s1_move)
-    s_[1] = s_[0];
-  else if (flow.s2_move)
-    s_[1].valid = false;
-}
-
-// Where spans enter: the start bank (host setup), setup stage 1, or the span queue.
-inline void CycleModel::clock_span_intake(const uint64_t* beat, const Item& item, const Flow& flow,
-                                          bool span_fire) {
-  if (host_) {
-    clock_start_bank(item.word, flow.load_eng, span_fire);
-    return;
-  }
-  if (span_fire) mat_spans_[mat_wr_] += static_cast<int>(item.hdr_n);
-  if (queued()) {
-    clock_span_queue(beat, item, flow.sq_pop, flow.s1_move, span_fire);
-  } else if (span_fire) {
-    s_[0] = span_of(item.word);
-  } else if (flow.s1_move) {
-    s_[0].valid = false;
-  }
-}
-
-inline void CycleModel::clock_start_bank(CommandWord header, bool load_eng, bool span_fire) {
-  if (load_eng) {
-    if (++sb_head_ == sb_.size()) sb_head_ = 0;
-    --sb_count_;
-  }
-  if (span_fire) {
-    ++mat_spans_[mat_wr_];
-    size_t newest = sb_head_ + sb_count_;
-    if (newest >= sb_.size()) newest -= sb_.size();
-    sb_[newest] = span_of(header);
-    ++sb_count_;
-  }
-}
-
-inline void CycleModel::clock_span_queue(const uint64_t* beat, const Item& item, bool sq_pop,
-                                         bool s1_move, bool span_fire) {
-  if (sq_pop) {
-    const QueuedSpan& head = sq_[sq_head_];
-    s_[0] = head.span;
-    --bank_spans_[static_cast<size_t>(head.bank)];
-    if (++sq_head_ == sq_.size()) sq_head_ = 0;
-    --sq_count_;
-  } else if (s1_move) {
-    s_[0].valid = false;
-  }
-  if (!span_fire) return;
-  for (unsigned k = 0; k < item.hdr_n; ++k) {
-    size_t newest = sq_head_ + sq_count_;
-    if (newest >= sq_.size()) newest -= sq_.size();
-    sq_[newest] = {span_of(CommandWord{beat[item.hdr_pos + k]}), wr_bank_};
-    ++bank_spans_[static_cast<size_t>(wr_bank_)];
-    ++sq_count_;
-  }
-}
-
-inline void CycleModel::take_item(const Item& item, int next_bank) {
-  if (item.n > 0) pos_ = item.beat_done ? 0 : pos_ + item.n;
-  if (item.take_hdr)
-    start_payload(item, next_bank);
-  else if (in_payload_)
-    advance_payload(item.tri_payload ? item.tail : 1);
-}
-
-inline void CycleModel::start_payload(const Item& item, int next_bank) {
-  pay_idx_ = 0;
-  pay_rem_ = item.count;
-  switch (item.op) {
-    case Opcode::kMaterial:
-      // Its payload writes the other bank, which no span in flight reads.
-      if (mat_banked_) mat_wr_ = 1 - mat_wr_;
-      pay_op_ = Payload::kMaterial;
-      in_payload_ = item.count != 0;
-      break;
-    case Opcode::kTriangle:
-      wr_bank_ = next_bank;
-      start_tail_payload(Payload::kTriangle, item);
-      break;
-    case Opcode::kTable:
-      pay_op_ = Payload::kTable;
-      in_payload_ = item.count != 0;
-      break;
-    case Opcode::kSpan:
-      if (host_) {
-        start_tail_payload(Payload::kSpan, item);
-      } else {
-        pay_op_ = Payload::kSkip;
-        in_payload_ = false;
-      }
-      break;
-    default:
-      pay_op_ = Payload::kSkip;
-      in_payload_ = false;
-      break;
-  }
-}
-
-inline void CycleModel::start_tail_payload(Payload op, const Item& item) {
-  pay_op_ = op;
-  pay_idx_ = item.hdr_n - 1;
-  pay_rem_ = (item.count - item.hdr_n + 1) & CommandWord::kFieldMask;
-  in_payload_ = item.count > item.hdr_n - 1;
-}
-
-inline void CycleModel::advance_payload(unsigned taken) {
-  if (taken == pay_rem_) in_payload_ = false;  // the payload's last word
-  pay_idx_ = (pay_idx_ + taken) & CommandWord::kFieldMask;
-  pay_rem_ = (pay_rem_ - taken) & CommandWord::kFieldMask;
 }
 
 }  // namespace shadesim
