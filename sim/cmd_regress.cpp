@@ -669,19 +669,17 @@ T field(const nlohmann::json& j, const char* key, T fallback) {
 }
 
 // Runs one job's co-simulation as a child process; fills its record from the child's JSON.
-void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
-  RunRecord& rec = job.rec;
-  const fs::path dir(rec.dir);
-  const fs::path result_path = dir / "cosim.json";
-  fs::remove(result_path);  // a resumed run must not read the result of an earlier attempt
-  rec.log = (dir / "cosim.log").string();
+// The co-simulation child's command line for one run: its unit, stream, stimulus, outputs.
+std::vector<std::string> cosim_child_args(const Job& job, const RegressOptions& o,
+                                          const RunSettings& settings, const fs::path& dir,
+                                          const fs::path& result_path) {
   std::vector<std::string> args = {job.executable,
                                    "--unit",
                                    job.unit_path,
                                    "--config",
                                    job.spec.config,
                                    "--stream",
-                                   rec.stream,
+                                   job.rec.stream,
                                    "--seed",
                                    std::to_string(job.spec.seed),
                                    "--gap-pct",
@@ -704,6 +702,33 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
     args.insert(args.end(), {"--coverage", dat.string()});
   }
   args.insert(args.end(), {"--json", result_path.string()});
+  return args;
+}
+
+// A mismatching C++ run is re-run on a traced build to draw the failing window (--waves).
+void record_waves(const Job& job, const RegressOptions& o, const RunSettings& settings,
+                  std::vector<std::string> args, RunRecord& rec) {
+  const fs::path dir(rec.dir);
+  const fs::path fst = dir / "waves.fst";
+  RtlBuildOptions traced = build_options(o);
+  traced.coverage = false;  // the traced re-run only draws the window; its coverage is the run's
+  args[0] = ensure_rtl_build(job.build, CosimBackend::kCppTrace, traced).executable;
+  const auto cov = std::find(args.begin(), args.end(), "--coverage");
+  if (cov != args.end()) args.erase(cov, cov + 2);
+  args.back() = (dir / "waves.json").string();
+  args.push_back("--waves");
+  args.push_back(fst.string());
+  run_process(args, (dir / "waves.log").string(), settings.timeout);
+  if (fs::exists(fst)) rec.waves = fst.string();
+}
+
+void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
+  RunRecord& rec = job.rec;
+  const fs::path dir(rec.dir);
+  const fs::path result_path = dir / "cosim.json";
+  fs::remove(result_path);  // a resumed run must not read the result of an earlier attempt
+  rec.log = (dir / "cosim.log").string();
+  const std::vector<std::string> args = cosim_child_args(job, o, settings, dir, result_path);
   // The children are SystemC programs too: keep their logs free of its banner; their replay
   // lines name the stream, which carries its unit.
   const auto t0 = std::chrono::steady_clock::now();
@@ -746,20 +771,7 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
     const nlohmann::json first = field(j, "first_mismatch", nlohmann::json::object());
     rec.status = field(first, "kind", std::string()) == "hang" ? "hang" : "mismatch";
     rec.message = field(first, "message", std::string("mismatch (the result names none)"));
-    if (o.waves && job.spec.backend == "cpp") {
-      const fs::path fst = dir / "waves.fst";
-      RtlBuildOptions traced = build_options(o);
-      traced.coverage =
-          false;  // the traced re-run only draws the window; its coverage is the run's
-      args[0] = ensure_rtl_build(job.build, CosimBackend::kCppTrace, traced).executable;
-      const auto cov = std::find(args.begin(), args.end(), "--coverage");
-      if (cov != args.end()) args.erase(cov, cov + 2);
-      args.back() = (dir / "waves.json").string();
-      args.push_back("--waves");
-      args.push_back(fst.string());
-      run_process(args, (dir / "waves.log").string(), settings.timeout);
-      if (fs::exists(fst)) rec.waves = fst.string();
-    }
+    if (o.waves && job.spec.backend == "cpp") record_waves(job, o, settings, args, rec);
     return;
   }
   rec.status = "error";
