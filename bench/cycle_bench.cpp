@@ -88,8 +88,8 @@ void BM_CycleEstimateWithBreakdown(benchmark::State& state) {
 }
 BENCHMARK(BM_CycleEstimateWithBreakdown)->Unit(benchmark::kMicrosecond);
 
-void BM_CycleModel(benchmark::State& state) {
-  const BenchStream& s = stream();
+// Clocks the cycle model over the stream once per iteration; returns its cycles.
+uint64_t time_cycle_model(benchmark::State& state, const BenchStream& s) {
   const CycleConfig unit = CycleConfig::of(s.config);
   uint64_t cycles = 0;
   for (auto _ : state) {
@@ -97,8 +97,10 @@ void BM_CycleModel(benchmark::State& state) {
     cycles = r.cycles;
     benchmark::DoNotOptimize(r.scanlines.data());
   }
-  report(state, cycles);
+  return cycles;
 }
+
+void BM_CycleModel(benchmark::State& state) { report(state, time_cycle_model(state, stream())); }
 BENCHMARK(BM_CycleModel)->Unit(benchmark::kMicrosecond);
 
 // A scene rendered on its own configuration with `structure` applied, the stream saved once.
@@ -114,13 +116,7 @@ BenchStream structured_stream(const char* scene_path, Structure structure) {
 }
 
 void run_structured(benchmark::State& state, const BenchStream& s) {
-  const CycleConfig unit = CycleConfig::of(s.config);
-  uint64_t cycles = 0;
-  for (auto _ : state) {
-    const CycleRun r = run_cycle_model(s.words, Stimulus{}, unit);
-    cycles = r.cycles;
-    benchmark::DoNotOptimize(r.scanlines.data());
-  }
+  const uint64_t cycles = time_cycle_model(state, s);
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * cycles));
   state.counters["cycles"] = static_cast<double>(cycles);
 }
