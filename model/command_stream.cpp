@@ -6,6 +6,7 @@
 #include <initializer_list>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <utility>
 
@@ -280,7 +281,7 @@ CommandStream CommandStream::decode(const std::vector<uint64_t>& words, const Un
 }
 
 void CommandStream::write_text(std::ostream& os) const {
-  os << "shadesim-commands 1 " << config_to_json(config) << '\n';
+  os << "shadesim-commands " << kCommandStreamVersion << ' ' << config_to_json(config) << '\n';
   auto list = [&os](const std::vector<int64_t>& v) {
     for (auto x : v) os << ' ' << x;
   };
@@ -368,16 +369,24 @@ struct TextLine {
   }
 };
 
-// The header line, 'shadesim-commands 1 {config}' (`line`, line number `line_no`): the unit.
+// Version 1 headers wrote a saturating format without a suffix ("s4.28"), which version 2 reads
+// as sc_fix does (truncate, wrap): a version-1 header's suffix-less formats get their ":sat".
+std::string version1_formats(const std::string& json) {
+  static const std::regex suffixless(R"re("([su]\d+\.\d+(:(trn|rnd))?)")re");
+  return std::regex_replace(json, suffixless, "\"$1:sat\"");
+}
+
+// The header line, 'shadesim-commands 2 {config}' (`line`, line number `line_no`): the unit.
 UnitConfig read_header(TextLine& in, const std::string& line, const std::string& source,
                        size_t line_no) {
   if (in.op != "shadesim-commands") {
-    throw CommandStreamError(in.loc + "expected the header 'shadesim-commands 1 {config}', got '" +
+    throw CommandStreamError(in.loc + "expected the header 'shadesim-commands 2 {config}', got '" +
                              in.op + "'");
   }
   int version = 0;
-  if (!(in.ls >> version) || version != 1) {
-    throw CommandStreamError(in.loc + "unsupported command-stream version; expected 1");
+  if (!(in.ls >> version) || version < 1 || version > kCommandStreamVersion) {
+    throw CommandStreamError(in.loc + "unsupported command-stream version; expected 1 or " +
+                             std::to_string(kCommandStreamVersion));
   }
   // The JSON's first column in the line, so a syntax error names its column in the file.
   std::streamoff json_at = in.ls.tellg();
@@ -388,8 +397,10 @@ UnitConfig read_header(TextLine& in, const std::string& line, const std::string&
     throw CommandStreamError(source + ":" + std::to_string(line_no) + ":" +
                              std::to_string(json_at + 1) +
                              ": expected the unit's config JSON object after "
-                             "'shadesim-commands 1', got the end of the line");
+                             "'shadesim-commands " +
+                             std::to_string(version) + "', got the end of the line");
   }
+  if (version == 1) json = version1_formats(json);
   return header_config(json, in.loc, [&](const JsonTextError& error) {
     // The header is one line: the error's column in the JSON, moved to the file's column.
     const size_t colon = error.place.rfind(':');

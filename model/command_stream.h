@@ -55,8 +55,9 @@
 // = 1 a beat is one word and every item one word.
 //
 // Text form: one command per line, '#' starts a comment, a first line
-// "shadesim-commands 1 <config json>" carries the unit configuration so a saved stream replays
-// on its own.
+// "shadesim-commands 2 <config json>" carries the unit configuration so a saved stream replays
+// on its own. (Version 1 differs only in its formats: a suffix-less one saturated; it is still
+// read, with that meaning.)
 //   material ambient A.. spec_colour S.. [diffuse_colour D..] exponent E params P..
 //     [gate_only MASK] (gate_only written when not 0; absent means 0; diffuse_colour with
 //     diffuse_colour multiply only)
@@ -77,6 +78,9 @@
 #include "model/unit_config.h"
 
 namespace shadesim {
+
+// The text form's version (its header line); see the text form above.
+inline constexpr int kCommandStreamVersion = 2;
 
 struct MaterialCmd {
   std::vector<int64_t> ambient;      // [channels], series format

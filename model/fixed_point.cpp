@@ -56,7 +56,7 @@ std::string FixedFormat::to_string() const {
   std::ostringstream os;
   os << (is_signed ? 's' : 'u') << iwl << '.' << frac_bits();
   if (quant == Quantization::kRoundNearest) os << ":rnd";
-  if (overflow == Overflow::kWrap) os << ":wrap";
+  if (overflow == Overflow::kSaturate) os << ":sat";
   return os.str();
 }
 
@@ -65,10 +65,11 @@ FixedFormat parse_fixed_format(const std::string& text, const std::string& what)
     throw std::invalid_argument(
         what + ": cannot read fixed-point format '" + text +
         "'; expected s<int>.<frac> or u<int>.<frac>, optionally followed by :trn|:rnd and "
-        ":sat|:wrap (e.g. s4.28, u1.16:rnd)");
+        ":sat|:wrap (e.g. s4.28, u1.16:rnd:sat)");
   };
   if (text.size() < 4 || (text[0] != 's' && text[0] != 'u')) return fail();
   FixedFormat f;
+  f.overflow = Overflow::kWrap;  // a format without :sat/:wrap wraps, as SystemC's sc_fix does
   f.is_signed = text[0] == 's';
   std::string rest = text.substr(1);
   std::string suffix;

@@ -101,8 +101,8 @@ struct FixedFormat {
 
   double to_double(int64_t raw) const;
 
-  // Short text form, e.g. "s4.28" (signed, 4 integer bits incl. sign, 28 fraction) or "u1.16";
-  // with rounding and overflow suffixes when not the defaults: "s4.28:rnd:wrap".
+  // Short text form, e.g. "s4.28" (signed, 4 integer bits incl. sign, 28 fraction: truncate and
+  // wrap, sc_fix's defaults) or "u1.16:rnd:sat": a suffix for each mode that is not sc_fix's.
   std::string to_string() const;
 };
 
@@ -123,8 +123,9 @@ constexpr int64_t FixedFormat::fit(Int raw) const {
   return raw_overflow().fit(raw);
 }
 
-// Parse "s4.28", "u1.16", "s4.28:rnd", "u1.16:trn:wrap". Throws std::invalid_argument naming
-// `what` and the text on malformed input.
+// Parse "s4.28", "u1.16:sat", "s4.28:rnd", "u1.16:trn:wrap". A mode not written is sc_fix's
+// default: truncate (SC_TRN) and wrap (SC_WRAP). Throws std::invalid_argument naming `what` and
+// the text on malformed input.
 FixedFormat parse_fixed_format(const std::string& text, const std::string& what);
 
 // Shift helpers that never invoke undefined behaviour for negative values or large shifts.

@@ -37,24 +37,8 @@ struct WidthOptions {
     return m;
   }
 
-  // A width given without :sat or :wrap saturates (the form shadesim's own files write), where
-  // SystemC's sc_fix would wrap: said on stderr, so the choice is never silent (issue 23).
-  static void warn_without_overflow_suffix(const std::string& text, const std::string& fallback,
-                                           const char* option) {
-    if (text == fallback || text.find(":sat") != std::string::npos ||
-        text.find(":wrap") != std::string::npos)
-      return;
-    std::cerr << "shadesim: note: " << option << ' ' << text
-              << " has no overflow suffix, so it saturates (SystemC's sc_fix would wrap); write "
-              << text << ":sat or " << text << ":wrap to choose\n";
-  }
-
   UnitConfig to_config() const {
     UnitConfig c = defaults;
-    warn_without_overflow_suffix(coef, defaults.coef.to_string(), "--coef");
-    warn_without_overflow_suffix(series, defaults.series.to_string(), "--series");
-    warn_without_overflow_suffix(spec_colour, defaults.spec_colour.to_string(), "--spec-colour");
-    warn_without_overflow_suffix(spec_out, defaults.specular.out.to_string(), "--spec-out");
     c.coef = parse_fixed_format(coef, "--coef");
     c.series = parse_fixed_format(series, "--series");
     c.spec_colour = parse_fixed_format(spec_colour, "--spec-colour");
@@ -82,8 +66,8 @@ struct WidthOptions {
 
 // The option groups add_width_options fills (--config excludes every option in them).
 constexpr const char* kWidthGroup =
-    "Widths (s|u<integer bits incl. sign>.<fraction bits>[:trn|:rnd][:sat|:wrap]; no suffix "
-    "means :trn and :sat, unlike SystemC's sc_fix, which wraps: write :wrap for its meaning)";
+    "Widths (s|u<integer bits incl. sign>.<fraction bits>[:trn|:rnd][:sat|:wrap]; a mode "
+    "not written means what SystemC's sc_fix means: :trn and :wrap)";
 constexpr const char* kUnitWidthGroup =
     "Specular unit widths (see shadesim spec-error for their error and cost)";
 

@@ -89,8 +89,8 @@ TEST(Accuracy, MultiMaterialWordsAreTheJsonProductsWorkedOutByHand) {
   FrameOptions o;
   o.specular_override = SpecularUnitKind::kIdeal;
   const PreparedFrame f = prepare_frame(kScenes + "multi.json", o);
-  ASSERT_EQ(f.config.series.to_string(), "s4.28:wrap");  // truncating
-  ASSERT_EQ(f.config.spec_colour.to_string(), "u1.12:rnd");
+  ASSERT_EQ(f.config.series.to_string(), "s4.28");  // truncating, wrapping
+  ASSERT_EQ(f.config.spec_colour.to_string(), "u1.12:rnd:sat");
 
   struct Expected {
     std::vector<int64_t> ambient, spec_colour;

@@ -52,7 +52,7 @@ std::string find_yosys() {
 // A small unit: grey, one light, narrow widths, no specular hardware.
 const char* kSmallConfig =
     R"({"channels":1,"lights":1,"xy_bits":4,"coef":"s2.6:rnd:wrap","series":"s2.6:trn:wrap",)"
-    R"("spec_colour":"u1.3:rnd:sat","out_bits":4,"specular":{"kind":"ideal","out":"u1.3"}})";
+    R"("spec_colour":"u1.3:rnd:sat","out_bits":4,"specular":{"kind":"ideal","out":"u1.3:sat"}})";
 // The same unit as shade_unit parameters, written out by hand from rtl/shade_unit.sv's header:
 // WL = integer + fraction bits, QUANT 0 truncate, OVERFLOW 1 wrap, SPECULAR_KIND 0 ideal.
 const char* kSmallChparam =
@@ -258,7 +258,7 @@ TEST(Area, TableRamBitsAreApartFromGateEquivalents) {
   write(dir / "lut.json",
         R"({"channels":1,"lights":1,"xy_bits":4,"offset_bits":4,"coef":"s2.6:rnd:wrap",)"
         R"("series":"s2.6:trn:wrap","spec_colour":"u1.3:rnd:sat","out_bits":4,)"
-        R"("specular":{"kind":"lut","out":"u1.3","lut":{"addr_bits":4,"entry_bits":5}}})");
+        R"("specular":{"kind":"lut","out":"u1.3:sat","lut":{"addr_bits":4,"entry_bits":5}}})");
   const Result area =
       run_shell(shadesim() + "area --config " + (dir / "lut.json").string() + " --no-pnr --cache " +
                 (dir / "cache").string() + " --json " + (dir / "area.json").string());

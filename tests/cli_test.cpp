@@ -836,24 +836,25 @@ TEST(Cli, ReplayLineOfARandomRegressRunRunsWhenPasted) {
   std::filesystem::remove_all(dir);
 }
 
-// A width option without an overflow suffix saturates, where SystemC's sc_fix would wrap: the
-// command says so, naming the option, and is silent when the suffix is written.
-TEST(Cli, WidthWithoutOverflowSuffixSaysItSaturates) {
+// A width option without a suffix means what SystemC's sc_fix means (truncate, wrap), with no
+// note needed: the unit the command reports is the suffix-less format, identical to the same
+// width written with :trn:wrap and different from the :sat one; --help says which.
+TEST(Cli, WidthWithoutSuffixMeansWhatScFixMeans) {
   const auto dir = temp_dir("suffix");
-  const std::string render = "render " + kScenes + "sphere.json -q --out " + dir.string();
-  const Result plain = run(render + " --coef s4.32");
-  ASSERT_EQ(plain.status, 0) << plain.output;
-  EXPECT_NE(plain.output.find("--coef s4.32 has no overflow suffix, so it saturates"),
-            std::string::npos)
-      << plain.output;
-  EXPECT_NE(plain.output.find("s4.32:wrap"), std::string::npos) << plain.output;
-  for (const char* given : {"s4.32:wrap", "s4.32:rnd:sat"}) {
-    const Result chosen = run(render + " --coef " + given);
-    ASSERT_EQ(chosen.status, 0) << chosen.output;
-    EXPECT_EQ(chosen.output.find("no overflow suffix"), std::string::npos) << chosen.output;
-  }
+  const auto series_of = [&](const std::string& given) {
+    const std::string json = (dir / "r.json").string();
+    const Result r = run("render " + kScenes + "sphere.json -q --out " + dir.string() +
+                         " --series " + given + " --json " + json);
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.output.find("suffix"), std::string::npos) << r.output;
+    std::ifstream in(json);
+    return nlohmann::json::parse(in).at("config").at("series").get<std::string>();
+  };
+  EXPECT_EQ(series_of("s4.24"), "s4.24");
+  EXPECT_EQ(series_of("s4.24:trn:wrap"), "s4.24");
+  EXPECT_EQ(series_of("s4.24:sat"), "s4.24:sat");
   const Result help = run("render --help");
-  EXPECT_NE(help.output.find("no suffix means :trn and :sat"), std::string::npos) << help.output;
+  EXPECT_NE(help.output.find("sc_fix means: :trn and :wrap"), std::string::npos) << help.output;
   std::filesystem::remove_all(dir);
 }
 

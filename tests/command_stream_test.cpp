@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
 
@@ -178,7 +179,7 @@ TEST(CommandStream, PerMaterialTableIsHeaderBit55AndRoundTrips) {
 }
 
 void expect_text_error(const std::string& body, const std::string& needle) {
-  std::stringstream ss("shadesim-commands 1 " + config_to_json(UnitConfig{}) + "\n" + body);
+  std::stringstream ss("shadesim-commands 2 " + config_to_json(UnitConfig{}) + "\n" + body);
   try {
     CommandStream::read_text(ss, "bad.cmd");
     FAIL() << "accepted: " << body;
@@ -207,28 +208,65 @@ TEST(CommandStream, TextErrorsNameLineAndExpectation) {
   expect_text_error("table 0 1 2 material 3\n", "expected nothing after 'material'");
 }
 
+// Version 1 headers wrote a saturating format without a suffix; version 2 reads a suffix-less
+// format as sc_fix does (truncate, wrap). A saved version-1 stream keeps its meaning, and a
+// version this reader does not know is refused by name.
+TEST(CommandStream, Version1FormatsWithoutSuffixStillSaturate) {
+  nlohmann::json j = nlohmann::json::parse(config_to_json(UnitConfig{}));
+  j["series"] = "s4.28";
+  j["coef"] = "s4.32:rnd";
+  j["spec_colour"] = "u1.12:wrap";
+  const std::string unit = j.dump();
+  const auto read = [&](int version) {
+    std::stringstream ss("shadesim-commands " + std::to_string(version) + " " + unit + "\nend\n");
+    return CommandStream::read_text(ss, "v.cmd").config;
+  };
+  const UnitConfig v1 = read(1);
+  const UnitConfig v2 = read(2);
+  EXPECT_EQ(v1.series.overflow, Overflow::kSaturate);
+  EXPECT_EQ(v1.coef.overflow, Overflow::kSaturate);
+  EXPECT_EQ(v1.coef.quant, Quantization::kRoundNearest);
+  EXPECT_EQ(v1.spec_colour.overflow, Overflow::kWrap);  // written, so kept
+  EXPECT_EQ(v2.series.overflow, Overflow::kWrap);
+  EXPECT_EQ(v2.coef.overflow, Overflow::kWrap);
+  // What this version writes reads back the same.
+  std::stringstream out;
+  CommandStream written;
+  written.config = v1;
+  written.write_text(out);
+  EXPECT_EQ(out.str().rfind("shadesim-commands 2 ", 0), 0u) << out.str();
+  EXPECT_EQ(CommandStream::read_text(out, "w.cmd").config.to_string(), v1.to_string());
+  std::stringstream v3("shadesim-commands 3 " + unit + "\n");
+  try {
+    CommandStream::read_text(v3, "v3.cmd");
+    ADD_FAILURE() << "accepted version 3";
+  } catch (const CommandStreamError& e) {
+    EXPECT_NE(std::string(e.what()).find("expected 1 or 2"), std::string::npos) << e.what();
+  }
+}
+
 TEST(CommandStream, MissingHeaderAndEmptyStreamAreErrors) {
   std::stringstream a("span 1 2 3\n");
   EXPECT_THROW(CommandStream::read_text(a, "a.cmd"), CommandStreamError);
   std::stringstream b("");
   EXPECT_THROW(CommandStream::read_text(b, "b.cmd"), CommandStreamError);
-  std::stringstream c("shadesim-commands 1 {\"channels\": 2}\n");
+  std::stringstream c("shadesim-commands 2 {\"channels\": 2}\n");
   EXPECT_THROW(CommandStream::read_text(c, "c.cmd"), CommandStreamError);
 }
 
 // A malformed header JSON (6 of 400 fuzzed inputs, issue 23) is named by file, line and column
 // with what was expected there, not by nlohmann's "[json.exception.parse_error.101]" text. The
-// columns are counted by hand: "shadesim-commands 1 " is 20 characters, so the JSON's '{' is
+// columns are counted by hand: "shadesim-commands 2 " is 20 characters, so the JSON's '{' is
 // column 21.
 TEST(CommandStream, MalformedHeaderJsonNamesFileColumnAndExpectation) {
   const std::vector<std::array<std::string, 3>> cases = {
       // {header line, where, what was expected}
-      {R"(shadesim-commands 1 {"channels":1,,"lights":1})",
+      {R"(shadesim-commands 2 {"channels":1,,"lights":1})",
        "h.cmd:1:35:", "expected string literal"},                                // the second ','
-      {R"(shadesim-commands 1 {"channels": 1)", "h.cmd:1:35:", "expected '}'"},  // end of line
-      {R"(shadesim-commands 1   {"lights" 1})", "h.cmd:1:33:", "expected ':'"},  // the 1
-      {R"(shadesim-commands 1 {"channels": 1e999})", "h.cmd:1:34:", "1e999"},
-      {"shadesim-commands 1", "h.cmd:1:20:", "expected the unit's config JSON"},
+      {R"(shadesim-commands 2 {"channels": 1)", "h.cmd:1:35:", "expected '}'"},  // end of line
+      {R"(shadesim-commands 2   {"lights" 1})", "h.cmd:1:33:", "expected ':'"},  // the 1
+      {R"(shadesim-commands 2 {"channels": 1e999})", "h.cmd:1:34:", "1e999"},
+      {"shadesim-commands 2", "h.cmd:1:20:", "expected the unit's config JSON"},
   };
   for (const auto& [header, where, expected] : cases) {
     std::stringstream ss(header + "\nspan 1 2 3\n");
@@ -297,8 +335,8 @@ TEST(CommandStream, ThroughputStructureRoundTripsAndDefaults) {
     }
   }
   const UnitConfig old = config_from_json(
-      R"({"channels":1,"lights":1,"xy_bits":12,"coef":"s4.32:rnd","series":"s4.28:wrap",)"
-      R"("spec_colour":"u1.12:rnd","out_bits":8,"specular":{"kind":"ideal","out":"u1.16"}})",
+      R"({"channels":1,"lights":1,"xy_bits":12,"coef":"s4.32:rnd:sat","series":"s4.28",)"
+      R"("spec_colour":"u1.12:rnd:sat","out_bits":8,"specular":{"kind":"ideal","out":"u1.16:sat"}})",
       "old: ");
   EXPECT_EQ(old.port_words, 1);
   EXPECT_EQ(old.tri_queue, 1);

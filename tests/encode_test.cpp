@@ -84,8 +84,8 @@ TEST(Encode, RgbTwoLightSeriesTrackTheQuadratics) { check_scene("multi.json", Un
 
 TEST(Encode, NarrowTruncatedFormatsStayInsideTheirLargerBound) {
   UnitConfig c;
-  c.coef = parse_fixed_format("s4.20", "coef");
-  c.series = parse_fixed_format("s4.16", "series");
+  c.coef = parse_fixed_format("s4.20:sat", "coef");
+  c.series = parse_fixed_format("s4.16:sat", "series");
   check_scene("torus.json", c);
 }
 

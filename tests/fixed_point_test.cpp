@@ -146,7 +146,7 @@ TEST(FixedPoint, ExhaustiveSmallFormatAgainstClosedForm) {
 }
 
 TEST(FixedPoint, ParseAndPrintRoundTrip) {
-  for (const char* text : {"s4.28", "u1.16", "s4.32:rnd", "u0.8:rnd:wrap", "s1.7:wrap"}) {
+  for (const char* text : {"s4.28", "u1.16:sat", "s4.32:rnd", "u0.8:rnd:sat", "s1.7:sat"}) {
     EXPECT_EQ(parse_fixed_format(text, "t").to_string(), text);
   }
   const auto f = parse_fixed_format("s4.28", "t");
@@ -156,14 +156,11 @@ TEST(FixedPoint, ParseAndPrintRoundTrip) {
 }
 
 // What a width without suffixes means, against SystemC's own defaults (sc_fix(wl, iwl) with no
-// modes given: SC_TRN, SC_WRAP in IEEE 1666's default sc_fxtype_context). shadesim reads "s4.28"
-// as truncate and saturate (its stream headers and UnitConfig files write saturating formats
-// without a suffix), so the quantization agrees with sc_fix and the overflow does not: the width
-// options warn when given a width with no overflow suffix (sim/width_options.h), and
-// "s4.28:wrap" is what sc_fix's s4.28 means.
-TEST(FixedPoint, SuffixlessWidthTruncatesLikeScFixButSaturatesWhereScFixWraps) {
+// modes given: SC_TRN, SC_WRAP in IEEE 1666's default sc_fxtype_context): "s2.4" is sc_fix's
+// s2.4 in and out of range, and "s2.4:sat" differs from it only out of range.
+TEST(FixedPoint, SuffixlessWidthMeansWhatScFixMeans) {
   const FixedFormat plain = parse_fixed_format("s2.4", "t");
-  const FixedFormat wrap = parse_fixed_format("s2.4:wrap", "t");
+  const FixedFormat sat = parse_fixed_format("s2.4:sat", "t");
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> dist(-8.0, 8.0);
   int saturate_differs = 0;
@@ -172,14 +169,14 @@ TEST(FixedPoint, SuffixlessWidthTruncatesLikeScFixButSaturatesWhereScFixWraps) {
     sc_dt::sc_fix sc(plain.wl, plain.iwl);  // SystemC's default modes
     sc = x;
     const int64_t sc_value = static_cast<int64_t>(std::ldexp(sc.to_double(), plain.frac_bits()));
-    ASSERT_EQ(wrap.from_double(x), sc_value) << "x=" << x;
-    if (plain.holds(static_cast<int64_t>(std::floor(std::ldexp(x, plain.frac_bits()))))) {
-      ASSERT_EQ(plain.from_double(x), sc_value) << "in range, x=" << x;  // truncation agrees
+    ASSERT_EQ(plain.from_double(x), sc_value) << "x=" << x;
+    if (sat.holds(static_cast<int64_t>(std::floor(std::ldexp(x, sat.frac_bits()))))) {
+      ASSERT_EQ(sat.from_double(x), sc_value) << "in range, x=" << x;  // truncation agrees
     } else {
-      saturate_differs += plain.from_double(x) != sc_value;
+      saturate_differs += sat.from_double(x) != sc_value;
     }
   }
-  EXPECT_GT(saturate_differs, 1000);  // out of range: saturated here, wrapped by sc_fix
+  EXPECT_GT(saturate_differs, 1000);  // out of range: saturated by :sat, wrapped by sc_fix
 }
 
 TEST(FixedPoint, ParseRejectsMalformedWithFieldName) {

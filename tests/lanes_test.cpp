@@ -56,7 +56,7 @@ SeriesStart random_start(std::mt19937_64& rng, const FixedFormat& f) {
 // brought into the series format once by its overflow rule.
 TEST(LaneFanout, StartsAreTheExactKStepDifferencesFittedOnce) {
   std::mt19937_64 rng(8);
-  for (const char* fmt : {"s3.20:rnd", "s2.10", "s4.28:wrap", "s2.12:wrap"}) {
+  for (const char* fmt : {"s3.20:rnd:sat", "s2.10:sat", "s4.28:wrap", "s2.12"}) {
     const FixedFormat f = parse_fixed_format(fmt, "test");
     for (int k : {1, 2, 4}) {
       const LaneFanout fanout(f, k);

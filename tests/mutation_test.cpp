@@ -733,7 +733,7 @@ TEST(Mutation, SceneValuesThatLoadGoThroughThePipelineOrThrowDocumentedErrors) {
 // Regressions for defects the mutants found in CommandStream::read_text and config_from_json
 // (32-bit truncation of integers, int overflow in the span check, get<int>() of non-integers).
 CommandStream read_one_line(const std::string& line) {
-  std::istringstream is("shadesim-commands 1 " + config_to_json(UnitConfig{}) + "\n" + line + "\n");
+  std::istringstream is("shadesim-commands 2 " + config_to_json(UnitConfig{}) + "\n" + line + "\n");
   return CommandStream::read_text(is, "repro.txt");
 }
 

@@ -49,8 +49,8 @@ TEST(RtlParameters, EachUnitGetsOnlyItsOwnParameters) {
   UnitConfig u;
   u.channels = 3;
   u.lights = 2;
-  u.series = parse_fixed_format("s3.20:rnd", "test");  // round, saturate
-  u.specular.out = parse_fixed_format("u1.12:rnd", "test");
+  u.series = parse_fixed_format("s3.20:rnd:sat", "test");  // round, saturate
+  u.specular.out = parse_fixed_format("u1.12:rnd:sat", "test");
   u.specular.kind = SpecularUnitKind::kLut;
   u.specular.lut.index = LutIndex::kNearest;
   u.specular.lut.interp_bits = 4;

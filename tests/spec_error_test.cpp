@@ -101,16 +101,16 @@ TEST(SpecError, ConfigJsonRoundTripsUnitWidths) {
   EXPECT_EQ(d.specular.schlick.timing, UnitTiming::kPipelined);
   // Absent keys keep the defaults.
   const UnitConfig old = config_from_json(
-      R"({"channels":1,"lights":1,"xy_bits":12,"coef":"s4.32:rnd","series":"s4.28:wrap",)"
-      R"("spec_colour":"u1.12:rnd","out_bits":8,"specular":{"kind":"lut","out":"u1.16"}})",
+      R"({"channels":1,"lights":1,"xy_bits":12,"coef":"s4.32:rnd:sat","series":"s4.28",)"
+      R"("spec_colour":"u1.12:rnd:sat","out_bits":8,"specular":{"kind":"lut","out":"u1.16:sat"}})",
       "test: ");
   EXPECT_EQ(old.specular.lut.addr_bits, LutConfig{}.addr_bits);
   EXPECT_EQ(old.specular.wpow.max_m, 16);
   // Bad values name the field.
   try {
     config_from_json(
-        R"({"channels":1,"lights":1,"xy_bits":12,"coef":"s4.32:rnd","series":"s4.28:wrap",)"
-        R"("spec_colour":"u1.12:rnd","out_bits":8,"specular":{"kind":"wpow","out":"u1.16","wpow":{"max_m":12}}})",
+        R"({"channels":1,"lights":1,"xy_bits":12,"coef":"s4.32:rnd:sat","series":"s4.28",)"
+        R"("spec_colour":"u1.12:rnd:sat","out_bits":8,"specular":{"kind":"wpow","out":"u1.16:sat","wpow":{"max_m":12}}})",
         "test: ");
     FAIL() << "expected an error";
   } catch (const CommandStreamError& e) {

@@ -101,7 +101,7 @@ TEST_F(UnitConfigFile, OmittedFieldsKeepTheBase) {
       write("part.json", R"({"series": "s4.30", "specular": {"wpow": {"max_m": 8}}})"), base);
   EXPECT_EQ(d.series.wl, 34);  // from the file
   EXPECT_EQ(d.series.iwl, 4);
-  EXPECT_EQ(d.series.overflow, Overflow::kSaturate);  // "s4.30" says saturate (no :wrap)
+  EXPECT_EQ(d.series.overflow, Overflow::kWrap);  // "s4.30" wraps, as sc_fix does (no :sat)
   EXPECT_EQ(d.specular.wpow.max_m, 8);
   EXPECT_EQ(d.channels, 3);  // from the base
   EXPECT_EQ(d.lights, 2);

@@ -14,8 +14,8 @@ shadesim="$1"; work="$2"
 rm -rf "$work"; mkdir -p "$work"
 cache="$work/cache"
 cat >"$work/small.json" <<'JSON'
-{"channels": 1, "lights": 1, "xy_bits": 8, "coef": "s3.20:rnd", "series": "s3.16:wrap",
- "spec_colour": "u1.8:rnd", "out_bits": 8, "specular": {"kind": "ideal", "out": "u1.10"}}
+{"channels": 1, "lights": 1, "xy_bits": 8, "coef": "s3.20:rnd:sat", "series": "s3.16",
+ "spec_colour": "u1.8:rnd:sat", "out_bits": 8, "specular": {"kind": "ideal", "out": "u1.10:sat"}}
 JSON
 sed 's/"xy_bits": 8/"xy_bits": 9/' "$work/small.json" >"$work/small9.json"
 

@@ -26,12 +26,12 @@ const std::vector<UnitConfig>& binary_configs() {
   static const std::vector<UnitConfig> configs = [] {
     const char* units[] = {
         "{}",
-        R"({"channels": 3, "lights": 2, "specular": {"kind": "lut", "out": "u1.16",
+        R"({"channels": 3, "lights": 2, "specular": {"kind": "lut", "out": "u1.16:sat",
             "lut": {"addr_bits": 10, "entry_bits": 8}}})",
-        R"({"channels": 3, "lights": 2, "specular": {"kind": "schlick", "out": "u1.16",
+        R"({"channels": 3, "lights": 2, "specular": {"kind": "schlick", "out": "u1.16:sat",
             "schlick": {"quotient_bits": 16, "operand_bits": 24, "timing": "iterative"}}})",
-        R"({"channels": 1, "lights": 1, "xy_bits": 11, "series": "s3.20:rnd",
-            "specular": {"kind": "wpow", "out": "u1.12",
+        R"({"channels": 1, "lights": 1, "xy_bits": 11, "series": "s3.20:rnd:sat",
+            "specular": {"kind": "wpow", "out": "u1.12:sat",
             "wpow": {"max_m": 16, "base_bits": 16, "timing": "pipelined"}}})",
         R"({"channels": 3, "lights": 1, "port_words": 4, "tri_queue": 2})",
     };
