@@ -1,6 +1,8 @@
 // shadesim explore SCENE...: width sweeps of the bit-accurate model against error, cycles per
 // pixel and area; the cheapest widths meeting an error budget; the Pareto front; the error of
 // the chosen point split by source.
+#include "host/explore.h"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -14,19 +16,18 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "host/explore.h"
 #include "host/scene_config.h"
 #include "model/command_stream.h"
 #include "model/text_file.h"
 #include "model/unit_config_file.h"
-#include "sim/area.h"
-#include "sim/commands.h"
-#include "sim/elapsed.h"
-#include "sim/fixed_text.h"
-#include "sim/number_checks.h"
-#include "sim/output_paths.h"
-#include "sim/process.h"
-#include "sim/unit_choice.h"
+#include "sim/cli/commands.h"
+#include "sim/cli/number_checks.h"
+#include "sim/cli/output_paths.h"
+#include "sim/eda/area.h"
+#include "sim/eda/process.h"
+#include "sim/jobs/elapsed.h"
+#include "sim/jobs/fixed_text.h"
+#include "sim/jobs/unit_choice.h"
 
 namespace shadesim {
 namespace {
@@ -51,7 +52,7 @@ struct ExploreCliOptions {
 
 // ---------------------------------------------------------------- area
 
-// The area every point shows: sim/area.h's estimate_area(), which scales a Yosys-measured
+// The area every point shows: sim/eda/area.h's estimate_area(), which scales a Yosys-measured
 // anchor of the same specular unit module by module. The anchors are the measured units in the
 // area cache; when none has the start's specular unit, the start is synthesised once (minutes,
 // cached for every later run).

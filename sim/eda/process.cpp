@@ -1,4 +1,4 @@
-#include "sim/process.h"
+#include "sim/eda/process.h"
 
 #include <fcntl.h>
 #include <spawn.h>

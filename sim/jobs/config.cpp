@@ -18,9 +18,9 @@
 #include "model/shade_unit.h"
 #include "model/specular_units.h"
 #include "model/text_file.h"
-#include "sim/commands.h"
-#include "sim/number_checks.h"
-#include "sim/output_paths.h"
+#include "sim/cli/commands.h"
+#include "sim/cli/number_checks.h"
+#include "sim/cli/output_paths.h"
 
 namespace shadesim {
 namespace {

@@ -18,13 +18,13 @@
 #include "model/cycle_model.h"
 #include "model/start_packing.h"
 #include "model/text_file.h"
-#include "sim/commands.h"
-#include "sim/config_option.h"
-#include "sim/elapsed.h"
+#include "sim/cli/commands.h"
+#include "sim/cli/config_option.h"
+#include "sim/cli/output_paths.h"
+#include "sim/cli/stimulus_options.h"
+#include "sim/cli/width_options.h"
 #include "sim/harness/cycle_run.h"
-#include "sim/output_paths.h"
-#include "sim/stimulus_options.h"
-#include "sim/width_options.h"
+#include "sim/jobs/elapsed.h"
 
 namespace shadesim {
 namespace {
@@ -45,7 +45,8 @@ struct CyclesOptions {
   int gap_pct = 0, max_gap = 1, stall_pct = 0;
   bool regress_stimulus = false;  // --regress-stimulus: regress's gaps and back-pressure
   std::string json_path;
-  std::string config;    // --config as in effect (sim/unit_choice.h): own, default, a build, a file
+  std::string
+      config;  // --config as in effect (sim/jobs/unit_choice.h): own, default, a build, a file
   bool clocked = false;  // also the clocked model when the closed form applies; must agree
   int worst = 5;         // setup-bound triangles listed
 };

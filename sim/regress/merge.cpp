@@ -2,7 +2,7 @@
 // more output folders, reported as one `regress` would: the same table, JSON and JUnit. What the
 // folders' plans name but no folder holds a result for is reported as missing (started and never
 // finished, or never started), a run found in two folders as a duplicate, an unreadable result
-// by its file; any of them makes the merge fail. Folder layout: sim/regress_results.h.
+// by its file; any of them makes the merge fail. Folder layout: sim/regress/regress_results.h.
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -11,9 +11,9 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "sim/commands.h"
-#include "sim/output_paths.h"
-#include "sim/regress_results.h"
+#include "sim/cli/commands.h"
+#include "sim/cli/output_paths.h"
+#include "sim/regress/regress_results.h"
 
 namespace shadesim {
 namespace {

@@ -1,4 +1,4 @@
-#include "sim/report_page.h"
+#include "sim/report/report_page.h"
 
 #include <algorithm>
 #include <cctype>
@@ -8,7 +8,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "sim/junit.h"
+#include "sim/regress/junit.h"
 
 namespace shadesim {
 namespace fs = std::filesystem;

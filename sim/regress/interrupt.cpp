@@ -1,4 +1,4 @@
-#include "sim/interrupt.h"
+#include "sim/regress/interrupt.h"
 
 namespace shadesim {
 namespace {

@@ -1,4 +1,4 @@
-#include "sim/rtl_build.h"
+#include "sim/eda/rtl_build.h"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -20,8 +20,8 @@
 
 #include "model/rtl_parameters.h"
 #include "model/unit_config_file.h"
-#include "sim/content_hash.h"
-#include "sim/rtl_files.h"
+#include "sim/eda/content_hash.h"
+#include "sim/eda/rtl_files.h"
 
 namespace shadesim {
 namespace {
@@ -29,7 +29,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // Bumped when the way a build is made changes in a way its inputs do not show, so old entries
-// miss. 3: Verilated model, glue and link kept apart (sim/rtl_recipe.h).
+// miss. 3: Verilated model, glue and link kept apart (sim/eda/rtl_recipe.h).
 constexpr const char* kRecipeVersion = "rtl-build 3";
 
 // shade_unit's sources in dependency order, leaves first (Icarus and Yosys want it too): the

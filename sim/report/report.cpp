@@ -9,13 +9,13 @@
 #include <sstream>
 
 #include "model/text_file.h"
-#include "sim/commands.h"
-#include "sim/output_paths.h"
-#include "sim/process.h"
-#include "sim/report_inputs.h"
-#include "sim/report_page.h"
-#include "sim/rtl_build.h"
-#include "sim/tool_versions.h"
+#include "sim/cli/commands.h"
+#include "sim/cli/output_paths.h"
+#include "sim/eda/process.h"
+#include "sim/eda/rtl_build.h"
+#include "sim/eda/tool_versions.h"
+#include "sim/report/report_inputs.h"
+#include "sim/report/report_page.h"
 
 namespace shadesim {
 namespace {

@@ -1,6 +1,6 @@
 // shadesim regress: the main job. Every scene x configuration x simulation backend: the host
 // encodes the scene for the configuration's unit, shadesim builds the configuration's RTL on
-// demand (sim/rtl_build.h) and its co-simulation executable replays the stream against the
+// demand (sim/eda/rtl_build.h) and its co-simulation executable replays the stream against the
 // bit-accurate model and the cycle model; this command collects, tabulates and reports.
 //
 // By default each scene runs on its own configuration (the smallest unit that shades it); the
@@ -9,8 +9,8 @@
 // Beyond one machine (README "Regression on many machines"): the job list is fixed before any
 // run (scenes x configurations x backends, seeds numbered in that order), so --shard I/N and
 // --emit-jobs FILE split it the same way on every host; each run writes its record into its own
-// folder as soon as it ends (sim/regress_results.h), --resume DIR runs only what is not there,
-// and `shadesim merge` puts the folders back together.
+// folder as soon as it ends (sim/regress/regress_results.h), --resume DIR runs only what is not
+// there, and `shadesim merge` puts the folders back together.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -33,20 +33,20 @@
 #include "host/frame.h"
 #include "host/scene_config.h"
 #include "model/text_file.h"
-#include "sim/area.h"
-#include "sim/commands.h"
-#include "sim/coverage.h"
-#include "sim/fixed_text.h"
+#include "sim/cli/commands.h"
+#include "sim/cli/number_checks.h"
+#include "sim/cli/output_paths.h"
+#include "sim/cli/stimulus_options.h"
+#include "sim/eda/area.h"
+#include "sim/eda/coverage.h"
+#include "sim/eda/process.h"
+#include "sim/eda/replay.h"
+#include "sim/eda/rtl_build.h"
 #include "sim/harness/random_stream.h"
-#include "sim/interrupt.h"
-#include "sim/number_checks.h"
-#include "sim/output_paths.h"
-#include "sim/process.h"
-#include "sim/regress_results.h"
-#include "sim/replay.h"
-#include "sim/rtl_build.h"
-#include "sim/stimulus_options.h"
-#include "sim/unit_choice.h"
+#include "sim/jobs/fixed_text.h"
+#include "sim/jobs/unit_choice.h"
+#include "sim/regress/interrupt.h"
+#include "sim/regress/regress_results.h"
 
 namespace shadesim {
 namespace {
@@ -145,7 +145,7 @@ RtlBuildOptions build_options(const RegressOptions& o) {
 
 fs::path run_dir(const fs::path& out, const RunSpec& s) { return out / "runs" / s.id(); }
 
-// --netlist: each configuration's gate-level netlist (sim/area.h unit_netlist), synthesised in
+// --netlist: each configuration's gate-level netlist (sim/eda/area.h unit_netlist), synthesised in
 // the background while the host sets up the scenes, at most `workers` Yosys runs at once.
 class NetlistSource {
  public:

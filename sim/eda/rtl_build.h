@@ -1,6 +1,6 @@
 // RTL builds on demand: the co-simulation executable of one parameter set, Verilated and compiled
 // into a cache folder the first time a run needs it and reused after that. How each part is
-// made is sim/rtl_recipe.h; what is kept under which key is this file:
+// made is sim/eda/rtl_recipe.h; what is kept under which key is this file:
 //
 //   <cache>/runtime/<flavour>-<key>/     Verilator's runtime and precompiled headers; key: the
 //                                        flavour, the compiler, Verilator
@@ -28,8 +28,8 @@
 #include <thread>
 #include <vector>
 
+#include "sim/eda/rtl_recipe.h"
 #include "sim/harness/rtl_config.h"
-#include "sim/rtl_recipe.h"
 
 namespace shadesim {
 

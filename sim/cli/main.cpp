@@ -4,7 +4,7 @@
 #include <iostream>
 #include <string>
 
-#include "sim/commands.h"
+#include "sim/cli/commands.h"
 
 #ifndef SHADESIM_VERSION
 #define SHADESIM_VERSION "unknown"

@@ -1,5 +1,5 @@
 // RTL coverage of a regression: the runs' Verilator coverage files (covered builds,
-// sim/rtl_build.h) merged with verilator_coverage, summarized per source file and listed where
+// sim/eda/rtl_build.h) merged with verilator_coverage, summarized per source file and listed where
 // uncovered.
 //
 // What counts (Verilator 5.006's point types, each point a counter):

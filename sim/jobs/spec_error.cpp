@@ -26,11 +26,11 @@
 #include "host/specular_setup.h"
 #include "model/specular_units.h"
 #include "model/text_file.h"
-#include "sim/commands.h"
-#include "sim/fixed_text.h"
-#include "sim/output_paths.h"
-#include "sim/process.h"
-#include "sim/rtl_build.h"
+#include "sim/cli/commands.h"
+#include "sim/cli/output_paths.h"
+#include "sim/eda/process.h"
+#include "sim/eda/rtl_build.h"
+#include "sim/jobs/fixed_text.h"
 
 namespace shadesim {
 namespace {

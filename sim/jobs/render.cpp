@@ -17,12 +17,12 @@
 #include "model/shade_unit.h"
 #include "model/specular_units.h"
 #include "model/text_file.h"
-#include "sim/accuracy_warnings.h"
-#include "sim/commands.h"
-#include "sim/config_option.h"
-#include "sim/number_checks.h"
-#include "sim/output_paths.h"
-#include "sim/width_options.h"
+#include "sim/cli/commands.h"
+#include "sim/cli/config_option.h"
+#include "sim/cli/number_checks.h"
+#include "sim/cli/output_paths.h"
+#include "sim/cli/width_options.h"
+#include "sim/jobs/accuracy_warnings.h"
 
 namespace shadesim {
 namespace {
@@ -32,7 +32,8 @@ struct RenderOptions {
   std::string out_dir;
   std::string json_path;
   std::string stream_path;
-  std::string config;  // --config as in effect (sim/unit_choice.h): own, default, a build, a file
+  std::string
+      config;  // --config as in effect (sim/jobs/unit_choice.h): own, default, a build, a file
   WidthOptions widths;
   double budget_lsb = std::nan("");
   int max_depth = 12;

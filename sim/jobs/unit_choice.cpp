@@ -1,10 +1,10 @@
-#include "sim/unit_choice.h"
+#include "sim/jobs/unit_choice.h"
 
 #include <filesystem>
 
 #include "host/frame.h"
 #include "host/scene_config.h"
-#include "sim/rtl_build.h"
+#include "sim/eda/rtl_build.h"
 
 namespace shadesim {
 

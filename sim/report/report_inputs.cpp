@@ -1,4 +1,4 @@
-#include "sim/report_inputs.h"
+#include "sim/report/report_inputs.h"
 
 #include <algorithm>
 #include <filesystem>

@@ -1,4 +1,4 @@
-#include "sim/coverage.h"
+#include "sim/eda/coverage.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -8,7 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "sim/process.h"
+#include "sim/eda/process.h"
 
 namespace shadesim {
 namespace {

@@ -1,5 +1,5 @@
 // shadesim cosim / rtl-build / rtl-params: co-simulation of any unit configuration, with the RTL
-// Verilated on demand into the build cache (sim/rtl_build.h).
+// Verilated on demand into the build cache (sim/eda/rtl_build.h).
 #include <unistd.h>
 
 #include <atomic>
@@ -17,12 +17,12 @@
 #include <variant>
 
 #include "model/command_stream.h"
-#include "sim/area.h"
-#include "sim/commands.h"
-#include "sim/number_checks.h"
-#include "sim/output_paths.h"
-#include "sim/replay.h"
-#include "sim/rtl_build.h"
+#include "sim/cli/commands.h"
+#include "sim/cli/number_checks.h"
+#include "sim/cli/output_paths.h"
+#include "sim/eda/area.h"
+#include "sim/eda/replay.h"
+#include "sim/eda/rtl_build.h"
 
 namespace shadesim {
 namespace {

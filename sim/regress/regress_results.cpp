@@ -1,4 +1,4 @@
-#include "sim/regress_results.h"
+#include "sim/regress/regress_results.h"
 
 #include <fmt/core.h>
 #include <unistd.h>
@@ -14,7 +14,7 @@
 #include <tuple>
 
 #include "model/text_file.h"
-#include "sim/junit.h"
+#include "sim/regress/junit.h"
 
 namespace shadesim {
 

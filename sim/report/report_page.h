@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "sim/report_inputs.h"
-#include "sim/tool_versions.h"
+#include "sim/eda/tool_versions.h"
+#include "sim/report/report_inputs.h"
 
 namespace shadesim {
 

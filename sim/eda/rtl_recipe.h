@@ -1,5 +1,5 @@
 // How one RTL build is made, step by step: the one home of its flags, files and commands.
-// sim/rtl_build.cpp decides what is cached under which key; this file only knows how.
+// sim/eda/rtl_build.cpp decides what is cached under which key; this file only knows how.
 //
 // A build is four products, each made once and kept in the cache:
 //   runtime   Verilator's own library (verilated.cpp, ...) and a precompiled verilated.h, per
@@ -26,7 +26,7 @@ CosimBackend parse_cosim_backend(const std::string&);  // cpp | systemc (throws 
 
 // How hard the compiler works on the Verilated model: kQuick builds fastest (-O0), kFast
 // simulates fastest (-O2 on the per-cycle code, -O0 on the code that runs once). See
-// choose_optimization in sim/rtl_build.h.
+// choose_optimization in sim/eda/rtl_build.h.
 enum class RtlOptimization { kQuick, kFast };
 std::string to_string(RtlOptimization o);  // quick | fast
 RtlOptimization parse_rtl_optimization(const std::string& s);

@@ -1,6 +1,6 @@
 // --config for the commands that shade on a unit (render, cycles): own, default, a named build
-// or a UnitConfig file (sim/unit_choice.h says what each means). Own, a build or a file fix the
-// unit, so the options that would change it are excluded; a scene that needs more than the unit
+// or a UnitConfig file (sim/jobs/unit_choice.h says what each means). Own, a build or a file fix
+// the unit, so the options that would change it are excluded; a scene that needs more than the unit
 // gives is an error naming the field.
 #pragma once
 
@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "host/frame.h"
-#include "sim/unit_choice.h"
-#include "sim/width_options.h"
+#include "sim/cli/width_options.h"
+#include "sim/jobs/unit_choice.h"
 
 namespace shadesim {
 

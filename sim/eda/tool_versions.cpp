@@ -1,10 +1,10 @@
-#include "sim/tool_versions.h"
+#include "sim/eda/tool_versions.h"
 
 #include <regex>
 #include <sstream>
 #include <stdexcept>
 
-#include "sim/process.h"
+#include "sim/eda/process.h"
 
 namespace shadesim {
 namespace {

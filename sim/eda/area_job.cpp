@@ -1,6 +1,6 @@
 // shadesim area (--config FILE.json | SCENE): area and timing of one unit configuration from
 // Yosys (generic cells, CMOS transistor estimate, iCE40 LUT4/DFF/CARRY) and nextpnr-ice40 (Fmax
-// on an HX8K where it fits), with the per-module breakdown. sim/area.h has the flow.
+// on an HX8K where it fits), with the per-module breakdown. sim/eda/area.h has the flow.
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -14,10 +14,10 @@
 #include "model/command_stream.h"
 #include "model/text_file.h"
 #include "model/unit_config_file.h"
-#include "sim/area.h"
-#include "sim/commands.h"
-#include "sim/output_paths.h"
-#include "sim/unit_choice.h"
+#include "sim/cli/commands.h"
+#include "sim/cli/output_paths.h"
+#include "sim/eda/area.h"
+#include "sim/jobs/unit_choice.h"
 
 namespace shadesim {
 namespace {
@@ -31,8 +31,8 @@ struct AreaCliOptions {
   std::string rtl_dir;  // empty: this tree's rtl/
 };
 
-// The unit --config names (sim/unit_choice.h): a build or a file alone, or own (the default) or
-// default for the SCENE given.
+// The unit --config names (sim/jobs/unit_choice.h): a build or a file alone, or own (the default)
+// or default for the SCENE given.
 UnitConfig unit_to_measure(const AreaCliOptions& o, std::string* source) {
   const std::string choice = o.config_path.empty() ? kOwnUnit : o.config_path;
   if (o.scene.empty() && (choice == kOwnUnit || choice == kDefaultUnit))
@@ -145,7 +145,7 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
      << (r.from_cache ? " when measured (this run: a cache hit)" : "") << '\n';
 }
 
-// The fast estimate (sim/area.h) of this unit from the OTHER measured units in the cache,
+// The fast estimate (sim/eda/area.h) of this unit from the OTHER measured units in the cache,
 // beside the measurement: its error against a held-out Yosys run.
 void print_estimate_check(std::ostream& os, const UnitConfig& unit, const AreaReport& measured,
                           const std::string& cache_dir) {
@@ -215,7 +215,7 @@ void register_area(CLI::App& app, int& exit_code) {
       "               CMOS cost in Yosys and are not included)\n"
       "  flip-flops   the flip-flops among them (with those the table RAM was mapped to)\n"
       "  GE           NAND2 gate equivalents: (transistors less Yosys's flip-flop cost) / 4 + 6\n"
-      "               per flip-flop, the table RAM's flip-flops left out (sim/area.h)\n"
+      "               per flip-flop, the table RAM's flip-flops left out (sim/eda/area.h)\n"
       "  RAM bits     table memories (exponent LUT entries), apart: an SRAM macro, not logic\n"
       "  per module   cells, transistors, FFs, GE and RAM bits per instance of span_setup, "
       "series_engine, specular_unit, "

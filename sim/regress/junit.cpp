@@ -1,4 +1,4 @@
-#include "sim/junit.h"
+#include "sim/regress/junit.h"
 
 #include <sstream>
 
