@@ -159,7 +159,7 @@ TEST(FixedPoint, ParseAndPrintRoundTrip) {
 // modes given: SC_TRN, SC_WRAP in IEEE 1666's default sc_fxtype_context). shadesim reads "s4.28"
 // as truncate and saturate (its stream headers and UnitConfig files write saturating formats
 // without a suffix), so the quantization agrees with sc_fix and the overflow does not: the width
-// options warn when given a width with no overflow suffix (sim/cli/width_options.h), and
+// options warn when given a width with no overflow suffix (sim/jobs/unit_widths.h), and
 // "s4.28:wrap" is what sc_fix's s4.28 means.
 TEST(FixedPoint, SuffixlessWidthTruncatesLikeScFixButSaturatesWhereScFixWraps) {
   const FixedFormat plain = parse_fixed_format("s2.4", "t");

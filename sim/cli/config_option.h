@@ -9,11 +9,13 @@
 #include <string>
 #include <vector>
 
-#include "host/frame.h"
 #include "sim/cli/width_options.h"
 #include "sim/jobs/unit_choice.h"
 
 namespace shadesim {
+
+// Accepts own, default, a named build or an existing .json file; the error lists the forms.
+CLI::Validator unit_choice_validator();
 
 // Call after add_width_options and after adding the options named in `also_excluded`.
 inline void add_config_option(CLI::App& sub, std::string& text,
@@ -46,31 +48,6 @@ inline std::string unit_choice_in_effect(const CLI::App& sub, const std::string&
     if (sub.get_option(name)->count() > 0) return kDefaultUnit;
   }
   return kOwnUnit;
-}
-
-// Sets `fo`'s unit from the --config in effect; returns its label (own:<scene>, default, the
-// build's name or the file).
-inline std::string use_unit_choice(const std::string& choice, const std::string& scene,
-                                   const WidthOptions& widths, FrameOptions& fo) {
-  if (choice == kDefaultUnit) {
-    fo.base = widths.to_config();
-    return kDefaultUnit;
-  }
-  const RtlConfig unit = resolve_unit(choice, scene);
-  fo.base = unit.unit;
-  fo.fixed_unit = true;
-  return unit.name;
-}
-
-// prepare_frame, with the --config unit named in a scene-does-not-fit error.
-inline PreparedFrame prepare_frame_on(const std::string& scene, const FrameOptions& fo,
-                                      const std::string& choice) {
-  if (choice == kDefaultUnit) return prepare_frame(scene, fo);
-  try {
-    return prepare_frame(scene, fo);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(std::string(e.what()) + " (the unit of --config " + choice + ")");
-  }
 }
 
 }  // namespace shadesim

@@ -4,14 +4,9 @@
 
 #include <CLI/CLI.hpp>
 
-namespace shadesim {
+#include "sim/regress/regress_stimulus.h"
 
-// The regression's stimulus: `regress` runs under it by default, and `cycles --regress-stimulus`
-// counts the cycles of the same runs (with the same --seed).
-struct StimulusPercentages {
-  int gap_pct, max_gap, stall_pct;
-};
-inline constexpr StimulusPercentages kRegressStimulus{20, 8, 20};
+namespace shadesim {
 
 inline void add_stimulus_options(CLI::App* sub, int& gap_pct, int& max_gap, int& stall_pct) {
   sub->add_option("--gap-pct", gap_pct, "chance of idle cycles before a command word")

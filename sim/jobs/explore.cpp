@@ -21,6 +21,7 @@
 #include "model/text_file.h"
 #include "model/unit_config_file.h"
 #include "sim/cli/commands.h"
+#include "sim/cli/config_option.h"
 #include "sim/cli/number_checks.h"
 #include "sim/cli/output_paths.h"
 #include "sim/eda/area.h"

@@ -34,6 +34,7 @@
 #include "host/scene_config.h"
 #include "model/text_file.h"
 #include "sim/cli/commands.h"
+#include "sim/cli/config_option.h"
 #include "sim/cli/number_checks.h"
 #include "sim/cli/output_paths.h"
 #include "sim/cli/stimulus_options.h"
