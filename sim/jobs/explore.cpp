@@ -1,6 +1,6 @@
-// shadesim explore SCENE...: width sweeps of the bit-accurate model against error, cycles per
-// pixel and area; the cheapest widths meeting an error budget; the Pareto front; the error of
-// the chosen point split by source.
+// shadesim explore's engine (its options: sim/cli/explore.cpp): width sweeps of the bit-accurate
+// model against error, cycles per pixel and area; the cheapest widths meeting an error budget; the
+// Pareto front; the error of the chosen point split by source.
 #include "host/explore.h"
 
 #include <unistd.h>
@@ -12,7 +12,6 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -20,36 +19,15 @@
 #include "model/command_stream.h"
 #include "model/text_file.h"
 #include "model/unit_config_file.h"
-#include "sim/cli/commands.h"
-#include "sim/cli/config_option.h"
-#include "sim/cli/number_checks.h"
-#include "sim/cli/output_paths.h"
 #include "sim/eda/area.h"
 #include "sim/eda/process.h"
 #include "sim/jobs/elapsed.h"
+#include "sim/jobs/explore.h"
 #include "sim/jobs/fixed_text.h"
 #include "sim/jobs/unit_choice.h"
 
 namespace shadesim {
 namespace {
-
-struct ExploreCliOptions {
-  std::vector<std::string> scenes;
-  double budget_lsb = 1.0;
-  double setup_budget_lsb = std::nan("");
-  int max_depth = 12;
-  std::string specular;
-  int jobs = 2;
-  std::string json_path, csv_path, out_dir;
-  std::string config_path;
-  std::string area_cache = SHADESIM_BINARY_DIR "/area-cache";
-  int out_bits = 8;
-  bool verify = false;
-  bool estimate_only = false;  // no Yosys for the front: estimates only, labelled so
-  bool no_pnr = false;         // measure the front without nextpnr (no Fmax, no Mpixel/s)
-  std::string emit_jobs;       // FILE: the verification's regress runs as job lines, not run
-  bool quiet = false;
-};
 
 // ---------------------------------------------------------------- area
 
@@ -98,7 +76,7 @@ AreaFunction area_model(const UnitConfig& start, const std::string& cache_dir) {
 
 // The front's measurement: shadesim area on the point's unit (cached like `area`), with the
 // out-of-context Fmax unless --no-pnr.
-MeasureFunction front_measure(const ExploreCliOptions& o) {
+MeasureFunction front_measure(const ExploreJobOptions& o) {
   return [o](const UnitConfig& c) {
     AreaOptions ao;
     ao.cache_dir = o.area_cache;
@@ -502,13 +480,13 @@ struct ExploreRun {
   }
 };
 
-std::filesystem::path explore_out_dir(const ExploreCliOptions& o) {
+std::filesystem::path explore_out_dir(const ExploreJobOptions& o) {
   if (!o.out_dir.empty()) return o.out_dir;
   return std::filesystem::path("out") / "explore" / std::filesystem::path(o.scenes.front()).stem();
 }
 
 // The start: a given config file, else the scenes' own smallest configuration.
-void choose_start(const ExploreCliOptions& o, ExploreRun& run) {
+void choose_start(const ExploreJobOptions& o, ExploreRun& run) {
   if (!o.config_path.empty() && o.config_path != kOwnUnit) {
     run.start = resolve_unit(o.config_path, o.scenes.front()).unit;
     run.start_source = o.config_path == kDefaultUnit ? "the default widths" : o.config_path;
@@ -528,7 +506,7 @@ void choose_start(const ExploreCliOptions& o, ExploreRun& run) {
 }
 
 // The sweep from the start, then (unless --estimate-only) Yosys on its front.
-void sweep_and_measure(const ExploreCliOptions& o, ExploreScenes& scenes, ExploreRun& run) {
+void sweep_and_measure(const ExploreJobOptions& o, ExploreScenes& scenes, ExploreRun& run) {
   ExploreOptions eo;
   eo.budget_lsb = o.budget_lsb;
   eo.jobs = o.jobs;
@@ -576,7 +554,7 @@ void write_point_configs(ExploreRun& run) {
 // ---------------------------------------------------------------- the printed run
 // One stream throughout: each part leaves its number format to the next, as they always have.
 
-void print_start(std::ostream& os, const ExploreCliOptions& o, const ExploreRun& run) {
+void print_start(std::ostream& os, const ExploreJobOptions& o, const ExploreRun& run) {
   os << "scenes       ";
   for (const auto& s : o.scenes) os << s << ' ';
   os << "\nstart        " << run.start.to_string() << "\n             from " << run.start_source
@@ -587,7 +565,7 @@ void print_start(std::ostream& os, const ExploreCliOptions& o, const ExploreRun&
 }
 
 // Every point, the search log, and the Pareto front (measured by Yosys unless --estimate-only).
-void print_points(std::ostream& os, const ExploreCliOptions& o, const ExploreRun& run) {
+void print_points(std::ostream& os, const ExploreJobOptions& o, const ExploreRun& run) {
   const ExploreResult& r = run.result;
   std::vector<const ExplorePoint*> rows;
   for (const auto& p : r.points) rows.push_back(&p);
@@ -625,7 +603,7 @@ void print_chosen(std::ostream& os, const ExploreRun& run) {
 }
 
 // No point meets the budget: which scenes no width can bring within it.
-void print_no_choice(std::ostream& os, const ExploreCliOptions& o, const ExploreRun& run) {
+void print_no_choice(std::ostream& os, const ExploreJobOptions& o, const ExploreRun& run) {
   os << "chosen       none: no evaluated point meets max " << o.budget_lsb << " LSB\n";
   for (const auto& b : run.start_budget) {
     // Widths move only the quantization part; the rest is there at any width.
@@ -641,7 +619,7 @@ void print_no_choice(std::ostream& os, const ExploreCliOptions& o, const Explore
   os << '\n';
 }
 
-void print_files_and_time(std::ostream& os, const ExploreCliOptions& o, const ExploreRun& run) {
+void print_files_and_time(std::ostream& os, const ExploreJobOptions& o, const ExploreRun& run) {
   const std::filesystem::path& out_dir = run.out_dir;
   os << "\nconfigs      " << (out_dir / "start.json").string()
      << (run.chosen() ? ", " + (out_dir / "chosen.json").string() : std::string())
@@ -655,7 +633,7 @@ void print_files_and_time(std::ostream& os, const ExploreCliOptions& o, const Ex
   if (!o.json_path.empty()) os << "plot         scripts/plot " << o.json_path << "\n";
 }
 
-void print_run(std::ostream& os, const ExploreCliOptions& o, const ExploreRun& run) {
+void print_run(std::ostream& os, const ExploreJobOptions& o, const ExploreRun& run) {
   print_start(os, o, run);
   print_points(os, o, run);
   if (run.chosen())
@@ -668,7 +646,7 @@ void print_run(std::ostream& os, const ExploreCliOptions& o, const ExploreRun& r
 
 // --verify: the chosen point (or, when none meets the budget, the start) in RTL; --emit-jobs:
 // the runs that would do it, written instead (then none is verified).
-std::vector<Verification> verify_choice(const ExploreCliOptions& o, const ExploreRun& run) {
+std::vector<Verification> verify_choice(const ExploreJobOptions& o, const ExploreRun& run) {
   std::vector<Verification> verified;
   if (!o.verify && o.emit_jobs.empty()) return verified;
   std::vector<PointToVerify> points;
@@ -704,7 +682,7 @@ nlohmann::json verification_json(const std::vector<Verification>& verified) {
   return j;
 }
 
-nlohmann::json explore_json(const ExploreCliOptions& o, const ExploreRun& run,
+nlohmann::json explore_json(const ExploreJobOptions& o, const ExploreRun& run,
                             const std::vector<Verification>& verified) {
   const ExploreResult& r = run.result;
   nlohmann::json points = nlohmann::json::array();
@@ -739,7 +717,9 @@ nlohmann::json explore_json(const ExploreCliOptions& o, const ExploreRun& run,
   return j;
 }
 
-int run_explore(const ExploreCliOptions& o) {
+}  // namespace
+
+int run_explore(const ExploreJobOptions& o) {
   ExploreRun run;
   run.out_dir = explore_out_dir(o);
   const auto t0 = std::chrono::steady_clock::now();
@@ -760,97 +740,6 @@ int run_explore(const ExploreCliOptions& o) {
   const bool all_verified = std::all_of(verified.begin(), verified.end(),
                                         [](const Verification& v) { return v.verified; });
   return run.chosen() && all_verified ? 0 : 1;
-}
-
-}  // namespace
-
-void register_explore(CLI::App& app, int& exit_code) {
-  auto o = std::make_shared<ExploreCliOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "explore",
-      "Sweep the unit's widths with the bit-accurate model and find the cheapest that meet an\n"
-      "error budget. Every point: error against the double reference (max and mean LSB per\n"
-      "channel, PSNR, % of pixels more than 1 LSB off), cycles per pixel (cycle model) and area\n"
-      "(generic cells: shadesim area's estimate, a Yosys-measured unit of the same specular kind\n"
-      "scaled module by module; with none in --area-cache the start is synthesised once, "
-      "minutes).\n"
-      "Host setup (projection, Taylor setup, visibility, reference) is done once per scene and\n"
-      "output width; a point only re-quantizes the stream and re-runs the model.\n"
-      "\n"
-      "Search:\n"
-      "  1. per stage: each knob swept alone, the others at the start widths - coefficient\n"
-      "     integer/fraction bits; series fraction/integer bits, trn/rnd, wrap/sat; the specular\n"
-      "     unit's widths and output fraction bits; specular colour fraction bits; output bits\n"
-      "     (swept for the table, never narrowed: they are what you asked for). A knob's minimum\n"
-      "     is its cheapest value (area, then narrowest) meeting the budget, else its start.\n"
-      "  2. joint: combine the minima; while that breaks the budget, try every knob one step\n"
-      "     wider (choices back to the start's) and take the cheapest step that meets the\n"
-      "     budget, else the one buying the most error (max real LSB + mean LSB) per area added.\n"
-      "  3. Pareto front of every evaluated point: (max LSB, mean LSB) against area and\n"
-      "     cycles per pixel (points at the requested output bits; error is in LSBs of a\n"
-      "     point's own output, so other output widths are shown but not compared).\n"
-      "Then the chosen point's error is split by source: (1) the unit's shading function vs\n"
-      "exact pow, (2) Taylor truncation, (3) fixed-point quantization; widths fix only (3).\n"
-      "Exit status 0 when a point meets the budget, 1 when none does, 2 on bad input.");
-  sub->add_option("scenes", o->scenes, "scene JSON file(s); one unit must serve them all")
-      ->required()
-      ->check(CLI::ExistingFile);
-  sub->add_option("--budget", o->budget_lsb, "error budget: max LSB off, every pixel and channel")
-      ->check(non_negative_number())
-      ->capture_default_str();
-  sub->add_option("--setup-budget", o->setup_budget_lsb,
-                  "Taylor error budget per triangle in output LSBs (default: the scene's, else 1)")
-      ->check(positive_number());
-  sub->add_option("--max-depth", o->max_depth, "subdivision depth limit per triangle")
-      ->check(CLI::Range(0, 16))
-      ->capture_default_str();
-  sub->add_option(
-         "--config", o->config_path,
-         "start from this unit: own (the default: the scenes' own configuration, as shadesim "
-         "config\nderives it), default (the default widths, the first scene's structure), a "
-         "named build or a\nUnitConfig FILE.json")
-      ->check(unit_choice_validator());
-  sub->add_option("--out-bits", o->out_bits, "output bits per channel for the derived start")
-      ->check(CLI::Range(1, 16))
-      ->capture_default_str()
-      ->excludes("--config");
-  sub->add_option("--specular", o->specular,
-                  "specular unit: ideal|lut|schlick|wpow, replacing the start's (its widths stay)");
-  sub->add_option("-j,--jobs", o->jobs, "threads evaluating points")
-      ->check(CLI::Range(1, 64))
-      ->capture_default_str();
-  sub->add_option(
-         "--json", o->json_path,
-         "write every point, the search and the error split as JSON (scripts/plot draws it)")
-      ->check(output_file());
-  sub->add_option("--csv", o->csv_path, "write every point as CSV")->check(output_file());
-  sub->add_option("-o,--out", o->out_dir,
-                  "folder for the config files: start.json, chosen.json, pareto_<point>.json\n"
-                  "(default out/explore/<first scene>)")
-      ->check(output_folder());
-  sub->add_option(
-         "--area-cache", o->area_cache,
-         "shadesim area's cache: the measured units the area estimate scales from (the start\n"
-         "is synthesised into it once when no unit with its specular kind is there)")
-      ->capture_default_str();
-  sub->add_flag(
-      "--verify", o->verify,
-      "co-simulate the chosen point on every scene in RTL, both backends (shadesim regress with\n"
-      "--config; its RTL is Verilated on demand) and mark it verified: 0 pixel, 0 cycle "
-      "mismatches");
-  sub->add_option(
-      "--emit-jobs", o->emit_jobs,
-      "write the regress runs --verify would do into FILE, one shell command per line (for GNU\n"
-      "parallel or a batch system; README \"Regression on many machines\") instead of running "
-      "them");
-  sub->add_flag("--estimate-only", o->estimate_only,
-                "do not synthesise the Pareto points: the front is drawn on estimated areas and "
-                "labelled so\n(by default every point on it, and the chosen one, is measured by "
-                "shadesim area: minutes\neach the first time, cached after)");
-  sub->add_flag("--no-pnr", o->no_pnr,
-                "measure the front without nextpnr-ice40 (no Fmax, no Mpixel/s; much quicker)");
-  sub->add_flag("-q,--quiet", o->quiet, "print nothing (use with --json / --csv)");
-  sub->callback([o, &exit_code]() { exit_code = run_explore(*o); });
 }
 
 }  // namespace shadesim

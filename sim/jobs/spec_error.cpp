@@ -1,4 +1,5 @@
-// `shadesim spec-error`: the speed-against-error report for the specular units.
+// `shadesim spec-error`'s engine (its options: sim/cli/spec_error.cpp): the speed-against-error
+// report for the specular units.
 //
 // For each unit configuration (a built-in width set) and each exponent, the bit-accurate unit is
 // run over the metric grids of host/specular_setup.h and compared with exact t^n; beside the
@@ -6,7 +7,8 @@
 // reload cycles, an area proxy). Then the reproduced paper figures: Bishop & Weimer's table
 // sizes and Romanyuk et al.'s Table 1, each with our metric named.
 
-#include <CLI/CLI.hpp>
+#include "sim/jobs/spec_error.h"
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -26,8 +28,6 @@
 #include "host/specular_setup.h"
 #include "model/specular_units.h"
 #include "model/text_file.h"
-#include "sim/cli/commands.h"
-#include "sim/cli/output_paths.h"
 #include "sim/eda/process.h"
 #include "sim/eda/rtl_build.h"
 #include "sim/jobs/fixed_text.h"
@@ -465,12 +465,13 @@ void write_csv(const std::string& csv_path, const std::vector<Result>& results) 
   if (!os) throw std::runtime_error(csv_path + ": write failed (--csv)");
 }
 
-void run(const std::string& exponents_text, const std::string& units, int points,
-         const std::string& json_path, const std::string& csv_path, const std::string& plot_path,
-         bool no_papers, int& exit_code) {
-  const std::vector<double> exponents = parse_exponents(exponents_text);
+}  // namespace
+
+int run_spec_error(const SpecErrorOptions& o) {
+  const std::vector<double> exponents = parse_exponents(o.exponents);
+  const int points = o.points;
   if (points < 16 || points > 1000000) throw std::invalid_argument("--points must be 16..1000000");
-  const std::vector<Candidate> cands = select_candidates(units);
+  const std::vector<Candidate> cands = select_candidates(o.units);
 
   const auto start = std::chrono::steady_clock::now();
   const size_t total = cands.size() * exponents.size();
@@ -480,7 +481,7 @@ void run(const std::string& exponents_text, const std::string& units, int points
     results.push_back(measure_candidate(c, exponents, points, progress));
   print_table(std::cout, results, exponent_range(exponents));
   std::optional<PaperFigures> papers;
-  if (!no_papers) {
+  if (!o.no_papers) {
     papers = paper_figures();
     print_paper(std::cout, *papers);
   }
@@ -489,50 +490,12 @@ void run(const std::string& exponents_text, const std::string& units, int points
   std::cout << "\n(" << total << " unit x exponent runs, " << fixed_text(secs, 1) << " s)\n";
 
   // --plot draws from the JSON: without --json it goes beside the PNG.
-  const std::string json_out = !json_path.empty()  ? json_path
-                               : plot_path.empty() ? ""
-                                                   : plot_path + ".json";
+  const std::string json_out = !o.json.empty() ? o.json : o.plot.empty() ? "" : o.plot + ".json";
   if (!json_out.empty())
     write_text_file(json_out, spec_error_json(exponents, results, papers).dump(1) + '\n');
-  if (!csv_path.empty()) write_csv(csv_path, results);
-  if (!plot_path.empty()) write_plot(plot_path, json_out);
-  exit_code = 0;
-}
-
-}  // namespace
-
-void register_spec_error(CLI::App& app, int& exit_code) {
-  auto* cmd = app.add_subcommand(
-      "spec-error",
-      "Speed against error of the specular units (LUT, Schlick divider, W_m): bit-accurate units "
-      "against exact t^n, with their costs, plus the reproduced paper figures");
-  struct Options {
-    std::string exponents = "1-1000";
-    std::string units = "all";
-    int points = 256;
-    std::string json, csv, plot;
-    bool no_papers = false;
-  };
-  auto opt = std::make_shared<Options>();
-  cmd->add_option("--exponents", opt->exponents,
-                  "exponents n: numbers, ranges a-b, a-b:step, comma-separated (default 1-1000)");
-  cmd->add_option("--units", opt->units,
-                  "all, or a comma list of " + specular_unit_names(true) + " (default all)");
-  cmd->add_option("--points", opt->points,
-                  "sample points per zone (epicentre, blooming, [0,1]) per exponent (default 256)");
-  cmd->add_option("--json", opt->json, "write the results as JSON")->check(output_file());
-  cmd->add_option("--csv", opt->csv, "write one row per unit and exponent as CSV")
-      ->check(output_file());
-  cmd->add_option(
-         "--plot", opt->plot,
-         "write a PNG of error against cost with the Pareto front (scripts/plot, matplotlib,\n"
-         "from the --json report; without --json the report goes to PLOT.json)")
-      ->check(output_file());
-  cmd->add_flag("--no-papers", opt->no_papers, "skip the Bishop and Romanyuk reproductions");
-  cmd->callback([opt, &exit_code]() {
-    run(opt->exponents, opt->units, opt->points, opt->json, opt->csv, opt->plot, opt->no_papers,
-        exit_code);
-  });
+  if (!o.csv.empty()) write_csv(o.csv, results);
+  if (!o.plot.empty()) write_plot(o.plot, json_out);
+  return 0;
 }
 
 }  // namespace shadesim
