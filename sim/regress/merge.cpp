@@ -1,30 +1,24 @@
-// shadesim merge DIR...: the regression that shards, job lines or resumed runs wrote into one or
-// more output folders, reported as one `regress` would: the same table, JSON and JUnit. What the
-// folders' plans name but no folder holds a result for is reported as missing (started and never
-// finished, or never started), a run found in two folders as a duplicate, an unreadable result
-// by its file; any of them makes the merge fail. Folder layout: sim/regress/regress_results.h.
+// The engine of shadesim merge DIR... (its options: sim/cli/merge.cpp): the regression that shards,
+// job lines or resumed runs wrote into one or more output folders, reported as one `regress` would:
+// the same table, JSON and JUnit. What the folders' plans name but no folder holds a result for is
+// reported as missing (started and never finished, or never started), a run found in two folders as
+// a duplicate, an unreadable result by its file; any of them makes the merge fail. Folder layout:
+// sim/regress/regress_results.h.
+#include "sim/regress/merge.h"
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <memory>
 #include <nlohmann/json.hpp>
 
-#include "sim/cli/commands.h"
-#include "sim/cli/output_paths.h"
 #include "sim/regress/regress_results.h"
 
 namespace shadesim {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct MergeOptions {
-  std::vector<std::string> dirs;
-  std::string json_path;
-  std::string junit_path;
-};
 
 struct Planned {
   RunSpec spec;
@@ -164,6 +158,8 @@ void print_merge_summary(const MergeOptions& o, const Gathered& g,
   }
 }
 
+}  // namespace
+
 int run_merge(const MergeOptions& o) {
   Gathered g = gather(o.dirs);
   std::vector<RunRecord> records;
@@ -198,28 +194,6 @@ int run_merge(const MergeOptions& o) {
     return 1;
   }
   return 0;
-}
-
-}  // namespace
-
-void register_merge(CLI::App& app, int& exit_code) {
-  auto o = std::make_shared<MergeOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "merge",
-      "Merge the results that `shadesim regress` runs wrote into one or more output folders "
-      "(shards,\n"
-      "job lines of --emit-jobs, resumed runs) into the summary table, JSON and JUnit one regress\n"
-      "writes. Exits 1 when a run the folders' plans name has no result (named, with whether it\n"
-      "started), when a run is in two folders, when a result file cannot be read (named), and on "
-      "any\n"
-      "mismatch, hang, timeout or error; 0 only when the whole regression is there and passed.");
-  sub->add_option("dirs", o->dirs, "regress output folders (each with plans/ and runs/)")
-      ->required();
-  sub->add_option("--json", o->json_path,
-                  "write every run's figures as JSON (the format of regress --json)")
-      ->check(output_file());
-  sub->add_option("--junit", o->junit_path, "write JUnit XML for CI")->check(output_file());
-  sub->callback([o, &exit_code]() { exit_code = run_merge(*o); });
 }
 
 }  // namespace shadesim
