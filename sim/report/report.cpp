@@ -1,16 +1,16 @@
-// shadesim report [INPUTS...]: one self-contained HTML page from the JSON the other commands
-// write (render, spec-error, explore, cycles, regress), with their plots and the tool versions.
+// shadesim report's engine (its options: sim/cli/report.cpp): one self-contained HTML page from the
+// JSON the other commands write (render, spec-error, explore, cycles, regress), with their plots
+// and the tool versions.
+#include "sim/report/report.h"
+
 #include <algorithm>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <memory>
 #include <sstream>
 
 #include "model/text_file.h"
-#include "sim/cli/commands.h"
-#include "sim/cli/output_paths.h"
 #include "sim/eda/process.h"
 #include "sim/eda/rtl_build.h"
 #include "sim/eda/tool_versions.h"
@@ -24,12 +24,6 @@ namespace fs = std::filesystem;
 // Where the inputs are read from when none are named, and where --run writes them.
 const char* kDefaultInputs = "out";
 const std::vector<std::string> kSteps = {"render", "cycles", "spec-error", "explore", "regress"};
-
-struct ReportOptions {
-  std::vector<std::string> inputs;
-  std::string out_dir = "out/report";
-  std::string run;  // comma list of kSteps, or "all"
-};
 
 std::string utc_now() {
   const std::time_t now = std::time(nullptr);
@@ -149,6 +143,8 @@ std::vector<ReportPlot> draw_plots(const ReportInputs& inputs, const fs::path& o
   return plots;
 }
 
+}  // namespace
+
 int run_report(const ReportOptions& o) {
   const fs::path out_dir = o.out_dir;
   ReportPage page;
@@ -190,39 +186,6 @@ int run_report(const ReportOptions& o) {
     std::cout << ", " << page.inputs.ignored.size() << " non-report file(s) ignored";
   std::cout << ")\n";
   return page.inputs.problems.empty() && !run_failed && !plot_failed ? 0 : 1;
-}
-
-}  // namespace
-
-void register_report(CLI::App& app, int& exit_code) {
-  auto o = std::make_shared<ReportOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "report",
-      "Write one self-contained HTML page (OUT/index.html; images embedded, nothing fetched) from "
-      "the\n"
-      "JSON the other commands write: per scene the model, reference and error images (render\n"
-      "--json), the specular Pareto plot (spec-error --json) and the width Pareto (explore "
-      "--json)\n"
-      "drawn by scripts/plot, the cycles-per-pixel breakdown (cycles --json), the regression "
-      "table\n"
-      "with each failure's replay command (regress --json), and the tool versions. Each JSON is\n"
-      "recognised by its keys. A section without input says so. Exits 1 when a named input is\n"
-      "missing or malformed, a plot or a --run step failed (the page is written anyway).");
-  sub->add_option(
-      "inputs", o->inputs,
-      "report JSON files, or folders holding them (read with the folders one level down);\n"
-      "default: out (where scripts/render, scripts/run and --run write)");
-  sub->add_option("-o,--out", o->out_dir, "folder of the page (index.html) and its plots")
-      ->capture_default_str()
-      ->check(output_folder());
-  sub->add_option(
-         "--run", o->run,
-         "first produce the inputs on the shipped scenes (run from the project folder), into "
-         "out/:\n"
-         "all, or a comma list of render, cycles (every scenes/*.json), spec-error, explore\n"
-         "(scenes/sphere.json), regress (needs Verilator; minutes the first time)")
-      ->excludes("inputs");
-  sub->callback([o, &exit_code]() { exit_code = run_report(*o); });
 }
 
 }  // namespace shadesim
