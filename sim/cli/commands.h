@@ -1,6 +1,7 @@
-// Subcommand registration. Each subcommand lives in its own sim/cmd_*.cpp and registers itself
-// here; its callback stores the process exit code in `exit_code` (non-zero on a failed check)
-// and throws std::exception for bad input, which main() reports as "shadesim: error: ...".
+// Subcommand registration. Each subcommand's options live in their own sim/cli/*.cpp, which
+// registers it here: its callback fills the engine's plain options struct (sim/jobs/, sim/regress/,
+// sim/report/, sim/eda/) and stores the engine's exit code in `exit_code` (non-zero on a failed
+// check); bad input throws std::exception, which main() reports as "shadesim: error: ...".
 #pragma once
 
 #include <CLI/CLI.hpp>

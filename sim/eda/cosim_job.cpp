@@ -1,5 +1,8 @@
-// shadesim cosim / rtl-build / rtl-params: co-simulation of any unit configuration, with the RTL
+// The engines of shadesim cosim / rtl-build / rtl-params (their options: sim/cli/cosim.cpp):
+// co-simulation of any unit configuration, with the RTL
 // Verilated on demand into the build cache (sim/eda/rtl_build.h).
+#include "sim/eda/cosim_job.h"
+
 #include <unistd.h>
 
 #include <atomic>
@@ -9,7 +12,6 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -17,9 +19,6 @@
 #include <variant>
 
 #include "model/command_stream.h"
-#include "sim/cli/commands.h"
-#include "sim/cli/number_checks.h"
-#include "sim/cli/output_paths.h"
 #include "sim/eda/area.h"
 #include "sim/eda/replay.h"
 #include "sim/eda/rtl_build.h"
@@ -28,20 +27,6 @@ namespace shadesim {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct CosimOptions {
-  std::string backend = "cpp";
-  std::string config;  // a named build or a UnitConfig FILE.json
-  std::string stream;
-  std::string waves;
-  std::string cache;
-  std::string coverage;       // FILE.dat: run the covered build, write its coverage there
-  std::string optimization;   // quick | fast; empty: by the run's length (cosim_optimization)
-  bool netlist = false;       // Yosys's gate-level netlist in place of the RTL
-  std::string netlist_cache;  // empty: <build>/netlist-cache
-  bool list = false;
-  bool list_json = false;
-};
 
 // How hard to compile a build this run needs, when --opt does not say: a --stream by its length
 // (4 cycles a pixel, regress's upper estimate), the random scenarios quick - they are short by
@@ -97,7 +82,7 @@ void list_named(bool json) {
   }
 }
 
-int run_cosim(const CosimOptions& o, std::vector<std::string> passthrough) {
+int exec_cosim(const CosimOptions& o) {
   if (o.list) {
     list_named(o.list_json);
     return 0;
@@ -150,7 +135,7 @@ int run_cosim(const CosimOptions& o, std::vector<std::string> passthrough) {
   if (!o.stream.empty()) args.insert(args.end(), {"--stream", o.stream});
   if (!o.waves.empty()) args.insert(args.end(), {"--waves", o.waves});
   if (!o.coverage.empty()) args.insert(args.end(), {"--coverage", o.coverage});
-  args.insert(args.end(), passthrough.begin(), passthrough.end());
+  args.insert(args.end(), o.passthrough.begin(), o.passthrough.end());
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -159,21 +144,9 @@ int run_cosim(const CosimOptions& o, std::vector<std::string> passthrough) {
   throw std::runtime_error("cosim: cannot run " + r.executable + ": " + std::strerror(errno));
 }
 
-struct RtlBuildCliOptions {
-  std::vector<std::string> configs;
-  bool all = false;
-  bool runtime = false;
-  std::string optimization = "fast";
-  std::vector<std::string> backends;
-  std::string cache;
-  int jobs = 0;
-  bool print_key = false;
-  bool coverage = false;
-  bool print_source_dir = false;
-  bool print_rtl_sources = false;
-};
+}  // namespace
 
-int run_rtl_build(const RtlBuildCliOptions& o) {
+int run_rtl_build(const RtlBuildJobOptions& o) {
   if (o.print_source_dir) {
     std::cout << source_dir() << '\n';
     return 0;
@@ -267,19 +240,7 @@ int run_rtl_build(const RtlBuildCliOptions& o) {
   return failed == 0 ? 0 : 1;
 }
 
-// The co-simulation's own outputs (forwarded options) are checked before any build starts.
-void check_forwarded_outputs(const std::vector<std::string>& rest) {
-  for (size_t i = 0; i < rest.size(); ++i) {
-    for (const auto& [option, folder] : {std::pair<std::string, bool>{"--json", false},
-                                         std::pair<std::string, bool>{"--save-dir", true}}) {
-      if (rest[i] == option && i + 1 < rest.size()) {
-        check_output_path(rest[i + 1], folder, option);
-      } else if (rest[i].rfind(option + "=", 0) == 0) {
-        check_output_path(rest[i].substr(option.size() + 1), folder, option);
-      }
-    }
-  }
-}
+namespace {
 
 // Failed before the co-simulation started: its --json file still says why.
 void write_failure_json(const std::vector<std::string>& rest, const std::exception& e) {
@@ -291,125 +252,30 @@ void write_failure_json(const std::vector<std::string>& rest, const std::excepti
   }
 }
 
-void register_cosim_command(CLI::App& app, int& exit_code) {
-  auto o = std::make_shared<CosimOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "cosim",
-      "Co-simulate one unit configuration: the Verilated RTL against the bit-accurate model "
-      "(every\n"
-      "pixel) and the cycle model (every scanline's cycle). The RTL is Verilated on demand into "
-      "the\n"
-      "build cache the first time a configuration is needed, and reused after that. Options not\n"
-      "listed here go to the co-simulation itself: --scenario mixed|long|short|slow|maxbp|switch|\n"
-      "tiny|edge|all, --seed, --runs, --gap-pct, --max-gap, --stall-pct, --expect-mismatch "
-      "KIND:Y,\n"
-      "--fault SITE@Y (a build with fault hooks: inject one deliberate fault),\n"
-      "--save-dir, --json FILE, --min-spec-pct, --rows (run with any unit and --help to see "
-      "them).");
-  sub->add_option("--backend", o->backend, "cpp (Verilator C++) or systemc (Verilator in SystemC)")
-      ->capture_default_str();
-  sub->add_option("--config", o->config, "a named build (see --list) or a UnitConfig FILE.json");
-  sub->add_option("--stream", o->stream,
-                  "replay a saved command stream (text form; its header names the unit)");
-  sub->add_option("--waves", o->waves,
-                  "on a mismatch, write an FST of the cycles around it (cpp backend)")
-      ->check(output_file());
-  sub->add_option("--cache", o->cache, "build cache folder (default: <build>/rtl-cache)");
-  sub->add_option(
-         "--coverage", o->coverage,
-         "run the covered build (line, toggle, user cover points) and write its Verilator\n"
-         "coverage to FILE.dat, pass or fail (several runs: FILE_<i>.dat)")
-      ->check(output_file());
-  sub->add_option("--opt", o->optimization,
-                  "compile a new build quick (-O0: builds fastest) or fast (-O2: simulates "
-                  "fastest); a cached fast build is used either way. Default: quick for the "
-                  "random scenarios (short), by the stream's length for --stream (quick under " +
-                      std::to_string(kQuickBuildCycles) + " cycles)")
-      ->check(CLI::IsMember({"quick", "fast"}));
-  sub->add_flag("--netlist", o->netlist,
-                "simulate the unit's gate-level netlist from Yosys (what `shadesim area` "
-                "measures) in place of the RTL; no fault hooks, no coverage");
-  sub->add_option("--netlist-cache", o->netlist_cache,
-                  "with --netlist: folder of the cached netlists (default: <build>/netlist-cache)");
-  sub->add_flag("--list", o->list, "list the named builds (sim/harness/builds.json)");
-  sub->add_flag("--list-json", o->list_json, "with --list: as JSON");
-  sub->allow_extras();
-  sub->callback([o, sub, &exit_code]() {
-    const std::vector<std::string> rest = sub->remaining();
-    check_forwarded_outputs(rest);
-    try {
-      exit_code = run_cosim(*o, rest);
-    } catch (const std::exception& e) {
-      write_failure_json(rest, e);
-      throw;
-    }
-  });
-}
-
-void register_rtl_build(CLI::App& app, int& exit_code) {
-  auto b = std::make_shared<RtlBuildCliOptions>();
-  CLI::App* build = app.add_subcommand(
-      "rtl-build",
-      "Verilate and compile co-simulation executables into the build cache ahead of time (the\n"
-      "commands that need one build it on demand anyway). Prints each executable's path.");
-  build->add_option("--config", b->configs, "named builds or UnitConfig FILE.json files")
-      ->delimiter(',');
-  build->add_flag("--all", b->all,
-                  "every named build in sim/harness/builds.json, on its own backends");
-  build
-      ->add_option("--backends", b->backends, "cpp, systemc, cpp_trace (default: each build's own)")
-      ->delimiter(',');
-  build->add_option("--cache", b->cache, "build cache folder (default: <build>/rtl-cache)");
-  build->add_option("-j,--jobs", b->jobs, "builds at once (default: hardware threads)")
-      ->check(non_negative_number());
-  build->add_flag("--coverage", b->coverage, "the covered builds (what regress --coverage runs)");
-  build->add_flag("--runtime", b->runtime,
-                  "compile the Verilator runtime of every flavour into the cache (once; the first "
-                  "build of a new configuration then compiles only its own model)");
-  build
-      ->add_option("--opt", b->optimization,
-                   "quick (-O0: builds fastest) or fast (-O2: simulates fastest)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"quick", "fast"}));
-  build->add_flag("--print-key", b->print_key, "print each build's cache key and build nothing");
-  build->add_flag("--print-source-dir", b->print_source_dir, "print the checkout the builds read");
-  build->add_flag("--print-rtl-sources", b->print_rtl_sources,
-                  "print shade_unit's sources, leaves first");
-  build->callback([b, &exit_code]() { exit_code = run_rtl_build(*b); });
-}
-
-void register_rtl_params(CLI::App& app, int& exit_code) {
-  auto p = std::make_shared<std::pair<std::string, std::string>>("", "verilator");
-  CLI::App* params = app.add_subcommand(
-      "rtl-params",
-      "Print shade_unit's Verilog parameters for a configuration (model/rtl_parameters.h, the one\n"
-      "mapping), one argument per line: verilator (-GNAME=V), iverilog (-Ptb_shade_unit.NAME=V)\n"
-      "or yosys (chparam's -set NAME V list).");
-  params->add_option("--config", p->first, "a named build or a UnitConfig FILE.json")->required();
-  params->add_option("--tool", p->second, "verilator, iverilog or yosys")->capture_default_str();
-  params->callback([p, &exit_code]() {
-    const RtlConfig c = resolve_rtl_config(p->first, "--config");
-    const auto list = shade_unit_parameters(c.unit, c.faults);
-    if (p->second == "verilator") {
-      for (const auto& a : verilator_parameter_args(list)) std::cout << a << '\n';
-    } else if (p->second == "iverilog") {
-      for (const auto& a : iverilog_parameter_args(list, "tb_shade_unit")) std::cout << a << '\n';
-    } else if (p->second == "yosys") {
-      std::cout << yosys_chparam_args(list) << '\n';
-    } else {
-      throw std::invalid_argument("--tool '" + p->second +
-                                  "': expected verilator, iverilog or yosys");
-    }
-    exit_code = 0;
-  });
-}
-
 }  // namespace
 
-void register_cosim(CLI::App& app, int& exit_code) {
-  register_cosim_command(app, exit_code);
-  register_rtl_build(app, exit_code);
-  register_rtl_params(app, exit_code);
+int run_cosim(const CosimOptions& o) {
+  try {
+    return exec_cosim(o);
+  } catch (const std::exception& e) {
+    write_failure_json(o.passthrough, e);
+    throw;
+  }
+}
+
+int run_rtl_params(const RtlParamsOptions& o) {
+  const RtlConfig c = resolve_rtl_config(o.config, "--config");
+  const auto list = shade_unit_parameters(c.unit, c.faults);
+  if (o.tool == "verilator") {
+    for (const auto& a : verilator_parameter_args(list)) std::cout << a << '\n';
+  } else if (o.tool == "iverilog") {
+    for (const auto& a : iverilog_parameter_args(list, "tb_shade_unit")) std::cout << a << '\n';
+  } else if (o.tool == "yosys") {
+    std::cout << yosys_chparam_args(list) << '\n';
+  } else {
+    throw std::invalid_argument("--tool '" + o.tool + "': expected verilator, iverilog or yosys");
+  }
+  return 0;
 }
 
 }  // namespace shadesim
