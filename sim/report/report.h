@@ -13,8 +13,9 @@ struct ReportOptions {
   std::string run;  // "all", or a comma list of render, cycles, spec-error, explore, regress
 };
 
-// Runs the --run steps, reads the inputs, draws the plots and writes OUT/index.html; returns the
-// exit code (1 when an input is missing or malformed, or a plot or a --run step failed).
+// Runs the --run steps, reads the inputs, draws the plots and writes index.html into out_dir;
+// returns the exit code (1 when an input is missing or malformed, or a plot or a --run step
+// failed).
 int run_report(const ReportOptions& o);
 
 }  // namespace shadesim
