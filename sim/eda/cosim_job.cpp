@@ -1,6 +1,6 @@
 // The engines of shadesim cosim / rtl-build / rtl-params (their options: sim/cli/cosim.cpp):
-// co-simulation of any unit configuration, with the RTL
-// Verilated on demand into the build cache (sim/eda/rtl_build.h).
+// co-simulation of any unit configuration, with the RTL Verilated on demand into the build cache
+// (sim/eda/rtl_build.h).
 #include "sim/eda/cosim_job.h"
 
 #include <unistd.h>
