@@ -1,7 +1,7 @@
 # RTL (rtl/*.sv) checks and co-simulation tests.
 #
 # The RTL builds themselves are not CMake targets: shadesim Verilates each unit configuration on
-# demand into <build>/rtl-cache (sim/rtl_build.h), with its Verilog parameters from the one
+# demand into <build>/rtl-cache (sim/eda/rtl_build.h), with its Verilog parameters from the one
 # mapping in model/rtl_parameters.cpp. The named builds the tests share are listed in
 # sim/harness/builds.json; the `rtl_builds` target below builds them (and the traced builds the
 # waveform tests use) once, in parallel, so every test finds them in the cache.

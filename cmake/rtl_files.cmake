@@ -1,5 +1,5 @@
 # rtl_files(<out> [UNTIL <file>]): shade_unit's RTL sources, absolute, in dependency order, from
-# the one list rtl/files.f (which sim/rtl_build.cpp and sim/area.cpp read too). UNTIL stops after
+# the one list rtl/files.f (which sim/eda/rtl_build.cpp and sim/eda/area.cpp read too). UNTIL stops after
 # that file (the specular units' own tests need the leaves up to specular_unit.sv). A change to
 # the list re-runs the configure.
 function(rtl_files out)

@@ -23,7 +23,7 @@
 
 namespace shadesim {
 
-// Area of one configuration, as the area model (sim/area.h) reports it. An AreaFunction is
+// Area of one configuration, as the area model (sim/eda/area.h) reports it. An AreaFunction is
 // called from the worker threads at once: it must be safe to call concurrently.
 struct AreaFigure {
   double cells = 0;    // the figure the search minimises

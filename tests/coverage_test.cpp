@@ -1,6 +1,6 @@
-// regress --coverage's reading of Verilator coverage files (sim/coverage.h), on hand-made .dat
+// regress --coverage's reading of Verilator coverage files (sim/eda/coverage.h), on hand-made .dat
 // files whose figures are counted by hand here, and its reading of the RTL's exclusion pragmas.
-#include "sim/coverage.h"
+#include "sim/eda/coverage.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

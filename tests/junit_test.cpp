@@ -1,5 +1,5 @@
 // JUnit XML for CI: counts, escaping, and well-formedness of what CI parsers read.
-#include "sim/junit.h"
+#include "sim/regress/junit.h"
 
 #include <gtest/gtest.h>
 

@@ -83,7 +83,7 @@ def main():
     r = run([shadesim, "spec-error", "--exponents", "20,60,200", "--points", "16", "--no-papers",
              "--json", os.path.join(inputs, "spec-error.json")])
     check(r.returncode == 0, "spec-error --json: " + r.stderr.strip())
-    # explore's format (sim/cmd_explore.cpp), three points.
+    # explore's format (sim/jobs/explore.cpp), three points.
     def point(i, stage, area, mx, mean, pareto):
         return {"index": i, "phase": "stage", "stage": stage, "knob": stage, "value": str(i), "valid": True,
                 "config_text": f"grey/1L point {i}", "error": {"max_code_lsb": mx, "mean_code_lsb": mean},
@@ -94,7 +94,7 @@ def main():
                           point(2, "series", 7525, 1, 0.09, True)]}
     with open(os.path.join(inputs, "explore.json"), "w") as f:
         json.dump(explore, f)
-    # regress's format (sim/cmd_regress.cpp write_json_report): one pass, one mismatch.
+    # regress's format (sim/regress/regress.cpp write_json_report): one pass, one mismatch.
     replay = "build/shadesim cosim --stream out/regress/failing/torus.stream --seed 1"
     regress = {"passed": 1, "mismatched": 1, "errors": 0, "skipped": 0, "wall_seconds": 3.5, "seed": 1,
                "jobs": [{"scene": "scenes/sphere.json", "config": "own", "backend": "cpp", "status": "pass",
@@ -110,7 +110,7 @@ def main():
         json.dump({"channels": 1, "series": "s4.28"}, f)  # not a report: ignored, listed
     with open(os.path.join(inputs, "junit.xml"), "w") as f:
         f.write('<testsuite name="shadesim.regress"></testsuite>\n')  # read from regress --json instead
-    # render --all-units's format (sim/cmd_render.cpp run_all_units).
+    # render --all-units's format (sim/jobs/render.cpp run_all_units).
     with open(os.path.join(inputs, "units.json"), "w") as f:
         json.dump({"scene": "scenes/specular.json",
                    "units": [{"unit": "wpow", "configuration": "wpow m=16 B=16", "max_code_lsb": 2,

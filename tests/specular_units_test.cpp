@@ -22,7 +22,7 @@
 #include "model/rtl_parameters.h"
 #include "model/specular_unit.h"
 #include "model/unit_config_file.h"
-#include "sim/width_options.h"
+#include "sim/cli/width_options.h"
 
 namespace shadesim {
 namespace {

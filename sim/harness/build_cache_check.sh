@@ -1,5 +1,5 @@
 #!/bin/sh
-# The on-demand RTL build cache (sim/rtl_build.h), on a small private cache:
+# The on-demand RTL build cache (sim/eda/rtl_build.h), on a small private cache:
 #   1. two concurrent builds of one key both succeed and name the same executable;
 #   2. the next run reuses it (cached, no Verilator);
 #   3. a changed parameter is a new key (a build);

@@ -1,6 +1,6 @@
 // The per-build part of a co-simulation executable: this build's Verilated shade_unit behind
 // CppDut or ScDut (sim/harness/verilated_dut.h, sc_dut.h), and a main that hands it to the loop
-// and driver compiled once in the harness libraries. sim/rtl_build.cpp compiles it with the
+// and driver compiled once in the harness libraries. sim/eda/rtl_build.cpp compiles it with the
 // build's Verilated model, its flavour's defines (SHADESIM_COSIM_SYSTEMC, _TRACE, _COVERAGE)
 // and its generated cosim_build.h (the parameters it was Verilated with).
 //

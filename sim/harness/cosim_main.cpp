@@ -1,7 +1,7 @@
 // The co-simulation executable of one RTL build: the Verilated shade_unit (C++, SystemC, or C++
 // with FST tracing) against the bit-accurate model (every pixel) and the cycle model (every
 // pixel's exit cycle and cmd_ready_o on every cycle); sim/harness/cosim.h states the contract.
-// shadesim builds one per parameter set into its cache (sim/rtl_build.h) and runs it through
+// shadesim builds one per parameter set into its cache (sim/eda/rtl_build.h) and runs it through
 // `shadesim cosim`, which passes the unit as a file. This file is the executable's shared
 // driver, compiled once into libshadesim_harness; each build adds its Verilated model through
 // sim/harness/cosim_glue.cpp (sim/harness/cosim_executable.h):
@@ -41,11 +41,11 @@
 
 #include "model/rtl_parameters.h"
 #include "model/unit_config_file.h"
+#include "sim/cli/number_checks.h"
 #include "sim/harness/cosim.h"
 #include "sim/harness/cosim_executable.h"
 #include "sim/harness/random_stream.h"
 #include "sim/harness/verilated_dut.h"
-#include "sim/number_checks.h"
 
 namespace shadesim {
 namespace {

@@ -1,7 +1,7 @@
 // An RTL build as the harness sees it: a unit configuration, whether it can inject the
 // deliberate faults (sim/harness/fault_site.h), and a name for reports. The named builds the tests
-// share live in sim/harness/builds.json; any other UnitConfig is built on demand (sim/rtl_build.h).
-// Verilog parameters come from the one mapping in model/rtl_parameters.h.
+// share live in sim/harness/builds.json; any other UnitConfig is built on demand
+// (sim/eda/rtl_build.h). Verilog parameters come from the one mapping in model/rtl_parameters.h.
 #pragma once
 
 #include <string>
@@ -17,7 +17,7 @@ struct RtlConfig {
   UnitConfig unit;
   InjectedFaults faults;
   std::vector<std::string> backends;  // named builds: the backends the tests use
-  // Non-empty: the gate-level netlist of `unit` (sim/area.h unit_netlist: Yosys's flat netlist,
+  // Non-empty: the gate-level netlist of `unit` (sim/eda/area.h unit_netlist: Yosys's flat netlist,
   // parameters baked in) is Verilated in place of rtl/; the build is keyed by its contents.
   // No fault hooks and no coverage in such a build.
   std::string netlist;

@@ -1,0 +1,102 @@
+// shadesim config SCENE...: its options; the engine is sim/jobs/config.h.
+#include "sim/jobs/config.h"
+
+#include <CLI/CLI.hpp>
+#include <memory>
+
+#include "sim/cli/commands.h"
+#include "sim/cli/number_checks.h"
+#include "sim/cli/output_paths.h"
+
+namespace shadesim {
+
+void register_config(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<ConfigOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "config",
+      "Derive the smallest unit that shades the scene(s) within the error budget, print every "
+      "field\n"
+      "with how it was derived (with the measured numbers), and the error the bit-accurate model\n"
+      "reaches on each scene with it. --json writes a UnitConfig file for --config.\n"
+      "Rules:\n"
+      "  channels     1 if every scene is grey, else 3\n"
+      "  lights       the most directional lights of any scene\n"
+      "  specular     none (no specular unit, no specular series) when no material has a\n"
+      "               specular term (specular colour x light colour 0 in every channel); else\n"
+      "               the unit the materials name (all must name one); `ideal` is not hardware\n"
+      "               (its RTL slot outputs 0), so it becomes W_16 B=16 pipelined, or where\n"
+      "               that misses the budget on the scenes (measured), the first of W_32 B=16,\n"
+      "               LUT A=10 B=12 F=4, LUT A=10 B=16 F=6 that meets it; the reason lists each\n"
+      "               unit tried with its error\n"
+      "  xy_bits      enough unsigned bits for the largest image width and height (at least 4)\n"
+      "  offset_bits  enough signed bits for the largest |dx|, |dy| of a span's first pixel from\n"
+      "               its triangle's origin, so no triangle is re-origined\n"
+      "  series       integer bits: the fewest (>= 2) holding every series value at every pixel\n"
+      "               (measured on a trial unit that loses nothing); fraction bits F: the proven\n"
+      "               drift bound over the longest span L, 2^-F (1 + L(L-1)/2) (half with "
+      "rounding),\n"
+      "               times the gain G of the series into one output channel, <= budget/4 LSB\n"
+      "  coef         integer bits: wrapping, the series' (exact modulo 2^iwl: span setup "
+      "multiplies\n"
+      "               coefficients only by integers); fraction bits: coefficient rounding "
+      "2^-(F+1)\n"
+      "               times the largest 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 of a pixel from its "
+      "triangle's\n"
+      "               origin, times G, <= budget/4 LSB\n"
+      "  coef_term_iwl  coefficient packing: T0 keeps coef's integer bits (it wraps); T1..T5 the\n"
+      "               fewest saturating integer bits holding every measured |T_t| + 1 LSB\n"
+      "  out_bits     as requested (--out-bits)\n"
+      "  port_words, tri_queue  as requested (--port-words 4, --tri-queue 2 by default)\n"
+      "  span_setup   host (the host sends each span's start values: no span setup, no\n"
+      "               coefficient banks, tri_queue 1) where every scene stays <= 1.10 cycles per\n"
+      "               pixel with it by the cycle model (--max-cycles-per-pixel), else unit\n"
+      "               (--span-setup to choose)\n"
+      "  diffuse_colour  multiply with 3 channels (one N.L series per light, times kd_c L_c per\n"
+      "               pixel and channel), series with 1 (--diffuse-colour to choose)\n"
+      "  spec_colour, specular widths: defaults\n"
+      "  G = sum over lights of (1, or max kd_c L_c multiplied, + max specular colour x the\n"
+      "  unit's slope on its series), the\n"
+      "  slope from t^n's <= n on [0, 1] through setup's pre-scaling. The Taylor error keeps the\n"
+      "  whole budget in setup; the fixed-point error adds at most half of it.\n"
+      "Exits 1 when the unit misses the budget on a scene (measured), saying which part: the\n"
+      "specular unit's function, or the widths, Taylor setup or N.L gate.");
+  sub->add_option("scenes", o->scenes, "scene JSON files")->required()->check(CLI::ExistingFile);
+  sub->add_option(
+         "--budget", o->budget_lsb,
+         "error budget in output LSBs (default: the smallest error_budget_lsb of the scenes)")
+      ->check(positive_number());
+  sub->add_option("--out-bits", o->out_bits, "output bits per channel")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
+  sub->add_option("--port-words", o->port_words,
+                  "command port width of the unit (64-bit words per handshake; throughput only)")
+      ->check(CLI::IsMember({1, 2, 4, 8}))
+      ->capture_default_str();
+  sub->add_option("--tri-queue", o->tri_queue, "triangle queue depth of the unit (throughput only)")
+      ->check(CLI::Range(1, 8))
+      ->capture_default_str();
+  sub->add_option("--span-setup", o->span_setup,
+                  "span setup in the unit or on the host (default: derived, see above)")
+      ->check(CLI::IsMember({"unit", "host"}));
+  sub->add_option(
+         "--diffuse-colour", o->diffuse_colour,
+         "diffuse colour rolled into the series or multiplied per pixel (default: derived)")
+      ->check(CLI::IsMember({"series", "multiply"}));
+  sub->add_option("--max-cycles-per-pixel", o->max_cycles_per_pixel,
+                  "the cycles/pixel host span setup may take (cycle model) for config to choose it")
+      ->check(positive_number())
+      ->capture_default_str();
+  sub->add_option(
+      "--ideal-unit", o->ideal_unit,
+      "hardware unit for scenes that name ideal, and no other: wpow (W_16 B=16 pipelined),\n"
+      "lut or schlick (their default widths), or ideal to keep the yardstick (no RTL); default:\n"
+      "W_16, else the first of W_32 and two interpolating LUTs that meets the budget");
+  sub->add_option(
+         "--json", o->json_path,
+         "write the UnitConfig JSON (loadable by --config) with a \"derivation\" block: reasons, "
+         "measurements, errors")
+      ->check(output_file());
+  sub->callback([o, &exit_code]() { exit_code = run_config(*o); });
+}
+
+}  // namespace shadesim

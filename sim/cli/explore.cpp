@@ -1,0 +1,103 @@
+// shadesim explore SCENE...: its options; the engine is sim/jobs/explore.h.
+#include "sim/jobs/explore.h"
+
+#include <CLI/CLI.hpp>
+#include <memory>
+
+#include "sim/cli/commands.h"
+#include "sim/cli/config_option.h"
+#include "sim/cli/number_checks.h"
+#include "sim/cli/output_paths.h"
+
+namespace shadesim {
+
+void register_explore(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<ExploreJobOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "explore",
+      "Sweep the unit's widths with the bit-accurate model and find the cheapest that meet an\n"
+      "error budget. Every point: error against the double reference (max and mean LSB per\n"
+      "channel, PSNR, % of pixels more than 1 LSB off), cycles per pixel (cycle model) and area\n"
+      "(generic cells: shadesim area's estimate, a Yosys-measured unit of the same specular kind\n"
+      "scaled module by module; with none in --area-cache the start is synthesised once, "
+      "minutes).\n"
+      "Host setup (projection, Taylor setup, visibility, reference) is done once per scene and\n"
+      "output width; a point only re-quantizes the stream and re-runs the model.\n"
+      "\n"
+      "Search:\n"
+      "  1. per stage: each knob swept alone, the others at the start widths - coefficient\n"
+      "     integer/fraction bits; series fraction/integer bits, trn/rnd, wrap/sat; the specular\n"
+      "     unit's widths and output fraction bits; specular colour fraction bits; output bits\n"
+      "     (swept for the table, never narrowed: they are what you asked for). A knob's minimum\n"
+      "     is its cheapest value (area, then narrowest) meeting the budget, else its start.\n"
+      "  2. joint: combine the minima; while that breaks the budget, try every knob one step\n"
+      "     wider (choices back to the start's) and take the cheapest step that meets the\n"
+      "     budget, else the one buying the most error (max real LSB + mean LSB) per area added.\n"
+      "  3. Pareto front of every evaluated point: (max LSB, mean LSB) against area and\n"
+      "     cycles per pixel (points at the requested output bits; error is in LSBs of a\n"
+      "     point's own output, so other output widths are shown but not compared).\n"
+      "Then the chosen point's error is split by source: (1) the unit's shading function vs\n"
+      "exact pow, (2) Taylor truncation, (3) fixed-point quantization; widths fix only (3).\n"
+      "Exit status 0 when a point meets the budget, 1 when none does, 2 on bad input.");
+  sub->add_option("scenes", o->scenes, "scene JSON file(s); one unit must serve them all")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_option("--budget", o->budget_lsb, "error budget: max LSB off, every pixel and channel")
+      ->check(non_negative_number())
+      ->capture_default_str();
+  sub->add_option("--setup-budget", o->setup_budget_lsb,
+                  "Taylor error budget per triangle in output LSBs (default: the scene's, else 1)")
+      ->check(positive_number());
+  sub->add_option("--max-depth", o->max_depth, "subdivision depth limit per triangle")
+      ->check(CLI::Range(0, 16))
+      ->capture_default_str();
+  sub->add_option(
+         "--config", o->config_path,
+         "start from this unit: own (the default: the scenes' own configuration, as shadesim "
+         "config\nderives it), default (the default widths, the first scene's structure), a "
+         "named build or a\nUnitConfig FILE.json")
+      ->check(unit_choice_validator());
+  sub->add_option("--out-bits", o->out_bits, "output bits per channel for the derived start")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str()
+      ->excludes("--config");
+  sub->add_option("--specular", o->specular,
+                  "specular unit: ideal|lut|schlick|wpow, replacing the start's (its widths stay)");
+  sub->add_option("-j,--jobs", o->jobs, "threads evaluating points")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  sub->add_option(
+         "--json", o->json_path,
+         "write every point, the search and the error split as JSON (scripts/plot draws it)")
+      ->check(output_file());
+  sub->add_option("--csv", o->csv_path, "write every point as CSV")->check(output_file());
+  sub->add_option("-o,--out", o->out_dir,
+                  "folder for the config files: start.json, chosen.json, pareto_<point>.json\n"
+                  "(default out/explore/<first scene>)")
+      ->check(output_folder());
+  sub->add_option(
+         "--area-cache", o->area_cache,
+         "shadesim area's cache: the measured units the area estimate scales from (the start\n"
+         "is synthesised into it once when no unit with its specular kind is there)")
+      ->capture_default_str();
+  sub->add_flag(
+      "--verify", o->verify,
+      "co-simulate the chosen point on every scene in RTL, both backends (shadesim regress with\n"
+      "--config; its RTL is Verilated on demand) and mark it verified: 0 pixel, 0 cycle "
+      "mismatches");
+  sub->add_option(
+      "--emit-jobs", o->emit_jobs,
+      "write the regress runs --verify would do into FILE, one shell command per line (for GNU\n"
+      "parallel or a batch system; README \"Regression on many machines\") instead of running "
+      "them");
+  sub->add_flag("--estimate-only", o->estimate_only,
+                "do not synthesise the Pareto points: the front is drawn on estimated areas and "
+                "labelled so\n(by default every point on it, and the chosen one, is measured by "
+                "shadesim area: minutes\neach the first time, cached after)");
+  sub->add_flag("--no-pnr", o->no_pnr,
+                "measure the front without nextpnr-ice40 (no Fmax, no Mpixel/s; much quicker)");
+  sub->add_flag("-q,--quiet", o->quiet, "print nothing (use with --json / --csv)");
+  sub->callback([o, &exit_code]() { exit_code = run_explore(*o); });
+}
+
+}  // namespace shadesim

@@ -1,0 +1,183 @@
+// shadesim config's engine (its options: sim/cli/config.cpp): derive the smallest unit that shades
+// the scenes within the error budget (host/scene_config.h), print each field with how it was
+// derived, and the error the bit-accurate model reaches on each scene with it.
+#include "sim/jobs/config.h"
+
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+
+#include "host/frame.h"
+#include "host/metrics.h"
+#include "host/reference.h"
+#include "host/scene_config.h"
+#include "host/scene_error.h"
+#include "model/command_stream.h"
+#include "model/shade_unit.h"
+#include "model/specular_units.h"
+#include "model/text_file.h"
+
+namespace shadesim {
+namespace {
+
+// The scene on exactly `config`, through the model and the reference, with render's metrics.
+ErrorStats shade(const std::string& path, const UnitConfig& config, const DeriveOptions& d) {
+  return scene_error(path, config, d.budget_lsb, d.max_depth);
+}
+
+// Why a scene misses the budget: the specular unit's function when exact pow on the same widths
+// meets it, else the widths, the Taylor setup or the N.L gate (exact pow misses it too).
+std::string missed_budget_part(const std::string& path, const ErrorStats& e,
+                               const std::optional<ErrorStats>& ideal, double budget) {
+  std::ostringstream os;
+  os << path << ": max " << e.max_code_lsb << " LSB, " << e.max_code_lsb - code_budget(budget)
+     << " LSB over the " << budget << " LSB budget (" << code_budget(budget)
+     << " in output codes): ";
+  if (ideal && ideal->max_code_lsb <= code_budget(budget)) {
+    os << "the specular unit's own approximation of t^n (exact pow on the same widths: "
+       << ideal->max_code_lsb << " LSB); try another unit or its fields (shadesim spec-error)";
+  } else {
+    os << "the widths, the Taylor setup or the N.L gate, not the specular unit"
+       << (ideal
+               ? " (exact pow on the same widths: " + std::to_string(ideal->max_code_lsb) + " LSB)"
+               : std::string())
+       << "; a lower --budget narrows the setup and widens the series";
+  }
+  return os.str();
+}
+
+DeriveOptions derive_options(const ConfigOptions& o) {
+  DeriveOptions d;
+  if (!std::isnan(o.budget_lsb)) d.budget_lsb = o.budget_lsb;
+  d.out_bits = o.out_bits;
+  d.port_words = o.port_words;
+  d.tri_queue = o.tri_queue;
+  d.max_cycles_per_pixel = o.max_cycles_per_pixel;
+  if (!o.span_setup.empty()) d.span_setup = parse_span_setup(o.span_setup, "--span-setup");
+  if (!o.diffuse_colour.empty())
+    d.diffuse_colour = parse_diffuse_colour(o.diffuse_colour, "--diffuse-colour");
+  if (!o.ideal_unit.empty()) {
+    const SpecularUnitKind ideal_as = parse_specular_unit(o.ideal_unit, "--ideal-unit");
+    if (ideal_as != d.ideal_substitute.kind) {
+      d.ideal_substitute = SpecularConfig{};  // that unit's default widths
+      d.ideal_substitute.kind = ideal_as;
+    }
+    d.ideal_fallbacks.clear();  // the unit asked for, and no other
+  }
+  return d;
+}
+
+// The unit, and each field with how it was derived.
+void print_derivation(const DerivedConfig& derived) {
+  std::cout << "unit         " << derived.config.to_string() << "\n\n";
+  size_t width = 0;
+  for (const auto& r : derived.reasons)
+    width = std::max(width, r.field.size() + r.value.size() + 3);
+  for (const auto& r : derived.reasons) {
+    std::cout << "  " << std::left << std::setw(static_cast<int>(width))
+              << (r.field + " = " + r.value) << "  " << r.reason << '\n';
+  }
+}
+
+// One scene on the derived unit: its error printed, and as JSON. A hardware specular unit gets
+// the exact-pow yardstick on the same widths: what of the error is the unit's own. A scene over
+// the budget adds why to `missed`.
+nlohmann::json check_scene(const std::string& path, const DerivedConfig& derived,
+                           const DeriveOptions& d, std::vector<std::string>& missed) {
+  const UnitConfig& cfg = derived.config;
+  const double budget = derived.measured.budget_lsb;
+  const ErrorStats e = shade(path, cfg, d);
+  std::cout << "  " << path << ": max " << e.max_code_lsb << " LSB, mean " << std::setprecision(4)
+            << e.mean_code_lsb << " LSB, PSNR "
+            << (std::isinf(e.psnr_db) ? std::string("inf")
+                                      : std::to_string(e.psnr_db).substr(0, 5) + " dB")
+            << ", max real " << std::setprecision(3) << e.max_real_lsb << " LSB, "
+            << e.pixels_over_1lsb << " of " << e.pixels << " pixels off by more than 1\n";
+  nlohmann::json yardstick = nullptr;
+  std::optional<ErrorStats> with_ideal;
+  if (specular_unit(cfg.specular.kind).hardware) {
+    UnitConfig ideal = cfg;
+    ideal.specular.kind = SpecularUnitKind::kIdeal;
+    const ErrorStats y = shade(path, ideal, d);
+    with_ideal = y;
+    std::cout << "    with ideal (exact pow, not hardware) on the same widths: max "
+              << y.max_code_lsb << " LSB, max real " << std::setprecision(3) << y.max_real_lsb
+              << " LSB\n";
+    if (y.max_code_lsb < e.max_code_lsb) {
+      std::cout << "    the difference is the " << to_string(cfg.specular.kind)
+                << " unit's own approximation of t^n, not the widths' (see shadesim spec-error, "
+                   "--fit)\n";
+    }
+    yardstick = {{"max_code_lsb", y.max_code_lsb}, {"max_real_lsb", y.max_real_lsb}};
+  }
+  if (e.max_code_lsb > code_budget(budget))
+    missed.push_back(missed_budget_part(path, e, with_ideal, budget));
+  return {{"scene", path},
+          {"with_ideal_specular", yardstick},
+          {"within_budget", e.max_code_lsb <= code_budget(budget)},
+          {"pixels", e.pixels},
+          {"max_code_lsb", e.max_code_lsb},
+          {"mean_code_lsb", e.mean_code_lsb},
+          {"psnr_db", std::isinf(e.psnr_db) ? nlohmann::json(nullptr) : nlohmann::json(e.psnr_db)},
+          {"max_real_lsb", e.max_real_lsb},
+          {"pixels_over_1lsb", e.pixels_over_1lsb}};
+}
+
+// The UnitConfig's own fields (load_unit_config and --config read them), and beside them the
+// "derivation" annotation, which the loader ignores.
+nlohmann::json config_json(const ConfigOptions& o, const DerivedConfig& derived,
+                           const nlohmann::json& scenes) {
+  nlohmann::json j = nlohmann::json::parse(config_to_json(derived.config));
+  nlohmann::json reasons = nlohmann::json::array();
+  for (const auto& r : derived.reasons)
+    reasons.push_back({{"field", r.field}, {"value", r.value}, {"reason", r.reason}});
+  const ConfigMeasurements& m = derived.measured;
+  j["derivation"] = {{"scenes", o.scenes},
+                     {"reasons", reasons},
+                     {"measured",
+                      {{"budget_lsb", m.budget_lsb},
+                       {"max_width", m.max_width},
+                       {"max_height", m.max_height},
+                       {"longest_span", m.longest_span},
+                       {"max_offset", m.max_offset},
+                       {"max_monomial_sum", m.max_monomial_sum},
+                       {"series_min", m.series_min},
+                       {"series_max", m.series_max},
+                       {"difference_max", m.difference_max},
+                       {"coef_max", m.coef_max},
+                       {"gain", m.gain},
+                       {"drift_share_lsb", m.drift_share_lsb},
+                       {"coef_share_lsb", m.coef_share_lsb}}},
+                     {"error", scenes}};
+  return j;
+}
+
+}  // namespace
+
+int run_config(const ConfigOptions& o) {
+  const DeriveOptions d = derive_options(o);
+  const DerivedConfig derived = derive_config(o.scenes, d);
+  print_derivation(derived);
+  std::cout << "\nerror on this unit (8-bit codes vs the reference rounded by the same rule; real "
+               "= before "
+               "rounding the reference)\n";
+  nlohmann::json scenes = nlohmann::json::array();
+  std::vector<std::string> missed;
+  for (const auto& path : o.scenes) scenes.push_back(check_scene(path, derived, d, missed));
+  if (!o.json_path.empty()) {
+    write_text_file(o.json_path, config_json(o, derived, scenes).dump(2) + '\n');
+    std::cout << "\nconfig       " << o.json_path << " (use with --config)\n";
+  }
+  if (!missed.empty()) {
+    std::cerr << "shadesim config: the unit misses the budget on " << missed.size()
+              << " scene(s):\n";
+    for (const auto& m : missed) std::cerr << "  " << m << '\n';
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace shadesim

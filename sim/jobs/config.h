@@ -1,0 +1,29 @@
+// shadesim config's engine: the smallest unit that shades the scenes within the error budget, with
+// each field's derivation (sim/jobs/config.cpp). The command line that fills ConfigOptions:
+// sim/cli/config.cpp.
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace shadesim {
+
+struct ConfigOptions {
+  std::vector<std::string> scenes;
+  double budget_lsb = std::nan("");
+  int out_bits = 8;
+  int port_words = 4;
+  int tri_queue = 2;
+  std::string ideal_unit;      // empty: W_16, then the fallbacks that meet the budget
+  std::string span_setup;      // empty: derived
+  std::string diffuse_colour;  // empty: derived
+  double max_cycles_per_pixel = 1.10;
+  std::string json_path;
+};
+
+// Derives the unit, prints it and each scene's error on it, writes --json; returns the exit code
+// (1 when the unit misses the budget on a scene).
+int run_config(const ConfigOptions& o);
+
+}  // namespace shadesim

@@ -1,0 +1,745 @@
+// shadesim explore's engine (its options: sim/cli/explore.cpp): width sweeps of the bit-accurate
+// model against error, cycles per pixel and area; the cheapest widths meeting an error budget; the
+// Pareto front; the error of the chosen point split by source.
+#include "host/explore.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "host/scene_config.h"
+#include "model/command_stream.h"
+#include "model/text_file.h"
+#include "model/unit_config_file.h"
+#include "sim/eda/area.h"
+#include "sim/eda/process.h"
+#include "sim/jobs/elapsed.h"
+#include "sim/jobs/explore.h"
+#include "sim/jobs/fixed_text.h"
+#include "sim/jobs/unit_choice.h"
+
+namespace shadesim {
+namespace {
+
+// ---------------------------------------------------------------- area
+
+// The area every point shows: sim/eda/area.h's estimate_area(), which scales a Yosys-measured
+// anchor of the same specular unit module by module. The anchors are the measured units in the
+// area cache; when none has the start's specular unit, the start is synthesised once (minutes,
+// cached for every later run).
+AreaFunction area_model(const UnitConfig& start, const std::string& cache_dir) {
+  std::vector<AreaReport> anchors = load_area_reports(cache_dir);
+  // The sweep's span_setup knob needs a unit-setup anchor too: a host-setup unit has no span
+  // setup to scale from (a unit-setup anchor serves both sites).
+  std::vector<UnitConfig> needed = {start};
+  if (start.host_setup()) {
+    UnitConfig unit = start;
+    unit.span_setup = SpanSetupSite::kUnit;
+    unit.tri_queue = 2;  // config's default queue
+    needed.push_back(unit);
+  }
+  for (const UnitConfig& u : needed) {
+    const bool have_anchor = std::any_of(anchors.begin(), anchors.end(), [&](const AreaReport& r) {
+      try {
+        (void)estimate_area(u, {r});
+        return true;
+      } catch (const std::runtime_error&) {
+        return false;
+      }
+    });
+    if (have_anchor) continue;
+    std::cerr << "explore: no measured " << to_string(u.specular.kind) << " unit with "
+              << to_string(u.span_setup) << " span setup in " << cache_dir
+              << " to scale areas from: synthesising it with Yosys once (minutes; cached)\n";
+    AreaOptions ao;
+    ao.cache_dir = cache_dir;
+    ao.place_and_route = false;
+    ao.breakdown = true;  // estimate_area scales the per-module cells
+    ao.progress = &std::cerr;
+    anchors.push_back(unit_area(u, ao));
+  }
+  auto shared = std::make_shared<const std::vector<AreaReport>>(std::move(anchors));
+  return [shared](const UnitConfig& c) {
+    const AreaEstimate e = estimate_area(c, *shared);
+    return AreaFigure{static_cast<double>(e.cells), static_cast<double>(e.lut4),
+                      "generic cells, " + e.label()};
+  };
+}
+
+// The front's measurement: shadesim area on the point's unit (cached like `area`), with the
+// out-of-context Fmax unless --no-pnr.
+MeasureFunction front_measure(const ExploreJobOptions& o) {
+  return [o](const UnitConfig& c) {
+    AreaOptions ao;
+    ao.cache_dir = o.area_cache;
+    ao.place_and_route = !o.no_pnr;
+    ao.breakdown = false;
+    ao.progress = o.quiet ? nullptr : &std::cerr;
+    const AreaReport a = unit_area(c, ao);
+    MeasuredArea m;
+    m.cells = static_cast<double>(a.cells);
+    m.gate_equivalents = static_cast<double>(a.gate_equivalents());
+    m.lut4 = static_cast<double>(a.ice40.lut4);
+    m.fits_hx8k = a.ice40.fits_hx8k;
+    m.fmax_mhz = a.ice40.fmax_mhz;
+    m.logic_depth = a.logic_depth.gates;
+    m.note = a.ice40.fmax_mhz ? a.ice40.fit_note : a.ice40.pnr_note;
+    return m;
+  };
+}
+
+// The measured front: Yosys's cells beside the estimate, GE, LUT4s, Fmax and Mpixel/s.
+void print_measured_front(std::ostream& os, const ExploreResult& r) {
+  std::vector<std::size_t> rows;
+  for (std::size_t i = 0; i < r.points.size(); ++i)
+    if (r.points[i].measured && (r.points[i].pareto || (r.chosen && *r.chosen == i)))
+      rows.push_back(i);
+  std::sort(rows.begin(), rows.end(), [&](std::size_t a, std::size_t b) {
+    return r.points[a].front_area() < r.points[b].front_area();
+  });
+  os << "Pareto front, Yosys-measured (shadesim area on each point; Fmax out of context on an "
+        "iCE40 HX8K)\n"
+     << std::left << std::setw(6) << "point" << std::setw(22) << "knob" << std::setw(8) << "value"
+     << std::right << std::setw(8) << "max LSB" << std::setw(8) << "cyc/px" << std::setw(10)
+     << "est cells" << std::setw(10) << "cells" << std::setw(8) << "est err" << std::setw(9) << "GE"
+     << std::setw(8) << "LUT4" << std::setw(7) << "depth" << std::setw(9) << "Fmax MHz"
+     << std::setw(9) << "Mpix/s"
+     << "\n";
+  for (const std::size_t i : rows) {
+    const ExplorePoint& p = r.points[i];
+    const MeasuredArea& m = *p.measured;
+    std::ostringstream fmax, mpix;
+    if (m.fmax_mhz) {
+      fmax << std::fixed << std::setprecision(1) << *m.fmax_mhz;
+      mpix << std::fixed << std::setprecision(1) << *p.mpixel_per_s();
+    } else {
+      fmax << "-";
+      mpix << "-";
+    }
+    const double err = m.cells > 0 ? 100.0 * (p.figures.area.cells / m.cells - 1.0) : 0.0;
+    os << std::left << std::setw(6) << i << std::setw(22) << (p.knob.empty() ? p.phase : p.knob)
+       << std::setw(8) << (p.value.empty() ? "-" : p.value) << std::right << std::setw(8)
+       << p.figures.error.max_code_lsb << std::setw(8) << std::fixed << std::setprecision(3)
+       << p.figures.cycles_per_pixel << std::setw(10) << std::setprecision(0)
+       << p.figures.area.cells << std::setw(10) << m.cells << std::setw(7) << std::showpos
+       << std::setprecision(1) << err << std::noshowpos << "%" << std::setw(9)
+       << std::setprecision(0) << m.gate_equivalents << std::setw(8) << m.lut4 << std::setw(7)
+       << m.logic_depth << std::setw(9) << fmax.str() << std::setw(9) << mpix.str()
+       << (r.chosen && *r.chosen == i ? "  CHOSEN" : "") << (p.pareto ? "" : "  (off the front)")
+       << "\n";
+  }
+  const EstimateError e = estimate_error(r);
+  os << "estimate vs Yosys on these " << e.count << " points: median |error| " << std::fixed
+     << std::setprecision(1) << e.median_pct << " %, max " << e.max_pct
+     << " % (generic cells; the sweep's other points carry estimates only)\n";
+}
+
+// ---------------------------------------------------------------- RTL verification
+
+// One point to co-simulate in RTL: its configuration as a value and as the config file written
+// into --out (config_to_json), so an on-demand build can take either.
+struct PointToVerify {
+  std::string name;  // "chosen", "start", "pareto_3"
+  UnitConfig config;
+  std::string config_file;
+};
+
+// The RTL verdict of one point: `shadesim regress` of every scene on the point's configuration,
+// both backends, under regress's default gaps and back-pressure.
+struct Verification {
+  std::string name;
+  bool verified = false;  // every run passed: 0 pixel and 0 cycle mismatches
+  long passed = 0, mismatched = 0, errors = 0, skipped = 0;
+  std::string report;  // regress's --json
+  std::string log;
+};
+
+// Co-simulates each point on every scene through the on-demand Verilated builds (the RTL of a
+// configuration not yet built is Verilated into the build cache first) by running this very
+// shadesim's `regress` as a child, and marks the point verified or not.
+// --emit-jobs: the regress runs --verify would do, one command per line (regress --emit-jobs
+// writes them, so a line is the same as any regress job line), each point's results into
+// <out>/verify/<point>/ for `shadesim merge`.
+void emit_verify_jobs(const std::vector<PointToVerify>& points,
+                      const std::vector<std::string>& scenes, const std::string& out_dir,
+                      const std::string& jobs_file) {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec)
+    throw std::runtime_error("--emit-jobs: cannot find the shadesim executable: " + ec.message());
+  std::ofstream all(jobs_file);
+  if (!all) throw std::runtime_error("--emit-jobs " + jobs_file + ": cannot open for writing");
+  size_t lines = 0;
+  std::string dirs;
+  for (const auto& p : points) {
+    const std::filesystem::path dir = std::filesystem::path(out_dir) / "verify" / p.name;
+    std::filesystem::create_directories(dir);
+    const std::string part = (dir / "jobs.txt").string(), log = (dir / "emit.log").string();
+    std::vector<std::string> args = {self.string(), "regress"};
+    args.insert(args.end(), scenes.begin(), scenes.end());
+    args.insert(args.end(),
+                {"--config", p.config_file, "--out", dir.string(), "--emit-jobs", part});
+    if (run_process(args, log).exit_code != 0) {
+      throw std::runtime_error("--emit-jobs: shadesim regress --emit-jobs for " + p.name +
+                               " failed (log: " + log + ")");
+    }
+    std::ifstream is(part);
+    for (std::string line; std::getline(is, line);) {
+      all << line << '\n';
+      ++lines;
+    }
+    dirs += " " + dir.string();
+  }
+  if (!all) throw std::runtime_error("--emit-jobs " + jobs_file + ": write failed");
+  std::cout << "jobs         " << lines << " regress run(s) of the verification in " << jobs_file
+            << "; run them (parallel < " << jobs_file << "), then shadesim merge" << dirs << "\n";
+}
+
+std::vector<Verification> verify_in_rtl(const std::vector<PointToVerify>& points,
+                                        const std::vector<std::string>& scenes,
+                                        const std::string& out_dir) {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec)
+    throw std::runtime_error("--verify: cannot find the shadesim executable: " + ec.message());
+  std::vector<Verification> out;
+  for (const auto& p : points) {
+    Verification v;
+    v.name = p.name;
+    const std::filesystem::path dir = std::filesystem::path(out_dir) / "verify" / p.name;
+    std::filesystem::create_directories(dir);
+    v.report = (dir / "regress.json").string();
+    v.log = (dir / "regress.log").string();
+    std::vector<std::string> args = {self.string(), "regress"};
+    args.insert(args.end(), scenes.begin(), scenes.end());
+    args.insert(args.end(), {"--config", p.config_file, "--out", dir.string(), "--json", v.report,
+                             "--junit", (dir / "junit.xml").string()});
+    std::cerr << "verify: " << p.name << " in RTL (shadesim regress ... --config " << p.config_file
+              << "; log " << v.log << ")" << std::endl;
+    const ProcessResult r = run_process(args, v.log);
+    std::ifstream is(v.report);
+    nlohmann::json j;
+    try {
+      if (is) j = nlohmann::json::parse(is);
+    } catch (const nlohmann::json::exception&) {
+    }
+    if (j.is_object()) {
+      v.passed = j.value("passed", 0L);
+      v.mismatched = j.value("mismatched", 0L);
+      v.errors = j.value("errors", 0L);
+      v.skipped = j.value("skipped", 0L);
+    }
+    v.verified =
+        r.exit_code == 0 && v.passed > 0 && v.mismatched == 0 && v.errors == 0 && v.skipped == 0;
+    out.push_back(v);
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------- progress
+
+// A progress bar with an ETA on stderr, only when stderr is a terminal.
+class ProgressBar {
+ public:
+  ProgressBar() : tty_(isatty(STDERR_FILENO) != 0) {}
+  void operator()(const std::string& phase, std::size_t done, std::size_t total) {
+    if (!tty_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (phase != phase_) {
+      phase_ = phase;
+      phase_start_ = now;
+    }
+    // Redraw at most ten times a second: a point can take a millisecond.
+    if (done != total && now - last_draw_ < std::chrono::milliseconds(100)) return;
+    last_draw_ = now;
+    const double elapsed = std::chrono::duration<double>(now - phase_start_).count();
+    const double eta =
+        done ? elapsed / static_cast<double>(done) * static_cast<double>(total - done) : 0.0;
+    constexpr int kWidth = 30;
+    const int filled = total ? static_cast<int>(kWidth * done / total) : kWidth;
+    std::cerr << "\r" << std::left << std::setw(14) << phase << " ["
+              << std::string(static_cast<size_t>(filled), '#')
+              << std::string(static_cast<size_t>(kWidth - filled), '.') << "] " << done << "/"
+              << total << "  ETA " << std::fixed << std::setprecision(1) << eta << " s   "
+              << std::flush;
+    if (done == total) std::cerr << "\r" << std::string(80, ' ') << "\r" << std::flush;
+  }
+
+ private:
+  bool tty_;
+  std::string phase_;
+  std::chrono::steady_clock::time_point phase_start_, last_draw_;
+};
+
+// ---------------------------------------------------------------- output
+
+std::string per_channel_max(const ErrorStats& e, int channels) {
+  std::string s;
+  for (int c = 0; c < channels; ++c) {
+    if (c) s += "/";
+    s += std::to_string(e.max_code_lsb_channel[static_cast<size_t>(c)]);
+  }
+  return s;
+}
+
+std::string per_channel_mean(const ErrorStats& e, int channels) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(4);
+  for (int c = 0; c < channels; ++c) {
+    if (c) os << "/";
+    os << e.mean_code_lsb_channel[static_cast<size_t>(c)];
+  }
+  return os.str();
+}
+
+double over_1lsb_pct(const ErrorStats& e) {
+  return e.pixels ? 100.0 * static_cast<double>(e.pixels_over_1lsb) / static_cast<double>(e.pixels)
+                  : 0.0;
+}
+
+nlohmann::json psnr_json(double db) {
+  return std::isinf(db) ? nlohmann::json(nullptr) : nlohmann::json(db);
+}
+
+nlohmann::json point_json(const ExplorePoint& p, std::size_t index, int channels) {
+  nlohmann::json j = {{"index", index}, {"phase", p.phase}, {"stage", p.stage},
+                      {"knob", p.knob}, {"value", p.value}, {"valid", p.valid}};
+  if (!p.valid) {
+    j["invalid_reason"] = p.invalid_reason;
+    return j;
+  }
+  const ErrorStats& e = p.figures.error;
+  std::vector<int> max_ch;
+  std::vector<double> mean_ch;
+  for (int c = 0; c < channels; ++c) {
+    max_ch.push_back(e.max_code_lsb_channel[static_cast<size_t>(c)]);
+    mean_ch.push_back(e.mean_code_lsb_channel[static_cast<size_t>(c)]);
+  }
+  j["config"] = nlohmann::json::parse(config_to_json(p.config));
+  j["config_text"] = p.config.to_string();
+  j["error"] = {{"max_code_lsb", e.max_code_lsb},
+                {"max_code_lsb_per_channel", max_ch},
+                {"mean_code_lsb", e.mean_code_lsb},
+                {"mean_code_lsb_per_channel", mean_ch},
+                {"psnr_db", psnr_json(e.psnr_db)},
+                {"max_real_lsb", e.max_real_lsb},
+                {"pixels", e.pixels},
+                {"pixels_over_1lsb", e.pixels_over_1lsb},
+                {"pct_over_1lsb", over_1lsb_pct(e)}};
+  j["cycles"] = p.figures.cycles;
+  j["pixels"] = p.figures.pixels;
+  j["cycles_per_pixel"] = p.figures.cycles_per_pixel;
+  j["area"] = p.figures.area.cells;
+  j["area_lut4"] = p.figures.area.lut4;
+  j["area_metric"] = p.figures.area.metric;
+  j["coefficients_out_of_range"] = p.figures.coefficients_out_of_range;
+  j["meets_budget"] = p.meets_budget;
+  j["pareto"] = p.pareto;
+  if (p.measured) {
+    const MeasuredArea& m = *p.measured;
+    j["measured"] = {
+        {"cells", m.cells},
+        {"gate_equivalents", m.gate_equivalents},
+        {"lut4", m.lut4},
+        {"fits_hx8k", m.fits_hx8k},
+        {"fmax_mhz", m.fmax_mhz ? nlohmann::json(*m.fmax_mhz) : nlohmann::json()},
+        {"mpixel_per_s", p.mpixel_per_s() ? nlohmann::json(*p.mpixel_per_s()) : nlohmann::json()},
+        {"logic_depth", m.logic_depth},
+        {"note", m.note}};
+  }
+  return j;
+}
+
+nlohmann::json part_json(const ErrorPart& p) {
+  return {{"max_lsb", p.max_lsb}, {"mean_lsb", p.mean_lsb}};
+}
+
+nlohmann::json budget_json(const ErrorBudget& b) {
+  return {{"scene", b.scene},
+          {"function", part_json(b.function)},
+          {"taylor", part_json(b.taylor)},
+          {"quantization", part_json(b.quantization)},
+          {"total", part_json(b.total)}};
+}
+
+// A CSV field in double quotes, inner quotes doubled (RFC 4180).
+std::string csv_quote(const std::string& s) {
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+void write_csv(const std::string& path, const ExploreResult& r, int channels) {
+  std::ostringstream os;
+  os << "index,phase,stage,knob,value,valid,config,max_code_lsb";
+  for (int c = 0; c < channels; ++c) os << ",max_code_lsb_ch" << c;
+  os << ",mean_code_lsb";
+  for (int c = 0; c < channels; ++c) os << ",mean_code_lsb_ch" << c;
+  os << ",psnr_db,max_real_lsb,pct_over_1lsb,cycles_per_pixel,area,meets_budget,pareto,chosen\n";
+  for (std::size_t i = 0; i < r.points.size(); ++i) {
+    const ExplorePoint& p = r.points[i];
+    const ErrorStats& e = p.figures.error;
+    os << i << ',' << csv_quote(p.phase) << ',' << csv_quote(p.stage) << ',' << csv_quote(p.knob)
+       << ',' << csv_quote(p.value) << ',' << (p.valid ? 1 : 0) << ','
+       << csv_quote(p.valid ? p.config.to_string() : p.invalid_reason);
+    if (!p.valid) {
+      os << std::string(static_cast<size_t>(2 * channels + 10), ',') << (r.chosen == i ? 1 : 0)
+         << '\n';
+      continue;
+    }
+    os << ',' << e.max_code_lsb;
+    for (int c = 0; c < channels; ++c) os << ',' << e.max_code_lsb_channel[static_cast<size_t>(c)];
+    os << ',' << e.mean_code_lsb;
+    for (int c = 0; c < channels; ++c) os << ',' << e.mean_code_lsb_channel[static_cast<size_t>(c)];
+    os << ',' << (std::isinf(e.psnr_db) ? std::string("inf") : std::to_string(e.psnr_db)) << ','
+       << e.max_real_lsb << ',' << over_1lsb_pct(e) << ',' << p.figures.cycles_per_pixel << ','
+       << p.figures.area.cells << ',' << (p.meets_budget ? 1 : 0) << ',' << (p.pareto ? 1 : 0)
+       << ',' << (r.chosen == i ? 1 : 0) << '\n';
+  }
+  write_text_file(path, os.str());
+}
+
+void print_table(std::ostream& os, const std::vector<const ExplorePoint*>& rows, int channels,
+                 const std::optional<std::size_t>& chosen, const std::vector<ExplorePoint>& all) {
+  os << std::left << std::setw(12) << "phase" << std::setw(22) << "knob" << std::setw(8) << "value"
+     << std::right << std::setw(10) << "max LSB" << std::setw(channels == 1 ? 9 : 23) << "mean LSB"
+     << std::setw(9) << "PSNR dB" << std::setw(8) << ">1LSB%" << std::setw(8) << "cyc/px"
+     << std::setw(9) << "area"
+     << "   budget   (area: * Yosys-measured cells, else the estimate)\n";
+  for (const ExplorePoint* p : rows) {
+    const bool is_chosen = chosen && &all[*chosen] == p;
+    os << std::left << std::setw(12) << p->phase << std::setw(22)
+       << (p->knob.empty() ? "-" : p->knob) << std::setw(8) << (p->value.empty() ? "-" : p->value);
+    if (!p->valid) {
+      os << "invalid: " << p->invalid_reason << '\n';
+      continue;
+    }
+    const ErrorStats& e = p->figures.error;
+    std::ostringstream psnr;
+    if (std::isinf(e.psnr_db))
+      psnr << "inf";
+    else
+      psnr << std::fixed << std::setprecision(1) << e.psnr_db;
+    os << std::right << std::setw(10) << per_channel_max(e, channels)
+       << std::setw(channels == 1 ? 9 : 23) << per_channel_mean(e, channels) << std::setw(9)
+       << psnr.str() << std::setw(8) << std::fixed << std::setprecision(2) << over_1lsb_pct(e)
+       << std::setw(8) << std::setprecision(3) << p->figures.cycles_per_pixel << std::setw(9)
+       << std::setprecision(0) << p->front_area() << (p->measured ? "*" : " ") << " "
+       << (p->meets_budget ? "ok" : "over") << (p->pareto ? " pareto" : "")
+       << (is_chosen ? " CHOSEN" : "") << '\n';
+  }
+}
+
+void print_budget(std::ostream& os, const ErrorBudget& b, const std::string& what) {
+  os << std::fixed << std::setprecision(3);
+  os << "error by source, " << what << ", " << b.scene
+     << " (output LSBs before rounding; max / mean)\n"
+     << "  (1) shading function  " << std::setw(8) << b.function.max_lsb << " / "
+     << std::setprecision(4) << b.function.mean_lsb << std::setprecision(3)
+     << "   unit's function in double vs exact pow: change the unit or its fit, not a width\n"
+     << "  (2) Taylor truncation " << std::setw(8) << b.taylor.max_lsb << " / "
+     << std::setprecision(4) << b.taylor.mean_lsb << std::setprecision(3)
+     << "   quadratics vs exact cosines: the setup budget (--setup-budget) subdivides, widths "
+        "cannot\n"
+     << "  (3) quantization      " << std::setw(8) << b.quantization.max_lsb << " / "
+     << std::setprecision(4) << b.quantization.mean_lsb << std::setprecision(3)
+     << "   bit-accurate model vs the same quadratics and function in double: the widths, incl.\n"
+     << "                                             output rounding (<= 0.5 LSB unless out_bits "
+        "grows)\n"
+     << "  total                 " << std::setw(8) << b.total.max_lsb << " / "
+     << std::setprecision(4) << b.total.mean_lsb << std::setprecision(3)
+     << "   model vs reference; per pixel <= (1) + (2) + (3)\n";
+}
+
+// ---------------------------------------------------------------- the run
+
+// What one explore run found: what it prints, writes as JSON and verifies in RTL.
+struct ExploreRun {
+  std::filesystem::path out_dir;
+  UnitConfig start;
+  std::string start_source;  // where the start came from, for the reader
+  ExploreResult result;
+  std::vector<ErrorBudget> chosen_budget, start_budget;  // one per scene
+  std::vector<PointToVerify> config_files;        // written into out_dir: start, chosen, the front
+  double host_s = 0, sweep_s = 0, measure_s = 0;  // wall-clock seconds of the phases
+
+  int channels() const { return start.channels; }
+  const std::string& area_metric() const {
+    return result.points[result.start_index].figures.area.metric;
+  }
+  const ExplorePoint* chosen() const {
+    return result.chosen ? &result.points[*result.chosen] : nullptr;
+  }
+};
+
+std::filesystem::path explore_out_dir(const ExploreJobOptions& o) {
+  if (!o.out_dir.empty()) return o.out_dir;
+  return std::filesystem::path("out") / "explore" / std::filesystem::path(o.scenes.front()).stem();
+}
+
+// The start: a given config file, else the scenes' own smallest configuration.
+void choose_start(const ExploreJobOptions& o, ExploreRun& run) {
+  if (!o.config_path.empty() && o.config_path != kOwnUnit) {
+    run.start = resolve_unit(o.config_path, o.scenes.front()).unit;
+    run.start_source = o.config_path == kDefaultUnit ? "the default widths" : o.config_path;
+  } else {
+    DeriveOptions d;
+    d.budget_lsb = o.budget_lsb > 0 ? std::optional<double>(o.budget_lsb) : std::nullopt;
+    d.out_bits = o.out_bits;
+    d.max_depth = o.max_depth;
+    run.start = derive_config(o.scenes, d).config;
+    run.start_source = "the scenes' own configuration (shadesim config)";
+  }
+  if (!o.specular.empty()) {
+    run.start.specular.kind = parse_specular_unit(o.specular, "--specular");
+    run.start_source += ", specular unit " + o.specular + " (--specular)";
+  }
+  run.start.validate();
+}
+
+// The sweep from the start, then (unless --estimate-only) Yosys on its front.
+void sweep_and_measure(const ExploreJobOptions& o, ExploreScenes& scenes, ExploreRun& run) {
+  ExploreOptions eo;
+  eo.budget_lsb = o.budget_lsb;
+  eo.jobs = o.jobs;
+  ProgressBar bar;
+  const AreaFunction area = area_model(run.start, o.area_cache);
+  const auto sweep_start = std::chrono::steady_clock::now();
+  run.result = explore(scenes, run.start, area, eo, std::ref(bar));
+  run.sweep_s = seconds_since(sweep_start);
+  const auto measure_start = std::chrono::steady_clock::now();
+  if (!o.estimate_only) {
+    measure_front(run.result, front_measure(o),
+                  [&](std::size_t i, std::size_t done, std::size_t total) {
+                    if (!o.quiet)
+                      std::cerr << "explore: Yosys on Pareto point " << i << " (" << done + 1
+                                << " of " << total << " so far)\n";
+                  });
+  }
+  run.measure_s = seconds_since(measure_start);
+}
+
+void budget_errors(const ExploreScenes& scenes, std::size_t scene_count, ExploreRun& run) {
+  for (std::size_t s = 0; s < scene_count; ++s) {
+    run.start_budget.push_back(error_budget(scenes, s, run.start));
+    if (run.chosen()) run.chosen_budget.push_back(error_budget(scenes, s, run.chosen()->config));
+  }
+}
+
+// Config files of the start, the chosen point and the front, into --out, so any of them can be
+// co-simulated or synthesised by file.
+void write_point_configs(ExploreRun& run) {
+  std::filesystem::create_directories(run.out_dir);
+  const auto write_config = [&](const std::string& name, const UnitConfig& c) {
+    const std::filesystem::path file = run.out_dir / (name + ".json");
+    write_text_file(file, config_to_json(c) + '\n');
+    run.config_files.push_back({name, c, file.string()});
+  };
+  write_config("start", run.start);
+  if (run.chosen()) write_config("chosen", run.chosen()->config);
+  for (std::size_t i = 0; i < run.result.points.size(); ++i) {
+    if (run.result.points[i].pareto)
+      write_config("pareto_" + std::to_string(i), run.result.points[i].config);
+  }
+}
+
+// ---------------------------------------------------------------- the printed run
+// One stream throughout: each part leaves its number format to the next, as they always have.
+
+void print_start(std::ostream& os, const ExploreJobOptions& o, const ExploreRun& run) {
+  os << "scenes       ";
+  for (const auto& s : o.scenes) os << s << ' ';
+  os << "\nstart        " << run.start.to_string() << "\n             from " << run.start_source
+     << "\nbudget       max " << o.budget_lsb
+     << " LSB (output codes vs the reference rounded by the same rule, every pixel and "
+        "channel)\n"
+     << "area         " << run.area_metric() << "\n\n";
+}
+
+// Every point, the search log, and the Pareto front (measured by Yosys unless --estimate-only).
+void print_points(std::ostream& os, const ExploreJobOptions& o, const ExploreRun& run) {
+  const ExploreResult& r = run.result;
+  std::vector<const ExplorePoint*> rows;
+  for (const auto& p : r.points) rows.push_back(&p);
+  print_table(os, rows, run.channels(), r.chosen, r.points);
+  os << "\nsearch\n";
+  for (const auto& line : r.log) os << "  " << line << '\n';
+  std::vector<const ExplorePoint*> front;
+  for (const auto& p : r.points) {
+    if (p.pareto) front.push_back(&p);
+  }
+  std::sort(front.begin(), front.end(), [](const ExplorePoint* a, const ExplorePoint* b) {
+    return a->front_area() < b->front_area();
+  });
+  os << "\nPareto front (max LSB, mean LSB vs area and cycles/pixel), by area"
+     << (o.estimate_only ? " - ESTIMATED areas (--estimate-only): not measured by Yosys"
+                         : "; area: Yosys-measured cells")
+     << "\n";
+  print_table(os, front, run.channels(), r.chosen, r.points);
+  os << '\n';
+  if (!o.estimate_only) {
+    print_measured_front(os, r);
+    os << '\n';
+  }
+}
+
+void print_chosen(std::ostream& os, const ExploreRun& run) {
+  const ExplorePoint& c = *run.chosen();
+  os << "chosen       " << c.config.to_string() << "\n             " << c.config.specular.describe()
+     << ", spec_colour " << c.config.spec_colour.to_string() << "\n             max "
+     << c.figures.error.max_code_lsb << " LSB, mean " << std::setprecision(4)
+     << c.figures.error.mean_code_lsb << ", " << std::setprecision(3) << c.figures.cycles_per_pixel
+     << " cycles/pixel, area " << std::setprecision(0) << c.figures.area.cells << " (start "
+     << run.result.points[run.result.start_index].figures.area.cells << ")\n\n";
+  for (const auto& b : run.chosen_budget) print_budget(os, b, "chosen point");
+}
+
+// No point meets the budget: which scenes no width can bring within it.
+void print_no_choice(std::ostream& os, const ExploreJobOptions& o, const ExploreRun& run) {
+  os << "chosen       none: no evaluated point meets max " << o.budget_lsb << " LSB\n";
+  for (const auto& b : run.start_budget) {
+    // Widths move only the quantization part; the rest is there at any width.
+    const double fixed = b.function.max_lsb + b.taylor.max_lsb;
+    if (fixed > o.budget_lsb) {
+      os << "             " << b.scene << ": the shading function (" << std::setprecision(3)
+         << b.function.max_lsb << " LSB) and the Taylor truncation (" << b.taylor.max_lsb
+         << " LSB) are there at any width - no width can fix them; change the specular "
+            "unit or\n"
+         << "             its fit (function), or lower --setup-budget (Taylor)\n";
+    }
+  }
+  os << '\n';
+}
+
+void print_files_and_time(std::ostream& os, const ExploreJobOptions& o, const ExploreRun& run) {
+  const std::filesystem::path& out_dir = run.out_dir;
+  os << "\nconfigs      " << (out_dir / "start.json").string()
+     << (run.chosen() ? ", " + (out_dir / "chosen.json").string() : std::string())
+     << ", pareto_<point>.json for the front (in " << out_dir.string() << ")\n"
+     << "time         host setup " << std::setprecision(2) << run.host_s << " s, "
+     << run.result.points.size() << " points in " << run.sweep_s << " s on " << o.jobs
+     << " thread(s)"
+     << (o.estimate_only ? std::string()
+                         : ", Yosys on the front " + fixed_text(run.measure_s, 1) + " s")
+     << "\n";
+  if (!o.json_path.empty()) os << "plot         scripts/plot " << o.json_path << "\n";
+}
+
+void print_run(std::ostream& os, const ExploreJobOptions& o, const ExploreRun& run) {
+  print_start(os, o, run);
+  print_points(os, o, run);
+  if (run.chosen())
+    print_chosen(os, run);
+  else
+    print_no_choice(os, o, run);
+  for (const auto& b : run.start_budget) print_budget(os, b, "start point");
+  print_files_and_time(os, o, run);
+}
+
+// --verify: the chosen point (or, when none meets the budget, the start) in RTL; --emit-jobs:
+// the runs that would do it, written instead (then none is verified).
+std::vector<Verification> verify_choice(const ExploreJobOptions& o, const ExploreRun& run) {
+  std::vector<Verification> verified;
+  if (!o.verify && o.emit_jobs.empty()) return verified;
+  std::vector<PointToVerify> points;
+  for (const auto& v : run.config_files) {
+    if (v.name == (run.chosen() ? "chosen" : "start")) points.push_back(v);
+  }
+  if (!o.emit_jobs.empty()) {
+    emit_verify_jobs(points, o.scenes, run.out_dir.string(), o.emit_jobs);
+  } else {
+    verified = verify_in_rtl(points, o.scenes, run.out_dir.string());
+  }
+  for (const auto& v : verified) {
+    std::cout << "verified     " << v.name << ": "
+              << (v.verified ? "yes - bit- and cycle-exact in RTL" : "NO") << " (" << v.passed
+              << " runs passed, " << v.mismatched << " mismatched, " << v.errors << " error(s), "
+              << v.skipped << " skipped; both backends, every scene; " << v.report << ")\n";
+  }
+  return verified;
+}
+
+nlohmann::json verification_json(const std::vector<Verification>& verified) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& v : verified) {
+    j.push_back({{"name", v.name},
+                 {"verified", v.verified},
+                 {"passed", v.passed},
+                 {"mismatched", v.mismatched},
+                 {"errors", v.errors},
+                 {"skipped", v.skipped},
+                 {"regress_json", v.report},
+                 {"log", v.log}});
+  }
+  return j;
+}
+
+nlohmann::json explore_json(const ExploreJobOptions& o, const ExploreRun& run,
+                            const std::vector<Verification>& verified) {
+  const ExploreResult& r = run.result;
+  nlohmann::json points = nlohmann::json::array();
+  for (std::size_t i = 0; i < r.points.size(); ++i)
+    points.push_back(point_json(r.points[i], i, run.channels()));
+  nlohmann::json cb = nlohmann::json::array(), sb = nlohmann::json::array();
+  for (const auto& b : run.chosen_budget) cb.push_back(budget_json(b));
+  for (const auto& b : run.start_budget) sb.push_back(budget_json(b));
+  nlohmann::json j = {
+      {"kind", "explore"},
+      {"scenes", o.scenes},
+      {"budget_lsb", o.budget_lsb},
+      {"area_metric", run.area_metric()},
+      {"start", nlohmann::json::parse(config_to_json(run.start))},
+      {"start_source", run.start_source},
+      {"start_index", r.start_index},
+      {"chosen_index", r.chosen ? nlohmann::json(*r.chosen) : nlohmann::json(nullptr)},
+      {"points", points},
+      {"search_log", r.log},
+      {"error_budget", {{"chosen", cb}, {"start", sb}}},
+      {"config_files", nlohmann::json::array()},
+      {"seconds",
+       {{"host_setup", run.host_s}, {"sweep", run.sweep_s}, {"measure_front", run.measure_s}}},
+      {"front_measured", !o.estimate_only},
+      {"jobs", o.jobs}};
+  for (const auto& v : run.config_files)
+    j["config_files"].push_back({{"name", v.name}, {"file", v.config_file}});
+  const EstimateError ee = estimate_error(r);
+  j["estimate_error"] = {
+      {"points", ee.count}, {"median_pct", ee.median_pct}, {"max_pct", ee.max_pct}};
+  j["verification"] = verification_json(verified);
+  return j;
+}
+
+}  // namespace
+
+int run_explore(const ExploreJobOptions& o) {
+  ExploreRun run;
+  run.out_dir = explore_out_dir(o);
+  const auto t0 = std::chrono::steady_clock::now();
+  choose_start(o, run);
+  std::optional<double> setup_budget;
+  if (!std::isnan(o.setup_budget_lsb)) setup_budget = o.setup_budget_lsb;
+  ExploreScenes scenes(o.scenes, run.start, setup_budget, o.max_depth);
+  run.host_s = seconds_since(t0);
+  sweep_and_measure(o, scenes, run);
+  budget_errors(scenes, o.scenes.size(), run);
+  write_point_configs(run);
+
+  if (!o.quiet) print_run(std::cout, o, run);
+  const std::vector<Verification> verified = verify_choice(o, run);
+  if (!o.json_path.empty())
+    write_text_file(o.json_path, explore_json(o, run, verified).dump(2) + '\n');
+  if (!o.csv_path.empty()) write_csv(o.csv_path, run.result, run.channels());
+  const bool all_verified = std::all_of(verified.begin(), verified.end(),
+                                        [](const Verification& v) { return v.verified; });
+  return run.chosen() && all_verified ? 0 : 1;
+}
+
+}  // namespace shadesim

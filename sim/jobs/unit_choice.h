@@ -1,0 +1,57 @@
+// The one meaning of --config in every command that shades a scene (render, cycles, regress,
+// explore, area): the unit is
+//   own      the scene's own unit, as `shadesim config SCENE` derives it (the default);
+//   default  UnitConfig's default widths, with the scene's channels, lights and specular unit
+//            (what the width options change: giving one selects it);
+//   NAME     a named build (sim/harness/builds.json, `shadesim cosim --list`);
+//   FILE     a UnitConfig JSON file (as `shadesim config --json` writes it).
+// The --config option itself (its check, what it excludes): sim/cli/config_option.h.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+#include "host/frame.h"
+#include "sim/harness/rtl_config.h"
+#include "sim/jobs/unit_widths.h"
+
+namespace shadesim {
+
+inline constexpr const char* kOwnUnit = "own";
+inline constexpr const char* kDefaultUnit = "default";
+
+// The unit `text` names for `scene`, with its label ("own:sphere", "default", the build name, the
+// file). Throws std::invalid_argument naming `option` for an unknown name or a bad file.
+RtlConfig resolve_unit(const std::string& text, const std::string& scene,
+                       const std::string& option = "--config");
+
+// The scene's own unit: the smallest unit that shades it within its error budget, with real
+// specular hardware, or none when the scene has no specular term (host/scene_config.h).
+RtlConfig own_unit(const std::string& scene);
+
+// Sets `fo`'s unit from the --config in effect; returns its label (own:<scene>, default, the
+// build's name or the file).
+inline std::string use_unit_choice(const std::string& choice, const std::string& scene,
+                                   const WidthOptions& widths, FrameOptions& fo) {
+  if (choice == kDefaultUnit) {
+    fo.base = widths.to_config();
+    return kDefaultUnit;
+  }
+  const RtlConfig unit = resolve_unit(choice, scene);
+  fo.base = unit.unit;
+  fo.fixed_unit = true;
+  return unit.name;
+}
+
+// prepare_frame, with the --config unit named in a scene-does-not-fit error.
+inline PreparedFrame prepare_frame_on(const std::string& scene, const FrameOptions& fo,
+                                      const std::string& choice) {
+  if (choice == kDefaultUnit) return prepare_frame(scene, fo);
+  try {
+    return prepare_frame(scene, fo);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string(e.what()) + " (the unit of --config " + choice + ")");
+  }
+}
+
+}  // namespace shadesim
