@@ -8,7 +8,9 @@
 // (and StartBank's timing in model/start_bank.h), each with the module's registers and
 // next-state logic, clocked each cycle in the RTL's order (clock()):
 //   CmdDecoder (cmd_decoder.sv)   beats taken apart one item per cycle, headers held back while
-//                                 the part of the unit they change is busy, payload counting
+//                                 the part of the unit they change is busy
+//     CmdPayload (cmd_payload.sv) its payload FSM (u_payload): which header's payload words are
+//                                 due, and how many
 //   SpanQueue (span_queue.sv)     tri_queue > 1: queued spans and the coefficient banks' use
 //   SetupCtrl (setup_ctrl.sv)     the three span setup stages' valid bits and spans
 //   StartBank (start_bank.sv)     host span setup: spans waiting with their start values
@@ -344,7 +346,7 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
   } else {
     setup_.clock(span_fire, SpanDesc::of(item.word), moves, eng.load);
   }
-  if (cmd_valid) decoder_.clock(item);
+  decoder_.clock(cmd_valid, item);
   return e;
 }
 
