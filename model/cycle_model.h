@@ -259,7 +259,7 @@ std::string to_string(CycleModel::Category c);
 // cycle next to the RTL's eval, and inlining them into that loop removes the call and the
 // packing of Edge into registers. clock() is always_inline: with the modules' classes nested as
 // the RTL's (SpanSource, CmdPayload) GCC 12 sizes it past its single-function limit and calls it
-// (callgrind on cycle_bench's BM_CycleModel: 7 % more instructions that way).
+// (callgrind on cycle_bench BM_CycleModel: 5 % more instructions that way).
 
 inline CycleModel::Category CycleModel::port_category(bool cmd_valid, bool header,
                                                       CommandWord word) const {
