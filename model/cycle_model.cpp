@@ -1,9 +1,9 @@
 #include "model/cycle_model.h"
 
-#include <algorithm>
 #include <stdexcept>
 
 #include "model/specular_units.h"
+#include "model/start_bank.h"
 #include "model/start_packing.h"
 
 namespace shadesim {
@@ -113,8 +113,7 @@ CycleModel::CycleModel(CycleConfig timing)
       mat_banked_(timing.material_buffers == 2),
       decoder_(static_cast<unsigned>(timing.port_words), queued_, mat_banked_, host_,
                static_cast<unsigned>(timing.start_words)),
-      queue_(std::max(timing.tri_queue, 2)),  // (one bank: no queue, built but never clocked)
-      start_(static_cast<unsigned>(timing.start_depth)),
+      span_source_(host_, timing.tri_queue, static_cast<unsigned>(timing.start_depth)),
       mat_(host_),
       engines_(static_cast<unsigned>(timing.lanes)),
       slots_(timing.slot.interval),

@@ -8,10 +8,13 @@
 // (and StartBank's timing in model/start_bank.h), each with the module's registers and
 // next-state logic, clocked each cycle in the RTL's order (clock()):
 //   CmdDecoder (cmd_decoder.sv)   beats taken apart one item per cycle, headers held back while
-//                                 the part of the unit they change is busy, payload counting
-//   SpanQueue (span_queue.sv)     tri_queue > 1: queued spans and the coefficient banks' use
-//   SetupCtrl (setup_ctrl.sv)     the three span setup stages' valid bits and spans
-//   StartBank (start_bank.sv)     host span setup: spans waiting with their start values
+//                                 the part of the unit they change is busy
+//     CmdPayload (cmd_payload.sv) its payload FSM (u_payload): which header's payload words are
+//                                 due, and how many
+//   SpanSource (span_source.sv)   the span intake: where the engines' next span comes from
+//     SpanQueue (span_queue.sv)   tri_queue > 1: queued spans and the coefficient banks' use
+//     SetupCtrl (setup_ctrl.sv)   span setup in the unit: the three stages' valid bits and spans
+//     StartBank (start_bank.sv)   host span setup: spans waiting with their start values
 //   MaterialBank (material_bank)  material_buffers 2: the banks' writer and spans in flight
 //   EngineCtrl (engine_ctrl.sv)   the engines' span: run, pixels left, `lanes` per beat
 //   SpecSlots (spec_slots.sv)     an iterative specular unit's busy count
@@ -19,10 +22,11 @@
 //                                 pending beat for an iterative unit
 //   OutReg (out_reg.sv)           the pix register, advance = !valid || ready; a beat is up to
 //                                 `lanes` pixels of one span (lane j = pixel x + j)
-// Modules the configuration does not elaborate are not clocked (decided once, at construction).
-// coef_bank.sv has no model class here: it holds coefficients, which never hold a cycle back
-// (which bank a TRIANGLE writes and when it may is span_queue's, the SPAN-after-TRIANGLE rule
-// cmd_decoder's).
+// (Indented: instantiated inside the module above, and owned by its class.) Modules the
+// configuration does not elaborate are not clocked (decided once, at construction).
+// coef_bank.sv (inside span_source.sv) has no model class: it holds coefficients, which never
+// hold a cycle back (which bank a TRIANGLE writes and when it may is span_queue's, the
+// SPAN-after-TRIANGLE rule cmd_decoder's).
 #pragma once
 
 #include <algorithm>
@@ -36,13 +40,11 @@
 #include "model/control/engine_ctrl.h"
 #include "model/control/material_bank.h"
 #include "model/control/out_reg.h"
-#include "model/control/setup_ctrl.h"
 #include "model/control/slot_meta.h"
-#include "model/control/span_desc.h"
 #include "model/control/span_queue.h"
+#include "model/control/span_source.h"
 #include "model/control/spec_slots.h"
 #include "model/specular_config.h"
-#include "model/start_bank.h"
 #include "model/unit_config.h"
 
 namespace shadesim {
@@ -213,20 +215,17 @@ class CycleModel {
     bool datapath_empty() const { return unit.datapath_empty(); }
     bool mat_other_free() const { return unit.mat_.other_free(); }
     bool mat_cur_free() const { return unit.mat_.cur_free(); }
-    bool sq_full() const { return unit.queue_.full(); }
-    unsigned sq_room() const { return unit.queue_.room(); }
+    bool sq_full() const { return unit.span_source_.sq_full(); }
+    unsigned sq_room() const { return unit.span_source_.sq_room(); }
     bool s1_free() const { return s1_free_o; }
-    // Without a span queue there is one bank, always free.
-    bool tri_bank_free() const { return !unit.queued_ || unit.queue_.tri_bank_free(); }
-    bool start_free() const { return unit.start_.free(eng_load); }
+    bool tri_bank_free() const { return unit.span_source_.tri_bank_free(); }
+    bool start_free() const { return unit.span_source_.start_free(eng_load); }
   };
 
   // shade_unit.sv's datapath_empty: no span queued, in setup (or in the start bank), in the
   // engines or in the slot.
   bool datapath_empty() const {
-    const bool queue_empty = !queued_ || queue_.empty();
-    const bool setup_busy = host_ ? !start_.empty() : setup_.busy();
-    return queue_empty && !setup_busy && !engines_.run() && meta_.empty();
+    return span_source_.sq_empty() && !span_source_.busy() && !engines_.run() && meta_.empty();
   }
   // What the command port does this cycle, as a bubble category (kSetupLoad for SPAN headers).
   // header: the cycle is about a header (taken, or waited for), not payload words.
@@ -236,19 +235,17 @@ class CycleModel {
 
   // The configuration, fixed at construction: which modules the unit elaborates.
   int latency_ = 0;          // the specular slot's
-  bool queued_ = false;      // tri_queue > 1: SpanQueue
-  bool host_ = false;        // host span setup: StartBank instead of SetupCtrl (and no queue)
+  bool queued_ = false;      // Queued: tri_queue > 1 (a span queue)
+  bool host_ = false;        // Host: host span setup (a start bank, no setup stages, no queue)
   bool mat_banked_ = false;  // material_buffers 2: MaterialBank
   // The control modules, named as shade_unit.sv's instances.
-  CmdDecoder decoder_;  // u_decoder
-  SpanQueue queue_;     // u_span_queue (queued_ only)
-  SetupCtrl setup_;     // u_setup_ctrl (not with host_)
-  StartBank start_;     // u_start_bank (host_ only)
-  MaterialBank mat_;    // u_material_bank (its bank control: mat_banked_ only)
-  EngineCtrl engines_;  // u_engine_ctrl
-  SpecSlots slots_;     // u_slots (timing)
-  SlotMeta meta_;       // u_slot_meta
-  OutReg out_;          // u_out_reg
+  CmdDecoder decoder_;      // u_decoder
+  SpanSource span_source_;  // u_span_source
+  MaterialBank mat_;        // u_material_bank (its bank control: mat_banked_ only)
+  EngineCtrl engines_;      // u_engine_ctrl
+  SpecSlots slots_;         // u_slots (timing)
+  SlotMeta meta_;           // u_slot_meta
+  OutReg out_;              // u_out_reg
   // The command port's category on each of the last span_latency() cycles (ring), for bubbles;
   // history_pos_ is the slot of the current cycle (cycle mod size, kept without a division).
   std::vector<Category> port_history_;
@@ -260,7 +257,9 @@ std::string to_string(CycleModel::Category c);
 
 // clock() and what it calls are inline: in lockstep co-simulation they run once per simulated
 // cycle next to the RTL's eval, and inlining them into that loop removes the call and the
-// packing of Edge into registers.
+// packing of Edge into registers. clock() is always_inline: with the modules' classes nested as
+// the RTL's (SpanSource, CmdPayload) GCC 12 sizes it past its single-function limit and calls it
+// (callgrind on cycle_bench BM_CycleModel: 5 % more instructions that way).
 
 inline CycleModel::Category CycleModel::port_category(bool cmd_valid, bool header,
                                                       CommandWord word) const {
@@ -288,18 +287,20 @@ inline CycleModel::Category CycleModel::port_category(bool cmd_valid, bool heade
 }
 
 // One clock: first every module's outputs before the edge, in the order their combinational
-// paths run in shade_unit.sv (out_reg's advance -> the slots' busy -> engine_ctrl -> setup_ctrl
-// -> span_queue -> cmd_decoder), then the edge, module by module from the pix register back to
-// the decoder: each reads its upstream module's registers as they were before the edge, so
+// paths run in shade_unit.sv (out_reg's advance -> the slots' busy -> engine_ctrl -> span_source
+// (setup_ctrl -> span_queue) -> cmd_decoder), then the edge, module by module from the pix register
+// back to the decoder: each reads its upstream module's registers as they were before the edge, so
 // that order is the one that keeps them unclobbered.
-inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, bool pix_ready) {
+[[gnu::always_inline]] inline CycleModel::Edge CycleModel::clock(bool cmd_valid,
+                                                                 const uint64_t* beat,
+                                                                 bool pix_ready) {
   // ---- before the edge
   const bool adv = out_.adv(pix_ready);
   const bool spec_busy = slots_.busy();
-  const bool span_valid = host_ ? start_.valid(decoder_.span_pay()) : setup_.s3_valid();
+  const bool span_valid = span_source_.s3_valid(decoder_.span_pay());
   const EngineCtrl::Out eng = engines_.outputs(span_valid, adv, spec_busy);
-  const SetupCtrl::Moves moves = host_ ? SetupCtrl::Moves{} : setup_.moves(eng.load);
-  const bool sq_pop = queued_ && queue_.pop(moves.s1_free);
+  const SetupCtrl::Moves moves = span_source_.moves(eng.load);
+  const bool sq_pop = span_source_.sq_pop(moves);
   const Item item = decoder_.decode(beat, DecoderInputs{*this, moves.s1_free, eng.load});
   const bool span_fire = cmd_valid && item.span_header();
 
@@ -324,27 +325,18 @@ inline CycleModel::Edge CycleModel::clock(bool cmd_valid, const uint64_t* beat, 
     // A span's last beat out of the slot: the pix register holds finished colours, which no
     // later MATERIAL changes. A span enters setup stage 1 from the span queue, or straight
     // from the decoder in the latest MATERIAL's bank; with host setup the engines load the
-    // start bank's oldest.
-    const bool s1_load = queued_ ? sq_pop : span_fire && !host_;
-    const int s1_bank = host_ ? start_.head_mat() : queued_ ? queue_.head_mat() : mat_wr;
+    // start bank's oldest (s1_bank_i: span_source's s1_mat_o).
     mat_.clock(cmd_valid && item.mat_header(), span_fire, host_ ? 1 : static_cast<int>(item.hdr_n),
-               s1_load, s1_bank, moves.s1_move, moves.s2_move, eng.load,
-               load_pix && slot_out.span_end, slot_out.mat);
+               span_source_.s1_load(sq_pop, span_fire), span_source_.s1_mat(mat_wr), moves.s1_move,
+               moves.s2_move, eng.load, load_pix && slot_out.span_end, slot_out.mat);
   }
   out_.clock(adv, load_pix, slot_out);  // before the line moves: slot_out may be its entry
   meta_.clock(out_adv, from_engines);
   slots_.clock(eng.emit);
-  engines_.clock(eng, host_ ? start_.head_span() : setup_.s3_span());
-  if (host_) {
-    start_.clock(eng.load, span_fire, item.word, mat_wr);
-  } else if (queued_) {
-    setup_.clock(sq_pop, queue_.head(), moves, eng.load);
-    queue_.clock(sq_pop, span_fire, beat, item.hdr_pos, item.hdr_n, mat_wr,
-                 cmd_valid && item.tri_header());
-  } else {
-    setup_.clock(span_fire, SpanDesc::of(item.word), moves, eng.load);
-  }
-  if (cmd_valid) decoder_.clock(item);
+  engines_.clock(eng, span_source_.s3_span());
+  span_source_.clock(moves, sq_pop, eng.load, span_fire, cmd_valid && item.tri_header(), beat,
+                     item.word, item.hdr_pos, item.hdr_n, mat_wr);
+  decoder_.clock(cmd_valid, item);
   return e;
 }
 

@@ -1,26 +1,29 @@
-// CmdDecoder: rtl/cmd_decoder.sv - the command port's beat decoder and payload FSM. A beat of
-// port_words words (model/command_stream.h) is taken apart one item per cycle - the TRIANGLE
-// coefficient words due in it (the tail), then at most one header (with a TRIANGLE's words after
-// it, or a run of SPAN headers into a span queue), or one MATERIAL / TABLE payload word, or a
-// NOP (the rest is padding) - and accepted with its last item. A header waits while the part of
-// the unit it changes is busy (the *_i inputs, read through Inputs). With host span setup a
-// SPAN header brings start_words payload words, taken like a TRIANGLE's.
+// CmdDecoder: rtl/cmd_decoder.sv - the command port's beat decoder. A beat of port_words words
+// (model/command_stream.h) is taken apart one item per cycle - the TRIANGLE coefficient words due
+// in it (the tail), then at most one header (with a TRIANGLE's words after it, or a run of SPAN
+// headers into a span queue), or one MATERIAL / TABLE payload word, or a NOP (the rest is
+// padding) - and accepted with its last item. A header waits while the part of the unit it
+// changes is busy (the *_i inputs, read through Inputs). With host span setup a SPAN header
+// brings start_words payload words, taken like a TRIANGLE's.
 //
-// Only the timing state is kept: the payload index and the TABLE base (pay_idx_q, tbl_base_q,
-// tbl_mat_q) address the datapath's registers and never hold a header back.
+// The payload FSM is CmdPayload (model/control/cmd_payload.h), owned as payload_ as the RTL
+// instantiates cmd_payload as u_payload: decode() reads its outputs before the edge
+// (in_payload_o, tri_payload_o, pay_rem_o), clock() clocks it with the item's wires. Parameters:
+// PORT_WORDS, QUEUED, MAT_BANKED, HOST_SETUP, START_WORDS (N_MAT_FIXED only reaches u_payload's
+// configuration writes, which are not timing).
 #pragma once
 
 #include <algorithm>
 #include <cstdint>
 
 #include "model/command_word.h"
+#include "model/control/cmd_payload.h"
 
 namespace shadesim {
 
 class CmdDecoder {
  public:
-  // pay_op_q: which payload is being taken.
-  enum class Payload : uint8_t { kSkip, kMaterial, kTriangle, kTable, kSpan };
+  using Payload = CmdPayload::Payload;
 
   CmdDecoder(unsigned port_words, bool queued, bool mat_banked, bool host_setup,
              unsigned start_words)
@@ -63,11 +66,13 @@ class CmdDecoder {
   Item decode(const uint64_t* beat, const Inputs& in) const {
     Item item;
     const unsigned beat_left = port_words_ - pos_;
-    item.tri_payload = in_payload_ && (pay_op_ == Payload::kTriangle || pay_op_ == Payload::kSpan);
-    item.tail = item.tri_payload ? std::min(pay_rem_, beat_left) : 0;
+    const bool in_payload = payload_.in_payload();
+    const unsigned pay_rem = payload_.pay_rem();
+    item.tri_payload = payload_.tri_payload();
+    item.tail = item.tri_payload ? std::min(pay_rem, beat_left) : 0;
     item.hdr_pos = pos_ + item.tail;
     item.hdr_here =
-        (!in_payload_ || (item.tri_payload && pay_rem_ <= beat_left)) && item.hdr_pos < port_words_;
+        (!in_payload || (item.tri_payload && pay_rem <= beat_left)) && item.hdr_pos < port_words_;
     item.word = CommandWord{beat[item.hdr_here ? item.hdr_pos : pos_]};
     item.op = static_cast<Opcode>(item.word.opcode());
     // Payload words: the header's count, but a host-setup SPAN's count is its start words.
@@ -76,25 +81,25 @@ class CmdDecoder {
     item.hdr_n = header_words(beat, item, in);
     item.take_hdr = item.hdr_here && header_ready(item, in);
     item.n =
-        item.tail + (item.take_hdr ? item.hdr_n : 0) + (in_payload_ && !item.tri_payload ? 1 : 0);
+        item.tail + (item.take_hdr ? item.hdr_n : 0) + (in_payload && !item.tri_payload ? 1 : 0);
     item.beat_done = item.n == beat_left;
     return item;
   }
 
   // Nothing half taken: no payload due and no beat begun.
-  bool idle() const { return !in_payload_ && pos_ == 0; }
-  bool in_payload() const { return in_payload_; }
-  Payload payload() const { return pay_op_; }
+  bool idle() const { return !payload_.in_payload() && pos_ == 0; }
+  bool in_payload() const { return payload_.in_payload(); }
+  Payload payload() const { return payload_.payload(); }  // u_payload's pay_op_q
   // span_pay_o: the payload words due are a host-setup SPAN's (the start bank's newest entry).
-  bool span_pay() const { return in_payload_ && pay_op_ == Payload::kSpan; }
+  bool span_pay() const { return payload_.span_pay(); }
 
-  // The edge, for a beat offered (cmd_valid): the item's words are taken.
-  void clock(const Item& item) {
+  // The edge: on cmd_valid the item's words are taken (g_beat_pos's item_fire), and u_payload
+  // is clocked with hdr_fire = cmd_valid && take_hdr.
+  void clock(bool cmd_valid, const Item& item) {
+    if (!cmd_valid) return;  // no beat offered: nothing is taken (item_fire, hdr_fire low)
     if (item.n > 0) pos_ = item.beat_done ? 0 : pos_ + item.n;
-    if (item.take_hdr)
-      start_payload(item);
-    else if (in_payload_)
-      advance_payload(item.tri_payload ? item.tail : 1);
+    payload_.clock(true, item.take_hdr, item.word, item.host_span, item.count, item.hdr_n,
+                   item.tail);
   }
 
  private:
@@ -141,57 +146,13 @@ class CmdDecoder {
     }
   }
 
-  void start_payload(const Item& item) {
-    pay_rem_ = item.count;
-    switch (item.op) {
-      case Opcode::kMaterial:
-        pay_op_ = Payload::kMaterial;
-        in_payload_ = item.count != 0;
-        break;
-      case Opcode::kTriangle:
-        start_tail_payload(Payload::kTriangle, item);
-        break;
-      case Opcode::kTable:
-        pay_op_ = Payload::kTable;
-        in_payload_ = item.count != 0;
-        break;
-      case Opcode::kSpan:
-        if (host_) {
-          start_tail_payload(Payload::kSpan, item);
-        } else {
-          pay_op_ = Payload::kSkip;
-          in_payload_ = false;
-        }
-        break;
-      default:  // END_FRAME and unknown opcodes carry no payload
-        pay_op_ = Payload::kSkip;
-        in_payload_ = false;
-        break;
-    }
-  }
-
-  // A TRIANGLE or host-setup SPAN: the payload words that came with the header are taken.
-  void start_tail_payload(Payload op, const Item& item) {
-    pay_op_ = op;
-    pay_rem_ = (item.count - item.hdr_n + 1) & CommandWord::kFieldMask;
-    in_payload_ = item.count > item.hdr_n - 1;
-  }
-
-  // The tail, or one MATERIAL / TABLE word.
-  void advance_payload(unsigned taken) {
-    if (taken == pay_rem_) in_payload_ = false;  // the payload's last word
-    pay_rem_ = (pay_rem_ - taken) & CommandWord::kFieldMask;
-  }
-
   unsigned port_words_ = 1;
   bool queued_ = false;
   bool mat_banked_ = false;
   bool host_ = false;
   unsigned start_words_ = 0;
-  unsigned pos_ = 0;  // pos_q: the next word of the beat on the port still to be taken
-  bool in_payload_ = false;
-  Payload pay_op_ = Payload::kSkip;
-  unsigned pay_rem_ = 1;  // pay_rem_q: payload words still to come
+  unsigned pos_ = 0;    // pos_q: the next word of the beat on the port still to be taken
+  CmdPayload payload_;  // u_payload: the payload FSM
 };
 
 }  // namespace shadesim
