@@ -114,7 +114,7 @@ TEST(Cli, RenderWarnsWhereTheWidthsCannotHoldTheScene) {
                               " -q --config default --out " + (dir / "b").string(),
                           dir / "b.json");
   ASSERT_EQ(b["warnings"].size(), 1u) << b["warnings"].dump();
-  EXPECT_NE(b["warnings"][0].get<std::string>().find("beyond s4.28:wrap's range"),
+  EXPECT_NE(b["warnings"][0].get<std::string>().find("beyond s4.28's range"),
             std::string::npos);
   EXPECT_GT(b["error"]["max_code_lsb"].get<int>(), 100);  // the wrong image the warning names
   auto wide = nlohmann::json::parse(std::ifstream(kScenes + "hard/long_span.json"));
@@ -376,14 +376,14 @@ TEST(Cli, ConfigDerivesAUnitThatRenderAndCyclesUseWithConfig) {
   const auto defaults = run_json(
       "render " + kScenes + "sphere.json -q --config default --out " + (dir / "d").string(),
       dir / "d.json");
-  EXPECT_EQ(defaults["config"]["series"], "s4.28:wrap");
+  EXPECT_EQ(defaults["config"]["series"], "s4.28");
   EXPECT_EQ(defaults["config"]["specular"]["kind"], "ideal");
   const auto widened = run_json(
       "render " + kScenes + "sphere.json -q --coef s4.30:rnd:wrap --out " + (dir / "w").string(),
       dir / "w.json");
   EXPECT_EQ(widened["unit_choice"], "default");
-  EXPECT_EQ(widened["config"]["series"], "s4.28:wrap");
-  EXPECT_EQ(widened["config"]["coef"], "s4.30:rnd:wrap");
+  EXPECT_EQ(widened["config"]["series"], "s4.28");
+  EXPECT_EQ(widened["config"]["coef"], "s4.30:rnd");
   std::filesystem::remove_all(dir);
 }
 
