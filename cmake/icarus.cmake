@@ -204,3 +204,8 @@ add_test(NAME icarus_span_setup_booth
 add_test(NAME icarus_span_setup_booth_catches_broken
   COMMAND ${_booth_check} -DWORK=${ICARUS_DIR}/booth_broken -DBREAK=ON
           -P ${CMAKE_SOURCE_DIR}/tests/rtl/booth_check.cmake)
+# Every parameter check of rtl/ at its edges (issue 24): shade_unit elaborates at each legal
+# extreme of the model's ranges and stops with that check's message one step past it.
+add_test(NAME icarus_param_extremes
+  COMMAND ${CMAKE_SOURCE_DIR}/tests/rtl/param_extremes.py ${SHADESIM_CLI} ${IVERILOG} ${VVP}
+          ${CMAKE_SOURCE_DIR} ${ICARUS_DIR}/param_extremes)

@@ -75,9 +75,11 @@ SpecularUnitDescriptor lut_unit() {
           true,
           1,
           {
+              // At most 16: a TABLE command addresses 2^16 entries (its 16-bit base and count,
+              // model/command_word.h), and exponent_lut.sv refuses more (CFG_ADDR_W).
               {"addr_bits", "--lut-addr-bits", "LUT: address bits A (2^A entries)", "ADDR_BITS", 0,
-               1, 20, false, nullptr, get<kLut, &L::addr_bits>, set<kLut, &L::addr_bits>, 4,
-               [](int v) { return std::min(v + 2, 20); }},
+               1, 16, false, nullptr, get<kLut, &L::addr_bits>, set<kLut, &L::addr_bits>, 4,
+               [](int v) { return std::min(v + 2, 16); }},
               {"entry_bits", "--lut-entry-bits", "LUT: entry bits B", "ENTRY_BITS", 1, 1, 32, false,
                nullptr, get<kLut, &L::entry_bits>, set<kLut, &L::entry_bits>, 4,
                [](int v) { return std::min(v + 4, 32); }},

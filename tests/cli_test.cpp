@@ -114,8 +114,7 @@ TEST(Cli, RenderWarnsWhereTheWidthsCannotHoldTheScene) {
                               " -q --config default --out " + (dir / "b").string(),
                           dir / "b.json");
   ASSERT_EQ(b["warnings"].size(), 1u) << b["warnings"].dump();
-  EXPECT_NE(b["warnings"][0].get<std::string>().find("beyond s4.28's range"),
-            std::string::npos);
+  EXPECT_NE(b["warnings"][0].get<std::string>().find("beyond s4.28's range"), std::string::npos);
   EXPECT_GT(b["error"]["max_code_lsb"].get<int>(), 100);  // the wrong image the warning names
   auto wide = nlohmann::json::parse(std::ifstream(kScenes + "hard/long_span.json"));
   wide["image"]["width"] = 4096;

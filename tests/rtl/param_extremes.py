@@ -1,0 +1,127 @@
+#!/usr/bin/python3
+"""Every parameter check of rtl/ at its edges (issue 24): shade_unit elaborated by Icarus at each
+legal extreme must run its time-0 checks without a $fatal, and one step past it must stop with
+that check's own message.
+
+  param_extremes.py SHADESIM IVERILOG VVP SOURCE_DIR WORK
+
+A legal extreme is a UnitConfig (the model's ranges, model/unit_config.cpp and
+model/specular_units.cpp) mapped to Verilog parameters by the one mapping (`shadesim rtl-params
+--tool iverilog`); a case past the edge overrides one Verilog parameter of a legal unit, since
+the model itself refuses such a unit. The RTL read is $SHADESIM_RTL_DIR when set (a mutant's
+copy, scripts/mutate-rtl), else SOURCE_DIR/rtl. Exit 0 only when every case behaves.
+
+Left out: one step past the specular units' own fields (they are packed into SPEC_PARAMS by
+slot; the model refuses such a unit before any RTL sees it), and checks that only a build with a
+TABLE_FILE reaches.
+"""
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+# name, UnitConfig overlay (JSON), Verilog overrides {NAME: value}, expected: None (elaborates and
+# passes its checks) or a regex of the $fatal message.
+CASES = [
+    ("tri_queue_8", {"tri_queue": 8}, {}, None),
+    ("tri_queue_9", {"tri_queue": 8}, {"TRI_QUEUE": 9}, r"coef_bank: TRI_QUEUE 9 is not 1\.\.8"),
+    ("xy_bits_4", {"xy_bits": 4, "offset_bits": 6}, {}, None),
+    ("xy_bits_3", {"xy_bits": 4, "offset_bits": 6}, {"XY_BITS": 3}, r"XY_BITS 3 is not 4\.\.15"),
+    ("xy_bits_15", {"xy_bits": 15}, {}, None),
+    ("xy_bits_16", {"xy_bits": 15}, {"XY_BITS": 16}, r"XY_BITS 16 is not 4\.\.15"),
+    ("lanes_4", {"lanes": 4}, {}, None),
+    ("lanes_3", {"lanes": 4}, {"LANES": 3}, r"LANES 3 is not 1, 2 or 4"),
+    ("lights_8", {"lights": 8}, {}, None),
+    ("lights_9", {"lights": 8}, {"LIGHTS": 9}, r"LIGHTS 9 is not 1\.\.8"),
+    ("channels_3", {"channels": 3}, {}, None),
+    ("channels_2", {"channels": 3}, {"CHANNELS": 2}, r"CHANNELS 2 is not 1 or 3"),
+    ("material_buffers_2", {"material_buffers": 2}, {}, None),
+    ("material_buffers_3", {"material_buffers": 2}, {"MATERIAL_BUFFERS": 3},
+     r"MATERIAL_BUFFERS 3 is not 1 or 2"),
+    ("span_setup_2", {"span_setup": "host"}, {"SPAN_SETUP": 2}, r"SPAN_SETUP 2 is not 0"),
+    ("diffuse_multiply_2", {}, {"DIFFUSE_MULTIPLY": 2}, r"DIFFUSE_MULTIPLY 2 is not 0 or 1"),
+    ("fault_hooks_2", {}, {"FAULT_HOOKS": 2}, r"FAULT_HOOKS 2 is not 0 or 1"),
+    ("coef_term_2", {}, {"COEF_T1_WL": 2}, None),
+    ("coef_term_1", {}, {"COEF_T1_WL": 1}, r"COEF_T1_WL must be 2\.\.COEF_WL"),
+    ("lut_addr_bits_1", {"specular": {"kind": "lut", "lut": {"addr_bits": 1}}}, {}, None),
+    ("lut_addr_bits_16", {"specular": {"kind": "lut", "lut": {"addr_bits": 16}}}, {}, None),
+    ("wpow_base_bits_2", {"specular": {"kind": "wpow", "wpow": {"base_bits": 2}}}, {}, None),
+    ("schlick_narrowest",
+     {"specular": {"kind": "schlick", "schlick": {"quotient_bits": 1, "operand_bits": 2}}}, {},
+     None),
+]
+
+
+def run(cmd, cwd=None):
+    return subprocess.run(cmd, cwd=cwd, capture_output=True, text=True)
+
+
+def rtl_sources(source_dir):
+    rtl = os.environ.get("SHADESIM_RTL_DIR") or os.path.join(source_dir, "rtl")
+    with open(os.path.join(rtl, "files.f")) as f:
+        files = [os.path.join(rtl, l.strip()) for l in f
+                 if l.strip() and not l.strip().startswith("//")]
+    harness = os.path.join(source_dir, "sim", "harness")
+    return files + [os.path.join(harness, "fault_select.sv"), os.path.join(harness, "fault_hooks.sv")]
+
+
+def parameters(shadesim, unit, work, name):
+    path = os.path.join(work, name + ".json")
+    with open(path, "w") as f:
+        json.dump(unit, f)
+    r = run([shadesim, "rtl-params", "--config", path, "--tool", "iverilog"])
+    if r.returncode != 0:
+        raise RuntimeError(f"{name}: shadesim rtl-params refused the unit: {r.stderr.strip()}")
+    params = {}
+    for line in r.stdout.split():
+        m = re.fullmatch(r"-Ptb_shade_unit\.([A-Z0-9_]+)=(.*)", line)
+        if m:
+            params[m.group(1)] = m.group(2)
+    return params
+
+
+def check(case, args, sources):
+    shadesim, iverilog, vvp, _, work = args
+    name, unit, overrides, expected = case
+    params = parameters(shadesim, unit, work, name)
+    params.update({k: str(v) for k, v in overrides.items()})
+    vvp_file = os.path.join(work, name + ".vvp")
+    compiled = run([iverilog, "-g2012", "-s", "shade_unit", "-o", vvp_file] +
+                   [f"-Pshade_unit.{k}={v}" for k, v in params.items()] + sources)
+    if compiled.returncode != 0:
+        return f"does not compile: {compiled.stderr.strip().splitlines()[:3]}"
+    ran = run([vvp, "-n", vvp_file])
+    out = ran.stdout + ran.stderr
+    fatal = "FATAL" in out or ran.returncode != 0
+    if expected is None:
+        return f"refused at a legal extreme: {out.strip()[-300:]}" if fatal else None
+    if not fatal:
+        return f"accepted, expected a $fatal matching '{expected}'"
+    if not re.search(expected, out):
+        return f"stopped, but not with '{expected}': {out.strip()[-300:]}"
+    return None
+
+
+def main():
+    if len(sys.argv) != 6:
+        sys.exit(__doc__)
+    args = sys.argv[1:]
+    os.makedirs(args[4], exist_ok=True)
+    sources = rtl_sources(args[3])
+    failed = 0
+    with tempfile.TemporaryDirectory(dir=args[4]) as work:
+        args[4] = work
+        for case in CASES:
+            problem = check(case, args, sources)
+            edge = "legal" if case[3] is None else "past"
+            print(f"{'FAIL' if problem else 'ok  '} {case[0]:<20} ({edge})"
+                  + (f": {problem}" if problem else ""))
+            failed += problem is not None
+    print(f"param_extremes: {len(CASES) - failed} of {len(CASES)} cases behave")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
