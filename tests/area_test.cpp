@@ -167,16 +167,16 @@ TEST(Area, CellCountEqualsADirectYosysRunAndTheCacheIsReused) {
   fs::remove_all(dir);
 }
 
-// Yosys's flat flow (the one shadesim area uses) on a tiny module; its stat -tech cmos.
+// Yosys's flat flow (the one shadesim area uses) on a tiny module; its stat -json -tech cmos.
 CmosStat tiny(const std::string& yosys, const fs::path& dir, const std::string& name,
               const std::string& verilog) {
   write(dir / (name + ".v"), verilog);
   const Result r = run_shell(yosys + " -q -p 'read_verilog " + (dir / (name + ".v")).string() +
                              "; synth -flatten -top " + name +
                              "; abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX; opt_clean; tee -q -o " +
-                             (dir / (name + ".txt")).string() + " stat -tech cmos'");
+                             (dir / (name + ".json")).string() + " stat -json -tech cmos'");
   EXPECT_EQ(r.status, 0) << r.output;
-  return read_cmos_stat((dir / (name + ".txt")).string(), name);
+  return read_cmos_stat((dir / (name + ".json")).string(), name);
 }
 
 TEST(Area, GateEquivalentsFollowTheClosedFormOnTinyModules) {
