@@ -167,16 +167,16 @@ TEST(Area, CellCountEqualsADirectYosysRunAndTheCacheIsReused) {
   fs::remove_all(dir);
 }
 
-// Yosys's flat flow (the one shadesim area uses) on a tiny module; its stat -tech cmos.
+// Yosys's flat flow (the one shadesim area uses) on a tiny module; its stat -json -tech cmos.
 CmosStat tiny(const std::string& yosys, const fs::path& dir, const std::string& name,
               const std::string& verilog) {
   write(dir / (name + ".v"), verilog);
   const Result r = run_shell(yosys + " -q -p 'read_verilog " + (dir / (name + ".v")).string() +
                              "; synth -flatten -top " + name +
                              "; abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX; opt_clean; tee -q -o " +
-                             (dir / (name + ".txt")).string() + " stat -tech cmos'");
+                             (dir / (name + ".json")).string() + " stat -json -tech cmos'");
   EXPECT_EQ(r.status, 0) << r.output;
-  return read_cmos_stat((dir / (name + ".txt")).string(), name);
+  return read_cmos_stat((dir / (name + ".json")).string(), name);
 }
 
 TEST(Area, GateEquivalentsFollowTheClosedFormOnTinyModules) {
@@ -217,6 +217,54 @@ TEST(Area, GateEquivalentsFollowTheClosedFormOnTinyModules) {
   EXPECT_EQ(gate_equivalents(g.logic_transistors, 0, 0), 15);  // 14.5 rounds to 15
   // RAM bits are not flip-flops of GE.
   EXPECT_EQ(gate_equivalents(400, 100, 64), 100 + 6 * 36);
+  fs::remove_all(dir);
+}
+
+// read_cmos_stat reads `stat -json`: its figures (the "+" of a partial transistor estimate, a
+// public module's "\\" dropped), and errors that name the file: not JSON (as Yosys 0.23 writes
+// with a nested hierarchy: the text's lines inside the JSON), a missing field, a bad estimate.
+TEST(Area, StatJsonIsReadAndItsErrorsNameTheFile) {
+  const auto dir = temp_dir("statjson");
+  const auto report = [](const std::string& module) {
+    return R"({"modules": {")" + module + R"(": {"num_cells": 5,
+      "num_cells_by_type": {"$_DFF_P_": 2, "$_DFFE_PP_": 1, "$_XOR_": 2},
+      "estimated_num_transistors": "56+"}}})";
+  };
+  write(dir / "ok.json", report("\\\\m"));
+  const CmosStat c = read_cmos_stat((dir / "ok.json").string(), "m");
+  EXPECT_EQ(c.cells, 5);
+  EXPECT_EQ(c.transistors, 56);
+  EXPECT_TRUE(c.transistors_partial);
+  EXPECT_EQ(c.flip_flops, 3);
+  EXPECT_EQ(c.logic_transistors, 56 - 2 * kYosysCmosPlainDffTransistors);
+  EXPECT_EQ(read_cmos_stat((dir / "ok.json").string()).cells, 5);  // the only module
+  const auto error = [&](const std::string& name, const std::string& text) {
+    write(dir / name, text);
+    try {
+      read_cmos_stat((dir / name).string(), "m");
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  std::string nested = report("m");
+  nested.insert(nested.size() - 1, ",\n       leaf                          2\n  \"design\": {}");
+  const std::string bad = error("nested.json", nested);
+  EXPECT_NE(bad.find((dir / "nested.json").string() + ":4:"), std::string::npos) << bad;
+  EXPECT_NE(bad.find("not valid JSON"), std::string::npos) << bad;
+  std::string missing = report("m");
+  missing.replace(missing.find("num_cells\""), 10, "cells\"");
+  const std::string field = error("missing.json", missing);
+  EXPECT_NE(field.find((dir / "missing.json").string() + ": "), std::string::npos) << field;
+  EXPECT_NE(field.find("module m"), std::string::npos) << field;
+  EXPECT_NE(field.find("num_cells"), std::string::npos) << field;
+  std::string estimate = report("m");
+  estimate.replace(estimate.find("56+"), 3, "56?");
+  const std::string count = error("estimate.json", estimate);
+  EXPECT_NE(count.find((dir / "estimate.json").string()), std::string::npos) << count;
+  EXPECT_NE(count.find("\"56?\" is not a count"), std::string::npos) << count;
+  EXPECT_NE(error("other.json", report("n")).find("no statistics for module 'm'"),
+            std::string::npos);
   fs::remove_all(dir);
 }
 

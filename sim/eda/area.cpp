@@ -16,12 +16,14 @@
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
 
 #include "model/exponent_lut.h"
+#include "model/json_error.h"
 #include "model/specular_units.h"
 #include "model/text_file.h"
 #include "sim/eda/content_hash.h"
@@ -46,7 +48,7 @@ constexpr const char* kFlatScript =
     "synth -flatten -top shade_unit\n"
     "abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX\n"
     "opt_clean\n"
-    "tee -q -o @WORK@/flat_stat.txt stat -tech cmos\n"
+    "tee -q -o @WORK@/flat_stat.json stat -json -tech cmos\n"
     "tee -q -o @WORK@/flat_ltp.txt ltp -noff\n";
 // Table memories: synth's first half (to `fine`, where memory_map would turn them into
 // flip-flops), then a dump of the $mem cells: their SIZE x WIDTH are the RAM bits kept out of GE
@@ -77,14 +79,14 @@ constexpr const char* kBreakdownScript =
     "synth -flatten -top shade_unit\n"
     "abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX\n"
     "opt_clean\n"
-    "tee -q -o @WORK@/breakdown_stat.txt stat -tech cmos -top shade_unit\n";
+    "tee -q -o @WORK@/breakdown_stat.json stat -json -tech cmos -top shade_unit\n";
 // synth_ice40's own steps up to its `check`, then that step without `autoname`, which only names
 // wires (nextpnr does not need the names) and took most of Yosys's 14.6 minutes and 15 GB on
 // multi's unit with 17-bit offsets.
 constexpr const char* kIce40Script =
     "synth_ice40 -top shade_unit -run :check\n"
     "hierarchy -check\n"
-    "tee -q -o @WORK@/ice40_stat.txt stat\n"
+    "tee -q -o @WORK@/ice40_stat.json stat -json\n"
     "check -noinit\n"
     "blackbox =A:whitebox\n"
     "write_json @WORK@/ice40.json\n";
@@ -228,8 +230,7 @@ bool is_flip_flop(const std::string& cell_type) {
          cell_type.rfind("SB_DFF", 0) == 0;
 }
 
-// One "=== name ===" section of Yosys's text `stat` (the JSON form of Yosys 0.23 is not valid
-// JSON once a hierarchy is printed).
+// One module's figures, or the design's, in Yosys's `stat -json`.
 struct StatSection {
   int64_t cells = 0;
   int64_t transistors = 0;
@@ -237,42 +238,79 @@ struct StatSection {
   std::map<std::string, int64_t> by_type;
 };
 
-std::map<std::string, StatSection> read_stat_text(const fs::path& p) {
-  std::istringstream is(read_text_file(p.string()));
-  std::map<std::string, StatSection> out;
-  StatSection* cur = nullptr;
-  bool in_types = false;
-  static const std::regex header(R"(^=== (.+) ===\s*$)");
-  static const std::regex cells(R"(^\s+Number of cells:\s+([0-9]+)\s*$)");
-  static const std::regex type_line(R"(^\s+(\S+)\s+([0-9]+)\s*$)");
-  static const std::regex transistors(
-      R"(^\s+Estimated number of transistors:\s+([0-9]+)(\+?)\s*$)");
-  std::smatch m;
-  for (std::string line; std::getline(is, line);) {
-    if (std::regex_match(line, m, header)) {
-      cur = &out[m[1].str()];
-      in_types = false;
-    } else if (!cur) {
-      continue;
-    } else if (std::regex_match(line, m, cells)) {
-      cur->cells = std::stoll(m[1].str());
-      in_types = true;
-    } else if (std::regex_match(line, m, transistors)) {
-      cur->transistors = std::stoll(m[1].str());
-      cur->transistors_partial = m[2].length() > 0;
-      in_types = false;
-    } else if (in_types && std::regex_match(line, m, type_line)) {
-      cur->by_type[m[1].str()] += std::stoll(m[2].str());
-    } else {
-      in_types = false;
-    }
-  }
-  if (out.empty()) throw std::runtime_error(p.string() + ": no statistics from Yosys");
-  return out;
+// A `stat -json` report: "modules" {name: {"num_cells", "num_cells_by_type" {type: n},
+// "estimated_num_transistors" "N" or "N+" (only with -tech cmos)}} and "design", the top module
+// with everything below it (as the text's "design hierarchy"). Names are spelled as the text
+// spells them: "\shade_unit" is "shade_unit", "$paramod..." stays.
+// Yosys 0.23 writes invalid JSON in two cases, neither of which the scripts above meet: when no
+// top module is known (no -top, and no module with the `top` attribute that synth -top and
+// synth_ice40 -top set), "modules" ends in a comma and "design" is missing; and when a module
+// below the top instantiates a module of its own (the breakdown's kept modules instantiate none
+// of each other), the text's nested hierarchy lines land between "modules" and "design".
+struct StatReport {
+  std::map<std::string, StatSection> modules;
+  std::optional<StatSection> design;
+};
+
+std::string text_spelling(const std::string& yosys_id) {
+  return yosys_id.rfind('\\', 0) == 0 ? yosys_id.substr(1) : yosys_id;
 }
 
-const std::string& top_name(const std::map<std::string, StatSection>& stat, const fs::path& p) {
-  for (const auto& [name, sec] : stat) {
+// "13330" or "13330+" (the "+": cells without a CMOS cost).
+void read_transistors(const std::string& field, StatSection& s) {
+  const bool partial = !field.empty() && field.back() == '+';
+  const std::string digits = field.substr(0, field.size() - (partial ? 1 : 0));
+  if (digits.empty() || digits.size() > 18 ||
+      !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    throw std::runtime_error("estimated_num_transistors \"" + field + "\" is not a count");
+  s.transistors = std::stoll(digits);
+  s.transistors_partial = partial;
+}
+
+// `cmos`: the report is of `stat -tech cmos`, which must carry each transistor estimate.
+StatSection read_stat_section(const Json& j, bool cmos) {
+  StatSection s;
+  s.cells = j.at("num_cells").get<int64_t>();
+  for (const auto& [type, n] : j.at("num_cells_by_type").items())
+    s.by_type[text_spelling(type)] += n.get<int64_t>();
+  if (cmos) read_transistors(j.at("estimated_num_transistors").get<std::string>(), s);
+  return s;
+}
+
+// Throws naming the file (and, for a section's missing or mistyped field, the section).
+StatReport read_stat_json(const fs::path& p, bool cmos) {
+  const std::string text = read_text_file(p.string());
+  Json j;
+  try {
+    j = Json::parse(text);
+  } catch (const Json::exception& e) {
+    const JsonTextError error = describe_json_error(text, e);
+    throw std::runtime_error(p.string() + error.place + ": Yosys's stat -json is not valid JSON (" +
+                             error.reason +
+                             "); Yosys 0.23's is invalid when no top module is known or a module "
+                             "below the top instantiates another");
+  }
+  StatReport r;
+  std::string section = "the report";
+  try {
+    for (const auto& [name, m] : j.at("modules").items()) {
+      section = "module " + text_spelling(name);
+      r.modules[text_spelling(name)] = read_stat_section(m, cmos);
+    }
+    section = "design";
+    if (j.contains("design")) r.design = read_stat_section(j.at("design"), cmos);
+  } catch (const Json::exception& e) {
+    throw std::runtime_error(p.string() + ": Yosys's stat -json, " + section + ": " +
+                             describe_json_error(text, e).reason);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(p.string() + ": Yosys's stat -json, " + section + ": " + e.what());
+  }
+  if (r.modules.empty()) throw std::runtime_error(p.string() + ": no statistics from Yosys");
+  return r;
+}
+
+const std::string& top_name(const StatReport& stat, const fs::path& p) {
+  for (const auto& [name, sec] : stat.modules) {
     if (base_module_name(name) == "shade_unit") return name;
   }
   throw std::runtime_error(p.string() + ": Yosys statistics have no shade_unit module");
@@ -298,18 +336,15 @@ int64_t flip_flop_transistors_of(const StatSection& s) {
 
 // Per-module rows from the kept-hierarchy stat: each module with its submodules folded in,
 // instance counts from the top down, then the top's own glue.
-void read_breakdown(const std::map<std::string, StatSection>& stat, const fs::path& p,
-                    AreaReport& r) {
+void read_breakdown(const StatReport& stat, const fs::path& p, AreaReport& r) {
   struct Totals {
     int64_t cells = 0, transistors = 0, ffs = 0, logic = 0;
   };
   std::map<std::string, Totals> memo;
-  auto is_module = [&](const std::string& type) {
-    return type != "design hierarchy" && stat.count(type) > 0;
-  };
+  auto is_module = [&](const std::string& type) { return stat.modules.count(type) > 0; };
   std::function<Totals(const std::string&)> total = [&](const std::string& name) -> Totals {
     if (auto f = memo.find(name); f != memo.end()) return f->second;
-    const StatSection& sec = stat.at(name);
+    const StatSection& sec = stat.modules.at(name);
     Totals t{sec.cells, sec.transistors, flip_flops_of(sec),
              sec.transistors - flip_flop_transistors_of(sec)};
     for (const auto& [type, n] : sec.by_type) {
@@ -322,7 +357,7 @@ void read_breakdown(const std::map<std::string, StatSection>& stat, const fs::pa
     }
     return memo[name] = t;
   };
-  const StatSection& top = stat.at(top_name(stat, p));
+  const StatSection& top = stat.modules.at(top_name(stat, p));
   r.modules.clear();
   int64_t glue_cells = top.cells;
   for (const auto& [type, n] : top.by_type) {
@@ -342,11 +377,10 @@ void read_breakdown(const std::map<std::string, StatSection>& stat, const fs::pa
   }
   r.breakdown_cells = 0;
   for (const auto& m : r.modules) r.breakdown_cells += m.cells();
-  if (auto h = stat.find("design hierarchy");
-      h != stat.end() && h->second.cells != r.breakdown_cells) {
+  if (stat.design && stat.design->cells != r.breakdown_cells) {
     throw std::runtime_error(p.string() + ": per-module cells sum to " +
                              std::to_string(r.breakdown_cells) + ", Yosys's design total is " +
-                             std::to_string(h->second.cells));
+                             std::to_string(stat.design->cells));
   }
 }
 
@@ -555,16 +589,15 @@ int64_t AreaReport::gate_equivalents() const {
 }
 
 CmosStat read_cmos_stat(const std::string& stat_file, const std::string& module) {
-  const auto stat = read_stat_text(stat_file);
+  const StatReport stat = read_stat_json(stat_file, true);
   const StatSection* sec = nullptr;
   if (!module.empty()) {
-    for (const auto& [name, s] : stat)
+    for (const auto& [name, s] : stat.modules)
       if (base_module_name(name) == module) sec = &s;
-  } else if (stat.size() == 1) {
-    sec = &stat.begin()->second;
-  } else {
-    for (const auto& [name, s] : stat)
-      if (name == "design hierarchy") sec = &s;
+  } else if (stat.modules.size() == 1) {
+    sec = &stat.modules.begin()->second;
+  } else if (stat.design) {
+    sec = &*stat.design;
   }
   if (!sec) throw std::runtime_error(stat_file + ": no statistics for module '" + module + "'");
   CmosStat c;
@@ -903,9 +936,9 @@ void run_syntheses(const AreaInputs& in, const fs::path& work, const AreaOptions
 // per-module rows, the iCE40 resources and whether they fit.
 void read_syntheses(const fs::path& work, bool breakdown, AreaReport& r) {
   {
-    const fs::path p = work / "flat_stat.txt";
-    const auto stat = read_stat_text(p);
-    const StatSection& top = stat.at(top_name(stat, p));
+    const fs::path p = work / "flat_stat.json";
+    const StatReport stat = read_stat_json(p, true);
+    const StatSection& top = stat.modules.at(top_name(stat, p));
     r.cells = top.cells;
     r.transistors = top.transistors;
     r.transistors_partial = top.transistors_partial;
@@ -916,13 +949,14 @@ void read_syntheses(const fs::path& work, bool breakdown, AreaReport& r) {
     r.logic_depth = read_logic_depth((work / "flat_ltp.txt").string());
   }
   if (breakdown) {
-    read_breakdown(read_stat_text(work / "breakdown_stat.txt"), work / "breakdown_stat.txt", r);
+    const fs::path p = work / "breakdown_stat.json";
+    read_breakdown(read_stat_json(p, true), p, r);
   }
   check_series(r);
   {
-    const fs::path p = work / "ice40_stat.txt";
-    const auto stat = read_stat_text(p);
-    read_ice40_stat(stat.at(top_name(stat, p)), r.ice40);
+    const fs::path p = work / "ice40_stat.json";  // no -tech: no transistor estimate
+    const StatReport stat = read_stat_json(p, false);
+    read_ice40_stat(stat.modules.at(top_name(stat, p)), r.ice40);
   }
   check_fit(r.ice40);
 }
@@ -1134,7 +1168,7 @@ UnitNetlist unit_netlist(const UnitConfig& unit, const NetlistOptions& o) {
   run_tool({yosys, "-q", "-l", (work / "netlist.log").string(), (work / "netlist.ys").string()},
            work / "netlist.out", "yosys netlist of " + unit.to_string(), o.progress);
   check_netlist_ports(work / "netlist.v", params);
-  const CmosStat c = read_cmos_stat((work / "flat_stat.txt").string(), "shade_unit");
+  const CmosStat c = read_cmos_stat((work / "flat_stat.json").string(), "shade_unit");
   n.cells = c.cells;
   n.flip_flops = c.flip_flops;
   n.ram_bits = ram_bits_of_parameters(params);  // the area report measures them with Yosys

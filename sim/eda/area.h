@@ -104,7 +104,7 @@ constexpr int kGatesPerFlipFlop = 6;
 constexpr int kYosysCmosPlainDffTransistors = 16;
 int64_t gate_equivalents(int64_t logic_transistors, int64_t flip_flops, int64_t ram_bits);
 
-// One module's figures from a Yosys `stat -tech cmos` text file (a `tee -o` of it): cells,
+// One module's figures from a Yosys `stat -json -tech cmos` report (a `tee -o` of it): cells,
 // transistors, flip-flops (every $_*DFF* cell) and logic transistors (transistors less
 // kYosysCmosPlainDffTransistors per $_DFF_P_ / $_DFF_N_). `module` "" takes the only or top
 // module. Throws std::runtime_error naming the file.
