@@ -51,7 +51,8 @@ if(CMAKE_SCRIPT_MODE_FILE)
     endif()
   endforeach()
   string(REPLACE "," ";" rtl_sources "${RTL}")
-  _icarus_step("iverilog" ${IVERILOG} -g2012 -s tb_shade_unit ${params} -o ${TB} ${rtl_sources} ${TB_SRC})
+  _icarus_step("iverilog" ${IVERILOG} -g2012 -s tb_shade_unit -DSHADESIM_FAULT_DUT=tb_shade_unit.dut
+               ${params} -o ${TB} ${rtl_sources} ${TB_SRC})
   if(COMPILE_ONLY)
     return()
   endif()
@@ -73,7 +74,7 @@ if(CMAKE_SCRIPT_MODE_FILE)
   endif()
   _icarus_step("export" ${TOOL} export ${stem}.cmds --hex ${stem}.hex --pixels ${stem}.expected.txt
                --gaps ${stem}.gaps.hex --cycles ${stem}.cycles.hex ${stim})
-  # FAULT=SITE@Y (a build with fault hooks): the plusargs shade_unit's fault_select reads.
+  # FAULT=SITE@Y (a build with fault hooks): the plusargs its fault_select reads.
   set(fault_plusargs)
   if(FAULT)
     _icarus_step("fault plusargs" ${TOOL} fault-plusargs ${FAULT})

@@ -20,9 +20,10 @@ set(RTL_DIR ${CMAKE_SOURCE_DIR}/rtl)
 include(${CMAKE_SOURCE_DIR}/cmake/rtl_files.cmake)
 rtl_files(RTL_SOURCES)
 # The harness's deliberate-fault hooks (test apparatus, outside rtl/): a simulation of a build
-# with fault hooks compiles them after the RTL; synthesis never reads them.
-set(RTL_SIM_SOURCES ${RTL_SOURCES} ${CMAKE_SOURCE_DIR}/sim/harness/fault_select.sv
-    ${CMAKE_SOURCE_DIR}/sim/harness/fault_hooks.sv)
+# with fault hooks compiles them after the RTL (Verilator adds faults/fault_bind.sv; the Icarus
+# testbench instantiates them); synthesis never reads them.
+rtl_files(FAULT_HOOK_SOURCES DIR ${CMAKE_SOURCE_DIR}/sim/harness/faults)
+set(RTL_SIM_SOURCES ${RTL_SOURCES} ${FAULT_HOOK_SOURCES})
 
 # The named builds (and what the tests iterate over), read from the same file shadesim reads.
 file(READ ${CMAKE_SOURCE_DIR}/sim/harness/builds.json _builds_json)
@@ -78,8 +79,13 @@ _cosim(COSIM_SC systemc)
 foreach(name ${RTL_BUILD_NAMES})
   add_test(NAME rtl_lint_${name}
     COMMAND sh -c "exec ${VERILATOR_BIN} --lint-only -Wall $(\"$0\" rtl-params --config ${name}) --top-module shade_unit \"$@\""
-            ${SHADESIM_CLI} ${RTL_SIM_SOURCES})
+            ${SHADESIM_CLI} ${RTL_SOURCES})
 endforeach()
+# The fault hooks bound into a four-lane RGB unit, as a build with fault hooks Verilates them
+# (-fno-dfg: sim/eda/rtl_recipe.cpp says why).
+add_test(NAME rtl_lint_fault_hooks
+  COMMAND ${VERILATOR_BIN} --lint-only -Wall -fno-dfg -GLANES=4 -GCHANNELS=3 -GLIGHTS=2
+          --top-module shade_unit ${RTL_SIM_SOURCES} ${CMAKE_SOURCE_DIR}/sim/harness/faults/fault_bind.sv)
 if(IVERILOG)
   add_test(NAME rtl_iverilog
     COMMAND ${IVERILOG} -g2012 -Wall -s shade_unit -o ${CMAKE_BINARY_DIR}/rtl_iverilog.vvp ${RTL_SOURCES})

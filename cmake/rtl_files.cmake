@@ -1,10 +1,14 @@
-# rtl_files(<out> [UNTIL <file>]): shade_unit's RTL sources, absolute, in dependency order, from
-# the one list rtl/files.f (which sim/eda/rtl_build.cpp and sim/eda/area.cpp read too). UNTIL stops after
-# that file (the specular units' own tests need the leaves up to specular_unit.sv). A change to
-# the list re-runs the configure.
+# rtl_files(<out> [DIR <dir>] [UNTIL <file>]): shade_unit's RTL sources, absolute, in dependency
+# order, from the one list rtl/files.f (which sim/eda/rtl_build.cpp and sim/eda/area.cpp read
+# too); DIR reads another folder's files.f (sim/harness/faults: the fault hooks). UNTIL stops
+# after that file (the specular units' own tests need the leaves up to specular_unit.sv). A
+# change to the list re-runs the configure.
 function(rtl_files out)
-  cmake_parse_arguments(RF "" "UNTIL" "" ${ARGN})
-  set(list_file ${CMAKE_SOURCE_DIR}/rtl/files.f)
+  cmake_parse_arguments(RF "" "UNTIL;DIR" "" ${ARGN})
+  if(NOT RF_DIR)
+    set(RF_DIR ${CMAKE_SOURCE_DIR}/rtl)
+  endif()
+  set(list_file ${RF_DIR}/files.f)
   set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${list_file})
   file(STRINGS ${list_file} lines)
   set(files "")
@@ -13,14 +17,14 @@ function(rtl_files out)
     if(line STREQUAL "" OR line MATCHES "^//")
       continue()
     endif()
-    list(APPEND files ${CMAKE_SOURCE_DIR}/rtl/${line})
+    list(APPEND files ${RF_DIR}/${line})
     if(RF_UNTIL AND line STREQUAL RF_UNTIL)
       set(${out} ${files} PARENT_SCOPE)
       return()
     endif()
   endforeach()
   if(RF_UNTIL)
-    message(FATAL_ERROR "rtl_files: ${RF_UNTIL} is not in rtl/files.f")
+    message(FATAL_ERROR "rtl_files: ${RF_UNTIL} is not in ${list_file}")
   endif()
   set(${out} ${files} PARENT_SCOPE)
 endfunction()

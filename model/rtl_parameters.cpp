@@ -15,7 +15,7 @@ int64_t code(Overflow o) { return o == Overflow::kWrap ? 1 : 0; }
 
 }  // namespace
 
-std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u, const InjectedFaults& f) {
+std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u) {
   u.validate();
   const SpecularConfig& s = u.specular;
   const SpecularUnitDescriptor& unit = specular_unit(s.kind);
@@ -77,7 +77,6 @@ std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u, const I
     }
     p.push_back(packed);
   }
-  if (f.hooks) p.push_back({"FAULT_HOOKS", 1});
   return p;
 }
 

@@ -15,13 +15,6 @@
 
 namespace shadesim {
 
-// A build that can inject the harness's deliberate faults (shade_unit FAULT_HOOKS = 1); which
-// one, and on which row, each run chooses (sim/harness/fault_site.h). No unit has them.
-struct InjectedFaults {
-  bool hooks = false;
-  bool any() const { return hooks; }
-};
-
 // SPEC_PARAMS, shade_unit's one parameter for the specular unit's own fields: kSpecSlots slots of
 // kSpecSlotBits bits, slot k in bits [k * kSpecSlotBits +: kSpecSlotBits]. The C++ twin of
 // rtl/shade_pkg.sv SpecSlots / SpecSlotW (tests/specular_units_test.cpp reads both).
@@ -48,8 +41,7 @@ struct VerilogParameter {
 // (model/specular_units.cpp); a hardware unit always gets all kSpecSlots slots. Host-only choices
 // (LUT addressing and shared range, fit objectives, coefficient rounding and overflow) shape the
 // command stream, not the hardware, and have no parameter.
-std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& unit,
-                                                    const InjectedFaults& faults = {});
+std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& unit);
 
 // name -> value, a packed parameter as one entry per slot ("SPEC_PARAMS[3]"), so that comparing
 // two lists compares every field.

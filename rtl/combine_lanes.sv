@@ -23,7 +23,6 @@ module combine_lanes #(
   input  logic [LIGHTS*CHANNELS*SPEC_COLOUR_WL-1:0]  spec_colour_i,
   input  logic [LIGHTS*CHANNELS*SPEC_COLOUR_WL-1:0]  diffuse_colour_i,  // multiply only
   input  logic [LIGHTS-1:0]                          gate_only_i,
-  input  logic                                       trunc_i,  // truncate (a fault hook)
   output logic [LANES*CHANNELS*OUT_BITS-1:0]         colour_o  // lane j's at j * LaneColW
 );
   localparam int LaneDiffW = (DIFFUSE_MULTIPLY ? LIGHTS : LIGHTS * CHANNELS) * SERIES_WL;
@@ -38,7 +37,7 @@ module combine_lanes #(
     ) u_combine (
       .diffuse_i(diffuse_i[j*LaneDiffW +: LaneDiffW]),
       .spec_i(spec_i[j*LIGHTS*SPECULAR_OUT_WL +: LIGHTS*SPECULAR_OUT_WL]), .ambient_i,
-      .spec_colour_i, .diffuse_colour_i, .gate_only_i, .trunc_i,
+      .spec_colour_i, .diffuse_colour_i, .gate_only_i,
       .colour_o(colour_o[j*LaneColW +: LaneColW])
     );
   end

@@ -15,7 +15,6 @@ module engine_ctrl #(
   input  logic [3*XY_BITS+1:0]  span_i,        // ... {y, x0, len[XY_BITS:0], last}
   input  logic                  adv_i,         // the pix register can take a beat
   input  logic                  spec_busy_i,   // an iterative specular unit cannot start
-  output logic                  take_ready_o,  // the engines can take a span this cycle
   output logic                  load_o,        // ... and take it
   output logic                  emit_o,        // the engines hand a beat on and step
   output logic                  run_o,         // the engines hold a span
@@ -42,8 +41,9 @@ module engine_ctrl #(
   assign emit         = run_q && adv_i && !spec_busy_i;
   // 1 <= rem_q <= LANES on the last beat (LANES = 1: rem_q == 1).
   assign last_pix     = rem_q - 1'b1 < (XY_BITS + 1)'(LANES);
-  assign take_ready_o = !run_q || (emit && last_pix);
-  assign load_o       = span_valid_i && take_ready_o;
+  logic take_ready;  // the engines can take a span this cycle
+  assign take_ready = !run_q || (emit && last_pix);
+  assign load_o     = span_valid_i && take_ready;
 
   always_comb begin
     run_d = run_q;

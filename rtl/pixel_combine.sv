@@ -35,9 +35,6 @@ module pixel_combine #(
   input  logic [LIGHTS*CHANNELS*SPEC_COLOUR_WL-1:0] spec_colour_i,  // [l*CHANNELS + c]
   input  logic [LIGHTS*CHANNELS*SPEC_COLOUR_WL-1:0] diffuse_colour_i,  // [l*CHANNELS + c]: kd_lc
   input  logic [LIGHTS-1:0]                         gate_only_i,    // [l]: D_l0 gates only
-  // A test hook (shade_unit's FaultRounding): truncate the output instead of rounding it. 0 in
-  // every unit; under synthesis it is not read at all.
-  input  logic                                      trunc_i,
   output logic [CHANNELS*OUT_BITS-1:0]              colour_o        // [c]
 );
   localparam int SeriesFrac = SERIES_WL - SERIES_IWL;
@@ -146,18 +143,10 @@ module pixel_combine #(
     logic signed [AccW-1:0] acc;
     assign acc = $signed(sums[LIGHTS*AccW +: AccW]);
 
-    logic signed [OutRndW-1:0] out_rnd, out_trunc;
+    logic signed [OutRndW-1:0] out_rnd;
     fixed_round #(.IN_W(AccW), .DROP(OutDrop), .ROUND(1)) u_round_out (.in_i(acc), .out_o(out_rnd));
-    fixed_round #(.IN_W(AccW), .DROP(OutDrop), .ROUND(0), .OUT_W(OutRndW))
-      u_trunc_out (.in_i(acc), .out_o(out_trunc));
-    logic signed [OutRndW-1:0] out_q;  // what is saturated into the output code
-`ifndef SYNTHESIS
-    assign out_q = trunc_i ? out_trunc : out_rnd;
-`else
-    assign out_q = out_rnd;  // the hook is for simulation: no area in any report
-`endif
     fixed_sat #(.IN_W(OutRndW), .OUT_W(OUT_BITS), .OUT_SIGNED(0), .WRAP(0))
-      u_sat_out (.in_i(out_q), .out_o(colour_o[c*OUT_BITS +: OUT_BITS]));
+      u_sat_out (.in_i(out_rnd), .out_o(colour_o[c*OUT_BITS +: OUT_BITS]));
   end
   if (DIFFUSE_MULTIPLY) begin : g_no_gate_only
     // verilator lint_off UNUSEDSIGNAL

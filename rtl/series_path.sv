@@ -3,7 +3,7 @@
 // K-pixel differences). With host span setup (HOST_SETUP) there is no span_setup: v, d, d2 come
 // from the start bank (bank_*_i) and the setup inputs are unused. The engines load on load_i
 // and step on step_i (engine_ctrl); the start values leave and re-enter (setup_v_o ->
-// start_v_i) so the fault hooks can reach them.
+// start_v_i) so the harness can force an error onto them (shade_unit's start_v).
 module series_path #(
   parameter int N_SER           = 1,
   parameter int LANES           = 1,

@@ -116,22 +116,13 @@ package shade_pkg;
                         : 1;
   endfunction
 
-  // ---- deliberate faults (the harness's own tests; sim/harness/fault_site.h is the C++ twin) --
-  // A build with FAULT_HOOKS = 1 injects the one chosen at run time (fault_select) on row
-  // FaultRow; every other build, and synthesis, has none.
-  localparam int          FaultSiteW     = 4;
-  localparam logic [3:0]  FaultNone      = 4'd0;
-  localparam logic [3:0]  FaultLsb       = 4'd1;   // channel 0 of every pixel of the row + 1 LSB
-  localparam logic [3:0]  FaultStall     = 4'd2;   // one extra engine stall before the row's
-                                                   // last_in_row span (first occurrence)
-  localparam logic [3:0]  FaultHang      = 4'd3;   // the engines never take a span of the row
-  localparam logic [3:0]  FaultChannel2  = 4'd4;   // channel 2 of every pixel of the row + 1 LSB
-  localparam logic [3:0]  FaultX         = 4'd5;   // pix_x_o + 1 on the row
-  localparam logic [3:0]  FaultY         = 4'd6;   // pix_y_o bit 0 flipped on the row
-  localparam logic [3:0]  FaultEor       = 4'd7;   // pix_eor_o inverted on the row
-  localparam logic [3:0]  FaultSpanSetup = 4'd8;   // series 0's start value + 1 output LSB
-  localparam logic [3:0]  FaultRounding  = 4'd9;   // the output truncated, not rounded
-  localparam logic [3:0]  FaultSpecular  = 4'd10;  // light 0's specular result: top fraction
-                                                   // bit flipped
+  // ---- series per pixel ----------------------------------------------------------------------
+  // One diffuse series per light and channel (per light when pixel_combine multiplies the diffuse
+  // colour in), then each light's specular ones (Schlick: two, none: none).
+  function automatic int series_count(input int kind, input int lights, input int channels,
+                                      input bit diffuse_multiply);
+    series_count = (diffuse_multiply ? lights : lights * channels) +
+                   lights * (kind == SpecSchlick ? 2 : kind == SpecNone ? 0 : 1);
+  endfunction
   // verilator lint_on UNUSEDPARAM
 endpackage

@@ -40,10 +40,7 @@ module shade_unit #(
   parameter int START_DEPTH      = 1,  // host setup: start bank entries, 1 or 2
   // DiffuseColour: 0 rolled into the series (a series per light and channel), 1 multiplied in
   // pixel_combine (one N.L series per light; the MATERIAL carries kd_c L_c).
-  parameter int DIFFUSE_MULTIPLY = 0,
-  // 1: the harness's deliberate faults can be injected (sim/harness/fault_hooks.sv, test
-  // apparatus a simulation compiles after rtl/). 0 (every unit, and synthesis): none.
-  parameter int FAULT_HOOKS      = 0
+  parameter int DIFFUSE_MULTIPLY = 0
 ) (
   input  logic                         clk_i,
   input  logic                         rst_ni,
@@ -63,7 +60,8 @@ module shade_unit #(
   localparam int NColours       = LIGHTS * CHANNELS;  // colour words per MATERIAL and kind
   localparam bit Multiply       = DIFFUSE_MULTIPLY != 0;
   localparam int NDiff          = Multiply ? LIGHTS : NColours;  // diffuse series
-  localparam int NSer           = NDiff + LIGHTS * SeriesPerLight;
+  localparam int NSer           = shade_pkg::series_count(SPECULAR_KIND, LIGHTS, CHANNELS,
+                                                         Multiply);
   localparam int NCoef          = 6 * NSer;
   // ambient + spec_colour (+ diffuse_colour) words
   localparam int NMatFixed      = CHANNELS + (Multiply ? 2 : 1) * NColours;
@@ -163,7 +161,10 @@ module shade_unit #(
     .ambient_o(ambient), .spec_colour_o(spec_colour), .diffuse_colour_o(diffuse_colour),
     .gate_only_o(gate_only)
   );
-  logic [NSer*SERIES_WL-1:0] setup_v, start_v;
+  logic [NSer*SERIES_WL-1:0] setup_v;
+  // Nets of their own (wires, which a force overrides in every simulator) between the modules:
+  // the harness forces its deliberate errors onto them (sim/harness/faults/, docs/cosim.md).
+  wire  [NSer*SERIES_WL-1:0] start_v = setup_v;
   logic [LANES*LaneSerW-1:0] eng_v;  logic emit, adv, spec_busy;  // eng_v: lane j at j*LaneSerW
   series_path #(
     .N_SER(NSer), .LANES(LANES), .COEF_WL(COEF_WL), .COEF_IWL(COEF_IWL), .SERIES_WL(SERIES_WL),
@@ -175,13 +176,14 @@ module shade_unit #(
     .bank_v_i(bank_v), .bank_d_i(bank_d), .bank_d2_i(bank_d2),
     .setup_v_o(setup_v), .start_v_i(start_v), .load_i(load_eng), .step_i(emit), .v_o(eng_v)
   );
-  logic eng_span_valid, eng_take_ready, run, eng_span_end, eng_eor;
+  wire  eng_span_valid = s3_v;
+  logic run, eng_span_end, eng_eor;
   logic [XY_BITS-1:0]         eng_x, eng_y;
   logic [LANES-1:0]           eng_mask;
   logic [LANES*LaneDiffW-1:0] eng_diffuse;  // lane j at j * LaneDiffW
   engine_ctrl #(.XY_BITS(XY_BITS), .LANES(LANES)) u_engine_ctrl (
     .clk_i, .rst_ni, .span_valid_i(eng_span_valid), .span_i(s3_span), .adv_i(adv),
-    .spec_busy_i(spec_busy), .take_ready_o(eng_take_ready), .load_o(load_eng), .emit_o(emit),
+    .spec_busy_i(spec_busy), .load_o(load_eng), .emit_o(emit),
     .run_o(run), .x_o(eng_x), .y_o(eng_y), .mask_o(eng_mask), .span_end_o(eng_span_end),
     .eor_o(eng_eor)
   );
@@ -190,7 +192,8 @@ module shade_unit #(
   end
   // (One concatenation: Icarus 11 cannot assign a part of a struct member.)
   assign meta_in = {eng_x, eng_y, eng_eor, eng_span_end, mat_q, eng_mask, eng_diffuse};
-  logic [LANES*LIGHTS*SPECULAR_OUT_WL-1:0] slot_spec, spec;  // lane j, light l: j * LIGHTS + l
+  logic [LANES*LIGHTS*SPECULAR_OUT_WL-1:0] slot_spec;  // lane j, light l: j * LIGHTS + l
+  wire  [LANES*LIGHTS*SPECULAR_OUT_WL-1:0] spec = slot_spec;
   logic                                    slot_en, out_adv, meta_out_valid, slot_empty;
   assign slot_en = Iterative ? emit : adv;
   spec_slots #(
@@ -211,8 +214,8 @@ module shade_unit #(
   assign datapath_empty = sq_empty && !setup_busy && !run && slot_empty;
   // A span's last beat leaves the slot: no pixel of it reads its bank any more.
   assign mat_leave = out_adv && meta_out_valid && meta_out.span_end;
-  logic [LANES*LaneColW-1:0] colour, colour_out;  // lane j at j * LaneColW
-  logic                      trunc;
+  logic [LANES*LaneColW-1:0] colour;  // lane j at j * LaneColW
+  wire  [LANES*LaneColW-1:0] colour_out = colour;
   combine_lanes #(
     .CHANNELS(CHANNELS), .LIGHTS(LIGHTS), .LANES(LANES), .SERIES_WL(SERIES_WL),
     .SERIES_IWL(SERIES_IWL), .SERIES_QUANT(SERIES_QUANT), .SERIES_OVERFLOW(SERIES_OVERFLOW),
@@ -222,42 +225,19 @@ module shade_unit #(
   ) u_combine_lanes (
     .diffuse_i(meta_out.diffuse), .spec_i(spec), .ambient_i(ambient),
     .spec_colour_i(spec_colour), .diffuse_colour_i(diffuse_colour), .gate_only_i(gate_only),
-    .trunc_i(trunc), .colour_o(colour)
+    .colour_o(colour)
   );
-  logic [XY_BITS-1:0] out_x, out_y;
-  logic               out_eor;
+  wire  [XY_BITS-1:0] out_x = meta_out.x, out_y = meta_out.y;
+  wire                out_eor = meta_out.eor;
   out_reg #(.XY_BITS(XY_BITS), .LANES(LANES), .COLOUR_W(LANES * LaneColW)) u_out_reg (
     .clk_i, .rst_ni, .load_i(out_adv && meta_out_valid), .x_i(out_x), .y_i(out_y),
     .colour_i(colour_out), .mask_i(meta_out.mask), .eor_i(out_eor), .adv_o(adv), .pix_x_o,
     .pix_y_o, .pix_colour_o, .pix_mask_o, .pix_eor_o, .pix_valid_o, .pix_ready_i
   );
 
-  if (FAULT_HOOKS != 0) begin : g_faults
-    fault_hooks #(
-      .XY_BITS(XY_BITS), .LANES(LANES), .CHANNELS(CHANNELS), .LIGHTS(LIGHTS), .N_SER(NSer),
-      .OUT_BITS(OUT_BITS), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
-      .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL)
-    ) u_fault_hooks (
-      .clk_i, .rst_ni, .s3_valid_i(s3_v), .s3_y_i(s3_span.y), .s3_last_i(s3_span.last),
-      .eng_take_ready_i(eng_take_ready), .eng_span_valid_o(eng_span_valid),
-      .setup_v_i(setup_v), .start_v_o(start_v), .out_y_i(meta_out.y), .out_x_i(meta_out.x),
-      .out_eor_i(meta_out.eor), .spec_i(slot_spec), .spec_o(spec), .trunc_o(trunc),
-      .colour_i(colour), .colour_o(colour_out), .x_o(out_x), .y_o(out_y), .eor_o(out_eor)
-    );
-  end else begin : g_no_faults
-    assign {eng_span_valid, start_v, spec, colour_out} = {s3_v, setup_v, slot_spec, colour};
-    assign {trunc, out_x, out_y, out_eor} = {1'b0, meta_out.x, meta_out.y, meta_out.eor};
-    // verilator lint_off UNUSEDSIGNAL
-    logic unused_take;  // reason: read only by the stall fault's bookkeeping
-    assign unused_take = eng_take_ready;
-    // verilator lint_on UNUSEDSIGNAL
-  end
-
 `ifndef SYNTHESIS
   // UnitConfig::validate's ranges (model/unit_config.cpp): each module checks its own.
   initial begin
-    if (FAULT_HOOKS != 0 && FAULT_HOOKS != 1)
-      $fatal(1, "shade_unit: FAULT_HOOKS %0d is not 0 or 1", FAULT_HOOKS);
     if (SPAN_SETUP != shade_pkg::SetupUnit && SPAN_SETUP != shade_pkg::SetupHost)
       $fatal(1, "shade_unit: SPAN_SETUP %0d is not 0 (unit) or 1 (host)", SPAN_SETUP);
     if (DIFFUSE_MULTIPLY != 0 && DIFFUSE_MULTIPLY != 1)

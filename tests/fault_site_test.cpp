@@ -1,4 +1,4 @@
-// The deliberate-fault sites (sim/harness/fault_site.h): the numbers are rtl/shade_pkg.sv's,
+// The deliberate-fault sites (sim/harness/fault_site.h): the numbers are fault_pkg.sv's,
 // read from the file, and --fault's text form is checked.
 #include "sim/harness/fault_site.h"
 
@@ -14,9 +14,9 @@
 namespace shadesim {
 namespace {
 
-// shade_pkg's `localparam logic [3:0] FaultName = 4'dN;` lines, by name.
+// sim/harness/faults/fault_pkg.sv's `localparam logic [3:0] FaultName = 4'dN;` lines, by name.
 std::map<std::string, int> rtl_fault_sites() {
-  std::ifstream in(std::string(SHADESIM_SOURCE_DIR) + "/rtl/shade_pkg.sv");
+  std::ifstream in(std::string(SHADESIM_SOURCE_DIR) + "/sim/harness/faults/fault_pkg.sv");
   std::stringstream text;
   text << in.rdbuf();
   const std::string s = text.str();
@@ -27,7 +27,7 @@ std::map<std::string, int> rtl_fault_sites() {
   return sites;
 }
 
-TEST(FaultSite, NumbersAreShadePkgs) {
+TEST(FaultSite, NumbersAreFaultPkgs) {
   const std::map<std::string, int> rtl = rtl_fault_sites();
   // The RTL's names for the C++ sites (FaultNone is 0, FaultInjection's default).
   const std::map<FaultSite, std::string> rtl_name = {{FaultSite::kLsb, "Lsb"},

@@ -118,14 +118,8 @@ TEST(RtlParameters, NarrowedCoefficientTermsMapToTheirWidths) {
   EXPECT_THROW(shade_unit_parameters(u), std::invalid_argument);
 }
 
-TEST(RtlParameters, FaultHooksOnlyWhenAskedForAndToolSyntax) {
-  EXPECT_EQ(as_map(shade_unit_parameters(UnitConfig{})).count("FAULT_HOOKS"), 0u);
-  InjectedFaults f;
-  EXPECT_FALSE(f.any());
-  f.hooks = true;
-  EXPECT_TRUE(f.any());
-  const auto params = shade_unit_parameters(UnitConfig{}, f);
-  EXPECT_EQ(as_map(params).at("FAULT_HOOKS"), 1);
+TEST(RtlParameters, ToolSyntax) {
+  const auto params = shade_unit_parameters(UnitConfig{});
   EXPECT_EQ(verilator_parameter_args(params).front(), "-GCHANNELS=1");
   EXPECT_EQ(iverilog_parameter_args(params, "tb").front(), "-Ptb.CHANNELS=1");
   EXPECT_EQ(yosys_chparam_args({{"A", 1}, {"B", -1}}), "-set A 1 -set B -1");

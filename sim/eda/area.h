@@ -205,10 +205,11 @@ int64_t ram_bits_of_parameters(const std::vector<VerilogParameter>& parameters);
 
 // The gate-level netlist of `unit` that the flat flow measures, for simulation in place of the
 // RTL (regress --netlist): the flat script above, then `write_verilog -noattr`. Parameters are
-// baked in (chparam), FAULT_HOOKS is 0. Cached in `cache_dir` as netlist-<key>.v, the key
-// hashing the parameters, the RTL sources' contents, the Yosys version and the script (like the
-// area cache), with its stat beside it (netlist-<key>.json). The top's ports are checked against
-// the ports the co-simulation glue drives (names and widths from the parameters).
+// baked in (chparam); no fault hooks (sim/harness/faults/ is never synthesised). Cached in
+// `cache_dir` as netlist-<key>.v, the key hashing the parameters, the RTL sources' contents, the
+// Yosys version and the script (like the area cache), with its stat beside it (netlist-<key>.json).
+// The top's ports are checked against the ports the co-simulation glue drives (names and widths
+// from the parameters).
 struct NetlistOptions {
   std::string rtl_dir;    // empty: SHADESIM_RTL_DIR, else this source tree's rtl/
   std::string cache_dir;  // required

@@ -115,7 +115,7 @@ int exec_cosim(const CosimOptions& o) {
   }
   if (o.netlist) {
     if (bo.coverage) throw std::invalid_argument("--netlist: a gate-level netlist has no coverage");
-    // The netlist is synthesised with FAULT_HOOKS 0: a fault-hook build's netlist has none.
+    // A netlist has no fault hooks: they are simulation apparatus bound into the RTL.
     build.faults = InjectedFaults{};
     NetlistOptions no;
     no.cache_dir = o.netlist_cache.empty() ? default_netlist_cache_dir() : o.netlist_cache;
@@ -265,11 +265,14 @@ int run_cosim(const CosimOptions& o) {
 
 int run_rtl_params(const RtlParamsOptions& o) {
   const RtlConfig c = resolve_rtl_config(o.config, "--config");
-  const auto list = shade_unit_parameters(c.unit, c.faults);
+  const auto list = shade_unit_parameters(c.unit);
   if (o.tool == "verilator") {
     for (const auto& a : verilator_parameter_args(list)) std::cout << a << '\n';
   } else if (o.tool == "iverilog") {
-    for (const auto& a : iverilog_parameter_args(list, "tb_shade_unit")) std::cout << a << '\n';
+    // The testbench's own FAULT_HOOKS instantiates the hooks beside the unit (Icarus has no bind).
+    std::vector<VerilogParameter> tb = list;
+    if (c.faults.hooks) tb.push_back({"FAULT_HOOKS", 1});
+    for (const auto& a : iverilog_parameter_args(tb, "tb_shade_unit")) std::cout << a << '\n';
   } else if (o.tool == "yosys") {
     std::cout << yosys_chparam_args(list) << '\n';
   } else {

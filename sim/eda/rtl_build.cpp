@@ -41,14 +41,22 @@ std::vector<fs::path> rtl_sources() {
   return rtl_file_list(rtl.string());
 }
 
-// What a simulation build compiles: the RTL, then the harness's deliberate-fault hooks (test
-// apparatus, outside rtl/: only a FAULT_HOOKS build instantiates them, and nothing synthesises
-// them).
-std::vector<fs::path> simulation_sources() {
+// The harness's deliberate-fault hooks (test apparatus, outside rtl/): their list, then the bind
+// that puts them into shade_unit.
+std::vector<fs::path> fault_hook_sources() {
+  const fs::path dir = fs::path(source_dir()) / "sim" / "harness" / "faults";
+  std::vector<fs::path> out = rtl_file_list(dir.string());
+  out.push_back(dir / "fault_bind.sv");
+  return out;
+}
+
+// What a simulation of `build` compiles: the RTL, then, in a build with fault hooks, the hooks.
+std::vector<fs::path> simulation_sources(const RtlConfig& build) {
   std::vector<fs::path> out = rtl_sources();
-  const fs::path harness = fs::path(source_dir()) / "sim" / "harness";
-  out.push_back(harness / "fault_select.sv");
-  out.push_back(harness / "fault_hooks.sv");
+  if (build.faults.hooks) {
+    const std::vector<fs::path> hooks = fault_hook_sources();
+    out.insert(out.end(), hooks.begin(), hooks.end());
+  }
   return out;
 }
 
@@ -96,7 +104,15 @@ std::string runtime_key(const Flavour& f, const Toolchain& t) {
 const std::string& rtl_digest() {
   static const std::string digest = [] {
     ContentHash h;
-    add_files(h, simulation_sources());
+    add_files(h, rtl_sources());
+    return h.hex();
+  }();
+  return digest;
+}
+const std::string& fault_hooks_digest() {
+  static const std::string digest = [] {
+    ContentHash h;
+    add_files(h, fault_hook_sources());
     return h.hex();
   }();
   return digest;
@@ -109,6 +125,7 @@ std::string model_key(const RtlConfig& build, const Flavour& f, const Toolchain&
   h.add("verilator --assert");
   if (build.netlist.empty()) {
     h.add(rtl_digest());
+    if (build.faults.hooks) h.add("fault hooks").add(fault_hooks_digest());
   } else {
     // A gate-level netlist: its own contents are the circuit (an edited netlist is a new build).
     if (f.coverage)
@@ -121,15 +138,14 @@ std::string model_key(const RtlConfig& build, const Flavour& f, const Toolchain&
     for (const auto& o : netlist_verilator_options()) h.add(o);
     add_files(h, {fs::path(build.netlist)});
   }
-  for (const auto& p : shade_unit_parameters(build.unit, build.faults))
-    h.add(p.name + "=" + p.literal());
+  for (const auto& p : shade_unit_parameters(build.unit)) h.add(p.name + "=" + p.literal());
   if (f.coverage) {
     h.add("coverage: line toggle user");
     add_files(h, {cover_points_file()});
     // Verilator writes the sources' paths into coverage.dat and regress --coverage matches them
     // against its own checkout's rtl/: a covered build of another checkout's (identical) sources
     // is not this one's.
-    for (const auto& p : simulation_sources()) h.add(fs::absolute(p).string());
+    for (const auto& p : simulation_sources(build)) h.add(fs::absolute(p).string());
     h.add(fs::absolute(cover_points_file()).string());
   }
   return h.hex();
@@ -271,7 +287,7 @@ bool ensure_verilated(const fs::path& dir, const fs::path& cache, const RtlConfi
   make_atomically(dir, cache, log, [&](const fs::path& tmp) {
     fs::create_directories(tmp);
     std::vector<std::string> sources;
-    for (const auto& p : simulation_sources()) sources.push_back(p.string());
+    for (const auto& p : simulation_sources(build)) sources.push_back(p.string());
     verilate(tmp, build, flavour, tools, sources, cover_points_file(), log);
   });
   return true;

@@ -23,6 +23,7 @@ struct CosimExecutable {
   std::string command;   // the shadesim command line that runs this build (replay lines, errors)
   bool traced = false;   // Verilated with FST tracing (--waves)
   bool covered = false;  // Verilated with line/toggle/user coverage (--coverage)
+  bool fault_hooks = false;  // can inject the deliberate faults (--fault)
   // The SystemC kernel elaborates once per process: one job per run.
   bool one_job_per_process = false;
   std::vector<VerilogParameter> parameters;  // as Verilated (cosim_build.h)

@@ -230,6 +230,7 @@ shadesim::BuiltModel this_model() {
   shadesim::BuiltModel m;
   m.parameters = kBuiltParameters;
   m.parameter_count = static_cast<int>(sizeof kBuiltParameters / sizeof kBuiltParameters[0]);
+  m.fault_hooks = kBuiltFaultHooks;
 #ifdef SHADESIM_COSIM_TRACE
   m.traced = true;
 #endif

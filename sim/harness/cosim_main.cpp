@@ -13,7 +13,7 @@
 //   <exe> --list [--json]
 //
 // The unit must map (model/rtl_parameters.h) to exactly the parameters this executable was
-// Verilated with; the deliberate faults are read from those parameters.
+// Verilated with; whether it can inject the deliberate faults is compiled in beside them.
 //
 // Exit status: 0 every run passed (or the expected mismatch was found), 1 a mismatch, 2 bad
 // input (unit of another build, unreadable or incompatible stream, bad option).
@@ -55,12 +55,10 @@ struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Whether this executable can inject the deliberate faults, from its Verilog parameters.
+// Whether this executable can inject the deliberate faults.
 InjectedFaults built_faults(const CosimExecutable& exe) {
   InjectedFaults f;
-  for (const auto& p : exe.parameters) {
-    if (p.name == "FAULT_HOOKS") f.hooks = p.value != 0;
-  }
+  f.hooks = exe.fault_hooks;
   return f;
 }
 
@@ -275,7 +273,7 @@ RtlConfig resolve_build(const Options& o, const CosimExecutable& exe) {
     throw InputError(e.what());
   }
   const std::string want = parameter_text(exe.parameters);
-  const std::string got = parameter_text(shade_unit_parameters(b.unit, b.faults));
+  const std::string got = parameter_text(shade_unit_parameters(b.unit));
   if (want != got) {
     throw InputError("the unit " + b.unit.to_string() + " maps to shade_unit parameters {" + got +
                      "}, but this executable was Verilated with {" + want +
@@ -730,6 +728,7 @@ CosimExecutable executable_of(const BuiltModel& model, const std::string& backen
   CosimExecutable exe;
   exe.parameters = built_parameters(model);
   exe.covered = model.covered;
+  exe.fault_hooks = model.fault_hooks;
   exe.traced = model.traced;
   exe.backend = backend;
   exe.command = command;

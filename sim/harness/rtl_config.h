@@ -12,6 +12,14 @@
 
 namespace shadesim {
 
+// A build that can inject the harness's deliberate faults: sim/harness/faults/ bound into its
+// shade_unit; which fault, and on which row, each run chooses (sim/harness/fault_site.h). No
+// unit has them, and they change no Verilog parameter.
+struct InjectedFaults {
+  bool hooks = false;
+  bool any() const { return hooks; }
+};
+
 struct RtlConfig {
   std::string name;
   UnitConfig unit;

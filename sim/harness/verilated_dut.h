@@ -36,8 +36,9 @@ struct BuiltParameter {
 struct BuiltModel {
   const BuiltParameter* parameters = nullptr;
   int parameter_count = 0;
-  bool traced = false;   // Verilated with --trace-fst
-  bool covered = false;  // Verilated with line, toggle and user coverage
+  bool traced = false;       // Verilated with --trace-fst
+  bool covered = false;      // Verilated with line, toggle and user coverage
+  bool fault_hooks = false;  // sim/harness/faults/ bound into shade_unit
 };
 
 // The Verilated C++ model with its own VerilatedContext.

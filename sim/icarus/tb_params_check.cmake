@@ -82,8 +82,9 @@ foreach(name IN LISTS rtl_names)
     string(APPEND errors "  ${name}: tb_shade_unit does not pass it on to shade_unit (.${name}(${name}))\n")
   endif()
 endforeach()
-# The testbench's own parameters (its memory and run limits) are not shade_unit's.
-set(tb_own MAX_WORDS DRAIN_CYCLES HANG_CYCLES)
+# The testbench's own parameters (its memory and run limits, and the fault hooks it instantiates
+# beside the unit) are not shade_unit's.
+set(tb_own MAX_WORDS DRAIN_CYCLES HANG_CYCLES FAULT_HOOKS)
 foreach(name IN LISTS tb_names)
   if(NOT name IN_LIST rtl_names AND NOT name IN_LIST tb_own)
     string(APPEND errors "  tb_shade_unit declares ${name}, which shade_unit does not have\n")

@@ -55,6 +55,9 @@ module tb_shade_unit #(
   parameter int SPAN_SETUP       = 0,
   parameter int START_DEPTH      = 1,
   parameter int DIFFUSE_MULTIPLY = 0,
+  // The testbench's own: 1 instantiates the harness's deliberate-fault hooks beside the unit
+  // (sim/harness/faults/; Icarus 11 has no bind), compiled with
+  // -DSHADESIM_FAULT_DUT=tb_shade_unit.dut.
   parameter int FAULT_HOOKS      = 0,
   // Capacity of the word memory (Icarus allocates it all: ~45 bytes a word); a longer stream
   // is a hard error, never a silent truncation.
@@ -93,8 +96,7 @@ module tb_shade_unit #(
     .SPECULAR_OUT_QUANT(SPECULAR_OUT_QUANT), .SPECULAR_OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW),
     .SPEC_PARAMS(SPEC_PARAMS),
     .MATERIAL_BUFFERS(MATERIAL_BUFFERS),
-    .SPAN_SETUP(SPAN_SETUP), .START_DEPTH(START_DEPTH), .DIFFUSE_MULTIPLY(DIFFUSE_MULTIPLY),
-    .FAULT_HOOKS(FAULT_HOOKS)
+    .SPAN_SETUP(SPAN_SETUP), .START_DEPTH(START_DEPTH), .DIFFUSE_MULTIPLY(DIFFUSE_MULTIPLY)
   ) dut (
     .clk_i(clk), .rst_ni(rst_n),
     .cmd_data_i(cmd_data), .cmd_valid_i(cmd_valid), .cmd_ready_o(cmd_ready),
@@ -102,6 +104,14 @@ module tb_shade_unit #(
     .pix_mask_o(pix_mask), .pix_eor_o(pix_eor),
     .pix_valid_o(pix_valid), .pix_ready_i(pix_ready)
   );
+  if (FAULT_HOOKS != 0) begin : g_faults
+    fault_hooks #(
+      .XY_BITS(XY_BITS), .LANES(LANES), .CHANNELS(CHANNELS), .LIGHTS(LIGHTS),
+      .OUT_BITS(OUT_BITS), .SERIES_WL(SERIES_WL), .SERIES_IWL(SERIES_IWL),
+      .SPECULAR_KIND(SPECULAR_KIND), .SPECULAR_OUT_WL(SPECULAR_OUT_WL),
+      .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL), .DIFFUSE_MULTIPLY(DIFFUSE_MULTIPLY)
+    ) u_fault_hooks ();
+  end
 
   logic [63:0] words [0:MAX_WORDS-1];  // unloaded entries stay X
   int n_words = 0;

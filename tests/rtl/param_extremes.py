@@ -42,7 +42,6 @@ CASES = [
      r"MATERIAL_BUFFERS 3 is not 1 or 2"),
     ("span_setup_2", {"span_setup": "host"}, {"SPAN_SETUP": 2}, r"SPAN_SETUP 2 is not 0"),
     ("diffuse_multiply_2", {}, {"DIFFUSE_MULTIPLY": 2}, r"DIFFUSE_MULTIPLY 2 is not 0 or 1"),
-    ("fault_hooks_2", {}, {"FAULT_HOOKS": 2}, r"FAULT_HOOKS 2 is not 0 or 1"),
     ("coef_term_2", {}, {"COEF_T1_WL": 2}, None),
     ("coef_term_1", {}, {"COEF_T1_WL": 1}, r"COEF_T1_WL must be 2\.\.COEF_WL"),
     ("lut_addr_bits_1", {"specular": {"kind": "lut", "lut": {"addr_bits": 1}}}, {}, None),
@@ -63,8 +62,7 @@ def rtl_sources(source_dir):
     with open(os.path.join(rtl, "files.f")) as f:
         files = [os.path.join(rtl, l.strip()) for l in f
                  if l.strip() and not l.strip().startswith("//")]
-    harness = os.path.join(source_dir, "sim", "harness")
-    return files + [os.path.join(harness, "fault_select.sv"), os.path.join(harness, "fault_hooks.sv")]
+    return files
 
 
 def parameters(shadesim, unit, work, name):
