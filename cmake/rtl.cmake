@@ -20,8 +20,8 @@ set(RTL_DIR ${CMAKE_SOURCE_DIR}/rtl)
 include(${CMAKE_SOURCE_DIR}/cmake/rtl_files.cmake)
 rtl_files(RTL_SOURCES)
 # The harness's deliberate-fault hooks (test apparatus, outside rtl/): a simulation of a build
-# with fault hooks compiles them after the RTL (Verilator adds faults/fault_bind.sv; the Icarus
-# testbench instantiates them); synthesis never reads them.
+# with fault hooks compiles them after the RTL (Verilator adds sim/harness/faults/fault_bind.sv;
+# the Icarus testbench instantiates them); synthesis never reads them.
 rtl_files(FAULT_HOOK_SOURCES DIR ${CMAKE_SOURCE_DIR}/sim/harness/faults)
 set(RTL_SIM_SOURCES ${RTL_SOURCES} ${FAULT_HOOK_SOURCES})
 
