@@ -185,118 +185,129 @@ void walk_stream(const CommandStream& stream, Walk& w) {
   }
 }
 
-}  // namespace
+// derive_widths' steps, in the order it runs them: each reads only what the steps before it set.
 
-int drift_fraction_bits(int longest_span, double gain, double share_lsb, int out_bits,
-                        bool rounding) {
-  const double L = std::max(1, longest_span);
-  const double steps = 1.0 + L * (L - 1.0) / 2.0;
-  const double allowed = share_lsb * std::ldexp(1.0, -out_bits);
-  for (int f = 0; f <= 60; ++f) {
-    const double drift = std::ldexp(steps, -f) * (rounding ? 0.5 : 1.0);
-    if (gain * drift <= allowed) return f;
-  }
-  return 61;
-}
-
-// Every field for one specular substitute (options.ideal_substitute); derive_config below tries
-// the fallbacks.
-DerivedConfig derive_widths(const std::vector<std::string>& scene_paths,
-                            const DeriveOptions& options) {
+std::vector<SceneInfo> load_scenes(const std::vector<std::string>& scene_paths) {
   if (scene_paths.empty()) throw std::invalid_argument("derive_config: no scenes given");
   std::vector<SceneInfo> scenes;
   for (const auto& p : scene_paths) scenes.push_back({p, load_scene(p)});
+  return scenes;
+}
 
-  DerivedConfig out;
-  ConfigMeasurements& ms = out.measured;
-  UnitConfig cfg;  // quantization and overflow rules and unit widths: the defaults
-  cfg.out_bits = options.out_bits;
-  std::vector<FieldReason> reasons;
-  auto reason = [&reasons](const std::string& field, const std::string& value,
-                           const std::string& why) {
-    reasons.push_back({field, value, why});
-  };
+struct Budget {
+  double lsb = 0;
+  std::string from;  // "--budget" or the scene it is taken from
+};
 
-  // Budget: the strictest scene's unless given.
-  double budget = 0;
-  std::string budget_from;
+// The strictest scene's budget unless one is given: one unit must meet every scene's.
+Budget choose_budget(const std::vector<SceneInfo>& scenes, const DeriveOptions& options) {
+  Budget budget;
   if (options.budget_lsb) {
-    budget = *options.budget_lsb;
-    budget_from = "--budget";
+    budget = {*options.budget_lsb, "--budget"};
   } else {
-    budget = scenes.front().scene.error_budget_lsb;
-    budget_from = scenes.front().path;
+    budget = {scenes.front().scene.error_budget_lsb, scenes.front().path};
     for (const auto& s : scenes) {
-      if (s.scene.error_budget_lsb < budget) {
-        budget = s.scene.error_budget_lsb;
-        budget_from = s.path;
-      }
+      if (s.scene.error_budget_lsb < budget.lsb) budget = {s.scene.error_budget_lsb, s.path};
     }
   }
-  if (!(budget > 0) || !std::isfinite(budget)) {
+  if (!(budget.lsb > 0) || !std::isfinite(budget.lsb)) {
     throw std::invalid_argument("derive_config: budget must be a positive number of LSBs, got " +
-                                fmt(budget));
+                                fmt(budget.lsb));
   }
-  ms.budget_lsb = budget;
-  ms.drift_share_lsb = kDriftShare * budget;
-  ms.coef_share_lsb = kCoefShare * budget;
+  return budget;
+}
 
-  // Structure.
-  std::string colour_scene;
+// Why each derived field has its value, kept until the unit is final (field_reasons lists them).
+struct FieldWhys {
+  std::string channels, lights, diffuse_colour, specular, xy_bits, offset_bits, series, coef,
+      coef_term_iwl, span_setup;
+};
+
+std::string derive_channels(const std::vector<SceneInfo>& scenes, UnitConfig& cfg) {
+  for (const auto& s : scenes) {
+    if (!s.scene.is_grey()) {
+      cfg.channels = 3;
+      return s.path + " has colour: three channels";
+    }
+  }
+  cfg.channels = 1;
+  return "every scene is grey: one channel carries the image";
+}
+
+std::string derive_lights(const std::vector<SceneInfo>& scenes, UnitConfig& cfg) {
   int lights = 0;
   std::string lights_scene;
   for (const auto& s : scenes) {
-    if (!s.scene.is_grey() && colour_scene.empty()) colour_scene = s.path;
     if (static_cast<int>(s.scene.lights.size()) > lights) {
       lights = static_cast<int>(s.scene.lights.size());
       lights_scene = s.path;
     }
   }
-  cfg.channels = colour_scene.empty() ? 1 : 3;
   cfg.lights = lights;
-  // One N.L series per light in place of one per light and channel, where that removes series.
+  return "the most directional lights of any scene (" + lights_scene + ")";
+}
+
+// One N.L series per light in place of one per light and channel, where that removes series.
+std::string derive_diffuse_colour(const DeriveOptions& options, UnitConfig& cfg) {
   cfg.diffuse_colour = options.diffuse_colour.value_or(cfg.channels > 1 ? DiffuseColour::kMultiply
                                                                         : DiffuseColour::kSeries);
-  const std::string diffuse_why =
-      options.diffuse_colour
-          ? "as requested (--diffuse-colour)"
-          : (cfg.channels > 1
-                 ? "multiply: one N.L series per light (" + std::to_string(cfg.lights) +
-                       ") in place of one per light and channel (" +
-                       std::to_string(cfg.lights * cfg.channels) +
-                       "); each pixel multiplies max(0, N.L) by kd_c L_c from the MATERIAL"
-                 : "series: one channel, so a multiply would remove no series");
+  if (options.diffuse_colour) return "as requested (--diffuse-colour)";
+  if (cfg.channels > 1) {
+    return "multiply: one N.L series per light (" + std::to_string(cfg.lights) +
+           ") in place of one per light and channel (" + std::to_string(cfg.lights * cfg.channels) +
+           "); each pixel multiplies max(0, N.L) by kd_c L_c from the MATERIAL";
+  }
+  return "series: one channel, so a multiply would remove no series";
+}
 
-  // Specular unit: one for all scenes; none when no material of any scene has a specular term
-  // (a non-zero specular colour under a light of non-zero colour in some channel).
-  const Material* specular_material = nullptr;
+// A specular term: a non-zero specular colour under a light of non-zero colour in some channel.
+// Without one in any scene the unit needs no specular unit.
+bool has_specular_term(const std::vector<SceneInfo>& scenes) {
   for (const auto& s : scenes) {
     for (const auto& m : s.scene.materials) {
       for (const auto& light : s.scene.lights) {
-        for (int c = 0; c < 3 && !specular_material; ++c) {
-          if (channel(m.specular, c) * channel(light.colour, c) != 0) specular_material = &m;
+        for (int c = 0; c < 3; ++c) {
+          if (channel(m.specular, c) * channel(light.colour, c) != 0) return true;
         }
       }
     }
   }
-  const SceneInfo* unit_scene = &scenes.front();
-  const Material* unit_material = &scenes.front().scene.materials.front();
+  return false;
+}
+
+// The specular unit the materials name. One unit serves every scene, so where it matters (some
+// scene has a specular term) every material must name the same one.
+SpecularUnitKind named_unit(const std::vector<SceneInfo>& scenes, bool specular) {
+  const SceneInfo& unit_scene = scenes.front();
+  const Material& unit_material = unit_scene.scene.materials.front();
+  if (!specular) return unit_material.unit;
   for (const auto& s : scenes) {
     for (const auto& m : s.scene.materials) {
-      if (specular_material && m.unit != unit_material->unit) {
+      if (m.unit != unit_material.unit) {
         throw std::invalid_argument(
-            "derive_config: one unit serves every scene, but " + unit_scene->path + " (material '" +
-            unit_material->name + "') names the specular unit " + to_string(unit_material->unit) +
+            "derive_config: one unit serves every scene, but " + unit_scene.path + " (material '" +
+            unit_material.name + "') names the specular unit " + to_string(unit_material.unit) +
             " and " + s.path + " (material '" + m.name + "') names " + to_string(m.unit) +
             "; derive them separately or make the materials agree");
       }
     }
   }
-  const SpecularUnitKind named = unit_material->unit;
-  std::string specular_why;
-  if (!specular_material) {
+  return unit_material.unit;
+}
+
+struct SpecularChoice {
+  bool substitute = false;  // DerivedConfig::substitute
+  std::string why;
+};
+
+SpecularChoice choose_specular_unit(const std::vector<SceneInfo>& scenes,
+                                    const DeriveOptions& options, UnitConfig& cfg) {
+  const bool specular = has_specular_term(scenes);
+  const SpecularUnitKind named = named_unit(scenes, specular);
+  SpecularChoice choice;
+  if (!specular) {
     cfg.specular.kind = SpecularUnitKind::kNone;
-    specular_why =
+    choice.why =
         std::string(scenes.size() == 1 ? "the scene has no" : "no scene has a") +
         " specular term (every material's specular colour times every light's colour "
         "is 0): no specular unit and no specular series" +
@@ -305,20 +316,24 @@ DerivedConfig derive_widths(const std::vector<std::string>& scene_paths,
                                                 ", which adds 0 without a specular colour)");
   } else if (named == SpecularUnitKind::kIdeal) {
     cfg.specular = options.ideal_substitute;
-    out.substitute = cfg.specular.kind != SpecularUnitKind::kIdeal;
-    specular_why = cfg.specular.kind == SpecularUnitKind::kIdeal
-                       ? "the scenes name ideal, kept as asked: exact pow, not hardware (its RTL "
-                         "slot outputs 0)"
-                       : "the scenes name ideal, which is not hardware (its RTL slot outputs 0); "
-                         "substituted by " +
-                             cfg.specular.describe();
+    choice.substitute = cfg.specular.kind != SpecularUnitKind::kIdeal;
+    choice.why = cfg.specular.kind == SpecularUnitKind::kIdeal
+                     ? "the scenes name ideal, kept as asked: exact pow, not hardware (its RTL "
+                       "slot outputs 0)"
+                     : "the scenes name ideal, which is not hardware (its RTL slot outputs 0); "
+                       "substituted by " +
+                           cfg.specular.describe();
   } else {
     cfg.specular.kind = named;
-    specular_why = "the unit the scenes' materials name, default widths";
+    choice.why = "the unit the scenes' materials name, default widths";
   }
   cfg.specular.validate();
+  return choice;
+}
 
-  // xy_bits: every coordinate 0..size-1 in unsigned bits; prepare_frame needs size <= 2^xy_bits.
+// Every coordinate 0..size-1 in unsigned bits: prepare_frame needs size <= 2^xy_bits.
+std::string derive_xy_bits(const std::vector<SceneInfo>& scenes, UnitConfig& cfg,
+                           ConfigMeasurements& ms) {
   for (const auto& s : scenes) {
     ms.max_width = std::max(ms.max_width, s.scene.width);
     ms.max_height = std::max(ms.max_height, s.scene.height);
@@ -326,8 +341,15 @@ DerivedConfig derive_widths(const std::vector<std::string>& scene_paths,
   const int size = std::max(ms.max_width, ms.max_height);
   const int xy = xy_bits_for_image(ms.max_width, ms.max_height);
   cfg.xy_bits = std::max(4, xy);
+  return "largest image " + std::to_string(ms.max_width) + "x" + std::to_string(ms.max_height) +
+         ": " + std::to_string(size) + " <= 2^" + std::to_string(cfg.xy_bits) +
+         (xy < 4 ? " (at least 4)" : "");
+}
 
-  // Measure on a trial unit of that structure whose formats lose nothing.
+// The scenes' values measured on a trial unit of cfg's structure whose formats lose nothing, so
+// the widths fit the values themselves rather than what a narrower unit wraps or saturates.
+Walk measure_on_trial_unit(const std::vector<SceneInfo>& scenes, const DeriveOptions& options,
+                           const UnitConfig& cfg) {
   UnitConfig trial = cfg;
   trial.series = FixedFormat{kTrialSeriesIwl + kTrialSeriesFrac, kTrialSeriesIwl, true,
                              cfg.series.quant, cfg.series.overflow};
@@ -350,196 +372,283 @@ DerivedConfig derive_widths(const std::vector<std::string>& scene_paths,
     }
     walk_stream(frame.encoded.stream, w);
   }
+  return w;
+}
+
+void record_walk(const Walk& w, ConfigMeasurements& ms) {
   ms.longest_span = w.longest_span;
   ms.max_offset = w.max_offset;
   ms.start_offset_min = w.start_offset_min;
   ms.start_offset_max = w.start_offset_max;
-  // Span setup's offsets: the fewest signed bits that hold every span start's dx, dy, so the
-  // encoder moves no origin of these scenes: -2^(b-1) <= min and max <= 2^(b-1) - 1.
-  cfg.offset_bits = 2;
-  while (-(1 << (cfg.offset_bits - 1)) > w.start_offset_min ||
-         (1 << (cfg.offset_bits - 1)) - 1 < w.start_offset_max) {
-    ++cfg.offset_bits;
-  }
   ms.max_monomial_sum = w.monomial_sum;
   ms.series_min = w.v_min;
   ms.series_max = w.v_max;
   ms.difference_max = w.diff_max;
   ms.coef_max = w.coef_max;
+}
 
-  // Series integer bits.
-  const bool series_wraps = cfg.series.overflow == Overflow::kWrap;
-  const double need_lo = series_wraps ? w.v_min : std::min(w.v_min, -w.diff_max);
-  const double need_hi = series_wraps ? w.v_max : std::max(w.v_max, w.diff_max);
-  const int series_iwl = std::max(2, signed_integer_bits(need_lo, need_hi));
-  cfg.series.iwl = series_iwl;
-  cfg.series.wl =
-      series_iwl + cfg.out_bits;  // fraction bits set below; only iwl matters for the plan
+// Span setup's offsets: the fewest signed bits that hold every span start's dx, dy, so the
+// encoder moves no origin of these scenes: -2^(b-1) <= min and max <= 2^(b-1) - 1.
+std::string derive_offset_bits(const Walk& w, UnitConfig& cfg) {
+  int bits = 2;
+  while (-(1 << (bits - 1)) > w.start_offset_min || (1 << (bits - 1)) - 1 < w.start_offset_max) {
+    ++bits;
+  }
+  cfg.offset_bits = bits;
+  return "spans start at dx, dy in " + std::to_string(w.start_offset_min) + ".." +
+         std::to_string(w.start_offset_max) + " px from their triangle's origin, within " +
+         std::to_string(-(1 << (bits - 1))) + ".." + std::to_string((1 << (bits - 1)) - 1) +
+         ": no origin moved, no triangle re-origined";
+}
 
-  // Gain of the series into one output channel: a diffuse series enters with gain 1 (its colour
-  // rolled in) or, multiplied, with the largest kd_c L_c it is multiplied by.
+// Saturating series must also hold the differences span setup adds to them; wrapping ones are
+// exact modulo 2^iwl whatever the differences reach.
+int series_integer_bits(const Walk& w, const UnitConfig& cfg) {
+  const bool wraps = cfg.series.overflow == Overflow::kWrap;
+  const double need_lo = wraps ? w.v_min : std::min(w.v_min, -w.diff_max);
+  const double need_hi = wraps ? w.v_max : std::max(w.v_max, w.diff_max);
+  return std::max(2, signed_integer_bits(need_lo, need_hi));
+}
+
+// The largest factor by which light l's diffuse series reaches an output channel: 1 with its
+// colour rolled in; when multiplied, the largest kd_c L_c it is multiplied by.
+double diffuse_gain(const std::vector<SceneInfo>& scenes, const UnitConfig& cfg, size_t l) {
+  if (!cfg.diffuse_multiply()) return 1.0;
   double gain = 0;
-  std::string gain_detail;
+  for (const auto& s : scenes) {
+    if (l >= s.scene.lights.size()) continue;
+    for (const auto& m : s.scene.materials) {
+      for (int c = 0; c < 3; ++c) {
+        gain = std::max(gain, channel(m.diffuse, c) * channel(s.scene.lights[l].colour, c));
+      }
+    }
+  }
+  return gain;
+}
+
+// The same for light l's specular series: through the unit, so its slope times the colour.
+double specular_gain(const std::vector<SceneInfo>& scenes, const UnitConfig& cfg, size_t l) {
+  double gain = 0;
+  for (const auto& s : scenes) {
+    if (l >= s.scene.lights.size()) continue;
+    for (const auto& m : s.scene.materials) {
+      double colour = 0;
+      for (int c = 0; c < 3; ++c) {
+        colour = std::max(colour, channel(m.specular, c) * channel(s.scene.lights[l].colour, c));
+      }
+      if (colour > 0) gain = std::max(gain, colour * unit_slope(cfg, m.exponent));
+    }
+  }
+  return gain;
+}
+
+struct Gain {
+  double total = 0;
+  std::string detail;  // each light's (diffuse + specular), for the series' reason
+};
+
+// Gain of the series into one output channel: every light's errors add up in it.
+Gain series_gain(const std::vector<SceneInfo>& scenes, const UnitConfig& cfg) {
+  Gain g;
   for (int l = 0; l < cfg.lights; ++l) {
-    double diffuse = cfg.diffuse_multiply() ? 0.0 : 1.0;
-    for (const auto& s : scenes) {
-      if (!cfg.diffuse_multiply() || l >= static_cast<int>(s.scene.lights.size())) continue;
-      for (const auto& m : s.scene.materials) {
-        for (int c = 0; c < 3; ++c) {
-          diffuse =
-              std::max(diffuse, channel(m.diffuse, c) *
-                                    channel(s.scene.lights[static_cast<size_t>(l)].colour, c));
-        }
-      }
-    }
-    double spec = 0;
-    for (const auto& s : scenes) {
-      if (l >= static_cast<int>(s.scene.lights.size())) continue;
-      for (const auto& m : s.scene.materials) {
-        double colour = 0;
-        for (int c = 0; c < 3; ++c) {
-          colour = std::max(colour, channel(m.specular, c) *
-                                        channel(s.scene.lights[static_cast<size_t>(l)].colour, c));
-        }
-        if (colour > 0) spec = std::max(spec, colour * unit_slope(cfg, m.exponent));
-      }
-    }
-    gain += diffuse + spec;
-    gain_detail += (gain_detail.empty() ? "" : " + ") + std::string("(") + fmt(diffuse) + " + " +
-                   fmt(spec) + ")";
+    const double diffuse = diffuse_gain(scenes, cfg, static_cast<size_t>(l));
+    const double spec = specular_gain(scenes, cfg, static_cast<size_t>(l));
+    g.total += diffuse + spec;
+    g.detail +=
+        (g.detail.empty() ? "" : " + ") + std::string("(") + fmt(diffuse) + " + " + fmt(spec) + ")";
   }
-  ms.gain = gain;
+  return g;
+}
 
-  // Series fraction bits.
-  const bool series_rounds = cfg.series.quant == Quantization::kRoundNearest;
-  const int series_frac = std::max(
+std::string derive_series(const std::vector<SceneInfo>& scenes, const Walk& w,
+                          ConfigMeasurements& ms, UnitConfig& cfg) {
+  const int iwl = series_integer_bits(w, cfg);
+  cfg.series.iwl = iwl;
+  // The gain's specular plan reads only iwl; the fraction bits it asks for come after it.
+  cfg.series.wl = iwl + cfg.out_bits;
+  const Gain gain = series_gain(scenes, cfg);
+  ms.gain = gain.total;
+  const bool rounds = cfg.series.quant == Quantization::kRoundNearest;
+  const int frac = std::max(
       cfg.out_bits,
-      drift_fraction_bits(ms.longest_span, gain, ms.drift_share_lsb, cfg.out_bits, series_rounds));
-  cfg.series.wl = series_iwl + series_frac;
+      drift_fraction_bits(ms.longest_span, gain.total, ms.drift_share_lsb, cfg.out_bits, rounds));
+  cfg.series.wl = iwl + frac;
+  const bool wraps = cfg.series.overflow == Overflow::kWrap;
+  const double steps = 1.0 + ms.longest_span * (ms.longest_span - 1.0) / 2.0;
+  return "integer " + std::to_string(iwl) + ": series values at the pixels span [" + fmt(w.v_min) +
+         ", " + fmt(w.v_max) + "]" + (wraps ? "" : " and differences reach " + fmt(w.diff_max)) +
+         "; fraction " + std::to_string(frac) +
+         ": longest span L = " + std::to_string(ms.longest_span) +
+         ", drift bound 2^-F (1 + L(L-1)/2) = 2^-F x " + fmt(steps, 8) +
+         (rounds ? " / 2 (rounding)" : "") + " x gain " + fmt(gain.total) + " = " + gain.detail +
+         (cfg.diffuse_multiply() ? " (per light: max kd L + spec colour x unit slope) <= "
+                                 : " (per light: 1 + spec colour x unit slope) <= ") +
+         fmt(ms.drift_share_lsb) + " LSB (budget/4)" +
+         (frac == cfg.out_bits ? " (at least out_bits)" : "");
+}
 
-  // Coefficient bits.
-  int coef_iwl = 0;
-  std::string coef_int_why;
+struct Bits {
+  int bits = 0;
+  std::string why;
+};
+
+Bits coef_integer_bits(const Walk& w, const UnitConfig& cfg) {
   if (cfg.coef.overflow == Overflow::kWrap) {
-    coef_iwl = series_iwl;
-    coef_int_why = "coefficients reach |T| = " + fmt(w.coef_max) + " (" +
-                   std::to_string(signed_integer_bits(-w.coef_max, w.coef_max)) +
-                   " integer bits unwrapped); the format wraps, exact modulo 2^iwl because span "
-                   "setup multiplies "
-                   "coefficients only by integers, so the series' " +
-                   std::to_string(series_iwl) +
-                   " integer bits suffice (UnitConfig needs coef.iwl >= series.iwl when wrapping)";
-  } else {
-    coef_iwl = signed_integer_bits(-w.coef_max, w.coef_max);
-    coef_int_why = "coefficients reach |T| = " + fmt(w.coef_max) + ", which " +
-                   std::to_string(coef_iwl) + " saturating integer bits hold";
+    return {cfg.series.iwl,
+            "coefficients reach |T| = " + fmt(w.coef_max) + " (" +
+                std::to_string(signed_integer_bits(-w.coef_max, w.coef_max)) +
+                " integer bits unwrapped); the format wraps, exact modulo 2^iwl because span "
+                "setup multiplies "
+                "coefficients only by integers, so the series' " +
+                std::to_string(cfg.series.iwl) +
+                " integer bits suffice (UnitConfig needs coef.iwl >= series.iwl when wrapping)"};
   }
-  const double coef_allowed = ms.coef_share_lsb * std::ldexp(1.0, -cfg.out_bits);
-  const bool coef_rounds = cfg.coef.quant == Quantization::kRoundNearest;
-  int coef_frac = 0;
-  while (coef_frac < 60 &&
-         gain * std::ldexp(coef_rounds ? 0.5 : 1.0, -coef_frac) * w.monomial_sum > coef_allowed) {
-    ++coef_frac;
+  const int iwl = signed_integer_bits(-w.coef_max, w.coef_max);
+  return {iwl, "coefficients reach |T| = " + fmt(w.coef_max) + ", which " + std::to_string(iwl) +
+                   " saturating integer bits hold"};
+}
+
+// A coefficient's rounding error reaches a pixel times its monomial and then the gain, so the
+// largest monomial sum of any pixel bounds it.
+int coef_fraction_bits(const Walk& w, const ConfigMeasurements& ms, const UnitConfig& cfg) {
+  const double allowed = ms.coef_share_lsb * std::ldexp(1.0, -cfg.out_bits);
+  const bool rounds = cfg.coef.quant == Quantization::kRoundNearest;
+  int frac = 0;
+  while (frac < 60 && ms.gain * std::ldexp(rounds ? 0.5 : 1.0, -frac) * w.monomial_sum > allowed) {
+    ++frac;
   }
-  cfg.coef.iwl = coef_iwl;
-  cfg.coef.wl = coef_iwl + coef_frac;
-  cfg.port_words = options.port_words;
-  cfg.tri_queue = options.tri_queue;
-  // Coefficient packing: T0 keeps coef's integer bits (it wraps); T1..T5 get the fewest
-  // saturating integer bits that hold every measured |T_t| plus one final LSB (the trial's
-  // finer coefficients may round up into it).
+  return frac;
+}
+
+std::string derive_coef(const Walk& w, const ConfigMeasurements& ms, UnitConfig& cfg) {
+  const Bits integer = coef_integer_bits(w, cfg);
+  const int frac = coef_fraction_bits(w, ms, cfg);
+  cfg.coef.iwl = integer.bits;
+  cfg.coef.wl = integer.bits + frac;
+  const bool rounds = cfg.coef.quant == Quantization::kRoundNearest;
+  return "integer: " + integer.why + "; fraction " + std::to_string(frac) + ": pixels lie up to " +
+         std::to_string(ms.max_offset) +
+         " px from their triangle's origin, max 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 = " +
+         fmt(w.monomial_sum, 6) + ", so coefficient rounding " + (rounds ? "2^-(F+1)" : "2^-F") +
+         " x " + fmt(w.monomial_sum, 6) + " x gain " + fmt(ms.gain) +
+         " <= " + fmt(ms.coef_share_lsb) + " LSB (budget/4)";
+}
+
+// Coefficient packing: T0 keeps coef's integer bits (it wraps); T1..T5 get the fewest
+// saturating integer bits that hold every measured |T_t| plus one final LSB (the trial's
+// finer coefficients may round up into it).
+std::string derive_term_widths(const Walk& w, UnitConfig& cfg) {
+  const int coef_iwl = cfg.coef.iwl, coef_frac = cfg.coef.frac_bits();
   cfg.coef_term_iwl.assign(kTermsPerSeries, coef_iwl);
-  std::string terms_why =
-      "T0 keeps coef's " + std::to_string(coef_iwl) + " integer bits (it wraps)";
+  std::string why = "T0 keeps coef's " + std::to_string(coef_iwl) + " integer bits (it wraps)";
   const double final_lsb = std::ldexp(1.0, -coef_frac);
   for (int t = 1; t < kTermsPerSeries; ++t) {
     const double reach = w.term_max[static_cast<size_t>(t)] + final_lsb;
     const int iwl = std::clamp(signed_integer_bits(-reach, reach), 2 - coef_frac, coef_iwl);
     cfg.coef_term_iwl[static_cast<size_t>(t)] = iwl;
-    terms_why += "; T" + std::to_string(t) +
-                 " reaches |T| = " + fmt(w.term_max[static_cast<size_t>(t)]) + ": " +
-                 std::to_string(iwl) + " integer bits (saturating)";
+    why += "; T" + std::to_string(t) + " reaches |T| = " + fmt(w.term_max[static_cast<size_t>(t)]) +
+           ": " + std::to_string(iwl) + " integer bits (saturating)";
   }
-  cfg.validate();
-  const std::string span_setup_why = choose_span_setup(scene_paths, options, cfg);
-  cfg.validate();
+  return why;
+}
 
-  // One reason per field, in config_to_json's order.
+// What the term widths save: read from the final unit, whose span setup decides the layout.
+std::string packing_why(const UnitConfig& cfg) {
+  const CoefLayout layout = CoefLayout::of(cfg);
+  int bits = 0;
+  for (int t = 0; t < kTermsPerSeries; ++t) bits += cfg.coef_term_bits(t);
+  return std::to_string(bits) + " bits per series, a triangle's " +
+         std::to_string(cfg.series_per_triangle()) + " series in " + std::to_string(layout.words) +
+         " payload words (" + std::to_string(cfg.series_per_triangle() * kTermsPerSeries) +
+         " unpacked)";
+}
+
+// The budget's reason, then one per field in config_to_json's order, each value as it writes it.
+std::vector<FieldReason> field_reasons(const UnitConfig& cfg, const Budget& budget,
+                                       const FieldWhys& why) {
   const auto json = nlohmann::json::parse(config_to_json(cfg));
-  auto value = [&json](const char* key) {
-    return json.at(key).is_string() ? json.at(key).get<std::string>() : json.at(key).dump();
+  std::vector<FieldReason> reasons;
+  reasons.push_back({"budget", fmt(budget.lsb) + " LSB",
+                     "from " + budget.from +
+                         "; Taylor error keeps it in setup, the "
+                         "fixed-point error gets budget/4 for drift and budget/4 for "
+                         "coefficient rounding on top"});
+  auto reason = [&json, &reasons](const char* field, const std::string& text) {
+    const auto& value = json.at(field);
+    reasons.push_back({field, value.is_string() ? value.get<std::string>() : value.dump(), text});
   };
-  reason("channels", value("channels"),
-         colour_scene.empty() ? "every scene is grey: one channel carries the image"
-                              : colour_scene + " has colour: three channels");
-  reason("lights", value("lights"),
-         "the most directional lights of any scene (" + lights_scene + ")");
-  reason("xy_bits", value("xy_bits"),
-         "largest image " + std::to_string(ms.max_width) + "x" + std::to_string(ms.max_height) +
-             ": " + std::to_string(size) + " <= 2^" + std::to_string(cfg.xy_bits) +
-             (xy < 4 ? " (at least 4)" : ""));
-  if (json.contains("offset_bits")) {
-    reason("offset_bits", value("offset_bits"),
-           "spans start at dx, dy in " + std::to_string(ms.start_offset_min) + ".." +
-               std::to_string(ms.start_offset_max) + " px from their triangle's origin, within " +
-               std::to_string(-(1 << (cfg.offset_bits - 1))) + ".." +
-               std::to_string((1 << (cfg.offset_bits - 1)) - 1) +
-               ": no origin moved, no triangle re-origined");
+  reason("channels", why.channels);
+  reason("lights", why.lights);
+  reason("xy_bits", why.xy_bits);
+  if (json.contains("offset_bits")) reason("offset_bits", why.offset_bits);
+  reason("coef", why.coef);
+  reason("coef_term_iwl", why.coef_term_iwl + "; " + packing_why(cfg));
+  reason("series", why.series);
+  reason("spec_colour", "default (not derived)");
+  reason("out_bits", "as requested");
+  reason("port_words",
+         "as requested (throughput only: pixels do not depend on it); 4 with tri_queue 2 brings "
+         "every shipped scene to <= 1.1 cycles per pixel");
+  reason("tri_queue", cfg.host_setup() ? "1: host span setup has no coefficient banks to queue"
+                                       : "as requested (throughput only)");
+  // These three name their values as the CLI spells them, not as JSON.
+  reasons.push_back({"span_setup", to_string(cfg.span_setup), why.span_setup});
+  reasons.push_back({"diffuse_colour", to_string(cfg.diffuse_colour), why.diffuse_colour});
+  reasons.push_back({"specular",
+                     cfg.specular.describe() + (cfg.specular.kind == SpecularUnitKind::kNone
+                                                    ? std::string()
+                                                    : " out=" + cfg.specular.out.to_string()),
+                     why.specular});
+  return reasons;
+}
+
+}  // namespace
+
+int drift_fraction_bits(int longest_span, double gain, double share_lsb, int out_bits,
+                        bool rounding) {
+  const double L = std::max(1, longest_span);
+  const double steps = 1.0 + L * (L - 1.0) / 2.0;
+  const double allowed = share_lsb * std::ldexp(1.0, -out_bits);
+  for (int f = 0; f <= 60; ++f) {
+    const double drift = std::ldexp(steps, -f) * (rounding ? 0.5 : 1.0);
+    if (gain * drift <= allowed) return f;
   }
-  const double steps = 1.0 + ms.longest_span * (ms.longest_span - 1.0) / 2.0;
-  reason("coef", value("coef"),
-         "integer: " + coef_int_why + "; fraction " + std::to_string(coef_frac) +
-             ": pixels lie up to " + std::to_string(ms.max_offset) +
-             " px from their triangle's origin, max 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 = " +
-             fmt(w.monomial_sum, 6) + ", so coefficient rounding " +
-             (coef_rounds ? "2^-(F+1)" : "2^-F") + " x " + fmt(w.monomial_sum, 6) + " x gain " +
-             fmt(gain) + " <= " + fmt(ms.coef_share_lsb) + " LSB (budget/4)");
-  {
-    const CoefLayout layout = CoefLayout::of(cfg);
-    int bits = 0;
-    for (int t = 0; t < kTermsPerSeries; ++t) bits += cfg.coef_term_bits(t);
-    reason("coef_term_iwl", value("coef_term_iwl"),
-           terms_why + "; " + std::to_string(bits) + " bits per series, a triangle's " +
-               std::to_string(cfg.series_per_triangle()) + " series in " +
-               std::to_string(layout.words) + " payload words (" +
-               std::to_string(cfg.series_per_triangle() * kTermsPerSeries) + " unpacked)");
-  }
-  reason("series", value("series"),
-         "integer " + std::to_string(series_iwl) + ": series values at the pixels span [" +
-             fmt(w.v_min) + ", " + fmt(w.v_max) + "]" +
-             (series_wraps ? "" : " and differences reach " + fmt(w.diff_max)) + "; fraction " +
-             std::to_string(series_frac) + ": longest span L = " + std::to_string(ms.longest_span) +
-             ", drift bound 2^-F (1 + L(L-1)/2) = 2^-F x " + fmt(steps, 8) +
-             (series_rounds ? " / 2 (rounding)" : "") + " x gain " + fmt(gain) + " = " +
-             gain_detail +
-             (cfg.diffuse_multiply() ? " (per light: max kd L + spec colour x unit slope) <= "
-                                     : " (per light: 1 + spec colour x unit slope) <= ") +
-             fmt(ms.drift_share_lsb) + " LSB (budget/4)" +
-             (series_frac == cfg.out_bits ? " (at least out_bits)" : ""));
-  reason("spec_colour", value("spec_colour"), "default (not derived)");
-  reason("out_bits", value("out_bits"), "as requested");
-  reason(
-      "port_words", value("port_words"),
-      "as requested (throughput only: pixels do not depend on it); 4 with tri_queue 2 brings every "
-      "shipped scene to <= 1.1 cycles per pixel");
-  reason("tri_queue", value("tri_queue"),
-         cfg.host_setup() ? "1: host span setup has no coefficient banks to queue"
-                          : "as requested (throughput only)");
-  reason("span_setup", to_string(cfg.span_setup), span_setup_why);
-  reason("diffuse_colour", to_string(cfg.diffuse_colour), diffuse_why);
-  reason("specular",
-         cfg.specular.describe() + (cfg.specular.kind == SpecularUnitKind::kNone
-                                        ? std::string()
-                                        : " out=" + cfg.specular.out.to_string()),
-         specular_why);
-  reasons.insert(reasons.begin(),
-                 FieldReason{"budget", fmt(budget) + " LSB",
-                             "from " + budget_from +
-                                 "; Taylor error keeps it in setup, the "
-                                 "fixed-point error gets budget/4 for drift and budget/4 for "
-                                 "coefficient rounding on top"});
-  out.config = cfg;
-  out.reasons = std::move(reasons);
+  return 61;
+}
+
+// Every field for one specular substitute (options.ideal_substitute); derive_config below tries
+// the fallbacks.
+DerivedConfig derive_widths(const std::vector<std::string>& scene_paths,
+                            const DeriveOptions& options) {
+  const std::vector<SceneInfo> scenes = load_scenes(scene_paths);
+  const Budget budget = choose_budget(scenes, options);
+  DerivedConfig out;
+  ConfigMeasurements& ms = out.measured;
+  ms.budget_lsb = budget.lsb;
+  ms.drift_share_lsb = kDriftShare * budget.lsb;
+  ms.coef_share_lsb = kCoefShare * budget.lsb;
+  UnitConfig& cfg = out.config;  // quantization and overflow rules and unit widths: the defaults
+  cfg.out_bits = options.out_bits;
+  FieldWhys why;
+  why.channels = derive_channels(scenes, cfg);
+  why.lights = derive_lights(scenes, cfg);
+  why.diffuse_colour = derive_diffuse_colour(options, cfg);
+  const SpecularChoice specular = choose_specular_unit(scenes, options, cfg);
+  out.substitute = specular.substitute;
+  why.specular = specular.why;
+  why.xy_bits = derive_xy_bits(scenes, cfg, ms);
+  const Walk w = measure_on_trial_unit(scenes, options, cfg);
+  record_walk(w, ms);
+  why.offset_bits = derive_offset_bits(w, cfg);
+  why.series = derive_series(scenes, w, ms, cfg);
+  why.coef = derive_coef(w, ms, cfg);
+  why.coef_term_iwl = derive_term_widths(w, cfg);
+  cfg.port_words = options.port_words;
+  cfg.tri_queue = options.tri_queue;
+  cfg.validate();
+  why.span_setup = choose_span_setup(scene_paths, options, cfg);
+  cfg.validate();
+  out.reasons = field_reasons(cfg, budget, why);
   return out;
 }
 
