@@ -1,7 +1,7 @@
 // The one home of replay lines' start (issue 23): "shadesim cosim --backend B" and every option
 // that chose which executable ran (--cache, --netlist, --netlist-cache), so a printed replay line
 // runs when pasted. shadesim cosim and regress pass it to the co-simulation (--replay-prefix),
-// whose replay_line (sim/harness/cosim_main.cpp) adds the build, fault, stream and stimulus;
+// whose replay_line (sim/harness/cosim_run.cpp) adds the build, fault, stream and stimulus;
 // regress's own replay lines (a timeout, a crash) start with it too.
 #pragma once
 

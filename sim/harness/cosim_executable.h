@@ -1,5 +1,6 @@
-// One Verilated co-simulation executable, as the shared driver (sim/harness/cosim_main.cpp) sees
-// it: its backend, the parameters it was Verilated with, and how to run a job on its model.
+// One Verilated co-simulation executable, as the shared driver (sim/harness/cosim_main.cpp, with
+// cosim_options.cpp and cosim_run.cpp) sees it: its backend, the parameters it was Verilated
+// with, and how to run a job on its model.
 //
 // The driver - options, jobs, reports, replay lines, waveform re-runs - and the backends' loops
 // do not depend on the Verilated model, so they are compiled once into the harness libraries.

@@ -1,9 +1,9 @@
 // The one part of a co-simulation executable that depends on the Verilated model: shade_unit's
 // ports behind a small interface, so the backends' loops (sim/harness/cpp_backend.cpp,
-// sc_backend.cpp) and the driver (cosim_main.cpp) are compiled once, into the harness
-// libraries, whatever the parameters. Each build compiles only its Verilated model and the glue
-// (sim/harness/cosim_glue.cpp), which implements this interface for its Vshade_unit and whose
-// port types (CData ... VlWide, bool ... sc_bv) follow the parameters.
+// sc_backend.cpp) and the driver (cosim_main.cpp, cosim_options.cpp, cosim_run.cpp) are compiled
+// once, into the harness libraries, whatever the parameters. Each build compiles only its Verilated
+// model and the glue (sim/harness/cosim_glue.cpp), which implements this interface for its
+// Vshade_unit and whose port types (CData ... VlWide, bool ... sc_bv) follow the parameters.
 //
 // This header includes neither Verilator's nor the model's headers: a change to the model or
 // the harness relinks the cached builds without compiling their Verilated code again.
