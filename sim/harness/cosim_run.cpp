@@ -22,7 +22,7 @@
 namespace shadesim::cosim_exe {
 namespace {
 
-// Whether this executable can inject the deliberate faults, from its Verilog parameters.
+// Whether this executable can inject the deliberate faults (compiled in beside its parameters).
 InjectedFaults built_faults(const CosimExecutable& exe) {
   InjectedFaults f;
   f.hooks = exe.fault_hooks;
