@@ -117,12 +117,18 @@ package shade_pkg;
   endfunction
 
   // ---- series per pixel ----------------------------------------------------------------------
+  // Each light's specular series: Schlick's numerator and denominator, one for the other units,
+  // none without a specular term.
+  function automatic int spec_series_per_light(input int kind);
+    spec_series_per_light = kind == SpecSchlick ? 2 : kind == SpecNone ? 0 : 1;
+  endfunction
+
   // One diffuse series per light and channel (per light when pixel_combine multiplies the diffuse
-  // colour in), then each light's specular ones (Schlick: two, none: none).
+  // colour in), then each light's specular ones.
   function automatic int series_count(input int kind, input int lights, input int channels,
                                       input bit diffuse_multiply);
     series_count = (diffuse_multiply ? lights : lights * channels) +
-                   lights * (kind == SpecSchlick ? 2 : kind == SpecNone ? 0 : 1);
+                   lights * spec_series_per_light(kind);
   endfunction
   // verilator lint_on UNUSEDPARAM
 endpackage

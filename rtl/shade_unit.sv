@@ -56,7 +56,7 @@ module shade_unit #(
   input  logic                         pix_ready_i
 );
   localparam bit Specular       = SPECULAR_KIND != shade_pkg::SpecNone;  // a specular term
-  localparam int SeriesPerLight = SPECULAR_KIND == shade_pkg::SpecSchlick ? 2 : Specular ? 1 : 0;
+  localparam int SeriesPerLight = shade_pkg::spec_series_per_light(SPECULAR_KIND);
   localparam int NColours       = LIGHTS * CHANNELS;  // colour words per MATERIAL and kind
   localparam bit Multiply       = DIFFUSE_MULTIPLY != 0;
   localparam int NDiff          = Multiply ? LIGHTS : NColours;  // diffuse series

@@ -101,20 +101,17 @@ std::string runtime_key(const Flavour& f, const Toolchain& t) {
 }
 
 // The RTL's contents, read once per process (the same for every build of it).
+std::string digest_of(const std::vector<fs::path>& files) {
+  ContentHash h;
+  add_files(h, files);
+  return h.hex();
+}
 const std::string& rtl_digest() {
-  static const std::string digest = [] {
-    ContentHash h;
-    add_files(h, rtl_sources());
-    return h.hex();
-  }();
+  static const std::string digest = digest_of(rtl_sources());
   return digest;
 }
 const std::string& fault_hooks_digest() {
-  static const std::string digest = [] {
-    ContentHash h;
-    add_files(h, fault_hook_sources());
-    return h.hex();
-  }();
+  static const std::string digest = digest_of(fault_hook_sources());
   return digest;
 }
 
@@ -153,19 +150,11 @@ std::string model_key(const RtlConfig& build, const Flavour& f, const Toolchain&
 
 // The glue's and the libraries' contents, once per process.
 const std::string& glue_digest() {
-  static const std::string digest = [] {
-    ContentHash h;
-    add_files(h, glue_sources());
-    return h.hex();
-  }();
+  static const std::string digest = digest_of(glue_sources());
   return digest;
 }
 const std::string& libraries_digest() {
-  static const std::string digest = [] {
-    ContentHash h;
-    add_files(h, harness_libraries());
-    return h.hex();
-  }();
+  static const std::string digest = digest_of(harness_libraries());
   return digest;
 }
 
