@@ -205,6 +205,14 @@ add_test(NAME icarus_span_setup_booth
 add_test(NAME icarus_span_setup_booth_catches_broken
   COMMAND ${_booth_check} -DWORK=${ICARUS_DIR}/booth_broken -DBREAK=ON
           -P ${CMAKE_SOURCE_DIR}/tests/rtl/booth_check.cmake)
+# fixed_sat exhaustively: every input of 120 small parameter combinations (both generate views)
+# against the overflow rule's closed form, and the same check on a copy with a broken clamp,
+# which must fail. None of the coverage runs' units elaborates g_fits (every instance narrows).
+set(_fixed_sat_check ${CMAKE_SOURCE_DIR}/tests/rtl/fixed_sat_check.py ${CMAKE_SOURCE_DIR}
+    ${IVERILOG} ${VVP})
+add_test(NAME icarus_fixed_sat_exhaustive COMMAND ${_fixed_sat_check} ${ICARUS_DIR}/fixed_sat)
+add_test(NAME icarus_fixed_sat_catches_broken
+  COMMAND ${_fixed_sat_check} ${ICARUS_DIR}/fixed_sat_broken --break)
 # Every parameter check of rtl/ at its edges (issue 24): shade_unit elaborates at each legal
 # extreme of the model's ranges and stops with that check's message one step past it.
 add_test(NAME icarus_param_extremes

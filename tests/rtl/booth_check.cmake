@@ -9,19 +9,24 @@ foreach(var IVERILOG VVP SRC WORK)
   endif()
 endforeach()
 file(MAKE_DIRECTORY ${WORK})
-set(setup ${SRC}/rtl/span_setup.sv)
+# The RTL read: $SHADESIM_RTL_DIR when set (a mutant's copy, scripts/mutate-rtl), else SRC/rtl.
+set(rtl ${SRC}/rtl)
+if(DEFINED ENV{SHADESIM_RTL_DIR} AND NOT "$ENV{SHADESIM_RTL_DIR}" STREQUAL "")
+  set(rtl $ENV{SHADESIM_RTL_DIR})
+endif()
+set(setup ${rtl}/span_setup.sv)
 if(BREAK)
   file(READ ${setup} text)
   string(REPLACE "mag = t << 1;" "mag = t;" broken "${text}")
   if(broken STREQUAL text)
-    message(FATAL_ERROR "booth check: rtl/span_setup.sv has no `mag = t << 1;` to break")
+    message(FATAL_ERROR "booth check: ${setup} has no `mag = t << 1;` to break")
   endif()
   set(setup ${WORK}/span_setup_broken.sv)
   file(WRITE ${setup} "${broken}")
 endif()
 # -DSYNTHESIS: the Booth form is span_setup's synthesis view (simulators otherwise multiply).
 execute_process(COMMAND ${IVERILOG} -g2012 -DSYNTHESIS -s tb_span_setup_booth -o ${WORK}/booth.vvp
-                        ${SRC}/rtl/shade_pkg.sv ${SRC}/rtl/fixed_round.sv ${SRC}/rtl/fixed_sat.sv
+                        ${rtl}/shade_pkg.sv ${rtl}/fixed_round.sv ${rtl}/fixed_sat.sv
                         ${setup} ${SRC}/tests/rtl/tb_span_setup_booth.sv
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
