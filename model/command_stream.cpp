@@ -108,8 +108,9 @@ void validate_command(const Command& cmd, const UnitConfig& cfg, const std::stri
     const size_t starts = cfg.host_setup() ? static_cast<size_t>(StartLayout::of(cfg).values) : 0;
     check_payload(loc, "span.starts", s->starts, starts, cfg.series);
   } else if (const auto* tb = std::get_if<TableCmd>(&cmd)) {
-    if (tb->entries.empty() || tb->entries.size() > kMask16 || tb->base > kMask16) {
-      throw CommandStreamError(loc + "table: expected 1..65535 entries at base 0..65535");
+    // An empty TABLE is legal: a header with no payload (it still waits like any TABLE).
+    if (tb->entries.size() > kMask16 || tb->base > kMask16) {
+      throw CommandStreamError(loc + "table: expected 0..65535 entries at base 0..65535");
     }
   }
 }

@@ -85,6 +85,64 @@ TEST(EdgeStimulus, SchlickNumeratorBelowTheOperandLsbBesideADenominatorAtOrBelow
   EXPECT_GT(pairs, 0);
 }
 
+// Schlick's divider with a partial remainder exactly equal to the shifted denominator (the
+// restoring step's r2 == den): the division ends with remainder 0 within Q steps, which for
+// 0 < num < den happens exactly when num 2^Q / den is an integer (closed form, in double: every
+// value here is a short dyadic). A triangle gives it where light l's numerator and denominator
+// series are both flat at such a pair.
+TEST(EdgeStimulus, SchlickRemainderMeetsTheDenominatorExactly) {
+  for (const char* name : {"schlick_iter_n", "schlick_pipe_d"}) {
+    const UnitConfig unit = build(name).unit;
+    ASSERT_EQ(unit.specular.kind, SpecularUnitKind::kSchlick) << name;
+    const int per_light = unit.specular.series_per_light();
+    int pairs = 0;
+    for (uint64_t seed = 1; seed <= 3; ++seed) {
+      for (const Command& cmd : edge_stream(unit, seed).commands) {
+        const auto* t = std::get_if<TriangleCmd>(&cmd);
+        if (t == nullptr) continue;
+        for (int l = 0; l < unit.lights; ++l) {
+          const size_t num =
+              static_cast<size_t>(unit.diffuse_series() + l * per_light) * kTermsPerSeries;
+          const size_t den = num + kTermsPerSeries;
+          bool flat = true;
+          for (int k = 1; k < kTermsPerSeries; ++k)
+            flat = flat && t->coef[num + k] == 0 && t->coef[den + k] == 0;
+          const double n = unit.coef_term(0).to_double(t->coef[num]);
+          const double d = unit.coef_term(0).to_double(t->coef[den]);
+          const double scaled = std::ldexp(n / d, unit.specular.schlick.quotient_bits);
+          pairs += flat && n > 0 && n < d && scaled == std::floor(scaled);
+        }
+      }
+    }
+    EXPECT_GT(pairs, 0) << name;
+  }
+}
+
+// TABLE with no entry and with one (the payload FSM's shortest payloads), per-material and
+// shared, in LUT and other units' streams; and the LUT's whole table (its most entries).
+TEST(EdgeStimulus, TablesOfZeroOneAndAllEntries) {
+  for (const char* name : {"lut_n", "grey_s428w", "wpow16_n"}) {
+    const UnitConfig unit = build(name).unit;
+    const size_t whole = size_t{1} << unit.specular.lut.addr_bits;
+    bool empty = false, one = false, per_material = false, shared = false, all = false;
+    for (uint64_t seed = 1; seed <= 3; ++seed) {
+      for (const Command& cmd : edge_stream(unit, seed).commands) {
+        const auto* t = std::get_if<TableCmd>(&cmd);
+        if (t == nullptr) continue;
+        empty = empty || t->entries.empty();
+        one = one || t->entries.size() == 1;
+        per_material = per_material || (t->entries.size() <= 1 && t->per_material);
+        shared = shared || (t->entries.size() <= 1 && !t->per_material);
+        all = all || t->entries.size() == whole;
+      }
+    }
+    EXPECT_TRUE(empty) << name;
+    EXPECT_TRUE(one) << name;
+    EXPECT_TRUE(per_material && shared) << name;
+    if (unit.specular.kind == SpecularUnitKind::kLut) EXPECT_TRUE(all) << name;
+  }
+}
+
 // Output codes at both clamps: totals below 0 (negative ambient) give 0, totals above 1 give
 // all ones; and the negative totals really are there (a negative ambient word).
 TEST(EdgeStimulus, OutputClampsAtBothEnds) {

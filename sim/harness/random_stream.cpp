@@ -110,6 +110,8 @@ class RandomStreamBuilder {
   void ordinary_terms(TriangleCmd& t, double k);
   void edge_terms(TriangleCmd& t);
   void apply_edge_kind(double* terms, double g);
+  void exact_ratio(double* terms, int s);
+  void short_table();
   // A diffuse series of a unit with a specular term (its N.L gate reads them).
   bool gating_diffuse(int s) const { return has_spec_hw_ && s < config_.diffuse_series(); }
   // The lowest T0 of series s. A specular unit's diffuse series start at or above 0: the
@@ -129,6 +131,10 @@ class RandomStreamBuilder {
   // The MATERIAL's gate-only mask has a generator of its own, so every other field of a seed's
   // stream stays what it was before the mask existed.
   std::mt19937_64 gate_rng_;
+  // So have the edge scenario's corners added after its draws were fixed (exact_ratio,
+  // short_table), for the same reason.
+  std::mt19937_64 corner_rng_;
+  double ratio_den_ = 0.0;  // the pair's denominator, drawn with its numerator
   CommandStream cs_;
   const int width_;
   const int series_;
@@ -160,6 +166,7 @@ RandomStreamBuilder::RandomStreamBuilder(const UnitConfig& config, const StreamS
       shape_(shape),
       rng_(seed),
       gate_rng_(seed ^ 0x9E3779B97F4A7C15u),
+      corner_rng_(seed ^ 0xC2B2AE3D27D4EB4Fu),
       width_(1 << config.xy_bits),
       series_(config.series_per_triangle()),
       spec_(config.specular),
@@ -246,6 +253,7 @@ void RandomStreamBuilder::lut_table(int base, int n, bool per_material) {
 
 void RandomStreamBuilder::material() {
   if (chance(shape_.p_table)) table_before_material();
+  if (shape_.edge && corner_rng_() % 3 == 0) short_table();
   cs_.commands.emplace_back(random_material());
   // A per-material reload after the MATERIAL, as a per-exponent LUT's stream has: with two
   // material buffers it loads the new bank while the old material's pixels still read theirs.
@@ -265,6 +273,21 @@ void RandomStreamBuilder::table_before_material() {
   t.base = static_cast<uint32_t>(irange(0, 1023));
   const int n = irange(1, 8);
   for (int i = 0; i < n; ++i) t.entries.push_back(static_cast<int64_t>(rng_() >> 1));
+  cs_.commands.emplace_back(t);
+}
+
+// Edge: a TABLE of 0 or 1 entries (the payload FSM's shortest: no word at all, or its first word
+// its last), per-material or shared. A LUT's entry is a legal one at a legal address.
+void RandomStreamBuilder::short_table() {
+  TableCmd t;
+  t.per_material = corner_rng_() % 2 == 0;
+  const bool one = corner_rng_() % 2 == 0;
+  const uint64_t size = spec_.kind == SpecularUnitKind::kLut ? lut_size_ : 1024;
+  t.base = static_cast<uint32_t>(corner_rng_() % size);
+  if (one) {
+    const int bits = spec_.kind == SpecularUnitKind::kLut ? spec_.lut.entry_bits : 31;
+    t.entries.push_back(static_cast<int64_t>(corner_rng_() % (uint64_t{1} << bits)));
+  }
   cs_.commands.emplace_back(t);
 }
 
@@ -368,6 +391,7 @@ void RandomStreamBuilder::edge_terms(TriangleCmd& t) {
                                      uni(-1, 1) / 16384 * g,
                                      uni(-1, 1) / 16384 * g};
     apply_edge_kind(terms, g);
+    if (spec_.kind == SpecularUnitKind::kSchlick) exact_ratio(terms, s);
     for (double& v : terms) v = std::clamp(v, -coef_top_, coef_top_);
     for (double v : terms) t.coef.push_back(config_.coef.from_double(v));
   }
@@ -392,6 +416,30 @@ void RandomStreamBuilder::apply_edge_kind(double* terms, double g) {
   } else if (kind == 9) {
     terms[0] = -uni(0.1, 2.0);
   }
+}
+
+// Schlick: a quarter of light l's pairs flat at num / den = k / 2^v (k odd, v 1..4), den = 2^-u
+// (u 1..3), every value exact in the series and the divider's operands. The restoring divider's
+// partial remainder then meets the shifted denominator exactly at step v (r2 == den: the bit is
+// 1 and the remainder 0), a case random operands almost never give.
+void RandomStreamBuilder::exact_ratio(double* terms, int s) {
+  const int at = s - config_.diffuse_series();
+  if (at < 0) return;
+  const bool numerator = at % 2 == 0;
+  if (numerator) {
+    ratio_den_ = 0.0;
+    if (corner_rng_() % 4 != 0) return;
+    const int u = 1 + static_cast<int>(corner_rng_() % 3);
+    const int v = 1 + static_cast<int>(corner_rng_() % 4);
+    const auto k = static_cast<int>(corner_rng_() % (uint64_t{1} << (v - 1))) * 2 + 1;
+    ratio_den_ = std::ldexp(1.0, -u);
+    terms[0] = std::ldexp(ratio_den_ * k, -v);
+  } else if (ratio_den_ > 0.0) {
+    terms[0] = ratio_den_;
+  } else {
+    return;
+  }
+  std::fill(terms + 1, terms + kTermsPerSeries, 0.0);
 }
 
 }  // namespace

@@ -11,9 +11,9 @@ model/specular_units.cpp) mapped to Verilog parameters by the one mapping (`shad
 the model itself refuses such a unit. The RTL read is $SHADESIM_RTL_DIR when set (a mutant's
 copy, scripts/mutate-rtl), else SOURCE_DIR/rtl. Exit 0 only when every case behaves.
 
-Left out: one step past the specular units' own fields (they are packed into SPEC_PARAMS by
-slot; the model refuses such a unit before any RTL sees it), and checks that only a build with a
-TABLE_FILE reaches.
+The specular units' own fields are packed into SPEC_PARAMS by slot (model/specular_units.cpp);
+a case past one of their edges overrides one slot ("SPEC_PARAMS[k]") of a legal unit's literal.
+Left out: checks that only a build with a TABLE_FILE reaches.
 """
 import json
 import os
@@ -22,8 +22,19 @@ import subprocess
 import sys
 import tempfile
 
-# name, UnitConfig overlay (JSON), Verilog overrides {NAME: value}, expected: None (elaborates and
-# passes its checks) or a regex of the $fatal message.
+def or_zero_width(module):
+    """A regex alternative: Icarus refusing the module's zero-width vector or cast while
+    elaborating (before any time-0 check runs); the compile error names the module."""
+    return rf"|{module}\.sv:\d+: error: (Cast size|Indexed part widths)"
+
+
+# name, UnitConfig overlay (JSON), Verilog overrides {NAME: value} ("SPEC_PARAMS[k]" sets slot k),
+# expected: None (elaborates and passes its checks) or a regex of the $fatal message.
+LUT = {"kind": "lut"}
+
+
+WPOW = {"kind": "wpow"}
+SCHLICK = {"kind": "schlick"}
 CASES = [
     ("tri_queue_8", {"tri_queue": 8}, {}, None),
     ("tri_queue_9", {"tri_queue": 8}, {"TRI_QUEUE": 9}, r"coef_bank: TRI_QUEUE 9 is not 1\.\.8"),
@@ -56,13 +67,45 @@ CASES = [
      r"spec_slots: SPECULAR_KIND 5 is not 0 ideal"),
     ("coef_term_2", {}, {"COEF_T1_WL": 2}, None),
     ("coef_term_1", {}, {"COEF_T1_WL": 1}, r"COEF_T1_WL must be 2\.\.COEF_WL"),
-    ("lut_addr_bits_1", {"specular": {"kind": "lut", "lut": {"addr_bits": 1}}}, {}, None),
-    ("lut_addr_bits_16", {"specular": {"kind": "lut", "lut": {"addr_bits": 16}}}, {}, None),
-    ("wpow_base_bits_2", {"specular": {"kind": "wpow", "wpow": {"base_bits": 2}}}, {}, None),
+    # The specular units' slots (exponent_lut.sv, wpow_unit.sv, schlick_divider.sv).
+    ("lut_addr_bits_1", {"specular": {**LUT, "lut": {"addr_bits": 1}}}, {}, None),
+    # A zero width stops Icarus's elaboration before the time-0 check runs (or_zero_width).
+    ("lut_addr_bits_0", {"specular": {**LUT, "lut": {"addr_bits": 1}}}, {"SPEC_PARAMS[0]": 0},
+     r"exponent_lut: ADDR_BITS 0 is not 1\.\.16" + or_zero_width("exponent_lut")),
+    ("lut_addr_bits_16", {"specular": {**LUT, "lut": {"addr_bits": 16}}}, {}, None),
+    ("lut_addr_bits_17", {"specular": {**LUT, "lut": {"addr_bits": 16}}}, {"SPEC_PARAMS[0]": 17},
+     r"exponent_lut: ADDR_BITS 17 is not 1\.\.16"),
+    ("lut_entry_bits_1", {"specular": {**LUT, "lut": {"entry_bits": 1}}}, {}, None),
+    ("lut_entry_bits_0", {"specular": {**LUT, "lut": {"entry_bits": 1}}}, {"SPEC_PARAMS[1]": 0},
+     r"exponent_lut: ENTRY_BITS 0 is not >= 1" + or_zero_width("exponent_lut")),
+    ("lut_index_1", {"specular": {**LUT, "lut": {"index": "nearest"}}}, {}, None),
+    ("lut_index_2", {"specular": {**LUT, "lut": {"index": "nearest"}}}, {"SPEC_PARAMS[3]": 2},
+     r"exponent_lut: INDEX 2 is not 0 or 1"),
+    ("wpow_max_m_1", {"specular": {**WPOW, "wpow": {"max_m": 1}}}, {}, None),
+    ("wpow_max_m_0", {"specular": {**WPOW, "wpow": {"max_m": 1}}}, {"SPEC_PARAMS[0]": 0},
+     r"wpow_unit: MAX_M must be a power of two, got 0"),
+    ("wpow_max_m_32", {"specular": {**WPOW, "wpow": {"max_m": 32}}}, {}, None),
+    ("wpow_max_m_3", {"specular": {**WPOW, "wpow": {"max_m": 32}}}, {"SPEC_PARAMS[0]": 3},
+     r"wpow_unit: MAX_M must be a power of two, got 3"),
+    ("wpow_base_bits_2", {"specular": {**WPOW, "wpow": {"base_bits": 2}}}, {}, None),
+    ("wpow_base_bits_1", {"specular": {**WPOW, "wpow": {"base_bits": 2}}}, {"SPEC_PARAMS[1]": 1},
+     r"wpow_unit: BASE_BITS 1 < 2"),
+    ("wpow_timing_1", {"specular": {**WPOW, "wpow": {"timing": "iterative"}}}, {}, None),
+    ("wpow_timing_2", {"specular": {**WPOW, "wpow": {"timing": "iterative"}}},
+     {"SPEC_PARAMS[2]": 2}, r"wpow_unit: TIMING 2 is not 0 or 1"),
     ("schlick_narrowest",
-     {"specular": {"kind": "schlick", "schlick": {"quotient_bits": 1, "operand_bits": 2}}}, {},
-     None),
+     {"specular": {**SCHLICK, "schlick": {"quotient_bits": 1, "operand_bits": 2}}}, {}, None),
+    ("schlick_quotient_0",
+     {"specular": {**SCHLICK, "schlick": {"quotient_bits": 1, "operand_bits": 2}}},
+     {"SPEC_PARAMS[0]": 0},
+     r"schlick_divider: QUOTIENT_BITS 0 < 1" + or_zero_width("schlick_divider")),
+    ("schlick_operand_1",
+     {"specular": {**SCHLICK, "schlick": {"quotient_bits": 1, "operand_bits": 2}}},
+     {"SPEC_PARAMS[1]": 1}, r"schlick_divider: OPERAND_BITS 1 < 2"),
+    ("schlick_timing_2", {"specular": {**SCHLICK, "schlick": {"timing": "pipelined"}}},
+     {"SPEC_PARAMS[2]": 2}, r"schlick_divider: TIMING 2 is not 0 or 1"),
 ]
+SLOT = re.compile(r"SPEC_PARAMS\[(\d+)\]")
 
 
 def run(cmd, cwd=None):
@@ -92,15 +135,29 @@ def parameters(shadesim, unit, work, name):
     return params
 
 
+def with_slot(literal, slot, value):
+    """SPEC_PARAMS's Verilog literal (W'hHEX, slot k at bits [32k +: 32]) with slot `slot` set."""
+    width, digits = re.fullmatch(r"(\d+)'h([0-9a-fA-F]+)", literal).groups()
+    bits = int(digits, 16) & ~(0xFFFFFFFF << (32 * slot)) | (value << (32 * slot))
+    return f"{width}'h{bits:0{int(width) // 4}x}"
+
+
 def check(case, args, sources):
     shadesim, iverilog, vvp, _, work = args
     name, unit, overrides, expected = case
     params = parameters(shadesim, unit, work, name)
-    params.update({k: str(v) for k, v in overrides.items()})
+    for key, value in overrides.items():
+        slot = SLOT.fullmatch(key)
+        if slot:
+            params["SPEC_PARAMS"] = with_slot(params["SPEC_PARAMS"], int(slot.group(1)), value)
+        else:
+            params[key] = str(value)
     vvp_file = os.path.join(work, name + ".vvp")
     compiled = run([iverilog, "-g2012", "-s", "shade_unit", "-o", vvp_file] +
                    [f"-Pshade_unit.{k}={v}" for k, v in params.items()] + sources)
     if compiled.returncode != 0:
+        if expected is not None and re.search(expected, compiled.stderr):
+            return None  # refused while elaborating, by the expected module
         return f"does not compile: {compiled.stderr.strip().splitlines()[:3]}"
     ran = run([vvp, "-n", vvp_file])
     out = ran.stdout + ran.stderr
