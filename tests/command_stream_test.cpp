@@ -178,6 +178,28 @@ TEST(CommandStream, PerMaterialTableIsHeaderBit55AndRoundTrips) {
   EXPECT_EQ(again.encode(), w);
 }
 
+// An empty TABLE is a header alone (count 0): it round-trips through binary and text, and the
+// word after it is the next command's header.
+TEST(CommandStream, EmptyTableIsAHeaderAloneAndRoundTrips) {
+  CommandStream cs;
+  cs.commands.emplace_back(TableCmd{5, {}, true});
+  cs.commands.emplace_back(TableCmd{6, {}, false});
+  cs.commands.emplace_back(EndFrameCmd{});
+  const auto w = cs.encode();
+  ASSERT_EQ(w.size(), 3u);
+  EXPECT_EQ(w[0] & 0xFFFF, 0u);
+  EXPECT_EQ((w[1] >> 16) & 0xFFFF, 6u);
+  EXPECT_EQ(w[2] >> 56, 0x0Fu);
+  const CommandStream back = CommandStream::decode(w, cs.config, "t.bin");
+  ASSERT_EQ(back.commands.size(), 3u);
+  EXPECT_TRUE(std::get<TableCmd>(back.commands[0]).entries.empty());
+  EXPECT_EQ(std::get<TableCmd>(back.commands[1]).base, 6u);
+  std::stringstream text;
+  cs.write_text(text);
+  const CommandStream again = CommandStream::read_text(text, "t.cmd");
+  EXPECT_EQ(again.encode(), w) << text.str();
+}
+
 void expect_text_error(const std::string& body, const std::string& needle) {
   std::stringstream ss("shadesim-commands 2 " + config_to_json(UnitConfig{}) + "\n" + body);
   try {
