@@ -18,6 +18,7 @@ CycleConfig CycleConfig::of(const UnitConfig& config) {
   c.material_buffers = config.material_buffers;
   c.host_setup = config.host_setup();
   if (c.host_setup) c.start_words = StartLayout::of(config).words;
+  c.start_depth = config.start_depth;
   return c;
 }
 

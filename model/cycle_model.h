@@ -73,13 +73,7 @@ struct CycleConfig {
   // from; there are no setup stages and no coefficient banks (tri_queue is 1).
   bool host_setup = false;
   int start_words = 0;
-  int start_depth = kStartDepth;
-  // A host-setup unit's start bank entries (shade_unit START_DEPTH, from rtl_parameters.cpp):
-  // two, so the next span's words stream in while one span waits and one runs. Measured with
-  // this model on the shipped scenes' own units: one entry gives specular 1.233, torus 1.133,
-  // suzanne 1.176 cycles/px, two 1.001 each; more than two do not help multi (1.205 at two,
-  // 1.201 at eight), whose many short spans are bound by the 13 words each needs.
-  static constexpr int kStartDepth = 2;
+  int start_depth = UnitConfig::kStartDepth;  // UnitConfig::start_depth (shade_unit START_DEPTH)
 
   CycleConfig() = default;
   // A unit with the default structure around this slot.

@@ -48,7 +48,7 @@ std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u) {
   // Host span setup (shade_pkg::SetupHost = 1); unit-setup units keep their parameter list.
   if (u.host_setup()) {
     p.push_back({"SPAN_SETUP", 1});
-    p.push_back({"START_DEPTH", CycleConfig::kStartDepth});
+    p.push_back({"START_DEPTH", u.start_depth});
   }
   // Diffuse colour multiply; units that roll the colour into the series keep their list.
   if (u.diffuse_multiply()) p.push_back({"DIFFUSE_MULTIPLY", 1});

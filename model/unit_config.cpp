@@ -30,6 +30,8 @@ void UnitConfig::validate() const {
     fail("tri_queue must be 1 with span_setup host, got " + std::to_string(tri_queue) +
          ": the unit holds no triangle coefficients to queue (the host sends every span's start "
          "values)");
+  if (start_depth != 1 && start_depth != 2)
+    fail("start_depth must be 1 or 2, got " + std::to_string(start_depth));
   if (diffuse_colour != DiffuseColour::kSeries && diffuse_colour != DiffuseColour::kMultiply)
     fail("diffuse_colour must be series or multiply");
   coef.validate("unit config: coef");
@@ -105,6 +107,7 @@ std::string UnitConfig::to_string() const {
   if (lanes != 1) os << " lanes=" << lanes;
   if (material_buffers != 1) os << " matbuf=" << material_buffers;
   if (host_setup()) os << " setup=host";
+  if (host_setup() && start_depth != kStartDepth) os << " start_depth=" << start_depth;
   if (diffuse_multiply()) os << " diffuse=multiply";
   return os.str();
 }

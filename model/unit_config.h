@@ -92,6 +92,15 @@ struct UnitConfig {
   // knob) but sizes no hardware; tri_queue must be 1 (there are no coefficient banks).
   SpanSetupSite span_setup = SpanSetupSite::kUnit;
   bool host_setup() const { return span_setup == SpanSetupSite::kHost; }
+  // Host span setup only (a unit-setup unit has no start bank and ignores it, so the host and
+  // unit sites of one config differ in span_setup alone): the start bank's entries (RTL
+  // START_DEPTH, 1 or 2). With two the next span's words stream in while one span waits and one
+  // runs; one entry halves the bank's registers and costs cycles. `shadesim cycles SCENE
+  // --config OWN.json` on the shipped scenes' own units (`shadesim config SCENE --json OWN.json`)
+  // gives 1.001 cycles/px for specular and torus and 1.044 for suzanne at two, 1.233, 1.133 and
+  // 1.220 at one (docs/area.md).
+  int start_depth = kStartDepth;
+  static constexpr int kStartDepth = 2;
   DiffuseColour diffuse_colour = DiffuseColour::kSeries;
   bool diffuse_multiply() const { return diffuse_colour == DiffuseColour::kMultiply; }
 

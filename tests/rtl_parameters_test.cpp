@@ -100,6 +100,20 @@ TEST(RtlParameters, MaterialBuffersMapOnlyWhenTwo) {
   }
 }
 
+// START_DEPTH only with host span setup (a unit-setup unit has no start bank), from start_depth.
+TEST(RtlParameters, StartDepthMapsOnlyWithHostSetup) {
+  UnitConfig u;
+  u.start_depth = 1;
+  EXPECT_EQ(as_map(shade_unit_parameters(u)).count("START_DEPTH"), 0u);
+  u.span_setup = SpanSetupSite::kHost;
+  u.tri_queue = 1;
+  EXPECT_EQ(as_map(shade_unit_parameters(u)).at("START_DEPTH"), 1);
+  u.start_depth = 2;
+  EXPECT_EQ(as_map(shade_unit_parameters(u)).at("START_DEPTH"), 2);
+  u.start_depth = 0;
+  EXPECT_THROW(shade_unit_parameters(u), std::invalid_argument);
+}
+
 TEST(RtlParameters, NarrowedCoefficientTermsMapToTheirWidths) {
   UnitConfig u;
   u.coef = parse_fixed_format("s2.15:rnd:wrap", "test");

@@ -143,6 +143,22 @@ TEST_F(UnitConfigFile, WrongTypesAndRangesNameTheFieldAndWhatWasExpected) {
   EXPECT_NE(top.find("expected a JSON object"), std::string::npos) << top;
 }
 
+// start_depth: read from a file, written back only when it is not the default, out of range named.
+TEST_F(UnitConfigFile, StartDepthIsReadWrittenAndRangeChecked) {
+  const UnitConfig one =
+      load_unit_config(write("d1.json", R"({"span_setup": "host", "start_depth": 1})"), {});
+  EXPECT_EQ(one.start_depth, 1);
+  EXPECT_NE(one.to_string().find("start_depth=1"), std::string::npos) << one.to_string();
+  const std::string text = config_to_json(one);
+  EXPECT_NE(text.find("\"start_depth\":1"), std::string::npos) << text;
+  EXPECT_EQ(load_unit_config(write("again.json", text), {}).start_depth, 1);
+  const UnitConfig two = load_unit_config(write("host.json", R"({"span_setup": "host"})"), {});
+  EXPECT_EQ(two.start_depth, 2);
+  EXPECT_EQ(config_to_json(two).find("start_depth"), std::string::npos) << config_to_json(two);
+  const std::string range = error_of(R"({"span_setup": "host", "start_depth": 3})");
+  EXPECT_NE(range.find("start_depth: expected 1..2"), std::string::npos) << range;
+}
+
 TEST_F(UnitConfigFile, ContradictoryFieldsAreRejectedByValidate) {
   // A wrapping coef format with fewer integer bits than the series loses the value.
   const std::string wrap = error_of(R"({"coef": "s3.32:rnd:wrap", "series": "s4.28:wrap"})");

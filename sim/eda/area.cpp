@@ -1264,8 +1264,12 @@ double size_of(const std::string& module, const ParamMap& p) {
     return 4 * product(c, o) + 2 * product(c + o, o) + 8 * w + 2 * o + 3 * s;
   }
   if (module == "series_engine") return s;
-  // The start bank: v, d, d2 of every series (and the payload steering per bit).
-  if (module == "start_bank") return 3 * static_cast<double>(instances_of("series_engine", p)) * s;
+  // The start bank: v, d, d2 of every series (and the payload steering per bit) per entry.
+  if (module == "start_bank") {
+    const auto depth = p.find("START_DEPTH");
+    const double entries = depth == p.end() ? UnitConfig::kStartDepth : depth->second;
+    return 3 * static_cast<double>(instances_of("series_engine", p)) * s * entries;
+  }
   if (module == "pixel_combine") {
     // With the diffuse multiply, a (series integer + colour fraction bits) x colour product per
     // light and channel too (rtl/pixel_combine.sv truncates N.L to the colour's fraction).
