@@ -175,8 +175,11 @@ endforeach()
 # the four-word port (its sc_bv command port; queues run under SystemC in grey_p4_q2_l4_m2 and
 # rgb2_p8_q3_l4 below); the deliberate faults caught at the right
 # scanline through a four-word port. _pack: packed coefficients (rgb2_pack_p8_q3, a LUT build,
-# runs with the specular builds below).
-foreach(name grey_p2 grey_p4 rgb2_p8 grey_p4_q2 rgb2_p8_q3 grey_p1_q2 grey_pack_p4_q2)
+# runs with the specular builds below). grey_p2 narrows term T4 by one integer bit: every term
+# still takes a word of its own, so coef_bank loads each from its own width (g_coef_packed).
+# grey_p1_host_d1: host span setup with a one-entry start bank (start_depth 1).
+foreach(name grey_p2 grey_p4 rgb2_p8 grey_p4_q2 rgb2_p8_q3 grey_p1_q2 grey_pack_p4_q2
+        grey_p1_host_d1)
   add_test(NAME rtl_cosim_cpp_${name}
     COMMAND ${COSIM_CPP} --config ${name} --scenario all --seed 1 --runs 3
             --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)

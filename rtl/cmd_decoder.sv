@@ -38,9 +38,8 @@ module cmd_decoder #(
   output logic                                  span_fire_o,  // ... SPAN headers (hdr_n_o)
   output logic                                  tri_fire_o,   // ... a TRIANGLE header
   output logic                                  mat_fire_o,   // ... a MATERIAL header
-  output logic [(PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1)-1:0] pos_o,  // first word not taken
   output logic [$clog2(PORT_WORDS+1)-1:0]       tail_n_o,     // TRIANGLE words due in beat
-  output logic [15:0]                           pay_idx_o,    // payload index of pos_o's word
+  output logic [15:0]                           pay_idx_o,    // of the next payload word
   output logic                                  span_pay_o,   // the tail is a SPAN's (host)
   output logic                                  pay_mat_o,    // a MATERIAL payload word taken
   // Configuration words for the specular slots: MATERIAL exponent (index 0) and unit
@@ -172,7 +171,7 @@ module cmd_decoder #(
   );
   assign {word_o, word_sel_o, hdr_op_o, hdr_pos_o, hdr_n_o} =
          {cmd_word, word_sel, hdr_op, hdr_pos, hdr_n};
-  assign {hdr_fire_o, pos_o, tail_n_o} = {hdr_fire, pos_q, tail_n};
+  assign {hdr_fire_o, tail_n_o} = {hdr_fire, tail_n};
   assign span_fire_o = hdr_fire && hdr_op == shade_pkg::OpSpan;
   assign tri_fire_o  = hdr_fire && hdr_op == shade_pkg::OpTriangle;
   assign mat_fire_o  = hdr_fire && hdr_op == shade_pkg::OpMaterial;
@@ -190,6 +189,10 @@ module cmd_decoder #(
     cmd_valid_i && !cmd_ready_o |=> $stable(cmd_data_i));
   // (And the decoder never takes more words than the beat has left.)
   a_item_fits: assert property (@(posedge clk_i) disable iff (!rst_ni) item_n <= beat_left);
+  // A TRIANGLE's or host SPAN's tail starts its beat: the header takes its payload words to the
+  // beat's end, and a tail takes all it has in the beat. coef_bank and start_bank rely on it.
+  a_tail_starts_beat: assert property (@(posedge clk_i) disable iff (!rst_ni)
+    tail_n != '0 |-> pos_q == '0);
 `endif
 `endif
 endmodule

@@ -2,7 +2,7 @@
 // its N_COEF Taylor coefficients, written from the command port's beat, read by span setup.
 //
 // A beat word k carries payload word coef_idx[k] of a TRIANGLE: the tail of the current one
-// (words pos_i .. pos_i + tail_n_i - 1, bank wr_bank_i) or the words after a TRIANGLE header
+// (words 0 .. tail_n_i - 1, bank wr_bank_i) or the words after a TRIANGLE header
 // taken now (bank next_bank_i). Every coefficient such a word holds loads from its field
 // (shade_pkg::coef_word / coef_lsb), sign-extended to COEF_WL. Which bank a span reads and
 // when a bank is free is the span queue's (rtl/span_queue.sv).
@@ -29,7 +29,6 @@ module coef_bank #(
   input  logic signed [15:0]                     hdr_xo_i,    // ... its origin
   input  logic signed [15:0]                     hdr_yo_i,
   // verilator lint_on UNUSEDSIGNAL
-  input  logic [(PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1)-1:0] pos_i,
   // Counts and positions of beat words, 0..PORT_WORDS: $clog2(PORT_WORDS + 1) bits.
   input  logic [$clog2(PORT_WORDS+1)-1:0]        tail_n_i,
   input  logic [15:0]                            pay_idx_i,
@@ -55,9 +54,10 @@ module coef_bank #(
   logic signed [OFS_BITS-1:0] xo_q [TRI_QUEUE];  // each bank's origin, as span setup reads it
   logic signed [OFS_BITS-1:0] yo_q [TRI_QUEUE];
 
-  // Beat word k carries payload word coef_idx[k] of a TRIANGLE (coef_we[k]). A tail word's index
-  // is pay_idx_i + (k - pos_i) <= the payload's last, so it never wraps in 16 bits and is below
-  // NCoefWords only if pay_idx_i is: AW bits hold every index that is written.
+  // Beat word k carries payload word coef_idx[k] of a TRIANGLE (coef_we[k]). A tail starts its
+  // beat (cmd_decoder's a_tail_starts_beat: a header takes its payload to the beat's end), so a
+  // tail word's index is pay_idx_i + k <= the payload's last: it never wraps in 16 bits and is
+  // below NCoefWords only if pay_idx_i is. AW bits hold every index that is written.
   logic                  pay_in;  // pay_idx_i < NCoefWords
   logic [AW-1:0]         coef_idx [PORT_WORDS];
   logic [PORT_WORDS-1:0] coef_we, coef_tail;
@@ -65,9 +65,8 @@ module coef_bank #(
   assign pay_in = pay_idx_i < 16'(NCoefWords);
   always_comb begin
     for (int k = 0; k < PORT_WORDS; k++) begin
-      coef_tail[k] = NW'(k) >= NW'(pos_i) && NW'(k) - NW'(pos_i) < tail_n_i;
-      coef_idx[k]  = coef_tail[k] ? AW'(pay_idx_i) + AW'(k) - AW'(pos_i)
-                                  : AW'(k) - AW'(hdr_pos_i) - AW'(1);
+      coef_tail[k] = NW'(k) < tail_n_i;
+      coef_idx[k]  = coef_tail[k] ? AW'(pay_idx_i) + AW'(k) : AW'(k) - AW'(hdr_pos_i) - AW'(1);
       coef_we[k]   = (cmd_valid_i && coef_tail[k] && pay_in ||
                       tri_fire_i && NW'(k) > hdr_pos_i &&
                       (NW + 1)'(k) < (NW + 1)'(hdr_pos_i) + (NW + 1)'(hdr_n_i)) &&

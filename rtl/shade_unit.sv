@@ -97,7 +97,7 @@ module shade_unit #(
   logic [7:0]       hdr_op;  // reason: with hdr_fire, read by sim/harness/shade_cover.sv's bind
   logic             hdr_fire;
   // verilator lint_on UNUSEDSIGNAL
-  logic [15:0]      pay_idx, sq_room, cfg_addr;  logic [PosW-1:0] word_sel, pos;
+  logic [15:0]      pay_idx, sq_room, cfg_addr;  logic [PosW-1:0] word_sel;
   logic [$clog2(PORT_WORDS+1)-1:0] hdr_pos, hdr_n, tail_n;  // counts of beat words
   logic span_fire, tri_fire, mat_fire, pay_mat, cfg_valid, cfg_table, cfg_all_banks, s1_free;
   logic datapath_empty, mat_other_free, mat_cur_free, sq_full, sq_empty, tri_bank_free;
@@ -112,7 +112,7 @@ module shade_unit #(
     .start_free_i(start_free), .span_pay_o(span_pay),
     .word_o(cmd_word), .word_sel_o(word_sel), .hdr_op_o(hdr_op), .hdr_pos_o(hdr_pos),
     .hdr_n_o(hdr_n), .hdr_fire_o(hdr_fire), .span_fire_o(span_fire), .tri_fire_o(tri_fire),
-    .mat_fire_o(mat_fire), .pos_o(pos), .tail_n_o(tail_n), .pay_idx_o(pay_idx),
+    .mat_fire_o(mat_fire), .tail_n_o(tail_n), .pay_idx_o(pay_idx),
     .pay_mat_o(pay_mat), .cfg_valid_o(cfg_valid), .cfg_table_o(cfg_table),
     .cfg_all_banks_o(cfg_all_banks), .cfg_addr_o(cfg_addr)
   );
@@ -133,7 +133,7 @@ module shade_unit #(
     .START_DEPTH(START_DEPTH)
   ) u_span_source (
     .clk_i, .rst_ni, .cmd_data_i, .cmd_valid_i, .word_i(cmd_word), .word_sel_i(word_sel),
-    .pos_i(pos), .hdr_pos_i(hdr_pos), .hdr_n_i(hdr_n), .tail_n_i(tail_n), .pay_idx_i(pay_idx),
+    .hdr_pos_i(hdr_pos), .hdr_n_i(hdr_n), .tail_n_i(tail_n), .pay_idx_i(pay_idx),
     .span_fire_i(span_fire), .tri_fire_i(tri_fire), .span_pay_i(span_pay), .mat_wr_i(mat_wr),
     .eng_load_i(load_eng), .sq_full_o(sq_full), .sq_empty_o(sq_empty),
     .tri_bank_free_o(tri_bank_free), .sq_room_o(sq_room), .s1_free_o(s1_free),

@@ -30,7 +30,7 @@ module span_source #(
   // verilator lint_off UNUSEDSIGNAL
   input  logic [shade_pkg::WordW-1:0]           word_i,  // reason: unit setup reads xo, yo only
   // verilator lint_on UNUSEDSIGNAL
-  input  logic [(PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1)-1:0] word_sel_i, pos_i,
+  input  logic [(PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1)-1:0] word_sel_i,
   input  logic [$clog2(PORT_WORDS+1)-1:0]       hdr_pos_i, hdr_n_i, tail_n_i,
   input  logic [15:0]                           pay_idx_i,
   input  logic                                  span_fire_i, tri_fire_i, span_pay_i,
@@ -67,7 +67,7 @@ module span_source #(
       .COEF_T3_WL(COEF_T3_WL), .COEF_T4_WL(COEF_T4_WL), .COEF_T5_WL(COEF_T5_WL),
       .OFS_BITS(OFS_BITS)
     ) u_coef_bank (
-      .clk_i, .cmd_data_i, .cmd_valid_i, .tri_fire_i, .pos_i,
+      .clk_i, .cmd_data_i, .cmd_valid_i, .tri_fire_i,
       .hdr_xo_i(word_i[shade_pkg::HighLsb +: 16]), .hdr_yo_i(word_i[shade_pkg::MidLsb +: 16]),
       .tail_n_i, .pay_idx_i, .hdr_pos_i, .hdr_n_i, .wr_bank_i(wr_bank), .next_bank_i(next_bank),
       .rd_bank_i(rd_bank), .coef_o, .xo_o, .yo_o
@@ -88,7 +88,7 @@ module span_source #(
       .DEPTH(START_DEPTH)
     ) u_start_bank (
       .clk_i, .rst_ni, .cmd_valid_i, .cmd_data_i, .hdr_i(word_i), .span_fire_i, .mat_i(mat_wr_i),
-      .pos_i, .tail_n_i, .pay_idx_i, .hdr_pos_i, .hdr_n_i, .filling_i(span_pay_i),
+      .tail_n_i, .pay_idx_i, .hdr_pos_i, .hdr_n_i, .filling_i(span_pay_i),
       .load_i(eng_load_i), .free_o(start_free_o), .valid_o(s3_valid_o), .empty_o(start_empty),
       .span_o(s3_span_o), .mat_o(s1_mat_o), .v_o(bank_v_o), .d_o(bank_d_o), .d2_o(bank_d2_o)
     );

@@ -27,7 +27,6 @@ module start_bank #(
   // verilator lint_on UNUSEDSIGNAL
   input  logic                                   span_fire_i,  // a SPAN header is taken ...
   input  logic                                   mat_i,        // ... in this material bank
-  input  logic [(PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1)-1:0] pos_i,  // first word not taken
   // Counts and positions of beat words, 0..PORT_WORDS: $clog2(PORT_WORDS + 1) bits.
   input  logic [$clog2(PORT_WORDS+1)-1:0]        tail_n_i,     // payload words due in the beat
   input  logic [$clog2(PORT_WORDS+1)-1:0]        hdr_pos_i,
@@ -71,14 +70,15 @@ module start_bank #(
     end
   end
 
-  // Beat word k carries payload word idx[k]: a tail word of the newest entry (words pos_i ..
-  // pos_i + tail_n_i - 1), or one after the SPAN header taken now (entry wr_q).
+  // Beat word k carries payload word idx[k]: a tail word of the newest entry (words 0 ..
+  // tail_n_i - 1: a tail starts its beat, cmd_decoder's a_tail_starts_beat), or one after the
+  // SPAN header taken now (entry wr_q).
   logic [AW-1:0]         idx [PORT_WORDS];
   logic [PORT_WORDS-1:0] we, tail;
   always_comb begin
     for (int k = 0; k < PORT_WORDS; k++) begin
-      tail[k] = NW'(k) >= NW'(pos_i) && NW'(k) - NW'(pos_i) < tail_n_i;
-      idx[k]  = tail[k] ? AW'(pay_idx_i) + AW'(k) - AW'(pos_i) : AW'(k) - AW'(hdr_pos_i) - AW'(1);
+      tail[k] = NW'(k) < tail_n_i;
+      idx[k]  = tail[k] ? AW'(pay_idx_i) + AW'(k) : AW'(k) - AW'(hdr_pos_i) - AW'(1);
       we[k]   = (cmd_valid_i && filling_i && tail[k] ||
                  span_fire_i && NW'(k) > hdr_pos_i &&
                  (NW + 1)'(k) < (NW + 1)'(hdr_pos_i) + (NW + 1)'(hdr_n_i)) &&
@@ -143,8 +143,10 @@ module start_bank #(
   initial begin
     if (DEPTH != 1 && DEPTH != 2)
       $fatal(1, "start_bank: DEPTH %0d is not 1 or 2", DEPTH);
-    if (N_SER < 1 || SERIES_WL < 2 || SERIES_WL > 64)
-      $fatal(1, "start_bank: N_SER %0d or SERIES_WL %0d out of range", N_SER, SERIES_WL);
+    // The model's range (UnitConfig: series iwl >= 2, fraction >= out_bits >= 1, wl <= 62).
+    if (N_SER < 1 || SERIES_WL < 3 || SERIES_WL > 62)
+      $fatal(1, "start_bank: N_SER %0d or SERIES_WL %0d out of range (1.., 3..62)", N_SER,
+             SERIES_WL);
   end
 `ifdef VERILATOR
   // An entry is taken only when free and loaded only when complete; the count never wraps.

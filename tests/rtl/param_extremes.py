@@ -35,6 +35,7 @@ LUT = {"kind": "lut"}
 
 WPOW = {"kind": "wpow"}
 SCHLICK = {"kind": "schlick"}
+HOST_S2_1 = {"span_setup": "host", "series": "s2.1:wrap", "out_bits": 1}
 CASES = [
     ("tri_queue_8", {"tri_queue": 8}, {}, None),
     ("tri_queue_9", {"tri_queue": 8}, {"TRI_QUEUE": 9}, r"coef_bank: TRI_QUEUE 9 is not 1\.\.8"),
@@ -53,10 +54,20 @@ CASES = [
      r"MATERIAL_BUFFERS 3 is not 1 or 2"),
     ("span_setup_host", {"span_setup": "host"}, {}, None),
     ("span_setup_2", {"span_setup": "host"}, {"SPAN_SETUP": 2}, r"SPAN_SETUP 2 is not 0"),
-    # A host-setup unit's start bank is CycleConfig::kStartDepth (2) deep; 1 is legal RTL too.
-    ("start_depth_1", {"span_setup": "host"}, {"START_DEPTH": 1}, None),
-    ("start_depth_3", {"span_setup": "host"}, {"START_DEPTH": 3},
+    ("start_depth_1", {"span_setup": "host", "start_depth": 1}, {}, None),
+    ("start_depth_2", {"span_setup": "host", "start_depth": 2}, {}, None),
+    ("start_depth_0", {"span_setup": "host", "start_depth": 1}, {"START_DEPTH": 0},
+     r"start_bank: DEPTH 0 is not 1 or 2" + or_zero_width("start_bank")),
+    ("start_depth_3", {"span_setup": "host", "start_depth": 2}, {"START_DEPTH": 3},
      r"start_bank: DEPTH 3 is not 1 or 2"),
+    # The start bank's series: one (grey, one light, no specular) and the model's widths.
+    ("start_bank_one_series", {"span_setup": "host", "specular": {"kind": "none"}}, {}, None),
+    ("start_bank_series_wl_3", HOST_S2_1, {}, None),
+    ("start_bank_series_wl_2", HOST_S2_1, {"SERIES_WL": 2},
+     r"start_bank: N_SER 2 or SERIES_WL 2 out of range"),
+    ("start_bank_series_wl_62", {"span_setup": "host", "series": "s4.58:wrap"}, {}, None),
+    ("start_bank_series_wl_63", {"span_setup": "host", "series": "s4.58:wrap"}, {"SERIES_WL": 63},
+     r"start_bank: N_SER 2 or SERIES_WL 63 out of range"),
     ("diffuse_multiply_2", {}, {"DIFFUSE_MULTIPLY": 2}, r"DIFFUSE_MULTIPLY 2 is not 0 or 1"),
     ("offset_bits_2", {"offset_bits": 2, "xy_bits": 4}, {}, None),
     ("offset_bits_1", {"offset_bits": 2, "xy_bits": 4}, {"OFS_BITS": 1},
