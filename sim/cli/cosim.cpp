@@ -61,7 +61,8 @@ void register_cosim_command(CLI::App& app, int& exit_code) {
                   "compile a new build quick (-O0: builds fastest) or fast (-O2: simulates "
                   "fastest); a cached fast build is used either way. Default: quick for the "
                   "random scenarios (short), by the stream's length for --stream (quick under " +
-                      std::to_string(kQuickBuildCycles) + " cycles)")
+                      std::to_string(kQuickBuildCycles) + " cycles, " +
+                      std::to_string(kQuickCoveredBuildCycles) + " with --coverage)")
       ->check(CLI::IsMember({"quick", "fast"}));
   sub->add_flag("--netlist", o->netlist,
                 "simulate the unit's gate-level netlist from Yosys (what `shadesim area` "

@@ -72,8 +72,9 @@ void add_output_options(CLI::App* sub, RegressOptions& o) {
   sub->add_option("--opt", o.optimization,
                   "compile new RTL builds quick (-O0: builds fastest) or fast (-O2: simulates "
                   "fastest); default: quick for runs under " +
-                      std::to_string(kQuickBuildCycles) +
-                      " cycles (a cached fast build is used either way)")
+                      std::to_string(kQuickBuildCycles) + " cycles (" +
+                      std::to_string(kQuickCoveredBuildCycles) +
+                      " with --coverage; a cached fast build is used either way)")
       ->check(CLI::IsMember({"quick", "fast"}));
 }
 

@@ -32,14 +32,15 @@ namespace fs = std::filesystem;
 // (4 cycles a pixel, regress's upper estimate), the random scenarios quick - they are short by
 // design (every scenario of one seed is under 0.3 M cycles on grey_s428w, 0.1 s of simulation
 // on a fast build and about 1 s on a quick one, which compiles about 5 s sooner).
-RtlOptimization cosim_optimization(const std::string& optimization, const std::string& stream) {
+RtlOptimization cosim_optimization(const std::string& optimization, const std::string& stream,
+                                   bool coverage) {
   if (!optimization.empty()) return parse_rtl_optimization(optimization);
   if (stream.empty()) return RtlOptimization::kQuick;
   uint64_t pixels = 0;
   for (const Command& c : CommandStream::load(stream).commands) {
     if (const auto* s = std::get_if<SpanCmd>(&c)) pixels += static_cast<uint64_t>(s->length);
   }
-  return choose_optimization(4 * pixels);
+  return choose_optimization(4 * pixels, coverage);
 }
 
 // The unit file the executable reads (--unit): content-addressed, written atomically.
@@ -108,7 +109,7 @@ int exec_cosim(const CosimOptions& o) {
   bo.cache_dir = o.cache;
   bo.make_jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   bo.coverage = !o.coverage.empty();
-  bo.optimization = cosim_optimization(o.optimization, o.stream);
+  bo.optimization = cosim_optimization(o.optimization, o.stream, bo.coverage);
   if (bo.coverage && backend == CosimBackend::kCppTrace) {
     throw std::invalid_argument(
         "--coverage and --waves: a traced build has no coverage; run them one at a time");

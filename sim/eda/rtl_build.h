@@ -59,9 +59,15 @@ struct RtlBuildResult {
 // fast` print both builds' times and simulation speeds; on sphere's own unit the fast build
 // took about 1 s longer and simulated about 10x faster (0.2 against 2 M cycles/s and more), a
 // crossover near 250 k cycles, and larger units take longer to optimise.
+// A covered build counts every toggle every cycle, and at -O0 that code is 20x slower than at -O2
+// (schlick_iter_n_p4_l4_m2_mul covered, multi's 302,575-cycle stream: 152.2 s against 7.4 s),
+// while -O2 took 41 s more to compile (its per-cycle half: 61 s against 20 s): the crossover is
+// near 100 k cycles.
 constexpr uint64_t kQuickBuildCycles = 500000;
-inline RtlOptimization choose_optimization(uint64_t expected_cycles) {
-  return expected_cycles < kQuickBuildCycles ? RtlOptimization::kQuick : RtlOptimization::kFast;
+constexpr uint64_t kQuickCoveredBuildCycles = 100000;
+inline RtlOptimization choose_optimization(uint64_t expected_cycles, bool coverage = false) {
+  const uint64_t quick_below = coverage ? kQuickCoveredBuildCycles : kQuickBuildCycles;
+  return expected_cycles < quick_below ? RtlOptimization::kQuick : RtlOptimization::kFast;
 }
 
 // The default cache folder (under the build folder shadesim was built in).

@@ -602,7 +602,7 @@ void build_all(std::vector<Job>& jobs, const RegressOptions& o, int workers) {
     try {
       RtlBuildOptions b = build_options(o);
       b.make_jobs = per_build;
-      b.optimization = o.optimization.empty() ? choose_optimization(needs[i].cycles)
+      b.optimization = o.optimization.empty() ? choose_optimization(needs[i].cycles, o.coverage)
                                               : parse_rtl_optimization(o.optimization);
       needs[i].executable = ensure_rtl_build(needs[i].build, needs[i].backend, b).executable;
     } catch (const std::exception& e) {
