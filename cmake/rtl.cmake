@@ -179,8 +179,8 @@ foreach(name grey_s428w rgb2_s320s)
   endforeach()
 endforeach()
 # Wider command ports and triangle queues (issue 8): every scenario, three seeds; SystemC on
-# the four-word port (its sc_bv command port; queues run under SystemC in grey_p4_q2_l4_m2 and
-# rgb2_p8_q3_l4 below); the deliberate faults caught at the right
+# the four-word port (its sc_bv command port; queues run under SystemC in grey_p4_q2_l4_m2 below
+# and wpow16_d_p8_q2_l4_m2 with the specular builds); the deliberate faults caught at the right
 # scanline through a four-word port. _pack: packed coefficients (rgb2_pack_p8_q3, a LUT build,
 # runs with the specular builds below). grey_p2 narrows term T4 by one integer bit: every term
 # still takes a word of its own, so coef_bank loads each from its own width (g_coef_packed).
