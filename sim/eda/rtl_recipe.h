@@ -25,8 +25,8 @@ std::string to_string(CosimBackend b);                 // cpp, systemc, cpp_trac
 CosimBackend parse_cosim_backend(const std::string&);  // cpp | systemc (throws naming the value)
 
 // How hard the compiler works on the Verilated model: kQuick builds fastest (-O0), kFast
-// simulates fastest (-O2 on the per-cycle code, -O0 on the code that runs once). See
-// choose_optimization in sim/eda/rtl_build.h.
+// simulates fastest (-O2 on the per-cycle code, -O1 in a covered build, -O0 on the code that
+// runs once). See choose_optimization in sim/eda/rtl_build.h.
 enum class RtlOptimization { kQuick, kFast };
 std::string to_string(RtlOptimization o);  // quick | fast
 RtlOptimization parse_rtl_optimization(const std::string& s);
