@@ -309,3 +309,24 @@ add_test(NAME rtl_cosim_waves
 add_test(NAME rtl_build_cache
   COMMAND ${CMAKE_SOURCE_DIR}/sim/harness/build_cache_check.sh ${SHADESIM_CLI} ${CMAKE_BINARY_DIR}/rtl_cache_check)
 set_tests_properties(rtl_build_cache PROPERTIES TIMEOUT 1200)
+
+# A named build's SystemC executable is made by every `cmake --build` (rtl_builds): one that no
+# rtl_cosim_sc_<build>_* test runs is build time for nothing (rgb2_p8_q3_l4's was, until
+# 2026-12-06). Refused here, naming the build.
+get_property(_rtl_tests DIRECTORY PROPERTY TESTS)
+foreach(name ${RTL_BUILD_NAMES})
+  if("systemc" IN_LIST RTL_BUILD_${name}_BACKENDS)
+    set(_sc_run OFF)
+    foreach(t ${_rtl_tests})
+      if(t MATCHES "^rtl_cosim_sc_${name}_")
+        set(_sc_run ON)
+        break()
+      endif()
+    endforeach()
+    if(NOT _sc_run)
+      message(FATAL_ERROR "sim/harness/builds.json: ${name} lists the systemc backend, but no "
+                          "rtl_cosim_sc_${name}_* test runs it (cmake/rtl.cmake): add one or drop "
+                          "the backend")
+    endif()
+  endif()
+endforeach()
