@@ -63,13 +63,18 @@ set(RTL_CACHE ${CMAKE_BINARY_DIR}/rtl-cache)
 # The named builds regress_shipped_scenes_named_builds runs every shipped scene on (1.4 M
 # cycles and more each, so regress wants them fast) are made fast first: a fast build serves
 # the quick requests too, where making them quick here compiled each of them twice.
+# The fault-hook variants are what the rtl_cosim_catches_fault_* tests run (and the waveform
+# test's failing run); every other run uses each build without its hooks (build_for_run).
 set(RTL_SHIPPED_SCENE_BUILDS lut_d schlick_iter_d schlick_pipe_d wpow16_d lut_n schlick_iter_n
     schlick_pipe_n wpow16_n)
 add_custom_target(rtl_builds ALL
   COMMAND shadesim rtl-build --config ${RTL_SHIPPED_SCENE_BUILDS} --backends cpp --opt fast
           --cache ${RTL_CACHE}
   COMMAND shadesim rtl-build --runtime --all --opt quick --cache ${RTL_CACHE}
+  COMMAND shadesim rtl-build --all --fault-hooks --backends cpp --opt quick --cache ${RTL_CACHE}
   COMMAND shadesim rtl-build --config grey_s428w --backends cpp_trace --opt quick --cache ${RTL_CACHE}
+  COMMAND shadesim rtl-build --config grey_s428w --fault-hooks --backends cpp_trace --opt quick
+          --cache ${RTL_CACHE}
   DEPENDS shadesim shadesim_harness shadesim_model
   COMMENT "Verilating the named RTL builds into ${RTL_CACHE} (cache hits are instant)"
   USES_TERMINAL)

@@ -96,6 +96,9 @@ void register_rtl_build(CLI::App& app, int& exit_code) {
   build->add_option("-j,--jobs", b->jobs, "builds at once (default: hardware threads)")
       ->check(non_negative_number());
   build->add_flag("--coverage", b->coverage, "the covered builds (what regress --coverage runs)");
+  build->add_flag("--fault-hooks", b->fault_hooks,
+                  "the fault-hook variants of the builds that have them (what runs with --fault "
+                  "use; other runs use each build without its hooks)");
   build->add_flag("--runtime", b->runtime,
                   "compile the Verilator runtime of every flavour into the cache (once; the first "
                   "build of a new configuration then compiles only its own model)");

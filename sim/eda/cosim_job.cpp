@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -83,6 +84,13 @@ void list_named(bool json) {
   }
 }
 
+// Whether the co-simulation's own options inject a deliberate fault (--fault SITE@Y).
+bool injects_fault(const std::vector<std::string>& passthrough) {
+  return std::any_of(passthrough.begin(), passthrough.end(), [](const std::string& a) {
+    return a == "--fault" || a.rfind("--fault=", 0) == 0;
+  });
+}
+
 int exec_cosim(const CosimOptions& o) {
   if (o.list) {
     list_named(o.list_json);
@@ -91,7 +99,7 @@ int exec_cosim(const CosimOptions& o) {
   CosimBackend backend = parse_cosim_backend(o.backend);
   RtlConfig build;
   if (!o.config.empty()) {
-    build = resolve_rtl_config(o.config, "--config");
+    build = build_for_run(resolve_rtl_config(o.config, "--config"), injects_fault(o.passthrough));
   } else if (!o.stream.empty()) {
     build.name = "stream";
     build.unit = CommandStream::load(o.stream).config;  // CommandStreamError names the file
@@ -166,6 +174,14 @@ int run_rtl_build(const RtlBuildJobOptions& o) {
   std::vector<RtlConfig> configs;
   if (o.all) configs = load_named_builds(named_builds_path());
   for (const auto& c : o.configs) configs.push_back(resolve_rtl_config(c, "--config"));
+  if (o.fault_hooks) {
+    const auto no_hooks = [](const RtlConfig& c) { return !c.faults.hooks; };
+    configs.erase(std::remove_if(configs.begin(), configs.end(), no_hooks), configs.end());
+    if (configs.empty() && !o.runtime)
+      throw std::invalid_argument("rtl-build --fault-hooks: none of these builds has fault hooks");
+  } else {
+    for (auto& c : configs) c = build_for_run(c, false);
+  }
   const int workers =
       std::max(1, o.jobs > 0 ? o.jobs : static_cast<int>(std::thread::hardware_concurrency()));
   if (o.runtime) {

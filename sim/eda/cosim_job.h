@@ -40,6 +40,9 @@ struct RtlBuildJobOptions {
   bool coverage = false;
   bool print_source_dir = false;
   bool print_rtl_sources = false;
+  // The named builds' fault-hook variants, as runs that inject a fault use them (build_for_run);
+  // without it, every build as the other runs use it.
+  bool fault_hooks = false;
 };
 
 // Builds the executables asked for (or prints their keys, the checkout, the RTL sources);

@@ -475,7 +475,8 @@ std::string replay_command(const Job& j, const RunSettings& settings, const Regr
 // `prefetch` starts each configuration's Verilation as soon as it is known, beside the host
 // setup of the scenes.
 std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& out,
-                           const fs::path& base, RtlPrefetch& prefetch, NetlistSource* netlists) {
+                           const fs::path& base, RtlPrefetch& prefetch, NetlistSource* netlists,
+                           const RunSettings& settings) {
   std::vector<Job> jobs;
   std::map<std::string, size_t> first_of_pair;  // scene + config -> its first job
   for (const auto& spec : specs) {
@@ -507,7 +508,7 @@ std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& ou
     } else {
       first_of_pair[pair] = jobs.size();
       try {
-        j.build = resolve_config(spec, base);
+        j.build = build_for_run(resolve_config(spec, base), !settings.fault.empty());
         j.build.name = spec.config;
         if (netlists) {
           // A token until resolve_netlists (the build's key needs the netlist's contents).
@@ -1119,7 +1120,7 @@ int run_regress(const RegressOptions& o) {
   RtlPrefetch prefetch(build_options(o), workers);
   std::unique_ptr<NetlistSource> netlists;
   if (o.netlist) netlists = std::make_unique<NetlistSource>(o, workers);
-  std::vector<Job> jobs = plan_jobs(sel.selected, sel.out, sel.base, prefetch, netlists.get());
+  std::vector<Job> jobs = plan_jobs(sel.selected, sel.out, sel.base, prefetch, netlists.get(), sel.settings);
   if (netlists) resolve_netlists(jobs, *netlists);
   const auto t0 = std::chrono::steady_clock::now();
   const InterruptGuard interrupt;  // Ctrl-C: no new runs; the rest are recorded as interrupted
