@@ -61,10 +61,10 @@ set(RTL_CACHE ${CMAKE_BINARY_DIR}/rtl-cache)
 # Quick (-O0): the tests' runs are short (cosim picks quick for its random scenarios, regress by
 # each run's length), and a quick build compiles in about a third of a fast one's time.
 # The named builds regress_shipped_scenes_named_builds runs every shipped scene on (1.4 M
-# cycles and more each, so regress wants them fast) are made fast first: a fast build serves
-# the quick requests too, where making them quick here compiled each of them twice.
-# The fault-hook variants are what the rtl_cosim_catches_fault_* tests run (and the waveform
-# test's failing run); every other run uses each build without its hooks (build_for_run).
+# cycles and more each, so regress wants them fast) are made fast first. A fast build leaves the
+# SVA out (checks_assertions, sim/eda/rtl_recipe.h), so the quick runs on them have builds of
+# their own. The fault-hook variants are what the rtl_cosim_catches_fault_* tests run (and the
+# waveform test's failing run); every other run uses each build without its hooks.
 set(RTL_SHIPPED_SCENE_BUILDS lut_d schlick_iter_d schlick_pipe_d wpow16_d lut_n schlick_iter_n
     schlick_pipe_n wpow16_n)
 add_custom_target(rtl_builds ALL

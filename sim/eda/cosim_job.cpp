@@ -217,7 +217,9 @@ int run_rtl_build(const RtlBuildJobOptions& o) {
   }
   if (o.print_key) {
     for (const auto& it : items)
-      std::cout << rtl_build_key(it.config, it.backend, o.coverage, o.cache) << '\n';
+      std::cout << rtl_build_key(it.config, it.backend, o.coverage, o.cache,
+                                 parse_rtl_optimization(o.optimization))
+                << '\n';
     return 0;
   }
   // Fewer builds than workers: each build's compiler runs on the spare cores.

@@ -115,11 +115,13 @@ const std::string& fault_hooks_digest() {
   return digest;
 }
 
-std::string model_key(const RtlConfig& build, const Flavour& f, const Toolchain& t) {
+// `assertions`: Verilated with the RTL's SVA (checks_assertions); the same build without them
+// is another model.
+std::string model_key(const RtlConfig& build, const Flavour& f, const Toolchain& t,
+                      bool assertions = true) {
   ContentHash h;
   h.add(kRecipeVersion).add("model").add(recipe_text(f, t));
-  // The RTL's assertions are compiled in (verilate(): --assert); a build without them misses.
-  h.add("verilator --assert");
+  if (assertions) h.add("verilator --assert");
   if (build.netlist.empty()) {
     h.add(rtl_digest());
     if (build.faults.hooks) h.add("fault hooks").add(fault_hooks_digest());
@@ -263,21 +265,22 @@ void remove_stale_executables(const fs::path& dir, const fs::path& keep, RtlOpti
 // The Verilated model of `build` in `dir` (the caller holds the build's lock); true when this
 // call Verilated it.
 bool ensure_verilated(const fs::path& dir, const fs::path& cache, const RtlConfig& build,
-                      const Flavour& flavour, const Toolchain& tools, bool quiet) {
+                      const Flavour& flavour, bool assertions, const Toolchain& tools, bool quiet) {
   if (fs::exists(dir)) return false;
   const fs::path log = dir.string() + ".log";
   if (!quiet) {
     std::cerr << "rtl build: Verilating " << build.name
               << (build.netlist.empty() ? "" : " (gate-level netlist " + build.netlist + ")")
               << " [" << build.unit.to_string() << fault_text(build.faults) << "] for the "
-              << flavour.name() << " backend into " << dir.string() << std::endl;
+              << flavour.name() << " backend" << (assertions ? "" : " without its SVA") << " into "
+              << dir.string() << std::endl;
   }
   std::ofstream(log, std::ios::trunc).flush();
   make_atomically(dir, cache, log, [&](const fs::path& tmp) {
     fs::create_directories(tmp);
     std::vector<std::string> sources;
     for (const auto& p : simulation_sources(build)) sources.push_back(p.string());
-    verilate(tmp, build, flavour, tools, sources, cover_points_file(), log);
+    verilate(tmp, build, flavour, assertions, tools, sources, cover_points_file(), log);
   });
   return true;
 }
@@ -305,9 +308,10 @@ std::string default_rtl_cache_dir() {
 }
 
 std::string rtl_build_key(const RtlConfig& build, CosimBackend backend, bool coverage,
-                          const std::string& cache_dir) {
+                          const std::string& cache_dir, RtlOptimization optimization) {
   const fs::path cache = cache_of(cache_dir);
-  return model_key(build, flavour_of(backend, coverage), toolchain(cache));
+  const Flavour f = flavour_of(backend, coverage);
+  return model_key(build, f, toolchain(cache), checks_assertions(f, optimization));
 }
 
 RtlConfig resolve_rtl_config(const std::string& name_or_file, const std::string& what) {
@@ -342,10 +346,13 @@ RtlBuildResult ensure_rtl_build(const RtlConfig& build, CosimBackend backend,
   const Flavour flavour = flavour_of(backend, o.coverage);
   const std::string rkey = runtime_key(flavour, tools);
   RtlBuildResult r;
-  r.key = model_key(build, flavour, tools);
+  const bool assertions = checks_assertions(flavour, o.optimization);
+  r.key = model_key(build, flavour, tools, assertions);
   const fs::path dir = cache / (flavour.name() + "-" + r.key);
-  // A fast executable serves a quick request too.
+  // A fast executable of the same model serves a quick request too (a covered build's: both
+  // check the SVA).
   for (const auto opt : {RtlOptimization::kFast, o.optimization}) {
+    if (checks_assertions(flavour, opt) != assertions) continue;
     const Products p = products(dir, opt, rkey);
     if (fs::exists(p.exe)) {
       r.executable = p.exe.string();
@@ -369,7 +376,7 @@ RtlBuildResult ensure_rtl_build(const RtlConfig& build, CosimBackend backend,
   const std::string what = build.name + " [" + build.unit.to_string() + fault_text(build.faults) +
                            "] for the " + flavour.name() + " backend";
   const fs::path log = dir.string() + ".log";
-  r.built = ensure_verilated(dir, cache, build, flavour, tools, o.quiet);
+  r.built = ensure_verilated(dir, cache, build, flavour, assertions, tools, o.quiet);
   // The glue compiles beside the model's objects (it is on no one's critical path then).
   std::exception_ptr glue_error;
   const bool glue_needed = !fs::exists(p.glue);
@@ -437,18 +444,19 @@ RtlPrefetch::~RtlPrefetch() {
   for (auto& t : threads_) t.join();
 }
 
-void RtlPrefetch::add(const RtlConfig& build, CosimBackend backend) {
+void RtlPrefetch::add(const RtlConfig& build, CosimBackend backend, RtlOptimization optimization) {
   const Flavour flavour = flavour_of(backend, options_.coverage);
+  const bool assertions = checks_assertions(flavour, optimization);
   const fs::path cache = cache_of(options_.cache_dir);
   std::string key;
   try {
-    key = model_key(build, flavour, toolchain(cache));
+    key = model_key(build, flavour, toolchain(cache), assertions);
   } catch (const std::exception&) {
     return;  // ensure_rtl_build reports it
   }
   std::lock_guard<std::mutex> lock(m_);
   if (!keys_.insert(key).second) return;
-  queue_.push_back({build, flavour, cache / (flavour.name() + "-" + key)});
+  queue_.push_back({build, flavour, assertions, cache / (flavour.name() + "-" + key)});
   if (threads_.size() < static_cast<size_t>(workers_)) threads_.emplace_back([this] { work(); });
   ready_.notify_one();
 }
@@ -467,7 +475,8 @@ void RtlPrefetch::work() {
       const fs::path cache = cache_of(options_.cache_dir);
       fs::create_directories(cache);
       FileLock lock(item.dir.string() + ".lock");
-      ensure_verilated(item.dir, cache, item.build, item.flavour, toolchain(cache), options_.quiet);
+      ensure_verilated(item.dir, cache, item.build, item.flavour, item.assertions, toolchain(cache),
+                       options_.quiet);
     } catch (const std::exception&) {
       // ensure_rtl_build tries again and reports the error with its run.
     }

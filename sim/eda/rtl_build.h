@@ -38,7 +38,7 @@ struct RtlBuildOptions {
   int make_jobs = 1;      // parallel compiler processes of one build
   bool quiet = false;     // no progress lines
   // kQuick: -O0, for runs too short to repay -O2's compile time (choose_optimization). A fast
-  // build already in the cache is used for either.
+  // build of the same model (a covered one: checks_assertions) already in the cache serves either.
   RtlOptimization optimization = RtlOptimization::kFast;
   // Verilator line, toggle and user (cover property) coverage; the executable then takes
   // --coverage FILE.dat. Part of the key: covered and plain builds never share an entry.
@@ -74,9 +74,11 @@ inline RtlOptimization choose_optimization(uint64_t expected_cycles, bool covera
 // The default cache folder (under the build folder shadesim was built in).
 std::string default_rtl_cache_dir();
 
-// The build key (hex) of a build: what its Verilated model is made from, without building it.
+// The build key (hex) of a build: what its Verilated model is made from, without building it
+// (the optimisation says whether the model checks the SVA: checks_assertions).
 std::string rtl_build_key(const RtlConfig& build, CosimBackend backend, bool coverage = false,
-                          const std::string& cache_dir = "");
+                          const std::string& cache_dir = "",
+                          RtlOptimization optimization = RtlOptimization::kQuick);
 
 // The executable for `build` on `backend`, building it first when the cache lacks it. Throws
 // std::runtime_error naming the missing tool (verilator, the compiler) or the failed step with
@@ -99,12 +101,14 @@ class RtlPrefetch {
   ~RtlPrefetch();
   RtlPrefetch(const RtlPrefetch&) = delete;
   RtlPrefetch& operator=(const RtlPrefetch&) = delete;
-  void add(const RtlConfig& build, CosimBackend backend);
+  // `optimization`: the one the build will be asked for (whether its model checks the SVA).
+  void add(const RtlConfig& build, CosimBackend backend, RtlOptimization optimization);
 
  private:
   struct Item {
     RtlConfig build;
     Flavour flavour;
+    bool assertions = true;
     std::filesystem::path dir;
   };
   void work();

@@ -242,6 +242,10 @@ Toolchain find_toolchain(const fs::path& cache_dir) {
   return t;
 }
 
+bool checks_assertions(const Flavour& f, RtlOptimization o) {
+  return f.coverage || o == RtlOptimization::kQuick;
+}
+
 std::string recipe_text(const Flavour& f, const Toolchain& t) {
   std::string s =
       f.name() + "|" + t.verilator_version + "|" + t.cxx_version + "|" + t.verilator_root;
@@ -300,9 +304,9 @@ void build_runtime(const fs::path& dir, const Flavour& f, const Toolchain& t, in
   run_commands(commands, jobs, log, "the Verilator runtime (" + f.name() + ")");
 }
 
-void verilate(const fs::path& dir, const RtlConfig& build, const Flavour& f, const Toolchain& t,
-              const std::vector<std::string>& rtl_sources, const std::string& cover_points,
-              const fs::path& log) {
+void verilate(const fs::path& dir, const RtlConfig& build, const Flavour& f, bool assertions,
+              const Toolchain& t, const std::vector<std::string>& rtl_sources,
+              const std::string& cover_points, const fs::path& log) {
   const std::vector<VerilogParameter> params = shade_unit_parameters(build.unit);
   // The parameters as the glue hands them to the driver, which checks every run's unit.
   std::ostringstream h;
@@ -336,7 +340,8 @@ void verilate(const fs::path& dir, const RtlConfig& build, const Flavour& f, con
                                    "-Mdir",        (dir / "obj").string(),
                                    "-O3",          "--x-assign",
                                    "fast",         "--x-initial",
-                                   "fast",         "--assert"};
+                                   "fast"};
+  if (assertions) args.push_back("--assert");
   if (traced(f)) args.push_back("--trace-fst");
   // The fault hooks force nets of shade_unit (sim/harness/faults/fault_hooks.sv); Verilator
   // 5.006's DFG optimisation folds a forced net into its driver and the force is lost.

@@ -38,6 +38,16 @@ struct Flavour {
   std::string name() const;  // cpp, systemc, cpp_trace, each with "-coverage" when covered
 };
 
+// Whether the Verilated model checks the RTL's SVA (Verilator --assert): every build but a fast
+// one without coverage. A fast build is made for runs long enough to repay -O2 (a scene, a
+// benchmark), and the checks cost a quarter of its speed: Verilator samples every signal an
+// assertion reads on each eval and evaluates the properties and the `unique case` checks on
+// every cycle (grey_s428w on sphere at 1024 x 1024: 1,035 against 1,456 instructions of
+// Verilated code per cycle, callgrind). Quick builds - every random-scenario co-simulation,
+// the tests' and scripts/mutate-rtl's - and covered builds keep them; the formal proofs
+// (docs/formal.md) hold them for every input.
+bool checks_assertions(const Flavour& f, RtlOptimization o);
+
 struct Toolchain {
   std::string verilator, cxx;
   std::string verilator_version, cxx_version;
@@ -72,7 +82,7 @@ void build_runtime(const std::filesystem::path& dir, const Flavour& f, const Too
 // Model, step 1: Verilator's C++ for `build` in `dir`/obj and its cosim_build.h (the
 // parameters the glue hands to the driver) in `dir`.
 void verilate(const std::filesystem::path& dir, const RtlConfig& build, const Flavour& f,
-              const Toolchain& t, const std::vector<std::string>& rtl_sources,
+              bool assertions, const Toolchain& t, const std::vector<std::string>& rtl_sources,
               const std::string& cover_points, const std::filesystem::path& log);
 
 // Model, step 2: the Verilated C++ of `dir`/obj compiled into objects in `out` (unity files

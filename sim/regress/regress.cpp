@@ -468,15 +468,27 @@ std::string replay_command(const Job& j, const RunSettings& settings, const Regr
   return cmd;
 }
 
+// An upper estimate of the cycles a run of `pixels` pixels simulates: under the regression's gaps
+// and back-pressure a pixel takes under 2 cycles on every shipped unit (1.28-1.49); 4 leaves room
+// for slow specular units.
+uint64_t expected_cycles(uint64_t pixels) { return 4 * pixels; }
+
+// The optimisation of a build whose runs simulate `cycles` (--opt, else by their length).
+RtlOptimization build_optimization(const RegressOptions& o, uint64_t cycles) {
+  return o.optimization.empty() ? choose_optimization(cycles, o.coverage)
+                                : parse_rtl_optimization(o.optimization);
+}
+
 // Host side: encode each scene for each configuration, into each of its runs' folders. One scene
 // and configuration at a time (mesh import limits the process's address space while it runs, so
 // it is not done on several threads at once). A run the scene does not fit is skipped, one the
 // host cannot prepare is an error; either is recorded at once.
-// `prefetch` starts each configuration's Verilation as soon as it is known, beside the host
-// setup of the scenes.
+// `prefetch` starts each configuration's Verilation as soon as its first run is set up (its
+// length says whether the build checks the SVA: checks_assertions), beside the host setup of
+// the scenes that follow.
 std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& out,
                            const fs::path& base, RtlPrefetch& prefetch, NetlistSource* netlists,
-                           const RunSettings& settings) {
+                           const RegressOptions& o, const RunSettings& settings) {
   std::vector<Job> jobs;
   std::map<std::string, size_t> first_of_pair;  // scene + config -> its first job
   for (const auto& spec : specs) {
@@ -494,8 +506,10 @@ std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& ou
       // The pair's other backend: the same unit and stream.
       const Job& twin = jobs[done->second];
       j.build = twin.build;
-      if (twin.rec.status == "pending" && !netlists)
-        prefetch.add(j.build, parse_cosim_backend(spec.backend));
+      if (twin.rec.status == "pending" && !netlists) {
+        prefetch.add(j.build, parse_cosim_backend(spec.backend),
+                     build_optimization(o, expected_cycles(twin.rec.pixels)));
+      }
       j.rec.unit = twin.rec.unit;
       j.rec.unit_text = twin.rec.unit_text;
       j.rec.pixels = twin.rec.pixels;
@@ -513,8 +527,6 @@ std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& ou
         if (netlists) {
           // A token until resolve_netlists (the build's key needs the netlist's contents).
           j.build.netlist = netlists->start(j.build.unit);
-        } else {
-          prefetch.add(j.build, parse_cosim_backend(spec.backend));
         }
         j.rec.unit = nlohmann::json::parse(config_to_json(j.build.unit));
         j.rec.unit_text = j.build.unit.to_string() + fault_text(j.build.faults);
@@ -549,6 +561,10 @@ std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& ou
                                        // channels, coordinates)
             j.rec.message = e.what();
           }
+        }
+        if (j.rec.status == "pending" && !netlists) {
+          prefetch.add(j.build, parse_cosim_backend(spec.backend),
+                       build_optimization(o, expected_cycles(j.rec.pixels)));
         }
       } catch (const std::exception& e) {
         j.rec.status = "error";
@@ -590,9 +606,7 @@ void build_all(std::vector<Job>& jobs, const RegressOptions& o, int workers) {
     const std::string key = rtl_build_key(j.build, be, o.coverage, o.cache);
     auto it = std::find_if(needs.begin(), needs.end(), [&](const Need& n) { return n.key == key; });
     if (it == needs.end()) it = needs.insert(needs.end(), {j.build, be, key, "", "", 0});
-    // Under the regression's gaps and back-pressure a pixel takes under 2 cycles on every
-    // shipped unit (1.28-1.49); 4 leaves room for slow specular units.
-    it->cycles += 4 * j.rec.pixels;
+    it->cycles += expected_cycles(j.rec.pixels);
   }
   std::cout << "regress: " << needs.size() << " RTL build(s) needed (cache: "
             << (o.cache.empty() ? default_rtl_cache_dir() : o.cache) << ")" << std::endl;
@@ -603,8 +617,7 @@ void build_all(std::vector<Job>& jobs, const RegressOptions& o, int workers) {
     try {
       RtlBuildOptions b = build_options(o);
       b.make_jobs = per_build;
-      b.optimization = o.optimization.empty() ? choose_optimization(needs[i].cycles, o.coverage)
-                                              : parse_rtl_optimization(o.optimization);
+      b.optimization = build_optimization(o, needs[i].cycles);
       needs[i].executable = ensure_rtl_build(needs[i].build, needs[i].backend, b).executable;
     } catch (const std::exception& e) {
       needs[i].error = e.what();
@@ -1120,7 +1133,8 @@ int run_regress(const RegressOptions& o) {
   RtlPrefetch prefetch(build_options(o), workers);
   std::unique_ptr<NetlistSource> netlists;
   if (o.netlist) netlists = std::make_unique<NetlistSource>(o, workers);
-  std::vector<Job> jobs = plan_jobs(sel.selected, sel.out, sel.base, prefetch, netlists.get(), sel.settings);
+  std::vector<Job> jobs =
+      plan_jobs(sel.selected, sel.out, sel.base, prefetch, netlists.get(), o, sel.settings);
   if (netlists) resolve_netlists(jobs, *netlists);
   const auto t0 = std::chrono::steady_clock::now();
   const InterruptGuard interrupt;  // Ctrl-C: no new runs; the rest are recorded as interrupted
