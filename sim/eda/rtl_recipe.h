@@ -40,11 +40,10 @@ struct Flavour {
 
 // Whether the Verilated model checks the RTL's SVA (Verilator --assert): every build but a fast
 // one without coverage. A fast build is made for runs long enough to repay -O2 (a scene, a
-// benchmark), and the checks cost a quarter of its speed: Verilator samples every signal an
-// assertion reads on each eval and evaluates the properties and the `unique case` checks on
-// every cycle (grey_s428w on sphere at 1024 x 1024: 1,035 against 1,456 instructions of
-// Verilated code per cycle, callgrind). Quick builds - every random-scenario co-simulation,
-// the tests' and scripts/mutate-rtl's - and covered builds keep them; the formal proofs
+// benchmark), and the checks slow it: Verilator samples every signal an assertion reads on each
+// evaluation and checks the properties and the `unique case` items on every cycle
+// (docs/benchmarks.md has the figures). Quick builds - every random-scenario co-simulation, the
+// tests' and scripts/mutate-rtl's - and covered builds keep them; the formal proofs
 // (docs/formal.md) hold them for every input.
 bool checks_assertions(const Flavour& f, RtlOptimization o);
 
