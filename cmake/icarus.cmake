@@ -195,16 +195,23 @@ add_test(NAME icarus_tb_missing_words
   COMMAND ${VVP} -n ${ICARUS_DIR}/tb_grey_s428w.vvp +words=${ICARUS_DIR}/no-such-file.hex)
 set_tests_properties(icarus_tb_missing_words PROPERTIES
   PASS_REGULAR_EXPRESSION "no-such-file.hex: cannot open the file" FIXTURES_REQUIRED icarus_tb_grey)
-# span_setup's radix-4 Booth product against `*`, exhaustively (every 10-bit t, every d of 1..7
-# bits, wrapping and exact units), and the same check on a copy with broken Booth digits, which
-# must fail.
-set(_booth_check ${CMAKE_COMMAND} -DIVERILOG=${IVERILOG} -DVVP=${VVP} -DSRC=${CMAKE_SOURCE_DIR})
-add_test(NAME icarus_span_setup_booth
-  COMMAND ${_booth_check} -DWORK=${ICARUS_DIR}/booth
-          -P ${CMAKE_SOURCE_DIR}/tests/rtl/booth_check.cmake)
-add_test(NAME icarus_span_setup_booth_catches_broken
-  COMMAND ${_booth_check} -DWORK=${ICARUS_DIR}/booth_broken -DBREAK=ON
-          -P ${CMAKE_SOURCE_DIR}/tests/rtl/booth_check.cmake)
+# The synthesis views against `*` (tests/rtl/synthesis_view_check.cmake), each with the same
+# check on a copy with a deliberate slip, which must fail: span_setup's radix-4 Booth product
+# exhaustively (every 10-bit t, every d of 1..7 bits, wrapping and exact units), and W_m's
+# squarer (every base of B = 2..12 and 16, 20,004 of B = 30).
+set(_view_check ${CMAKE_COMMAND} -DIVERILOG=${IVERILOG} -DVVP=${VVP} -DSRC=${CMAKE_SOURCE_DIR})
+foreach(view booth square)
+  set(_name wpow_square)
+  if(view STREQUAL "booth")
+    set(_name span_setup_booth)
+  endif()
+  add_test(NAME icarus_${_name}
+    COMMAND ${_view_check} -DVIEW=${view} -DWORK=${ICARUS_DIR}/${view}
+            -P ${CMAKE_SOURCE_DIR}/tests/rtl/synthesis_view_check.cmake)
+  add_test(NAME icarus_${_name}_catches_broken
+    COMMAND ${_view_check} -DVIEW=${view} -DWORK=${ICARUS_DIR}/${view}_broken -DBREAK=ON
+            -P ${CMAKE_SOURCE_DIR}/tests/rtl/synthesis_view_check.cmake)
+endforeach()
 # fixed_sat exhaustively: every input of 120 small parameter combinations (both generate views)
 # against the overflow rule's closed form, and the same check on a copy with a broken clamp,
 # which must fail. None of the coverage runs' units elaborates g_fits (every instance narrows).

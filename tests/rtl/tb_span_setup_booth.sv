@@ -3,8 +3,9 @@
 // a wrapping series (the product modulo 2^ProdW = 2^SumW = 2^10) and a saturating one (the
 // exact product, ProdW = 10 + 2 OFS_W and SumW = ProdW + 3 bits). Prints "booth: N products
 // checked" and "booth: PASS", or the first mismatches and "booth: FAIL" ($fatal).
-// cmake/icarus.cmake runs it (icarus_span_setup_booth) and, through tests/rtl/booth_check.cmake,
-// on a deliberately broken copy of rtl/span_setup.sv, which must fail.
+// cmake/icarus.cmake runs it through tests/rtl/synthesis_view_check.cmake
+// (icarus_span_setup_booth) and on a deliberately broken copy of rtl/span_setup.sv, which must
+// fail.
 module tb_span_setup_booth;
   localparam int TW = 10;  // t's bits: every value, read as signed
   int errors = 0;
