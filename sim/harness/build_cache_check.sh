@@ -7,7 +7,9 @@
 #      as the checkout, and the copy with one line added gives another (the checkout is never
 #      edited);
 #   5. a changed model or harness library (SHADESIM_HARNESS_LIB_DIR: a copy with one object
-#      added) keeps every build key, relinks every cached build and Verilates or compiles none.
+#      added) keeps every build key, relinks every cached build and Verilates or compiles none;
+#   6. a fast build leaves the RTL's SVA out and a quick one keeps them (checks_assertions,
+#      sim/eda/rtl_recipe.h): two keys, and only the quick model's Verilator command has --assert.
 # usage: build_cache_check.sh SHADESIM WORKDIR
 set -eu
 shadesim="$1"; work="$2"
@@ -78,3 +80,19 @@ exe_e=$(awk '$1 == "'"$work/small.json"'" {print $3}' "$work/e.out")
 "$exe_e" --unit "$work/small.json" --scenario short --seed 1 | grep -q PASS ||
   { echo "the relinked executable does not pass"; exit 1; }
 echo "build cache: a changed model library relinks every cached build without Verilating"
+
+# 6. Fast without the SVA, quick with them: read from the Verilator command each build logged.
+key_fast=$("$shadesim" rtl-build --config "$work/small.json" --backends cpp --cache "$cache" --opt fast --print-key)
+key_quick=$("$shadesim" rtl-build --config "$work/small.json" --backends cpp --cache "$cache" --opt quick --print-key)
+[ "$key_fast" != "$key_quick" ] || { echo "fast and quick builds share a model key ($key_fast)"; exit 1; }
+"$shadesim" rtl-build --config "$work/small.json" --backends cpp --cache "$cache" --opt quick >"$work/f.out" 2>"$work/f.err" ||
+  { echo "the quick build failed:"; cat "$work/f.err"; exit 1; }
+verilator_line() { grep -m1 -- ' --top-module shade_unit ' "$cache/cpp-$1.log"; }
+verilator_line "$key_quick" | grep -q -- ' --assert' ||
+  { echo "the quick build was Verilated without --assert:"; verilator_line "$key_quick"; exit 1; }
+[ -n "$(verilator_line "$key_fast")" ] || { echo "no Verilator command in cpp-$key_fast.log"; exit 1; }
+verilator_line "$key_fast" | grep -q -- ' --assert' &&
+  { echo "the fast build was Verilated with --assert:"; verilator_line "$key_fast"; exit 1; }
+"$(awk '{print $3}' "$work/f.out")" --unit "$work/small.json" --scenario short --seed 1 | grep -q PASS ||
+  { echo "the quick executable does not pass"; exit 1; }
+echo "build cache: fast builds leave the SVA out, quick builds keep them"

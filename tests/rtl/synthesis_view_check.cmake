@@ -42,7 +42,8 @@ if(BREAK)
   file(WRITE ${source} "${broken}")
 endif()
 # -DSYNTHESIS: the view under test (simulators otherwise multiply).
-execute_process(COMMAND ${IVERILOG} -g2012 -DSYNTHESIS -s ${tb} -o ${WORK}/${VIEW}.vvp
+execute_process(COMMAND ${IVERILOG} -g2012 -DSYNTHESIS -I${SRC}/tests/rtl -s ${tb}
+                        -o ${WORK}/${VIEW}.vvp
                         ${rtl}/shade_pkg.sv ${rtl}/fixed_round.sv ${rtl}/fixed_sat.sv
                         ${source} ${SRC}/tests/rtl/${tb}.sv
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)

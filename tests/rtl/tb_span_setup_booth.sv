@@ -55,12 +55,11 @@ module tb_span_setup_booth;
     end
   end
 
+`include "view_check_verdict.svh"
   initial begin
     #2;
-    $display("booth: %0d products checked (OFS_W 1..7, every %0d-bit t and every d)", checked,
-             TW);
-    if (errors != 0) $fatal(1, "booth: FAIL, %0d (t, d) pairs wrong", errors);
-    $display("booth: PASS");
-    $finish;
+    view_check_verdict("booth", checked,
+                       $sformatf("products checked (OFS_W 1..7, every %0d-bit t and every d)", TW),
+                       errors);
   end
 endmodule

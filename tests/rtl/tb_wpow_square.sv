@@ -58,12 +58,11 @@ module tb_wpow_square;
     end
   end
 
+`include "view_check_verdict.svh"
   initial begin
     #2;
-    $display("square: %0d squares checked (B 2..12 and 16 every base, B %0d %0d bases)", checked,
-             Widest, Samples + 4);
-    if (errors != 0) $fatal(1, "square: FAIL, %0d bases wrong", errors);
-    $display("square: PASS");
-    $finish;
+    view_check_verdict("square", checked,
+                       $sformatf("squares checked (B 2..12 and 16 every base, B %0d %0d bases)",
+                                 Widest, Samples + 4), errors);
   end
 endmodule
