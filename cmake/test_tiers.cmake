@@ -32,6 +32,8 @@ set(SHADESIM_TIER_RULES
   "^(doc_paths|quantization_home)(_self_test)?$"                    quick
   "^(plot_colours|cpp_format|rtl_line_length)$"                     quick
   "^mutate_rtl_self_test$"                                          quick
+  # random scenes on their own unit (scripts/random-scenes): 50 small ones, the kept regressions
+  "^random_scenes_(quick|self_test)$"                               quick
   # shadesim report's page in headless Chromium, from hand-written inputs (no RTL, no Yosys)
   "^report_page$"                                                   quick
   # the scoreboard's lane checks: plain C++ against synthetic beats (no Verilator)
