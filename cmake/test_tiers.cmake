@@ -34,6 +34,12 @@ set(SHADESIM_TIER_RULES
   "^mutate_rtl_self_test$"                                          quick
   # random scenes on their own unit (scripts/random-scenes): 50 small ones, the kept regressions
   "^random_scenes_(quick|self_test)$"                               quick
+  # the bench scripts once at a tiny size (tests/bench_scripts_check.sh): throughput-table needs
+  # only the CLI; bench-cosim-ab builds a baseline in a git worktree; the rest build RTL or
+  # synthesise
+  "^bench_script_throughput_table$"                                 quick
+  "^bench_script_bench_cosim_ab$"                                   regress
+  "^bench_script_"                                                  rtl
   # shadesim report's page in headless Chromium, from hand-written inputs (no RTL, no Yosys)
   "^report_page$"                                                   quick
   # the scoreboard's lane checks: plain C++ against synthetic beats (no Verilator)
@@ -96,6 +102,7 @@ set(SHADESIM_GTEST_TIERS
   spec_error_test           quick
   specular_units_test       quick
   taylor_test               quick
+  throughput_choice_test    quick
   unit_config_file_test     quick
   wpow_unit_test            quick)
 

@@ -11,7 +11,9 @@
 #include "host/frame.h"
 #include "host/gate_flips.h"
 #include "host/scene_error.h"
+#include "host/specular_candidates.h"
 #include "host/specular_setup.h"
+#include "host/throughput_choice.h"
 #include "model/coef_packing.h"
 #include "model/command_stream.h"
 #include "model/cycle_estimate.h"
@@ -22,62 +24,20 @@ namespace {
 // Shares of the budget (output LSBs) the fixed-point error may add to the Taylor error.
 constexpr double kDriftShare = 0.25;
 constexpr double kCoefShare = 0.25;
+// Shares for the colour words' rounding and the specular unit's output truncation (3/16 and
+// 1/16), so the fixed-point error adds at most 3/4 of the budget to the Taylor error.
+constexpr double kColourShare = 0.1875;
+constexpr double kSpecularOutShare = 0.0625;
+// Neither is narrowed below the default's fraction bits: the shares bound the worst case, and
+// narrower colours or outputs were measured to cost suzanne's own unit its 1 LSB (2 LSB).
+int min_colour_frac() { return UnitConfig{}.spec_colour.frac_bits(); }
+int min_specular_out_frac() { return SpecularConfig{}.out.frac_bits(); }
 
 // A trial unit for measuring: formats so wide that nothing wraps, saturates or is pre-shifted.
 constexpr int kTrialSeriesIwl = 12, kTrialSeriesFrac = 40;
-constexpr int kTrialCoefIwl = 24, kTrialCoefFrac = 36;
+constexpr int kTrialCoefWl = 60, kTrialCoefIwl = 24, kTrialCoefWideIwl = 40;
 
 double channel(const Vec3& v, int c) { return c == 0 ? v.x : (c == 1 ? v.y : v.z); }
-
-// The span setup site for `cfg` (its widths final) and why: `forced`, or host setup where every
-// scene's frame on the host-setup unit runs at <= max_cpp cycles per pixel (CycleEstimate: the
-// cycle model with no gaps and no back-pressure), else unit setup. Sets cfg.span_setup and, for
-// host setup, tri_queue 1. Pixels do not depend on it (model/host_setup.h).
-std::string choose_span_setup(const std::vector<std::string>& scene_paths,
-                              const DeriveOptions& options, UnitConfig& cfg) {
-  UnitConfig host = cfg;
-  host.span_setup = SpanSetupSite::kHost;
-  host.tri_queue = 1;
-  double worst = 0;
-  std::string worst_scene;
-  for (const auto& path : scene_paths) {
-    FrameOptions fo;
-    fo.base = host;
-    fo.fixed_unit = true;
-    fo.budget_lsb = options.budget_lsb;
-    fo.max_depth = options.max_depth;
-    const PreparedFrame frame = prepare_frame(path, fo);
-    const CycleEstimateRun run =
-        CycleEstimate(CycleConfig::of(host)).run(frame.encoded.stream.encode());
-    const double cpp =
-        run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;
-    if (worst_scene.empty() || cpp > worst) {
-      worst = cpp;
-      worst_scene = path;
-    }
-  }
-  std::ostringstream cost;
-  cost << std::fixed;
-  cost.precision(3);
-  cost << worst;
-  const std::string measured = "with host setup " + worst_scene + " takes " + cost.str() +
-                               " cycles/px (cycle model, no gaps)";
-  std::ostringstream target;
-  target.precision(3);
-  target << options.max_cycles_per_pixel;
-  const bool fits = worst <= options.max_cycles_per_pixel;
-  const SpanSetupSite site =
-      options.span_setup.value_or(fits ? SpanSetupSite::kHost : SpanSetupSite::kUnit);
-  cfg.span_setup = site;
-  if (site == SpanSetupSite::kHost) cfg.tri_queue = 1;
-  if (options.span_setup) return "as requested; " + measured;
-  if (fits)
-    return measured + " <= " + target.str() +
-           ": the host sends each span's start values, the unit has no span setup and no "
-           "coefficient banks (tri_queue 1)";
-  return measured + " > " + target.str() +
-         ": span setup stays in the unit (the port is too narrow for the start values)";
-}
 
 std::string fmt(double x, int precision = 4) {
   std::ostringstream os;
@@ -217,11 +177,124 @@ Budget choose_budget(const std::vector<SceneInfo>& scenes, const DeriveOptions& 
   return budget;
 }
 
+// The budget and each fixed-point error's share of it.
+void set_budget(double lsb, ConfigMeasurements& ms) {
+  ms.budget_lsb = lsb;
+  ms.drift_share_lsb = kDriftShare * lsb;
+  ms.coef_share_lsb = kCoefShare * lsb;
+  ms.colour_share_lsb = kColourShare * lsb;
+  ms.specular_out_share_lsb = kSpecularOutShare * lsb;
+}
+
 // Why each derived field has its value, kept until the unit is final (field_reasons lists them).
 struct FieldWhys {
   std::string channels, lights, diffuse_colour, specular, xy_bits, offset_bits, series, coef,
-      coef_term_iwl, span_setup;
+      coef_term_iwl, span_setup, spec_colour, specular_out;
 };
+
+// What the colour words carry, per light: the largest specular colour ks_c L_c and, with the
+// diffuse colour multiplied, the largest kd_c L_c, over every scene, material and channel.
+struct LightColours {
+  std::vector<double> specular, diffuse;  // indexed by light
+  double max() const {
+    double m = 0;
+    for (double v : specular) m = std::max(m, v);
+    for (double v : diffuse) m = std::max(m, v);
+    return m;
+  }
+};
+
+LightColours light_colours(const std::vector<SceneInfo>& scenes, const UnitConfig& cfg) {
+  LightColours out;
+  out.specular.assign(static_cast<size_t>(cfg.lights), 0.0);
+  out.diffuse.assign(static_cast<size_t>(cfg.lights), 0.0);
+  for (const auto& s : scenes) {
+    for (size_t l = 0; l < s.scene.lights.size() && l < out.specular.size(); ++l) {
+      const Vec3& light = s.scene.lights[l].colour;
+      for (const auto& m : s.scene.materials) {
+        for (int c = 0; c < 3; ++c) {
+          out.specular[l] = std::max(out.specular[l], channel(m.specular, c) * channel(light, c));
+          if (cfg.diffuse_multiply())
+            out.diffuse[l] = std::max(out.diffuse[l], channel(m.diffuse, c) * channel(light, c));
+        }
+      }
+    }
+  }
+  return out;
+}
+
+// Fewest integer bits (>= 1: UnitConfig holds 1.0) of an unsigned format with `frac` fraction
+// bits whose largest value, 2^iwl - 2^-frac, is at least `max`, so rounding never saturates.
+int unsigned_integer_bits(double max, int frac) {
+  int iwl = 1;
+  while (iwl < 40 && std::ldexp(1.0, iwl) - std::ldexp(1.0, -frac) < max) ++iwl;
+  return iwl;
+}
+
+// The smallest fraction bits F with 2^-F x weight <= allowed (weight 0: none needed).
+int fraction_bits_for(double weight, double allowed) {
+  int frac = 0;
+  while (frac < 40 && std::ldexp(weight, -frac) > allowed) ++frac;
+  return frac;
+}
+
+// spec_colour carries ks_c L_c (and with the multiply kd_c L_c) per light and channel. Integer
+// bits: the largest colour, unsaturated. Fraction bits F: in one channel each light's words
+// reach the output as rounding 2^-(F+1) times the specular intensity (<= 1) and, multiplied,
+// 2^-(F+1) times N.L (<= 1) plus N.L truncated to F bits (2^-F) times kd_c L_c; summed over the
+// lights within 3/16 of the budget; at least the default's fraction bits.
+std::string derive_spec_colour(const std::vector<SceneInfo>& scenes, const ConfigMeasurements& ms,
+                               UnitConfig& cfg) {
+  const bool specular = cfg.specular.kind != SpecularUnitKind::kNone;
+  if (!specular && !cfg.diffuse_multiply()) {
+    return "not read: no specular term and the diffuse colour is rolled into the series "
+           "(default kept)";
+  }
+  const LightColours colours = light_colours(scenes, cfg);
+  double weight = 0;
+  for (int l = 0; l < cfg.lights; ++l) {
+    const size_t i = static_cast<size_t>(l);
+    if (colours.specular[i] > 0) weight += 0.5;
+    if (cfg.diffuse_multiply() && colours.diffuse[i] > 0) weight += 0.5 + colours.diffuse[i];
+  }
+  const double allowed = ms.colour_share_lsb * std::ldexp(1.0, -cfg.out_bits);
+  const int rule = fraction_bits_for(weight, allowed);
+  const int frac = std::max(min_colour_frac(), rule);
+  const double top = colours.max();
+  const int iwl = unsigned_integer_bits(top, frac);
+  cfg.spec_colour.iwl = iwl;
+  cfg.spec_colour.wl = iwl + frac;
+  return "integer " + std::to_string(iwl) + ": colours (ks_c L_c" +
+         (cfg.diffuse_multiply() ? std::string(", kd_c L_c") : std::string()) + ") reach " +
+         fmt(top) + " < 2^" + std::to_string(iwl) + " (unsaturated); fraction " +
+         std::to_string(frac) + ": rounding 2^-(F+1) per word" +
+         (cfg.diffuse_multiply() ? " and N.L truncated to F bits times kd_c L_c" : "") +
+         ", summed over the lights (" + fmt(weight) + " x 2^-F), <= " + fmt(ms.colour_share_lsb) +
+         " LSB (3/16 of the budget)" +
+         (frac > rule ? " (at least the default's " + std::to_string(min_colour_frac()) + ")" : "");
+}
+
+// The specular unit's output s (in [0, 1]) is truncated to F fraction bits, and each light's
+// s x ks_c L_c adds to a channel: 2^-F x the sum over lights of the largest ks_c L_c, within
+// budget/16; at least the default's fraction bits.
+std::string derive_specular_out(const std::vector<SceneInfo>& scenes, const ConfigMeasurements& ms,
+                                UnitConfig& cfg) {
+  if (cfg.specular.kind == SpecularUnitKind::kNone) return "";
+  const LightColours colours = light_colours(scenes, cfg);
+  double weight = 0;
+  for (double k : colours.specular) weight += k;
+  const double allowed = ms.specular_out_share_lsb * std::ldexp(1.0, -cfg.out_bits);
+  const int rule = fraction_bits_for(weight, allowed);
+  const int frac = std::max(min_specular_out_frac(), rule);
+  cfg.specular.out.iwl = 1;
+  cfg.specular.out.wl = 1 + frac;
+  return "; out u1." + std::to_string(frac) +
+         ": the output truncated to F bits times the "
+         "specular colours summed over the lights (" +
+         fmt(weight) + " x 2^-F) <= " + fmt(ms.specular_out_share_lsb) + " LSB (budget/16)" +
+         (frac > rule ? " (at least the default's " + std::to_string(min_specular_out_frac()) + ")"
+                      : "");
+}
 
 std::string derive_channels(const std::vector<SceneInfo>& scenes, UnitConfig& cfg) {
   for (const auto& s : scenes) {
@@ -327,6 +400,11 @@ SpecularChoice choose_specular_unit(const std::vector<SceneInfo>& scenes,
     cfg.specular.kind = named;
     choice.why = "the unit the scenes' materials name, default widths";
   }
+  if (options.specular_trial) {
+    cfg.specular = *options.specular_trial;
+    if (named != SpecularUnitKind::kIdeal)
+      choice.why = "the unit the scenes' materials name, with the fields searched below";
+  }
   cfg.specular.validate();
   return choice;
 }
@@ -348,30 +426,43 @@ std::string derive_xy_bits(const std::vector<SceneInfo>& scenes, UnitConfig& cfg
 
 // The scenes' values measured on a trial unit of cfg's structure whose formats lose nothing, so
 // the widths fit the values themselves rather than what a narrower unit wraps or saturates.
-Walk measure_on_trial_unit(const std::vector<SceneInfo>& scenes, const DeriveOptions& options,
-                           const UnitConfig& cfg) {
+// The scene prepared on a trial unit of cfg's structure that loses nothing. A sliver triangle
+// (origin far outside it, huge gradient) can need more coefficient integer bits than the first
+// trial holds: the second trades fraction bits the ranges do not need for integer bits.
+PreparedFrame trial_frame(const std::string& path, const DeriveOptions& options,
+                          const UnitConfig& cfg) {
   UnitConfig trial = cfg;
   trial.series = FixedFormat{kTrialSeriesIwl + kTrialSeriesFrac, kTrialSeriesIwl, true,
                              cfg.series.quant, cfg.series.overflow};
-  trial.coef = FixedFormat{kTrialCoefIwl + kTrialCoefFrac, kTrialCoefIwl, true,
-                           Quantization::kRoundNearest, Overflow::kSaturate};
-  trial.validate();
-  Walk w;
-  for (const auto& s : scenes) {
+  // The walk reads coefficients: unit span setup, every offset and term unpacked, whatever the
+  // unit measured for has.
+  trial.coef_term_iwl.clear();
+  trial.span_setup = SpanSetupSite::kUnit;
+  trial.tri_queue = 1;
+  trial.offset_bits = UnitConfig::kMaxOffsetBits;
+  std::string out_of_range;
+  for (const int coef_iwl : {kTrialCoefIwl, kTrialCoefWideIwl}) {
+    trial.coef =
+        FixedFormat{kTrialCoefWl, coef_iwl, true, Quantization::kRoundNearest, Overflow::kSaturate};
+    trial.validate();
     FrameOptions fo;
     fo.base = trial;
     fo.fixed_unit = true;
     fo.budget_lsb = options.budget_lsb;
     fo.max_depth = options.max_depth;
-    const PreparedFrame frame = prepare_frame(s.path, fo);
-    if (frame.encoded.stats.coefficients_out_of_range > 0) {
-      throw std::invalid_argument(s.path + ": " +
-                                  std::to_string(frame.encoded.stats.coefficients_out_of_range) +
-                                  " Taylor coefficient(s) exceed the trial format " +
-                                  trial.coef.to_string() + "; cannot measure their range");
-    }
-    walk_stream(frame.encoded.stream, w);
+    PreparedFrame frame = prepare_frame(path, fo);
+    const size_t over = frame.encoded.stats.coefficients_out_of_range;
+    if (over == 0) return frame;
+    out_of_range = std::to_string(over) + " Taylor coefficient(s) exceed the trial format " +
+                   trial.coef.to_string();
   }
+  throw std::invalid_argument(path + ": " + out_of_range + "; cannot measure their range");
+}
+
+Walk measure_on_trial_unit(const std::vector<SceneInfo>& scenes, const DeriveOptions& options,
+                           const UnitConfig& cfg) {
+  Walk w;
+  for (const auto& s : scenes) walk_stream(trial_frame(s.path, options, cfg).encoded.stream, w);
   return w;
 }
 
@@ -462,7 +553,11 @@ Gain series_gain(const std::vector<SceneInfo>& scenes, const UnitConfig& cfg) {
 
 std::string derive_series(const std::vector<SceneInfo>& scenes, const Walk& w,
                           ConfigMeasurements& ms, UnitConfig& cfg) {
-  const int iwl = series_integer_bits(w, cfg);
+  // PixelCombine brings each colour product (intensity or N.L, <= 1, times a colour word) into
+  // the series format by the series rule before the exact sum: the series holds them too.
+  ms.colour_max = light_colours(scenes, cfg).max();
+  const int value_iwl = series_integer_bits(w, cfg);
+  const int iwl = std::max(value_iwl, signed_integer_bits(0.0, ms.colour_max));
   cfg.series.iwl = iwl;
   // The gain's specular plan reads only iwl; the fraction bits it asks for come after it.
   cfg.series.wl = iwl + cfg.out_bits;
@@ -477,6 +572,7 @@ std::string derive_series(const std::vector<SceneInfo>& scenes, const Walk& w,
   const double steps = 1.0 + ms.longest_span * (ms.longest_span - 1.0) / 2.0;
   return "integer " + std::to_string(iwl) + ": series values at the pixels span [" + fmt(w.v_min) +
          ", " + fmt(w.v_max) + "]" + (wraps ? "" : " and differences reach " + fmt(w.diff_max)) +
+         (iwl > value_iwl ? ", colour products reach " + fmt(ms.colour_max) : std::string()) +
          "; fraction " + std::to_string(frac) +
          ": longest span L = " + std::to_string(ms.longest_span) +
          ", drift bound 2^-F (1 + L(L-1)/2) = 2^-F x " + fmt(steps, 8) +
@@ -563,9 +659,38 @@ std::string packing_why(const UnitConfig& cfg) {
          " unpacked)";
 }
 
+// The throughput structure's reasons (host/throughput_choice.h), in config_to_json's order;
+// material_buffers and start_depth are listed whether or not the JSON writes them (it leaves
+// out their defaults), so a later choice can replace every one (rechoose_throughput).
+std::vector<FieldReason> throughput_reasons(const UnitConfig& cfg, const ThroughputChoice& t) {
+  const std::string only = " (throughput only: pixels do not depend on it)";
+  std::vector<FieldReason> r = {
+      {"port_words", std::to_string(cfg.port_words), t.port_words + only},
+      {"tri_queue", std::to_string(cfg.tri_queue), t.tri_queue},
+      {"material_buffers", std::to_string(cfg.material_buffers), t.material_buffers},
+      {"span_setup", to_string(cfg.span_setup), t.span_setup}};
+  if (cfg.host_setup())
+    r.push_back({"start_depth", std::to_string(cfg.start_depth),
+                 "the start bank's entries: " + t.start_depth});
+  return r;
+}
+
+// The specular line's value: the unit as the CLI names it, with its output format.
+std::string specular_value(const UnitConfig& cfg) {
+  return cfg.specular.describe() + (cfg.specular.kind == SpecularUnitKind::kNone
+                                        ? std::string()
+                                        : " out=" + cfg.specular.out.to_string());
+}
+
+// The specular line's note on a Schlick or W_m unit's timing; "" for other units.
+constexpr const char* kTimingNote = "; timing ";
+std::string timing_why(const ThroughputChoice& t) {
+  return t.timing.empty() ? "" : kTimingNote + t.timing + " (throughput only: same bits)";
+}
+
 // The budget's reason, then one per field in config_to_json's order, each value as it writes it.
 std::vector<FieldReason> field_reasons(const UnitConfig& cfg, const Budget& budget,
-                                       const FieldWhys& why) {
+                                       const FieldWhys& why, const ThroughputChoice& throughput) {
   const auto json = nlohmann::json::parse(config_to_json(cfg));
   std::vector<FieldReason> reasons;
   reasons.push_back({"budget", fmt(budget.lsb) + " LSB",
@@ -584,25 +709,33 @@ std::vector<FieldReason> field_reasons(const UnitConfig& cfg, const Budget& budg
   reason("coef", why.coef);
   reason("coef_term_iwl", why.coef_term_iwl + "; " + packing_why(cfg));
   reason("series", why.series);
-  reason("spec_colour", "default (not derived)");
+  reason("spec_colour", why.spec_colour);
   reason("out_bits", "as requested");
-  reason("port_words",
-         "as requested (throughput only: pixels do not depend on it); 4 with tri_queue 2 brings "
-         "every shipped scene to <= 1.1 cycles per pixel");
-  reason("tri_queue", cfg.host_setup() ? "1: host span setup has no coefficient banks to queue"
-                                       : "as requested (throughput only)");
-  // These three name their values as the CLI spells them, not as JSON.
-  reasons.push_back({"span_setup", to_string(cfg.span_setup), why.span_setup});
+  for (FieldReason& r : throughput_reasons(cfg, throughput)) reasons.push_back(std::move(r));
   reasons.push_back({"diffuse_colour", to_string(cfg.diffuse_colour), why.diffuse_colour});
-  reasons.push_back({"specular",
-                     cfg.specular.describe() + (cfg.specular.kind == SpecularUnitKind::kNone
-                                                    ? std::string()
-                                                    : " out=" + cfg.specular.out.to_string()),
-                     why.specular});
+  reasons.push_back(
+      {"specular", specular_value(cfg), why.specular + why.specular_out + timing_why(throughput)});
   return reasons;
 }
 
 }  // namespace
+
+ConfigMeasurements measure_scene_on(const std::string& scene_path, const UnitConfig& unit,
+                                    std::optional<double> budget_lsb, int max_depth) {
+  const std::vector<SceneInfo> scenes = load_scenes({scene_path});
+  DeriveOptions options;
+  options.budget_lsb = budget_lsb;
+  options.max_depth = max_depth;
+  const Budget budget = choose_budget(scenes, options);
+  ConfigMeasurements ms;
+  set_budget(budget.lsb, ms);
+  ms.max_width = scenes.front().scene.width;
+  ms.max_height = scenes.front().scene.height;
+  record_walk(measure_on_trial_unit(scenes, options, unit), ms);
+  ms.gain = series_gain(scenes, unit).total;
+  ms.colour_max = light_colours(scenes, unit).max();
+  return ms;
+}
 
 int drift_fraction_bits(int longest_span, double gain, double share_lsb, int out_bits,
                         bool rounding) {
@@ -624,9 +757,7 @@ DerivedConfig derive_widths(const std::vector<std::string>& scene_paths,
   const Budget budget = choose_budget(scenes, options);
   DerivedConfig out;
   ConfigMeasurements& ms = out.measured;
-  ms.budget_lsb = budget.lsb;
-  ms.drift_share_lsb = kDriftShare * budget.lsb;
-  ms.coef_share_lsb = kCoefShare * budget.lsb;
+  set_budget(budget.lsb, ms);
   UnitConfig& cfg = out.config;  // quantization and overflow rules and unit widths: the defaults
   cfg.out_bits = options.out_bits;
   FieldWhys why;
@@ -637,18 +768,19 @@ DerivedConfig derive_widths(const std::vector<std::string>& scene_paths,
   out.substitute = specular.substitute;
   why.specular = specular.why;
   why.xy_bits = derive_xy_bits(scenes, cfg, ms);
+  why.spec_colour = derive_spec_colour(scenes, ms, cfg);
+  why.specular_out = derive_specular_out(scenes, ms, cfg);
   const Walk w = measure_on_trial_unit(scenes, options, cfg);
   record_walk(w, ms);
   why.offset_bits = derive_offset_bits(w, cfg);
   why.series = derive_series(scenes, w, ms, cfg);
   why.coef = derive_coef(w, ms, cfg);
   why.coef_term_iwl = derive_term_widths(w, cfg);
-  cfg.port_words = options.port_words;
-  cfg.tri_queue = options.tri_queue;
   cfg.validate();
-  why.span_setup = choose_span_setup(scene_paths, options, cfg);
-  cfg.validate();
-  out.reasons = field_reasons(cfg, budget, why);
+  const ThroughputChoice throughput = choose_throughput(scene_paths, options, cfg);
+  cfg = throughput.config;
+  out.cycles_misses = throughput.misses;
+  out.reasons = field_reasons(cfg, budget, why, throughput);
   return out;
 }
 
@@ -696,11 +828,45 @@ void hold_the_gate(const std::vector<std::string>& scene_paths, const DeriveOpti
   }
 }
 
-// derive_widths, with the gate held.
+// The throughput structure chosen again for d.config's widths: the gate's fraction bits widen
+// the coefficient and start words, so the port may no longer carry them in time. Replaces the
+// knobs, their reasons and the cycles misses.
+void rechoose_throughput(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
+                         DerivedConfig& d) {
+  const ThroughputChoice t = choose_throughput(scene_paths, options, d.config);
+  d.config = t.config;
+  d.cycles_misses = t.misses;
+  for (FieldReason& fresh : throughput_reasons(d.config, t)) {
+    const auto at = std::find_if(d.reasons.begin(), d.reasons.end(),
+                                 [&](const FieldReason& r) { return r.field == fresh.field; });
+    if (at != d.reasons.end()) {
+      *at = std::move(fresh);
+    } else {  // start_depth, now with host setup: after span_setup
+      const auto site = std::find_if(d.reasons.begin(), d.reasons.end(),
+                                     [](const FieldReason& r) { return r.field == "span_setup"; });
+      d.reasons.insert(site == d.reasons.end() ? site : site + 1, std::move(fresh));
+    }
+  }
+  if (!d.config.host_setup()) {
+    d.reasons.erase(std::remove_if(d.reasons.begin(), d.reasons.end(),
+                                   [](const FieldReason& r) { return r.field == "start_depth"; }),
+                    d.reasons.end());
+  }
+  for (FieldReason& r : d.reasons) {
+    if (r.field != "specular") continue;
+    r.reason = r.reason.substr(0, r.reason.find(kTimingNote)) + timing_why(t);
+    r.value = specular_value(d.config);
+  }
+}
+
+// derive_widths, with the gate held (and the throughput structure chosen for its widths).
 DerivedConfig derive_held(const std::vector<std::string>& scene_paths,
                           const DeriveOptions& options) {
   DerivedConfig d = derive_widths(scene_paths, options);
-  if (options.hold_gate) hold_the_gate(scene_paths, options, d);
+  if (!options.hold_gate) return d;
+  const std::string before = config_to_json(d.config);
+  hold_the_gate(scene_paths, options, d);
+  if (config_to_json(d.config) != before) rechoose_throughput(scene_paths, options, d);
   return d;
 }
 
@@ -708,74 +874,132 @@ bool substituted(const DerivedConfig& d, const DeriveOptions& options) {
   return d.substitute && d.config.specular.kind == options.ideal_substitute.kind;
 }
 
+// The units tried after the first: the ideal stand-ins, or the named kind's other fields.
+std::vector<SpecularConfig> units_to_try(const DerivedConfig& first, const DeriveOptions& options) {
+  if (options.specular_trial) return {};  // a search of its own is under way
+  if (substituted(first, options)) return options.ideal_fallbacks;
+  if (!options.search_named_units || first.substitute) return {};
+  std::vector<SpecularConfig> rest = named_unit_candidates(first.config.specular.kind);
+  if (!rest.empty()) rest.erase(rest.begin());  // the defaults: the first unit derived
+  return rest;
+}
+
+// One unit tried: its derivation, its error and its cycles on the scenes (the worst of each).
+struct UnitTrial {
+  DerivedConfig derived;
+  int error = 0;
+  SceneCycles cycles;
+  std::string describe() const {
+    return derived.config.specular.describe() + " " + std::to_string(error) + " LSB at " +
+           fmt(cycles.per_pixel()) + " cycles/px";
+  }
+};
+
+UnitTrial try_unit(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
+                   DerivedConfig derived) {
+  UnitTrial t;
+  t.error = max_code_error(scene_paths, derived.config, options);
+  for (const auto& path : scene_paths) {
+    const SceneCycles c = scene_cycles(path, derived.config, options.budget_lsb, options.max_depth);
+    if (c.per_pixel() >= t.cycles.per_pixel()) t.cycles = c;
+  }
+  t.derived = std::move(derived);
+  return t;
+}
+
+bool exact_pow_misses(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
+                      const UnitConfig& unit, int allowed) {
+  UnitConfig exact = unit;
+  exact.specular.kind = SpecularUnitKind::kIdeal;
+  return max_code_error(scene_paths, exact, options) > allowed;
+}
+
+// Budget first: a unit within the budget is taken unless it costs more cycles than the target
+// and the first unit's plus 1 % (and 2 cycles of pipeline fill per frame, which decide a frame
+// of a few pixels). When none within the budget stays within that, the first within the budget
+// is taken all the same and the cycles it trades are stated.
+double cycles_allowance(const DeriveOptions& options, const SceneCycles& first) {
+  const double pixels = std::max<double>(1.0, static_cast<double>(first.pixels));
+  return std::max(options.max_cycles_per_pixel, first.per_pixel() * 1.01 + 2.0 / pixels);
+}
+
+// Tries `units` in order; `best` (the first unit, over the budget) becomes the unit taken. Returns
+// the note on the specular line: what was tried, what was taken and what it traded.
+std::string search_units(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
+                         const std::vector<SpecularConfig>& units, int allowed, UnitTrial& best,
+                         std::string& tried) {
+  const UnitTrial first = best;
+  const double allowance = cycles_allowance(options, first.cycles);
+  std::optional<UnitTrial> within, slow;
+  UnitTrial closest = first, last = first;
+  DeriveOptions o = options;
+  for (const SpecularConfig& unit : units) {
+    o.specular_trial = unit;
+    if (first.derived.substitute) o.ideal_substitute = unit;
+    UnitTrial t = try_unit(scene_paths, o, derive_held(scene_paths, o));
+    tried += ", " + t.describe();
+    if (t.error < closest.error) closest = t;
+    if (t.derived.config.specular.kind == closest.derived.config.specular.kind) last = t;
+    if (t.error > allowed) continue;
+    if (t.cycles.per_pixel() <= allowance) {
+      within = std::move(t);
+      break;
+    }
+    tried += " (over " + fmt(allowance) + ")";
+    if (!slow) slow = std::move(t);
+  }
+  const std::string budget = std::to_string(allowed) + " LSB";
+  if (within) {
+    best = *within;
+    return "measured against the budget on the scenes, smallest first: " + tried +
+           " (the first within " + budget + " and " + fmt(allowance) + " cycles/px)";
+  }
+  if (slow) {
+    best = *slow;
+    return "measured against the budget on the scenes, smallest first: " + tried +
+           "; budget first: " + slow->derived.config.specular.describe() + " is within " + budget +
+           " and trades " + fmt(slow->cycles.per_pixel() - first.cycles.per_pixel()) +
+           " cycles/px against the first";
+  }
+  best = closest;
+  return "no unit tried meets the " + budget + " budget on the scenes: " + tried +
+         "; the closest, " + closest.derived.config.specular.describe() + " at " +
+         std::to_string(closest.error) + " LSB, is kept. What limits it is the " +
+         to_string(closest.derived.config.specular.kind) +
+         " unit's function, not the formats (exact pow on the first unit's formats is within " +
+         budget + "): its widest fields tried, " + last.derived.config.specular.describe() +
+         ", reach " + std::to_string(last.error) + " LSB";
+}
+
 }  // namespace
 
 DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
                             const DeriveOptions& options) {
   DerivedConfig first = derive_held(scene_paths, options);
-  if (!substituted(first, options) || options.ideal_fallbacks.empty()) return first;
-  // The scenes name ideal: the substitute must meet the budget on them (measured, not bounded:
-  // a unit's approximation of t^n is not in the width rules), else the next fallback, each
-  // with the widths derived for it, that meets it without costing more cycles per pixel than
-  // both the target and the first substitute (a per-exponent LUT reloads its table for every
-  // material). The reason lists every unit tried.
+  const std::vector<SpecularConfig> rest = units_to_try(first, options);
+  if (rest.empty() && !substituted(first, options)) return first;
+  // The specular unit must meet the budget on the scenes (measured, not bounded: a unit's
+  // approximation of t^n is not in the width rules), else the next candidate, each with the
+  // widths derived for it. The reason lists every unit tried.
   const int allowed = code_budget(first.measured.budget_lsb);
-  const int first_error = max_code_error(scene_paths, first.config, options);
-  std::string tried = first.config.specular.describe() + " " + std::to_string(first_error) + " LSB";
+  UnitTrial best = try_unit(scene_paths, options, first);
+  std::string tried = best.describe();
   std::string note;
-  std::optional<DerivedConfig> chosen;
-  if (first_error <= allowed) {
-    chosen = first;
+  if (best.error <= allowed) {
     note = "measured against the budget on the scenes: " + tried + " (within " +
            std::to_string(allowed) + " LSB)";
+  } else if (exact_pow_misses(scene_paths, options, first.config, allowed)) {
+    // No unit will meet it: the formats, the Taylor setup or the N.L gate do not (shadesim
+    // config says which and exits 1).
+    note = "misses the " + fmt(first.measured.budget_lsb) + " LSB budget on the scenes (" + tried +
+           "), and so does exact pow on its formats: no other unit is tried";
   } else {
-    UnitConfig exact = first.config;
-    exact.specular.kind = SpecularUnitKind::kIdeal;
-    if (max_code_error(scene_paths, exact, options) > allowed) {
-      // No unit will meet it: the widths, the Taylor setup or the N.L gate do not (shadesim
-      // config says so and exits 1).
-      chosen = first;
-      note = "misses the " + fmt(first.measured.budget_lsb) + " LSB budget on the scenes (" +
-             tried + "), and so does exact pow on its widths: no other unit is tried";
-    }
+    note = search_units(scene_paths, options, rest, allowed, best, tried);
   }
-  if (!chosen) {
-    double max_cpp = options.max_cycles_per_pixel;
-    for (const auto& path : scene_paths) {
-      max_cpp = std::max(max_cpp, scene_cycles_per_pixel(path, first.config, options.budget_lsb,
-                                                         options.max_depth));
-    }
-    DeriveOptions o = options;
-    for (const SpecularConfig& unit : options.ideal_fallbacks) {
-      o.ideal_substitute = unit;
-      DerivedConfig d = derive_held(scene_paths, o);
-      const int error = max_code_error(scene_paths, d.config, o);
-      double cpp = 0;
-      for (const auto& path : scene_paths) {
-        cpp = std::max(cpp, scene_cycles_per_pixel(path, d.config, o.budget_lsb, o.max_depth));
-      }
-      tried += ", " + d.config.specular.describe() + " " + std::to_string(error) + " LSB";
-      if (cpp > max_cpp) {
-        tried += " at " + fmt(cpp) + " cycles/px (over " + fmt(max_cpp) + ")";
-        continue;
-      }
-      if (error <= allowed) {
-        chosen = d;
-        note = "measured against the budget on the scenes, smallest first: " + tried +
-               " (the first within " + std::to_string(allowed) + " LSB)";
-        break;
-      }
-    }
-  }
-  if (!chosen) {
-    chosen = first;
-    note = "no hardware unit tried meets the " + fmt(first.measured.budget_lsb) +
-           " LSB budget on the scenes within the cycles: " + tried + " (the first is kept)";
-  }
-  for (auto& r : chosen->reasons) {
+  for (auto& r : best.derived.reasons) {
     if (r.field == "specular") r.reason += "; " + note;
   }
-  return *chosen;
+  return best.derived;
 }
 
 }  // namespace shadesim

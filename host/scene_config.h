@@ -25,10 +25,11 @@
 //                      sum of |monomials| 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 at any pixel from its
 //                      triangle's origin, times G, within another quarter of the budget.
 //   out_bits           as requested.
-//   span_setup         host (start values on every SPAN: no span setup, no coefficient banks,
-//                      tri_queue 1) where every scene's frame on that unit runs at <=
-//                      DeriveOptions::max_cycles_per_pixel by the cycle model, else unit; pixels
-//                      do not depend on it.
+//   port_words, tri_queue, span_setup, start_depth, material_buffers, a Schlick or W_m
+//                      unit's timing: the cheapest structure whose frames all run at <=
+//                      DeriveOptions::max_cycles_per_pixel by the cycle model, else the fastest
+//                      with each miss named (host/throughput_choice.h has the cost order);
+//                      pixels do not depend on them.
 //   diffuse_colour     multiply with three channels (one N.L series per light, a multiply per
 //                      light and channel in the unit), series with one.
 // G = sum over lights of (1 + max spec colour x the specular unit's slope with respect to its
@@ -44,6 +45,7 @@
 #include <string>
 #include <vector>
 
+#include "host/specular_candidates.h"
 #include "model/unit_config.h"
 
 namespace shadesim {
@@ -61,34 +63,27 @@ struct DeriveOptions {
     s.wpow.timing = UnitTiming::kPipelined;
     return s;
   }();
-  // Tried in order when ideal_substitute misses the budget: W_32 (one more squaring), then
-  // per-exponent LUTs with linear interpolation (docs/specular.md measures their error and area).
-  std::vector<SpecularConfig> ideal_fallbacks = [] {
-    SpecularConfig w32;
-    w32.kind = SpecularUnitKind::kWpow;
-    w32.wpow.max_m = 32;
-    w32.wpow.base_bits = 16;
-    w32.wpow.timing = UnitTiming::kPipelined;
-    SpecularConfig lut12;
-    lut12.kind = SpecularUnitKind::kLut;
-    lut12.lut.entry_bits = 12;
-    lut12.lut.interp_bits = 4;
-    SpecularConfig lut16 = lut12;
-    lut16.lut.entry_bits = 16;
-    lut16.lut.interp_bits = 6;
-    return std::vector<SpecularConfig>{w32, lut12, lut16};
-  }();
+  // Tried in order when ideal_substitute misses the budget: W_16 with zeta fitted, W_32, then
+  // LUTs with linear interpolation (host/specular_candidates.h; docs/specular.md measures their
+  // error and area).
+  std::vector<SpecularConfig> ideal_fallbacks = ideal_stand_ins();
+  // Scenes naming a hardware unit: search that kind's fields (host/specular_candidates.h) where
+  // its defaults miss the budget; false keeps the defaults.
+  bool search_named_units = true;
+  // Set by derive_config's search: the specular unit to derive the widths for, in place of the
+  // one the scenes name (or ideal's substitute).
+  std::optional<SpecularConfig> specular_trial;
   int max_depth = 12;  // setup's subdivision depth limit, as FrameOptions
   // Widen series and coef where the N.L gate flips over the budget (host/gate_flips.h); off for
   // a caller that only reads the measurements.
   bool hold_gate = true;
-  // Throughput structure (pixels do not depend on it): a 4-word port and a 2-deep triangle
-  // queue bring every shipped scene to <= 1.1 cycles per pixel (README, "Throughput").
-  int port_words = 4;
-  int tri_queue = 2;
-  // Span setup site: unset derives it - host setup (always the smaller unit: no span setup, no
-  // coefficient banks) where every scene stays within max_cycles_per_pixel with it by the cycle
-  // model (no gaps, no back-pressure), else unit setup. Host setup takes tri_queue 1.
+  // Throughput structure (pixels do not depend on it): requests. Unset, each is derived with
+  // the start bank's depth, the material buffers and a Schlick or W_m unit's timing
+  // (host/throughput_choice.h): the cheapest structure that runs every scene within
+  // max_cycles_per_pixel by the cycle model (no gaps, no back-pressure). Set, it is held.
+  // Host span setup takes tri_queue 1.
+  std::optional<int> port_words;
+  std::optional<int> tri_queue;
   std::optional<SpanSetupSite> span_setup;
   // Diffuse colour: unset derives it - multiply (one N.L series per light) with three channels,
   // series with one (a multiply would remove nothing there).
@@ -113,10 +108,13 @@ struct ConfigMeasurements {
   double max_monomial_sum = 0;            // max of 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 over pixels
   double series_min = 0, series_max = 0;  // every series value at a pixel, and ambient words
   double difference_max = 0;              // max |d|, |d2|
-  double coef_max = 0;                    // max |T_k| over all triangles and series
-  double gain = 0;                        // G (see above)
-  double drift_share_lsb = 0;             // output LSBs allowed for drift (budget / 4)
-  double coef_share_lsb = 0;  // output LSBs allowed for coefficient rounding (budget / 4)
+  double colour_max = 0;        // largest colour word (ks_c L_c; kd_c L_c multiplied): its products
+  double coef_max = 0;          // max |T_k| over all triangles and series
+  double gain = 0;              // G (see above)
+  double drift_share_lsb = 0;   // output LSBs allowed for drift (budget / 4)
+  double coef_share_lsb = 0;    // output LSBs allowed for coefficient rounding (budget / 4)
+  double colour_share_lsb = 0;  // for the colour words' rounding (3/16 of the budget)
+  double specular_out_share_lsb = 0;  // for the specular unit's output truncation (budget / 16)
 };
 
 struct DerivedConfig {
@@ -126,6 +124,9 @@ struct DerivedConfig {
   std::vector<FieldReason> reasons;
   ConfigMeasurements measured;
   bool substitute = false;  // the scenes name ideal; config.specular is the hardware in its place
+  // One per scene over DeriveOptions::max_cycles_per_pixel on `config`: the scene, its cycles per
+  // pixel, the target and the resource that limits it (cycles_miss, host/throughput_choice.h).
+  std::vector<std::string> cycles_misses;
 };
 
 // The largest output-code error a budget allows: codes differ by whole LSBs, and rounding the
@@ -137,6 +138,13 @@ inline int code_budget(double budget_lsb) { return static_cast<int>(std::ceil(bu
 // (different specular units: the message names the scenes and units) or impossible budgets.
 DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
                             const DeriveOptions& options);
+
+// What one scene drives on `unit`'s own structure (channels, lights, diffuse colour, specular
+// unit), measured as derive_config measures it: on a trial of that structure whose series and
+// coefficient formats lose nothing. The figures a given unit's formats are checked against
+// (render's warnings); budget_lsb unset: the scene's.
+ConfigMeasurements measure_scene_on(const std::string& scene_path, const UnitConfig& unit,
+                                    std::optional<double> budget_lsb, int max_depth);
 
 // The fraction bits F the drift bound asks for: the smallest F with
 // gain * 2^-F (1 + L(L-1)/2) [/ 2 when rounding] <= share_lsb * 2^-out_bits.

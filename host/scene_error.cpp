@@ -32,12 +32,17 @@ ErrorStats scene_error(const std::string& scene_path, const UnitConfig& config,
       .stats;
 }
 
-double scene_cycles_per_pixel(const std::string& scene_path, const UnitConfig& config,
-                              std::optional<double> budget_lsb, int max_depth) {
+SceneCycles scene_cycles(const std::string& scene_path, const UnitConfig& config,
+                         std::optional<double> budget_lsb, int max_depth) {
   const PreparedFrame f = frame_on(scene_path, config, budget_lsb, max_depth);
   const CycleEstimateRun run =
       CycleEstimate(CycleConfig::of(f.config)).run(f.encoded.stream.encode());
-  return run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;
+  return {run.cycles, run.pixels};
+}
+
+double scene_cycles_per_pixel(const std::string& scene_path, const UnitConfig& config,
+                              std::optional<double> budget_lsb, int max_depth) {
+  return scene_cycles(scene_path, config, budget_lsb, max_depth).per_pixel();
 }
 
 }  // namespace shadesim

@@ -113,9 +113,32 @@ TEST(Cli, RenderWarnsWhereTheWidthsCannotHoldTheScene) {
   const auto b = run_json("render " + (dir / "bright.json").string() +
                               " -q --config default --out " + (dir / "b").string(),
                           dir / "b.json");
-  ASSERT_EQ(b["warnings"].size(), 1u) << b["warnings"].dump();
-  EXPECT_NE(b["warnings"][0].get<std::string>().find("beyond s4.28's range"), std::string::npos);
+  // The range warning names the format and the width that holds the scene; the image's measured
+  // miss gets a warning of its own, naming the formats as the cause.
+  ASSERT_EQ(b["warnings"].size(), 2u) << b["warnings"].dump();
+  EXPECT_NE(b["warnings"][0].get<std::string>().find("series s4.28: series values"),
+            std::string::npos);
+  EXPECT_NE(b["warnings"][0].get<std::string>().find("beyond its range"), std::string::npos);
+  EXPECT_NE(b["warnings"][1].get<std::string>().find("the unit's formats"), std::string::npos);
   EXPECT_GT(b["error"]["max_code_lsb"].get<int>(), 100);  // the wrong image the warning names
+  // Issue 43: an overbright RGB light, finite eye. At default widths kd_c L_c = 15 rolled into
+  // the series overflows s4.28; the range warning must name the series (it was once measured on
+  // a unit of another structure and stayed silent). Its own unit holds the scene.
+  auto rgb = nlohmann::json::parse(std::ifstream(kScenes + "specular.json"));
+  rgb["lights"][0]["colour"] = {30, 15, 7.5};
+  std::ofstream(dir / "rgb.json") << rgb.dump();
+  const auto d = run_json("render " + (dir / "rgb.json").string() + " -q --config default --out " +
+                              (dir / "d").string(),
+                          dir / "d.json");
+  EXPECT_GT(d["error"]["max_code_lsb"].get<int>(), 100) << d.dump();
+  ASSERT_FALSE(d["warnings"].empty());
+  EXPECT_NE(d["warnings"][0].get<std::string>().find("beyond its range"), std::string::npos)
+      << d["warnings"].dump();
+  const auto own =
+      run_json("render " + (dir / "rgb.json").string() + " -q --out " + (dir / "o").string(),
+               dir / "o.json");
+  EXPECT_LE(own["error"]["max_code_lsb"].get<int>(), 1) << own["warnings"].dump();
+  EXPECT_TRUE(own["warnings"].empty()) << own["warnings"].dump();
   auto wide = nlohmann::json::parse(std::ifstream(kScenes + "hard/long_span.json"));
   wide["image"]["width"] = 4096;
   std::filesystem::copy_file(kScenes + "hard/long_span_tri.obj", dir / "long_span_tri.obj");
@@ -123,8 +146,9 @@ TEST(Cli, RenderWarnsWhereTheWidthsCannotHoldTheScene) {
   const auto w = run_json("render " + (dir / "wide.json").string() + " -q --config default --out " +
                               (dir / "w").string(),
                           dir / "w.json");
-  ASSERT_EQ(w["warnings"].size(), 1u) << w["warnings"].dump();
-  EXPECT_NE(w["warnings"][0].get<std::string>().find("exceed the drift bound"), std::string::npos);
+  ASSERT_EQ(w["warnings"].size(), 2u) << w["warnings"].dump();
+  EXPECT_NE(w["warnings"][0].get<std::string>().find("exceed its drift bound"), std::string::npos);
+  EXPECT_NE(w["warnings"][1].get<std::string>().find("the unit's formats"), std::string::npos);
   EXPECT_GT(w["error"]["max_code_lsb"].get<int>(), 1);
   // No warning where the unit holds the scene: every shipped scene on its own unit.
   for (const char* name : {"sphere", "specular", "multi", "suzanne", "torus"}) {
@@ -167,14 +191,22 @@ TEST(Cli, CyclesSpanSetupAndDiffuseColourOptionsEqualTheDerivedUnits) {
   struct Case {
     std::string cycles_options, config_options;
   };
+  // config derives the port and queue too: held at the own unit's (4 words) and the queue the
+  // cycles options name, so the two units differ in nothing else.
   for (const Case& c :
-       {Case{"--span-setup unit --tri-queue 2", "--span-setup unit"},
-        Case{"--diffuse-colour series", "--diffuse-colour series --span-setup host"},
+       {Case{"--span-setup unit --tri-queue 2", "--span-setup unit --tri-queue 2 --port-words 4"},
+        Case{"--diffuse-colour series", "--diffuse-colour series --span-setup host --port-words 4"},
         Case{"--diffuse-colour series --span-setup unit --tri-queue 2",
-             "--diffuse-colour series --span-setup unit"}}) {
+             "--diffuse-colour series --span-setup unit --tri-queue 2 --port-words 4"}}) {
     const std::string unit = (dir / "u.json").string();
     const Result derived = run("config " + multi + " " + c.config_options + " --json " + unit);
-    ASSERT_EQ(derived.status, 0) << derived.output;
+    // Host setup held at 4 words with the colour in eight series misses 1.10 (1 + 11 words a
+    // span): config says so and exits 1, and still writes the unit.
+    const bool cycles_miss_only =
+        derived.status == 1 &&
+        derived.output.find("misses the cycles target") != std::string::npos &&
+        derived.output.find("misses the budget") == std::string::npos;
+    ASSERT_TRUE(derived.status == 0 || cycles_miss_only) << derived.output;
     const auto by_option = run_json("cycles " + multi + " " + c.cycles_options, dir / "a.json");
     const auto by_file = run_json("cycles " + multi + " --config " + unit, dir / "b.json");
     EXPECT_EQ(by_option["cycles"], by_file["cycles"]) << c.cycles_options;
@@ -396,7 +428,10 @@ TEST(Cli, ConfigExitsNonZeroNamingThePartThatMissesTheBudget) {
   std::ofstream(schlick) << spec.dump();
   Result r = run("config " + schlick);
   EXPECT_EQ(r.status, 1) << r.output;
-  EXPECT_NE(r.output.find("the specular unit's own approximation of t^n"), std::string::npos)
+  EXPECT_NE(r.output.find("approximates t^n too coarsely"), std::string::npos) << r.output;
+  // The search tried Schlick's fields (a fitted n', a wider divider) and names what limits it.
+  EXPECT_NE(r.output.find("schlick Q=20 D=28"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("What limits it is the schlick unit's function"), std::string::npos)
       << r.output;
   // At n = 1 the N.L gate's step used to miss (33 LSB where series truncation flipped the gate);
   // config now widens series and coefficients until the gate holds, and says why.
@@ -422,13 +457,25 @@ TEST(Cli, ConfigBudgetOneHoldsOnEveryShippedAndHardScene) {
     }
   }
   ASSERT_GE(scenes.size(), 15u);
+  // Pinned: the one scene whose unit misses a target, and the target it misses. Its budget-first
+  // unit (a per-exponent LUT, 1 LSB) reloads the table at every material switch.
+  const std::map<std::string, std::string> misses = {
+      {"material_switch.json", "misses the cycles target"}};
   for (const auto& scene : scenes) {
     const std::string unit = (dir / "unit.json").string();
     const Result c = run("config " + scene + " --budget 1 --json " + unit);
+    const std::string name = std::filesystem::path(scene).filename().string();
     const bool shipped = scene.find("/hard/") == std::string::npos;
-    if (c.status != 0) {
-      EXPECT_FALSE(shipped) << scene << " gets no unit within 1 LSB:\n" << c.output;
-      EXPECT_NE(c.output.find("misses the budget"), std::string::npos) << c.output;
+    const auto pinned = misses.find(name);
+    if (pinned == misses.end()) {
+      EXPECT_EQ(c.status, 0) << scene << "\n" << c.output;
+    } else {
+      EXPECT_FALSE(shipped);
+      EXPECT_EQ(c.status, 1) << c.output;
+      EXPECT_NE(c.output.find(pinned->second), std::string::npos) << c.output;
+    }
+    if (c.output.find("misses the budget") != std::string::npos) {
+      ADD_FAILURE() << scene << " gets no unit within 1 LSB:\n" << c.output;
       continue;
     }
     const auto r = run_json(
@@ -457,7 +504,9 @@ TEST(Cli, TheNDotLGateIsHeldByConfigAndNamedByRender) {
       "render " + n1 + " -q --config " + narrow + " --budget 1 --out " + (dir / "a").string(),
       dir / "a.json");
   ASSERT_GT(bad["error"]["max_code_lsb"].get<int>(), 8) << "no gate flip left to name";
-  ASSERT_EQ(bad["warnings"].size(), 1u) << bad["warnings"].dump();
+  // The gate warning, then the measured miss it causes (the formats, not the specular unit).
+  ASSERT_EQ(bad["warnings"].size(), 2u) << bad["warnings"].dump();
+  EXPECT_NE(bad["warnings"][1].get<std::string>().find("the unit's formats"), std::string::npos);
   const std::string w = bad["warnings"][0].get<std::string>();
   EXPECT_NE(w.find("N.L gate"), std::string::npos) << w;
   EXPECT_NE(w.find("more fraction bits in series and coef"), std::string::npos) << w;

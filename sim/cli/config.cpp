@@ -46,11 +46,16 @@ void register_config(CLI::App& app, int& exit_code) {
       "  coef_term_iwl  coefficient packing: T0 keeps coef's integer bits (it wraps); T1..T5 the\n"
       "               fewest saturating integer bits holding every measured |T_t| + 1 LSB\n"
       "  out_bits     as requested (--out-bits)\n"
-      "  port_words, tri_queue  as requested (--port-words 4, --tri-queue 2 by default)\n"
-      "  span_setup   host (the host sends each span's start values: no span setup, no\n"
-      "               coefficient banks, tri_queue 1) where every scene stays <= 1.10 cycles per\n"
-      "               pixel with it by the cycle model (--max-cycles-per-pixel), else unit\n"
-      "               (--span-setup to choose)\n"
+      "  port_words, tri_queue, span_setup, start_depth, material_buffers, and a Schlick or\n"
+      "               W_m unit's timing: the cheapest structure that runs every scene at <= 1.10\n"
+      "               cycles per pixel by the cycle model, no gaps (--max-cycles-per-pixel).\n"
+      "               Cheapest first: host span setup (the host sends each span's start values:\n"
+      "               no span setup, no coefficient banks, tri_queue 1) before unit setup,\n"
+      "               iterative before pipelined, fewer port words (1, 2, 4, 8), a shallower\n"
+      "               start bank (1, 2) or triangle queue (1..8), 1 material buffer before 2.\n"
+      "               Where none meets it: the fastest, and each scene over the target named\n"
+      "               with the resource that limits it (--port-words, --tri-queue,\n"
+      "               --span-setup hold a knob)\n"
       "  diffuse_colour  multiply with 3 channels (one N.L series per light, times kd_c L_c per\n"
       "               pixel and channel), series with 1 (--diffuse-colour to choose)\n"
       "  spec_colour, specular widths: defaults\n"
@@ -59,7 +64,9 @@ void register_config(CLI::App& app, int& exit_code) {
       "  slope from t^n's <= n on [0, 1] through setup's pre-scaling. The Taylor error keeps the\n"
       "  whole budget in setup; the fixed-point error adds at most half of it.\n"
       "Exits 1 when the unit misses the budget on a scene (measured), saying which part: the\n"
-      "specular unit's function, or the widths, Taylor setup or N.L gate.");
+      "specular unit's function, or the widths, Taylor setup or N.L gate; or the cycles target,\n"
+      "naming the resource that limits it (port words per triangle or span, table reload, the\n"
+      "specular unit's initiation interval, a frame's fixed overhead).");
   sub->add_option("scenes", o->scenes, "scene JSON files")->required()->check(CLI::ExistingFile);
   sub->add_option(
          "--budget", o->budget_lsb,
@@ -69,12 +76,13 @@ void register_config(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
   sub->add_option("--port-words", o->port_words,
-                  "command port width of the unit (64-bit words per handshake; throughput only)")
-      ->check(CLI::IsMember({1, 2, 4, 8}))
-      ->capture_default_str();
-  sub->add_option("--tri-queue", o->tri_queue, "triangle queue depth of the unit (throughput only)")
-      ->check(CLI::Range(1, 8))
-      ->capture_default_str();
+                  "command port width of the unit (64-bit words per handshake; throughput only;\n"
+                  "default: derived, see above)")
+      ->check(CLI::IsMember({1, 2, 4, 8}));
+  sub->add_option("--tri-queue", o->tri_queue,
+                  "triangle queue depth of the unit (throughput only; 1 with host span setup;\n"
+                  "default: derived, see above)")
+      ->check(CLI::Range(1, 8));
   sub->add_option("--span-setup", o->span_setup,
                   "span setup in the unit or on the host (default: derived, see above)")
       ->check(CLI::IsMember({"unit", "host"}));
@@ -82,8 +90,10 @@ void register_config(CLI::App& app, int& exit_code) {
          "--diffuse-colour", o->diffuse_colour,
          "diffuse colour rolled into the series or multiplied per pixel (default: derived)")
       ->check(CLI::IsMember({"series", "multiply"}));
-  sub->add_option("--max-cycles-per-pixel", o->max_cycles_per_pixel,
-                  "the cycles/pixel host span setup may take (cycle model) for config to choose it")
+  sub->add_option(
+         "--max-cycles-per-pixel", o->max_cycles_per_pixel,
+         "the cycles per pixel every scene must stay within (cycle model, no gaps): the\n"
+         "throughput structure is the cheapest that meets it; config exits 1 where none does")
       ->check(positive_number())
       ->capture_default_str();
   sub->add_option(

@@ -7,6 +7,7 @@
 
 #include "sim/cli/commands.h"
 #include "sim/cli/config_option.h"
+#include "sim/cli/number_checks.h"
 #include "sim/cli/output_paths.h"
 #include "sim/cli/stimulus_options.h"
 #include "sim/cli/width_options.h"
@@ -85,6 +86,13 @@ void register_cycles(CLI::App& app, int& exit_code) {
       "--clocked", o->clocked,
       "also run the clocked cycle model when there are no gaps or back-pressure, and fail if the\n"
       "closed form disagrees with it (with gaps or back-pressure it is the only one that runs)");
+  sub->add_option(
+         "--max-cycles-per-pixel", o->max_cycles_per_pixel,
+         "warn when the unit takes more cycles per pixel than this with no gaps and no\n"
+         "back-pressure (the unit's own figure; with gaps or back-pressure that figure is\n"
+         "judged, not the run's), naming the resource that limits it")
+      ->check(positive_number())
+      ->capture_default_str();
   sub->add_option("--worst", o->worst, "setup-bound triangles to list, worst first")
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();

@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 
+#include "host/accuracy_checks.h"
 #include "host/frame.h"
 #include "host/metrics.h"
 #include "host/reference.h"
@@ -28,33 +29,12 @@ ErrorStats shade(const std::string& path, const UnitConfig& config, const Derive
   return scene_error(path, config, d.budget_lsb, d.max_depth);
 }
 
-// Why a scene misses the budget: the specular unit's function when exact pow on the same widths
-// meets it, else the widths, the Taylor setup or the N.L gate (exact pow misses it too).
-std::string missed_budget_part(const std::string& path, const ErrorStats& e,
-                               const std::optional<ErrorStats>& ideal, double budget) {
-  std::ostringstream os;
-  os << path << ": max " << e.max_code_lsb << " LSB, " << e.max_code_lsb - code_budget(budget)
-     << " LSB over the " << budget << " LSB budget (" << code_budget(budget)
-     << " in output codes): ";
-  if (ideal && ideal->max_code_lsb <= code_budget(budget)) {
-    os << "the specular unit's own approximation of t^n (exact pow on the same widths: "
-       << ideal->max_code_lsb << " LSB); try another unit or its fields (shadesim spec-error)";
-  } else {
-    os << "the widths, the Taylor setup or the N.L gate, not the specular unit"
-       << (ideal
-               ? " (exact pow on the same widths: " + std::to_string(ideal->max_code_lsb) + " LSB)"
-               : std::string())
-       << "; a lower --budget narrows the setup and widens the series";
-  }
-  return os.str();
-}
-
 DeriveOptions derive_options(const ConfigOptions& o) {
   DeriveOptions d;
   if (!std::isnan(o.budget_lsb)) d.budget_lsb = o.budget_lsb;
   d.out_bits = o.out_bits;
-  d.port_words = o.port_words;
-  d.tri_queue = o.tri_queue;
+  if (o.port_words > 0) d.port_words = o.port_words;
+  if (o.tri_queue > 0) d.tri_queue = o.tri_queue;
   d.max_cycles_per_pixel = o.max_cycles_per_pixel;
   if (!o.span_setup.empty()) d.span_setup = parse_span_setup(o.span_setup, "--span-setup");
   if (!o.diffuse_colour.empty())
@@ -114,7 +94,7 @@ nlohmann::json check_scene(const std::string& path, const DerivedConfig& derived
     yardstick = {{"max_code_lsb", y.max_code_lsb}, {"max_real_lsb", y.max_real_lsb}};
   }
   if (e.max_code_lsb > code_budget(budget))
-    missed.push_back(missed_budget_part(path, e, with_ideal, budget));
+    missed.push_back(path + ": " + explain_miss(path, cfg, d.budget_lsb, d.max_depth, e));
   return {{"scene", path},
           {"with_ideal_specular", yardstick},
           {"within_budget", e.max_code_lsb <= code_budget(budget)},
@@ -129,7 +109,7 @@ nlohmann::json check_scene(const std::string& path, const DerivedConfig& derived
 // The UnitConfig's own fields (load_unit_config and --config read them), and beside them the
 // "derivation" annotation, which the loader ignores.
 nlohmann::json config_json(const ConfigOptions& o, const DerivedConfig& derived,
-                           const nlohmann::json& scenes) {
+                           const nlohmann::json& scenes, const std::vector<std::string>& missed) {
   nlohmann::json j = nlohmann::json::parse(config_to_json(derived.config));
   nlohmann::json reasons = nlohmann::json::array();
   for (const auto& r : derived.reasons)
@@ -151,8 +131,20 @@ nlohmann::json config_json(const ConfigOptions& o, const DerivedConfig& derived,
                        {"gain", m.gain},
                        {"drift_share_lsb", m.drift_share_lsb},
                        {"coef_share_lsb", m.coef_share_lsb}}},
+                     {"error_misses", missed},
+                     {"cycles_misses", derived.cycles_misses},
                      {"error", scenes}};
   return j;
+}
+
+// The scenes the unit runs over the cycles target (DerivedConfig::cycles_misses, each naming
+// the resource that limits it), on stderr; whether there is one.
+bool report_cycles_misses(const DerivedConfig& derived) {
+  if (derived.cycles_misses.empty()) return false;
+  std::cerr << "shadesim config: the unit misses the cycles target on "
+            << derived.cycles_misses.size() << " scene(s):\n";
+  for (const auto& m : derived.cycles_misses) std::cerr << "  " << m << '\n';
+  return true;
 }
 
 }  // namespace
@@ -168,16 +160,16 @@ int run_config(const ConfigOptions& o) {
   std::vector<std::string> missed;
   for (const auto& path : o.scenes) scenes.push_back(check_scene(path, derived, d, missed));
   if (!o.json_path.empty()) {
-    write_text_file(o.json_path, config_json(o, derived, scenes).dump(2) + '\n');
+    write_text_file(o.json_path, config_json(o, derived, scenes, missed).dump(2) + '\n');
     std::cout << "\nconfig       " << o.json_path << " (use with --config)\n";
   }
   if (!missed.empty()) {
     std::cerr << "shadesim config: the unit misses the budget on " << missed.size()
               << " scene(s):\n";
     for (const auto& m : missed) std::cerr << "  " << m << '\n';
-    return 1;
   }
-  return 0;
+  const bool cycles_missed = report_cycles_misses(derived);
+  return missed.empty() && !cycles_missed ? 0 : 1;
 }
 
 }  // namespace shadesim

@@ -13,8 +13,8 @@ struct ConfigOptions {
   std::vector<std::string> scenes;
   double budget_lsb = std::nan("");
   int out_bits = 8;
-  int port_words = 4;
-  int tri_queue = 2;
+  int port_words = 0;          // 0: derived (host/throughput_choice.h)
+  int tri_queue = 0;           // 0: derived
   std::string ideal_unit;      // empty: W_16, then the fallbacks that meet the budget
   std::string span_setup;      // empty: derived
   std::string diffuse_colour;  // empty: derived
@@ -23,7 +23,7 @@ struct ConfigOptions {
 };
 
 // Derives the unit, prints it and each scene's error on it, writes --json; returns the exit code
-// (1 when the unit misses the budget on a scene).
+// (1 when the unit misses the budget or the cycles target on a scene).
 int run_config(const ConfigOptions& o);
 
 }  // namespace shadesim

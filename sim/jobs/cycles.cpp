@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "host/frame.h"
+#include "host/throughput_choice.h"
 #include "model/coef_packing.h"
 #include "model/cycle_estimate.h"
 #include "model/cycle_model.h"
@@ -370,6 +371,25 @@ nlohmann::json cycles_json(const CyclesOptions& o, const PreparedFrame& frame, c
             {"cycle_model", c.clocked ? nlohmann::json(c.model_s) : nlohmann::json(nullptr)}}}};
 }
 
+// The cycles target's warning: the unit's no-gap figure (gaps and back-pressure are the
+// testbench's, not the unit's) over --max-cycles-per-pixel, naming the resource that limits it
+// in config's words (cycles_miss). Empty within the target.
+std::vector<std::string> cycles_warnings(const CyclesOptions& o, const PreparedFrame& frame,
+                                         const CyclesCount& c) {
+  if (shadesim::cycles_per_pixel(c.estimate) <= o.max_cycles_per_pixel) return {};
+  const CycleEstimateRun run =
+      c.estimate.breakdown ? c.estimate : CycleEstimate(c.timing).run(c.words, true);
+  std::string w =
+      cycles_miss(o.scene, frame.config, frame.encoded.stream, run, o.max_cycles_per_pixel);
+  if (!c.no_stimulus) {
+    std::ostringstream os;
+    os << std::fixed << std::setprecision(3) << cycles_per_pixel(c.run);
+    w += " (judged without gaps; this run with its gaps and back-pressure: " + os.str() +
+         " cycles/px)";
+  }
+  return {w};
+}
+
 }  // namespace
 
 int run_cycles(const CyclesOptions& o) {
@@ -379,8 +399,13 @@ int run_cycles(const CyclesOptions& o) {
   const CyclesCount c = count_cycles(o, frame);
   const TriangleSummary tris(c.estimate.triangles, o.worst);
   print_cycles(o, frame, c, tris, host_s);
+  const std::vector<std::string> warnings = cycles_warnings(o, frame, c);
+  for (const auto& w : warnings) std::cout << "warning      " << w << '\n';
   if (!o.json_path.empty()) {
-    write_text_file(o.json_path, cycles_json(o, frame, c, tris, host_s).dump(2) + '\n');
+    nlohmann::json j = cycles_json(o, frame, c, tris, host_s);
+    j["max_cycles_per_pixel"] = o.max_cycles_per_pixel;
+    j["warnings"] = warnings;
+    write_text_file(o.json_path, j.dump(2) + '\n');
   }
   return 0;
 }

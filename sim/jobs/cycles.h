@@ -29,6 +29,9 @@ struct CyclesOptions {
   std::string config;
   bool clocked = false;  // also the clocked model when the closed form applies; must agree
   int worst = 5;         // setup-bound triangles listed
+  // The target the no-gap figure is judged against: over it, a warning names the resource that
+  // limits the unit (host/throughput_choice.h, the words `config` uses).
+  double max_cycles_per_pixel = 1.10;
 };
 
 // Prepares the frame on the unit, counts its cycles, prints them and writes --json; returns the

@@ -11,6 +11,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "host/accuracy_checks.h"
 #include "host/frame.h"
 #include "host/image.h"
 #include "host/metrics.h"
@@ -18,7 +19,6 @@
 #include "model/shade_unit.h"
 #include "model/specular_units.h"
 #include "model/text_file.h"
-#include "sim/jobs/accuracy_warnings.h"
 #include "sim/jobs/unit_choice.h"
 
 namespace shadesim {
@@ -181,7 +181,7 @@ RenderRun shade_and_compare(const RenderOptions& o) {
                                             : cfg.specular.kind == SpecularUnitKind::kNone
                                                 ? " (no specular term: highlights not shaded)"
                                                 : "");
-  r.warnings = accuracy_warnings(o.scene, cfg, fo.budget_lsb, fo.max_depth, frame);
+  r.warnings = accuracy_warnings(o.scene, cfg, fo.budget_lsb, fo.max_depth, frame, r.err.stats);
   return r;
 }
 

@@ -1,0 +1,252 @@
+#include "host/accuracy_checks.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <variant>
+
+#include "host/gate_flips.h"
+#include "host/scene_config.h"
+#include "host/scene_error.h"
+#include "model/command_stream.h"
+#include "model/specular_units.h"
+
+namespace shadesim {
+namespace {
+
+// The longest span the series format's drift bound allows within `share_lsb` output LSBs at
+// `gain` (the inverse of drift_fraction_bits).
+int longest_span_within_drift(const FixedFormat& series, double gain, double share_lsb,
+                              int out_bits) {
+  const double allowed = share_lsb * std::ldexp(1.0, -out_bits);
+  const double lsb =
+      std::ldexp(series.quant == Quantization::kRoundNearest ? 0.5 : 1.0, -series.frac_bits());
+  auto fits = [&](int len) { return gain * (1.0 + len * (len - 1.0) / 2.0) * lsb <= allowed; };
+  int longest = 0;
+  for (int len = 1; len <= (1 << 16) && fits(len); len *= 2) longest = len;
+  // Refine between the last power of two that fits and the next.
+  for (int len = longest + 1; len < 2 * std::max(1, longest) && fits(len); ++len) longest = len;
+  return longest;
+}
+
+// Fewest signed integer bits holding [lo, hi].
+int signed_bits(double lo, double hi) {
+  int iwl = 1;
+  while (iwl < 62 && (lo < -std::ldexp(1.0, iwl - 1) || hi >= std::ldexp(1.0, iwl - 1))) ++iwl;
+  return iwl;
+}
+
+std::optional<std::string> series_range_warning(const ConfigMeasurements& m,
+                                                const UnitConfig& unit) {
+  const double half = std::ldexp(1.0, unit.series.iwl - 1);
+  const double hi = std::max(m.series_max, m.colour_max);
+  if (m.series_min >= -half && hi < half) return std::nullopt;
+  const int need = std::max(2, signed_bits(m.series_min, hi));
+  return fmt::format(
+      "series {}: series values at the pixels reach [{:.4g}, {:.4g}]{}, beyond its range "
+      "[-{:g}, {:g}): pixels there wrap or saturate; {} integer bits would hold them (e.g. "
+      "--series s{}.{})",
+      unit.series.to_string(), m.series_min, m.series_max,
+      m.colour_max >= half ? fmt::format(" and colour products {:.4g}", m.colour_max) : "", half,
+      half, need, need, unit.series.frac_bits());
+}
+
+// Colour words at the top of spec_colour: the encoder saturated them.
+std::optional<std::string> colour_warning(const ConfigMeasurements& m, const UnitConfig& unit,
+                                          const CommandStream& stream) {
+  const bool read = unit.specular.kind != SpecularUnitKind::kNone || unit.diffuse_multiply();
+  const FixedFormat& f = unit.spec_colour;
+  const double top = std::ldexp(static_cast<double>(f.raw_max()), -f.frac_bits());
+  if (!read || m.colour_max <= top) return std::nullopt;
+  size_t words = 0, saturated = 0;
+  for (const Command& cmd : stream.commands) {
+    if (const auto* mat = std::get_if<MaterialCmd>(&cmd)) {
+      for (const auto* list : {&mat->spec_colour, &mat->diffuse_colour}) {
+        words += list->size();
+        saturated += static_cast<size_t>(std::count(list->begin(), list->end(), f.raw_max()));
+      }
+    }
+  }
+  int iwl = f.iwl;
+  while (std::ldexp(1.0, iwl) - std::ldexp(1.0, -f.frac_bits()) < m.colour_max) ++iwl;
+  return fmt::format(
+      "spec_colour {}: the colour words (ks_c L_c{}) reach {:.4g}, above its top {:.4g}: {} of "
+      "{} colour words in the stream saturate, so lit pixels are too dark; u{}.{} would hold "
+      "them (--spec-colour)",
+      f.to_string(), unit.diffuse_multiply() ? ", kd_c L_c" : "", m.colour_max, top, saturated,
+      words, iwl, f.frac_bits());
+}
+
+std::optional<std::string> drift_warning(const ConfigMeasurements& m, const UnitConfig& unit,
+                                         const CommandStream& stream) {
+  const int within =
+      longest_span_within_drift(unit.series, m.gain, m.drift_share_lsb, unit.out_bits);
+  size_t beyond = 0;
+  int longest = 0;
+  for (const Command& cmd : stream.commands) {
+    if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
+      longest = std::max(longest, s->length);
+      if (s->length > within) ++beyond;
+    }
+  }
+  if (beyond == 0) return std::nullopt;
+  const int frac = drift_fraction_bits(longest, m.gain, m.drift_share_lsb, unit.out_bits,
+                                       unit.series.quant == Quantization::kRoundNearest);
+  return fmt::format(
+      "series {}: {} span(s) longer than {} px (the longest {}) exceed its drift bound within "
+      "{:g} LSB (budget/4, gain {:.4g}): {} series fraction bits would hold them",
+      unit.series.to_string(), beyond, within, longest, m.drift_share_lsb, m.gain, frac);
+}
+
+// Pixels whose N.L gate flips over the budget, with the fraction bits that hold them.
+std::optional<std::string> gate_flip_warning(const PreparedFrame& frame, const UnitConfig& unit,
+                                             double budget_lsb) {
+  const GateFlips f = measure_gate_flips(frame, unit, code_budget(budget_lsb));
+  if (f.pixels == 0) return std::nullopt;
+  const std::string w = fmt::format(
+      "{} pixel(s) near the terminator open or close the specular N.L gate against the widest "
+      "formats (their N.L is within the series' truncation and the coefficients' rounding of "
+      "0), up to {} LSB off, over the {:g} LSB budget: ",
+      f.pixels, f.max_lsb, budget_lsb);
+  if (f.fix_bits < 0) return w + "no narrower series and coef than the widest hold them";
+  return w + fmt::format("{} more fraction bits in series and coef ({}, {}) hold them", f.fix_bits,
+                         f.fixed.series.to_string(), f.fixed.coef.to_string());
+}
+
+// The error of the scene on `unit`, in output codes.
+int code_error(const std::string& path, const UnitConfig& unit, std::optional<double> budget_lsb,
+               int max_depth) {
+  return scene_error(path, unit, budget_lsb, max_depth).max_code_lsb;
+}
+
+// The formats that alone bring the exact-pow unit within `allowed`, widened one at a time.
+std::string formats_that_hold(const std::string& path, const UnitConfig& exact,
+                              const UnitConfig& lossless, std::optional<double> budget_lsb,
+                              int max_depth, int allowed) {
+  struct Trial {
+    const char* name;
+    UnitConfig unit;
+  };
+  std::vector<Trial> trials;
+  UnitConfig series = exact;
+  series.series = lossless.series;
+  series.coef = lossless.coef;
+  series.coef_term_iwl.clear();
+  trials.push_back({"series and coef", series});
+  UnitConfig colour = exact;
+  colour.spec_colour = lossless.spec_colour;
+  trials.push_back({"spec_colour", colour});
+  UnitConfig out = exact;
+  out.specular.out = lossless.specular.out;
+  trials.push_back({"the specular output", out});
+  std::string held;
+  for (const Trial& t : trials) {
+    const int e = code_error(path, t.unit, budget_lsb, max_depth);
+    if (e <= allowed)
+      held += fmt::format("{}{} lossless: {} LSB", held.empty() ? "" : "; ", t.name, e);
+  }
+  return held.empty() ? "no one format alone holds it; together they do" : held;
+}
+
+}  // namespace
+
+UnitConfig lossless_formats(const UnitConfig& unit, double colour_max) {
+  UnitConfig wide = unit;
+  wide.series = FixedFormat{52, 12, true, unit.series.quant, unit.series.overflow};
+  wide.coef = FixedFormat{60, 24, true, Quantization::kRoundNearest, Overflow::kSaturate};
+  wide.coef_term_iwl.clear();
+  int colour_iwl = 1;
+  while (colour_iwl < 24 && std::ldexp(1.0, colour_iwl) <= colour_max) ++colour_iwl;
+  wide.spec_colour = FixedFormat{colour_iwl + 24, colour_iwl, false, Quantization::kRoundNearest,
+                                 Overflow::kSaturate};
+  wide.specular.out = FixedFormat{25, 1, false, Quantization::kTruncate, Overflow::kSaturate};
+  return wide;
+}
+
+std::vector<std::string> format_warnings(const std::string& scene_path, const UnitConfig& unit,
+                                         std::optional<double> budget_lsb, int max_depth,
+                                         const PreparedFrame& frame) {
+  std::optional<ConfigMeasurements> measured;
+  try {
+    measured = measure_scene_on(scene_path, unit, budget_lsb, max_depth);
+  } catch (const std::exception& e) {
+    return {std::string("could not measure the scene against the unit's formats: ") + e.what()};
+  }
+  const ConfigMeasurements& m = *measured;
+  const CommandStream& stream = frame.encoded.stream;
+  std::vector<std::string> out;
+  const auto range = series_range_warning(m, unit);
+  if (range) out.push_back(*range);
+  if (auto w = colour_warning(m, unit, stream)) out.push_back(*w);
+  if (auto w = drift_warning(m, unit, stream)) out.push_back(*w);
+  // Out of range, the series wraps or saturates everywhere: that warning says it all.
+  if (!range) {
+    if (auto w = gate_flip_warning(frame, unit, m.budget_lsb)) out.push_back(*w);
+  }
+  return out;
+}
+
+std::string explain_miss(const std::string& scene_path, const UnitConfig& unit,
+                         std::optional<double> budget_lsb, int max_depth, const ErrorStats& error) {
+  const ConfigMeasurements m = measure_scene_on(scene_path, unit, budget_lsb, max_depth);
+  const int allowed = code_budget(m.budget_lsb);
+  std::string head = fmt::format(
+      "max {} LSB over the {:g} LSB budget ({} in output codes; {} of "
+      "{} pixels off by more than 1): ",
+      error.max_code_lsb, m.budget_lsb, allowed, error.pixels_over_1lsb, error.pixels);
+  UnitConfig exact = unit;
+  const bool hardware = specular_unit(unit.specular.kind).hardware;
+  if (hardware) {
+    exact.specular.kind = SpecularUnitKind::kIdeal;
+    const int e = code_error(scene_path, exact, budget_lsb, max_depth);
+    if (e <= allowed) {
+      return head + fmt::format(
+                        "the specular unit ({}) approximates t^n too coarsely: exact pow on the "
+                        "same formats is {} LSB (shadesim config searches the unit's fields; "
+                        "shadesim spec-error shows its error curve)",
+                        unit.specular.describe(), e);
+    }
+  }
+  const UnitConfig lossless = lossless_formats(exact, m.colour_max);
+  const int e_lossless = code_error(scene_path, lossless, budget_lsb, max_depth);
+  const std::string exact_text = hardware ? " with exact pow" : "";
+  if (e_lossless <= allowed) {
+    return head +
+           fmt::format(
+               "the unit's formats: on formats that lose nothing{} it is {} LSB ({})", exact_text,
+               e_lossless,
+               formats_that_hold(scene_path, exact, lossless, budget_lsb, max_depth, allowed));
+  }
+  FrameOptions fo;
+  fo.base = unit;
+  fo.fixed_unit = true;
+  fo.budget_lsb = budget_lsb;
+  fo.max_depth = max_depth;
+  const SetupStats setup = prepare_frame(scene_path, fo).setup.stats;
+  return head + fmt::format(
+                    "neither the specular unit nor the formats: on formats that lose nothing{} "
+                    "it is still {} LSB, so the Taylor setup ({} triangle(s) over the budget at "
+                    "--max-depth {}, worst {:.3g} LSB) or the N.L gate near the terminator",
+                    exact_text, e_lossless, setup.over_budget, max_depth, setup.worst_error_lsb);
+}
+
+std::vector<std::string> accuracy_warnings(const std::string& scene_path, const UnitConfig& unit,
+                                           std::optional<double> budget_lsb, int max_depth,
+                                           const PreparedFrame& frame, const ErrorStats& error) {
+  std::vector<std::string> out = format_warnings(scene_path, unit, budget_lsb, max_depth, frame);
+  const double budget = budget_lsb.value_or(frame.scene.error_budget_lsb);
+  if (error.pixels > 0 && error.max_code_lsb > code_budget(budget)) {
+    try {
+      out.push_back(explain_miss(scene_path, unit, budget_lsb, max_depth, error));
+    } catch (const std::exception& e) {
+      out.push_back(
+          fmt::format("max {} LSB over the {:g} LSB budget; its cause could not be "
+                      "measured: {}",
+                      error.max_code_lsb, budget, e.what()));
+    }
+  }
+  return out;
+}
+
+}  // namespace shadesim

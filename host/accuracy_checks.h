@@ -1,0 +1,50 @@
+// Where a unit cannot shade a scene within its error budget, say so and why, measured on the unit
+// under test (never a silently wrong image). Two kinds of check:
+//   formats  each format of the unit against what the scene drives on the unit's own structure
+//            (measure_scene_on, host/scene_config.h):
+//              series range  series values and colour products beyond the series' integer
+//                            range wrap or saturate (an overbright light, say);
+//              colour words  ks_c L_c (and kd_c L_c multiplied) beyond spec_colour's range
+//                            saturate;
+//              drift         spans longer than the series fraction bits' drift bound allows
+//                            within a quarter of the budget;
+//              N.L gate      pixels near the terminator whose specular gate flips against the
+//                            widest formats with an output over the budget (host/gate_flips.h).
+//            Each names the format, how many values, spans or pixels it affects, and the width
+//            that would hold the scene.
+//   the miss an image over the budget always gets one warning with its measured error and the
+//            part that causes it, found by shading the scene again on variants of the unit:
+//            exact pow in place of its specular unit, then formats that lose nothing.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "host/frame.h"
+#include "host/metrics.h"
+#include "model/unit_config.h"
+
+namespace shadesim {
+
+// The formats of `unit` checked against the scene (frame: the scene prepared on `unit`).
+std::vector<std::string> format_warnings(const std::string& scene_path, const UnitConfig& unit,
+                                         std::optional<double> budget_lsb, int max_depth,
+                                         const PreparedFrame& frame);
+
+// Why `unit`, whose image has `error`, misses the budget: the specular unit's approximation,
+// a named format, or (neither) the Taylor setup and the N.L gate, each with the error measured
+// on the variant that shows it. Call it only for an image over the budget.
+std::string explain_miss(const std::string& scene_path, const UnitConfig& unit,
+                         std::optional<double> budget_lsb, int max_depth, const ErrorStats& error);
+
+// format_warnings, and explain_miss where `error` is over the budget.
+std::vector<std::string> accuracy_warnings(const std::string& scene_path, const UnitConfig& unit,
+                                           std::optional<double> budget_lsb, int max_depth,
+                                           const PreparedFrame& frame, const ErrorStats& error);
+
+// A unit with the same structure and specular unit whose series, coefficient, colour and
+// specular output formats lose nothing on a scene with colours up to colour_max.
+UnitConfig lossless_formats(const UnitConfig& unit, double colour_max);
+
+}  // namespace shadesim

@@ -1,0 +1,99 @@
+// The throughput structure of a unit whose widths are final: the command port's words, the span
+// setup site (with the host's start bank depth, or the unit's triangle queue), the material
+// buffers and, for a Schlick or W_m unit, its timing (iterative or pipelined). Pixels depend on
+// none of them (model/host_setup.h; model/schlick_divider.h and model/wpow_unit.h: "same bits
+// either way"; the encoder writes the same MATERIAL and TABLE words for one or two buffers), so
+// they are chosen on cycles alone: by the cycle model with no gaps and no back-pressure
+// (CycleEstimate, exactly the clocked model's count), on every scene.
+//
+// The rule (shadesim config --help states the same): the cheapest candidate that runs every
+// scene at <= DeriveOptions::max_cycles_per_pixel. Candidates in cost order, cheapest first
+// (what each knob adds, measured in docs/area.md):
+//   1. span setup on the host before the unit (the unit's span setup, coefficient banks and span
+//      queue are 12,964 + 6,782 + 3,197 GE of specular's unit with unit setup; the host's start
+//      bank 5,508);
+//   2. an iterative Schlick or W_m unit before a pipelined one (Q subtract stages, or log2(m)
+//      squarers, instead of one);
+//   3. fewer port words: 1, 2, 4, 8 (the beat, and its write steering into every bank entry);
+//   4. a shallower start bank (host: start_depth 1, 2) or triangle queue (unit: tri_queue 1..8);
+//   5. one material buffer before two (two banks of the per-material registers, and of a LUT's
+//      table RAM).
+// Lexicographic: no area model weighs a port word against a bank entry (a wider port adds write
+// steering into every entry; docs/area.md has no measurement of either alone), so the order is
+// the stated convention, and every knob's reason gives the figure of the step cheaper in it.
+// A knob given in DeriveOptions (port_words, tri_queue, span_setup) is held at its value. Lanes
+// stay as the unit has them. Where no candidate meets the target: the fastest (the lowest worst
+// cycles per pixel over the scenes; of those within kFastestTolerance of it, the cheapest), and
+// every scene over the target is named with the resource that limits it (cycles_miss).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "host/scene_config.h"
+#include "model/command_stream.h"
+#include "model/cycle_estimate.h"
+#include "model/unit_config.h"
+
+namespace shadesim {
+
+// Where nothing meets the target, candidates this close to the fastest (relative, in worst
+// cycles per pixel) count as fast as it, so a cycle or two on a tiny frame buys no hardware.
+constexpr double kFastestTolerance = 0.01;
+
+// One candidate's knobs.
+struct ThroughputKnobs {
+  SpanSetupSite span_setup = SpanSetupSite::kHost;
+  bool pipelined = false;  // the specular unit's timing (Schlick and W_m only; else as it is)
+  int material_buffers = 1;
+  int port_words = 1;
+  int depth = 1;  // host: start_depth; unit: tri_queue
+
+  // `unit` with these knobs (tri_queue 1 with host setup; start_depth as it is with unit setup).
+  UnitConfig applied_to(const UnitConfig& unit) const;
+  // E.g. "host setup, P=4, start_depth 2, 1 material buffer".
+  std::string to_string(const UnitConfig& unit) const;
+};
+
+// Whether the unit's specular kind has a timing to choose (Schlick, W_m).
+bool has_timing_choice(const UnitConfig& unit);
+
+// Every candidate the options allow for `unit`, cheapest first (the cost order above). Throws
+// std::invalid_argument where the requests leave none (span_setup host with tri_queue > 1).
+std::vector<ThroughputKnobs> throughput_candidates(const UnitConfig& unit,
+                                                   const DeriveOptions& options);
+
+struct ThroughputChoice {
+  ThroughputKnobs knobs;
+  UnitConfig config;                     // the unit with `knobs`
+  bool meets = false;                    // every scene within the target
+  std::vector<double> cycles_per_pixel;  // per scene, on `config`
+  std::vector<std::string> misses;       // cycles_miss of each scene over the target
+  size_t candidates_measured = 0;
+  // Why each knob has its value, with the figures of the candidate one step cheaper in it.
+  std::string port_words, tri_queue, start_depth, span_setup, material_buffers, timing;
+};
+
+// Chooses the knobs for `unit` (its widths final) on the scenes. Each scene is prepared once
+// (unit setup; its host-setup stream is derived from it, as the encoder does) and each candidate
+// re-runs only the cycle model.
+ThroughputChoice choose_throughput(const std::vector<std::string>& scene_paths,
+                                   const DeriveOptions& options, const UnitConfig& unit);
+
+// Cycles per pixel of a run (0 for a frame without pixels).
+double cycles_per_pixel(const CycleEstimateRun& run);
+
+// What limits a frame's cycles on `unit`, from the no-gap run's breakdown (`run` from
+// CycleEstimate::run(words, true) on `stream`): the largest row other than pixels, named as the
+// resource behind it, with its numbers. E.g. "setup-bound: 1 + 96 words per triangle on a 4-word
+// port (...); command_words 41,016 of 56,120 cycles, 4.7 cycles/px".
+std::string cycles_limit(const UnitConfig& unit, const CommandStream& stream,
+                         const CycleEstimateRun& run);
+
+// "" when the run is within `target` cycles per pixel; else one line naming the scene, its
+// cycles per pixel, the target and cycles_limit. `config` and `cycles` both say it with this.
+std::string cycles_miss(const std::string& scene, const UnitConfig& unit,
+                        const CommandStream& stream, const CycleEstimateRun& run, double target);
+
+}  // namespace shadesim
