@@ -70,6 +70,7 @@ set(SHADESIM_GTEST_TIERS
   coverage_test             quick
   cycle_estimate_test       quick
   cycle_model_test          quick
+  derivation_test           quick
   edge_stimulus_test        quick
   encode_test               quick
   explore_test              quick
