@@ -696,8 +696,9 @@ std::vector<FieldReason> field_reasons(const UnitConfig& cfg, const Budget& budg
   reasons.push_back({"budget", fmt(budget.lsb) + " LSB",
                      "from " + budget.from +
                          "; Taylor error keeps it in setup, the "
-                         "fixed-point error gets budget/4 for drift and budget/4 for "
-                         "coefficient rounding on top"});
+                         "fixed-point error gets budget/4 for drift, budget/4 for "
+                         "coefficient rounding, 3/16 for the colour words and 1/16 for the "
+                         "specular output on top"});
   auto reason = [&json, &reasons](const char* field, const std::string& text) {
     const auto& value = json.at(field);
     reasons.push_back({field, value.is_string() ? value.get<std::string>() : value.dump(), text});

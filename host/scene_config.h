@@ -10,11 +10,23 @@
 //                      slot outputs 0), so a scene naming it gets DeriveOptions::ideal_substitute,
 //                      or, where that misses the budget on the scenes (measured: max code error
 //                      <= budget), the first of DeriveOptions::ideal_fallbacks that meets it, each
-//                      with its own widths (the last one tried when none does).
+//                      with its own widths; a named lut, schlick or wpow unit whose defaults miss
+//                      gets the first of its kind's fields that meets it
+//                      (host/specular_candidates.h). Budget first: the first within the budget
+//                      whose cycles stay within max(target, the first unit's + 1 %), else the
+//                      first within the budget all the same (its cycles stated), else the
+//                      closest, with what limits it named.
+//   spec_colour        integer: every colour word (ks_c L_c; kd_c L_c multiplied) unsaturated;
+//                      fraction: each word's rounding (and, multiplied, N.L truncated to its
+//                      fraction bits times kd_c L_c) summed over the lights within 3/16 of the
+//                      budget, at least the default's.
+//   specular out       fraction: truncation times the summed ks_c L_c within budget/16, at least
+//                      the default's.
 //   xy_bits            enough unsigned bits for the widest / tallest image (at least 4).
 //   series integer     the fewest (>= 2) that hold every series value at every pixel (and every
 //                      ambient word), measured on a trial unit wide enough that setup pre-shifts
-//                      nothing; with :sat also every difference d and d2.
+//                      nothing, and every colour product PixelCombine brings into the series
+//                      format; with :sat also every difference d and d2.
 //   series fraction    the drift bound of the forward differences over the longest span L,
 //                      2^-F (1 + L(L-1)/2) with truncation (half with rounding), times the gain G
 //                      of the series into one output channel, within a quarter of the budget.
@@ -37,7 +49,8 @@
 // the largest kd_c L_c instead of 1), a specular one
 // through the unit (t^n has slope <= n on [0, 1]; see unit_slope in scene_config.cpp).
 // The Taylor error keeps the whole budget in setup (subdivision); the fixed-point error gets
-// half of it on top, so the real error stays below 1.5 budget + output rounding.
+// 3/4 of it on top, so the real error stays below 1.75 budget + output rounding. The shares
+// bound the worst case; what counts is measured (config shades every scene on the unit).
 #pragma once
 
 #include <cmath>
