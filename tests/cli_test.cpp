@@ -446,6 +446,24 @@ TEST(Cli, ConfigExitsNonZeroNamingThePartThatMissesTheBudget) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Cli, ConfigSaysAnEmptyImageHasNoErrorOrPsnr) {
+  // Issue 43: a camera looking away from every object covers no pixel; config used to print
+  // "PSNR 0.000 dB ... 0 of 0 pixels" for it.
+  const auto dir = temp_dir("config_empty");
+  auto away = nlohmann::json::parse(std::ifstream(kScenes + "sphere.json"));
+  away["camera"]["position"] = {0, 0, -5};
+  away["camera"]["target"] = {0, 0, -10};
+  const std::string path = (dir / "away.json").string();
+  std::ofstream(path) << away.dump();
+  const Result r = run("config " + path + " --json " + (dir / "u.json").string());
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("the image is empty (no pixel covered)"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("PSNR 0.0"), std::string::npos) << r.output;
+  const auto u = nlohmann::json::parse(std::ifstream(dir / "u.json"));
+  EXPECT_TRUE(u["derivation"]["error"][0]["psnr_db"].is_null());
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Cli, ConfigBudgetOneHoldsOnEveryShippedAndHardScene) {
   // config --budget 1 either derives a unit that render, an independent run of the model against
   // the double reference, measures within 1 LSB, or exits non-zero; every shipped scene gets one.

@@ -70,12 +70,18 @@ nlohmann::json check_scene(const std::string& path, const DerivedConfig& derived
   const UnitConfig& cfg = derived.config;
   const double budget = derived.measured.budget_lsb;
   const ErrorStats e = shade(path, cfg, d);
-  std::cout << "  " << path << ": max " << e.max_code_lsb << " LSB, mean " << std::setprecision(4)
-            << e.mean_code_lsb << " LSB, PSNR "
-            << (std::isinf(e.psnr_db) ? std::string("inf")
-                                      : std::to_string(e.psnr_db).substr(0, 5) + " dB")
-            << ", max real " << std::setprecision(3) << e.max_real_lsb << " LSB, "
-            << e.pixels_over_1lsb << " of " << e.pixels << " pixels off by more than 1\n";
+  if (e.pixels == 0) {
+    // As render: an image with no pixel has no error and no PSNR to report.
+    std::cout << "  " << path
+              << ": the image is empty (no pixel covered): no error or PSNR to report\n";
+  } else {
+    std::cout << "  " << path << ": max " << e.max_code_lsb << " LSB, mean " << std::setprecision(4)
+              << e.mean_code_lsb << " LSB, PSNR "
+              << (std::isinf(e.psnr_db) ? std::string("inf")
+                                        : std::to_string(e.psnr_db).substr(0, 5) + " dB")
+              << ", max real " << std::setprecision(3) << e.max_real_lsb << " LSB, "
+              << e.pixels_over_1lsb << " of " << e.pixels << " pixels off by more than 1\n";
+  }
   nlohmann::json yardstick = nullptr;
   std::optional<ErrorStats> with_ideal;
   if (specular_unit(cfg.specular.kind).hardware) {
@@ -101,7 +107,8 @@ nlohmann::json check_scene(const std::string& path, const DerivedConfig& derived
           {"pixels", e.pixels},
           {"max_code_lsb", e.max_code_lsb},
           {"mean_code_lsb", e.mean_code_lsb},
-          {"psnr_db", std::isinf(e.psnr_db) ? nlohmann::json(nullptr) : nlohmann::json(e.psnr_db)},
+          {"psnr_db", std::isinf(e.psnr_db) || e.pixels == 0 ? nlohmann::json(nullptr)
+                                                             : nlohmann::json(e.psnr_db)},
           {"max_real_lsb", e.max_real_lsb},
           {"pixels_over_1lsb", e.pixels_over_1lsb}};
 }
