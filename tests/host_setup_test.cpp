@@ -1,8 +1,12 @@
 // Host span setup (UnitConfig::span_setup kHost, issue 21): the host sends every span's start
-// values instead of the triangle's coefficients. The unit-setup model is the independent
-// reference for the pixels (the same frame must shade bit for bit the same); the clocked cycle
-// model is the reference for the closed form; the start values' layout is checked against
-// values placed by hand.
+// values instead of the triangle's coefficients. What each check is, and is not:
+//   pixels      the same frame shaded with unit setup must come out bit for bit the same. The
+//               host computes its start values with the model's own SpanSetup, so this is a
+//               consistency check of the two routes through one span setup (the packing, the
+//               stream, the start bank), not an independent check of SpanSetup's arithmetic:
+//               that is the golden model's (tests/golden/) and the RTL co-simulation's.
+//   cycles      the clocked cycle model against the closed form.
+//   layout      the start values' words against values placed by hand.
 #include "model/host_setup.h"
 
 #include <gtest/gtest.h>
