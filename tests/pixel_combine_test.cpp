@@ -142,5 +142,52 @@ TEST(PixelCombine, MultipliedDiffuseIsTheTruncatedProductAndGatesOnNDotL) {
   }
 }
 
+// The same with a derived unit's colour formats (issue 43): colour words u3.15 hold kd_c L_c and
+// ks_c L_c up to 8, and the series s4.20 has fewer fraction bits than the products: N.L truncated
+// to 15 bits times a 15-bit colour has 30, the specular s (16) times its colour 31. Each product
+// is truncated to the series' 20 fraction bits (the series rule) before the exact sum: here in
+// double, where every product (at most 35 significant bits) is exact, floor() is truncation of
+// a two's-complement value, and the sum of multiples of 2^-20 is exact.
+TEST(PixelCombine, MultipliedProductsWiderThanTheSeriesAreTruncatedToIt) {
+  UnitConfig c;
+  c.channels = 3;
+  c.lights = 2;
+  c.diffuse_colour = DiffuseColour::kMultiply;
+  c.series = FixedFormat{24, 4, true, Quantization::kTruncate, Overflow::kWrap};
+  c.coef = FixedFormat{28, 4, true, Quantization::kRoundNearest, Overflow::kWrap};
+  c.spec_colour = FixedFormat{18, 3, false, Quantization::kRoundNearest, Overflow::kSaturate};
+  c.validate();
+  const PixelCombine combine(c);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> series(-1.2, 1.2);
+  const auto truncate20 = [](double x) { return std::floor(std::ldexp(x, 20)) / 1048576.0; };
+  int rounded = 0;  // products that lost bits: the rule is exercised
+  for (int trial = 0; trial < 20000; ++trial) {
+    int64_t n_dot_l[2], spec[2], ambient[3], spec_colour[6], diffuse_colour[6];
+    for (auto& n : n_dot_l) n = c.series.from_double(series(rng));
+    for (auto& a : ambient) a = c.series.from_double(0.2 * std::fabs(series(rng)));
+    for (auto& v : spec) v = static_cast<int64_t>(rng() % (c.specular.out.raw_max() / 2 + 1));
+    for (auto& k : spec_colour) k = static_cast<int64_t>(rng() % (c.spec_colour.raw_max() / 8));
+    for (auto& k : diffuse_colour) k = static_cast<int64_t>(rng() % (c.spec_colour.raw_max() / 8));
+    const auto out = combine(n_dot_l, spec, ambient, spec_colour, diffuse_colour, 0);
+    for (int ch = 0; ch < 3; ++ch) {
+      double x = c.series.to_double(ambient[ch]);
+      for (int l = 0; l < 2; ++l) {
+        const double nl = c.series.to_double(n_dot_l[l]);
+        if (nl <= 0.0) continue;
+        const double nl_15 = std::floor(std::ldexp(nl, 15)) / 32768.0;
+        const double diffuse = nl_15 * c.spec_colour.to_double(diffuse_colour[l * 3 + ch]);
+        const double specular =
+            c.specular.out.to_double(spec[l]) * c.spec_colour.to_double(spec_colour[l * 3 + ch]);
+        rounded += (truncate20(diffuse) != diffuse) + (truncate20(specular) != specular);
+        x += truncate20(diffuse) + truncate20(specular);
+      }
+      const double code = std::clamp(std::floor(x * 256.0 + 0.5), 0.0, 255.0);
+      ASSERT_EQ(out[ch], code) << "trial " << trial << " x=" << x;
+    }
+  }
+  EXPECT_GT(rounded, 10000);
+}
+
 }  // namespace
 }  // namespace shadesim
