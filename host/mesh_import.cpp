@@ -17,6 +17,7 @@
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -66,8 +67,9 @@ class AddressSpaceCap {
 constexpr rlim_t kImportAddressSpace = rlim_t{4} << 30;
 
 // One mesh of an assimp scene as the import process sends it: positions and normals as x, y, z
-// floats per vertex, and the vertex indices of its three-index faces (points and lines have
-// nothing to shade), unchecked: the parent checks them (mesh_from_parts).
+// floats per vertex (no normals at all where the file has none: the parent generates them), and
+// the vertex indices of its three-index faces (points and lines have nothing to shade),
+// unchecked: the parent checks them (mesh_from_parts).
 struct RawPart {
   std::vector<float> positions;
   std::vector<float> normals;
@@ -78,9 +80,14 @@ struct RawPart {
 // runs in the parent process, where the fuzzer's sanitizers and coverage see it.
 std::vector<RawPart> import_with_assimp(const std::string& path) {
   Assimp::Importer importer;
+  // No aiProcess_GenSmoothNormals: Debian's assimp 5.2 stores each face's normal at its vertex
+  // indices before smoothing over the vertices at one position, so on a mesh whose loader shares
+  // vertices between faces (OFF, PLY) every vertex gets the normal of the last face naming it
+  // (Cube.off: +-x only, opposite across each face, so the shading normal field passes through
+  // zero). mesh_from_parts generates the smooth normals instead.
   const aiScene* scene =
       importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                  aiProcess_GenSmoothNormals | aiProcess_PreTransformVertices);
+                                  aiProcess_PreTransformVertices);
   if (scene == nullptr) {
     throw SceneError(path + ": assimp could not read the mesh file: " + importer.GetErrorString());
   }
@@ -88,12 +95,14 @@ std::vector<RawPart> import_with_assimp(const std::string& path) {
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* part = scene->mMeshes[m];
     RawPart raw;
-    if (part != nullptr && part->HasPositions() && part->HasNormals()) {
+    if (part != nullptr && part->HasPositions()) {
       for (unsigned v = 0; v < part->mNumVertices; ++v) {
         const aiVector3D& p = part->mVertices[v];
-        const aiVector3D& n = part->mNormals[v];
         raw.positions.insert(raw.positions.end(), {p.x, p.y, p.z});
-        raw.normals.insert(raw.normals.end(), {n.x, n.y, n.z});
+        if (part->HasNormals()) {
+          const aiVector3D& n = part->mNormals[v];
+          raw.normals.insert(raw.normals.end(), {n.x, n.y, n.z});
+        }
       }
       for (unsigned f = 0; f < part->mNumFaces; ++f) {
         const aiFace& face = part->mFaces[f];
@@ -102,7 +111,7 @@ std::vector<RawPart> import_with_assimp(const std::string& path) {
                                     {face.mIndices[0], face.mIndices[1], face.mIndices[2]});
       }
     }
-    parts.push_back(std::move(raw));  // empty for a part without positions or normals
+    parts.push_back(std::move(raw));  // empty for a part without positions
   }
   return parts;
 }
@@ -110,10 +119,13 @@ std::vector<RawPart> import_with_assimp(const std::string& path) {
 // The shadesim mesh of the imported parts, all merged; throws SceneError naming the file.
 Mesh mesh_from_parts(const std::string& path, const std::vector<RawPart>& parts) {
   Mesh mesh;
+  std::vector<bool> generate;  // per vertex: its part has no normals
   for (size_t m = 0; m < parts.size(); ++m) {
     const RawPart& part = parts[m];
     const size_t vertices = part.positions.size() / 3;
-    if (part.positions.size() % 3 != 0 || part.normals.size() != part.positions.size() ||
+    const bool has_normals = !part.normals.empty();
+    if (part.positions.size() % 3 != 0 ||
+        (has_normals && part.normals.size() != part.positions.size()) ||
         part.triangle_indices.size() % 3 != 0) {
       throw SceneError(path + ": mesh " + std::to_string(m) + ": import sent inconsistent arrays");
     }
@@ -126,9 +138,11 @@ Mesh mesh_from_parts(const std::string& path, const std::vector<RawPart>& parts)
                          ": expected finite coordinates");
       }
       mesh.positions.push_back(position);
-      // checked below, after all faces are known
+      // checked below, after all faces are known; a part without normals gets them generated
       mesh.normals.push_back(
-          {part.normals[3 * v], part.normals[3 * v + 1], part.normals[3 * v + 2]});
+          has_normals ? Vec3{part.normals[3 * v], part.normals[3 * v + 1], part.normals[3 * v + 2]}
+                      : Vec3{0, 0, 0});
+      generate.push_back(!has_normals);
     }
     for (size_t f = 0; f < part.triangle_indices.size() / 3; ++f) {
       const uint32_t* index = &part.triangle_indices[3 * f];
@@ -142,14 +156,57 @@ Mesh mesh_from_parts(const std::string& path, const std::vector<RawPart>& parts)
   if (mesh.triangles.empty()) {
     throw SceneError(path + ": expected at least one triangle, the file has none");
   }
-  // Generated normals can be zero or NaN at vertices of degenerate triangles only; give those the
-  // area-weighted normal of their faces so every used vertex carries a unit normal.
+  // Smooth normals where the file has none (what aiProcess_GenSmoothNormals means to do): at each
+  // vertex the normalised sum of the unit normals of the planes that meet at its position, over
+  // every triangle with a corner there whichever vertex index that corner has (vertices at one
+  // position stay apart where their other attributes differ). A plane counts once however many
+  // triangles a polygon was cut into, so a cube's corner normal is its diagonal whatever the
+  // triangulation, as assimp gives it for unshared vertices. Zero-area triangles add nothing.
   std::vector<Vec3> face_sum(mesh.positions.size());
+  std::vector<uint32_t> by_position(mesh.positions.size());  // vertex indices sorted by position
+  for (uint32_t i = 0; i < by_position.size(); ++i) by_position[i] = i;
+  auto position_less = [&](uint32_t a, uint32_t b) {
+    const Vec3 &p = mesh.positions[a], &q = mesh.positions[b];
+    return std::tie(p.x, p.y, p.z) < std::tie(q.x, q.y, q.z);
+  };
+  std::sort(by_position.begin(), by_position.end(), position_less);
+  std::vector<uint32_t> group(mesh.positions.size());  // first vertex index at the same position
+  for (size_t k = 0; k < by_position.size(); ++k) {
+    const bool same = k > 0 && !position_less(by_position[k - 1], by_position[k]);
+    group[by_position[k]] = same ? group[by_position[k - 1]] : by_position[k];
+  }
+  struct Corner {
+    uint32_t group;
+    Vec3 unit_normal;
+  };
+  std::vector<Corner> corners;
   for (const auto& t : mesh.triangles) {
     const Vec3 area_normal = cross(mesh.positions[t[1]] - mesh.positions[t[0]],
                                    mesh.positions[t[2]] - mesh.positions[t[0]]);
     for (uint32_t i : t) face_sum[i] += area_normal;
+    const double area = length(area_normal);
+    const bool generated = generate[t[0]] || generate[t[1]] || generate[t[2]];
+    if (generated && area > 0 && std::isfinite(area)) {
+      for (uint32_t i : t) corners.push_back({group[i], area_normal / area});
+    }
   }
+  std::sort(corners.begin(), corners.end(), [](const Corner& a, const Corner& b) {
+    return std::tie(a.group, a.unit_normal.x, a.unit_normal.y, a.unit_normal.z) <
+           std::tie(b.group, b.unit_normal.x, b.unit_normal.y, b.unit_normal.z);
+  });
+  constexpr double kSamePlane = 1e-6;  // float positions of a planar polygon: ~1e-7 apart
+  std::vector<Vec3> smooth_sum(mesh.positions.size());
+  for (size_t k = 0; k < corners.size(); ++k) {
+    const Corner& c = corners[k];
+    const bool repeat = k > 0 && corners[k - 1].group == c.group &&
+                        length(corners[k - 1].unit_normal - c.unit_normal) < kSamePlane;
+    if (!repeat) smooth_sum[c.group] += c.unit_normal;
+  }
+  for (size_t i = 0; i < mesh.normals.size(); ++i) {
+    if (generate[i]) mesh.normals[i] = smooth_sum[group[i]];
+  }
+  // Normals can still be zero or NaN (in the file, or summed to zero over opposite faces); give
+  // those the area-weighted normal of their faces so every used vertex carries a unit normal.
   for (size_t i = 0; i < mesh.normals.size(); ++i) {
     Vec3 n = mesh.normals[i];
     if (!is_finite(n) || length(n) < 1e-12) n = face_sum[i];

@@ -304,6 +304,31 @@ TEST(MeshFiles, ObjWithoutNormalsGetsSmoothNormals) {
   }
 }
 
+// A cube whose eight corners each serve three quads (OFF shares vertices between faces, as
+// assimp-testmodels' OFF/Cube.off does): the smooth normal at a corner is its diagonal, the
+// normalised sum of its three faces' unit normals whichever way the quads are cut. Debian's
+// assimp 5.2 aiProcess_GenSmoothNormals gave each shared vertex the normal of the last face
+// naming it (+-x here), so the shading normal field of a face crossed zero and setup wrote
+// non-finite or unbounded Taylor coefficients (random scenes s1_i00558 and six others).
+TEST(MeshFiles, SharedVertexCubeGetsCornerNormals) {
+  TempDir dir;
+  const std::string off = dir.write("cube.off",
+                                    "OFF\n8 6 0\n-1 -1 1\n1 -1 1\n-1 1 1\n1 1 1\n-1 1 -1\n"
+                                    "1 1 -1\n-1 -1 -1\n1 -1 -1\n4 0 1 3 2\n4 2 3 5 4\n"
+                                    "4 4 5 7 6\n4 6 7 1 0\n4 1 7 5 3\n4 6 0 2 4\n");
+  const Mesh m = load_mesh_file(off);
+  EXPECT_EQ(m.triangles.size(), 12u);
+  expect_unit_normals(m);
+  expect_outward_winding(m);
+  for (size_t i = 0; i < m.positions.size(); ++i) {
+    const Vec3& p = m.positions[i];
+    const Vec3 diagonal = Vec3{p.x, p.y, p.z} / std::sqrt(3.0);  // corners at +-1
+    EXPECT_LT(max_abs_diff(m.normals[i], diagonal), 1e-6)
+        << "vertex " << i << " at " << p.x << " " << p.y << " " << p.z << ": normal "
+        << m.normals[i].x << " " << m.normals[i].y << " " << m.normals[i].z;
+  }
+}
+
 TEST(MeshFiles, PlyAndStlLoad) {
   TempDir dir;
   const std::string ply = dir.write("quad.ply",
