@@ -43,6 +43,15 @@ const Material& material_of(const ScreenTriangle& tri, const Scene& scene,
   return scene.materials[static_cast<std::size_t>(tri.material)];
 }
 
+bool all_finite(const std::vector<Quadratic>& series) {
+  for (const Quadratic& q : series) {
+    for (double t : q.t) {
+      if (!std::isfinite(t)) return false;
+    }
+  }
+  return true;
+}
+
 TriangleSeries setup_with(const ScreenTriangle& tri, const Lighting& li, SpecularModel model) {
   TriangleSeries s;
   const double xc = (tri.v[0].x + tri.v[1].x + tri.v[2].x) / 3.0;
@@ -50,7 +59,7 @@ TriangleSeries setup_with(const ScreenTriangle& tri, const Lighting& li, Specula
   const auto N = normal_field(tri);
   const auto E = li.finite_eye ? eye_field(tri) : std::optional<AffineField>();
   const std::size_t lights = li.L.size();
-  if (!N || (li.finite_eye && !E)) {
+  auto degenerate = [&] {
     s.degenerate = true;
     Quadratic zero;
     zero.xc = xc;
@@ -58,18 +67,35 @@ TriangleSeries setup_with(const ScreenTriangle& tri, const Lighting& li, Specula
     s.diffuse.assign(lights, zero);
     s.specular.assign(lights, zero);
     return s;
-  }
-  for (std::size_t l = 0; l < lights; ++l) {
-    s.diffuse.push_back(taylor_diffuse(*N, li.L[l], xc, yc));
-    if (model == SpecularModel::kPhong) {
-      s.specular.push_back(li.finite_eye ? taylor_phong_finite(*N, *E, li.L[l], xc, yc)
-                                         : taylor_phong_infinite(*N, li.L[l], li.V, xc, yc));
-    } else {
-      s.specular.push_back(li.finite_eye ? taylor_specular_finite(*N, *E, li.L[l], xc, yc)
-                                         : taylor_specular_infinite(*N, li.H[l], xc, yc));
+  };
+  if (!N || (li.finite_eye && !E)) return degenerate();
+  auto expand_about = [&](double x0, double y0) {
+    s.diffuse.clear();
+    s.specular.clear();
+    for (std::size_t l = 0; l < lights; ++l) {
+      s.diffuse.push_back(taylor_diffuse(*N, li.L[l], x0, y0));
+      if (model == SpecularModel::kPhong) {
+        s.specular.push_back(li.finite_eye ? taylor_phong_finite(*N, *E, li.L[l], x0, y0)
+                                           : taylor_phong_infinite(*N, li.L[l], li.V, x0, y0));
+      } else {
+        s.specular.push_back(li.finite_eye ? taylor_specular_finite(*N, *E, li.L[l], x0, y0)
+                                           : taylor_specular_infinite(*N, li.H[l], x0, y0));
+      }
     }
+    return all_finite(s.diffuse) && all_finite(s.specular);
+  };
+  if (expand_about(xc, yc)) return s;
+  // The interpolated normal (or the finite-eye half vector) is zero at the centroid: a mesh whose
+  // vertex normals oppose each other across the triangle, where the field's zero set is a point
+  // or a line and the shading steps across it. The series is undefined there, not the shading
+  // elsewhere: expand about a point halfway from the centroid to a vertex instead. A line through
+  // the centroid meets at most one of those three directions, a point none, so one is finite
+  // unless the field is zero everywhere (then the reference shades no light either). The measured
+  // error decides, as everywhere, whether the triangle is split further or reported over budget.
+  for (const ScreenVertex& v : tri.v) {
+    if (expand_about(0.5 * (xc + v.x), 0.5 * (yc + v.y))) return s;
   }
-  return s;
+  return degenerate();
 }
 
 // Calls visit(px, py) for each pixel whose centre lies in the closed triangle and in the image.

@@ -265,6 +265,57 @@ TEST(Setup, MaxDepthStopsAndIsReported) {
   EXPECT_EQ(r.triangles[5].parent, 1);
 }
 
+// Vertex normals that oppose each other (+z, -z, +z: what assimp's broken smooth normals gave
+// Cube.off, and what a file may carry): the interpolated normal is zero on the line x = 30 and
+// the exact shading steps there. The first split puts the midpoint of the long edge, normal 0, on
+// that line, and a child's centroid lands on it: expanded there the series was NaN and the
+// encoder refused the frame. Every output series must be finite, and the error setup reports for
+// each piece must be the one measured here independently (brute force, barycentric normals).
+TEST(Setup, NormalFieldThroughZeroGivesFiniteSeriesAndHonestError) {
+  const Vec3 up{0, 0, 1}, down{0, 0, -1};
+  const ScreenTriangle t = tri(vert(10, 10, up), vert(50, 10, down), vert(10, 50, up));
+  Scene scene = diffuse_scene({0.3, -0.2, 1.0});
+  scene.width = scene.height = 64;
+  // The centroid of the first split's first child is on the zero line: no direction there.
+  const ScreenTriangle child =
+      tri(vert(50, 10, down), vert(30, 30, Vec3{0, 0, 0}), vert(10, 10, up));
+  const TriangleSeries at_zero = setup_triangle(child, scene);
+  EXPECT_FALSE(at_zero.degenerate);
+  for (const Quadratic& q : at_zero.diffuse) {
+    for (double c : q.t) ASSERT_TRUE(std::isfinite(c));
+    // Expanded about a point with a direction: its value there is N.L/|N| in closed form
+    // (the field is +-z, so +-L.z).
+    const double f = 1.0 - (q.xc - 10.0) / 20.0;  // the z component of N, affine, 0 at x = 30
+    ASSERT_NE(f, 0.0);
+    EXPECT_NEAR(q.t[0], (f > 0 ? 1.0 : -1.0) * scene.lights[0].direction.z, 1e-12);
+  }
+
+  // Unit vertex normals +-z cross zero halfway along an edge, where longest-edge splitting puts
+  // its midpoints: the zero line becomes an edge of the pieces and each piece, on one side of
+  // the step, is shaded exactly. The same with the line tilted (x + y = 40.25).
+  const ScreenTriangle tilted =
+      tri(vert(10.25, 10, up), vert(50.25, 10, down), vert(10.25, 50, down));
+  for (const ScreenTriangle& input : {t, tilted}) {
+    const SetupResult r = subdivide_and_setup({input}, scene, SetupOptions());
+    ASSERT_EQ(r.series.size(), r.triangles.size());
+    ASSERT_GT(r.triangles.size(), 1u);
+    double worst = 0;
+    for (std::size_t i = 0; i < r.triangles.size(); ++i) {
+      for (const auto* series : {&r.series[i].diffuse, &r.series[i].specular}) {
+        for (const Quadratic& q : *series) {
+          for (double c : q.t) ASSERT_TRUE(std::isfinite(c)) << "piece " << i;
+        }
+      }
+      const Brute b = brute_force_error(r.triangles[i], r.series[i], scene);
+      EXPECT_NEAR(r.error_lsb[i], b.max_lsb, 1e-9) << "piece " << i;
+      worst = std::max(worst, b.max_lsb);
+    }
+    EXPECT_NEAR(r.stats.worst_error_lsb, worst, 1e-9);
+    EXPECT_EQ(r.stats.over_budget, 0u);
+    EXPECT_LT(worst, 1e-9);
+  }
+}
+
 TEST(Setup, BadInputIsRejectedWithAMessage) {
   const auto n = cone_normals(0.3);
   ScreenTriangle t = big_triangle(n);
