@@ -33,7 +33,7 @@ set(SHADESIM_TIER_RULES
   "^(plot_colours|cpp_format|rtl_line_length)$"                     quick
   "^mutate_rtl_self_test$"                                          quick
   # random scenes on their own unit (scripts/random-scenes): 50 small ones, the kept regressions
-  "^random_scenes_(quick|open|self_test)$"                          quick
+  "^random_scenes_(quick|self_test)$"                               quick
   # the bench scripts once at a tiny size (tests/bench_scripts_check.sh): throughput-table needs
   # only the CLI; bench-cosim-ab builds a baseline in a git worktree; the rest build RTL or
   # synthesise
