@@ -40,7 +40,7 @@ int signed_bits(double lo, double hi) {
 std::optional<std::string> series_range_warning(const ConfigMeasurements& m,
                                                 const UnitConfig& unit) {
   const double half = std::ldexp(1.0, unit.series.iwl - 1);
-  const double hi = std::max(m.series_max, m.colour_max);
+  const double hi = std::max(m.series_max, m.product_max);
   if (m.series_min >= -half && hi < half) return std::nullopt;
   const int need = std::max(2, signed_bits(m.series_min, hi));
   return fmt::format(
@@ -48,7 +48,7 @@ std::optional<std::string> series_range_warning(const ConfigMeasurements& m,
       "[-{:g}, {:g}): pixels there wrap or saturate; {} integer bits would hold them (e.g. "
       "--series s{}.{})",
       unit.series.to_string(), m.series_min, m.series_max,
-      m.colour_max >= half ? fmt::format(" and colour products {:.4g}", m.colour_max) : "", half,
+      m.product_max >= half ? fmt::format(" and colour products {:.4g}", m.product_max) : "", half,
       half, need, need, unit.series.frac_bits());
 }
 

@@ -223,6 +223,13 @@ LightColours light_colours(const std::vector<SceneInfo>& scenes, const UnitConfi
   return out;
 }
 
+// The largest colour product PixelCombine brings into the series format: a colour word times
+// the specular intensity (<= 1) or, multiplied, times N.L, whose series overshoots 1 where the
+// Taylor expansion does (the largest series value measured).
+double colour_product_max(double colour_max, double series_max) {
+  return colour_max * std::max(1.0, series_max);
+}
+
 // Fewest integer bits (>= 1: UnitConfig holds 1.0) of an unsigned format with `frac` fraction
 // bits whose largest value, 2^iwl - 2^-frac, is at least `max`, so rounding never saturates.
 int unsigned_integer_bits(double max, int frac) {
@@ -556,8 +563,9 @@ std::string derive_series(const std::vector<SceneInfo>& scenes, const Walk& w,
   // PixelCombine brings each colour product (intensity or N.L, <= 1, times a colour word) into
   // the series format by the series rule before the exact sum: the series holds them too.
   ms.colour_max = light_colours(scenes, cfg).max();
+  ms.product_max = colour_product_max(ms.colour_max, w.v_max);
   const int value_iwl = series_integer_bits(w, cfg);
-  const int iwl = std::max(value_iwl, signed_integer_bits(0.0, ms.colour_max));
+  const int iwl = std::max(value_iwl, signed_integer_bits(0.0, ms.product_max));
   cfg.series.iwl = iwl;
   // The gain's specular plan reads only iwl; the fraction bits it asks for come after it.
   cfg.series.wl = iwl + cfg.out_bits;
@@ -572,7 +580,7 @@ std::string derive_series(const std::vector<SceneInfo>& scenes, const Walk& w,
   const double steps = 1.0 + ms.longest_span * (ms.longest_span - 1.0) / 2.0;
   return "integer " + std::to_string(iwl) + ": series values at the pixels span [" + fmt(w.v_min) +
          ", " + fmt(w.v_max) + "]" + (wraps ? "" : " and differences reach " + fmt(w.diff_max)) +
-         (iwl > value_iwl ? ", colour products reach " + fmt(ms.colour_max) : std::string()) +
+         (iwl > value_iwl ? ", colour products reach " + fmt(ms.product_max) : std::string()) +
          "; fraction " + std::to_string(frac) +
          ": longest span L = " + std::to_string(ms.longest_span) +
          ", drift bound 2^-F (1 + L(L-1)/2) = 2^-F x " + fmt(steps, 8) +
@@ -735,6 +743,7 @@ ConfigMeasurements measure_scene_on(const std::string& scene_path, const UnitCon
   record_walk(measure_on_trial_unit(scenes, options, unit), ms);
   ms.gain = series_gain(scenes, unit).total;
   ms.colour_max = light_colours(scenes, unit).max();
+  ms.product_max = colour_product_max(ms.colour_max, ms.series_max);
   return ms;
 }
 

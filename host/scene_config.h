@@ -121,7 +121,8 @@ struct ConfigMeasurements {
   double max_monomial_sum = 0;            // max of 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 over pixels
   double series_min = 0, series_max = 0;  // every series value at a pixel, and ambient words
   double difference_max = 0;              // max |d|, |d2|
-  double colour_max = 0;        // largest colour word (ks_c L_c; kd_c L_c multiplied): its products
+  double colour_max = 0;                  // largest colour word (ks_c L_c; kd_c L_c multiplied)
+  double product_max = 0;       // largest colour product (a colour word times intensity or N.L)
   double coef_max = 0;          // max |T_k| over all triangles and series
   double gain = 0;              // G (see above)
   double drift_share_lsb = 0;   // output LSBs allowed for drift (budget / 4)

@@ -193,6 +193,19 @@ TEST_F(Derivation, SchlickThatNoFieldsMendKeepsTheClosestAndNamesTheLimit) {
   EXPECT_LT(kept, render_at(path, plain).max_code_lsb);
 }
 
+TEST_F(Derivation, ColourProductsWithTheTaylorOvershootFitTheSeries) {
+  // A random scene (kept: tests/data/random_scenes/) with seven lights and kd_c L_c up to 1.88,
+  // multiplied: N.L's series overshoots 1 (1.35), so a product reaches 2.5 and wrapped a s2
+  // series (255 LSB) while every colour word and series value fit it. The derived unit holds it.
+  const std::string path =
+      std::string(SHADESIM_SOURCE_DIR) + "/tests/data/random_scenes/s1_i00882.json";
+  const DerivedConfig d = derive_config({path}, DeriveOptions{});
+  ASSERT_TRUE(d.config.diffuse_multiply());
+  EXPECT_GE(d.measured.product_max, 2.0);
+  EXPECT_GT(std::ldexp(1.0, d.config.series.iwl - 1), d.measured.product_max);
+  EXPECT_LE(render_at(path, d.config).max_code_lsb, 1) << d.config.to_string();
+}
+
 TEST_F(Derivation, BudgetsOtherThanOneLsb) {
   // A looser budget derives narrower series and coefficients; each unit meets its own budget
   // (in output codes: ceil) by the independent measurement.
