@@ -15,6 +15,12 @@
 //   pnr       nextpnr-ice40 --hx8k on the synth_ice40 netlist: Fmax of clk_i. Skipped (and said
 //             so) when the LUT4 or DFF count alone exceeds the HX8K's 7,680 logic cells.
 //
+// Where each lives: the generic flow (flat, memory, breakdown; GE) sim/eda/area.cpp, the iCE40
+// flow and its Fmax shell sim/eda/area_ice40.h, the run and its cache sim/eda/area_run.cpp, the
+// shared shell glue sim/eda/area_tools.h, Yosys's reports sim/eda/yosys_stat.h, the JSON
+// sim/eda/area_report_json.cpp, the simulation netlist sim/eda/area_netlist.cpp and the estimate
+// sim/eda/area_estimate.cpp.
+//
 // Gate equivalents (GE), the one convention every figure here uses: NAND2 gates =
 //   logic transistors / 4  +  6 per flip-flop  (rounded to the nearest gate),
 // with "logic transistors" = `stat -tech cmos`'s estimate less what it charges for flip-flops.
@@ -59,14 +65,11 @@
 
 #include "model/rtl_parameters.h"
 #include "model/unit_config.h"
+#include "sim/eda/area_ice40.h"
+#include "sim/eda/missing_tool.h"
+#include "sim/eda/yosys_stat.h"
 
 namespace shadesim {
-
-// A tool the flow needs is not installed (names the tool and the Debian package).
-class MissingToolError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 struct AreaOptions {
   std::string rtl_dir;          // folder with rtl/*.sv; empty: this source tree's rtl/
@@ -100,48 +103,7 @@ struct ModuleArea {
 // 6 * (flip_flops - ram_bits).
 constexpr int kTransistorsPerGate = 4;
 constexpr int kGatesPerFlipFlop = 6;
-// What Yosys 0.23's `stat -tech cmos` charges for $_DFF_P_ and $_DFF_N_ (nothing for others).
-constexpr int kYosysCmosPlainDffTransistors = 16;
 int64_t gate_equivalents(int64_t logic_transistors, int64_t flip_flops, int64_t ram_bits);
-
-// One module's figures from a Yosys `stat -json -tech cmos` report (a `tee -o` of it): cells,
-// transistors, flip-flops (every $_*DFF* cell) and logic transistors (transistors less
-// kYosysCmosPlainDffTransistors per $_DFF_P_ / $_DFF_N_). `module` "" takes the only or top
-// module. Throws std::runtime_error naming the file.
-struct CmosStat {
-  int64_t cells = 0, transistors = 0, flip_flops = 0, logic_transistors = 0;
-  bool transistors_partial = false;
-};
-CmosStat read_cmos_stat(const std::string& stat_file, const std::string& module = "");
-// Table memory bits in a Yosys `dump` of $mem / $mem_v2 cells: the sum of SIZE x WIDTH over
-// the cells named kTableMemoryName (last hierarchical component); the unit's register arrays
-// (coef_q, ambient_q, ...) are $mem cells there too and are not counted.
-constexpr const char* kTableMemoryName = "mem_q";  // rtl/exponent_lut.sv's table
-int64_t read_memory_bits(const std::string& dump_file);
-
-struct Ice40Area {
-  int64_t lut4 = 0, dff = 0, carry = 0, ram4k = 0;
-  static constexpr int64_t kHx8kLogicCells = 7680;
-  static constexpr int64_t kHx8kRam4k = 32;
-  bool fits_hx8k = false;          // false: see fit_note
-  std::string fit_note;            // plain words: fits, or by how much it does not
-  std::optional<double> fmax_mhz;  // nextpnr-ice40's post-route Fmax of clk_i
-  std::string pnr_note;            // why there is no Fmax (no fit, --no-pnr, nextpnr failed)
-};
-
-// Logic depth: the cells on the longest path between registers (or ports) of the flat generic
-// netlist, from Yosys `ltp -noff` after abc: every 2-input gate, MUX and inverter is one level.
-// A technology-free timing figure for every configuration, beside nextpnr's Fmax where the unit
-// fits an iCE40; it is not a delay (a MUX and a NAND count the same).
-struct LogicDepth {
-  static constexpr const char* kMethod =
-      "Yosys ltp -noff on the flat netlist after abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX: cells on "
-      "the longest register-to-register (or port) path, each gate, MUX and inverter one level";
-  int64_t gates = -1;  // -1: not measured (a cache entry from before)
-  std::string from, to;
-};
-// The depth in a `tee -o` of `ltp -noff`; throws std::runtime_error naming the file.
-LogicDepth read_logic_depth(const std::string& ltp_file);
 
 struct AreaReport {
   std::vector<VerilogParameter> parameters;  // as passed to chparam
