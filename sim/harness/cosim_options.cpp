@@ -84,6 +84,9 @@ CommandLine parse_command_line(int argc, char** argv, const CosimExecutable& exe
   app.add_option(
       "--coverage", o.coverage_path,
       "write the run's line/toggle/user coverage to FILE.dat, pass or fail (covered build)");
+  app.add_option("--trace-run", o.trace_run_path,
+                 "after the run passes, run it again with every cycle it clocked dumped into this "
+                 "FST file (traced build, one job; for switching activity)");
   app.add_option("--waves-before", o.waves_before, "cycles before the mismatch in the waveform")
       ->capture_default_str();
   app.add_option("--waves-after", o.waves_after, "cycles after the mismatch in the waveform")

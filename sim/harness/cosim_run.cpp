@@ -236,6 +236,11 @@ void check_run_options(const Options& o, const std::vector<CosimJob>& jobs,
         "the SystemC kernel elaborates once per process, so this backend runs one job; got " +
         std::to_string(jobs.size()) + " (use one --scenario and --runs 1)");
   }
+  if (!o.trace_run_path.empty() && (!exe.traced || jobs.size() != 1)) {
+    throw InputError(
+        "--trace-run needs the trace-enabled build and one job (one --stream or "
+        "--scenario, --runs 1)");
+  }
   if (!o.waves_path.empty() && jobs.size() != 1) {
     throw InputError(
         "--waves writes one file: run one job (one --scenario or --stream, --runs 1); got " +
@@ -366,6 +371,26 @@ void write_waveform(Outcome& out, const Options& o, const CosimExecutable& exe) 
             << ", time = " << kWaveUnitsPerCycle << " x (cycle + " << kResetCycles << "))\n";
 }
 
+// --trace-run: the passed run again, every cycle it clocked dumped (Outcome::waves). A run stops
+// on its last drain cycle (Lockstep::keep_going), so a window ending there leaves it unchanged.
+void trace_whole_run(Outcome& out, const Options& o, const CosimExecutable& exe) {
+  const CycleConfig timing = CycleConfig::of(out.job.config.unit);
+  WaveWindow w;
+  w.path = o.trace_run_path;
+  w.first = 0;
+  w.last = out.result.cycles - 1 + drain_cycles(CycleModel(timing), timing);
+  const std::filesystem::path parent = std::filesystem::path(w.path).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+  const CosimResult again = exe.run(out.job, &w);
+  if (!again.passed() || again.cycles != out.result.cycles) {
+    throw std::runtime_error("--trace-run: the traced run differs from the run (" +
+                             std::to_string(again.cycles) + " cycles against " +
+                             std::to_string(out.result.cycles) + ")");
+  }
+  out.waves = w;
+  std::cout << "  trace: " << w.path << " (cycles " << w.first << ".." << w.last << ")\n";
+}
+
 void write_results_json(const std::string& path, const std::vector<Outcome>& outcomes,
                         const CosimExecutable& exe) {
   if (path.empty()) return;
@@ -414,6 +439,8 @@ int run_all(const Options& o, const CosimExecutable& exe) {
         std::cout << "  FAIL: the run shaded 0 pixels in " << out.result.cycles
                   << " cycles: nothing was compared (an empty stream?)\n";
         ++failures;
+      } else if (!o.trace_run_path.empty()) {
+        trace_whole_run(out, o, exe);
       }
       outcomes.push_back(out);
       continue;
