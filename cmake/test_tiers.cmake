@@ -88,6 +88,7 @@ set(SHADESIM_GTEST_TIERS
   mutation_test             quick
   phong_blinn_fit_test      quick
   pixel_combine_test        quick
+  power_test                quick
   raster_test               quick
   reference_test            quick
   render_test               quick
@@ -123,6 +124,10 @@ set(SHADESIM_GTEST_CASE_TIERS
   # Yosys on tiny modules (GE's closed forms) and a small LUT unit (its table RAM bits)
   area_test      "^Area\\.GateEquivalentsFollowTheClosedFormOnTinyModules$"         rtl
   area_test      "^Area\\.TableRamBitsAreApartFromGateEquivalents$"                 rtl
+  # power: Verilator on the hand-counted fixture, OpenSTA on its mapped netlist, a traced
+  # co-simulation of sphere's own unit
+  power_test     "^Activity\\."                                                  rtl
+  power_test     "^Power\\.(TheAnnotation|SwitchingPower|AShiftRegister|Unmatched)" rtl
   # explore's CLI synthesises the area estimate's anchor with Yosys (once per build tree)
   explore_test   "^ExploreCli\\."                                                rtl
   scaleout_test  "^Explore\\.EmitsTheRunsOfItsVerificationAsRegressJobLines$"       rtl
