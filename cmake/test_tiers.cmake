@@ -84,6 +84,7 @@ set(SHADESIM_GTEST_TIERS
   image_test                quick
   junit_test                quick
   lanes_test                quick
+  liberty_flow_test         quick
   lockstep_test             quick
   mutation_test             quick
   phong_blinn_fit_test      quick
@@ -128,6 +129,8 @@ set(SHADESIM_GTEST_CASE_TIERS
   # co-simulation of sphere's own unit
   power_test     "^Activity\\."                                                  rtl
   power_test     "^Power\\.(TheAnnotation|SwitchingPower|AShiftRegister|Unmatched)" rtl
+  # Yosys and OpenSTA on a tiny adder with osu018 (the liberty flow end to end)
+  liberty_flow_test "^LibertyFlow\\.ATinyAdderMatchesYosysAreaAndItsOwnTiming$"    rtl
   # explore's CLI synthesises the area estimate's anchor with Yosys (once per build tree)
   explore_test   "^ExploreCli\\."                                                rtl
   scaleout_test  "^Explore\\.EmitsTheRunsOfItsVerificationAsRegressJobLines$"       rtl

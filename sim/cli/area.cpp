@@ -2,11 +2,13 @@
 #include <CLI/CLI.hpp>
 #include <memory>
 #include <stdexcept>
+#include <string>
 
 #include "sim/cli/commands.h"
 #include "sim/cli/config_option.h"
 #include "sim/cli/output_paths.h"
 #include "sim/eda/area_job.h"
+#include "sim/eda/liberty_flow.h"
 
 namespace shadesim {
 
@@ -29,6 +31,12 @@ void register_area(CLI::App& app, int& exit_code) {
       "               and shade_unit's own glue (decoder, registers, control), from the same flow\n"
       "               with those modules kept: read the shares (the kept total exceeds the flat "
       "one)\n"
+      "  library      the unit mapped onto a standard-cell library (default: osu018 0.18 um,\n"
+      "               --liberty FILE for another) by Yosys dfflibmap + abc -liberty, fanout-\n"
+      "               buffered (at most 8 cell inputs a net), and timed by OpenSTA: area (um^2,\n"
+      "               NAND2 equivalents), cells, flip-flops, Fmax = 1000 / (4 ns - worst slack)\n"
+      "               and its critical path; with a SCENE, Mpixel/s = Fmax / cycles per pixel\n"
+      "               (table RAM apart: an SRAM macro; sim/eda/liberty_flow.h)\n"
       "  iCE40        SB_LUT4 / SB_DFF* / SB_CARRY / SB_RAM40_4K counts from synth_ice40, whether\n"
       "               that fits an HX8K (7,680 logic cells), and where it does, Fmax of clk_i "
       "from\n"
@@ -55,6 +63,13 @@ void register_area(CLI::App& app, int& exit_code) {
       ->check(CLI::ExistingDirectory);
   sub->add_flag("--no-pnr", o->no_pnr,
                 "skip nextpnr-ice40 place and route (no Fmax; much quicker)");
+  CLI::Option* liberty = sub->add_option("--liberty", o->liberty,
+                  "map onto this Liberty (.lib) library instead of osu018 (" +
+                      std::string(kDefaultLiberty) + ")")
+      ->check(CLI::ExistingFile);
+  sub->add_flag("--no-liberty", o->no_liberty,
+                "skip the standard-cell mapping and OpenSTA (no um^2, no library Fmax)")
+      ->excludes(liberty);
   sub->callback([o, &exit_code]() {
     if (o->config_path.empty() && o->scene.empty()) {
       throw std::invalid_argument(

@@ -66,6 +66,7 @@
 #include "model/rtl_parameters.h"
 #include "model/unit_config.h"
 #include "sim/eda/area_ice40.h"
+#include "sim/eda/liberty_flow.h"
 #include "sim/eda/missing_tool.h"
 #include "sim/eda/yosys_stat.h"
 
@@ -78,6 +79,9 @@ struct AreaOptions {
   bool breakdown = true;        // also run the per-module (kept hierarchy) synthesis
   std::string yosys = "yosys";  // program names (looked up on PATH) or paths
   std::string nextpnr = "nextpnr-ice40";
+  // The unit mapped onto a standard-cell library and timed with OpenSTA (sim/eda/liberty_flow.h);
+  // unset: not run. Cached apart from the rest (its own key), so a new library costs only it.
+  std::optional<LibertyOptions> liberty;
   std::ostream* progress = nullptr;  // one updating progress line while tools run; null: quiet
 };
 
@@ -132,7 +136,9 @@ struct AreaReport {
   Ice40Area ice40;
   LogicDepth logic_depth;  // of the flat netlist (above)
   double seconds = 0;      // wall time of the run that produced the figures (not of a cache hit)
-  double cpu_seconds = 0;  // CPU time of its tools (all syntheses and nextpnr together)
+  double cpu_seconds = 0;  // CPU time of its tools (all syntheses and nextpnr together, and the
+                           // liberty flow's when it ran beside them)
+  std::optional<LibertyReport> liberty;  // with AreaOptions::liberty
   std::vector<std::string> warnings;  // e.g. series that Yosys removed: figures understated
 };
 
@@ -192,7 +198,8 @@ std::string default_netlist_cache_dir();
 // Every report in a cache folder (unreadable entries are skipped).
 std::vector<AreaReport> load_area_reports(const std::string& cache_dir);
 
-// The report as JSON (the `shadesim area --json` format and the cache entry).
+// The report as JSON (the `shadesim area --json` format and, without its "liberty" object, which
+// is cached apart, the cache entry).
 std::string area_report_to_json(const AreaReport& report);
 AreaReport area_report_from_json(const std::string& text, const std::string& source);
 

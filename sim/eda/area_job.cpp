@@ -6,11 +6,14 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <optional>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 
 #include "host/frame.h"
+#include "host/scene_error.h"
 #include "host/scene_config.h"
 #include "model/command_stream.h"
 #include "model/text_file.h"
@@ -57,8 +60,9 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
      << "\n";
   if (r.has_gate_equivalents()) {
     os << "  GE           " << std::setw(10) << grouped(r.gate_equivalents())
-       << "   NAND2 gate equivalents of the logic: (transistors less Yosys's flip-flop cost, "
-       << grouped(r.logic_transistors) << ") / 4\n"
+       << "   NAND2 gate equivalents, a convention (not a library's figure): (transistors less\n"
+       << "                          Yosys's flip-flop cost, " << grouped(r.logic_transistors)
+       << ") / 4\n"
        << "                          + 6 per flip-flop outside the table RAM ("
        << grouped(r.flip_flops - r.ram_bits) << ")\n"
        << "  RAM bits     " << std::setw(10) << grouped(r.ram_bits)
@@ -135,6 +139,64 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
      << (r.from_cache ? " when measured (this run: a cache hit)" : "") << '\n';
 }
 
+// The section's title: the library as a designer knows it (osu018 for the default file, else the
+// liberty's own name) and the flow.
+std::string liberty_title(const LibertyReport& l) {
+  const std::string name = l.liberty_path == kDefaultLiberty ? "osu018 0.18 um" : l.library;
+  return name + " (Yosys dfflibmap + abc -liberty, fanout-buffered; OpenSTA)";
+}
+
+void print_liberty_area(std::ostream& os, const LibertyReport& l) {
+  const FanoutBufferResult& b = l.buffering;
+  os << "\n" << liberty_title(l) << "\n"
+     << "  library      " << l.library << "  (" << l.liberty_path << ")\n"
+     << "  area         " << std::setw(10) << grouped(std::llround(l.area_um2))
+     << "   um^2: the liberty areas of the buffered netlist's cells (no wire load, no\n"
+     << "                          placement, the library's typical corner)\n"
+     << "  NAND2 eq.    " << std::setw(10) << grouped(std::llround(l.nand2_equivalents()))
+     << "   area / " << l.nand2_cell << "'s " << l.nand2_area_um2 << " um^2 (from the liberty)\n"
+     << "  cells        " << std::setw(10) << grouped(l.cells) << "   of which "
+     << grouped(b.buffers) << " " << b.buffer_cell << " fanout buffers on " << grouped(b.nets_buffered)
+     << " nets over " << b.max_fanout << " cell inputs\n"
+     << "  flip-flops   " << std::setw(10) << grouped(l.flip_flops) << "\n";
+  if (l.table_macros > 0) {
+    os << "  table RAM    " << std::setw(10) << l.table_macros
+       << "   SRAM macro (" << kTableRamModule << ": the exponent LUT's tables with their\n"
+       << "                          decoders and read multiplexers) outside the area; no path "
+          "through it is timed\n";
+  }
+}
+
+void print_liberty_timing(std::ostream& os, const LibertyReport& l,
+                          std::optional<double> cycles_per_pixel) {
+  os << std::fixed << std::setprecision(1) << "  Fmax         " << std::setw(10) << l.fmax_mhz
+     << "   MHz = 1000 / (" << std::setprecision(3) << l.period_ns << " ns period - worst slack "
+     << l.worst_slack_ns << " ns):\n                          arrival " << l.path_arrival_ns
+     << " ns (clock-to-Q included) + setup " << l.path_setup_ns << " ns\n";
+  if (cycles_per_pixel && *cycles_per_pixel > 0) {
+    os << "  Mpixel/s     " << std::setw(10) << std::setprecision(1)
+       << l.fmax_mhz / *cycles_per_pixel << "   Fmax / " << std::setprecision(3)
+       << *cycles_per_pixel
+       << " cycles per pixel (the cycle model on the scene: no gaps, no back-pressure)\n";
+  }
+  os << "  ABC target   " << std::setw(10) << std::setprecision(3) << l.abc_delay_ps / 1000
+     << "   ns: the period less " << (l.overhead_cell.empty() ? "-" : l.overhead_cell)
+     << "'s clock-to-Q + setup (" << l.flip_flop_overhead_ns << " ns, OpenSTA)\n"
+     << "  critical path from " << l.path_from << " to " << l.path_to << " (" << l.path_group
+     << ")\n"
+     << "     delay     time  cell      instance              net (fanout)\n";
+  for (const auto& c : l.path) {
+    os << "  " << std::setw(8) << c.delay_ns << std::setw(9) << c.time_ns << "  " << std::left
+       << std::setw(9) << c.cell << " " << std::setw(21) << c.instance << " " << c.net
+       << (c.fanout >= 0 ? " (" + std::to_string(c.fanout) + ")" : "") << std::right << "\n";
+  }
+  for (const auto& w : l.warnings) os << "WARNING      " << w << '\n';
+  os << "  netlist      " << l.netlist_path << "\n"
+     << "  time         " << std::setprecision(1) << l.seconds << " s wall ("
+     << (l.from_cache ? "when measured; this run: a cache hit" : "beside the other syntheses")
+     << "), OpenSTA " << l.sta_version << "\n";
+}
+
 // The fast estimate (sim/eda/area.h) of this unit from the OTHER measured units in the cache,
 // beside the measurement: its error against a held-out Yosys run.
 void print_estimate_check(std::ostream& os, const UnitConfig& unit, const AreaReport& measured,
@@ -172,6 +234,26 @@ void print_estimate_check(std::ostream& os, const UnitConfig& unit, const AreaRe
   }
 }
 
+// The unit's cycles per pixel on the scene (the closed-form cycle model, as `shadesim cycles`
+// counts them: no gaps, no back-pressure); nullopt without a scene.
+std::optional<double> cycles_per_pixel(const AreaJobOptions& o, const UnitConfig& unit) {
+  if (o.scene.empty()) return std::nullopt;
+  return scene_cycles(o.scene, unit, std::nullopt, FrameOptions{}.max_depth).per_pixel();
+}
+
+void write_json_report(const AreaJobOptions& o, const std::string& source, const UnitConfig& unit,
+                       const AreaReport& r, std::optional<double> cycles) {
+  nlohmann::json j = nlohmann::json::parse(area_report_to_json(r));
+  j["source"] = source;
+  j["config"] = nlohmann::json::parse(config_to_json(unit));
+  if (r.liberty) {
+    j["liberty"]["cycles_per_pixel"] = cycles ? nlohmann::json(*cycles) : nlohmann::json(nullptr);
+    j["liberty"]["mpixel_per_s"] =
+        cycles ? nlohmann::json(r.liberty->fmax_mhz / *cycles) : nlohmann::json(nullptr);
+  }
+  write_text_file(o.json_path, j.dump(2) + '\n');
+}
+
 }  // namespace
 
 int run_area(const AreaJobOptions& o) {
@@ -182,15 +264,20 @@ int run_area(const AreaJobOptions& o) {
   ao.place_and_route = !o.no_pnr;
   ao.rtl_dir = o.rtl_dir;
   ao.progress = &std::cerr;
-  const AreaReport r = unit_area(unit, ao);
-  print_report(std::cout, source, unit, r);
-  print_estimate_check(std::cout, unit, r, o.cache_dir);
-  if (!o.json_path.empty()) {
-    nlohmann::json j = nlohmann::json::parse(area_report_to_json(r));
-    j["source"] = source;
-    j["config"] = nlohmann::json::parse(config_to_json(unit));
-    write_text_file(o.json_path, j.dump(2) + '\n');
+  if (!o.no_liberty) {
+    ao.liberty = LibertyOptions{};
+    ao.liberty->liberty_path = o.liberty;
   }
+  const AreaReport r = unit_area(unit, ao);
+  const std::optional<double> cycles = cycles_per_pixel(o, unit);
+  print_report(std::cout, source, unit, r);
+  if (r.liberty) {
+    print_liberty_area(std::cout, *r.liberty);
+    print_liberty_timing(std::cout, *r.liberty, cycles);
+  }
+  std::cout << "\n";
+  print_estimate_check(std::cout, unit, r, o.cache_dir);
+  if (!o.json_path.empty()) write_json_report(o, source, unit, r, cycles);
   return 0;
 }
 

@@ -1,6 +1,6 @@
-// shadesim area's engine: area and timing of one unit from Yosys and nextpnr-ice40
-// (sim/eda/area_job.cpp; the flow is sim/eda/area.h). The command line that fills AreaJobOptions:
-// sim/cli/area.cpp.
+// shadesim area's engine: area and timing of one unit from Yosys, nextpnr-ice40 and, on a
+// standard-cell library, OpenSTA (sim/eda/area_job.cpp; the flows are sim/eda/area.h). The
+// command line that fills AreaJobOptions: sim/cli/area.cpp.
 #pragma once
 
 #include <string>
@@ -14,6 +14,8 @@ struct AreaJobOptions {
   std::string json_path;
   bool no_pnr = false;
   std::string rtl_dir;  // empty: this tree's rtl/
+  std::string liberty;      // --liberty FILE; empty: osu018 (kDefaultLiberty)
+  bool no_liberty = false;  // --no-liberty: no library mapping, no OpenSTA
 };
 
 // Measures the unit --config names (for the SCENE), prints the report and the estimate's check,

@@ -80,6 +80,7 @@ std::string area_report_to_json(const AreaReport& r) {
         "NAND2 GE = (stat -tech cmos transistors less its flip-flop cost) / 4 + 6 per flip-flop; "
         "table memory bits apart (ram_bits), not flip-flops";
   }
+  if (r.liberty) j["liberty"] = Json::parse(liberty_report_to_json(*r.liberty));
   return j.dump(2) + "\n";
 }
 
@@ -133,6 +134,7 @@ AreaReport area_report_from_json(const std::string& text, const std::string& sou
     r.seconds = j.at("seconds");
     r.cpu_seconds = j.at("cpu_seconds");
     if (j.contains("warnings")) r.warnings = j.at("warnings").get<std::vector<std::string>>();
+    if (j.contains("liberty")) r.liberty = liberty_report_from_json(j.at("liberty").dump(), source);
     return r;
   } catch (const Json::exception& e) {
     throw std::runtime_error(source + ": not an area report: " + e.what());
@@ -144,6 +146,8 @@ std::vector<AreaReport> load_area_reports(const std::string& cache_dir) {
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(cache_dir, ec)) {
     if (!e.is_regular_file() || e.path().extension() != ".json") continue;
+    // The liberty flow's entries (liberty-KEY.json) are not area reports.
+    if (e.path().filename().string().rfind("liberty-", 0) == 0) continue;
     try {
       AreaReport r = area_report_from_json(read_text_file((e.path()).string()), e.path().string());
       generic_flow::check_series(r);

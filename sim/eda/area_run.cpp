@@ -128,7 +128,7 @@ void wait_for_syntheses(std::vector<SynthesisJob>& jobs, const AreaOptions& o,
     if (o.progress && ticks > 0 && (terminal || ticks % 30 == 0)) {
       const auto el =
           std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now() - t0);
-      *o.progress << (terminal ? "\r" : "") << "[area] yosys: " << running << " ... " << el.count()
+      *o.progress << (terminal ? "\r" : "") << "[area] running: " << running << " ... " << el.count()
                   << " s" << (terminal ? "   " : "\n") << std::flush;
     }
     std::this_thread::sleep_for(std::chrono::seconds(1));
@@ -143,7 +143,7 @@ void wait_for_syntheses(std::vector<SynthesisJob>& jobs, const AreaOptions& o,
   }
   if (o.progress) {
     const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    *o.progress << (terminal ? "\r" : "") << "[area] yosys: " << (error ? "failed" : "done")
+    *o.progress << (terminal ? "\r" : "") << "[area] " << (error ? "failed" : "done")
                 << " after " << std::fixed << std::setprecision(1) << el << " s"
                 << (terminal ? "                                        " : "") << "\n";
   }
@@ -178,11 +178,10 @@ std::vector<SynthesisJob> synthesis_jobs(const FlowInputs& in, const fs::path& w
 }
 
 // The generic and iCE40 figures of a fresh run into r (whose parameters, versions and key are
-// set); returns whether the work folder must be kept (a failed placement's logs).
-bool measure(const AreaInputs& in, const fs::path& work, const AreaOptions& o,
-             std::vector<SynthesisJob>& jobs, std::chrono::steady_clock::time_point t0,
-             AreaReport& r) {
-  wait_for_syntheses(jobs, o, t0);
+// set), once its syntheses are done; returns whether the work folder must be kept (a failed
+// placement's logs).
+bool read_generic_and_ice40(const AreaInputs& in, const fs::path& work, const AreaOptions& o,
+                            AreaReport& r) {
   generic_flow::read_syntheses(work, o.breakdown, r);
   ice40_flow::read_synthesis(work, r.ice40);
   if (!o.place_and_route) {
@@ -196,6 +195,15 @@ bool measure(const AreaInputs& in, const fs::path& work, const AreaOptions& o,
   return false;
 }
 
+// The liberty flow's job, into work/liberty; its report lands in `out`.
+SynthesisJob liberty_job(const LibertyRun& run, const fs::path& work, const AreaOptions& o,
+                         LibertyReport& out) {
+  fs::create_directories(work / "liberty");
+  return {"liberty mapping and OpenSTA", std::async(std::launch::async, [&run, work, &o, &out] {
+            out = run_liberty_flow(run, work / "liberty", o.cache_dir);
+          })};
+}
+
 }  // namespace
 
 AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
@@ -205,23 +213,44 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
   r.yosys_version = in.flow.yosys_version;
   if (o.place_and_route) r.nextpnr_version = area_tools::tool_version(in.nextpnr, {"--version"});
   r.key = area_key(in.flow, o.breakdown, o.place_and_route, r.nextpnr_version);
+  std::optional<LibertyRun> lib_run;
+  if (o.liberty)
+    lib_run = prepare_liberty_run(in.flow, *o.liberty, ram_bits_of_parameters(r.parameters) > 0);
 
-  fs::path entry;
+  // Each part from the cache where it can be.
+  std::optional<AreaReport> cached;
+  std::optional<LibertyReport> lib_cached;
   if (!o.cache_dir.empty()) {
     fs::create_directories(o.cache_dir);
-    entry = fs::path(o.cache_dir) / (r.key + ".json");
-    if (std::optional<AreaReport> cached = cached_area(in, r, o)) return *cached;
+    cached = cached_area(in, r, o);
+    if (lib_run) lib_cached = cached_liberty(*lib_run, o.cache_dir);
+    if (lib_cached && o.progress)
+      *o.progress << "[area] cache hit " << lib_cached->netlist_path << " (liberty)\n";
+  }
+  if (cached && (!lib_run || lib_cached)) {
+    cached->liberty = lib_cached;
+    return *cached;
   }
 
   const fs::path work = area_tools::make_work_folder(o.cache_dir, r.key);
   const auto t0 = std::chrono::steady_clock::now();
   const double cpu_before = area_tools::children_cpu_seconds();
-  std::vector<SynthesisJob> jobs = synthesis_jobs(in.flow, work, o);
-  const bool keep_work = measure(in, work, o, jobs, t0, r);
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.cpu_seconds = area_tools::children_cpu_seconds() - cpu_before;
-
-  if (!entry.empty()) write_atomically(entry, area_report_to_json(r));
+  std::vector<SynthesisJob> jobs;
+  if (!cached) jobs = synthesis_jobs(in.flow, work, o);
+  LibertyReport lib_report;
+  if (lib_run && !lib_cached) jobs.push_back(liberty_job(*lib_run, work, o, lib_report));
+  wait_for_syntheses(jobs, o, t0);
+  bool keep_work = false;
+  if (cached) {
+    r = *cached;
+  } else {
+    keep_work = read_generic_and_ice40(in, work, o, r);
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.cpu_seconds = area_tools::children_cpu_seconds() - cpu_before;
+    if (!o.cache_dir.empty())
+      write_atomically(fs::path(o.cache_dir) / (r.key + ".json"), area_report_to_json(r));
+  }
+  if (lib_run) r.liberty = lib_cached ? *lib_cached : lib_report;
   if (!keep_work) {
     std::error_code ec;
     fs::remove_all(work, ec);
