@@ -566,6 +566,7 @@ std::string config_to_json(const UnitConfig& c) {
   if (c.host_setup()) j["span_setup"] = to_string(c.span_setup);
   if (c.start_depth != UnitConfig::kStartDepth) j["start_depth"] = c.start_depth;
   if (c.diffuse_multiply()) j["diffuse_colour"] = to_string(c.diffuse_colour);
+  if (c.combine_stages != 0) j["combine_stages"] = c.combine_stages;
   const SpecularConfig& sp = c.specular;
   j["specular"] = {{"kind", to_string(sp.kind)}, {"out", sp.out.to_string()}};
   for (const SpecularUnitDescriptor& u : specular_units()) {
@@ -601,7 +602,8 @@ class ConfigJsonReader {
     check_keys(j, "",
                {"channels", "lights", "xy_bits", "offset_bits", "coef", "series", "spec_colour",
                 "out_bits", "coef_term_iwl", "port_words", "tri_queue", "lanes", "material_buffers",
-                "span_setup", "start_depth", "diffuse_colour", "specular", "derivation"});
+                "span_setup", "start_depth", "diffuse_colour", "combine_stages", "specular",
+                "derivation"});
     read_int(j, "", "channels", 1, 3, require_top_, c.channels);
     read_int(j, "", "lights", 1, 8, require_top_, c.lights);
     read_int(j, "", "xy_bits", 1, 16, require_top_, c.xy_bits);
@@ -619,6 +621,7 @@ class ConfigJsonReader {
     read_enum(j, "", "span_setup", false, parse_span_setup, c.span_setup);
     read_int(j, "", "start_depth", 1, 2, false, c.start_depth);
     read_enum(j, "", "diffuse_colour", false, parse_diffuse_colour, c.diffuse_colour);
+    read_int(j, "", "combine_stages", 0, 1, false, c.combine_stages);
     if (!j.contains("specular")) {
       if (require_top_) fail("specular", "expected an object (missing)");
       return;

@@ -21,6 +21,7 @@ class SpanPipe {
       : queued_(unit.tri_queue > 1),
         interval_(unit.slot.interval),
         latency_(unit.slot.latency),
+        combine_(unit.combine_stages),
         lanes_(static_cast<uint64_t>(unit.lanes)),
         depth_(static_cast<size_t>(unit.start_depth)) {
     prev_.fill(kLongAgo);
@@ -76,9 +77,13 @@ class SpanPipe {
   Cycle entry(size_t k) const { return entry_[k & ring_mask_]; }
   // Cycle the latest span entered s1.
   Cycle last_entry() const { return prev_[0]; }
+  // The cycle the last pixel of the latest span leaves the unit: it left the slot on
+  // last_leave() and waits combine_stages advances beside pixel_combine's registers.
+  Cycle last_pix_leave() const { return last_leave_ + combine_; }
   // Earliest cycle on which s1 is free for the next span (unqueued decoder).
   Cycle s1_free() const { return prev_[1]; }
-  // Earliest cycle on which the datapath is empty: the last pixel has left the slot.
+  // Earliest cycle on which the datapath is empty: the last pixel has left the slot (the
+  // combine's registers hold values already read from the material).
   Cycle empty() const { return spans_ ? last_leave_ : 0; }
   Cycle last_leave() const { return last_leave_; }
   // The latest span's first and last emit.
@@ -94,7 +99,7 @@ class SpanPipe {
 
  private:
   bool queued_;
-  Cycle interval_, latency_;
+  Cycle interval_, latency_, combine_;
   uint64_t lanes_;
   size_t depth_;                  // start bank entries (host span setup)
   std::array<Cycle, 2> loads_{};  // ... and the latest spans' engine loads from it
@@ -111,15 +116,16 @@ class SpanPipe {
 // CycleBreakdown without the clock. With no back-pressure a cycle is a pixel cycle or a unit
 // stall exactly when it lies in a span's busy interval (pipelined slot: its pixels leave,
 // [F + latency + 1, E + latency + 1]; iterative: [F + 1, E + interval + 1], the unit holding a
-// pixel or one leaving); every other cycle is a bubble charged, as CycleModel does, to what the
+// pixel or one leaving; each combine stage moves the end, and a pipelined slot's start, one
+// cycle later); every other cycle is a bubble charged, as CycleModel does, to what the
 // port did span_latency() cycles earlier (setup_load before that). The port's category is
 // piecewise constant over the decoder's items and waits, recorded as segments.
 class BreakdownRecorder {
  public:
   BreakdownRecorder(const CycleConfig& unit, int span_latency)
       : shift_(span_latency),
-        busy_from_(unit.slot.interval > 1 ? 1 : unit.slot.latency + 1),
-        busy_to_(unit.slot.latency + 2) {}
+        busy_from_(unit.slot.interval > 1 ? 1 : unit.slot.latency + 1 + unit.combine_stages),
+        busy_to_(unit.slot.latency + 2 + unit.combine_stages) {}
 
   // From cycle `from` on, the port does `category`'s work (until the next call).
   void port(Cycle from, CycleModel::Category category) {
@@ -329,7 +335,8 @@ void EstimateWalk::add_span(const CommandWord& s, Cycle done, uint64_t at) {
   pixel_beats_ += CycleEstimate::beats(len, lanes);
   if (s.span_last())
     r_.scanlines.push_back(
-        {s.span_y(), static_cast<uint64_t>(leave), s.span_x0() + s.span_length() - 1});
+        {s.span_y(), static_cast<uint64_t>(pipe_.last_pix_leave()),
+         s.span_x0() + s.span_length() - 1});
   if (tri_) {
     ++tri_->spans;
     tri_->pixels += len;
@@ -481,7 +488,7 @@ void EstimateWalk::join_next_header(Cycle tail_cycle) {
 
 CycleEstimateRun EstimateWalk::finish() {
   r_.cycles =
-      static_cast<uint64_t>(std::max(last_item_ + 1, pipe_.spans() ? pipe_.last_leave() + 1 : 0));
+      static_cast<uint64_t>(std::max(last_item_ + 1, pipe_.spans() ? pipe_.last_pix_leave() + 1 : 0));
   if (rec_) {
     rec_->port(last_item_ + 1, CycleModel::Category::kCommandGap);  // no beat left to offer
     r_.breakdown = rec_->finish(static_cast<Cycle>(r_.cycles), pixel_beats_);

@@ -19,6 +19,7 @@ CycleConfig CycleConfig::of(const UnitConfig& config) {
   c.host_setup = config.host_setup();
   if (c.host_setup) c.start_words = StartLayout::of(config).words;
   c.start_depth = config.start_depth;
+  c.combine_stages = config.combine_stages;
   return c;
 }
 
@@ -92,6 +93,10 @@ const CycleConfig& checked(const CycleConfig& unit) {
     throw std::invalid_argument("CycleModel: port_words must be 1, 2, 4 or 8, got " +
                                 std::to_string(unit.port_words));
   }
+  if (unit.combine_stages != 0 && unit.combine_stages != 1) {
+    throw std::invalid_argument("CycleModel: combine_stages must be 0 or 1, got " +
+                                std::to_string(unit.combine_stages));
+  }
   if (timing.latency < 0 || timing.interval < 1) {
     throw std::invalid_argument(
         "CycleModel: slot latency must be >= 0 and interval >= 1, got latency " +
@@ -108,7 +113,7 @@ const CycleConfig& checked(const CycleConfig& unit) {
 }  // namespace
 
 CycleModel::CycleModel(CycleConfig timing)
-    : latency_(checked(timing).slot.latency),
+    : latency_(checked(timing).slot.latency + timing.combine_stages),
       queued_(timing.tri_queue > 1),
       host_(timing.host_setup),
       mat_banked_(timing.material_buffers == 2),
@@ -118,7 +123,8 @@ CycleModel::CycleModel(CycleConfig timing)
       mat_(host_),
       engines_(static_cast<unsigned>(timing.lanes)),
       slots_(timing.slot.interval),
-      meta_(timing.slot.latency, timing.slot.interval > 1) {
+      meta_(timing.slot.latency, timing.slot.interval > 1),
+      combine_(timing.combine_stages, false) {
   // Before the first cycle the port was "doing" nothing the pipe waited for: the first
   // span's latency is fill (setup_load).
   port_history_.assign(static_cast<size_t>(span_latency()), Category::kSetupLoad);

@@ -19,7 +19,8 @@
 //   EngineCtrl (engine_ctrl.sv)   the engines' span: run, pixels left, `lanes` per beat
 //   SpecSlots (spec_slots.sv)     an iterative specular unit's busy count
 //   SlotMeta (slot_meta.sv)       the beats beside the slot: a LATENCY-deep line, or one
-//                                 pending beat for an iterative unit
+//                                 pending beat for an iterative unit; a second one
+//                                 (u_combine_meta) beside pixel_combine's combine_stages
 //   OutReg (out_reg.sv)           the pix register, advance = !valid || ready; a beat is up to
 //                                 `lanes` pixels of one span (lane j = pixel x + j)
 // (Indented: instantiated inside the module above, and owned by its class.) Modules the
@@ -74,6 +75,8 @@ struct CycleConfig {
   bool host_setup = false;
   int start_words = 0;
   int start_depth = UnitConfig::kStartDepth;  // UnitConfig::start_depth (shade_unit START_DEPTH)
+  // UnitConfig::combine_stages: advances a beat waits between the slot and the pix register.
+  int combine_stages = 0;
 
   CycleConfig() = default;
   // A unit with the default structure around this slot.
@@ -187,7 +190,9 @@ class CycleModel {
   void track_categories(bool on) { track_categories_ = on; }
 
   // Nothing in flight, no pixel waiting, and no beat half taken apart.
-  bool idle() const { return decoder_.idle() && datapath_empty() && !out_.valid(); }
+  bool idle() const {
+    return decoder_.idle() && datapath_empty() && combine_.empty() && !out_.valid();
+  }
 
   // Cycles from a SPAN header's acceptance to its first pixel leaving, with nothing stalled
   // (a span queue adds its register; host span setup has no setup stages, and its payload
@@ -228,7 +233,7 @@ class CycleModel {
   Category charge_cycle(bool cmd_valid, const Item& item, bool pix_fire);
 
   // The configuration, fixed at construction: which modules the unit elaborates.
-  int latency_ = 0;          // the specular slot's
+  int latency_ = 0;          // the specular slot's and the combine's stages
   bool queued_ = false;      // Queued: tri_queue > 1 (a span queue)
   bool host_ = false;        // Host: host span setup (a start bank, no setup stages, no queue)
   bool mat_banked_ = false;  // material_buffers 2: MaterialBank
@@ -239,6 +244,7 @@ class CycleModel {
   EngineCtrl engines_;      // u_engine_ctrl
   SpecSlots slots_;         // u_slots (timing)
   SlotMeta meta_;           // u_slot_meta
+  SlotMeta combine_;        // u_combine_meta: combine_stages deep, moving on every advance
   OutReg out_;              // u_out_reg
   // The command port's category on each of the last span_latency() cycles (ring), for bubbles;
   // history_pos_ is the slot of the current cycle (cycle mod size, kept without a division).
@@ -314,7 +320,10 @@ inline CycleModel::Category CycleModel::port_category(bool cmd_valid, bool heade
   const BeatMeta from_engines = engines_.beat(eng, mat_.eng_bank());
   const bool out_adv = meta_.out_adv(adv, spec_busy);
   const BeatMeta& slot_out = meta_.out(from_engines);
+  // The beat leaving the slot (it has read its material) enters the combine's line.
   const bool load_pix = out_adv && slot_out.valid;
+  BeatMeta slot_beat = slot_out;
+  slot_beat.valid = load_pix;
   if (mat_banked_) {
     // A span's last beat out of the slot: the pix register holds finished colours, which no
     // later MATERIAL changes. A span enters setup stage 1 from the span queue, or straight
@@ -324,7 +333,9 @@ inline CycleModel::Category CycleModel::port_category(bool cmd_valid, bool heade
                span_source_.s1_load(sq_pop, span_fire), span_source_.s1_mat(mat_wr), moves.s1_move,
                moves.s2_move, eng.load, load_pix && slot_out.span_end, slot_out.mat);
   }
-  out_.clock(adv, load_pix, slot_out);  // before the line moves: slot_out may be its entry
+  const BeatMeta& pix_in = combine_.out(slot_beat);
+  out_.clock(adv, pix_in.valid, pix_in);  // before the lines move: pix_in may be an entry
+  combine_.clock(adv, slot_beat);
   meta_.clock(out_adv, from_engines);
   slots_.clock(eng.emit);
   engines_.clock(eng, span_source_.s3_span());
@@ -342,7 +353,7 @@ inline CycleModel::Category CycleModel::charge_cycle(bool cmd_valid, const Item&
     category = Category::kPixel;
   } else if (out_.valid()) {
     category = Category::kBackPressure;
-  } else if (slots_.iterative() && !meta_.empty()) {
+  } else if (slots_.iterative() && !(meta_.empty() && combine_.empty())) {
     category = Category::kUnitStall;  // the pix register is empty, the unit holds a beat
   }
   port_history_[slot] =

@@ -52,6 +52,8 @@ std::vector<VerilogParameter> shade_unit_parameters(const UnitConfig& u) {
   }
   // Diffuse colour multiply; units that roll the colour into the series keep their list.
   if (u.diffuse_multiply()) p.push_back({"DIFFUSE_MULTIPLY", 1});
+  // Pipelining; unpipelined units keep their list.
+  if (u.combine_stages != 0) p.push_back({"COMBINE_STAGES", u.combine_stages});
   // Narrowed coefficient terms (coef packing); shade_unit's defaults are COEF_WL.
   if (!u.coef_term_iwl.empty() && !u.host_setup()) {
     for (int t = 0; t < 6; ++t)

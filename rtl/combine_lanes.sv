@@ -14,8 +14,11 @@ module combine_lanes #(
   parameter int SPECULAR_OUT_IWL = 1,
   parameter int OUT_BITS         = 8,
   parameter bit SPECULAR         = 1'b1,  // a specular term
-  parameter bit DIFFUSE_MULTIPLY = 1'b0   // one N.L series per light, times kd_lc
+  parameter bit DIFFUSE_MULTIPLY = 1'b0,  // one N.L series per light, times kd_lc
+  parameter int STAGES           = 0      // pixel_combine's registers (UnitConfig::combine_stages)
 ) (
+  input  logic                                       clk_i,
+  input  logic                                       en_i,  // the pipeline's advance
   // lane j's at j * LaneDiffW
   input  logic [LANES*(DIFFUSE_MULTIPLY ? LIGHTS : LIGHTS*CHANNELS)*SERIES_WL-1:0] diffuse_i,
   input  logic [LANES*LIGHTS*SPECULAR_OUT_WL-1:0]    spec_i,     // lane j, light l: j*LIGHTS+l
@@ -33,8 +36,9 @@ module combine_lanes #(
       .SERIES_QUANT(SERIES_QUANT), .SERIES_OVERFLOW(SERIES_OVERFLOW),
       .SPEC_COLOUR_WL(SPEC_COLOUR_WL), .SPEC_COLOUR_IWL(SPEC_COLOUR_IWL),
       .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL), .OUT_BITS(OUT_BITS),
-      .SPECULAR(SPECULAR), .DIFFUSE_MULTIPLY(DIFFUSE_MULTIPLY)
+      .SPECULAR(SPECULAR), .DIFFUSE_MULTIPLY(DIFFUSE_MULTIPLY), .STAGES(STAGES)
     ) u_combine (
+      .clk_i, .en_i,
       .diffuse_i(diffuse_i[j*LaneDiffW +: LaneDiffW]),
       .spec_i(spec_i[j*LIGHTS*SPECULAR_OUT_WL +: LIGHTS*SPECULAR_OUT_WL]), .ambient_i,
       .spec_colour_i, .diffuse_colour_i, .gate_only_i,

@@ -1,5 +1,9 @@
 // pixel_combine: ambient + diffuse + specular per channel, clamp, round to the output code
-// (model/pixel_combine.h, class PixelCombine). Combinational; shade_unit registers the result.
+// (model/pixel_combine.h, class PixelCombine). Combinational with STAGES = 0 (shade_unit's
+// out_reg registers the result); STAGES = 1 registers stage 1's terms (each light's diffuse and
+// specular term, the ambient) on en_i, the pipeline's advance, so the multiplies and the sum
+// with its rounding are in separate cycles. The register changes when a value is ready, not the
+// value: shade_unit delays the beat's metadata by the same STAGES (UnitConfig::combine_stages).
 //   stage 1  each diffuse value clamped below at 0; each specular intensity s_l times the
 //            light's specular colour k_lc, brought to the series fraction bits by the series
 //            rule (fixed_round + fixed_sat); the specular gate of light l,
@@ -26,8 +30,11 @@ module pixel_combine #(
   parameter int SPECULAR_OUT_IWL = 1,
   parameter int OUT_BITS         = 8,
   parameter bit SPECULAR         = 1,  // 0: no specular term (SpecularUnitKind none)
-  parameter bit DIFFUSE_MULTIPLY = 0   // 1: one N.L series per light, times kd_lc
+  parameter bit DIFFUSE_MULTIPLY = 0,  // 1: one N.L series per light, times kd_lc
+  parameter int STAGES           = 0   // registers between stage 1's terms and stage 2's sum
 ) (
+  input  logic                                      clk_i,
+  input  logic                                      en_i,  // the pipeline's advance
   // [l*CHANNELS + c], or [l] with DIFFUSE_MULTIPLY
   input  logic [(DIFFUSE_MULTIPLY ? LIGHTS : LIGHTS*CHANNELS)*SERIES_WL-1:0] diffuse_i,
   input  logic [LIGHTS*SPECULAR_OUT_WL-1:0]         spec_i,         // [l]
@@ -85,9 +92,23 @@ module pixel_combine #(
   end
 
   for (genvar c = 0; c < CHANNELS; c++) begin : g_chan
+    // Stage 1's terms: [0] the ambient, [2l+1] light l's diffuse term, [2l+2] its specular one;
+    // terms_d as formed, terms as stage 2 reads them (registered with STAGES = 1).
+    localparam int TermsW = (2 * LIGHTS + 1) * AccW;
+    logic [TermsW-1:0] terms_d, terms;
+    assign terms_d[0 +: AccW] = AccW'($signed(ambient_i[c*SERIES_WL +: SERIES_WL]));
+    if (STAGES == 1) begin : g_stage
+      logic [TermsW-1:0] terms_q;
+      always_ff @(posedge clk_i) begin
+        if (en_i) terms_q <= terms_d;
+      end
+      assign terms = terms_q;
+    end else begin : g_comb
+      assign terms = terms_d;
+    end
     // Running sum over the lights: sums[0] = ambient, sums[l+1] = sums[l] + diffuse + specular.
     logic [(LIGHTS + 1)*AccW-1:0] sums /*verilator split_var*/;
-    assign sums[0 +: AccW] = AccW'($signed(ambient_i[c*SERIES_WL +: SERIES_WL]));
+    assign sums[0 +: AccW] = terms[0 +: AccW];
 
     for (genvar l = 0; l < LIGHTS; l++) begin : g_light
       logic signed [AccW-1:0]      diffuse_term, spec_term;
@@ -137,7 +158,11 @@ module pixel_combine #(
         assign diffuse = $signed(diffuse_i[(l*CHANNELS + c)*SERIES_WL +: SERIES_WL]);
         assign diffuse_term = diffuse[SERIES_WL-1] || gate_only_i[l] ? '0 : AccW'(diffuse);
       end
-      assign sums[(l + 1)*AccW +: AccW] = $signed(sums[l*AccW +: AccW]) + diffuse_term + spec_term;
+      assign terms_d[(2*l + 1)*AccW +: AccW] = diffuse_term;
+      assign terms_d[(2*l + 2)*AccW +: AccW] = spec_term;
+      assign sums[(l + 1)*AccW +: AccW] = $signed(sums[l*AccW +: AccW]) +
+                                          $signed(terms[(2*l + 1)*AccW +: AccW]) +
+                                          $signed(terms[(2*l + 2)*AccW +: AccW]);
     end
 
     logic signed [AccW-1:0] acc;
@@ -148,6 +173,18 @@ module pixel_combine #(
     fixed_sat #(.IN_W(OutRndW), .OUT_W(OUT_BITS), .OUT_SIGNED(0), .WRAP(0))
       u_sat_out (.in_i(out_rnd), .out_o(colour_o[c*OUT_BITS +: OUT_BITS]));
   end
+  if (STAGES == 0) begin : g_no_clock
+    // verilator lint_off UNUSEDSIGNAL
+    logic unused_clock;  // reason: a combinational combine has no register
+    assign unused_clock = clk_i ^ en_i;
+    // verilator lint_on UNUSEDSIGNAL
+  end
+`ifndef SYNTHESIS
+  initial begin
+    if (STAGES != 0 && STAGES != 1)
+      $fatal(1, "pixel_combine: STAGES %0d is not 0 or 1", STAGES);
+  end
+`endif
   if (DIFFUSE_MULTIPLY) begin : g_no_gate_only
     // verilator lint_off UNUSEDSIGNAL
     logic unused_gate_only;  // reason: every light's one series is N.L and gates itself

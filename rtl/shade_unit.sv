@@ -40,7 +40,10 @@ module shade_unit #(
   parameter int START_DEPTH      = 1,  // host setup: start bank entries, 1 or 2
   // DiffuseColour: 0 rolled into the series (a series per light and channel), 1 multiplied in
   // pixel_combine (one N.L series per light; the MATERIAL carries kd_c L_c).
-  parameter int DIFFUSE_MULTIPLY = 0
+  parameter int DIFFUSE_MULTIPLY = 0,
+  // Pipelining (UnitConfig::combine_stages): registers in pixel_combine between its terms and
+  // its sum, 0 or 1; the beat's metadata waits beside them in a line of the same depth.
+  parameter int COMBINE_STAGES   = 0
 ) (
   input  logic                         clk_i,
   input  logic                         rst_ni,
@@ -216,22 +219,37 @@ module shade_unit #(
   assign mat_leave = out_adv && meta_out_valid && meta_out.span_end;
   logic [LANES*LaneColW-1:0] colour;  // lane j at j * LaneColW
   wire  [LANES*LaneColW-1:0] colour_out = colour;
+  // The combine's own stages: the beat leaves the slot (reading its material: the bank may
+  // change after) and waits COMBINE_STAGES advances before the pix register takes it.
+  logic  pix_meta_valid;
+  // verilator lint_off UNUSEDSIGNAL
+  meta_t pix_meta;  // reason: past the combine's terms only position, mask and eor are read
+  logic  combine_out_adv, combine_empty;  // reason: a pipelined line's are adv and not needed
+  // verilator lint_on UNUSEDSIGNAL
+  slot_meta #(.META_W(MetaW), .LATENCY(COMBINE_STAGES), .ITERATIVE(1'b0)) u_combine_meta (
+    .clk_i, .rst_ni, .adv_i(adv), .spec_busy_i(1'b0), .valid_i(out_adv && meta_out_valid),
+    .meta_i(meta_out), .out_adv_o(combine_out_adv), .valid_o(pix_meta_valid), .meta_o(pix_meta),
+    .empty_o(combine_empty)
+  );
   combine_lanes #(
     .CHANNELS(CHANNELS), .LIGHTS(LIGHTS), .LANES(LANES), .SERIES_WL(SERIES_WL),
     .SERIES_IWL(SERIES_IWL), .SERIES_QUANT(SERIES_QUANT), .SERIES_OVERFLOW(SERIES_OVERFLOW),
     .SPEC_COLOUR_WL(SPEC_COLOUR_WL), .SPEC_COLOUR_IWL(SPEC_COLOUR_IWL),
     .SPECULAR_OUT_WL(SPECULAR_OUT_WL), .SPECULAR_OUT_IWL(SPECULAR_OUT_IWL), .OUT_BITS(OUT_BITS),
-    .SPECULAR(Specular), .DIFFUSE_MULTIPLY(Multiply)
+    .SPECULAR(Specular), .DIFFUSE_MULTIPLY(Multiply), .STAGES(COMBINE_STAGES)
   ) u_combine_lanes (
+    .clk_i, .en_i(adv),
     .diffuse_i(meta_out.diffuse), .spec_i(spec), .ambient_i(ambient),
     .spec_colour_i(spec_colour), .diffuse_colour_i(diffuse_colour), .gate_only_i(gate_only),
     .colour_o(colour)
   );
-  wire  [XY_BITS-1:0] out_x = meta_out.x, out_y = meta_out.y;
-  wire                out_eor = meta_out.eor;
+  wire  [XY_BITS-1:0] out_x = pix_meta.x, out_y = pix_meta.y;
+  wire                out_eor = pix_meta.eor;
+  // (No combine stage: the line is a wire, and its valid already implies adv.)
+  wire                pix_load = adv && pix_meta_valid;
   out_reg #(.XY_BITS(XY_BITS), .LANES(LANES), .COLOUR_W(LANES * LaneColW)) u_out_reg (
-    .clk_i, .rst_ni, .load_i(out_adv && meta_out_valid), .x_i(out_x), .y_i(out_y),
-    .colour_i(colour_out), .mask_i(meta_out.mask), .eor_i(out_eor), .adv_o(adv), .pix_x_o,
+    .clk_i, .rst_ni, .load_i(pix_load), .x_i(out_x), .y_i(out_y),
+    .colour_i(colour_out), .mask_i(pix_meta.mask), .eor_i(out_eor), .adv_o(adv), .pix_x_o,
     .pix_y_o, .pix_colour_o, .pix_mask_o, .pix_eor_o, .pix_valid_o, .pix_ready_i
   );
 
@@ -240,6 +258,8 @@ module shade_unit #(
   initial begin
     if (SPAN_SETUP != shade_pkg::SetupUnit && SPAN_SETUP != shade_pkg::SetupHost)
       $fatal(1, "shade_unit: SPAN_SETUP %0d is not 0 (unit) or 1 (host)", SPAN_SETUP);
+    if (COMBINE_STAGES != 0 && COMBINE_STAGES != 1)
+      $fatal(1, "shade_unit: COMBINE_STAGES %0d is not 0 or 1", COMBINE_STAGES);
     if (DIFFUSE_MULTIPLY != 0 && DIFFUSE_MULTIPLY != 1)
       $fatal(1, "shade_unit: DIFFUSE_MULTIPLY %0d is not 0 or 1", DIFFUSE_MULTIPLY);
     if ($bits(meta_t) != MetaW || $bits(span_t) != SpanW)

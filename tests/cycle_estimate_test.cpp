@@ -27,7 +27,14 @@ std::string describe(const CycleConfig& u) {
   return "port_words " + std::to_string(u.port_words) + ", tri_queue " +
          std::to_string(u.tri_queue) + ", lanes " + std::to_string(u.lanes) +
          ", material_buffers " + std::to_string(u.material_buffers) + ", slot latency " +
-         std::to_string(u.slot.latency) + " interval " + std::to_string(u.slot.interval);
+         std::to_string(u.slot.latency) + " interval " + std::to_string(u.slot.interval) +
+         ", combine_stages " + std::to_string(u.combine_stages);
+}
+
+// The unit with this many combine stages (UnitConfig::combine_stages).
+CycleConfig combined(CycleConfig u, int stages) {
+  u.combine_stages = stages;
+  return u;
 }
 
 // The unit with this many material buffers.
@@ -99,9 +106,12 @@ TEST_P(SceneStreams, EqualsClockedModelOnOwnConfigAndKnobGrid) {
   o.base.tri_queue = 1;
   const PreparedFrame h = prepare_frame(scene, o);
   for (int mb : {1, 2}) {
-    EXPECT_GT(expect_same(h.encoded.stream.encode(), buffered(CycleConfig::of(h.config), mb),
-                          scene + " (host span setup)"),
-              0u);
+    for (int stages : {0, 1}) {
+      EXPECT_GT(expect_same(h.encoded.stream.encode(),
+                            combined(buffered(CycleConfig::of(h.config), mb), stages),
+                            scene + " (host span setup)"),
+                0u);
+    }
   }
 
   // Its own configuration as derived (port 4, queue 2, its specular unit's timing).
@@ -174,6 +184,14 @@ TEST(CycleEstimate, EqualsClockedModelOnRandomStreams) {
             for (const SlotTiming& slot : kSlots)
               expect_same(words, buffered(CycleConfig(slot, 4, 2, lanes), mb), what);
           }
+          // A combine stage, on every slot timing and a one- and a four-word port.
+          for (int port : {1, 4}) {
+            for (int lanes : {1, 2}) {
+              for (const SlotTiming& slot : kSlots)
+                expect_same(words, combined(buffered(CycleConfig(slot, port, 2, lanes), mb), 1),
+                            what);
+            }
+          }
         }
       }
     }
@@ -207,6 +225,23 @@ TEST(CycleEstimate, OneSpanTakesSpanLatencyPlusItsPixels) {
       // The first pixel leaves span_latency() cycles after its SPAN header (taken on cycle 0).
       EXPECT_EQ(r.scanlines[0].cycle - static_cast<uint64_t>(len - 1),
                 static_cast<uint64_t>(CycleModel(SlotTiming{latency, 1}).span_latency()));
+    }
+  }
+}
+
+TEST(CycleEstimate, EachCombineStageDelaysEveryPixelOneCycle) {
+  // The same span as above with a combine stage: every pixel waits one more advance between
+  // the slot and the pix register, so the scanline ends one cycle later and nothing else moves.
+  for (int latency : {0, 2}) {
+    for (int len : {1, 7}) {
+      const std::vector<uint64_t> w = words_of({CommandWord::span(3, 10, len, true)});
+      CycleConfig piped(SlotTiming{latency, 1});
+      piped.combine_stages = 1;
+      const CycleEstimateRun r = CycleEstimate(piped).run(w);
+      ASSERT_EQ(r.scanlines.size(), 1u);
+      EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(4 + len - 1 + latency + 1 + 1));
+      EXPECT_EQ(r.cycles, r.scanlines[0].cycle + 1);
+      EXPECT_EQ(CycleModel(piped).span_latency(), CycleModel(SlotTiming{latency, 1}).span_latency() + 1);
     }
   }
 }

@@ -114,6 +114,16 @@ TEST(RtlParameters, StartDepthMapsOnlyWithHostSetup) {
   EXPECT_THROW(shade_unit_parameters(u), std::invalid_argument);
 }
 
+// COMBINE_STAGES only when pipelined (unpipelined units keep their parameter list and build key).
+TEST(RtlParameters, CombineStagesMapOnlyWhenPipelined) {
+  UnitConfig u;
+  EXPECT_EQ(as_map(shade_unit_parameters(u)).count("COMBINE_STAGES"), 0u);
+  u.combine_stages = 1;
+  EXPECT_EQ(as_map(shade_unit_parameters(u)).at("COMBINE_STAGES"), 1);
+  u.combine_stages = 2;
+  EXPECT_THROW(shade_unit_parameters(u), std::invalid_argument);
+}
+
 TEST(RtlParameters, NarrowedCoefficientTermsMapToTheirWidths) {
   UnitConfig u;
   u.coef = parse_fixed_format("s2.15:rnd:wrap", "test");

@@ -159,6 +159,19 @@ TEST_F(UnitConfigFile, StartDepthIsReadWrittenAndRangeChecked) {
   EXPECT_NE(range.find("start_depth: expected 1..2"), std::string::npos) << range;
 }
 
+// combine_stages: read, written back only when pipelined, out of range named.
+TEST_F(UnitConfigFile, CombineStagesAreReadWrittenAndRangeChecked) {
+  const UnitConfig piped = load_unit_config(write("c1.json", R"({"combine_stages": 1})"), {});
+  EXPECT_EQ(piped.combine_stages, 1);
+  EXPECT_NE(piped.to_string().find("combine_stages=1"), std::string::npos) << piped.to_string();
+  const std::string text = config_to_json(piped);
+  EXPECT_NE(text.find("\"combine_stages\":1"), std::string::npos) << text;
+  EXPECT_EQ(load_unit_config(write("again.json", text), {}).combine_stages, 1);
+  EXPECT_EQ(config_to_json(UnitConfig{}).find("combine_stages"), std::string::npos);
+  const std::string range = error_of(R"({"combine_stages": 2})");
+  EXPECT_NE(range.find("combine_stages: expected 0..1"), std::string::npos) << range;
+}
+
 TEST_F(UnitConfigFile, ContradictoryFieldsAreRejectedByValidate) {
   // A wrapping coef format with fewer integer bits than the series loses the value.
   const std::string wrap = error_of(R"({"coef": "s3.32:rnd:wrap", "series": "s4.28:wrap"})");

@@ -55,6 +55,7 @@ module tb_shade_unit #(
   parameter int SPAN_SETUP       = 0,
   parameter int START_DEPTH      = 1,
   parameter int DIFFUSE_MULTIPLY = 0,
+  parameter int COMBINE_STAGES   = 0,
   // The testbench's own: 1 instantiates the harness's deliberate-fault hooks beside the unit
   // (sim/harness/faults/; Icarus 11 has no bind), compiled with
   // -DSHADESIM_FAULT_DUT=tb_shade_unit.dut.
@@ -96,7 +97,8 @@ module tb_shade_unit #(
     .SPECULAR_OUT_QUANT(SPECULAR_OUT_QUANT), .SPECULAR_OUT_OVERFLOW(SPECULAR_OUT_OVERFLOW),
     .SPEC_PARAMS(SPEC_PARAMS),
     .MATERIAL_BUFFERS(MATERIAL_BUFFERS),
-    .SPAN_SETUP(SPAN_SETUP), .START_DEPTH(START_DEPTH), .DIFFUSE_MULTIPLY(DIFFUSE_MULTIPLY)
+    .SPAN_SETUP(SPAN_SETUP), .START_DEPTH(START_DEPTH), .DIFFUSE_MULTIPLY(DIFFUSE_MULTIPLY),
+    .COMBINE_STAGES(COMBINE_STAGES)
   ) dut (
     .clk_i(clk), .rst_ni(rst_n),
     .cmd_data_i(cmd_data), .cmd_valid_i(cmd_valid), .cmd_ready_o(cmd_ready),
