@@ -318,6 +318,15 @@ TEST_F(ThroughputChoiceScenes, CyclesWarnsOverTheTargetAndIsSilentWithin) {
   EXPECT_LE(within_json["cycles_per_pixel"].get<double>(), kTarget);
   EXPECT_TRUE(within_json["warnings"].empty()) << within_text;
   EXPECT_EQ(within_text.find("warning"), std::string::npos) << within_text;
+  // Given a clock, pixels per second: the clock over the cycles per pixel the run printed.
+  const auto [clock_text, clock_json] = json_of(over + " --clock-mhz 200");
+  EXPECT_DOUBLE_EQ(clock_json["clock_mhz"].get<double>(), 200.0);
+  EXPECT_NEAR(clock_json["mpixel_per_s"].get<double>(),
+              200.0 * static_cast<double>(clock_json["pixels"].get<uint64_t>()) /
+                  static_cast<double>(clock_json["cycles"].get<uint64_t>()),
+              1e-9);
+  EXPECT_NE(clock_text.find(" Mpixel/s at 200.0 MHz"), std::string::npos) << clock_text;
+  EXPECT_FALSE(over_json.contains("mpixel_per_s"));
   std::filesystem::remove_all(dir);
 }
 

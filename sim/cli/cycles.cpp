@@ -93,6 +93,10 @@ void register_cycles(CLI::App& app, int& exit_code) {
          "judged, not the run's), naming the resource that limits it")
       ->check(positive_number())
       ->capture_default_str();
+  sub->add_option("--clock-mhz", o->clock_mhz,
+                  "the unit's clock in MHz (e.g. the Fmax `shadesim area` prints): the report\n"
+                  "adds pixels per second, the clock over the cycles per pixel")
+      ->check(positive_number());
   sub->add_option("--worst", o->worst, "setup-bound triangles to list, worst first")
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();

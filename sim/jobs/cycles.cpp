@@ -226,6 +226,15 @@ struct TriangleWords {
   }
 };
 
+// Pixels per second at a clock: the clock over the run's cycles per pixel.
+std::string speed_line(double clock_mhz, double cycles_per_px) {
+  std::ostringstream os;
+  os << "speed        " << std::fixed << std::setprecision(1) << clock_mhz / cycles_per_px
+     << " Mpixel/s at " << clock_mhz << " MHz (the clock / " << std::setprecision(3)
+     << cycles_per_px << " cycles per pixel)\n";
+  return os.str();
+}
+
 double cycles_per_pixel(const CycleRun& run) {
   return run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;
 }
@@ -278,6 +287,7 @@ void print_cycles(const CyclesOptions& o, const PreparedFrame& frame, const Cycl
             << "\n"
             << "cycles       " << run.cycles << "  (" << std::fixed << std::setprecision(3)
             << cycles_per_pixel(run) << " cycles per pixel)\n"
+            << (o.clock_mhz > 0 ? speed_line(o.clock_mhz, cycles_per_pixel(run)) : std::string())
             << "queue        " << c.queue_hidden
             << " cycles hidden by the triangle queue (tri_queue 1: " << c.cycles_one_bank << ")\n";
   if (frame.config.host_setup()) {
@@ -404,6 +414,10 @@ int run_cycles(const CyclesOptions& o) {
   if (!o.json_path.empty()) {
     nlohmann::json j = cycles_json(o, frame, c, tris, host_s);
     j["max_cycles_per_pixel"] = o.max_cycles_per_pixel;
+    if (o.clock_mhz > 0) {
+      j["clock_mhz"] = o.clock_mhz;
+      j["mpixel_per_s"] = o.clock_mhz / cycles_per_pixel(c.run);
+    }
     j["warnings"] = warnings;
     write_text_file(o.json_path, j.dump(2) + '\n');
   }

@@ -32,6 +32,8 @@ struct CyclesOptions {
   // The target the no-gap figure is judged against: over it, a warning names the resource that
   // limits the unit (host/throughput_choice.h, the words `config` uses).
   double max_cycles_per_pixel = 1.10;
+  // > 0: the unit's clock in MHz; the report adds Mpixel/s = clock / cycles per pixel.
+  double clock_mhz = 0;
 };
 
 // Prepares the frame on the unit, counts its cycles, prints them and writes --json; returns the
