@@ -137,6 +137,19 @@ TEST(Area, CellCountEqualsADirectYosysRunAndTheCacheIsReused) {
   for (const auto& row : j["modules"]) module_ge += row["gate_equivalents"].get<long>();
   EXPECT_GE(module_ge, j["gate_equivalents"].get<long>());  // kept hierarchy: at least flat
   EXPECT_NE(area.output.find("GE"), std::string::npos) << area.output;
+  // The library mapping runs by default where osu018 and OpenSTA are installed; its Fmax is the
+  // stated formula of its own period and worst slack.
+  const bool liberty = fs::exists(kDefaultLiberty) && run_shell("command -v sta").status == 0;
+  if (liberty) {
+    ASSERT_TRUE(j.contains("liberty")) << j.dump();
+    const auto& l = j["liberty"];
+    EXPECT_EQ(l["library"], "osu018_stdcells");
+    EXPECT_NEAR(l["fmax_mhz"].get<double>(),
+                1000.0 / (l["period_ns"].get<double>() - l["worst_slack_ns"].get<double>()), 1e-6);
+    EXPECT_GT(l["area_um2"].get<double>(), 0);
+    EXPECT_TRUE(l["mpixel_per_s"].is_null());  // no scene: no cycles per pixel
+    EXPECT_NE(area.output.find("osu018 0.18 um"), std::string::npos) << area.output;
+  }
 
   // A stand-in yosys that reports the real version (the key includes it) and fails on any
   // synthesis: a cache hit must not need it, a miss must.
@@ -153,6 +166,7 @@ TEST(Area, CellCountEqualsADirectYosysRunAndTheCacheIsReused) {
   std::ifstream js2(dir / "again.json");
   const auto j2 = nlohmann::json::parse(js2);
   EXPECT_TRUE(j2["from_cache"].get<bool>());
+  if (liberty) EXPECT_TRUE(j2["liberty"]["from_cache"].get<bool>());
   EXPECT_EQ(j2["cells"].get<long>(), direct_cells);
   EXPECT_NE(again.output.find("cache hit"), std::string::npos) << again.output;
 
@@ -329,6 +343,14 @@ TEST(Area, TableRamBitsAreApartFromGateEquivalents) {
   EXPECT_EQ(row_ram, 16 * 5);
   EXPECT_TRUE(j["warnings"].empty()) << j["warnings"].dump();
   EXPECT_NE(area.output.find("RAM bits"), std::string::npos) << area.output;
+  // The library mapping keeps the table out as one SRAM macro, so its flip-flops are not library
+  // flip-flops. The generic count holds those Yosys kept: at least the 3 bits of each of the 16
+  // entries that reach the 3-bit output fraction (u1.3; the 2 below it may be trimmed).
+  if (j.contains("liberty")) {
+    EXPECT_EQ(j["liberty"]["table_macros"].get<long>(), 1);
+    EXPECT_LE(j["liberty"]["flip_flops"].get<long>(), ffs - 16 * 3);
+    EXPECT_NE(area.output.find("SRAM macro"), std::string::npos) << area.output;
+  }
   fs::remove_all(dir);
 }
 
