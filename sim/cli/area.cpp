@@ -70,6 +70,10 @@ void register_area(CLI::App& app, int& exit_code) {
   sub->add_flag("--no-liberty", o->no_liberty,
                 "skip the standard-cell mapping and OpenSTA (no um^2, no library Fmax)")
       ->excludes(liberty);
+  sub->add_flag("--no-power", o->no_power,
+                "skip the energy per pixel (with a scene, the library netlist's power under the\n"
+                "scene's own switching activity: a traced co-simulation, then OpenSTA\n"
+                "report_power; docs/power.md)");
   sub->callback([o, &exit_code]() {
     if (o->config_path.empty() && o->scene.empty()) {
       throw std::invalid_argument(

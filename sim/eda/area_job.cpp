@@ -19,6 +19,7 @@
 #include "model/text_file.h"
 #include "model/unit_config_file.h"
 #include "sim/eda/area.h"
+#include "sim/eda/area_power.h"
 #include "sim/jobs/unit_choice.h"
 
 namespace shadesim {
@@ -242,7 +243,8 @@ std::optional<double> cycles_per_pixel(const AreaJobOptions& o, const UnitConfig
 }
 
 void write_json_report(const AreaJobOptions& o, const std::string& source, const UnitConfig& unit,
-                       const AreaReport& r, std::optional<double> cycles) {
+                       const AreaReport& r, std::optional<double> cycles,
+                       const std::optional<AreaPower>& power) {
   nlohmann::json j = nlohmann::json::parse(area_report_to_json(r));
   j["source"] = source;
   j["config"] = nlohmann::json::parse(config_to_json(unit));
@@ -250,6 +252,13 @@ void write_json_report(const AreaJobOptions& o, const std::string& source, const
     j["liberty"]["cycles_per_pixel"] = cycles ? nlohmann::json(*cycles) : nlohmann::json(nullptr);
     j["liberty"]["mpixel_per_s"] =
         cycles ? nlohmann::json(r.liberty->fmax_mhz / *cycles) : nlohmann::json(nullptr);
+    j["liberty"]["power"] = nullptr;
+    if (power) {
+      j["liberty"]["power"] = nlohmann::json::parse(power_report_to_json(power->report));
+      j["liberty"]["power"]["key"] = power->key;
+      j["liberty"]["pj_per_pixel"] = power->report.pj_per_pixel;
+      j["liberty"]["mw_at_fmax"] = power->report.scene.total_mw;
+    }
   }
   write_text_file(o.json_path, j.dump(2) + '\n');
 }
@@ -271,13 +280,24 @@ int run_area(const AreaJobOptions& o) {
   const AreaReport r = unit_area(unit, ao);
   const std::optional<double> cycles = cycles_per_pixel(o, unit);
   print_report(std::cout, source, unit, r);
+  std::optional<AreaPower> power;
   if (r.liberty) {
     print_liberty_area(std::cout, *r.liberty);
     print_liberty_timing(std::cout, *r.liberty, cycles);
+    // Energy needs the scene's activity: a scene, and the power step not switched off.
+    if (!o.scene.empty() && !o.no_power) {
+      power = scene_power(unit, o.scene, *r.liberty, o.cache_dir, &std::cerr);
+      print_area_power(std::cout, *power);
+    } else {
+      std::cout << "  energy       - ("
+                << (o.scene.empty() ? "no scene: energy needs a scene's switching activity"
+                                    : "--no-power")
+                << ")\n";
+    }
   }
   std::cout << "\n";
   print_estimate_check(std::cout, unit, r, o.cache_dir);
-  if (!o.json_path.empty()) write_json_report(o, source, unit, r, cycles);
+  if (!o.json_path.empty()) write_json_report(o, source, unit, r, cycles, power);
   return 0;
 }
 

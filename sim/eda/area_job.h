@@ -16,6 +16,7 @@ struct AreaJobOptions {
   std::string rtl_dir;  // empty: this tree's rtl/
   std::string liberty;      // --liberty FILE; empty: osu018 (kDefaultLiberty)
   bool no_liberty = false;  // --no-liberty: no library mapping, no OpenSTA
+  bool no_power = false;    // --no-power: no energy (it co-simulates the scene, traced)
 };
 
 // Measures the unit --config names (for the SCENE), prints the report and the estimate's check,

@@ -216,6 +216,10 @@ LibertyRun prepare_liberty_run(const FlowInputs& flow, const LibertyOptions& o, 
   return run;
 }
 
+std::string liberty_log_path(const std::string& cache_dir, const std::string& key) {
+  return (fs::absolute(fs::path(cache_dir)) / ("liberty-log-" + key + ".txt")).string();
+}
+
 std::optional<LibertyReport> cached_liberty(const LibertyRun& run, const std::string& cache_dir) {
   if (cache_dir.empty()) return std::nullopt;
   const fs::path entry = fs::path(cache_dir) / ("liberty-" + run.key + ".json");
@@ -262,6 +266,8 @@ LibertyReport run_liberty_flow(const LibertyRun& run, const fs::path& work,
     const fs::path kept = fs::absolute(fs::path(cache_dir) / ("liberty-netlist-" + r.key + ".v"));
     write_atomically(kept, read_text_file(netlist_v.string()));
     r.netlist_path = kept.string();
+    // Yosys's log beside it: the power flow reads which registers its fsm pass re-encoded.
+    write_atomically(liberty_log_path(cache_dir, r.key), read_text_file((work / "liberty.log").string()));
     write_atomically(fs::path(cache_dir) / ("liberty-" + r.key + ".json"),
                      liberty_report_to_json(r) + "\n");
   }

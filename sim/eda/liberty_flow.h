@@ -116,6 +116,10 @@ struct LibertyRun {
 // `table_ram`: the unit has table memories (ram_bits_of_parameters > 0).
 LibertyRun prepare_liberty_run(const FlowInputs& flow, const LibertyOptions& o, bool table_ram);
 
+// Where the flow keeps Yosys's log of the mapping in cache_dir (liberty-log-<key>.txt), for
+// the power flow's fsm_recoded_registers().
+std::string liberty_log_path(const std::string& cache_dir, const std::string& key);
+
 // The cached report of `run` in cache_dir (liberty-<key>.json, with its netlist), if complete.
 std::optional<LibertyReport> cached_liberty(const LibertyRun& run, const std::string& cache_dir);
 
