@@ -193,9 +193,9 @@ void print_liberty_timing(std::ostream& os, const LibertyReport& l,
   }
   for (const auto& w : l.warnings) os << "WARNING      " << w << '\n';
   os << "  netlist      " << l.netlist_path << "\n"
-     << "  time         " << std::setprecision(1) << l.seconds << " s wall ("
-     << (l.from_cache ? "when measured; this run: a cache hit" : "beside the other syntheses")
-     << "), OpenSTA " << l.sta_version << "\n";
+     << "  time         " << std::setprecision(1) << l.seconds << " s wall of Yosys, buffering and "
+     << "OpenSTA " << l.sta_version << (l.from_cache ? " when measured (this run: a cache hit)" : "")
+     << "\n";
 }
 
 // The fast estimate (sim/eda/area.h) of this unit from the OTHER measured units in the cache,
