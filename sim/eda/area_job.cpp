@@ -3,18 +3,18 @@
 // (Fmax on an HX8K where it fits), with the per-module breakdown. sim/eda/area.h has the flow.
 #include "sim/eda/area_job.h"
 
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <optional>
-#include <cmath>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "host/frame.h"
-#include "host/scene_error.h"
 #include "host/scene_config.h"
+#include "host/scene_error.h"
 #include "model/command_stream.h"
 #include "model/text_file.h"
 #include "model/unit_config_file.h"
@@ -149,7 +149,8 @@ std::string liberty_title(const LibertyReport& l) {
 
 void print_liberty_area(std::ostream& os, const LibertyReport& l) {
   const FanoutBufferResult& b = l.buffering;
-  os << "\n" << liberty_title(l) << "\n"
+  os << "\n"
+     << liberty_title(l) << "\n"
      << "  library      " << l.library << "  (" << l.liberty_path << ")\n"
      << "  area         " << std::setw(10) << grouped(std::llround(l.area_um2))
      << "   um^2: the liberty areas of the buffered netlist's cells (no wire load, no\n"
@@ -157,12 +158,12 @@ void print_liberty_area(std::ostream& os, const LibertyReport& l) {
      << "  NAND2 eq.    " << std::setw(10) << grouped(std::llround(l.nand2_equivalents()))
      << "   area / " << l.nand2_cell << "'s " << l.nand2_area_um2 << " um^2 (from the liberty)\n"
      << "  cells        " << std::setw(10) << grouped(l.cells) << "   of which "
-     << grouped(b.buffers) << " " << b.buffer_cell << " fanout buffers on " << grouped(b.nets_buffered)
-     << " nets over " << b.max_fanout << " cell inputs\n"
+     << grouped(b.buffers) << " " << b.buffer_cell << " fanout buffers on "
+     << grouped(b.nets_buffered) << " nets over " << b.max_fanout << " cell inputs\n"
      << "  flip-flops   " << std::setw(10) << grouped(l.flip_flops) << "\n";
   if (l.table_macros > 0) {
-    os << "  table RAM    " << std::setw(10) << l.table_macros
-       << "   SRAM macro (" << kTableRamModule << ": the exponent LUT's tables with their\n"
+    os << "  table RAM    " << std::setw(10) << l.table_macros << "   SRAM macro ("
+       << kTableRamModule << ": the exponent LUT's tables with their\n"
        << "                          decoders and read multiplexers) outside the area; no path "
           "through it is timed\n";
   }
@@ -194,8 +195,8 @@ void print_liberty_timing(std::ostream& os, const LibertyReport& l,
   for (const auto& w : l.warnings) os << "WARNING      " << w << '\n';
   os << "  netlist      " << l.netlist_path << "\n"
      << "  time         " << std::setprecision(1) << l.seconds << " s wall of Yosys, buffering and "
-     << "OpenSTA " << l.sta_version << (l.from_cache ? " when measured (this run: a cache hit)" : "")
-     << "\n";
+     << "OpenSTA " << l.sta_version
+     << (l.from_cache ? " when measured (this run: a cache hit)" : "") << "\n";
 }
 
 // The fast estimate (sim/eda/area.h) of this unit from the OTHER measured units in the cache,
