@@ -334,9 +334,8 @@ void EstimateWalk::add_span(const CommandWord& s, Cycle done, uint64_t at) {
   r_.pixels += len;
   pixel_beats_ += CycleEstimate::beats(len, lanes);
   if (s.span_last())
-    r_.scanlines.push_back(
-        {s.span_y(), static_cast<uint64_t>(pipe_.last_pix_leave()),
-         s.span_x0() + s.span_length() - 1});
+    r_.scanlines.push_back({s.span_y(), static_cast<uint64_t>(pipe_.last_pix_leave()),
+                            s.span_x0() + s.span_length() - 1});
   if (tri_) {
     ++tri_->spans;
     tri_->pixels += len;
@@ -487,8 +486,8 @@ void EstimateWalk::join_next_header(Cycle tail_cycle) {
 }
 
 CycleEstimateRun EstimateWalk::finish() {
-  r_.cycles =
-      static_cast<uint64_t>(std::max(last_item_ + 1, pipe_.spans() ? pipe_.last_pix_leave() + 1 : 0));
+  r_.cycles = static_cast<uint64_t>(
+      std::max(last_item_ + 1, pipe_.spans() ? pipe_.last_pix_leave() + 1 : 0));
   if (rec_) {
     rec_->port(last_item_ + 1, CycleModel::Category::kCommandGap);  // no beat left to offer
     r_.breakdown = rec_->finish(static_cast<Cycle>(r_.cycles), pixel_beats_);

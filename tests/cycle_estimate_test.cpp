@@ -241,7 +241,8 @@ TEST(CycleEstimate, EachCombineStageDelaysEveryPixelOneCycle) {
       ASSERT_EQ(r.scanlines.size(), 1u);
       EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(4 + len - 1 + latency + 1 + 1));
       EXPECT_EQ(r.cycles, r.scanlines[0].cycle + 1);
-      EXPECT_EQ(CycleModel(piped).span_latency(), CycleModel(SlotTiming{latency, 1}).span_latency() + 1);
+      EXPECT_EQ(CycleModel(piped).span_latency(),
+                CycleModel(SlotTiming{latency, 1}).span_latency() + 1);
     }
   }
 }

@@ -11,6 +11,8 @@
 //     flip-flops by construction, its Fmax against this test's own OpenSTA run of the netlist;
 //   - errors: a missing default library names its Debian package, a missing --liberty file and
 //     a missing sta name themselves.
+#include "sim/eda/liberty_flow.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,7 +27,6 @@
 
 #include "sim/eda/fanout_buffer.h"
 #include "sim/eda/liberty.h"
-#include "sim/eda/liberty_flow.h"
 #include "sim/eda/sta_report.h"
 #include "tests/support/cli_run.h"
 
@@ -142,7 +143,7 @@ TEST(Liberty, FunctionsFollowLibertysOperators) {
     const bool a = v & 1, b = v & 2, c = v & 4;
     EXPECT_EQ(f("(!((A B)+C))", a, b, c), !((a && b) || c)) << v;
     EXPECT_EQ(f("A' | B & C", a, b, c), !a || (b && c)) << v;  // AND binds tighter than OR
-    EXPECT_EQ(f("A ^ B C", a, b, c), (a != b) && c) << v;       // XOR tighter than AND
+    EXPECT_EQ(f("A ^ B C", a, b, c), (a != b) && c) << v;      // XOR tighter than AND
     EXPECT_EQ(f("!A*!B + 1 & C", a, b, c), (!a && !b) || c) << v;
   }
   EXPECT_THROW(eval_liberty_function("(A B", {{"A", true}, {"B", true}}), std::invalid_argument);
@@ -171,13 +172,14 @@ TEST(Liberty, ErrorsNameTheFileAndLine) {
 // B on their own input bits, Y on their own nets; `n_ff` DFFs clocked by clk; output port `y`
 // on bit 2 too (an output port on the fanout net).
 Json fanout_netlist(int n_and, int n_ff) {
-  Json m = {{"ports",
-             {{"a", {{"direction", "input"}, {"bits", {2}}}},
-              {"clk", {{"direction", "input"}, {"bits", {3}}}},
-              {"y", {{"direction", "output"}, {"bits", {2}}}}}},
-            {"cells", Json::object()},
-            {"netnames", {{"a", {{"hide_name", 0}, {"bits", {2}}}},
-                          {"clk", {{"hide_name", 0}, {"bits", {3}}}}}}};
+  Json m = {
+      {"ports",
+       {{"a", {{"direction", "input"}, {"bits", {2}}}},
+        {"clk", {{"direction", "input"}, {"bits", {3}}}},
+        {"y", {{"direction", "output"}, {"bits", {2}}}}}},
+      {"cells", Json::object()},
+      {"netnames",
+       {{"a", {{"hide_name", 0}, {"bits", {2}}}}, {"clk", {{"hide_name", 0}, {"bits", {3}}}}}}};
   int bit = 10;
   for (int i = 0; i < n_and; ++i, bit += 2) {
     m["cells"]["g" + std::to_string(i)] = {
@@ -270,7 +272,8 @@ TEST(FanoutBuffer, AHundredSinksTakeTwoLevelsAndSmallNetsStay) {
 // ---- OpenSTA's report ------------------------------------------------------------------------
 
 TEST(StaReport, ASavedReportGivesItsPathsAndTheWorstSlack) {
-  const std::string path = std::string(SHADESIM_SOURCE_DIR) + "/tests/data/liberty/sta_report_sphere.txt";
+  const std::string path =
+      std::string(SHADESIM_SOURCE_DIR) + "/tests/data/liberty/sta_report_sphere.txt";
   const std::string text = read(path);
   const std::vector<StaPath> paths = parse_sta_paths(text, path);
   ASSERT_EQ(paths.size(), 2u);
@@ -341,10 +344,10 @@ TEST(LibertyFlow, ATinyAdderMatchesYosysAreaAndItsOwnTiming) {
   EXPECT_TRUE(fs::exists(r.netlist_path));
 
   // Area: Yosys's own sum of the liberty's cell areas over the flow's netlist.
-  const Result stat = run_shell(in.yosys + " -q -p 'read_liberty -lib " + kDefaultLiberty +
-                                "; read_verilog " + r.netlist_path + "; tee -o " +
-                                (dir / "stat.txt").string() + " stat -liberty " +
-                                kDefaultLiberty + "'");
+  const Result stat =
+      run_shell(in.yosys + " -q -p 'read_liberty -lib " + kDefaultLiberty + "; read_verilog " +
+                r.netlist_path + "; tee -o " + (dir / "stat.txt").string() + " stat -liberty " +
+                kDefaultLiberty + "'");
   ASSERT_EQ(stat.status, 0) << stat.output;
   std::smatch m;
   const std::string stat_text = read(dir / "stat.txt");
@@ -352,7 +355,8 @@ TEST(LibertyFlow, ATinyAdderMatchesYosysAreaAndItsOwnTiming) {
   EXPECT_NEAR(r.area_um2, std::stod(m[1].str()), 1e-6);
   // NAND2X1's area, from the liberty's text.
   const std::string lib_text = read(kDefaultLiberty);
-  ASSERT_TRUE(std::regex_search(lib_text, m, std::regex(R"(cell \(NAND2X1\) \{\s*area : ([0-9.]+))")));
+  ASSERT_TRUE(
+      std::regex_search(lib_text, m, std::regex(R"(cell \(NAND2X1\) \{\s*area : ([0-9.]+))")));
   EXPECT_EQ(r.nand2_area_um2, std::stod(m[1].str()));
 
   // Timing: this test's own OpenSTA run on the netlist, its worst register-to-register path's
@@ -366,7 +370,8 @@ TEST(LibertyFlow, ATinyAdderMatchesYosysAreaAndItsOwnTiming) {
   ASSERT_EQ(sta.status, 0) << sta.output;
   ASSERT_TRUE(std::regex_search(sta.output, m, std::regex(R"(([0-9.]+)\s+data arrival time)")));
   const double arrival = std::stod(m[1].str());
-  ASSERT_TRUE(std::regex_search(sta.output, m, std::regex(R"(-([0-9.]+)\s+[0-9.]+\s+library setup time)")));
+  ASSERT_TRUE(
+      std::regex_search(sta.output, m, std::regex(R"(-([0-9.]+)\s+[0-9.]+\s+library setup time)")));
   const double setup = std::stod(m[1].str());
   EXPECT_NEAR(r.fmax_mhz, 1000.0 / (arrival + setup), 0.01 * r.fmax_mhz);
   EXPECT_NEAR(r.path_arrival_ns, arrival, 0.0015);

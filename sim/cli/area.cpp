@@ -63,10 +63,11 @@ void register_area(CLI::App& app, int& exit_code) {
       ->check(CLI::ExistingDirectory);
   sub->add_flag("--no-pnr", o->no_pnr,
                 "skip nextpnr-ice40 place and route (no Fmax; much quicker)");
-  CLI::Option* liberty = sub->add_option("--liberty", o->liberty,
-                  "map onto this Liberty (.lib) library instead of osu018 (" +
-                      std::string(kDefaultLiberty) + ")")
-      ->check(CLI::ExistingFile);
+  CLI::Option* liberty =
+      sub->add_option("--liberty", o->liberty,
+                      "map onto this Liberty (.lib) library instead of osu018 (" +
+                          std::string(kDefaultLiberty) + ")")
+          ->check(CLI::ExistingFile);
   sub->add_flag("--no-liberty", o->no_liberty,
                 "skip the standard-cell mapping and OpenSTA (no um^2, no library Fmax)")
       ->excludes(liberty);

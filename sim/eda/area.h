@@ -139,7 +139,7 @@ struct AreaReport {
   double cpu_seconds = 0;  // CPU time of its tools (all syntheses and nextpnr together, and the
                            // liberty flow's when it ran beside them)
   std::optional<LibertyReport> liberty;  // with AreaOptions::liberty
-  std::vector<std::string> warnings;  // e.g. series that Yosys removed: figures understated
+  std::vector<std::string> warnings;     // e.g. series that Yosys removed: figures understated
 };
 
 // Synthesises `unit` (throws std::invalid_argument for an invalid config, MissingToolError,

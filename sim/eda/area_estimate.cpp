@@ -110,7 +110,8 @@ double size_of(const std::string& module, const ParamMap& p) {
   // Lanes add each lane's fan-out (three constant-multiplier adders per series, ~6 adder bits
   // per series bit) and widen the metadata line and the pix register.
   const double extra_lanes = static_cast<double>(lanes_of(p) - 1);
-  const double diffuse_bits = static_cast<double>(generic_flow::diffuse_series_of(p)) * s;  // metadata line
+  const double diffuse_bits =
+      static_cast<double>(generic_flow::diffuse_series_of(p)) * s;  // metadata line
   return coef_regs + ch * s + ch * l * sc + 2 * (2 * xy + diffuse_bits) + 400 +
          extra_lanes * (6 * nser * s + 2 * diffuse_bits);
 }

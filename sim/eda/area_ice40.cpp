@@ -162,8 +162,7 @@ bool place_and_route(const FlowInputs& in, const std::string& nextpnr,
                        work / "shell.out", "yosys synth_ice40 of the unit in its Fmax shell",
                        progress);
   try {
-    area_tools::run_tool(argv, work / "pnr.out", "nextpnr-ice40 place and route (HX8K)",
-                         progress);
+    area_tools::run_tool(argv, work / "pnr.out", "nextpnr-ice40 place and route (HX8K)", progress);
     a.fmax_mhz = read_fmax(read_text_file((work / "pnr.log").string()));
     if (!a.fmax_mhz) a.pnr_note = "nextpnr-ice40 reported no Fmax";
     return false;

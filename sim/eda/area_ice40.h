@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "model/rtl_parameters.h"
-#include "sim/eda/content_hash.h"
 #include "sim/eda/area_tools.h"
+#include "sim/eda/content_hash.h"
 
 namespace shadesim {
 

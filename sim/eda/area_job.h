@@ -13,7 +13,7 @@ struct AreaJobOptions {
   std::string cache_dir = SHADESIM_BINARY_DIR "/area-cache";
   std::string json_path;
   bool no_pnr = false;
-  std::string rtl_dir;  // empty: this tree's rtl/
+  std::string rtl_dir;      // empty: this tree's rtl/
   std::string liberty;      // --liberty FILE; empty: osu018 (kDefaultLiberty)
   bool no_liberty = false;  // --no-liberty: no library mapping, no OpenSTA
   bool no_power = false;    // --no-power: no energy (it co-simulates the scene, traced)

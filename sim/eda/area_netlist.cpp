@@ -160,9 +160,9 @@ UnitNetlist unit_netlist(const UnitConfig& unit, const NetlistOptions& o) {
   // The netlist first, then its stat: an entry is complete once the .json exists.
   write_atomically(path, read_text_file((work / "netlist.v").string()));
   const nlohmann::json j = {{"unit", unit.to_string()},   {"key", n.key},
-                  {"yosys_version", version},   {"cells", n.cells},
-                  {"flip_flops", n.flip_flops}, {"gate_equivalents", n.gate_equivalents},
-                  {"ram_bits", n.ram_bits},     {"seconds", n.seconds}};
+                            {"yosys_version", version},   {"cells", n.cells},
+                            {"flip_flops", n.flip_flops}, {"gate_equivalents", n.gate_equivalents},
+                            {"ram_bits", n.ram_bits},     {"seconds", n.seconds}};
   write_atomically(info, j.dump(2) + "\n");
   std::error_code ec;
   fs::remove_all(work, ec);

@@ -18,8 +18,9 @@ namespace {
 
 // The version of this step's own recipe: bump it when the activity run or the OpenSTA setup
 // changes, so old entries are not taken for new ones.
-constexpr const char* kPowerRecipe = "area power v1: scene_activity (traced cpp build, no gaps) + "
-                                     "netlist_power (default activity 0.1, duty 0.5)";
+constexpr const char* kPowerRecipe =
+    "area power v1: scene_activity (traced cpp build, no gaps) + "
+    "netlist_power (default activity 0.1, duty 0.5)";
 
 std::string power_key(const UnitConfig& unit, const std::string& scene,
                       const LibertyReport& liberty) {
@@ -81,11 +82,10 @@ AreaPower scene_power(const UnitConfig& unit, const std::string& scene,
 
 void print_area_power(std::ostream& os, const AreaPower& p) {
   const PowerReport& r = p.report;
-  os << std::fixed << std::setprecision(1) << "  energy       " << r.pj_per_pixel
-     << " pJ/pixel, " << r.scene.total_mw << " mW at Fmax " << r.clock_mhz
-     << " MHz (internal " << r.scene.internal_mw << ", switching " << r.scene.switching_mw
-     << ", leakage " << std::setprecision(4) << r.scene.leakage_mw << std::setprecision(1)
-     << " mW)\n"
+  os << std::fixed << std::setprecision(1) << "  energy       " << r.pj_per_pixel << " pJ/pixel, "
+     << r.scene.total_mw << " mW at Fmax " << r.clock_mhz << " MHz (internal "
+     << r.scene.internal_mw << ", switching " << r.scene.switching_mw << ", leakage "
+     << std::setprecision(4) << r.scene.leakage_mw << std::setprecision(1) << " mW)\n"
      << "               from the scene's own activity: " << r.coverage_text() << ";\n"
      << "               " << r.cycles << " cycles, " << r.pixels
      << " pixels, no gaps or back-pressure; combinational nets by OpenSTA's propagation\n"

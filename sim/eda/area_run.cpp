@@ -1,6 +1,8 @@
 // unit_area (sim/eda/area.h): one shadesim area run. Looks the unit up in the cache, runs the
 // flows that are missing side by side (generic, iCE40, and the liberty flow when asked for),
 // then nextpnr where the unit fits an HX8K, and writes the cache entries.
+#include <unistd.h>
+
 #include <chrono>
 #include <filesystem>
 #include <functional>
@@ -10,7 +12,6 @@
 #include <optional>
 #include <stdexcept>
 #include <thread>
-#include <unistd.h>
 
 #include "model/text_file.h"
 #include "sim/eda/area.h"
@@ -128,8 +129,8 @@ void wait_for_syntheses(std::vector<SynthesisJob>& jobs, const AreaOptions& o,
     if (o.progress && ticks > 0 && (terminal || ticks % 30 == 0)) {
       const auto el =
           std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now() - t0);
-      *o.progress << (terminal ? "\r" : "") << "[area] running: " << running << " ... " << el.count()
-                  << " s" << (terminal ? "   " : "\n") << std::flush;
+      *o.progress << (terminal ? "\r" : "") << "[area] running: " << running << " ... "
+                  << el.count() << " s" << (terminal ? "   " : "\n") << std::flush;
     }
     std::this_thread::sleep_for(std::chrono::seconds(1));
   }
@@ -143,8 +144,8 @@ void wait_for_syntheses(std::vector<SynthesisJob>& jobs, const AreaOptions& o,
   }
   if (o.progress) {
     const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    *o.progress << (terminal ? "\r" : "") << "[area] " << (error ? "failed" : "done")
-                << " after " << std::fixed << std::setprecision(1) << el << " s"
+    *o.progress << (terminal ? "\r" : "") << "[area] " << (error ? "failed" : "done") << " after "
+                << std::fixed << std::setprecision(1) << el << " s"
                 << (terminal ? "                                        " : "") << "\n";
   }
   if (error) std::rethrow_exception(error);
@@ -171,8 +172,8 @@ std::vector<SynthesisJob> synthesis_jobs(const FlowInputs& in, const fs::path& w
   jobs.push_back(yosys_job(in, work, "ice40", ice40_flow::kSynthScript, "synth_ice40"));
   jobs.push_back(yosys_job(in, work, "memory", generic_flow::kMemoryScript, "table memories"));
   if (o.breakdown) {
-    jobs.push_back(yosys_job(in, work, "breakdown", generic_flow::kBreakdownScript,
-                             "per-module synthesis"));
+    jobs.push_back(
+        yosys_job(in, work, "breakdown", generic_flow::kBreakdownScript, "per-module synthesis"));
   }
   return jobs;
 }

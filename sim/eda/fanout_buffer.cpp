@@ -86,7 +86,7 @@ FanoutNetSinks collect_fanout_sinks(const Json& module, const FanoutPinRoles& ro
 
 // Splits `level` into ceil(size / max) groups of near-equal size.
 std::vector<std::vector<FanoutSink>> split_fanout_evenly(const std::vector<FanoutSink>& level,
-                                                  size_t max) {
+                                                         size_t max) {
   const size_t groups = (level.size() + max - 1) / max;
   std::vector<std::vector<FanoutSink>> out(groups);
   for (size_t g = 0, at = 0; g < groups; ++g) {
@@ -100,7 +100,7 @@ std::vector<std::vector<FanoutSink>> split_fanout_evenly(const std::vector<Fanou
 // The tree of one net: each round puts every group of the current level behind a new buffer
 // driven (for now) from `root`, until at most `max` loads remain on root.
 void build_fanout_tree(Json& module, int64_t root, std::vector<FanoutSink> level, size_t max,
-                const LibertyCell& buffer, FanoutNetSinks& nets, FanoutBufferResult& r) {
+                       const LibertyCell& buffer, FanoutNetSinks& nets, FanoutBufferResult& r) {
   const std::string in = buffer.inputs()[0]->name, out = buffer.outputs()[0]->name;
   Json& cells = module.at("cells");
   while (level.size() > max) {

@@ -23,12 +23,12 @@
 namespace shadesim {
 
 struct FanoutBufferResult {
-  std::string buffer_cell;        // the library cell used
-  int max_fanout = 0;             // the rule's limit
-  int64_t nets_buffered = 0;      // nets that got a tree
-  int64_t buffers = 0;            // buffer cells added
-  int64_t largest_fanout = 0;     // the most cell input pins one net drove before
-  int64_t clock_nets_skipped = 0; // nets over the limit left alone because they clock flip-flops
+  std::string buffer_cell;         // the library cell used
+  int max_fanout = 0;              // the rule's limit
+  int64_t nets_buffered = 0;       // nets that got a tree
+  int64_t buffers = 0;             // buffer cells added
+  int64_t largest_fanout = 0;      // the most cell input pins one net drove before
+  int64_t clock_nets_skipped = 0;  // nets over the limit left alone because they clock flip-flops
 };
 
 // Buffers module `top` of a Yosys `write_json` document in place. Pin directions come from the

@@ -59,8 +59,8 @@ class LibLexer {
   void unget(const LibToken& t) { pending_ = t; }
 
   [[noreturn]] void fail(int line, const std::string& what) const {
-    throw std::runtime_error(path_ + ":" + std::to_string(line) + ": not a Liberty library: " +
-                             what);
+    throw std::runtime_error(path_ + ":" + std::to_string(line) +
+                             ": not a Liberty library: " + what);
   }
 
  private:
@@ -245,7 +245,6 @@ void LibParser::attribute(const std::string& kind, const std::string& name,
   if (name == "max_capacitance") p.max_capacitance = liberty_number(value);
 }
 
-
 // ---- functions ---------------------------------------------------------------------------------
 
 // Liberty's Boolean expressions, by precedence from the tightest: ! (prefix) and ' (postfix),
@@ -343,7 +342,8 @@ class FunctionEval {
   size_t i_ = 0;
 };
 
-// Whether `out` of `cell` computes_function `want` of its inputs (in pin order) on every input vector.
+// Whether `out` of `cell` computes_function `want` of its inputs (in pin order) on every input
+// vector.
 template <typename F>
 bool computes_function(const LibertyCell& cell, const LibertyPin& out, F want) {
   const auto ins = cell.inputs();
@@ -398,8 +398,7 @@ std::vector<const LibertyPin*> LibertyCell::outputs() const {
 
 const LibertyCell& LibertyLibrary::cell(const std::string& n) const {
   const auto it = cells.find(n);
-  if (it == cells.end())
-    throw std::runtime_error(path + ": library " + name + " has no cell " + n);
+  if (it == cells.end()) throw std::runtime_error(path + ": library " + name + " has no cell " + n);
   return it->second;
 }
 
@@ -407,8 +406,7 @@ LibertyLibrary read_liberty(const std::string& path) {
   return LibParser(read_text_file(path), path).parse();
 }
 
-bool eval_liberty_function(const std::string& function,
-                           const std::map<std::string, bool>& inputs) {
+bool eval_liberty_function(const std::string& function, const std::map<std::string, bool>& inputs) {
   return FunctionEval(function, inputs).run();
 }
 

@@ -61,7 +61,8 @@ std::string liberty_substitute(std::string text, const std::map<std::string, std
 }
 
 // Runs OpenSTA on `tcl`; its errors do not change its exit status, so they are looked for.
-std::string run_opensta_script(const std::string& sta, const fs::path& tcl, const std::string& label) {
+std::string run_opensta_script(const std::string& sta, const fs::path& tcl,
+                               const std::string& label) {
   const fs::path log = fs::path(tcl).replace_extension(".out");
   area_tools::run_tool({sta, "-no_splash", "-exit", tcl.string()}, log, label, nullptr);
   const std::string out = read_text_file(log.string());
@@ -101,7 +102,7 @@ LibertyPathCell liberty_path_cell(const StaStage& s) {
 // The worst path into r: its ends as register (Q net) or port names, and its cells without the
 // launching clock pin's row.
 void read_liberty_timing(const std::string& out, const std::string& source,
-                 const std::map<std::string, std::string>& q_nets, LibertyReport& r) {
+                         const std::map<std::string, std::string>& q_nets, LibertyReport& r) {
   const std::vector<StaPath> paths = parse_sta_paths(out, source);
   const StaPath& p = worst_path(paths);
   const auto name = [&](const std::string& instance) {
@@ -130,7 +131,7 @@ void read_liberty_timing(const std::string& out, const std::string& source,
 
 // Area, cells and flip-flops of the buffered netlist from the library's cells.
 void read_liberty_area(const Json& netlist, const LibertyLibrary& lib, const std::string& source,
-               LibertyReport& r) {
+                       LibertyReport& r) {
   for (const auto& [name, cell] : netlist.at("modules").at("shade_unit").at("cells").items()) {
     const std::string type = cell.at("type");
     if (type == kTableRamModule) {
@@ -168,9 +169,9 @@ Json map_and_buffer(const LibertyRun& run, const LibertyLibrary& lib, const fs::
   write_atomically(work / "liberty.ys",
                    area_tools::yosys_script(run.flow.files, run.flow.chparam,
                                             liberty_substitute(kLibertyYosys, values), work));
-  area_tools::run_tool({run.flow.yosys, "-q", "-l", (work / "liberty.log").string(),
-                        (work / "liberty.ys").string()},
-                       work / "liberty.out", "yosys liberty mapping", nullptr);
+  area_tools::run_tool(
+      {run.flow.yosys, "-q", "-l", (work / "liberty.log").string(), (work / "liberty.ys").string()},
+      work / "liberty.out", "yosys liberty mapping", nullptr);
   Json netlist = read_yosys_json_netlist(work / "liberty_mapped.json");
   r.buffering = buffer_fanout(netlist, "shade_unit", lib, run.options.max_fanout,
                               (work / "liberty_mapped.json").string());
@@ -178,8 +179,7 @@ Json map_and_buffer(const LibertyRun& run, const LibertyLibrary& lib, const fs::
   write_atomically(work / "liberty_write.ys", liberty_substitute(kWriteVerilog, values));
   area_tools::run_tool({run.flow.yosys, "-q", "-l", (work / "liberty_write.log").string(),
                         (work / "liberty_write.ys").string()},
-                       work / "liberty_write.out", "yosys write of the buffered netlist",
-                       nullptr);
+                       work / "liberty_write.out", "yosys write of the buffered netlist", nullptr);
   return netlist;
 }
 
@@ -257,7 +257,7 @@ LibertyReport run_liberty_flow(const LibertyRun& run, const fs::path& work,
                    sta_setup_tcl(r.liberty_path, netlist_v.string(), r.period_ns) + kReportTcl);
   const std::string out = run_opensta_script(run.sta, work / "liberty_sta.tcl", "OpenSTA timing");
   read_liberty_timing(out, (work / "liberty_sta.out").string(),
-              flip_flop_q_nets(netlist_v.string(), lib), r);
+                      flip_flop_q_nets(netlist_v.string(), lib), r);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.netlist_path = netlist_v.string();
   if (!cache_dir.empty()) {
@@ -267,7 +267,8 @@ LibertyReport run_liberty_flow(const LibertyRun& run, const fs::path& work,
     write_atomically(kept, read_text_file(netlist_v.string()));
     r.netlist_path = kept.string();
     // Yosys's log beside it: the power flow reads which registers its fsm pass re-encoded.
-    write_atomically(liberty_log_path(cache_dir, r.key), read_text_file((work / "liberty.log").string()));
+    write_atomically(liberty_log_path(cache_dir, r.key),
+                     read_text_file((work / "liberty.log").string()));
     write_atomically(fs::path(cache_dir) / ("liberty-" + r.key + ".json"),
                      liberty_report_to_json(r) + "\n");
   }

@@ -7,7 +7,8 @@
 //             dnsize -D D, stime -p; sim/eda/liberty_flow.cpp); opt_clean; setundef -zero
 //             (osu018 has no tie cells; OpenSTA takes the constants); splitnets -ports (OpenSTA
 //             2019 rejects a concatenation on an assign's left side); rename -top; write_json.
-//   buffering every net over LibertyOptions::max_fanout (8) cell input pins gets a tree of the library's strongest
+//   buffering every net over LibertyOptions::max_fanout (8) cell input pins gets a tree of the
+//   library's strongest
 //             buffer (sim/eda/fanout_buffer.h: ABC does not buffer the flip-flops' outputs),
 //             then Yosys writes the Verilog (write_verilog -noattr -noexpr).
 //   OpenSTA   read_liberty; read_verilog; link_design shade_unit; a clock of

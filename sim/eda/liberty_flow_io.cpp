@@ -14,8 +14,8 @@ namespace {
 using Json = nlohmann::json;
 
 Json buffering_json(const FanoutBufferResult& b) {
-  return {{"buffer_cell", b.buffer_cell},     {"max_fanout", b.max_fanout},
-          {"nets_buffered", b.nets_buffered}, {"buffers", b.buffers},
+  return {{"buffer_cell", b.buffer_cell},       {"max_fanout", b.max_fanout},
+          {"nets_buffered", b.nets_buffered},   {"buffers", b.buffers},
           {"largest_fanout", b.largest_fanout}, {"clock_nets_skipped", b.clock_nets_skipped}};
 }
 
@@ -40,12 +40,9 @@ Json critical_path_json(const LibertyReport& r) {
                      {"delay_ns", c.delay_ns},
                      {"time_ns", c.time_ns}});
   }
-  return {{"from", r.path_from},
-          {"to", r.path_to},
-          {"group", r.path_group},
-          {"arrival_ns", r.path_arrival_ns},
-          {"setup_ns", r.path_setup_ns},
-          {"cells", cells}};
+  return {{"from", r.path_from},         {"to", r.path_to},
+          {"group", r.path_group},       {"arrival_ns", r.path_arrival_ns},
+          {"setup_ns", r.path_setup_ns}, {"cells", cells}};
 }
 
 void read_critical_path(const Json& j, LibertyReport& r) {
@@ -55,8 +52,8 @@ void read_critical_path(const Json& j, LibertyReport& r) {
   r.path_arrival_ns = j.at("arrival_ns");
   r.path_setup_ns = j.at("setup_ns");
   for (const auto& c : j.at("cells")) {
-    r.path.push_back({c.at("instance"), c.at("cell"), c.at("net"), c.at("fanout"),
-                      c.at("delay_ns"), c.at("time_ns")});
+    r.path.push_back({c.at("instance"), c.at("cell"), c.at("net"), c.at("fanout"), c.at("delay_ns"),
+                      c.at("time_ns")});
   }
 }
 
