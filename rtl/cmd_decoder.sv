@@ -6,6 +6,11 @@
 // unit it changes is busy (the *_i conditions below). With host span setup (HOST_SETUP) a SPAN
 // header brings START_WORDS payload words, taken like a TRIANGLE's (with the header, then a
 // tail per beat) into the start bank. The payload FSM is a module of its own (cmd_payload.sv).
+//
+// Timing (issue 44, docs/rtl.md): the header's word is selected from flops (pos_q, and the
+// payload FSM's registered tail), every word of the beat is decoded as a header at once and the
+// header's word's results picked one-hot, and the ready conditions come last; the 64-bit word
+// multiplexer (word_o) feeds no counter.
 module cmd_decoder #(
   parameter int PORT_WORDS  = 1,     // 64-bit words per beat: 1, 2, 4 or 8
   parameter bit QUEUED      = 1'b0,  // SPAN headers go into a span queue (TRI_QUEUE > 1)
@@ -33,7 +38,8 @@ module cmd_decoder #(
   output logic [(PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1)-1:0] word_sel_o,  // ... its word
   output logic [7:0]                            hdr_op_o,
   output logic [$clog2(PORT_WORDS+1)-1:0]       hdr_pos_o,    // where a header would be
-  output logic [$clog2(PORT_WORDS+1)-1:0]       hdr_n_o,      // words the header takes
+  output logic [$clog2(PORT_WORDS+1)-1:0]       hdr_n_o,      // words the header takes (read
+                                                                // only with span/tri_fire_o)
   output logic                                  hdr_fire_o,   // a header is taken
   output logic                                  span_fire_o,  // ... SPAN headers (hdr_n_o)
   output logic                                  tri_fire_o,   // ... a TRIANGLE header
@@ -53,128 +59,191 @@ module cmd_decoder #(
   localparam int PosW  = PORT_WORDS > 1 ? $clog2(PORT_WORDS) : 1;
   localparam int NW    = $clog2(PORT_WORDS + 1);  // a count of beat words: 0..PORT_WORDS
   logic [PosW-1:0] pos_q;
-  logic [7:0]  hdr_op;
-  logic [15:0] hdr_count;
-  logic        host_span;  // a SPAN header with start values (HOST_SETUP)
-  logic [15:0] pay_count;  // payload words of the header: its count, a host SPAN's START_WORDS
-  logic        hdr_ready, hdr_fire;
-  logic        in_payload, tri_payload;  // payload words are due; ... as a tail
-  logic [15:0] pay_rem;                  // ... this many still to come
-  logic [NW-1:0] beat_left;  // words of the beat from pos_q on
-  logic [NW-1:0] tail_n;
+  logic          in_payload, tri_payload;  // payload words are due; ... as a tail
+  logic          tail_hdr;     // ... and a header after the tail in this beat
+  logic          mat_word;     // a MATERIAL / TABLE payload word is due
+  logic [NW-1:0] tail_n;       // TRIANGLE / SPAN words due in the beat (from word 0)
+  logic [NW-1:0] beat_left;    // words of the beat from pos_q on
   logic [NW-1:0] hdr_pos;
   logic          hdr_here;     // a header is looked at this cycle
   logic [NW-1:0] hdr_n;
-  logic          take_hdr;
+  logic          hdr_ready, take_hdr, hdr_fire;
   logic [NW-1:0] item_n;       // words the item of this cycle takes (0: none; <= beat_left)
-  logic        beat_done;
-  logic [PosW-1:0]  word_sel;
-  logic [WordW-1:0] cmd_word;
-  assign beat_left   = NW'(PORT_WORDS) - NW'(pos_q);
-  assign tail_n      = !tri_payload ? '0 : pay_rem < 16'(beat_left) ? NW'(pay_rem) : beat_left;
-  assign hdr_pos     = NW'(pos_q) + tail_n;
-  assign hdr_here    = (!in_payload || (tri_payload && pay_rem <= 16'(beat_left))) &&
-                       hdr_pos < NW'(PORT_WORDS);
-  assign word_sel    = hdr_here ? PosW'(hdr_pos) : pos_q;
-  assign cmd_word    = cmd_data_i[word_sel * WordW +: WordW];
-  assign hdr_op      = cmd_word[shade_pkg::OpcodeLsb +: 8];
-  assign hdr_count   = cmd_word[shade_pkg::CountLsb +: shade_pkg::FieldW];
-  assign host_span   = HOST_SETUP && hdr_op == shade_pkg::OpSpan;
-  assign pay_count   = host_span ? 16'(START_WORDS) : hdr_count;
-  // With a span queue, a run of SPAN headers goes into it together, as many as it has room for.
-  logic [PORT_WORDS-1:0] word_is_span;
-  logic [NW-1:0]         span_run;  // SPAN headers from hdr_pos on, back to back in the beat
+  logic          beat_done;
+  logic [PosW-1:0]       word_sel;
+  logic [PORT_WORDS-1:0] sel;  // word_sel, one-hot
+  logic [WordW-1:0]      cmd_word;
+  // Where the header would be: after the tail (a tail starts its beat: a_tail_starts_beat), else
+  // at pos_q. The payload FSM keeps tail_n and tail_hdr as registers, so the word's select comes
+  // straight from flops.
+  assign beat_left = NW'(PORT_WORDS) - NW'(pos_q);
+  assign hdr_pos   = NW'(pos_q) + tail_n;
+  assign mat_word  = in_payload && !tri_payload;
+  assign hdr_here  = !in_payload || tail_hdr;
+  assign word_sel  = tail_hdr ? PosW'(tail_n) : pos_q;
+  always_comb begin
+    for (int k = 0; k < PORT_WORDS; k++) sel[k] = word_sel == PosW'(k);
+  end
+  assign cmd_word = pick_word(sel, cmd_data_i);
+
+  // Every word of the beat is decoded as the header it would be, in parallel (g_word), and the
+  // selected word's results are picked with one-hot AND-OR: the words a header takes (hdr_n_w),
+  // whether it finishes the beat (done_w), where the next item starts (npos_w), what it waits for
+  // (wait_*_w, is_*_w).
+  logic [PORT_WORDS-1:0] is_span_w, is_tri_w, is_mat_w, done_w;
+  logic [PORT_WORDS-1:0] wait_dp_w, wait_mat_w, wait_cur_w, wait_none_w;
+  logic [PORT_WORDS*NW-1:0]   hdr_n_w;  // hdr_n of a header there (word k at k * NW)
+  logic [PORT_WORDS*PosW-1:0] npos_w;   // pos_q after it (0: the beat is done)
   // SPAN headers back to back in the beat from word `from` on. (A function in a continuous
   // assignment: an always_comb loop with a local flag never settles in Icarus 11.)
   function automatic logic [NW-1:0] run_length(input logic [PORT_WORDS-1:0] is_span,
-                                               input logic [NW-1:0] from);
+                                               input int from);
     logic going;
     going      = 1'b1;
     run_length = '0;
-    for (int k = 0; k < PORT_WORDS; k++) begin
-      if (NW'(k) >= from) begin
-        if (going && is_span[k]) run_length = run_length + 1'b1;
-        else going = 1'b0;
-      end
+    for (int j = from; j < PORT_WORDS; j++) begin
+      if (going && is_span[j]) run_length = run_length + 1'b1;
+      else going = 1'b0;
     end
   endfunction
-  for (genvar k = 0; k < PORT_WORDS; k++) begin : g_word_is_span
-    assign word_is_span[k] = cmd_data_i[k*WordW + shade_pkg::OpcodeLsb +: 8] == shade_pkg::OpSpan;
-  end
-  assign span_run = run_length(word_is_span, hdr_pos);
-  if (PORT_WORDS > 1) begin : g_hdr_n
-    wire [NW-1:0] after = NW'(PORT_WORDS) - hdr_pos - NW'(1);  // beat words after the header
+  // The one-hot select's value of per-word values packed k * width up. (Functions, not
+  // always_comb loops ORing into their own result: those never settle in Icarus 11.)
+  function automatic logic [WordW-1:0] pick_word(input logic [PORT_WORDS-1:0] s,
+                                                input logic [PORT_WORDS*WordW-1:0] v);
+    pick_word = '0;
+    for (int j = 0; j < PORT_WORDS; j++) if (s[j]) pick_word = pick_word | v[j*WordW +: WordW];
+  endfunction
+  function automatic logic [NW-1:0] pick_count(input logic [PORT_WORDS-1:0] s,
+                                               input logic [PORT_WORDS*NW-1:0] v);
+    pick_count = '0;
+    for (int j = 0; j < PORT_WORDS; j++) if (s[j]) pick_count = pick_count | v[j*NW +: NW];
+  endfunction
+  function automatic logic [PosW-1:0] pick_pos(input logic [PORT_WORDS-1:0] s,
+                                               input logic [PORT_WORDS*PosW-1:0] v);
+    pick_pos = '0;
+    for (int j = 0; j < PORT_WORDS; j++) if (s[j]) pick_pos = pick_pos | v[j*PosW +: PosW];
+  endfunction
+  for (genvar k = 0; k < PORT_WORDS; k++) begin : g_word
+    localparam logic [NW-1:0] After = NW'(PORT_WORDS - 1 - k);  // beat words after word k
+    localparam bit HostMore = START_WORDS > PORT_WORDS - 1 - k;  // a host SPAN's words: more
+    logic [7:0]    op;
+    logic [15:0]   count;
+    logic          is_tab, tab_cur;  // a TABLE; ... of the latest MATERIAL's bank (two banks)
+    logic          host_span;
+    logic          more;      // payload words past the beat (count compared before the opcode
+                              // picks it: a host SPAN's START_WORDS is a constant)
+    logic [NW-1:0] word_n;    // hdr_n of a header here
+    logic [NW-1:0] span_run;  // SPAN headers back to back from here
+    logic [NW-1:0] queue_n;   // ... into the span queue, as it has room for
+    assign op           = cmd_data_i[k*WordW + shade_pkg::OpcodeLsb +: 8];
+    assign count        = cmd_data_i[k*WordW + shade_pkg::CountLsb +: shade_pkg::FieldW];
+    assign is_span_w[k] = op == shade_pkg::OpSpan;
+    assign is_tri_w[k]  = op == shade_pkg::OpTriangle;
+    assign is_mat_w[k]  = op == shade_pkg::OpMaterial;
+    assign is_tab       = op == shade_pkg::OpTable;
+    assign tab_cur      = MAT_BANKED && cmd_data_i[k*WordW + shade_pkg::TableMatBit];
+    assign host_span    = HOST_SETUP && is_span_w[k];
+    assign more         = host_span ? HostMore : count > 16'(After);
+    assign span_run     = run_length(is_span_w, k);
+    assign queue_n      = 16'(span_run) < sq_room_i ? span_run : NW'(sq_room_i);
     always_comb begin
-      hdr_n = NW'(1);  // (read only when a header is taken: hdr_pos < PORT_WORDS, no wrap)
-      if (hdr_op == shade_pkg::OpNop) begin
-        hdr_n = NW'(PORT_WORDS) - hdr_pos;
-      end else if (hdr_op == shade_pkg::OpTriangle || host_span) begin
-        hdr_n = NW'(1) + (pay_count < 16'(after) ? NW'(pay_count) : after);
-      end else if (QUEUED && hdr_op == shade_pkg::OpSpan && hdr_here) begin
-        hdr_n = 16'(span_run) < sq_room_i ? span_run : NW'(sq_room_i);
-        if (hdr_n == '0) hdr_n = NW'(1);  // a full queue: hdr_ready holds the header
-      end
+      word_n = NW'(1);
+      if (op == shade_pkg::OpNop) word_n = NW'(PORT_WORDS - k);
+      else if (is_tri_w[k] || host_span)  // 1 + min(payload words, After)
+        word_n = NW'(1) + (more ? After : host_span ? NW'(START_WORDS) : NW'(count));
+      else if (QUEUED && is_span_w[k]) word_n = queue_n == '0 ? NW'(1) : queue_n;
     end
+    assign hdr_n_w[k*NW +: NW] = word_n;
+    // A header's words run to the beat's end (PORT_WORDS: pos_q wraps to 0).
+    assign done_w[k] = (NW + 1)'(k) + (NW + 1)'(word_n) == (NW + 1)'(PORT_WORDS);
+    assign npos_w[k*PosW +: PosW] = PosW'(NW'(k) + word_n);
+    // What a header here waits for (hdr_ready below): one of these, or nothing.
+    assign wait_dp_w[k]   = is_mat_w[k] && !MAT_BANKED || is_tab && !tab_cur;
+    assign wait_mat_w[k]  = is_mat_w[k] && MAT_BANKED;
+    assign wait_cur_w[k]  = is_tab && tab_cur;
+    assign wait_none_w[k] = !(is_mat_w[k] || is_tab || is_span_w[k] || is_tri_w[k]);
+  end
+  logic          done;
+  logic [PosW-1:0] npos;
+  logic [NW-1:0] hdr_n_sel;
+  logic          hdr_span, hdr_tri, hdr_mat, hdr_dp, hdr_mat_bank, hdr_cur, hdr_none;
+  assign done      = |(sel & done_w);
+  assign npos      = pick_pos(sel, npos_w);
+  assign hdr_n_sel = pick_count(sel, hdr_n_w);
+  assign {hdr_span, hdr_tri, hdr_mat} = {|(sel & is_span_w), |(sel & is_tri_w), |(sel & is_mat_w)};
+  assign {hdr_dp, hdr_mat_bank, hdr_cur, hdr_none} =
+         {|(sel & wait_dp_w), |(sel & wait_mat_w), |(sel & wait_cur_w), |(sel & wait_none_w)};
+  // MATERIAL (ambient, spec_colour, exponent and unit parameters) and TABLE (LUT entries) must
+  // not change what in-flight pixels read: both wait for an empty datapath, as the model
+  // applies them in stream order. With two material buffers a MATERIAL writes the other bank
+  // and waits only until no span in flight reads that one, a TABLE of the latest MATERIAL's
+  // bank until none reads that. Without a span queue a SPAN's setup reads the coefficient
+  // registers as it is taken: not on the edge that writes its triangle's last words (a tail in
+  // this beat). With host setup a SPAN needs a start bank entry, and may follow the previous
+  // one's tail. The conditions come last (start_free_i late in the cycle, after the engines'
+  // load), each ANDed with whether the header is of its kind.
+  logic span_ready;
+  assign span_ready = HOST_SETUP ? start_free_i : QUEUED ? !sq_full_i : s1_free_i && tail_n == '0;
+  assign hdr_ready  = hdr_none || hdr_dp && datapath_empty_i || hdr_mat_bank && mat_other_free_i ||
+                      hdr_cur && mat_cur_free_i || hdr_span && span_ready ||
+                      hdr_tri && tri_bank_free_i;
+  // hdr_n: the selected word's. Read only when a header is taken (the item below, and its readers
+  // under span_fire_o / tri_fire_o); in other cycles it is what that word would take.
+  if (PORT_WORDS > 1) begin : g_hdr_n
+    assign hdr_n = hdr_n_sel;
   end else begin : g_hdr_one
     // A one-word port: a header taken is the whole beat (a NOP pads nothing, a TRIANGLE's words
     // follow in later beats, a SPAN run is one header), so the rules above all give 1 whenever
     // a header is taken, which is the only time hdr_n is read. Not evaluated on every cycle.
     assign hdr_n = NW'(1);
     // verilator lint_off UNUSEDSIGNAL
-    logic unused_hdr_n;  // reason: the run length and the queue's room matter on wide ports only
-    assign unused_hdr_n = ^span_run ^ (^sq_room_i);
+    logic unused_hdr_n;  // reason: the per-word counts matter on wide ports only
+    assign unused_hdr_n = ^hdr_n_sel;
     // verilator lint_on UNUSEDSIGNAL
   end
-  // MATERIAL (ambient, spec_colour, exponent and unit parameters) and TABLE (LUT entries) must
-  // not change what in-flight pixels read: both wait for an empty datapath, as the model
-  // applies them in stream order. With two material buffers a MATERIAL writes the other bank
-  // and waits only until no span in flight reads that one.
-  always_comb begin
-    unique case (hdr_op)
-      shade_pkg::OpMaterial: hdr_ready = MAT_BANKED ? mat_other_free_i : datapath_empty_i;
-      shade_pkg::OpTable:    hdr_ready = MAT_BANKED && cmd_word[shade_pkg::TableMatBit]
-                                         ? mat_cur_free_i : datapath_empty_i;
-      // Without a span queue a SPAN's setup reads the coefficient registers as it is taken:
-      // not on the edge that writes its triangle's last words.
-      // With host setup a SPAN needs a start bank entry, and may follow the previous one's tail.
-      shade_pkg::OpSpan:     hdr_ready = HOST_SETUP ? start_free_i :
-                                         QUEUED ? !sq_full_i : s1_free_i && tail_n == '0;
-      shade_pkg::OpTriangle: hdr_ready = tri_bank_free_i;
-      default:               hdr_ready = 1'b1;
-    endcase
-  end
   assign take_hdr    = hdr_here && hdr_ready;
-  assign item_n      = tail_n + (take_hdr ? hdr_n : '0) + NW'(in_payload && !tri_payload);
-  assign beat_done   = item_n == beat_left;
-  assign cmd_ready_o = item_n != '0 && beat_done;
   assign hdr_fire    = cmd_valid_i && take_hdr;
+  // The item: a header (after the tail, if any) to where done_w says; else the tail, which ends
+  // the beat unless a header follows it; else a MATERIAL / TABLE word; else nothing.
+  assign item_n      = tail_n + (take_hdr ? hdr_n : '0) + NW'(mat_word);
+  assign beat_done   = item_n == beat_left;
+  assign cmd_ready_o = hdr_here ? hdr_ready && done
+                               : tri_payload || pos_q == PosW'(PORT_WORDS - 1);
   // The next word of the beat: after the item of this cycle, or word 0 of the next beat.
   if (PORT_WORDS > 1) begin : g_beat_pos
-    logic item_fire;
-    assign item_fire = cmd_valid_i && item_n != '0;
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
         pos_q <= '0;
-      end else if (item_fire) begin
-        pos_q <= beat_done ? '0 : PosW'(NW'(pos_q) + item_n);
+      end else if (hdr_fire) begin
+        pos_q <= npos;
+      end else if (cmd_valid_i && in_payload) begin
+        pos_q <= tri_payload ? PosW'(tail_n) : pos_q + PosW'(1);
       end
     end
   end else begin : g_one_word_beat
     // A one-word port: every item takes the whole beat, so the next word is always word 0.
     assign pos_q = '0;
+    // verilator lint_off UNUSEDSIGNAL
+    logic unused_npos;  // reason: likewise
+    assign unused_npos = ^npos;
+    // verilator lint_on UNUSEDSIGNAL
   end
-  cmd_payload #(.PORT_WORDS(PORT_WORDS), .N_MAT_FIXED(N_MAT_FIXED)) u_payload (
-    .clk_i, .rst_ni, .cmd_valid_i, .hdr_fire_i(hdr_fire), .hdr_i(cmd_word), .host_span_i(host_span),
-    .pay_count_i(pay_count), .hdr_n_i(hdr_n), .tail_n_i(tail_n), .in_payload_o(in_payload),
-    .tri_payload_o(tri_payload), .pay_idx_o, .pay_rem_o(pay_rem), .pay_mat_o, .span_pay_o,
-    .cfg_valid_o, .cfg_table_o, .cfg_all_banks_o, .cfg_addr_o
+  cmd_payload #(
+    .PORT_WORDS(PORT_WORDS), .N_MAT_FIXED(N_MAT_FIXED), .HOST_SETUP(HOST_SETUP),
+    .START_WORDS(START_WORDS)
+  ) u_payload (
+    .clk_i, .rst_ni, .cmd_valid_i, .cmd_data_i, .hdr_sel_i(sel), .hdr_fire_i(hdr_fire),
+    .in_payload_o(in_payload), .tri_payload_o(tri_payload), .tail_n_o(tail_n),
+    .tail_hdr_o(tail_hdr), .pay_idx_o, .pay_mat_o, .span_pay_o, .cfg_valid_o, .cfg_table_o,
+    .cfg_all_banks_o, .cfg_addr_o
   );
   assign {word_o, word_sel_o, hdr_op_o, hdr_pos_o, hdr_n_o} =
-         {cmd_word, word_sel, hdr_op, hdr_pos, hdr_n};
+         {cmd_word, word_sel, cmd_word[shade_pkg::OpcodeLsb +: 8], hdr_pos, hdr_n};
   assign {hdr_fire_o, tail_n_o} = {hdr_fire, tail_n};
-  assign span_fire_o = hdr_fire && hdr_op == shade_pkg::OpSpan;
-  assign tri_fire_o  = hdr_fire && hdr_op == shade_pkg::OpTriangle;
-  assign mat_fire_o  = hdr_fire && hdr_op == shade_pkg::OpMaterial;
+  assign span_fire_o = cmd_valid_i && hdr_here && hdr_span && span_ready;
+  assign tri_fire_o  = cmd_valid_i && hdr_here && hdr_tri && tri_bank_free_i;
+  assign mat_fire_o  = cmd_valid_i && hdr_here && hdr_mat &&
+                       (MAT_BANKED ? mat_other_free_i : datapath_empty_i);
 
 `ifndef SYNTHESIS
   initial begin
@@ -189,6 +258,9 @@ module cmd_decoder #(
     cmd_valid_i && !cmd_ready_o |=> $stable(cmd_data_i));
   // (And the decoder never takes more words than the beat has left.)
   a_item_fits: assert property (@(posedge clk_i) disable iff (!rst_ni) item_n <= beat_left);
+  // cmd_ready_o, worked out from the selected word's done_w, is the beat's last item.
+  a_ready_is_beat_done: assert property (@(posedge clk_i) disable iff (!rst_ni)
+    cmd_ready_o == (item_n != '0 && beat_done));
   // A TRIANGLE's or host SPAN's tail starts its beat: the header takes its payload words to the
   // beat's end, and a tail takes all it has in the beat. coef_bank and start_bank rely on it.
   a_tail_starts_beat: assert property (@(posedge clk_i) disable iff (!rst_ni)

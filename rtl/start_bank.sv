@@ -29,8 +29,11 @@ module start_bank #(
   input  logic                                   mat_i,        // ... in this material bank
   // Counts and positions of beat words, 0..PORT_WORDS: $clog2(PORT_WORDS + 1) bits.
   input  logic [$clog2(PORT_WORDS+1)-1:0]        tail_n_i,     // payload words due in the beat
+  // verilator lint_off UNUSEDSIGNAL
+  // reason: with a one-word port no payload word follows its header in the beat
   input  logic [$clog2(PORT_WORDS+1)-1:0]        hdr_pos_i,
   input  logic [$clog2(PORT_WORDS+1)-1:0]        hdr_n_i,
+  // verilator lint_on UNUSEDSIGNAL
   input  logic                                   filling_i,  // the tail is the newest entry's
   input  logic                                   load_i,     // the engines take the oldest
   output logic                                   free_o,     // a SPAN header may be taken
@@ -70,50 +73,48 @@ module start_bank #(
     end
   end
 
-  // Beat word k carries payload word idx[k]: a tail word of the newest entry (words 0 ..
-  // tail_n_i - 1: a tail starts its beat, cmd_decoder's a_tail_starts_beat), or one after the
-  // SPAN header taken now (entry wr_q).
-  logic [AW-1:0]         idx [PORT_WORDS];
-  logic [PORT_WORDS-1:0] we, tail;
-  always_comb begin
-    for (int k = 0; k < PORT_WORDS; k++) begin
-      tail[k] = NW'(k) < tail_n_i;
-      idx[k]  = tail[k] ? AW'(pay_idx_i) + AW'(k) : AW'(k) - AW'(hdr_pos_i) - AW'(1);
-      we[k]   = (cmd_valid_i && filling_i && tail[k] ||
-                 span_fire_i && NW'(k) > hdr_pos_i &&
-                 (NW + 1)'(k) < (NW + 1)'(hdr_pos_i) + (NW + 1)'(hdr_n_i)) &&
-                idx[k] < AW'(NWords);
-    end
-  end
-
-  // Payload word w of every entry, only as wide as the values reach; one process per word.
+  // Beat word k carries payload word idx: a tail word of the newest entry (words 0 ..
+  // tail_n_i - 1: a tail starts its beat, cmd_decoder's a_tail_starts_beat) at idx = pay_idx_i +
+  // k, or one after the SPAN header taken now (entry wr_q) at idx = k - hdr_pos_i - 1 (AW bits).
+  // Timing (issue 44): for each payload word w and beat word k, whether k is w's (hit_t, hit_h),
+  // as compares of pay_idx_i and hdr_pos_i (from the decoder's flops) with constants, instead of
+  // working out idx for every k and comparing it with every w.
   // verilator lint_off UNUSEDSIGNAL
   // reason: the bits past the last value are zero and unread
   logic [NWords*WordW-1:0] head;  // the oldest entry's payload words
   // verilator lint_on UNUSEDSIGNAL
+  logic                    tail_we;  // the tail's words are written
+  // The beat word a one-hot select picks. (A function, not an always_comb loop ORing into its
+  // own result: that never settles in Icarus 11.)
+  function automatic logic [WordW-1:0] pick_word(input logic [PORT_WORDS-1:0] s,
+                                                input logic [PORT_WORDS*WordW-1:0] v);
+    pick_word = '0;
+    for (int j = 0; j < PORT_WORDS; j++) if (s[j]) pick_word = pick_word | v[j*WordW +: WordW];
+  endfunction
+  assign tail_we = cmd_valid_i && filling_i;
+  // Payload word w of every entry, only as wide as the values reach; one process per word.
   // A cycle may write the same word of two entries: a tail word of the newest entry and, from
   // the SPAN header taken with it, a word of the next entry (a short payload: its indices
   // overlap). Two write ports per word, then; with DEPTH 2 the two entries differ.
   for (genvar w = 0; w < NWords; w++) begin : g_word
     localparam int WW = Bits - w * WordW < WordW ? Bits - w * WordW : WordW;
-    logic             load_t, load_h;  // from the tail (entry newest), from the header (wr_q)
-    logic [WW-1:0]    value_t, value_h;
-    logic [WW-1:0]    q [DEPTH];
-    always_comb begin
-      {load_t, load_h} = 2'b00;
-      {value_t, value_h} = '0;
-      for (int k = 0; k < PORT_WORDS; k++) begin
-        if (we[k] && idx[k] == AW'(w)) begin
-          if (tail[k]) begin
-            load_t  = 1'b1;
-            value_t = cmd_data_i[k*WordW +: WW];
-          end else begin
-            load_h  = 1'b1;
-            value_h = cmd_data_i[k*WordW +: WW];
-          end
-        end
+    logic [PORT_WORDS-1:0] hit_t, hit_h;    // beat word k is w, from the tail, after the header
+    logic                  load_t, load_h;  // from the tail (entry newest), from the header (wr_q)
+    logic [WW-1:0]         value_t, value_h;
+    logic [WW-1:0]         q [DEPTH];
+    for (genvar k = 0; k < PORT_WORDS; k++) begin : g_beat_word
+      assign hit_t[k] = NW'(k) < tail_n_i && AW'(pay_idx_i) == AW'(w - k);
+      if (k < w + 1) begin : g_before  // no header before it with w after that
+        assign hit_h[k] = 1'b0;
+      end else begin : g_after  // k = hdr_pos_i + 1 + w, within the header's hdr_n_i words
+        assign hit_h[k] = hdr_pos_i == NW'(k - 1 - w) && hdr_n_i > NW'(w + 1);
       end
     end
+    // The enables last: span_fire_i comes late (after the engines' load, through free_o).
+    assign load_t  = tail_we && |hit_t;
+    assign load_h  = span_fire_i && |hit_h;
+    assign value_t = WW'(pick_word(hit_t, cmd_data_i));
+    assign value_h = WW'(pick_word(hit_h, cmd_data_i));
     always_ff @(posedge clk_i) begin
       if (load_t) q[newest] <= value_t;
       if (load_h) q[wr_q] <= value_h;

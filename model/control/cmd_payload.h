@@ -5,13 +5,20 @@
 //
 // Only the timing state is kept, as in every class under model/control/:
 //   in_payload_q, pay_op_q, pay_rem_q   modelled (in_payload_, pay_op_, pay_rem_)
-//   pay_idx_q, tbl_base_q, tbl_mat_q    not modelled: they only address the datapath's registers
+//   tri_q, tail_q, tail_hdr_q           not modelled: registered copies of what the state above
+//                                       says (tri_payload(), min(pay_rem_, port words), a header
+//                                       after the tail), kept for timing (issue 44, docs/rtl.md);
+//                                       CmdDecoder::decode works them out from pay_rem()
+//   pay_idx_q, cfg_base_q, tbl_mat_q    not modelled: they only address the datapath's registers
 //                                       (pay_idx_o, cfg_addr_o, cfg_all_banks_o) and never hold
 //                                       a header back
-// Outputs: in_payload_o, tri_payload_o, pay_rem_o and span_pay_o as methods; pay_mat_o and
-// cfg_table_o from payload(); pay_idx_o, cfg_valid_o, cfg_all_banks_o and cfg_addr_o not (the
-// configuration writes are the datapath model's). Parameters: PORT_WORDS only sizes hdr_n_i and
-// tail_n_i, N_MAT_FIXED only cfg_valid_o and cfg_addr_o, so neither is held here.
+// Outputs: in_payload_o, tri_payload_o and span_pay_o as methods, tail_n_o and tail_hdr_o from
+// pay_rem() (CmdDecoder); pay_mat_o and cfg_table_o from payload(); pay_idx_o, cfg_valid_o,
+// cfg_all_banks_o and cfg_addr_o not (the configuration writes are the datapath model's).
+// Parameters: the RTL works out what a header would start for every word of the beat at once
+// (PORT_WORDS, HOST_SETUP and START_WORDS) and takes the header's word's (hdr_sel_i); clock()
+// gets the header's alone, with CmdDecoder's host_span, pay_count and hdr_n: the same state.
+// N_MAT_FIXED reaches only cfg_valid_o and cfg_addr_o, so none is held here.
 #pragma once
 
 #include <cstdint>
