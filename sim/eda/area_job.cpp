@@ -154,7 +154,7 @@ void print_liberty_area(std::ostream& os, const LibertyReport& l) {
      << "  library      " << l.library << "  (" << l.liberty_path << ")\n"
      << "  area         " << std::setw(10) << grouped(std::llround(l.area_um2))
      << "   um^2: the liberty areas of the buffered netlist's cells (no wire load, no\n"
-     << "                          placement, the library's typical corner)\n"
+     << "                          placement, the liberty's own corner)\n"
      << "  NAND2 eq.    " << std::setw(10) << grouped(std::llround(l.nand2_equivalents()))
      << "   area / " << l.nand2_cell << "'s " << l.nand2_area_um2 << " um^2 (from the liberty)\n"
      << "  cells        " << std::setw(10) << grouped(l.cells) << "   of which "
