@@ -286,13 +286,15 @@ int run_area(const AreaJobOptions& o) {
     print_liberty_area(std::cout, *r.liberty);
     print_liberty_timing(std::cout, *r.liberty, cycles);
     // Energy needs the scene's activity: a scene, and the power step not switched off.
-    if (!o.scene.empty() && !o.no_power) {
+    // (--rtl-dir: the co-simulation would run this tree's RTL, not DIR's: no energy.)
+    if (!o.scene.empty() && !o.no_power && o.rtl_dir.empty()) {
       power = scene_power(unit, o.scene, *r.liberty, o.cache_dir, &std::cerr);
       print_area_power(std::cout, *power);
     } else {
       std::cout << "  energy       - ("
                 << (o.scene.empty() ? "no scene: energy needs a scene's switching activity"
-                                    : "--no-power")
+                    : o.no_power    ? "--no-power"
+                                    : "--rtl-dir: the activity would come from this tree's RTL")
                 << ")\n";
     }
   }
