@@ -55,9 +55,14 @@ module cmd_payload #(
   logic          pay_last;  // ... the payload's last
   logic          more_after;  // a tail that is not the payload's last: more in the next beat
 
-  // The state fields in this order, StW bits:
-  // {in_payload, pay_op, pay_idx, pay_rem, cfg_base, tbl_mat, tri, tail, tail_hdr}.
-  localparam int StW = 1 + 3 + 16 + 16 + 16 + 1 + 1 + NW + 1;
+  // The words a header takes with it (s_idx below) are at most max(After, START_WORDS) for any
+  // word, so start_w carries them in IdxW bits, not pay_idx's 16: the rest would be constant 0.
+  localparam int IdxMax = HOST_SETUP && START_WORDS > PORT_WORDS - 1 ? START_WORDS
+                                                                      : PORT_WORDS - 1;
+  localparam int IdxW   = IdxMax < 2 ? 1 : $clog2(IdxMax + 1);
+  // The state fields a header starts, in this order, StW bits:
+  // {in_payload, pay_op, pay_idx (IdxW bits), pay_rem, cfg_base, tbl_mat, tri, tail, tail_hdr}.
+  localparam int StW = 1 + 3 + IdxW + 16 + 16 + 1 + 1 + NW + 1;
   // What a header in word k starts: its payload words follow it, as many as the beat holds
   // (After) come with it (cmd_decoder's hdr_n - 1), and a TRIANGLE's or host SPAN's rest comes
   // as a tail per beat. One per word (word k at k * StW), picked by hdr_sel_i below.
@@ -81,7 +86,8 @@ module cmd_payload #(
     logic          host_span, tail_kind, more, short_rest;
     logic          s_in, s_tri, s_tail_hdr;  // the state it starts: fields of start_w
     logic [2:0]    s_op;
-    logic [15:0]   s_idx, s_rem, s_cfg_base;
+    logic [IdxW-1:0] s_idx;
+    logic [15:0]   s_rem, s_cfg_base;
     logic [NW-1:0] s_tail;
     assign op         = cmd_data_i[k*WordW + shade_pkg::OpcodeLsb +: 8];
     assign count      = cmd_data_i[k*WordW + shade_pkg::CountLsb +: shade_pkg::FieldW];
@@ -104,7 +110,9 @@ module cmd_payload #(
     assign s_in       = tail_kind ? more : (op == shade_pkg::OpMaterial ||
                                             op == shade_pkg::OpTable) && count != 16'd0;
     // The words taken with the header, min(payload words, After).
-    assign s_idx      = !tail_kind ? 16'd0 : more ? After : host_span ? 16'(START_WORDS) : count;
+    // (count here is a TRIANGLE's that ends in this beat: at most After.)
+    assign s_idx      = !tail_kind ? '0 : more ? IdxW'(Aft) : host_span ? IdxW'(START_WORDS)
+                                                             : IdxW'(count);
     assign s_rem      = !tail_kind ? count : more ? rest : 16'd0;
     assign s_cfg_base = op == shade_pkg::OpTable ? w_base : 16'd0 - 16'(N_MAT_FIXED);
     assign s_tri      = more;
@@ -123,8 +131,12 @@ module cmd_payload #(
   // The next state: what the header starts, else (pay_fire) the tail or one MATERIAL / TABLE
   // word taken, else held. hdr_fire_i picks last: it comes late (a SPAN waits on the start bank,
   // after the engines' load), so nothing else waits on it.
-  logic [StW-1:0] hdr_next, pay_next;
-  assign hdr_next = pick_start(hdr_sel_i, start_w);
+  logic             hdr_in;  // what the header starts, pay_idx in IdxW bits
+  logic [2:0]       hdr_op;
+  logic [IdxW-1:0]  hdr_idx;
+  logic [StW-IdxW-5:0] hdr_rest;  // pay_rem onwards
+  logic [StW-IdxW+15:0] pay_next;
+  assign {hdr_in, hdr_op, hdr_idx, hdr_rest} = pick_start(hdr_sel_i, start_w);
   // (Each field a signal of its own: Yosys 0.23 sizes expressions inside a concatenation wrongly.)
   logic [15:0]   pay_idx_p, pay_rem_p;  // after the payload words taken
   logic [NW-1:0] tail_p;
@@ -143,8 +155,16 @@ module cmd_payload #(
                   tail_p, tail_hdr_p};
     end
   end
-  assign {in_payload_d, pay_op_d, pay_idx_d, pay_rem_d, cfg_base_d, tbl_mat_d, tri_d, tail_d,
-          tail_hdr_d} = hdr_fire_i ? hdr_next : pay_next;
+  always_comb begin
+    if (hdr_fire_i) begin
+      {in_payload_d, pay_op_d} = {hdr_in, hdr_op};
+      pay_idx_d = 16'(hdr_idx);
+      {pay_rem_d, cfg_base_d, tbl_mat_d, tri_d, tail_d, tail_hdr_d} = hdr_rest;
+    end else begin
+      {in_payload_d, pay_op_d, pay_idx_d, pay_rem_d, cfg_base_d, tbl_mat_d, tri_d, tail_d,
+       tail_hdr_d} = pay_next;
+    end
+  end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
