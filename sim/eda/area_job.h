@@ -5,12 +5,14 @@
 
 #include <string>
 
+#include "sim/eda/build_paths.h"
+
 namespace shadesim {
 
 struct AreaJobOptions {
   std::string config_path;
   std::string scene;
-  std::string cache_dir = SHADESIM_BINARY_DIR "/area-cache";
+  std::string cache_dir = binary_dir() + "/area-cache";
   std::string json_path;
   bool no_pnr = false;
   std::string rtl_dir;      // empty: this tree's rtl/

@@ -13,12 +13,9 @@
 #include "sim/eda/area.h"
 #include "sim/eda/area_generic.h"
 #include "sim/eda/area_tools.h"
+#include "sim/eda/build_paths.h"
 #include "sim/eda/content_hash.h"
 #include "sim/eda/process.h"
-
-#ifndef SHADESIM_SOURCE_DIR
-#define SHADESIM_SOURCE_DIR "."
-#endif
 
 namespace shadesim {
 namespace fs = std::filesystem;
@@ -100,7 +97,7 @@ void check_netlist_ports(const fs::path& netlist, const std::vector<VerilogParam
 }  // namespace
 
 std::string default_netlist_cache_dir() {
-  return (fs::path(SHADESIM_BINARY_DIR) / "netlist-cache").string();
+  return (fs::path(binary_dir()) / "netlist-cache").string();
 }
 
 UnitNetlist unit_netlist(const UnitConfig& unit, const NetlistOptions& o) {
@@ -111,7 +108,7 @@ UnitNetlist unit_netlist(const UnitConfig& unit, const NetlistOptions& o) {
   std::string dir = o.rtl_dir;
   if (dir.empty()) {
     const char* other = std::getenv("SHADESIM_RTL_DIR");
-    dir = other && *other ? other : SHADESIM_SOURCE_DIR "/rtl";
+    dir = other && *other ? std::string(other) : source_dir() + "/rtl";
   }
   const std::vector<fs::path> files = rtl_sources(dir);
   const std::string version = first_line(run_process({yosys, "-V"}, "").output);

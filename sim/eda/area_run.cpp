@@ -17,11 +17,8 @@
 #include "sim/eda/area.h"
 #include "sim/eda/area_generic.h"
 #include "sim/eda/area_tools.h"
+#include "sim/eda/build_paths.h"
 #include "sim/eda/content_hash.h"
-
-#ifndef SHADESIM_SOURCE_DIR
-#define SHADESIM_SOURCE_DIR "."
-#endif
 
 namespace shadesim {
 namespace {
@@ -40,8 +37,7 @@ AreaInputs area_inputs(const std::vector<VerilogParameter>& parameters, const Ar
   in.flow.chparam = yosys_chparam_args(parameters);
   in.flow.yosys = area_tools::find_tool(o.yosys, "yosys");
   in.nextpnr = o.place_and_route ? area_tools::find_tool(o.nextpnr, "nextpnr-ice40") : "";
-  in.flow.files =
-      area_tools::rtl_sources(o.rtl_dir.empty() ? SHADESIM_SOURCE_DIR "/rtl" : o.rtl_dir);
+  in.flow.files = area_tools::rtl_sources(o.rtl_dir.empty() ? source_dir() + "/rtl" : o.rtl_dir);
   in.flow.yosys_version = area_tools::tool_version(in.flow.yosys, {"-V"});
   return in;
 }

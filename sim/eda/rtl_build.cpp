@@ -287,8 +287,6 @@ bool ensure_verilated(const fs::path& dir, const fs::path& cache, const RtlConfi
 
 }  // namespace
 
-std::string source_dir() { return SHADESIM_SOURCE_DIR; }
-
 std::vector<std::string> rtl_source_files() {
   std::vector<std::string> out;
   for (const auto& p : rtl_sources()) out.push_back(p.string());
@@ -303,9 +301,7 @@ std::string named_builds_path() {
   return (fs::path(source_dir()) / "sim" / "harness" / "builds.json").string();
 }
 
-std::string default_rtl_cache_dir() {
-  return (fs::path(SHADESIM_BINARY_DIR) / "rtl-cache").string();
-}
+std::string default_rtl_cache_dir() { return (fs::path(binary_dir()) / "rtl-cache").string(); }
 
 std::string rtl_build_key(const RtlConfig& build, CosimBackend backend, bool coverage,
                           const std::string& cache_dir, RtlOptimization optimization) {

@@ -28,6 +28,7 @@
 #include <thread>
 #include <vector>
 
+#include "sim/eda/build_paths.h"
 #include "sim/eda/rtl_recipe.h"
 #include "sim/harness/rtl_config.h"
 
@@ -89,8 +90,6 @@ RtlBuildResult ensure_rtl_build(const RtlConfig& build, CosimBackend backend,
 // shade_unit's RTL sources in dependency order, leaves first (SHADESIM_RTL_DIR: another copy).
 std::vector<std::string> rtl_source_files();
 
-// Where the project's sources are (the checkout shadesim was built from).
-std::string source_dir();
 // Verilates builds in the background while the caller does other work (regress's host setup):
 // add() queues a build; at most `workers` Verilator processes run at once; the destructor waits
 // for them. ensure_rtl_build then finds the Verilated model (or waits on its lock) and only

@@ -15,6 +15,7 @@
 
 #include "model/rtl_parameters.h"
 #include "model/text_file.h"
+#include "sim/eda/build_paths.h"
 #include "sim/eda/process.h"
 
 namespace shadesim {
@@ -417,14 +418,14 @@ std::vector<fs::path> compile_model(const fs::path& dir, const fs::path& out, co
 }
 
 std::vector<fs::path> glue_sources() {
-  const fs::path h = fs::path(SHADESIM_SOURCE_DIR) / "sim" / "harness";
+  const fs::path h = fs::path(source_dir()) / "sim" / "harness";
   return {h / "cosim_glue.cpp", h / "verilated_dut.h", h / "sc_dut.h"};
 }
 
 std::vector<fs::path> harness_libraries() {
   // SHADESIM_HARNESS_LIB_DIR: another copy of the libraries (the relink test).
   const char* other = std::getenv("SHADESIM_HARNESS_LIB_DIR");
-  const fs::path bin = other && *other ? fs::path(other) : fs::path(SHADESIM_BINARY_DIR);
+  const fs::path bin = other && *other ? fs::path(other) : fs::path(binary_dir());
   return {bin / "libshadesim_harness.a", bin / "libshadesim_model.a"};
 }
 
@@ -433,9 +434,8 @@ void compile_glue(const fs::path& dir, const fs::path& object, const Flavour& f,
   auto c = compiler(f, t, opt);
   const auto pch = with_pch(runtime, opt);
   c.insert(c.end(), pch.begin(), pch.end());
-  c.insert(c.end(), {"-I" + std::string(SHADESIM_SOURCE_DIR), "-I" + dir.string(),
-                     "-I" + (dir / "obj").string(), "-c", "-o", object.string(),
-                     glue_sources().front().string()});
+  c.insert(c.end(), {"-I" + source_dir(), "-I" + dir.string(), "-I" + (dir / "obj").string(), "-c",
+                     "-o", object.string(), glue_sources().front().string()});
   run_commands({c}, 1, log, "compiling the co-simulation glue");
 }
 

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/eda/build_paths.h"
+
 namespace shadesim {
 
 struct ExploreJobOptions {
@@ -19,7 +21,7 @@ struct ExploreJobOptions {
   int jobs = 2;
   std::string json_path, csv_path, out_dir;
   std::string config_path;
-  std::string area_cache = SHADESIM_BINARY_DIR "/area-cache";
+  std::string area_cache = binary_dir() + "/area-cache";
   int out_bits = 8;
   bool verify = false;
   bool estimate_only = false;  // no Yosys for the front: estimates only, labelled so
