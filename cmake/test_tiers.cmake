@@ -66,6 +66,7 @@ set(SHADESIM_GTEST_TIERS
   area_estimate_test        quick
   area_test                 quick
   cli_test                  quick
+  config_clock_test         quick
   command_stream_test       quick
   coverage_test             quick
   cycle_estimate_test       quick

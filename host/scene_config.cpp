@@ -869,6 +869,22 @@ void rechoose_throughput(const std::vector<std::string>& scene_paths, const Deri
   }
 }
 
+}  // namespace
+
+void pipeline_combine(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
+                      int stages, const std::string& why, DerivedConfig& derived) {
+  derived.config.combine_stages = stages;
+  derived.config.validate();
+  rechoose_throughput(scene_paths, options, derived);
+  derived.reasons.erase(
+      std::remove_if(derived.reasons.begin(), derived.reasons.end(),
+                     [](const FieldReason& r) { return r.field == "combine_stages"; }),
+      derived.reasons.end());
+  derived.reasons.push_back({"combine_stages", std::to_string(stages), why});
+}
+
+namespace {
+
 // derive_widths, with the gate held (and the throughput structure chosen for its widths).
 DerivedConfig derive_held(const std::vector<std::string>& scene_paths,
                           const DeriveOptions& options) {

@@ -153,6 +153,12 @@ inline int code_budget(double budget_lsb) { return static_cast<int>(std::ceil(bu
 DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
                             const DeriveOptions& options);
 
+// `derived` with its pixel combine pipelined (UnitConfig::combine_stages = stages): the
+// throughput structure is chosen again for it (a combine stage delays each frame's last pixels
+// by a cycle) and a "combine_stages" reason with `why` joins the others. Pixels do not change.
+void pipeline_combine(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
+                      int stages, const std::string& why, DerivedConfig& derived);
+
 // What one scene drives on `unit`'s own structure (channels, lights, diffuse colour, specular
 // unit), measured as derive_config measures it: on a trial of that structure whose series and
 // coefficient formats lose nothing. The figures a given unit's formats are checked against

@@ -62,6 +62,8 @@ void register_config(CLI::App& app, int& exit_code) {
       "               Where none meets it: the fastest, and each scene over the target named\n"
       "               with the resource that limits it (--port-words, --tri-queue,\n"
       "               --span-setup hold a knob)\n"
+      "  combine_stages  0; with --clock-mhz, 1 where the unit without it misses the clock\n"
+      "               and the one with it meets it, or is faster (both timed; see --clock-mhz)\n"
       "  diffuse_colour  multiply with 3 channels (one N.L series per light, times kd_c L_c per\n"
       "               pixel and channel), series with 1 (--diffuse-colour to choose)\n"
       "  spec_colour  integer bits: every ks_c L_c (and kd_c L_c multiplied) unsaturated;\n"
@@ -113,6 +115,24 @@ void register_config(CLI::App& app, int& exit_code) {
       "hardware unit for scenes that name ideal, and no other: wpow (W_16 B=16 pipelined),\n"
       "lut or schlick (their default widths), or ideal to keep the yardstick (no RTL); default:\n"
       "W_16, else the first of W_32 and two interpolating LUTs that meets the budget");
+  sub->add_option(
+         "--clock-mhz", o->clock_mhz,
+         "a clock the unit must close (default: none; then no synthesis runs). The derived\n"
+         "unit is timed where --clock-target says; where it misses, its pixel combine gets a\n"
+         "register stage (combine_stages 1, the one pipelining knob so far) and is timed again.\n"
+         "config keeps the cheapest that meets the clock, else the fastest, names the path\n"
+         "that limits it and exits 1. Runs shadesim area's flows (cached in --area-cache)")
+      ->check(positive_number());
+  sub->add_option("--clock-target", o->clock_target,
+                  "where the clock is timed: osu018 (Yosys onto the library, OpenSTA; --liberty\n"
+                  "for another) or ice40 (an HX8K through nextpnr-ice40)")
+      ->check(CLI::IsMember({"osu018", "ice40"}))
+      ->capture_default_str();
+  sub->add_option("--liberty", o->liberty,
+                  "another standard-cell library for --clock-target osu018's flow")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--area-cache", o->area_cache, "shadesim area's cache for the clock's flows")
+      ->capture_default_str();
   sub->add_option(
          "--json", o->json_path,
          "write the UnitConfig JSON (loadable by --config) with a \"derivation\" block: reasons, "

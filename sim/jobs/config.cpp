@@ -20,6 +20,7 @@
 #include "model/shade_unit.h"
 #include "model/specular_units.h"
 #include "model/text_file.h"
+#include "sim/jobs/clock_target.h"
 
 namespace shadesim {
 namespace {
@@ -144,6 +145,19 @@ nlohmann::json config_json(const ConfigOptions& o, const DerivedConfig& derived,
   return j;
 }
 
+// What --clock-mhz found: each unit timed, the one chosen, and why none meets it if so.
+nlohmann::json clock_json(const ClockTarget& target, const ClockOutcome& c) {
+  nlohmann::json tried = nlohmann::json::array();
+  for (const ClockTiming& t : c.tried) {
+    tried.push_back({{"combine_stages", t.unit.combine_stages},
+                     {"fmax_mhz", t.fmax_mhz ? nlohmann::json(*t.fmax_mhz) : nlohmann::json()},
+                     {target.site == ClockSite::kIce40 ? "lut4" : "area_um2", t.area},
+                     {"limit", t.limit}});
+  }
+  return {{"target_mhz", target.mhz}, {"site", site_name(target)}, {"tried", tried},
+          {"chosen", c.chosen},       {"meets", c.meets},          {"miss", c.miss}};
+}
+
 // The scenes the unit runs over the cycles target (DerivedConfig::cycles_misses, each naming
 // the resource that limits it), on stderr; whether there is one.
 bool report_cycles_misses(const DerivedConfig& derived) {
@@ -158,7 +172,16 @@ bool report_cycles_misses(const DerivedConfig& derived) {
 
 int run_config(const ConfigOptions& o) {
   const DeriveOptions d = derive_options(o);
-  const DerivedConfig derived = derive_config(o.scenes, d);
+  DerivedConfig derived = derive_config(o.scenes, d);
+  std::optional<ClockOutcome> clock;
+  ClockTarget target;
+  if (o.clock_mhz > 0) {
+    target.mhz = o.clock_mhz;
+    target.site = parse_clock_site(o.clock_target, "--clock-target");
+    target.liberty = o.liberty;
+    target.cache_dir = o.area_cache;
+    clock = meet_clock(o.scenes, d, target, derived);
+  }
   print_derivation(derived);
   std::cout << "\nerror on this unit (8-bit codes vs the reference rounded by the same rule; real "
                "= before "
@@ -167,7 +190,9 @@ int run_config(const ConfigOptions& o) {
   std::vector<std::string> missed;
   for (const auto& path : o.scenes) scenes.push_back(check_scene(path, derived, d, missed));
   if (!o.json_path.empty()) {
-    write_text_file(o.json_path, config_json(o, derived, scenes, missed).dump(2) + '\n');
+    nlohmann::json j = config_json(o, derived, scenes, missed);
+    if (clock) j["derivation"]["clock"] = clock_json(target, *clock);
+    write_text_file(o.json_path, j.dump(2) + '\n');
     std::cout << "\nconfig       " << o.json_path << " (use with --config)\n";
   }
   if (!missed.empty()) {
@@ -176,7 +201,8 @@ int run_config(const ConfigOptions& o) {
     for (const auto& m : missed) std::cerr << "  " << m << '\n';
   }
   const bool cycles_missed = report_cycles_misses(derived);
-  return missed.empty() && !cycles_missed ? 0 : 1;
+  if (clock && !clock->meets) std::cerr << "shadesim config: " << clock->miss << '\n';
+  return missed.empty() && !cycles_missed && (!clock || clock->meets) ? 0 : 1;
 }
 
 }  // namespace shadesim

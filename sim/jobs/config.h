@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/eda/build_paths.h"
+
 namespace shadesim {
 
 struct ConfigOptions {
@@ -20,6 +22,12 @@ struct ConfigOptions {
   std::string diffuse_colour;  // empty: derived
   double max_cycles_per_pixel = 1.10;
   std::string json_path;
+  // --clock-mhz: time the unit where it will be built and pipeline it to reach the clock
+  // (sim/jobs/clock_target.h); 0: no clock target.
+  double clock_mhz = 0;
+  std::string clock_target = "osu018";  // or ice40
+  std::string liberty;                  // another library than osu018
+  std::string area_cache = binary_dir() + "/area-cache";
 };
 
 // Derives the unit, prints it and each scene's error on it, writes --json; returns the exit code

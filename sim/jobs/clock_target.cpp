@@ -1,0 +1,113 @@
+#include "sim/jobs/clock_target.h"
+
+#include <fmt/format.h>
+
+#include <iostream>
+#include <stdexcept>
+
+#include "sim/eda/area.h"
+
+namespace shadesim {
+
+ClockSite parse_clock_site(const std::string& text, const std::string& what) {
+  if (text == "osu018") return ClockSite::kLiberty;
+  if (text == "ice40") return ClockSite::kIce40;
+  throw std::invalid_argument(what + ": expected osu018 or ice40, got '" + text + "'");
+}
+
+std::string site_name(const ClockTarget& target) {
+  if (target.site == ClockSite::kIce40) return "iCE40 HX8K (Yosys synth_ice40, nextpnr-ice40)";
+  return (target.liberty.empty() ? std::string("osu018 0.18 um") : target.liberty) +
+         " (Yosys + abc -liberty, OpenSTA)";
+}
+
+namespace {
+
+std::string clock_path_limit(const LibertyReport& l) {
+  return fmt::format("critical path {} -> {} ({}): arrival {:.3f} ns + setup {:.3f} ns",
+                     l.path_from, l.path_to, l.path_group, l.path_arrival_ns, l.path_setup_ns);
+}
+
+}  // namespace
+
+ClockTiming time_unit(const UnitConfig& unit, const ClockTarget& target) {
+  AreaOptions ao;
+  ao.cache_dir = target.cache_dir;
+  ao.breakdown = false;
+  ao.progress = &std::cerr;
+  ao.place_and_route = target.site == ClockSite::kIce40;
+  if (target.site == ClockSite::kLiberty) {
+    ao.liberty = LibertyOptions{};
+    ao.liberty->liberty_path = resolve_liberty(target.liberty);
+  }
+  const AreaReport r = unit_area(unit, ao);
+  ClockTiming t;
+  t.unit = unit;
+  if (target.site == ClockSite::kLiberty) {
+    t.fmax_mhz = r.liberty->fmax_mhz;
+    t.area = r.liberty->area_um2;
+    t.limit = clock_path_limit(*r.liberty);
+  } else {
+    t.fmax_mhz = r.ice40.fmax_mhz;
+    t.area = static_cast<double>(r.ice40.lut4);
+    t.limit = r.ice40.fmax_mhz ? "nextpnr-ice40's post-route critical path"
+                               : r.ice40.pnr_note + " (" + r.ice40.fit_note + ")";
+  }
+  return t;
+}
+
+namespace {
+
+std::string clock_figures(const ClockTiming& t, const ClockTarget& target) {
+  const std::string area = target.site == ClockSite::kIce40 ? fmt::format("{:.0f} LUT4", t.area)
+                                                            : fmt::format("{:.0f} um^2", t.area);
+  return (t.fmax_mhz ? fmt::format("Fmax {:.1f} MHz", *t.fmax_mhz) : std::string("no Fmax")) +
+         ", " + area;
+}
+
+}  // namespace
+
+ClockOutcome meet_clock(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
+                        const ClockTarget& target, DerivedConfig& derived) {
+  ClockOutcome out;
+  out.tried.push_back(time_unit(derived.config, target));
+  const std::string at = fmt::format("{:g} MHz on {}", target.mhz, site_name(target));
+  if (out.tried[0].meets(target.mhz)) {
+    out.meets = true;
+    derived.reasons.push_back(
+        {"combine_stages", "0",
+         "the clock: " + clock_figures(out.tried[0], target) + " meets " + at + " unpipelined"});
+    return out;
+  }
+  // The one pipelining knob there is: a register stage in the pixel combine.
+  DerivedConfig piped = derived;
+  pipeline_combine(scene_paths, options, 1, "", piped);
+  out.tried.push_back(time_unit(piped.config, target));
+  const ClockTiming& plain = out.tried[0];
+  const ClockTiming& staged = out.tried[1];
+  const auto faster = [](const ClockTiming& a, const ClockTiming& b) {
+    return a.fmax_mhz.value_or(0) > b.fmax_mhz.value_or(0);
+  };
+  out.meets = staged.meets(target.mhz);
+  out.chosen = out.meets || faster(staged, plain) ? 1 : 0;
+  const ClockTiming& chosen = out.tried[out.chosen];
+  std::string why = "the clock: unpipelined " + clock_figures(plain, target) +
+                    "; with a combine stage " + clock_figures(staged, target);
+  if (plain.area > 0)
+    why += fmt::format(" ({:+.1f} % area)", 100.0 * (staged.area / plain.area - 1));
+  why += out.meets ? "; meets " + at : "; misses " + at;
+  if (!out.meets) {
+    out.miss = fmt::format(
+        "no unit meets {}: the fastest, {} (combine_stages {}), is limited by "
+        "its {}",
+        at, clock_figures(chosen, target), chosen.unit.combine_stages, chosen.limit);
+  }
+  if (out.chosen == 1) {
+    pipeline_combine(scene_paths, options, 1, why, derived);
+  } else {
+    derived.reasons.push_back({"combine_stages", "0", why});
+  }
+  return out;
+}
+
+}  // namespace shadesim
