@@ -38,6 +38,8 @@ set(SHADESIM_TIER_RULES
   # only the CLI; bench-cosim-ab builds a baseline in a git worktree; the rest build RTL or
   # synthesise
   "^bench_script_throughput_table$"                                 quick
+  # docs/area.md's silicon table on the sphere (Yosys and OpenSTA, cached after the first run)
+  "^silicon_table_sphere$"                                          rtl
   "^bench_script_bench_cosim_ab$"                                   regress
   "^bench_script_"                                                  rtl
   # shadesim report's page in headless Chromium, from hand-written inputs (no RTL, no Yosys)
