@@ -392,6 +392,12 @@ std::optional<double> ExplorePoint::mpixel_per_s() const {
   return *measured->fmax_mhz / figures.cycles_per_pixel;
 }
 
+std::optional<double> ExplorePoint::library_mpixel_per_s() const {
+  if (!measured || !measured->library_fmax_mhz || !(figures.cycles_per_pixel > 0))
+    return std::nullopt;
+  return *measured->library_fmax_mhz / figures.cycles_per_pixel;
+}
+
 std::size_t measure_front(ExploreResult& result, const MeasureFunction& measure,
                           const MeasureProgress& progress) {
   const int out_bits = result.start.out_bits;

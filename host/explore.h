@@ -102,6 +102,12 @@ struct MeasuredArea {
   std::optional<double> fmax_mhz;  // nextpnr-ice40, out of context; none where it does not fit
   int64_t logic_depth = -1;        // gate levels on the longest path (Yosys ltp)
   std::string note;                // why there is no Fmax
+  // The unit on a standard-cell library (osu018 unless told otherwise), timed by OpenSTA
+  // (sim/eda/liberty_flow.h); none where that flow was not run.
+  std::string library;                     // "osu018", else the liberty's library name
+  std::optional<double> library_fmax_mhz;  // 1000 / (analysis period - worst slack)
+  std::optional<double> library_area_um2;  // table RAM macros apart
+  std::string library_critical_path;       // "from -> to" (registers' Q nets or ports)
 };
 using MeasureFunction = std::function<MeasuredArea(const UnitConfig&)>;
 
@@ -119,6 +125,8 @@ struct ExplorePoint {
   double front_area() const { return measured ? measured->cells : figures.area.cells; }
   // Mpixel/s at the measured Fmax (Fmax x pixels per clock), where both are known.
   std::optional<double> mpixel_per_s() const;
+  // The same at the library's Fmax.
+  std::optional<double> library_mpixel_per_s() const;
 };
 
 struct ExploreOptions {

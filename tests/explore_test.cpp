@@ -20,6 +20,7 @@
 #include "model/command_stream.h"
 #include "model/shade_unit.h"
 #include "model/unit_config_file.h"
+#include "sim/eda/liberty_flow.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/render_at.h"
 
@@ -226,6 +227,12 @@ TEST(Explore, MeasureFrontMeasuresUntilEveryFrontPointIsMeasured) {
   r.points[1].measured->fmax_mhz = 40.0;
   ASSERT_TRUE(r.points[1].mpixel_per_s());
   EXPECT_DOUBLE_EQ(*r.points[1].mpixel_per_s(), 20.0);
+  // The same at the library's Fmax, apart from the iCE40's.
+  EXPECT_FALSE(r.points[1].library_mpixel_per_s());
+  r.points[1].measured->library_fmax_mhz = 300.0;
+  ASSERT_TRUE(r.points[1].library_mpixel_per_s());
+  EXPECT_DOUBLE_EQ(*r.points[1].library_mpixel_per_s(), 150.0);
+  EXPECT_DOUBLE_EQ(*r.points[1].mpixel_per_s(), 20.0);
 }
 
 TEST(Explore, BadOptionsAreErrors) {
@@ -376,6 +383,99 @@ TEST(ExploreCli, BadInputIsAClearError) {
   EXPECT_NE(r.output.find("no width can fix"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("synthesising it with Yosys"), std::string::npos)
       << "the recorded anchors no longer load (tests/data/area_anchors/): " << r.output;
+
+  // A clock needs the measured front: a usage error naming both options, before any work.
+  r = run("explore " + kScenes + "sphere.json --clock-mhz 50 --estimate-only --out " +
+          dir.string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--clock-mhz"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--estimate-only"), std::string::npos) << r.output;
+  std::filesystem::remove_all(dir);
+}
+
+// The measured front in osu018 and --clock-mhz, on the sphere (its units close 300 MHz and more
+// there): every measured point has the library's Fmax and Mpixel/s = Fmax / its cycles per
+// pixel; 50 MHz is met and the last line names the cheapest such point within the budget;
+// 5000 MHz is not, and the line names the fastest point's critical path. The exit status does not
+// depend on the clock. Cost: --budget 8 gives the sphere a 5-point front (11 at 1 LSB), so a cold
+// area cache synthesises 5 units (Yosys and the library flow side by side, about 25 s each here)
+// instead of 12; both runs share the build's area cache (and the anchor JsonAndCsv's run
+// synthesises), so the second run is all cache hits. --no-pnr: the iCE40 Fmax is not under test.
+TEST(ExploreCli, MeasuredFrontHasTheLibraryFmaxAndIsHeldAgainstAClock) {
+  if (!std::filesystem::exists(kDefaultLiberty) || run_shell("command -v sta").status != 0 ||
+      run_shell("command -v yosys").status != 0)
+    GTEST_SKIP() << "yosys, sta or " << kDefaultLiberty << " missing";
+  const auto dir = temp_dir("clock");
+  const auto explore_at = [&](const std::string& mhz) {
+    const std::string json = (dir / ("e" + mhz + ".json")).string();
+    const Result r = run("explore " + kScenes + "sphere.json --budget 8 --no-pnr --clock-mhz " +
+                         mhz + " --out " + dir.string() + " --json " + json);
+    std::ifstream is(json);
+    return std::make_pair(r, nlohmann::json::parse(is));
+  };
+
+  const auto [met, j50] = explore_at("50");
+  ASSERT_EQ(met.status, 0) << met.output;
+  EXPECT_NE(met.output.find("iCE40 MHz"), std::string::npos) << met.output;
+  EXPECT_NE(met.output.find("osu018 MHz"), std::string::npos) << met.output;
+  // The rows of the measured front's table, which the clock's line chooses from.
+  std::vector<size_t> rows;
+  for (const auto& p : j50["points"]) {
+    if (!p.contains("measured")) continue;
+    if (p["pareto"].get<bool>() || p["index"] == j50["chosen_index"])
+      rows.push_back(p["index"].get<size_t>());
+    const auto& m = p["measured"];
+    ASSERT_TRUE(m["library_fmax_mhz"].is_number()) << m.dump();
+    const double fmax = m["library_fmax_mhz"].get<double>();
+    EXPECT_GT(fmax, 50.0) << m.dump();
+    EXPECT_TRUE(m["meets_clock"].get<bool>()) << m.dump();
+    EXPECT_GT(m["library_area_um2"].get<double>(), 0.0) << m.dump();
+    EXPECT_DOUBLE_EQ(m["library_mpixel_per_s"].get<double>(),
+                     fmax / p["cycles_per_pixel"].get<double>())
+        << m.dump();
+    EXPECT_TRUE(m["fmax_mhz"].is_null()) << "--no-pnr: no iCE40 Fmax";
+  }
+  ASSERT_FALSE(rows.empty());
+  const auto& c50 = j50["clock"];
+  ASSERT_TRUE(c50["point"].is_number()) << c50.dump();
+  const size_t named = c50["point"].get<size_t>();
+  const auto& points = j50["points"];
+  EXPECT_TRUE(points[named]["meets_budget"].get<bool>());
+  for (const size_t i : rows) {
+    if (points[i]["meets_budget"].get<bool>()) {
+      EXPECT_GE(points[i]["measured"]["cells"].get<double>(),
+                points[named]["measured"]["cells"].get<double>())
+          << "point " << i << " is cheaper than the named " << named;
+    }
+  }
+  const std::string line50 = "clock        point " + std::to_string(named) + " meets 50 MHz";
+  EXPECT_NE(met.output.find(line50), std::string::npos) << met.output;
+
+  const auto [missed, j5000] = explore_at("5000");
+  EXPECT_EQ(missed.status, 0) << "the clock is reported, not enforced: " << missed.output;
+  // A flow that ran ends with "[area] done after N s"; a cache hit prints only "cache hit".
+  EXPECT_EQ(missed.output.find("[area] done after"), std::string::npos)
+      << "the second run was to be all cache hits: " << missed.output;
+  const auto& c = j5000["clock"];
+  EXPECT_TRUE(c["point"].is_null()) << c.dump();
+  size_t fastest = rows.front();
+  for (const size_t i : rows) {
+    const auto& m = j5000["points"][i]["measured"];
+    EXPECT_FALSE(m["meets_clock"].get<bool>()) << m.dump();
+    if (m["library_fmax_mhz"].get<double>() >
+        j5000["points"][fastest]["measured"]["library_fmax_mhz"].get<double>())
+      fastest = i;
+  }
+  const std::string path =
+      j5000["points"][fastest]["measured"]["library_critical_path"].get<std::string>();
+  EXPECT_NE(path.find(" -> "), std::string::npos) << path;
+  const std::string line5000 = "no measured point meets 5000 MHz";
+  EXPECT_NE(missed.output.find(line5000), std::string::npos) << missed.output;
+  EXPECT_NE(missed.output.find("the fastest is point " + std::to_string(fastest)),
+            std::string::npos)
+      << missed.output;
+  EXPECT_NE(missed.output.find("limited by its critical path " + path), std::string::npos)
+      << missed.output;
   std::filesystem::remove_all(dir);
 }
 

@@ -8,11 +8,13 @@
 #include "sim/cli/config_option.h"
 #include "sim/cli/number_checks.h"
 #include "sim/cli/output_paths.h"
+#include "sim/eda/liberty_flow.h"
 
 namespace shadesim {
 
 void register_explore(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<ExploreJobOptions>();
+  auto clock_target = std::make_shared<std::string>("osu018");
   CLI::App* sub = app.add_subcommand(
       "explore",
       "Sweep the unit's widths with the bit-accurate model and find the cheapest that meet an\n"
@@ -38,7 +40,12 @@ void register_explore(CLI::App& app, int& exit_code) {
       "     point's own output, so other output widths are shown but not compared).\n"
       "Then the chosen point's error is split by source: (1) the unit's shading function vs\n"
       "exact pow, (2) Taylor truncation, (3) fixed-point quantization; widths fix only (3).\n"
-      "Exit status 0 when a point meets the budget, 1 when none does, 2 on bad input.");
+      "Then (unless --estimate-only) every point on the front, and the chosen one, is measured\n"
+      "by shadesim area (cached): Yosys's cells, nextpnr-ice40's Fmax on an HX8K (not with\n"
+      "--no-pnr) and the unit mapped onto osu018 0.18 um and timed by OpenSTA, Fmax = 1000 /\n"
+      "(4 ns - worst slack) (not with --no-liberty); Mpixel/s = Fmax / cycles per pixel.\n"
+      "Exit status 0 when a point meets the budget, 1 when none does, 2 on bad input;\n"
+      "--clock-mhz does not change it.");
   sub->add_option("scenes", o->scenes, "scene JSON file(s); one unit must serve them all")
       ->required()
       ->check(CLI::ExistingFile);
@@ -90,14 +97,54 @@ void register_explore(CLI::App& app, int& exit_code) {
       "write the regress runs --verify would do into FILE, one shell command per line (for GNU\n"
       "parallel or a batch system; README \"Regression on many machines\") instead of running "
       "them");
-  sub->add_flag("--estimate-only", o->estimate_only,
-                "do not synthesise the Pareto points: the front is drawn on estimated areas and "
-                "labelled so\n(by default every point on it, and the chosen one, is measured by "
-                "shadesim area: minutes\neach the first time, cached after)");
+  CLI::Option* estimate_only = sub->add_flag(
+      "--estimate-only", o->estimate_only,
+      "do not synthesise the Pareto points: the front is drawn on estimated areas and "
+      "labelled so\n(by default every point on it, and the chosen one, is measured by "
+      "shadesim area: minutes\neach the first time, cached after)");
   sub->add_flag("--no-pnr", o->no_pnr,
-                "measure the front without nextpnr-ice40 (no Fmax, no Mpixel/s; much quicker)");
+                "measure the front without nextpnr-ice40 (no iCE40 Fmax, no iCE40 Mpixel/s; much "
+                "quicker)");
+  CLI::Option* liberty =
+      sub->add_option("--liberty", o->liberty,
+                      "map the front's points onto this Liberty (.lib) library instead of osu018\n"
+                      "(" +
+                          std::string(kDefaultLiberty) + ")")
+          ->check(CLI::ExistingFile);
+  sub->add_flag("--no-liberty", o->no_liberty,
+                "measure the front without the standard-cell mapping and OpenSTA (no um^2, no "
+                "library Fmax,\nno library Mpixel/s)")
+      ->excludes(liberty);
+  CLI::Option* clock =
+      sub->add_option(
+             "--clock-mhz", o->clock_mhz,
+             "a clock to hold the measured front against: each point is marked whether its Fmax "
+             "on\n"
+             "--clock-target meets it, and the output ends with one line: the cheapest measured\n"
+             "point within the budget that meets it, else the fastest and the critical path that\n"
+             "limits it. Reported, not enforced: the exit status does not depend on it")
+          ->check(positive_number())
+          ->excludes(estimate_only);
+  sub->add_option(
+         "--clock-target", *clock_target,
+         "where --clock-mhz is timed: osu018 (the front's library Fmax, OpenSTA; --liberty "
+         "for\nanother library) or ice40 (nextpnr-ice40's Fmax on an HX8K)")
+      ->check(CLI::IsMember({"osu018", "ice40"}))
+      ->capture_default_str()
+      ->needs(clock);
   sub->add_flag("-q,--quiet", o->quiet, "print nothing (use with --json / --csv)");
-  sub->callback([o, &exit_code]() { exit_code = run_explore(*o); });
+  sub->callback([o, clock_target, &exit_code]() {
+    o->clock_site = parse_clock_site(*clock_target, "--clock-target");
+    // Each site's Fmax comes from a flow the front can be measured without.
+    if (o->clock_mhz > 0 && o->clock_site == ClockSite::kIce40 && o->no_pnr)
+      throw CLI::ValidationError("--clock-target ice40",
+                                 "needs nextpnr-ice40's Fmax: it excludes --no-pnr");
+    if (o->clock_mhz > 0 && o->clock_site == ClockSite::kLiberty && o->no_liberty)
+      throw CLI::ValidationError("--clock-mhz",
+                                 "is timed on the library (--clock-target osu018): it excludes "
+                                 "--no-liberty");
+    exit_code = run_explore(*o);
+  });
 }
 
 }  // namespace shadesim

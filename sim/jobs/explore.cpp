@@ -23,6 +23,7 @@
 #include "sim/eda/process.h"
 #include "sim/jobs/elapsed.h"
 #include "sim/jobs/explore.h"
+#include "sim/jobs/explore_front.h"
 #include "sim/jobs/fixed_text.h"
 #include "sim/jobs/unit_choice.h"
 
@@ -72,74 +73,6 @@ AreaFunction area_model(const UnitConfig& start, const std::string& cache_dir) {
     return AreaFigure{static_cast<double>(e.cells), static_cast<double>(e.lut4),
                       "generic cells, " + e.label()};
   };
-}
-
-// The front's measurement: shadesim area on the point's unit (cached like `area`), with the
-// out-of-context Fmax unless --no-pnr.
-MeasureFunction front_measure(const ExploreJobOptions& o) {
-  return [o](const UnitConfig& c) {
-    AreaOptions ao;
-    ao.cache_dir = o.area_cache;
-    ao.place_and_route = !o.no_pnr;
-    ao.breakdown = false;
-    ao.progress = o.quiet ? nullptr : &std::cerr;
-    const AreaReport a = unit_area(c, ao);
-    MeasuredArea m;
-    m.cells = static_cast<double>(a.cells);
-    m.gate_equivalents = static_cast<double>(a.gate_equivalents());
-    m.lut4 = static_cast<double>(a.ice40.lut4);
-    m.fits_hx8k = a.ice40.fits_hx8k;
-    m.fmax_mhz = a.ice40.fmax_mhz;
-    m.logic_depth = a.logic_depth.gates;
-    m.note = a.ice40.fmax_mhz ? a.ice40.fit_note : a.ice40.pnr_note;
-    return m;
-  };
-}
-
-// The measured front: Yosys's cells beside the estimate, GE, LUT4s, Fmax and Mpixel/s.
-void print_measured_front(std::ostream& os, const ExploreResult& r) {
-  std::vector<std::size_t> rows;
-  for (std::size_t i = 0; i < r.points.size(); ++i)
-    if (r.points[i].measured && (r.points[i].pareto || (r.chosen && *r.chosen == i)))
-      rows.push_back(i);
-  std::sort(rows.begin(), rows.end(), [&](std::size_t a, std::size_t b) {
-    return r.points[a].front_area() < r.points[b].front_area();
-  });
-  os << "Pareto front, Yosys-measured (shadesim area on each point; Fmax out of context on an "
-        "iCE40 HX8K)\n"
-     << std::left << std::setw(6) << "point" << std::setw(22) << "knob" << std::setw(8) << "value"
-     << std::right << std::setw(8) << "max LSB" << std::setw(8) << "cyc/px" << std::setw(10)
-     << "est cells" << std::setw(10) << "cells" << std::setw(8) << "est err" << std::setw(9) << "GE"
-     << std::setw(8) << "LUT4" << std::setw(7) << "depth" << std::setw(9) << "Fmax MHz"
-     << std::setw(9) << "Mpix/s"
-     << "\n";
-  for (const std::size_t i : rows) {
-    const ExplorePoint& p = r.points[i];
-    const MeasuredArea& m = *p.measured;
-    std::ostringstream fmax, mpix;
-    if (m.fmax_mhz) {
-      fmax << std::fixed << std::setprecision(1) << *m.fmax_mhz;
-      mpix << std::fixed << std::setprecision(1) << *p.mpixel_per_s();
-    } else {
-      fmax << "-";
-      mpix << "-";
-    }
-    const double err = m.cells > 0 ? 100.0 * (p.figures.area.cells / m.cells - 1.0) : 0.0;
-    os << std::left << std::setw(6) << i << std::setw(22) << (p.knob.empty() ? p.phase : p.knob)
-       << std::setw(8) << (p.value.empty() ? "-" : p.value) << std::right << std::setw(8)
-       << p.figures.error.max_code_lsb << std::setw(8) << std::fixed << std::setprecision(3)
-       << p.figures.cycles_per_pixel << std::setw(10) << std::setprecision(0)
-       << p.figures.area.cells << std::setw(10) << m.cells << std::setw(7) << std::showpos
-       << std::setprecision(1) << err << std::noshowpos << "%" << std::setw(9)
-       << std::setprecision(0) << m.gate_equivalents << std::setw(8) << m.lut4 << std::setw(7)
-       << m.logic_depth << std::setw(9) << fmax.str() << std::setw(9) << mpix.str()
-       << (r.chosen && *r.chosen == i ? "  CHOSEN" : "") << (p.pareto ? "" : "  (off the front)")
-       << "\n";
-  }
-  const EstimateError e = estimate_error(r);
-  os << "estimate vs Yosys on these " << e.count << " points: median |error| " << std::fixed
-     << std::setprecision(1) << e.median_pct << " %, max " << e.max_pct
-     << " % (generic cells; the sweep's other points carry estimates only)\n";
 }
 
 // ---------------------------------------------------------------- RTL verification
@@ -309,7 +242,8 @@ nlohmann::json psnr_json(double db) {
   return std::isinf(db) ? nlohmann::json(nullptr) : nlohmann::json(db);
 }
 
-nlohmann::json point_json(const ExplorePoint& p, std::size_t index, int channels) {
+nlohmann::json point_json(const ExplorePoint& p, std::size_t index, int channels,
+                          const ExploreJobOptions& o) {
   nlohmann::json j = {{"index", index}, {"phase", p.phase}, {"stage", p.stage},
                       {"knob", p.knob}, {"value", p.value}, {"valid", p.valid}};
   if (!p.valid) {
@@ -343,18 +277,7 @@ nlohmann::json point_json(const ExplorePoint& p, std::size_t index, int channels
   j["coefficients_out_of_range"] = p.figures.coefficients_out_of_range;
   j["meets_budget"] = p.meets_budget;
   j["pareto"] = p.pareto;
-  if (p.measured) {
-    const MeasuredArea& m = *p.measured;
-    j["measured"] = {
-        {"cells", m.cells},
-        {"gate_equivalents", m.gate_equivalents},
-        {"lut4", m.lut4},
-        {"fits_hx8k", m.fits_hx8k},
-        {"fmax_mhz", m.fmax_mhz ? nlohmann::json(*m.fmax_mhz) : nlohmann::json()},
-        {"mpixel_per_s", p.mpixel_per_s() ? nlohmann::json(*p.mpixel_per_s()) : nlohmann::json()},
-        {"logic_depth", m.logic_depth},
-        {"note", m.note}};
-  }
+  if (p.measured) j["measured"] = measured_json(p, o);
   return j;
 }
 
@@ -505,24 +428,24 @@ void choose_start(const ExploreJobOptions& o, ExploreRun& run) {
   run.start.validate();
 }
 
-// The sweep from the start, then (unless --estimate-only) Yosys on its front.
+// The sweep from the start, then (unless --estimate-only) shadesim area on its front.
 void sweep_and_measure(const ExploreJobOptions& o, ExploreScenes& scenes, ExploreRun& run) {
   ExploreOptions eo;
   eo.budget_lsb = o.budget_lsb;
   eo.jobs = o.jobs;
   ProgressBar bar;
   const AreaFunction area = area_model(run.start, o.area_cache);
+  const MeasureFunction measure = o.estimate_only ? MeasureFunction() : front_measure(o);
   const auto sweep_start = std::chrono::steady_clock::now();
   run.result = explore(scenes, run.start, area, eo, std::ref(bar));
   run.sweep_s = seconds_since(sweep_start);
   const auto measure_start = std::chrono::steady_clock::now();
   if (!o.estimate_only) {
-    measure_front(run.result, front_measure(o),
-                  [&](std::size_t i, std::size_t done, std::size_t total) {
-                    if (!o.quiet)
-                      std::cerr << "explore: Yosys on Pareto point " << i << " (" << done + 1
-                                << " of " << total << " so far)\n";
-                  });
+    measure_front(run.result, measure, [&](std::size_t i, std::size_t done, std::size_t total) {
+      if (!o.quiet)
+        std::cerr << "explore: shadesim area on Pareto point " << i << " (" << done + 1 << " of "
+                  << total << " so far)\n";
+    });
   }
   run.measure_s = seconds_since(measure_start);
 }
@@ -586,7 +509,7 @@ void print_points(std::ostream& os, const ExploreJobOptions& o, const ExploreRun
   print_table(os, front, run.channels(), r.chosen, r.points);
   os << '\n';
   if (!o.estimate_only) {
-    print_measured_front(os, r);
+    print_measured_front(os, r, o);
     os << '\n';
   }
 }
@@ -628,7 +551,7 @@ void print_files_and_time(std::ostream& os, const ExploreJobOptions& o, const Ex
      << run.result.points.size() << " points in " << run.sweep_s << " s on " << o.jobs
      << " thread(s)"
      << (o.estimate_only ? std::string()
-                         : ", Yosys on the front " + fixed_text(run.measure_s, 1) + " s")
+                         : ", shadesim area on the front " + fixed_text(run.measure_s, 1) + " s")
      << "\n";
   if (!o.json_path.empty()) os << "plot         scripts/plot " << o.json_path << "\n";
 }
@@ -687,7 +610,7 @@ nlohmann::json explore_json(const ExploreJobOptions& o, const ExploreRun& run,
   const ExploreResult& r = run.result;
   nlohmann::json points = nlohmann::json::array();
   for (std::size_t i = 0; i < r.points.size(); ++i)
-    points.push_back(point_json(r.points[i], i, run.channels()));
+    points.push_back(point_json(r.points[i], i, run.channels(), o));
   nlohmann::json cb = nlohmann::json::array(), sb = nlohmann::json::array();
   for (const auto& b : run.chosen_budget) cb.push_back(budget_json(b));
   for (const auto& b : run.start_budget) sb.push_back(budget_json(b));
@@ -714,6 +637,7 @@ nlohmann::json explore_json(const ExploreJobOptions& o, const ExploreRun& run,
   j["estimate_error"] = {
       {"points", ee.count}, {"median_pct", ee.median_pct}, {"max_pct", ee.max_pct}};
   j["verification"] = verification_json(verified);
+  j["clock"] = clock_json(r, o);
   return j;
 }
 
@@ -734,6 +658,9 @@ int run_explore(const ExploreJobOptions& o) {
 
   if (!o.quiet) print_run(std::cout, o, run);
   const std::vector<Verification> verified = verify_choice(o, run);
+  // Last, so a script's tail finds it; the exit status ignores it (reported, not enforced).
+  if (!o.quiet && o.clock_mhz > 0)
+    std::cout << "clock        " << clock_verdict(run.result, o).line << "\n";
   if (!o.json_path.empty())
     write_text_file(o.json_path, explore_json(o, run, verified).dump(2) + '\n');
   if (!o.csv_path.empty()) write_csv(o.csv_path, run.result, run.channels());

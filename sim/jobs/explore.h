@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sim/eda/build_paths.h"
+#include "sim/jobs/clock_target.h"
 
 namespace shadesim {
 
@@ -26,13 +27,17 @@ struct ExploreJobOptions {
   bool verify = false;
   bool estimate_only = false;  // no Yosys for the front: estimates only, labelled so
   bool no_pnr = false;         // measure the front without nextpnr (no Fmax, no Mpixel/s)
+  std::string liberty;         // --liberty FILE for the front's library flow; empty: osu018
+  bool no_liberty = false;     // measure the front without the library flow and OpenSTA
+  double clock_mhz = 0;        // --clock-mhz: mark the front against it; 0: no clock
   std::string emit_jobs;       // FILE: the verification's regress runs as job lines, not run
   bool quiet = false;
+  ClockSite clock_site = ClockSite::kLiberty;  // --clock-target: where --clock-mhz is timed
 };
 
 // Chooses the start, sweeps and measures, prints the run, verifies the choice (--verify, or its
 // --emit-jobs lines), writes --json and --csv; returns the exit code (0 when a point meets the
-// budget and every verification passed, else 1).
+// budget and every verification passed, else 1; --clock-mhz is reported, not enforced).
 int run_explore(const ExploreJobOptions& o);
 
 }  // namespace shadesim
