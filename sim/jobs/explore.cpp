@@ -20,10 +20,10 @@
 #include "model/text_file.h"
 #include "model/unit_config_file.h"
 #include "sim/eda/area.h"
-#include "sim/eda/process.h"
 #include "sim/jobs/elapsed.h"
 #include "sim/jobs/explore.h"
 #include "sim/jobs/explore_front.h"
+#include "sim/jobs/explore_verify.h"
 #include "sim/jobs/fixed_text.h"
 #include "sim/jobs/unit_choice.h"
 
@@ -73,108 +73,6 @@ AreaFunction area_model(const UnitConfig& start, const std::string& cache_dir) {
     return AreaFigure{static_cast<double>(e.cells), static_cast<double>(e.lut4),
                       "generic cells, " + e.label()};
   };
-}
-
-// ---------------------------------------------------------------- RTL verification
-
-// One point to co-simulate in RTL: its configuration as a value and as the config file written
-// into --out (config_to_json), so an on-demand build can take either.
-struct PointToVerify {
-  std::string name;  // "chosen", "start", "pareto_3"
-  UnitConfig config;
-  std::string config_file;
-};
-
-// The RTL verdict of one point: `shadesim regress` of every scene on the point's configuration,
-// both backends, under regress's default gaps and back-pressure.
-struct Verification {
-  std::string name;
-  bool verified = false;  // every run passed: 0 pixel and 0 cycle mismatches
-  long passed = 0, mismatched = 0, errors = 0, skipped = 0;
-  std::string report;  // regress's --json
-  std::string log;
-};
-
-// Co-simulates each point on every scene through the on-demand Verilated builds (the RTL of a
-// configuration not yet built is Verilated into the build cache first) by running this very
-// shadesim's `regress` as a child, and marks the point verified or not.
-// --emit-jobs: the regress runs --verify would do, one command per line (regress --emit-jobs
-// writes them, so a line is the same as any regress job line), each point's results into
-// <out>/verify/<point>/ for `shadesim merge`.
-void emit_verify_jobs(const std::vector<PointToVerify>& points,
-                      const std::vector<std::string>& scenes, const std::string& out_dir,
-                      const std::string& jobs_file) {
-  std::error_code ec;
-  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (ec)
-    throw std::runtime_error("--emit-jobs: cannot find the shadesim executable: " + ec.message());
-  std::ofstream all(jobs_file);
-  if (!all) throw std::runtime_error("--emit-jobs " + jobs_file + ": cannot open for writing");
-  size_t lines = 0;
-  std::string dirs;
-  for (const auto& p : points) {
-    const std::filesystem::path dir = std::filesystem::path(out_dir) / "verify" / p.name;
-    std::filesystem::create_directories(dir);
-    const std::string part = (dir / "jobs.txt").string(), log = (dir / "emit.log").string();
-    std::vector<std::string> args = {self.string(), "regress"};
-    args.insert(args.end(), scenes.begin(), scenes.end());
-    args.insert(args.end(),
-                {"--config", p.config_file, "--out", dir.string(), "--emit-jobs", part});
-    if (run_process(args, log).exit_code != 0) {
-      throw std::runtime_error("--emit-jobs: shadesim regress --emit-jobs for " + p.name +
-                               " failed (log: " + log + ")");
-    }
-    std::ifstream is(part);
-    for (std::string line; std::getline(is, line);) {
-      all << line << '\n';
-      ++lines;
-    }
-    dirs += " " + dir.string();
-  }
-  if (!all) throw std::runtime_error("--emit-jobs " + jobs_file + ": write failed");
-  std::cout << "jobs         " << lines << " regress run(s) of the verification in " << jobs_file
-            << "; run them (parallel < " << jobs_file << "), then shadesim merge" << dirs << "\n";
-}
-
-std::vector<Verification> verify_in_rtl(const std::vector<PointToVerify>& points,
-                                        const std::vector<std::string>& scenes,
-                                        const std::string& out_dir) {
-  std::error_code ec;
-  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (ec)
-    throw std::runtime_error("--verify: cannot find the shadesim executable: " + ec.message());
-  std::vector<Verification> out;
-  for (const auto& p : points) {
-    Verification v;
-    v.name = p.name;
-    const std::filesystem::path dir = std::filesystem::path(out_dir) / "verify" / p.name;
-    std::filesystem::create_directories(dir);
-    v.report = (dir / "regress.json").string();
-    v.log = (dir / "regress.log").string();
-    std::vector<std::string> args = {self.string(), "regress"};
-    args.insert(args.end(), scenes.begin(), scenes.end());
-    args.insert(args.end(), {"--config", p.config_file, "--out", dir.string(), "--json", v.report,
-                             "--junit", (dir / "junit.xml").string()});
-    std::cerr << "verify: " << p.name << " in RTL (shadesim regress ... --config " << p.config_file
-              << "; log " << v.log << ")" << std::endl;
-    const ProcessResult r = run_process(args, v.log);
-    std::ifstream is(v.report);
-    nlohmann::json j;
-    try {
-      if (is) j = nlohmann::json::parse(is);
-    } catch (const nlohmann::json::exception&) {
-    }
-    if (j.is_object()) {
-      v.passed = j.value("passed", 0L);
-      v.mismatched = j.value("mismatched", 0L);
-      v.errors = j.value("errors", 0L);
-      v.skipped = j.value("skipped", 0L);
-    }
-    v.verified =
-        r.exit_code == 0 && v.passed > 0 && v.mismatched == 0 && v.errors == 0 && v.skipped == 0;
-    out.push_back(v);
-  }
-  return out;
 }
 
 // ---------------------------------------------------------------- progress
@@ -588,21 +486,6 @@ std::vector<Verification> verify_choice(const ExploreJobOptions& o, const Explor
               << v.skipped << " skipped; both backends, every scene; " << v.report << ")\n";
   }
   return verified;
-}
-
-nlohmann::json verification_json(const std::vector<Verification>& verified) {
-  nlohmann::json j = nlohmann::json::array();
-  for (const auto& v : verified) {
-    j.push_back({{"name", v.name},
-                 {"verified", v.verified},
-                 {"passed", v.passed},
-                 {"mismatched", v.mismatched},
-                 {"errors", v.errors},
-                 {"skipped", v.skipped},
-                 {"regress_json", v.report},
-                 {"log", v.log}});
-  }
-  return j;
 }
 
 nlohmann::json explore_json(const ExploreJobOptions& o, const ExploreRun& run,
