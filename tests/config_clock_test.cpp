@@ -33,7 +33,10 @@ nlohmann::json read_json(const fs::path& p) {
 TEST(ConfigClock, AMetClockTimesTheUnitConfigWritesAndAMissedOneNamesItsPath) {
   if (!tools_present()) GTEST_SKIP() << "yosys, sta or " << kDefaultLiberty << " missing";
   const fs::path dir = temp_dir("config_clock", "sphere");
-  const std::string cache = " --area-cache " + (dir / "cache").string();
+  // The build's area cache, shared with silicon_table_sphere (the sphere's own unit, the same
+  // library flow): one of the two synthesises it, the other finds it.
+  const std::string cache_dir = std::string(SHADESIM_BINARY_DIR) + "/area-cache";
+  const std::string cache = " --area-cache " + cache_dir;
 
   // 50 MHz: far below any unit's Fmax in 0.18 um.
   const Result met = run("config " + kSphere + " --clock-mhz 50" + cache + " --json " +
@@ -50,7 +53,7 @@ TEST(ConfigClock, AMetClockTimesTheUnitConfigWritesAndAMissedOneNamesItsPath) {
   // shadesim area on the written unit: the same flow's key, so the same cached Fmax.
   const Result area =
       run("area --config " + (dir / "u50.json").string() + " --no-pnr --no-power --cache " +
-          (dir / "cache").string() + " --json " + (dir / "a.json").string());
+          cache_dir + " --json " + (dir / "a.json").string());
   ASSERT_EQ(area.status, 0) << area.output;
   const auto a = read_json(dir / "a.json");
   EXPECT_TRUE(a["liberty"]["from_cache"].get<bool>()) << a["liberty"].dump();
