@@ -8,7 +8,7 @@
 //
 // The rule (shadesim config --help states the same): the cheapest candidate that runs every
 // scene at <= DeriveOptions::max_cycles_per_pixel. Candidates in cost order, cheapest first
-// (what each knob adds, measured in docs/area.md):
+// (what each knob adds, measured in docs/area-history.md):
 //   1. span setup on the host before the unit (the unit's span setup, coefficient banks and span
 //      queue are 12,964 + 6,782 + 3,197 GE of specular's unit with unit setup; the host's start
 //      bank 5,508);
@@ -19,7 +19,7 @@
 //   5. one material buffer before two (two banks of the per-material registers, and of a LUT's
 //      table RAM).
 // Lexicographic: no area model weighs a port word against a bank entry (a wider port adds write
-// steering into every entry; docs/area.md has no measurement of either alone), so the order is
+// steering into every entry; docs/area-history.md has no measurement of either alone), so the order is
 // the stated convention, and every knob's reason gives the figure of the step cheaper in it.
 // A knob given in DeriveOptions (port_words, tri_queue, span_setup) is held at its value. Lanes
 // stay as the unit has them. Where no candidate meets the target: the fastest (the lowest worst
