@@ -354,6 +354,35 @@ TEST(Area, TableRamBitsAreApartFromGateEquivalents) {
   fs::remove_all(dir);
 }
 
+// nextpnr prints a critical path report after placement and again after routing; the last one
+// is the post-route path; its first and last nets name it. (The lines follow nextpnr's format.)
+TEST(Area, NextpnrCriticalPathIsTheLastReportsSourceAndSink) {
+  const std::string log =
+      "Info: Critical path report for clock 'clk_i$SB_IO_IN_$glb_clk' (posedge -> posedge):\n"
+      "Info: curr total\n"
+      "Info:  0.5  0.5  Source early_q_SB_DFF_Q_DFFLC.O\n"
+      "Info:  0.6  1.1    Net early_q budget 0.000000 ns (5,25) -> (5,25)\n"
+      "Info:                Sink early_d_SB_LUT4_O_LC.I3\n"
+      "Info: 0.5 ns logic, 0.6 ns routing\n"
+      "\n"
+      "Info: Max frequency for clock 'clk_i$SB_IO_IN_$glb_clk': 99.00 MHz (PASS at 12.00 MHz)\n"
+      "Info: Critical path report for clock 'clk_i$SB_IO_IN_$glb_clk' (posedge -> posedge):\n"
+      "Info: curr total\n"
+      "Info:  0.5  0.5  Source u_unit.spec_q_SB_DFF_Q_DFFLC.O\n"
+      "Info:  1.2  1.7    Net u_unit.spec_q[3] budget 0.000000 ns (7,20) -> (8,20)\n"
+      "Info:                Sink u_unit.prod_SB_LUT4_O_LC.I1\n"
+      "Info:  0.4  2.1  Source u_unit.prod_SB_LUT4_O_LC.O\n"
+      "Info:  0.9  3.0    Net u_unit.prod[0] budget 0.000000 ns (8,20) -> (9,21)\n"
+      "Info:                Sink u_unit.pix_q_SB_DFF_Q_DFFLC.I0\n"
+      "Info:  0.4  3.4  Setup u_unit.pix_q_SB_DFF_Q_DFFLC.I0\n"
+      "Info: 1.3 ns logic, 2.1 ns routing\n"
+      "\n"
+      "Info: Max frequency for clock 'clk_i$SB_IO_IN_$glb_clk': 29.41 MHz (PASS at 12.00 MHz)\n";
+  EXPECT_EQ(ice40_flow::read_critical_path(log),
+            "net u_unit.spec_q[3] -> net u_unit.prod[0] (1.3 ns logic, 2.1 ns routing)");
+  EXPECT_EQ(ice40_flow::read_critical_path("Info: Max frequency for clock 'c': 9 MHz\n"), "");
+}
+
 TEST(Area, BadInputGivesAClearError) {
   const auto dir = temp_dir("bad");
   const Result missing = run_shell(shadesim() + "area --config " + (dir / "nope.json").string());

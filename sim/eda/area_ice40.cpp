@@ -47,6 +47,33 @@ std::optional<double> read_fmax(const std::string& log) {
   return f;
 }
 
+}  // namespace
+
+std::string read_critical_path(const std::string& log) {
+  const size_t at = log.rfind("Critical path report for clock");
+  if (at == std::string::npos) return "";
+  // Nets, not cells: nextpnr names a packed cell after whatever ABC called its LUT, while the
+  // nets keep the RTL's names (the first leaves the launching register, the last enters the
+  // capturing one).
+  static const std::regex net(R"(Info:\s+[0-9.-]+\s+[0-9.-]+\s+Net\s+(\S+))");
+  static const std::regex split(R"(Info:\s+([0-9.]+) ns logic, ([0-9.]+) ns routing)");
+  const size_t end = log.find("\n\n", at);
+  const std::string block = log.substr(at, end == std::string::npos ? std::string::npos : end - at);
+  std::string from, to, times;
+  for (auto it = std::sregex_iterator(block.begin(), block.end(), net);
+       it != std::sregex_iterator(); ++it) {
+    if (from.empty()) from = (*it)[1].str();
+    to = (*it)[1].str();
+  }
+  std::smatch m;
+  if (std::regex_search(block, m, split))
+    times = " (" + m[1].str() + " ns logic, " + m[2].str() + " ns routing)";
+  if (from.empty()) return "";
+  return "net " + from + " -> net " + to + times;
+}
+
+namespace {
+
 void read_ice40_stat(const StatSection& s, Ice40Area& a) {
   for (const auto& [type, n] : s.by_type) {
     if (type == "SB_LUT4")
@@ -163,8 +190,10 @@ bool place_and_route(const FlowInputs& in, const std::string& nextpnr,
                        progress);
   try {
     area_tools::run_tool(argv, work / "pnr.out", "nextpnr-ice40 place and route (HX8K)", progress);
-    a.fmax_mhz = read_fmax(read_text_file((work / "pnr.log").string()));
+    const std::string log = read_text_file((work / "pnr.log").string());
+    a.fmax_mhz = read_fmax(log);
     if (!a.fmax_mhz) a.pnr_note = "nextpnr-ice40 reported no Fmax";
+    if (a.fmax_mhz) a.critical_path = read_critical_path(log);
     return false;
   } catch (const std::runtime_error& e) {
     // A failed placement (no room once packed, too many I/O) is a finding about the design.

@@ -24,6 +24,11 @@ struct Ice40Area {
   std::string fit_note;            // plain words: fits, or by how much it does not
   std::optional<double> fmax_mhz;  // nextpnr-ice40's post-route Fmax of clk_i
   std::string pnr_note;            // why there is no Fmax (no fit, --no-pnr, nextpnr failed)
+  // nextpnr's post-route critical path: "net FIRST -> net LAST (L ns logic, R ns routing)", the
+  // nets leaving the launching register and entering the capturing one (the unit's own nets
+  // inside the shell's instance); empty where there is no Fmax or the cache entry was written
+  // before it was recorded.
+  std::string critical_path;
 };
 
 namespace ice40_flow {
@@ -36,6 +41,10 @@ void add_place_and_route_recipe(ContentHash& key);
 
 // The resources in @WORK@/ice40_stat.json and whether they rule out an HX8K.
 void read_synthesis(const area_tools::fs::path& work, Ice40Area& a);
+
+// The last "Critical path report" of a nextpnr log (the post-route one): its first and last net
+// and the logic / routing line, as Ice40Area::critical_path; "" when there is none.
+std::string read_critical_path(const std::string& log);
 
 // Places and routes the unit in its Fmax shell on an HX8K for a.fmax_mhz. Returns whether the
 // work folder must be kept: a failed placement, whose log says why (a finding, not an error;

@@ -131,6 +131,8 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
        << " MHz (nextpnr-ice40, HX8K ct256, clk_i; out of context: the unit's ports shifted\n"
        << "                          through registers of a shell, so the pin count does not limit "
           "it)\n";
+    if (!r.ice40.critical_path.empty())
+      os << "  critical     " << r.ice40.critical_path << " (nextpnr's post-route report)\n";
   } else {
     os << "- (" << r.ice40.pnr_note << ")\n";
   }

@@ -47,7 +47,7 @@ std::string area_report_to_json(const AreaReport& r) {
   Json ice40 = {{"lut4", r.ice40.lut4},           {"dff", r.ice40.dff},
                 {"carry", r.ice40.carry},         {"ram4k", r.ice40.ram4k},
                 {"fits_hx8k", r.ice40.fits_hx8k}, {"fit_note", r.ice40.fit_note},
-                {"pnr_note", r.ice40.pnr_note}};
+                {"pnr_note", r.ice40.pnr_note},   {"critical_path", r.ice40.critical_path}};
   ice40["fmax_mhz"] = r.ice40.fmax_mhz ? Json(*r.ice40.fmax_mhz) : Json(nullptr);
   Json j = {{"parameters", params_json(r.parameters)},
             {"key", r.key},
@@ -130,6 +130,7 @@ AreaReport area_report_from_json(const std::string& text, const std::string& sou
     r.ice40.fits_hx8k = a.at("fits_hx8k");
     r.ice40.fit_note = a.at("fit_note");
     r.ice40.pnr_note = a.at("pnr_note");
+    r.ice40.critical_path = a.value("critical_path", "");  // entries before it was recorded
     if (!a.at("fmax_mhz").is_null()) r.ice40.fmax_mhz = a.at("fmax_mhz").get<double>();
     r.seconds = j.at("seconds");
     r.cpu_seconds = j.at("cpu_seconds");

@@ -50,8 +50,15 @@ ClockTiming time_unit(const UnitConfig& unit, const ClockTarget& target) {
   } else {
     t.fmax_mhz = r.ice40.fmax_mhz;
     t.area = static_cast<double>(r.ice40.lut4);
-    t.limit = r.ice40.fmax_mhz ? "nextpnr-ice40's post-route critical path"
-                               : r.ice40.pnr_note + " (" + r.ice40.fit_note + ")";
+    if (!r.ice40.fmax_mhz) {
+      t.limit = r.ice40.pnr_note + " (" + r.ice40.fit_note + ")";
+    } else if (r.ice40.critical_path.empty()) {
+      t.limit =
+          "nextpnr-ice40's post-route critical path (not in this cache entry: its log is "
+          "gone; run with a fresh --area-cache)";
+    } else {
+      t.limit = "critical path " + r.ice40.critical_path + " (nextpnr-ice40, post-route)";
+    }
   }
   return t;
 }
