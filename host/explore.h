@@ -102,6 +102,7 @@ struct MeasuredArea {
   std::optional<double> fmax_mhz;  // nextpnr-ice40, out of context; none where it does not fit
   int64_t logic_depth = -1;        // gate levels on the longest path (Yosys ltp)
   std::string note;                // why there is no Fmax
+  std::string critical_path;       // nextpnr's post-route one, "net A -> net B (...)"; or empty
   // The unit on a standard-cell library (osu018 unless told otherwise), timed by OpenSTA
   // (sim/eda/liberty_flow.h); none where that flow was not run.
   std::string library;                     // "osu018", else the liberty's library name

@@ -89,6 +89,7 @@ MeasureFunction front_measure(const ExploreJobOptions& o) {
     m.fmax_mhz = a.ice40.fmax_mhz;
     m.logic_depth = a.logic_depth.gates;
     m.note = a.ice40.fmax_mhz ? a.ice40.fit_note : a.ice40.pnr_note;
+    m.critical_path = a.ice40.critical_path;
     if (a.liberty) fill_library(*a.liberty, m);
     return m;
   };
@@ -174,9 +175,12 @@ std::string clock_miss(const ExploreResult& r, const ExploreJobOptions& o,
     return fmt::format("no measured point meets {}: none has an Fmax there ({})", at, why);
   }
   const MeasuredArea& m = *r.points[*fastest].measured;
-  const std::string path = o.clock_site == ClockSite::kIce40
-                               ? "its post-route critical path (nextpnr-ice40)"
-                               : "its critical path " + m.library_critical_path;
+  // A cache entry from before nextpnr's path was recorded has none to name.
+  const std::string path =
+      o.clock_site == ClockSite::kLiberty ? "its critical path " + m.library_critical_path
+      : m.critical_path.empty()
+          ? "its post-route critical path (nextpnr-ice40; not in this cache entry)"
+          : "its critical path " + m.critical_path + " (nextpnr-ice40, post-route)";
   return fmt::format(
       "no measured point meets {}: the fastest is point {} at {:.1f} MHz, limited "
       "by {}",
@@ -222,6 +226,8 @@ nlohmann::json measured_json(const ExplorePoint& p, const ExploreJobOptions& o) 
           {"mpixel_per_s", or_null(p.mpixel_per_s())},
           {"logic_depth", m.logic_depth},
           {"note", m.note},
+          {"ice40_critical_path",
+           m.critical_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(m.critical_path)},
           {"library", m.library.empty() ? nlohmann::json(nullptr) : nlohmann::json(m.library)},
           {"library_fmax_mhz", or_null(m.library_fmax_mhz)},
           {"library_mpixel_per_s", or_null(p.library_mpixel_per_s())},
