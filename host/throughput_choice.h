@@ -19,12 +19,12 @@
 //   5. one material buffer before two (two banks of the per-material registers, and of a LUT's
 //      table RAM).
 // Lexicographic: no area model weighs a port word against a bank entry (a wider port adds write
-// steering into every entry; docs/area-history.md has no measurement of either alone), so the order is
-// the stated convention, and every knob's reason gives the figure of the step cheaper in it.
-// A knob given in DeriveOptions (port_words, tri_queue, span_setup) is held at its value. Lanes
-// stay as the unit has them. Where no candidate meets the target: the fastest (the lowest worst
-// cycles per pixel over the scenes; of those within kFastestTolerance of it, the cheapest), and
-// every scene over the target is named with the resource that limits it (cycles_miss).
+// steering into every entry; docs/area-history.md has no measurement of either alone), so the order
+// is the stated convention, and every knob's reason gives the figure of the step cheaper in it. A
+// knob given in DeriveOptions (port_words, tri_queue, span_setup) is held at its value. Lanes stay
+// as the unit has them. Where no candidate meets the target: the fastest (the lowest worst cycles
+// per pixel over the scenes; of those within kFastestTolerance of it, the cheapest), and every
+// scene over the target is named with the resource that limits it (cycles_miss).
 #pragma once
 
 #include <cstddef>
