@@ -3,7 +3,7 @@
 //
 //   Yosys     the flat flow's read and chparam; synth -flatten -top shade_unit; dfflibmap
 //             -liberty L; abc -D D -liberty L with an ABC script of structural choices and
-//             delay mapping (fraig, scorr, dc2, &dch, &nf -D D, buffer -p, upsize -D D,
+//             delay mapping (fraig, scorr, &synch2, &dch, &nf -D D, buffer -p, upsize -D D,
 //             dnsize -D D, stime -p; sim/eda/liberty_flow.cpp); opt_clean; setundef -zero
 //             (osu018 has no tie cells; OpenSTA takes the constants); splitnets -ports (OpenSTA
 //             2019 rejects a concatenation on an assign's left side); rename -top; write_json.
