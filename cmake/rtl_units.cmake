@@ -107,7 +107,7 @@ endfunction()
 # rounded output; the default-sized table loaded from a $readmemh file.
 # Slots (the decode at the top of each module): exponent_lut 0 ADDR_BITS, 1 ENTRY_BITS,
 # 2 INTERP_BITS, 3 INDEX; schlick_divider 0 QUOTIENT_BITS, 1 OPERAND_BITS, 2 TIMING; wpow_unit
-# 0 MAX_M, 1 BASE_BITS, 2 TIMING.
+# 0 MAX_M, 1 BASE_BITS, 2 TIMING, 3 SQUARE_STAGES.
 rtl_unit(lut_small exponent_lut SLOT0=4 SLOT1=6 SLOT2=0 SLOT3=0
          SERIES_WL=12 SERIES_IWL=3 OUT_WL=9 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
 rtl_unit(lut_interp exponent_lut SLOT0=5 SLOT1=8 SLOT2=3 SLOT3=1
@@ -127,25 +127,35 @@ rtl_unit(schlick_pipe schlick_divider SLOT0=20 SLOT1=12 SLOT2=0
 # W_m: m = 4 with 4-bit base both timings (exhaustive), m = 1 (no squarer), m = 2 with a 16-bit
 # base (every square of the squarer), W16 default
 # pipelined, m = 32 iterative with a rounded output.
-rtl_unit(wpow_small_pipe wpow_unit SLOT0=4 SLOT1=4 SLOT2=0
+rtl_unit(wpow_small_pipe wpow_unit SLOT0=4 SLOT1=4 SLOT2=0 SLOT3=1
          SERIES_WL=8 SERIES_IWL=2 OUT_WL=6 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
-rtl_unit(wpow_small_iter wpow_unit SLOT0=4 SLOT1=4 SLOT2=1
+rtl_unit(wpow_small_iter wpow_unit SLOT0=4 SLOT1=4 SLOT2=1 SLOT3=1
          SERIES_WL=8 SERIES_IWL=2 OUT_WL=6 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
-rtl_unit(wpow_m1 wpow_unit SLOT0=1 SLOT1=2 SLOT2=1
+rtl_unit(wpow_m1 wpow_unit SLOT0=1 SLOT1=2 SLOT2=1 SLOT3=1
          SERIES_WL=8 SERIES_IWL=2 OUT_WL=4 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
-rtl_unit(wpow_m2_b16 wpow_unit SLOT0=2 SLOT1=16 SLOT2=0
+rtl_unit(wpow_m2_b16 wpow_unit SLOT0=2 SLOT1=16 SLOT2=0 SLOT3=1
          SERIES_WL=18 SERIES_IWL=2 OUT_WL=17 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
-rtl_unit(wpow_w16 wpow_unit SLOT0=16 SLOT1=16 SLOT2=0
+rtl_unit(wpow_w16 wpow_unit SLOT0=16 SLOT1=16 SLOT2=0 SLOT3=1
          SERIES_WL=32 SERIES_IWL=4 OUT_WL=17 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
-rtl_unit(wpow_m32_iter wpow_unit SLOT0=32 SLOT1=12 SLOT2=1
+rtl_unit(wpow_m32_iter wpow_unit SLOT0=32 SLOT1=12 SLOT2=1 SLOT3=1
          SERIES_WL=23 SERIES_IWL=3 OUT_WL=9 OUT_IWL=1 OUT_QUANT=1 OUT_OVERFLOW=0)
+# Split squarings (SLOT3 = square_stages 2): m = 4 with an odd and an even 1.B base
+# (exhaustive), m = 2 with a 16-bit base (every square), W16 at the real widths.
+rtl_unit(wpow_small_sq2 wpow_unit SLOT0=4 SLOT1=4 SLOT2=0 SLOT3=2
+         SERIES_WL=8 SERIES_IWL=2 OUT_WL=6 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
+rtl_unit(wpow_small_b5_sq2 wpow_unit SLOT0=4 SLOT1=5 SLOT2=0 SLOT3=2
+         SERIES_WL=9 SERIES_IWL=2 OUT_WL=6 OUT_IWL=1 OUT_QUANT=1 OUT_OVERFLOW=0)
+rtl_unit(wpow_m2_b16_sq2 wpow_unit SLOT0=2 SLOT1=16 SLOT2=0 SLOT3=2
+         SERIES_WL=18 SERIES_IWL=2 OUT_WL=17 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
+rtl_unit(wpow_w16_sq2 wpow_unit SLOT0=16 SLOT1=16 SLOT2=0 SLOT3=2
+         SERIES_WL=32 SERIES_IWL=4 OUT_WL=17 OUT_IWL=1 OUT_QUANT=0 OUT_OVERFLOW=0)
 # The slot: the cfg-port mapping and the timing contract through the wrapper.
 rtl_unit(slot_lut specular_unit SPECULAR_KIND=1 SERIES_WL=16 SERIES_IWL=3 SERIES_PER_LIGHT=1
          SPECULAR_OUT_WL=12 SPECULAR_OUT_IWL=1 SLOT0=6 SLOT1=10 SLOT2=2 SLOT3=1)
 rtl_unit(slot_schlick specular_unit SPECULAR_KIND=2 SERIES_WL=32 SERIES_IWL=4 SERIES_PER_LIGHT=2
          SPECULAR_OUT_WL=17 SPECULAR_OUT_IWL=1 SLOT0=12 SLOT1=16 SLOT2=1)
 rtl_unit(slot_wpow specular_unit SPECULAR_KIND=3 SERIES_WL=20 SERIES_IWL=4 SERIES_PER_LIGHT=1
-         SPECULAR_OUT_WL=11 SPECULAR_OUT_IWL=1 SLOT0=8 SLOT1=10 SLOT2=1)
+         SPECULAR_OUT_WL=11 SPECULAR_OUT_IWL=1 SLOT0=8 SLOT1=10 SLOT2=1 SLOT3=1)
 rtl_unit(slot_ideal specular_unit SPECULAR_KIND=0 SERIES_WL=32 SERIES_IWL=4 SERIES_PER_LIGHT=1
          SPECULAR_OUT_WL=17 SPECULAR_OUT_IWL=1)
 

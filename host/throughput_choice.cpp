@@ -326,7 +326,11 @@ UnitConfig ThroughputKnobs::applied_to(const UnitConfig& unit) const {
   }
   const UnitTiming timing = pipelined ? UnitTiming::kPipelined : UnitTiming::kIterative;
   if (c.specular.kind == SpecularUnitKind::kSchlick) c.specular.schlick.timing = timing;
-  if (c.specular.kind == SpecularUnitKind::kWpow) c.specular.wpow.timing = timing;
+  if (c.specular.kind == SpecularUnitKind::kWpow) {
+    c.specular.wpow.timing = timing;
+    // A split squaring is a pipelined unit's clock knob; an iterative unit squares in one cycle.
+    if (!pipelined) c.specular.wpow.square_stages = 1;
+  }
   return c;
 }
 

@@ -621,7 +621,7 @@ class ConfigJsonReader {
     read_enum(j, "", "span_setup", false, parse_span_setup, c.span_setup);
     read_int(j, "", "start_depth", 1, 2, false, c.start_depth);
     read_enum(j, "", "diffuse_colour", false, parse_diffuse_colour, c.diffuse_colour);
-    read_int(j, "", "combine_stages", 0, 1, false, c.combine_stages);
+    read_int(j, "", "combine_stages", 0, 2, false, c.combine_stages);
     if (!j.contains("specular")) {
       if (require_top_) fail("specular", "expected an object (missing)");
       return;

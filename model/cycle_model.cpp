@@ -93,8 +93,8 @@ const CycleConfig& checked(const CycleConfig& unit) {
     throw std::invalid_argument("CycleModel: port_words must be 1, 2, 4 or 8, got " +
                                 std::to_string(unit.port_words));
   }
-  if (unit.combine_stages != 0 && unit.combine_stages != 1) {
-    throw std::invalid_argument("CycleModel: combine_stages must be 0 or 1, got " +
+  if (unit.combine_stages < 0 || unit.combine_stages > 2) {
+    throw std::invalid_argument("CycleModel: combine_stages must be 0, 1 or 2, got " +
                                 std::to_string(unit.combine_stages));
   }
   if (timing.latency < 0 || timing.interval < 1) {

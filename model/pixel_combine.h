@@ -18,6 +18,11 @@
 //                                   + sum_l g_l s_l k_lc
 //   stage 3  output code = round-to-nearest into u0.out_bits, saturating (negative -> 0,
 //            >= 1 - 2^-(out_bits+1) -> all ones). A code c stands for c / 2^out_bits.
+// Pipelining (UnitConfig::combine_stages; the clock, not the numbers): 1 registers stage 1's
+// terms before stage 2's sum; 2 also registers each colour product as two partial products
+// (rtl/split_multiply.sv) before its rounding and gate, and adds each light's diffuse and
+// specular term before the terms register. Every sum is exact, so the codes are the same; the
+// cycle model (model/cycle_model.h) counts the stages' latency.
 // Specular kind none (no specular term): stage 1 has no products and no gates, stage 2 no
 // specular sum; spec and spec_colour are not read (pixel_combine.sv's SPECULAR = 0 branch).
 // Diffuse colour multiply (UnitConfig::diffuse_colour kMultiply): light l has one diffuse

@@ -184,45 +184,56 @@ SpecularUnitDescriptor schlick_unit() {
 }
 
 SpecularUnitDescriptor wpow_unit() {
-  return {SpecularUnitKind::kWpow,
-          "wpow",
-          3,
-          true,
-          1,
-          {
-              {"max_m", "--wpow-m", "W_m: m (4, 8 or 16)", "MAX_M", 0, 1, 32, true, nullptr,
-               get<kWpow, &W::max_m>, set<kWpow, &W::max_m>},
-              {"base_bits", "--wpow-bits", "W_m: fraction bits B of the base and squares",
-               "BASE_BITS", 1, 2, 30, false, nullptr, get<kWpow, &W::base_bits>,
-               set<kWpow, &W::base_bits>, 6, [](int v) { return std::min(v + 4, 30); }},
-              {"timing", "--wpow-timing", "W_m: pipelined = 1 cycle/pixel, iterative = log2(m) + 1",
-               "TIMING", 2, 0, 1, false, name_of<UnitTiming>, get<kWpow, &W::timing>,
-               set<kWpow, &W::timing>},
-              {"fit", "--fit", kFitHelp, "", -1, 0, kFitHi, false, name_of<FitObjective>,
-               get<kWpow, &W::fit>, set<kWpow, &W::fit>},
-          },
-          [](const SpecularConfig& c) { return WpowUnit::latency(c.wpow); },
-          [](const SpecularConfig& c) { return WpowUnit::cycles_per_pixel(c.wpow); },
-          [](const SpecularConfig& c) {
-            SpecularCost k;
-            k.multipliers = WpowUnit::multipliers(c.wpow);
-            const double b = c.wpow.base_bits + 1;
-            k.area = kFullAdderArea * k.multipliers * b * b /
-                     2.0;  // a squarer is about half a multiplier
-            return k;
-          },
-          [](const SpecularConfig& c) {
-            std::ostringstream os;
-            os << " m=" << c.wpow.max_m << " B=" << c.wpow.base_bits << timing_tag(c.wpow.timing)
-               << fit_tag(c.wpow.fit);
-            return os.str();
-          },
-          [](const SpecularConfig& c, int series_wl) {
-            // B x B squarers, one (iterative) or log2(m) (pipelined), plus the base stage.
-            const double b = c.wpow.base_bits;
-            const double k = WpowUnit::stages(c.wpow);
-            return b * b * (c.wpow.timing == UnitTiming::kIterative ? 1.0 : k) + b * series_wl;
-          }};
+  SpecularUnitDescriptor d = {
+      SpecularUnitKind::kWpow,
+      "wpow",
+      3,
+      true,
+      1,
+      {
+          {"max_m", "--wpow-m", "W_m: m (4, 8 or 16)", "MAX_M", 0, 1, 32, true, nullptr,
+           get<kWpow, &W::max_m>, set<kWpow, &W::max_m>},
+          {"base_bits", "--wpow-bits", "W_m: fraction bits B of the base and squares", "BASE_BITS",
+           1, 2, 30, false, nullptr, get<kWpow, &W::base_bits>, set<kWpow, &W::base_bits>, 6,
+           [](int v) { return std::min(v + 4, 30); }},
+          {"timing", "--wpow-timing", "W_m: pipelined = 1 cycle/pixel, iterative = log2(m) + 1",
+           "TIMING", 2, 0, 1, false, name_of<UnitTiming>, get<kWpow, &W::timing>,
+           set<kWpow, &W::timing>},
+          {"square_stages", "--wpow-square-stages",
+           "W_m: registers per squaring, 1 or 2 (pipelined: a shorter clock path)", "SQUARE_STAGES",
+           3, 1, 2, false, nullptr, get<kWpow, &W::square_stages>, set<kWpow, &W::square_stages>},
+          {"fit", "--fit", kFitHelp, "", -1, 0, kFitHi, false, name_of<FitObjective>,
+           get<kWpow, &W::fit>, set<kWpow, &W::fit>},
+      },
+      [](const SpecularConfig& c) { return WpowUnit::latency(c.wpow); },
+      [](const SpecularConfig& c) { return WpowUnit::cycles_per_pixel(c.wpow); },
+      [](const SpecularConfig& c) {
+        SpecularCost k;
+        k.multipliers = WpowUnit::multipliers(c.wpow);
+        const double b = c.wpow.base_bits + 1;
+        k.area =
+            kFullAdderArea * k.multipliers * b * b / 2.0;  // a squarer is about half a multiplier
+        return k;
+      },
+      [](const SpecularConfig& c) {
+        std::ostringstream os;
+        os << " m=" << c.wpow.max_m << " B=" << c.wpow.base_bits << timing_tag(c.wpow.timing)
+           << (c.wpow.square_stages > 1 ? " sq2" : "") << fit_tag(c.wpow.fit);
+        return os.str();
+      },
+      [](const SpecularConfig& c, int series_wl) {
+        // B x B squarers, one (iterative) or log2(m) (pipelined), plus the base stage.
+        const double b = c.wpow.base_bits;
+        const double k = WpowUnit::stages(c.wpow);
+        return b * b * (c.wpow.timing == UnitTiming::kIterative ? 1.0 : k) + b * series_wl;
+      }};
+  d.check = [](const SpecularConfig& c) {
+    if (c.wpow.square_stages != 1 && c.wpow.timing != UnitTiming::kPipelined)
+      throw std::invalid_argument("wpow.square_stages " + std::to_string(c.wpow.square_stages) +
+                                  " needs wpow.timing pipelined (an iterative unit squares in "
+                                  "one cycle)");
+  };
+  return d;
 }
 
 std::vector<SpecularUnitDescriptor> make_table() {

@@ -32,8 +32,8 @@ void UnitConfig::validate() const {
          "values)");
   if (start_depth != 1 && start_depth != 2)
     fail("start_depth must be 1 or 2, got " + std::to_string(start_depth));
-  if (combine_stages != 0 && combine_stages != 1)
-    fail("combine_stages must be 0 or 1, got " + std::to_string(combine_stages));
+  if (combine_stages < 0 || combine_stages > 2)
+    fail("combine_stages must be 0, 1 or 2, got " + std::to_string(combine_stages));
   if (diffuse_colour != DiffuseColour::kSeries && diffuse_colour != DiffuseColour::kMultiply)
     fail("diffuse_colour must be series or multiply");
   coef.validate("unit config: coef");

@@ -104,10 +104,12 @@ struct UnitConfig {
   DiffuseColour diffuse_colour = DiffuseColour::kSeries;
   bool diffuse_multiply() const { return diffuse_colour == DiffuseColour::kMultiply; }
   // Pipelining (the RTL's clock, not its numbers: pixels do not depend on it). combine_stages:
-  // registers in pixel_combine between each light's terms (the diffuse and specular products,
-  // gated) and their sum with its rounding, 0 or 1 (shade_unit COMBINE_STAGES). Each adds one
-  // cycle of latency from the slot to the pix register and shortens the path that ends there
-  // (docs/area.md: the critical path `shadesim area` prints).
+  // register stages in pixel_combine, 0, 1 or 2 (shade_unit COMBINE_STAGES). 1 registers each
+  // light's terms (the diffuse and specular products, gated) before their sum with its rounding;
+  // 2 also registers the raw products before their rounding and gate, and sums each light's two
+  // terms before the second register. Each adds one cycle of latency from the slot to the pix
+  // register and shortens the path that ends there (docs/area.md: the critical path `shadesim
+  // area` prints).
   int combine_stages = 0;
 
   // Term t's format (0..5): coef's, or coef narrowed to coef_term_iwl[t] integer bits.

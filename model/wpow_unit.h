@@ -18,7 +18,9 @@
 //               1..K-s pass b through unchanged (a bypass mux), the last s square.
 //   K+1. OUTPUT quantize(b, B fraction bits) into the specular out format.
 // Timing: pipelined = K (B+1)x(B+1) squarers, one pixel per cycle, latency K + 1 (base register
-// plus one per squaring stage); iterative = one squarer on one working register (loaded with the
+// plus one per squaring stage), or 2K + 1 with square_stages 2 (SQUARE_k in two cycles: b = h 2^H
+// + l, H = (B+1)/2; first h^2, l^2 and h l, then h^2 2^2H + l^2 + h l 2^(H+1), the same square);
+// iterative = one squarer on one working register (loaded with the
 // base, then K steps), one pixel per K + 1 cycles, latency K + 1: the result stays in the
 // register until the next pixel starts, as with the iterative divider. Same bits either way.
 #pragma once
@@ -50,7 +52,9 @@ class WpowUnit {
   static int cycles_per_pixel(const WpowConfig& c) {
     return c.timing == UnitTiming::kPipelined ? 1 : stages(c) + 1;
   }
-  static int latency(const WpowConfig& c) { return stages(c) + 1; }
+  static int latency(const WpowConfig& c) {
+    return stages(c) * (c.timing == UnitTiming::kPipelined ? c.square_stages : 1) + 1;
+  }
 
  private:
   WpowConfig config_;

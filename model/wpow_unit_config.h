@@ -11,6 +11,10 @@ struct WpowConfig {
   int max_m = 16;      // m: squaring stages = log2(m); 4, 8 or 16
   int base_bits = 16;  // B: fraction bits of the base and of every squaring result
   UnitTiming timing = UnitTiming::kPipelined;
+  // Registers per squaring, pipelined timing only: 1, or 2 (each square formed as two partial
+  // squares and a cross product in one cycle, summed in the next: twice the squarings' latency,
+  // a shorter clock path).
+  int square_stages = 1;
   FitObjective fit = FitObjective::kNone;  // kNone: zeta = n/m
 };
 

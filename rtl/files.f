@@ -4,6 +4,8 @@
 shade_pkg.sv
 fixed_round.sv
 fixed_sat.sv
+pipe_reg.sv
+split_multiply.sv
 span_setup.sv
 series_engine.sv
 lane_fanout.sv

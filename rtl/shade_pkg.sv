@@ -98,14 +98,22 @@ package shade_pkg;
     spec_slot = params[slot*SpecSlotW +: SpecSlotW];
   endfunction
 
+  // wpow's registers per squaring (slot 3): 2 splits each square over two cycles (pipelined
+  // only), else 1.
+  function automatic int wpow_square_stages(input logic [SpecParamW-1:0] params);
+    wpow_square_stages = spec_slot(params, 3) == 2 ? 2 : 1;
+  endfunction
+
   // Registers between the slot's series input and its specular output: ideal and none 0; lut 2 (+1
-  // interpolated); schlick its quotient bits; wpow log2(max_m) squarings + the clamped base.
+  // interpolated); schlick its quotient bits; wpow log2(max_m) squarings (times square_stages)
+  // + the clamped base.
   // The slots read (model/specular_units.cpp): lut 2 interp_bits; schlick 0 quotient_bits,
-  // 2 timing; wpow 0 max_m, 2 timing.
+  // 2 timing; wpow 0 max_m, 2 timing, 3 square_stages.
   function automatic int spec_latency(input int kind, input logic [SpecParamW-1:0] params);
     spec_latency = kind == SpecLut     ? (spec_slot(params, 2) > 0 ? 3 : 2) :
                    kind == SpecSchlick ? spec_slot(params, 0) :
-                   kind == SpecWpow    ? $clog2(spec_slot(params, 0)) + 1 : 0;
+                   kind == SpecWpow    ? $clog2(spec_slot(params, 0)) *
+                                             wpow_square_stages(params) + 1 : 0;
   endfunction
 
   // Cycles per pixel: 1, except an iterative unit, which takes its whole latency per pixel.

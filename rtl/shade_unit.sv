@@ -41,8 +41,8 @@ module shade_unit #(
   // DiffuseColour: 0 rolled into the series (a series per light and channel), 1 multiplied in
   // pixel_combine (one N.L series per light; the MATERIAL carries kd_c L_c).
   parameter int DIFFUSE_MULTIPLY = 0,
-  // Pipelining (UnitConfig::combine_stages): registers in pixel_combine between its terms and
-  // its sum, 0 or 1; the beat's metadata waits beside them in a line of the same depth.
+  // Pipelining (UnitConfig::combine_stages): register stages in pixel_combine, 0, 1 (its terms)
+  // or 2 (its raw products too); the beat's metadata waits beside them in a line as deep.
   parameter int COMBINE_STAGES   = 0
 ) (
   input  logic                         clk_i,
@@ -258,8 +258,8 @@ module shade_unit #(
   initial begin
     if (SPAN_SETUP != shade_pkg::SetupUnit && SPAN_SETUP != shade_pkg::SetupHost)
       $fatal(1, "shade_unit: SPAN_SETUP %0d is not 0 (unit) or 1 (host)", SPAN_SETUP);
-    if (COMBINE_STAGES != 0 && COMBINE_STAGES != 1)
-      $fatal(1, "shade_unit: COMBINE_STAGES %0d is not 0 or 1", COMBINE_STAGES);
+    if (COMBINE_STAGES < 0 || COMBINE_STAGES > 2)
+      $fatal(1, "shade_unit: COMBINE_STAGES %0d is not 0, 1 or 2", COMBINE_STAGES);
     if (DIFFUSE_MULTIPLY != 0 && DIFFUSE_MULTIPLY != 1)
       $fatal(1, "shade_unit: DIFFUSE_MULTIPLY %0d is not 0 or 1", DIFFUSE_MULTIPLY);
     if ($bits(meta_t) != MetaW || $bits(span_t) != SpanW)

@@ -106,7 +106,7 @@ TEST_P(SceneStreams, EqualsClockedModelOnOwnConfigAndKnobGrid) {
   o.base.tri_queue = 1;
   const PreparedFrame h = prepare_frame(scene, o);
   for (int mb : {1, 2}) {
-    for (int stages : {0, 1}) {
+    for (int stages : {0, 1, 2}) {
       EXPECT_GT(expect_same(h.encoded.stream.encode(),
                             combined(buffered(CycleConfig::of(h.config), mb), stages),
                             scene + " (host span setup)"),
@@ -232,17 +232,19 @@ TEST(CycleEstimate, OneSpanTakesSpanLatencyPlusItsPixels) {
 TEST(CycleEstimate, EachCombineStageDelaysEveryPixelOneCycle) {
   // The same span as above with a combine stage: every pixel waits one more advance between
   // the slot and the pix register, so the scanline ends one cycle later and nothing else moves.
-  for (int latency : {0, 2}) {
-    for (int len : {1, 7}) {
-      const std::vector<uint64_t> w = words_of({CommandWord::span(3, 10, len, true)});
-      CycleConfig piped(SlotTiming{latency, 1});
-      piped.combine_stages = 1;
-      const CycleEstimateRun r = CycleEstimate(piped).run(w);
-      ASSERT_EQ(r.scanlines.size(), 1u);
-      EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(4 + len - 1 + latency + 1 + 1));
-      EXPECT_EQ(r.cycles, r.scanlines[0].cycle + 1);
-      EXPECT_EQ(CycleModel(piped).span_latency(),
-                CycleModel(SlotTiming{latency, 1}).span_latency() + 1);
+  for (int stages : {1, 2}) {
+    for (int latency : {0, 2}) {
+      for (int len : {1, 7}) {
+        const std::vector<uint64_t> w = words_of({CommandWord::span(3, 10, len, true)});
+        CycleConfig piped(SlotTiming{latency, 1});
+        piped.combine_stages = stages;
+        const CycleEstimateRun r = CycleEstimate(piped).run(w);
+        ASSERT_EQ(r.scanlines.size(), 1u);
+        EXPECT_EQ(r.scanlines[0].cycle, static_cast<uint64_t>(4 + len - 1 + latency + 1 + stages));
+        EXPECT_EQ(r.cycles, r.scanlines[0].cycle + 1);
+        EXPECT_EQ(CycleModel(piped).span_latency(),
+                  CycleModel(SlotTiming{latency, 1}).span_latency() + stages);
+      }
     }
   }
 }

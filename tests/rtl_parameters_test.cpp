@@ -75,8 +75,8 @@ TEST(RtlParameters, EachUnitGetsOnlyItsOwnParameters) {
   u.specular.wpow.base_bits = 12;
   m = as_map(shade_unit_parameters(u));
   EXPECT_EQ(m.at("SPECULAR_KIND"), 3);
-  // rtl/wpow_unit.sv's slots: 0 MAX_M, 1 BASE_BITS, 2 TIMING.
-  EXPECT_EQ(spec_slots(shade_unit_parameters(u)), (std::vector<int64_t>{16, 12, 1, 0, 0, 0, 0, 0}));
+  // rtl/wpow_unit.sv's slots: 0 MAX_M, 1 BASE_BITS, 2 TIMING, 3 SQUARE_STAGES.
+  EXPECT_EQ(spec_slots(shade_unit_parameters(u)), (std::vector<int64_t>{16, 12, 1, 1, 0, 0, 0, 0}));
   EXPECT_EQ(m.at("SPEC_PARAMS[1]"), 12);
 
   // The ideal unit has no hardware and no SPEC_PARAMS (shade_unit's default, '0).
@@ -121,6 +121,8 @@ TEST(RtlParameters, CombineStagesMapOnlyWhenPipelined) {
   u.combine_stages = 1;
   EXPECT_EQ(as_map(shade_unit_parameters(u)).at("COMBINE_STAGES"), 1);
   u.combine_stages = 2;
+  EXPECT_EQ(as_map(shade_unit_parameters(u)).at("COMBINE_STAGES"), 2);
+  u.combine_stages = 3;
   EXPECT_THROW(shade_unit_parameters(u), std::invalid_argument);
 }
 

@@ -187,9 +187,9 @@ TEST(SpecularUnits, JsonRefusesOutOfRangeNamingTheField) {
   EXPECT_EQ(overlay_error(R"({"specular": {"kind": "lut", "lut": {"addr_bits": 1}}})"), "");
   // Unknown keys list the table's keys.
   const std::string msg = overlay_error(R"({"specular": {"wpow": {"m": 4}}})");
-  EXPECT_NE(
-      msg.find("specular.wpow.m: unknown field; expected one of max_m, base_bits, timing, fit"),
-      std::string::npos)
+  EXPECT_NE(msg.find("specular.wpow.m: unknown field; expected one of max_m, base_bits, timing, "
+                     "square_stages, fit"),
+            std::string::npos)
       << msg;
 }
 

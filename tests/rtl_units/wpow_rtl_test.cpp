@@ -1,6 +1,7 @@
-// rtl/wpow_unit.sv against WpowUnit: every output bit, latency K + 1, II 1 (pipelined) or K + 1
-// (iterative), over every shift and squaring count; exhaustive series values at small widths,
-// hard cases (base 0 and just below/above, 1, > 1, < 0) plus random at real widths.
+// rtl/wpow_unit.sv against WpowUnit: every output bit, latency K square_stages + 1, II 1
+// (pipelined) or K + 1 (iterative), over every shift and squaring count; exhaustive series values
+// at small widths, hard cases (base 0 and just below/above, 1, > 1, < 0) plus random at real
+// widths.
 #include <gtest/gtest.h>
 
 #include "model/command_stream.h"
@@ -113,19 +114,22 @@ void check_wpow(const std::string& name, bool exhaustive, int n_random) {
 // The squarer on every base it can be given: with B = 16, a series of 16 fraction bits and
 // shift 0, the base is the series value itself, so series 0 .. 2^16 (b <= 2^B) feeds every
 // possible base to one squaring, whose truncated square the 17-bit output holds unchanged. The
-// RTL sums a square's partial products (each cross term once, doubled); the model multiplies.
-TEST(WpowUnitRtl, M2Base16EverySquareEqualsTheModelsProduct) {
-  const std::string name = "wpow_m2_b16";
+// RTL sums a square's partial products (each cross term once, doubled), or with square_stages 2
+// two partial squares and a cross product a cycle apart; the model multiplies.
+template <class V>
+void check_every_square(const std::string& name, int square_stages) {
   const Params p = config_params(name);
   const WpowConfig c = wpow_config(p);
   const FixedFormat series = series_format(p);
   const FixedFormat out = out_format(p, "OUT_");
   ASSERT_EQ(c.base_bits, 16);
+  ASSERT_EQ(c.square_stages, square_stages);
+  ASSERT_EQ(WpowUnit::latency(c), square_stages + 1);
   ASSERT_EQ(series.frac_bits(), 16);
   ASSERT_EQ(out.frac_bits(), 16);
   WpowUnit model(c, series, out);
   std::mt19937_64 rng(2);
-  Vwpow_m2_b16 dut;
+  V dut;
   reset(dut);
   send_param(dut, 0, int64_t{40} << kExponentFracBits);
   send_param(dut, 1, 0);
@@ -134,7 +138,7 @@ TEST(WpowUnitRtl, M2Base16EverySquareEqualsTheModelsProduct) {
   std::vector<int64_t> inputs;
   for (int64_t b = 0; b <= (int64_t{1} << 16); ++b) inputs.push_back(b);
   Mismatch mm;
-  UnitRun<Vwpow_m2_b16> run{dut, WpowUnit::latency(c), rng};
+  UnitRun<V> run{dut, WpowUnit::latency(c), rng};
   run.set_input = [&](int64_t k) {
     const int64_t raw = k >= 0 ? inputs[static_cast<size_t>(k)] : static_cast<int64_t>(rng());
     dut.series_i = to_bits(raw, series.wl);
@@ -154,6 +158,13 @@ TEST(WpowUnitRtl, M2Base16EverySquareEqualsTheModelsProduct) {
   }
 }
 
+TEST(WpowUnitRtl, M2Base16EverySquareEqualsTheModelsProduct) {
+  check_every_square<Vwpow_m2_b16>("wpow_m2_b16", 1);
+}
+TEST(WpowUnitRtl, M2Base16SplitSquareEverySquareEqualsTheModelsProduct) {
+  check_every_square<Vwpow_m2_b16_sq2>("wpow_m2_b16_sq2", 2);
+}
+
 TEST(WpowUnitRtl, M4SmallestPipelinedExhaustive) {
   check_wpow<Vwpow_small_pipe>("wpow_small_pipe", true, 0);
 }
@@ -164,6 +175,16 @@ TEST(WpowUnitRtl, M1NoSquarerExhaustive) { check_wpow<Vwpow_m1>("wpow_m1", true,
 TEST(WpowUnitRtl, W16PipelinedHardAndRandom) { check_wpow<Vwpow_w16>("wpow_w16", false, 4000); }
 TEST(WpowUnitRtl, M32IterativeRoundedOutputHardAndRandom) {
   check_wpow<Vwpow_m32_iter>("wpow_m32_iter", false, 2000);
+}
+// Split squarings: latency 2K + 1, one pixel per cycle.
+TEST(WpowUnitRtl, M4SplitSquaresExhaustive) {
+  check_wpow<Vwpow_small_sq2>("wpow_small_sq2", true, 0);
+}
+TEST(WpowUnitRtl, M4OddBaseSplitSquaresRoundedOutputExhaustive) {
+  check_wpow<Vwpow_small_b5_sq2>("wpow_small_b5_sq2", true, 0);
+}
+TEST(WpowUnitRtl, W16SplitSquaresHardAndRandom) {
+  check_wpow<Vwpow_w16_sq2>("wpow_w16_sq2", false, 4000);
 }
 
 }  // namespace
