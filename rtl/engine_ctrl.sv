@@ -35,12 +35,18 @@ module engine_ctrl #(
   logic               run_q, run_d;
   logic [XY_BITS:0]   rem_q;
   logic [XY_BITS-1:0] x_q, y_q;
-  logic               last_q, last_pix, emit;
+  logic               last_q, last_pix, last_pix_q, last_pix_d, emit;
+
+  // 1 <= rem <= LANES on the last beat (LANES = 1: rem == 1).
+  function automatic logic last_beat(input logic [XY_BITS:0] rem);
+    last_beat = rem - 1'b1 < (XY_BITS + 1)'(LANES);
+  endfunction
 
   assign span         = span_i;
   assign emit         = run_q && adv_i && !spec_busy_i;
-  // 1 <= rem_q <= LANES on the last beat (LANES = 1: rem_q == 1).
-  assign last_pix     = rem_q - 1'b1 < (XY_BITS + 1)'(LANES);
+  // last_beat(rem_q), held in a register beside rem_q: the compare is off the path from adv_i
+  // through the engines' load and step enables, which fan out to every engine register.
+  assign last_pix     = last_pix_q;
   logic take_ready;  // the engines can take a span this cycle
   assign take_ready = !run_q || (emit && last_pix);
   assign load_o     = span_valid_i && take_ready;
@@ -56,7 +62,14 @@ module engine_ctrl #(
     else         run_q <= run_d;
   end
 
+  always_comb begin
+    last_pix_d = last_pix_q;
+    if (load_o)    last_pix_d = last_beat(span.len);
+    else if (emit) last_pix_d = last_beat(rem_q - (XY_BITS + 1)'(LANES));
+  end
+
   always_ff @(posedge clk_i) begin
+    last_pix_q <= last_pix_d;
     if (load_o) begin
       rem_q  <= span.len;
       x_q    <= span.x0;
@@ -88,6 +101,9 @@ module engine_ctrl #(
 `ifdef VERILATOR
   // A running span has pixels left: the engines never step past its end.
   a_rem_nonzero: assert property (@(posedge clk_i) disable iff (!rst_ni) run_q |-> rem_q != '0);
+  // The registered last-beat flag is the compare it replaces.
+  a_last_pix: assert property (@(posedge clk_i) disable iff (!rst_ni)
+                               run_q |-> last_pix_q == last_beat(rem_q));
 `endif
 `endif
 endmodule
