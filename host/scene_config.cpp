@@ -17,6 +17,7 @@
 #include "model/coef_packing.h"
 #include "model/command_stream.h"
 #include "model/cycle_estimate.h"
+#include "model/wpow_unit.h"
 
 namespace shadesim {
 namespace {
@@ -871,16 +872,42 @@ void rechoose_throughput(const std::vector<std::string>& scene_paths, const Deri
 
 }  // namespace
 
-void pipeline_combine(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
-                      int stages, const std::string& why, DerivedConfig& derived) {
-  derived.config.combine_stages = stages;
+std::string Pipelining::describe() const {
+  std::string s = "combine_stages " + std::to_string(combine_stages);
+  if (square_stages != 1) s += ", square_stages " + std::to_string(square_stages);
+  return s;
+}
+
+namespace {
+bool squares_pipelined(const UnitConfig& unit) {
+  return unit.specular.kind == SpecularUnitKind::kWpow &&
+         unit.specular.wpow.timing == UnitTiming::kPipelined &&
+         WpowUnit::stages(unit.specular.wpow) > 0;
+}
+}  // namespace
+
+Pipelining pipelining_of(const UnitConfig& unit) {
+  return {unit.combine_stages, squares_pipelined(unit) ? unit.specular.wpow.square_stages : 1};
+}
+
+std::vector<Pipelining> pipelining_ladder(const UnitConfig& unit) {
+  std::vector<Pipelining> ladder = {{0, 1}, {1, 1}, {2, 1}};
+  if (squares_pipelined(unit)) ladder.push_back({2, 2});
+  return ladder;
+}
+
+void pipeline_unit(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
+                   const Pipelining& p, const std::string& why, DerivedConfig& derived) {
+  derived.config.combine_stages = p.combine_stages;
+  if (derived.config.specular.kind == SpecularUnitKind::kWpow)
+    derived.config.specular.wpow.square_stages = p.square_stages;
   derived.config.validate();
   rechoose_throughput(scene_paths, options, derived);
   derived.reasons.erase(
       std::remove_if(derived.reasons.begin(), derived.reasons.end(),
                      [](const FieldReason& r) { return r.field == "combine_stages"; }),
       derived.reasons.end());
-  derived.reasons.push_back({"combine_stages", std::to_string(stages), why});
+  derived.reasons.push_back({"combine_stages", std::to_string(p.combine_stages), why});
 }
 
 namespace {

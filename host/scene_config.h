@@ -153,11 +153,23 @@ inline int code_budget(double budget_lsb) { return static_cast<int>(std::ceil(bu
 DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
                             const DeriveOptions& options);
 
-// `derived` with its pixel combine pipelined (UnitConfig::combine_stages = stages): the
-// throughput structure is chosen again for it (a combine stage delays each frame's last pixels
-// by a cycle) and a "combine_stages" reason with `why` joins the others. Pixels do not change.
-void pipeline_combine(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
-                      int stages, const std::string& why, DerivedConfig& derived);
+// A unit's pipelining, the knobs a clock target turns (pixels do not depend on them):
+// UnitConfig::combine_stages and, on a pipelined W_m unit, WpowConfig::square_stages.
+struct Pipelining {
+  int combine_stages = 0;
+  int square_stages = 1;
+  std::string describe() const;  // "combine_stages 2, square_stages 2"
+};
+// The ladder a clock target climbs for `unit`, each rung more registers than the one before:
+// combine_stages 0, 1, 2, then (a pipelined W_m unit) square_stages 2.
+std::vector<Pipelining> pipelining_ladder(const UnitConfig& unit);
+Pipelining pipelining_of(const UnitConfig& unit);
+
+// `derived` pipelined as `p`: the throughput structure is chosen again for it (a register stage
+// delays each frame's last pixels by a cycle) and a "combine_stages" reason with `why` joins the
+// others. Pixels do not change.
+void pipeline_unit(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
+                   const Pipelining& p, const std::string& why, DerivedConfig& derived);
 
 // What one scene drives on `unit`'s own structure (channels, lights, diffuse colour, specular
 // unit), measured as derive_config measures it: on a trial of that structure whose series and

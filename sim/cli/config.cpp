@@ -62,8 +62,9 @@ void register_config(CLI::App& app, int& exit_code) {
       "               Where none meets it: the fastest, and each scene over the target named\n"
       "               with the resource that limits it (--port-words, --tri-queue,\n"
       "               --span-setup hold a knob)\n"
-      "  combine_stages  0; with --clock-mhz, 1 where the unit without it misses the clock\n"
-      "               and the one with it meets it, or is faster (both timed; see --clock-mhz)\n"
+      "  combine_stages, square_stages  0 and 1; with --clock-mhz, the first rung of the\n"
+      "               pipelining ladder that meets the clock (combine_stages 1, 2, then a W_m\n"
+      "               unit's square_stages 2), else the fastest (each timed; see --clock-mhz)\n"
       "  diffuse_colour  multiply with 3 channels (one N.L series per light, times kd_c L_c per\n"
       "               pixel and channel), series with 1 (--diffuse-colour to choose)\n"
       "  spec_colour  integer bits: every ks_c L_c (and kd_c L_c multiplied) unsaturated;\n"
@@ -118,10 +119,12 @@ void register_config(CLI::App& app, int& exit_code) {
   sub->add_option(
          "--clock-mhz", o->clock_mhz,
          "a clock the unit must close (default: none; then no synthesis runs). The derived\n"
-         "unit is timed where --clock-target says; where it misses, its pixel combine gets a\n"
-         "register stage (combine_stages 1, the one pipelining knob so far) and is timed again.\n"
-         "config keeps the cheapest that meets the clock, else the fastest, names the path\n"
-         "that limits it and exits 1. Runs shadesim area's flows (cached in --area-cache)")
+         "unit is timed where --clock-target says; where it misses, it climbs the pipelining\n"
+         "ladder, each rung timed: a register stage in the pixel combine (combine_stages 1),\n"
+         "a second that splits its colour products (2), then, on a pipelined W_m unit, each\n"
+         "squaring split over two cycles (square_stages 2). config keeps the first rung that\n"
+         "meets the clock (each adds registers), else the fastest, names the path that limits\n"
+         "it and exits 1. Runs shadesim area's flows (cached in --area-cache)")
       ->check(positive_number());
   sub->add_option("--clock-target", o->clock_target,
                   "where the clock is timed: osu018 (Yosys onto the library, OpenSTA; --liberty\n"

@@ -74,45 +74,52 @@ std::string clock_figures(const ClockTiming& t, const ClockTarget& target) {
 
 }  // namespace
 
+// Times each rung of the unit's pipelining ladder (pipelining_ladder) until one meets the
+// clock; keeps that one (every rung adds registers, so the first that meets is the cheapest),
+// else the fastest, and states every rung's figures in the "combine_stages" reason.
 ClockOutcome meet_clock(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
                         const ClockTarget& target, DerivedConfig& derived) {
   ClockOutcome out;
-  out.tried.push_back(time_unit(derived.config, target));
   const std::string at = fmt::format("{:g} MHz on {}", target.mhz, site_name(target));
-  if (out.tried[0].meets(target.mhz)) {
-    out.meets = true;
-    derived.reasons.push_back(
-        {"combine_stages", "0",
-         "the clock: " + clock_figures(out.tried[0], target) + " meets " + at + " unpipelined"});
-    return out;
+  const std::vector<Pipelining> ladder = pipelining_ladder(derived.config);
+  std::vector<DerivedConfig> units;
+  for (const Pipelining& p : ladder) {
+    DerivedConfig piped = derived;
+    if (!units.empty()) pipeline_unit(scene_paths, options, p, "", piped);
+    out.tried.push_back(time_unit(piped.config, target));
+    units.push_back(std::move(piped));
+    if (out.tried.back().meets(target.mhz)) {
+      out.meets = true;
+      break;
+    }
   }
-  // The one pipelining knob there is: a register stage in the pixel combine.
-  DerivedConfig piped = derived;
-  pipeline_combine(scene_paths, options, 1, "", piped);
-  out.tried.push_back(time_unit(piped.config, target));
+  out.chosen = out.tried.size() - 1;
+  if (!out.meets) {
+    for (size_t i = 0; i < out.tried.size(); ++i) {
+      if (out.tried[i].fmax_mhz.value_or(0) > out.tried[out.chosen].fmax_mhz.value_or(0))
+        out.chosen = i;
+    }
+  }
   const ClockTiming& plain = out.tried[0];
-  const ClockTiming& staged = out.tried[1];
-  const auto faster = [](const ClockTiming& a, const ClockTiming& b) {
-    return a.fmax_mhz.value_or(0) > b.fmax_mhz.value_or(0);
-  };
-  out.meets = staged.meets(target.mhz);
-  out.chosen = out.meets || faster(staged, plain) ? 1 : 0;
   const ClockTiming& chosen = out.tried[out.chosen];
-  std::string why = "the clock: unpipelined " + clock_figures(plain, target) +
-                    "; with a combine stage " + clock_figures(staged, target);
-  if (plain.area > 0)
-    why += fmt::format(" ({:+.1f} % area)", 100.0 * (staged.area / plain.area - 1));
+  std::string why = "the clock: unpipelined " + clock_figures(plain, target);
+  for (size_t i = 1; i < out.tried.size(); ++i) {
+    why += "; " + ladder[i].describe() + " " + clock_figures(out.tried[i], target);
+    if (plain.area > 0)
+      why += fmt::format(" ({:+.1f} % area)", 100.0 * (out.tried[i].area / plain.area - 1));
+  }
   why += out.meets ? "; meets " + at : "; misses " + at;
   if (!out.meets) {
-    out.miss = fmt::format(
-        "no unit meets {}: the fastest, {} (combine_stages {}), is limited by "
-        "its {}",
-        at, clock_figures(chosen, target), chosen.unit.combine_stages, chosen.limit);
+    out.miss =
+        fmt::format("no unit meets {}: the fastest, {} ({}), is limited by its {}", at,
+                    clock_figures(chosen, target), ladder[out.chosen].describe(), chosen.limit);
   }
-  if (out.chosen == 1) {
-    pipeline_combine(scene_paths, options, 1, why, derived);
+  if (out.chosen == 0 && out.tried.size() == 1) {
+    derived.reasons.push_back(
+        {"combine_stages", "0",
+         "the clock: " + clock_figures(plain, target) + " meets " + at + " unpipelined"});
   } else {
-    derived.reasons.push_back({"combine_stages", "0", why});
+    pipeline_unit(scene_paths, options, ladder[out.chosen], why, derived);
   }
   return out;
 }

@@ -34,14 +34,15 @@ ClockTiming time_unit(const UnitConfig& unit, const ClockTarget& target);
 
 // What config did for the clock, for its report and --json.
 struct ClockOutcome {
-  std::vector<ClockTiming> tried;  // the derived unit, then each pipelined one timed
+  std::vector<ClockTiming> tried;  // the derived unit, then each rung of its ladder timed
   size_t chosen = 0;               // index into `tried`: the cheapest that meets, else fastest
   bool meets = false;
   std::string miss;  // when none meets: the fastest's Fmax and the path that limits it
 };
-// Times `derived.config`; where it misses the clock, pipelines its pixel combine
-// (pipeline_combine) and times that. `derived` becomes the chosen unit, with a
-// "combine_stages" reason stating the figures.
+// Times `derived.config`; where it misses the clock, climbs its pipelining ladder
+// (pipelining_ladder: the pixel combine's stages, then the W_m squarings'), timing each rung
+// until one meets it. `derived` becomes the chosen unit, with a "combine_stages" reason stating
+// the figures.
 ClockOutcome meet_clock(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
                         const ClockTarget& target, DerivedConfig& derived);
 

@@ -150,6 +150,7 @@ nlohmann::json clock_json(const ClockTarget& target, const ClockOutcome& c) {
   nlohmann::json tried = nlohmann::json::array();
   for (const ClockTiming& t : c.tried) {
     tried.push_back({{"combine_stages", t.unit.combine_stages},
+                     {"square_stages", pipelining_of(t.unit).square_stages},
                      {"fmax_mhz", t.fmax_mhz ? nlohmann::json(*t.fmax_mhz) : nlohmann::json()},
                      {target.site == ClockSite::kIce40 ? "lut4" : "area_um2", t.area},
                      {"limit", t.limit}});
