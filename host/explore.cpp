@@ -11,12 +11,12 @@
 #include <thread>
 
 #include "host/encode.h"
+#include "host/scene_config.h"
 #include "host/specular_setup.h"
 #include "model/command_stream.h"
 #include "model/cycle_estimate.h"
 #include "model/cycle_model.h"
 #include "model/shade_unit.h"
-#include "model/specular_units.h"
 
 namespace shadesim {
 
@@ -123,141 +123,6 @@ PointFigures evaluate_point(const ExploreScenes& scenes, const UnitConfig& confi
   return p;
 }
 
-// ---------------------------------------------------------------- knobs
-
-namespace {
-
-std::vector<int> range_of(int lo, int hi) {
-  std::vector<int> v;
-  for (int i = lo; i <= hi; ++i) v.push_back(i);
-  return v;
-}
-
-std::vector<std::string> numbers(const std::vector<int>& v) {
-  std::vector<std::string> s;
-  for (int x : v) s.push_back(std::to_string(x));
-  return s;
-}
-
-Knob numeric(std::string stage, std::string name, int lo, int hi,
-             std::function<void(UnitConfig&, int)> apply,
-             std::function<int(const UnitConfig&)> read, bool searched = true) {
-  Knob k;
-  k.stage = std::move(stage);
-  k.name = std::move(name);
-  k.values = range_of(lo, std::max(lo, hi));
-  k.labels = numbers(k.values);
-  k.apply = std::move(apply);
-  k.read = std::move(read);
-  k.searched = searched;
-  return k;
-}
-
-// Fraction bits of a format held in a UnitConfig member, keeping its integer bits.
-Knob frac_knob(std::string stage, std::string name, FixedFormat UnitConfig::*member, int lo,
-               int widen, const UnitConfig& start) {
-  const FixedFormat& f = start.*member;
-  const int hi = std::min(f.frac_bits() + widen, 62 - f.iwl);
-  return numeric(
-      std::move(stage), std::move(name), lo, hi,
-      [member](UnitConfig& c, int v) { (c.*member).wl = (c.*member).iwl + v; },
-      [member](const UnitConfig& c) { return (c.*member).frac_bits(); });
-}
-
-Knob int_knob(std::string stage, std::string name, FixedFormat UnitConfig::*member, int lo,
-              int widen, const UnitConfig& start) {
-  const FixedFormat& f = start.*member;
-  const int hi = std::min(f.iwl + widen, 62 - f.frac_bits());
-  return numeric(
-      std::move(stage), std::move(name), lo, hi,
-      [member](UnitConfig& c, int v) {
-        FixedFormat& g = c.*member;
-        const int frac = g.frac_bits();
-        g.iwl = v;
-        g.wl = v + frac;
-      },
-      [member](const UnitConfig& c) { return (c.*member).iwl; });
-}
-
-Knob choice(std::string stage, std::string name, std::vector<std::string> labels,
-            std::function<void(UnitConfig&, int)> apply,
-            std::function<int(const UnitConfig&)> read) {
-  Knob k;
-  k.stage = std::move(stage);
-  k.name = std::move(name);
-  for (std::size_t i = 0; i < labels.size(); ++i) k.values.push_back(static_cast<int>(i));
-  k.labels = std::move(labels);
-  k.apply = std::move(apply);
-  k.read = std::move(read);
-  k.choice = true;
-  return k;
-}
-
-}  // namespace
-
-std::vector<Knob> knobs_for(const UnitConfig& start) {
-  std::vector<Knob> k;
-  const char* coef = "coefficients";
-  const char* series = "series";
-  const char* spec = "specular";
-  k.push_back(int_knob(coef, "coef.int", &UnitConfig::coef, 2, 2, start));
-  k.push_back(frac_knob(coef, "coef.frac", &UnitConfig::coef, 8, 4, start));
-  k.push_back(int_knob(series, "series.int", &UnitConfig::series, 2, 2, start));
-  k.push_back(frac_knob(series, "series.frac", &UnitConfig::series, start.out_bits, 4, start));
-  k.push_back(choice(
-      series, "series.quant", {"trn", "rnd"},
-      [](UnitConfig& c, int v) {
-        c.series.quant = v ? Quantization::kRoundNearest : Quantization::kTruncate;
-      },
-      [](const UnitConfig& c) { return c.series.quant == Quantization::kRoundNearest ? 1 : 0; }));
-  k.push_back(choice(
-      series, "series.overflow", {"wrap", "sat"},
-      [](UnitConfig& c, int v) { c.series.overflow = v ? Overflow::kSaturate : Overflow::kWrap; },
-      [](const UnitConfig& c) { return c.series.overflow == Overflow::kSaturate ? 1 : 0; }));
-  const SpecularConfig& s = start.specular;
-  // Specular kind none has no specular term: its output and colour widths reach no pixel and no
-  // hardware, so they are not searched.
-  const bool specular_term = s.kind != SpecularUnitKind::kNone;
-  if (specular_term)
-    k.push_back(numeric(
-        spec, "spec.out.frac", 4, std::min(s.out.frac_bits() + 2, 60),
-        [](UnitConfig& c, int v) { c.specular.out.wl = c.specular.out.iwl + v; },
-        [](const UnitConfig& c) { return c.specular.out.frac_bits(); }));
-  // The selected unit's explored fields (model/specular_units.h).
-  const SpecularUnitDescriptor& unit = specular_unit(s.kind);
-  for (const SpecularField& f : unit.fields) {
-    if (f.explore_hi == nullptr) continue;
-    const SpecularField* field = &f;  // the table outlives every knob
-    k.push_back(numeric(
-        spec, unit.field_name(f), f.explore_lo, f.explore_hi(f.get(s)),
-        [field](UnitConfig& c, int v) { field->set(c.specular, v); },
-        [field](const UnitConfig& c) { return field->get(c.specular); }));
-  }
-  if (specular_term)
-    k.push_back(
-        frac_knob("specular colour", "spec_colour.frac", &UnitConfig::spec_colour, 2, 2, start));
-  // Span setup in the unit or on the host: the pixels are the same (model/host_setup.h), the
-  // area and the cycles per pixel are not, so it is swept for the table and the Pareto front
-  // (area against cycles per pixel), not chosen by the error search. Host setup has no
-  // coefficient banks to queue: tri_queue 1; back in the unit, the start's queue (2, config's
-  // default, when the start is a host-setup unit).
-  const int unit_queue = start.host_setup() ? 2 : start.tri_queue;
-  Knob setup = choice(
-      "span setup", "span_setup", {"unit", "host"},
-      [unit_queue](UnitConfig& c, int v) {
-        c.span_setup = v ? SpanSetupSite::kHost : SpanSetupSite::kUnit;
-        c.tri_queue = v ? 1 : unit_queue;
-      },
-      [](const UnitConfig& c) { return c.host_setup() ? 1 : 0; });
-  setup.searched = false;
-  k.push_back(std::move(setup));
-  k.push_back(numeric(
-      "output", "out_bits", std::max(1, start.out_bits - 2), std::min(16, start.out_bits + 2),
-      [](UnitConfig& c, int v) { c.out_bits = v; }, [](const UnitConfig& c) { return c.out_bits; },
-      /*searched=*/false));
-  return k;
-}
-
 // ---------------------------------------------------------------- the search
 
 namespace {
@@ -358,20 +223,39 @@ std::string describe(const ExplorePoint& p) {
 
 }  // namespace
 
+namespace {
+
+// How a's throughput compares with b's (mark_pareto): +1 better, 0 the same, -1 worse; none when
+// they cannot be ordered. Mpixel/s where both have a measured Fmax on one site, else cycles per
+// pixel between units of one pipelining: a pipeline register costs a cycle of latency and buys
+// clock, so until both are measured a point of another pipelining is neither faster nor slower.
+std::optional<int> throughput_order(const ExplorePoint& a, const ExplorePoint& b) {
+  const auto order = [](double x, double y) { return x > y ? 1 : x < y ? -1 : 0; };
+  const auto la = a.library_mpixel_per_s(), lb = b.library_mpixel_per_s();
+  if (la && lb) return order(*la, *lb);
+  const auto ia = a.mpixel_per_s(), ib = b.mpixel_per_s();
+  if (ia && ib) return order(*ia, *ib);
+  const Pipelining pa = pipelining_of(a.config), pb = pipelining_of(b.config);
+  if (pa.combine_stages != pb.combine_stages || pa.square_stages != pb.square_stages)
+    return std::nullopt;
+  return order(b.figures.cycles_per_pixel, a.figures.cycles_per_pixel);
+}
+
+// Whether q dominates p: no worse in error, area and throughput, and better in one.
+bool dominates(const ExplorePoint& q, const ExplorePoint& p) {
+  const std::optional<int> t = throughput_order(q, p);
+  if (!t || *t < 0) return false;
+  const ErrorStats &eq = q.figures.error, &ep = p.figures.error;
+  const bool no_worse = eq.max_code_lsb <= ep.max_code_lsb &&
+                        eq.mean_code_lsb <= ep.mean_code_lsb && q.front_area() <= p.front_area();
+  const bool better = eq.max_code_lsb < ep.max_code_lsb || eq.mean_code_lsb < ep.mean_code_lsb ||
+                      q.front_area() < p.front_area() || *t > 0;
+  return no_worse && better;
+}
+
+}  // namespace
+
 void mark_pareto(std::vector<ExplorePoint>& points, int out_bits) {
-  auto no_worse = [](const ExplorePoint& a,
-                     const ExplorePoint& b) {  // a no worse than b in all four
-    return a.figures.error.max_code_lsb <= b.figures.error.max_code_lsb &&
-           a.figures.error.mean_code_lsb <= b.figures.error.mean_code_lsb &&
-           a.front_area() <= b.front_area() &&
-           a.figures.cycles_per_pixel <= b.figures.cycles_per_pixel;
-  };
-  auto better_somewhere = [](const ExplorePoint& a, const ExplorePoint& b) {
-    return a.figures.error.max_code_lsb < b.figures.error.max_code_lsb ||
-           a.figures.error.mean_code_lsb < b.figures.error.mean_code_lsb ||
-           a.front_area() < b.front_area() ||
-           a.figures.cycles_per_pixel < b.figures.cycles_per_pixel;
-  };
   auto takes_part = [out_bits](const ExplorePoint& p) {
     return p.valid && p.config.out_bits == out_bits;
   };
@@ -379,7 +263,7 @@ void mark_pareto(std::vector<ExplorePoint>& points, int out_bits) {
     p.pareto = takes_part(p);
     if (!p.pareto) continue;
     for (const auto& q : points) {
-      if (&q != &p && takes_part(q) && no_worse(q, p) && better_somewhere(q, p)) {
+      if (&q != &p && takes_part(q) && dominates(q, p)) {
         p.pareto = false;
         break;
       }
@@ -625,7 +509,7 @@ ExploreResult explore(ExploreScenes& scenes, const UnitConfig& start, const Area
   r.start = start;
   Evaluator eval(scenes, area, options, progress, r.points);
   r.start_index = evaluate_start(eval, r, start);
-  const std::vector<Knob> knobs = knobs_for(start);
+  const std::vector<Knob> knobs = knobs_for(start, options.structure);
   const UnitConfig joint = combine_minima(r, knobs, start, sweep_each_knob(eval, knobs, start));
   const std::size_t last = refine_jointly(eval, r, knobs, start, joint);
   if (r.points[last].valid && r.points[last].meets_budget) r.chosen = last;

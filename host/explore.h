@@ -74,23 +74,29 @@ struct PointFigures {
 PointFigures evaluate_point(const ExploreScenes& scenes, const UnitConfig& config,
                             const AreaFunction& area);
 
-// One width the sweep varies: its stage, its candidate values (narrowest / cheapest first) and
-// how a value is written into a configuration.
+// One knob the sweep varies (a width or a structural choice): its stage, its candidate values
+// (narrowest / cheapest first) and how a value is written into a configuration.
 struct Knob {
-  std::string stage;  // coefficients | series | specular | specular colour | output
+  std::string stage;  // coefficients | series | specular | specular colour | span setup |
+                      // diffuse colour | pipelining | output
   std::string name;   // e.g. "series.frac"
   std::vector<int> values;
   std::vector<std::string> labels;  // parallel to values: how a value prints
   std::function<void(UnitConfig&, int)> apply;
   std::function<int(const UnitConfig&)> read;
-  bool searched = true;  // false: swept for the table only (output bits are what was asked for)
-  bool choice = false;   // a choice (trn/rnd, wrap/sat), not a width: "wider" means the start's
+  // false: swept for the table and the front only (output bits are what was asked for; the
+  // structure trades area against cycles and clock, which the error search does not weigh)
+  bool searched = true;
+  bool choice = false;  // a choice (trn/rnd, wrap/sat), not a width: "wider" means the start's
 };
 
-// The knobs for `start`: coefficient integer and fraction bits; series fraction and integer
-// bits, truncate/round, wrap/saturate; the selected specular unit's widths and its output
-// fraction bits; specular colour fraction bits; output bits (not searched).
-std::vector<Knob> knobs_for(const UnitConfig& start);
+// The knobs for `start` (host/explore_knobs.cpp): coefficient integer and fraction bits; series
+// fraction and integer bits, truncate/round, wrap/saturate; the selected specular unit's widths
+// and its output fraction bits; specular colour fraction bits; with `structure`, the structure,
+// not searched: span setup site, the host's start depth, the diffuse colour (where the start has
+// colour or multiplies), the pipelining ladder's rungs (pipelining_ladder); output bits (not
+// searched).
+std::vector<Knob> knobs_for(const UnitConfig& start, bool structure = true);
 
 // A point's unit as Yosys measured it (shadesim area), for the points explore calls
 // Pareto-optimal: the sweep itself runs on AreaFunction's estimates.
@@ -120,7 +126,7 @@ struct ExplorePoint {
   bool valid = true;  // false: the configuration does not validate (figures empty)
   std::string invalid_reason;
   bool meets_budget = false;
-  bool pareto = false;  // on the front of (max LSB, mean LSB) against area and cycles per pixel
+  bool pareto = false;  // on the front of (max LSB, mean LSB) against area and throughput
   std::optional<MeasuredArea> measured;  // Yosys's figures (measure_front), else none
   // The area the front is drawn with: the measurement where there is one, else the estimate.
   double front_area() const { return measured ? measured->cells : figures.area.cells; }
@@ -133,6 +139,9 @@ struct ExplorePoint {
 struct ExploreOptions {
   double budget_lsb = 1.0;  // max |code - reference code| over all pixels and channels
   int jobs = 2;             // worker threads for the points
+  // false: the widths alone (explore --widths-only); each structural point the sweep adds can
+  // join the front, and each point on the front costs a synthesis when the front is measured.
+  bool structure = true;
 };
 
 // Called from worker threads (serialised) after each point: phase, points done, points in the
@@ -158,10 +167,13 @@ struct ExploreResult {
 ExploreResult explore(ExploreScenes& scenes, const UnitConfig& start, const AreaFunction& area,
                       const ExploreOptions& options, const ExploreProgress& progress = {});
 
-// Marks `pareto` on the points not dominated in (max code LSB, mean code LSB, area, cycles per
-// pixel): a point is dominated when another is no worse in all four and better in one. Only
-// points with `out_bits` output bits take part: an LSB of another output width is another unit.
-// Area is front_area(): measured where measured.
+// Marks `pareto` on the points not dominated in (max code LSB, mean code LSB, area, throughput):
+// a point is dominated when another is no worse in all four and better in one. Only points with
+// `out_bits` output bits take part: an LSB of another output width is another unit. Area is
+// front_area(): measured where measured. Throughput is Mpixel/s where both points have a measured
+// Fmax (the library's, else both iCE40's), else cycles per pixel between points of one
+// pipelining (pipelining_of); otherwise the two are not ordered on it: a pipeline register buys
+// clock for its cycle of latency, which only a measured Fmax shows.
 void mark_pareto(std::vector<ExplorePoint>& points, int out_bits);
 
 // Yosys for the front: measures every Pareto point (and the chosen one) not measured yet, marks

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -177,6 +178,167 @@ TEST(Explore, ParetoFrontHasNoDominatedPoint) {
   EXPECT_FALSE(pts[3].pareto);
 }
 
+const Knob* knob_named(const std::vector<Knob>& knobs, const std::string& name) {
+  for (const Knob& k : knobs)
+    if (k.name == name) return &k;
+  return nullptr;
+}
+
+// Issue 44: pipelining is a structural knob. Its rungs are the ladder a clock target climbs
+// (combine_stages 0, 1, 2, then square_stages 2 where the W_m unit is pipelined); a rung changes
+// neither a pixel (an independent render) nor anything but latency: each register stage delays
+// the frame's last pixel by one cycle, so a one-material frame takes exactly that many cycles
+// more (combine_stages k: k; square_stages 2 on W_16: its log2(16) = 4 squarings twice as long).
+TEST(Explore, PipeliningIsSweptAsAStructuralKnobOfLatencyNotPixels) {
+  const std::string scene = kScenes + "torus.json";
+  UnitConfig wpow;
+  wpow.specular.kind = SpecularUnitKind::kWpow;  // W_16, pipelined: the default W_m
+  const std::vector<Knob> knobs = knobs_for(wpow);
+  const Knob* pipe = knob_named(knobs, "pipelining");
+  ASSERT_NE(pipe, nullptr);
+  EXPECT_FALSE(pipe->searched) << "structure: swept for the table and the front, not searched";
+  EXPECT_EQ(pipe->stage, "pipelining");
+  EXPECT_EQ(pipe->labels, (std::vector<std::string>{"c0", "c1", "c2", "c2 sq2"}));
+  const std::vector<std::pair<int, int>> rungs = {{0, 1}, {1, 1}, {2, 1}, {2, 2}};
+  const std::vector<uint64_t> extra_cycles = {0, 1, 2, 2 + 4};
+  ExploreScenes scenes({scene}, wpow, std::nullopt, 12);
+  PointFigures unpipelined;
+  for (std::size_t v = 0; v < rungs.size(); ++v) {
+    UnitConfig c = wpow;
+    pipe->apply(c, pipe->values[v]);
+    EXPECT_EQ(c.combine_stages, rungs[v].first) << pipe->labels[v];
+    EXPECT_EQ(c.specular.wpow.square_stages, rungs[v].second) << pipe->labels[v];
+    EXPECT_EQ(pipe->read(c), pipe->values[v]);
+    const PointFigures p = evaluate_point(scenes, c, width_sum());
+    if (v == 0) unpipelined = p;
+    EXPECT_EQ(p.cycles, unpipelined.cycles + extra_cycles[v]) << pipe->labels[v];
+    EXPECT_EQ(p.error.max_code_lsb, unpipelined.error.max_code_lsb) << pipe->labels[v];
+    EXPECT_DOUBLE_EQ(p.error.mean_code_lsb, unpipelined.error.mean_code_lsb) << pipe->labels[v];
+  }
+  UnitConfig top = wpow;
+  pipe->apply(top, pipe->values.back());
+  const ErrorStats e = render_at(scene, top);
+  EXPECT_EQ(e.max_code_lsb, unpipelined.error.max_code_lsb);
+  EXPECT_DOUBLE_EQ(e.mean_code_lsb, unpipelined.error.mean_code_lsb);
+
+  // An iterative W_m and a unit without one: the combine's rungs only.
+  UnitConfig iterative = wpow;
+  iterative.specular.wpow.timing = UnitTiming::kIterative;
+  for (const UnitConfig& u : {iterative, UnitConfig{}})
+    EXPECT_EQ(knob_named(knobs_for(u), "pipelining")->labels,
+              (std::vector<std::string>{"c0", "c1", "c2"}));
+  // --widths-only: no structural knob.
+  for (const char* name : {"pipelining", "span_setup", "start_depth", "diffuse_colour"})
+    EXPECT_EQ(knob_named(knobs_for(wpow, false), name), nullptr) << name;
+}
+
+// The other structural knobs: the host's start depth (a one-entry start bank costs cycles, not
+// pixels) and, with colour, the diffuse colour multiplied in the unit (other pixels: an
+// independent render of each). A grey series unit does not sweep the diffuse colour (the
+// multiply would remove no series: shadesim config says the same).
+TEST(Explore, StartDepthAndDiffuseColourAreSweptWhereTheyAreAStructure) {
+  const std::string scene = kScenes + "multi.json";
+  UnitConfig rgb;
+  rgb.channels = 3;
+  rgb.lights = 2;
+  const std::vector<Knob> knobs = knobs_for(rgb);
+  const Knob* depth = knob_named(knobs, "start_depth");
+  const Knob* diffuse = knob_named(knobs, "diffuse_colour");
+  ASSERT_NE(depth, nullptr);
+  ASSERT_NE(diffuse, nullptr);
+  EXPECT_FALSE(depth->searched);
+  EXPECT_FALSE(diffuse->searched);
+  EXPECT_EQ(depth->labels, (std::vector<std::string>{"1", "2"}));
+  EXPECT_EQ(diffuse->labels, (std::vector<std::string>{"series", "multiply"}));
+  EXPECT_EQ(knob_named(knobs_for(UnitConfig{}), "diffuse_colour"), nullptr) << "grey series";
+  ExploreScenes scenes({scene}, rgb, std::nullopt, 12);
+  std::vector<PointFigures> host;
+  for (const int v : depth->values) {
+    UnitConfig c = rgb;
+    depth->apply(c, v);
+    EXPECT_TRUE(c.host_setup()) << "only a host-setup unit has a start bank";
+    EXPECT_EQ(c.start_depth, v);
+    host.push_back(evaluate_point(scenes, c, width_sum()));
+  }
+  EXPECT_GT(host[0].cycles, host[1].cycles) << "one entry: the next span's words wait";
+  EXPECT_EQ(host[0].error.max_code_lsb, host[1].error.max_code_lsb);
+  for (const int v : diffuse->values) {
+    UnitConfig c = rgb;
+    diffuse->apply(c, v);
+    EXPECT_EQ(c.diffuse_multiply(), v == 1);
+    const PointFigures p = evaluate_point(scenes, c, width_sum());
+    const ErrorStats e = render_at(scene, c);
+    EXPECT_EQ(p.error.max_code_lsb, e.max_code_lsb) << diffuse->labels[static_cast<size_t>(v)];
+    EXPECT_DOUBLE_EQ(p.error.mean_code_lsb, e.mean_code_lsb);
+  }
+}
+
+// The sweep's front before anything is measured: a pipelined point has the start's error and
+// (here) its area and a cycle more, yet stays on the front, because the clock its register buys
+// is not known until it is measured; the structural points are there, and not chosen.
+TEST(Explore, PipelinedPointsReachTheFrontUntilMeasured) {
+  const std::string scene = kScenes + "sphere.json";
+  UnitConfig start;
+  ExploreScenes scenes({scene}, start, std::nullopt, 12);
+  const ExploreResult r = explore(scenes, start, width_sum(), ExploreOptions{});
+  std::map<std::string, const ExplorePoint*> by_value;
+  for (const ExplorePoint& p : r.points)
+    if (p.knob == "pipelining") by_value[p.value] = &p;
+  ASSERT_EQ(by_value.size(), 2u) << "c1 and c2 (c0 is the start)";
+  const ExplorePoint& s = r.points[r.start_index];
+  for (const auto& [value, p] : by_value) {
+    EXPECT_TRUE(p->pareto) << value;
+    EXPECT_EQ(p->figures.error.max_code_lsb, s.figures.error.max_code_lsb) << value;
+    EXPECT_GT(p->figures.cycles, s.figures.cycles) << value;
+  }
+  ASSERT_TRUE(r.chosen);
+  EXPECT_EQ(r.points[*r.chosen].config.combine_stages, 0) << "the search keeps the start's";
+  const ExploreResult w = explore(scenes, start, width_sum(), [] {
+    ExploreOptions o;
+    o.structure = false;
+    return o;
+  }());
+  EXPECT_LT(w.points.size(), r.points.size());
+  for (const ExplorePoint& p : w.points)
+    EXPECT_TRUE(p.stage != "pipelining" && p.stage != "span setup") << p.knob;
+}
+
+// Once measured, Mpixel/s decides between pipelinings: with the osu018 figures of a specular
+// unit (about 168 MHz unpipelined, 286 MHz with combine_stages 2 and square_stages 2, +20 %
+// area) the pipelined point is on the front, faster for its area; were it slower, it would not.
+TEST(Explore, MeasuredMpixelPerSecondDecidesBetweenPipelinings) {
+  for (const double piped_mhz : {286.0, 150.0}) {
+    ExploreResult r;
+    r.start.out_bits = 8;
+    r.points.resize(2);
+    for (ExplorePoint& p : r.points) {
+      p.config.out_bits = 8;
+      p.config.specular.kind = SpecularUnitKind::kWpow;
+      p.figures.error.max_code_lsb = 1;
+      p.figures.error.mean_code_lsb = 0.1;
+      p.figures.area.cells = 1000;  // the estimate does not see the registers
+    }
+    r.points[0].figures.cycles_per_pixel = 1.000;
+    r.points[1].figures.cycles_per_pixel = 1.001;  // the pipeline's latency
+    r.points[1].config.combine_stages = 2;
+    r.points[1].config.specular.wpow.square_stages = 2;
+    mark_pareto(r.points, 8);
+    ASSERT_TRUE(r.points[0].pareto);
+    ASSERT_TRUE(r.points[1].pareto) << "not ordered on throughput before it is measured";
+    const std::size_t n = measure_front(r, [&](const UnitConfig& c) {
+      MeasuredArea m;
+      m.cells = c.combine_stages ? 1200 : 1000;
+      m.library_fmax_mhz = c.combine_stages ? piped_mhz : 168.0;
+      return m;
+    });
+    EXPECT_EQ(n, 2u);
+    EXPECT_TRUE(r.points[0].pareto);
+    // 286 / 1.001 = 285.7 Mpixel/s against 168: faster, bigger; 150 / 1.001: slower and bigger.
+    EXPECT_EQ(r.points[1].pareto, piped_mhz > 168.0) << piped_mhz;
+    EXPECT_NEAR(*r.points[1].library_mpixel_per_s(), piped_mhz / 1.001, 1e-9);
+  }
+}
+
 // measure_front: every point on the front (and the chosen one) gets Yosys's figures; a point the
 // estimates kept off the front joins it once its neighbour's measured area is larger, and is
 // measured in turn; the estimate error is |estimate / measured - 1| over the measured points.
@@ -286,6 +448,34 @@ std::vector<std::string> csv_fields(const std::string& line) {
   return f;
 }
 
+// An --csv file: its header and rows (every row as wide as the header), fields by column name.
+struct CsvTable {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  const std::string& at(size_t row, const std::string& column) const {
+    const auto it = std::find(header.begin(), header.end(), column);
+    if (it == header.end()) throw std::out_of_range("no CSV column " + column);
+    return rows.at(row).at(static_cast<size_t>(it - header.begin()));
+  }
+};
+
+CsvTable read_csv(const std::filesystem::path& file) {
+  CsvTable t;
+  std::ifstream is(file);
+  std::string line;
+  if (!std::getline(is, line)) return t;
+  t.header = csv_fields(line);
+  while (std::getline(is, line)) {
+    t.rows.push_back(csv_fields(line));
+    EXPECT_EQ(t.rows.back().size(), t.header.size()) << line;
+  }
+  return t;
+}
+
+// The JSON's measured library figures, as the CSV names them (issue 44).
+const char* const kLibraryColumns[] = {"library_area_um2", "library_fmax_mhz",
+                                       "library_mpixel_per_s", "meets_clock"};
+
 TEST(ExploreCli, JsonAndCsvAreWellFormedAndAgree) {
   const auto dir = temp_dir("out");
   const Result r = run("explore " + kScenes + "sphere.json --budget 1 --estimate-only --json " +
@@ -325,20 +515,26 @@ TEST(ExploreCli, JsonAndCsvAreWellFormedAndAgree) {
     EXPECT_EQ(config_to_json(load_unit_config(file.string())), p["config"].dump());
   }
 
-  std::ifstream cs(dir / "e.csv");
-  std::string line;
-  ASSERT_TRUE(std::getline(cs, line));
-  const auto header = csv_fields(line);
-  size_t rows = 0, chosen_rows = 0;
-  while (std::getline(cs, line)) {
-    const auto f = csv_fields(line);
-    ASSERT_EQ(f.size(), header.size()) << line;
-    EXPECT_EQ(std::stoul(f[0]), rows);
-    chosen_rows += f.back() == "1" ? 1 : 0;
-    ++rows;
+  const CsvTable csv = read_csv(dir / "e.csv");
+  ASSERT_EQ(csv.rows.size(), points.size());
+  size_t chosen_rows = 0, pipelined = 0;
+  for (size_t i = 0; i < csv.rows.size(); ++i) {
+    const auto& f = csv.rows[i];
+    EXPECT_EQ(std::stoul(f[0]), i);
+    chosen_rows += csv.at(i, "chosen") == "1" ? 1 : 0;
+    // Nothing is measured with --estimate-only: the library columns are empty, not 0.
+    for (const char* column : kLibraryColumns) EXPECT_EQ(csv.at(i, column), "") << column;
+    if (csv.at(i, "knob") != "pipelining") continue;
+    // The sphere's own unit has no W_m: combine_stages 1 and 2 beside the start's 0, their
+    // pixels the start's (PipeliningIsSweptAsAStructuralKnobOfLatencyNotPixels has the cycles).
+    ++pipelined;
+    const std::string stages = csv.at(i, "value") == "c1" ? "1" : "2";
+    EXPECT_NE(csv.at(i, "config").find("combine_stages=" + stages), std::string::npos)
+        << csv.at(i, "config");
+    EXPECT_EQ(csv.at(i, "max_code_lsb"), csv.at(j["start_index"].get<size_t>(), "max_code_lsb"));
   }
-  EXPECT_EQ(rows, points.size());
   EXPECT_EQ(chosen_rows, 1u);
+  EXPECT_EQ(pipelined, 2u);
   std::filesystem::remove_all(dir);
 }
 
@@ -393,14 +589,45 @@ TEST(ExploreCli, BadInputIsAClearError) {
   std::filesystem::remove_all(dir);
 }
 
+// The --csv file of a measured run against its --json: every measured point's library figures,
+// its Mpixel/s worked out as the Fmax over the row's cycles per pixel and meets_clock as the Fmax
+// against the clock; every other point's library columns empty.
+void expect_csv_library_columns(const std::filesystem::path& csv_file, const nlohmann::json& j,
+                                double clock_mhz) {
+  const CsvTable csv = read_csv(csv_file);
+  ASSERT_EQ(csv.rows.size(), j["points"].size());
+  size_t measured = 0;
+  for (size_t i = 0; i < csv.rows.size(); ++i) {
+    const auto& p = j["points"][i];
+    if (!p.contains("measured")) {
+      for (const char* column : kLibraryColumns) EXPECT_EQ(csv.at(i, column), "") << i;
+      continue;
+    }
+    ++measured;
+    const double fmax = p["measured"]["library_fmax_mhz"].get<double>();
+    EXPECT_NEAR(std::stod(csv.at(i, "library_fmax_mhz")), fmax, 1e-9 * fmax) << i;
+    const double um2 = p["measured"]["library_area_um2"].get<double>();
+    EXPECT_NEAR(std::stod(csv.at(i, "library_area_um2")), um2, 1e-9 * um2) << i;
+    const double mpix = fmax / std::stod(csv.at(i, "cycles_per_pixel"));
+    EXPECT_NEAR(std::stod(csv.at(i, "library_mpixel_per_s")), mpix, 1e-4 * mpix) << i;
+    EXPECT_EQ(csv.at(i, "meets_clock"), fmax >= clock_mhz ? "1" : "0") << i;
+  }
+  EXPECT_GT(measured, 0u);
+}
+
 // The measured front in osu018 and --clock-mhz, on the sphere (its units close 300 MHz and more
 // there): every measured point has the library's Fmax and Mpixel/s = Fmax / its cycles per
 // pixel; 50 MHz is met and the last line names the cheapest such point within the budget;
 // 5000 MHz is not, and the line names the fastest point's critical path. The exit status does not
-// depend on the clock. Cost: --budget 8 gives the sphere a 5-point front (11 at 1 LSB), so a cold
-// area cache synthesises 5 units (Yosys and the library flow side by side, about 25 s each here)
-// instead of 12; both runs share the build's area cache (and the anchor JsonAndCsv's run
-// synthesises), so the second run is all cache hits. --no-pnr: the iCE40 Fmax is not under test.
+// depend on the clock. The --csv file carries the same library figures (empty where a point was
+// not measured), its Mpixel/s the Fmax over the point's cycles per pixel and meets_clock the Fmax
+// against the clock, both worked out here. Cost: --budget 8 with --widths-only gives the sphere a
+// 5-point front, so a cold area cache synthesises 5 units (Yosys and the library flow side by
+// side, 15 to 25 s each here; 79 s for this test) where the default sweep at 1 LSB measures 14:
+// --widths-only keeps the structural points (each on the front a synthesis more) out, and
+// MeasuredMpixelPerSecondDecidesBetweenPipelinings has those. Both
+// runs share the build's area cache (and the anchor JsonAndCsv's run synthesises), so the second
+// run is all cache hits. --no-pnr: the iCE40 Fmax is not under test.
 TEST(ExploreCli, MeasuredFrontHasTheLibraryFmaxAndIsHeldAgainstAClock) {
   if (!std::filesystem::exists(kDefaultLiberty) || run_shell("command -v sta").status != 0 ||
       run_shell("command -v yosys").status != 0)
@@ -408,8 +635,10 @@ TEST(ExploreCli, MeasuredFrontHasTheLibraryFmaxAndIsHeldAgainstAClock) {
   const auto dir = temp_dir("clock");
   const auto explore_at = [&](const std::string& mhz) {
     const std::string json = (dir / ("e" + mhz + ".json")).string();
-    const Result r = run("explore " + kScenes + "sphere.json --budget 8 --no-pnr --clock-mhz " +
-                         mhz + " --out " + dir.string() + " --json " + json);
+    const Result r =
+        run("explore " + kScenes + "sphere.json --budget 8 --widths-only --no-pnr --clock-mhz " +
+            mhz + " --out " + dir.string() + " --json " + json + " --csv " +
+            (dir / ("e" + mhz + ".csv")).string());
     std::ifstream is(json);
     return std::make_pair(r, nlohmann::json::parse(is));
   };
@@ -450,6 +679,7 @@ TEST(ExploreCli, MeasuredFrontHasTheLibraryFmaxAndIsHeldAgainstAClock) {
   }
   const std::string line50 = "clock        point " + std::to_string(named) + " meets 50 MHz";
   EXPECT_NE(met.output.find(line50), std::string::npos) << met.output;
+  expect_csv_library_columns(dir / "e50.csv", j50, 50);
 
   const auto [missed, j5000] = explore_at("5000");
   EXPECT_EQ(missed.status, 0) << "the clock is reported, not enforced: " << missed.output;
@@ -476,6 +706,7 @@ TEST(ExploreCli, MeasuredFrontHasTheLibraryFmaxAndIsHeldAgainstAClock) {
       << missed.output;
   EXPECT_NE(missed.output.find("limited by its critical path " + path), std::string::npos)
       << missed.output;
+  expect_csv_library_columns(dir / "e5000.csv", j5000, 5000);
   std::filesystem::remove_all(dir);
 }
 

@@ -32,12 +32,18 @@ void register_explore(CLI::App& app, int& exit_code) {
       "     unit's widths and output fraction bits; specular colour fraction bits; output bits\n"
       "     (swept for the table, never narrowed: they are what you asked for). A knob's minimum\n"
       "     is its cheapest value (area, then narrowest) meeting the budget, else its start.\n"
+      "     The structure is swept beside them for the table and the front, never chosen (the\n"
+      "     search keeps the start's; --widths-only skips it): span setup site (unit|host), the\n"
+      "     host's start depth (1|2), the diffuse colour (series|multiply; with colour) and the\n"
+      "     pipelining (c0|c1|c2: combine_stages; c2 sq2: square_stages 2, a pipelined W_m).\n"
       "  2. joint: combine the minima; while that breaks the budget, try every knob one step\n"
       "     wider (choices back to the start's) and take the cheapest step that meets the\n"
       "     budget, else the one buying the most error (max real LSB + mean LSB) per area added.\n"
       "  3. Pareto front of every evaluated point: (max LSB, mean LSB) against area and\n"
-      "     cycles per pixel (points at the requested output bits; error is in LSBs of a\n"
-      "     point's own output, so other output widths are shown but not compared).\n"
+      "     throughput (points at the requested output bits; error is in LSBs of a point's own\n"
+      "     output, so other output widths are shown but not compared). Throughput: Mpixel/s\n"
+      "     where both points are measured, else cycles per pixel between points of one\n"
+      "     pipelining (a pipeline register buys clock, which only the measurement shows).\n"
       "Then the chosen point's error is split by source: (1) the unit's shading function vs\n"
       "exact pow, (2) Taylor truncation, (3) fixed-point quantization; widths fix only (3).\n"
       "Then (unless --estimate-only) every point on the front, and the chosen one, is measured\n"
@@ -77,7 +83,10 @@ void register_explore(CLI::App& app, int& exit_code) {
          "--json", o->json_path,
          "write every point, the search and the error split as JSON (scripts/plot draws it)")
       ->check(output_file());
-  sub->add_option("--csv", o->csv_path, "write every point as CSV")->check(output_file());
+  sub->add_option("--csv", o->csv_path,
+                  "write every point as CSV (a measured point with its library um^2, Fmax, "
+                  "Mpixel/s\nand meets_clock, as in --json)")
+      ->check(output_file());
   sub->add_option("-o,--out", o->out_dir,
                   "folder for the config files: start.json, chosen.json, pareto_<point>.json\n"
                   "(default out/explore/<first scene>)")
@@ -87,6 +96,9 @@ void register_explore(CLI::App& app, int& exit_code) {
          "shadesim area's cache: the measured units the area estimate scales from (the start\n"
          "is synthesised into it once when no unit with its specular kind is there)")
       ->capture_default_str();
+  sub->add_flag("--widths-only", o->widths_only,
+                "sweep the widths alone, keeping the start's span setup, start depth, diffuse "
+                "colour and\npipelining (fewer points on the front, so fewer syntheses)");
   sub->add_flag(
       "--verify", o->verify,
       "co-simulate the chosen point on every scene in RTL, both backends (shadesim regress with\n"

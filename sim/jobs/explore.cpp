@@ -22,6 +22,7 @@
 #include "sim/eda/area.h"
 #include "sim/jobs/elapsed.h"
 #include "sim/jobs/explore.h"
+#include "sim/jobs/explore_csv.h"
 #include "sim/jobs/explore_front.h"
 #include "sim/jobs/explore_verify.h"
 #include "sim/jobs/fixed_text.h"
@@ -191,43 +192,6 @@ nlohmann::json budget_json(const ErrorBudget& b) {
           {"total", part_json(b.total)}};
 }
 
-// A CSV field in double quotes, inner quotes doubled (RFC 4180).
-std::string csv_quote(const std::string& s) {
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-void write_csv(const std::string& path, const ExploreResult& r, int channels) {
-  std::ostringstream os;
-  os << "index,phase,stage,knob,value,valid,config,max_code_lsb";
-  for (int c = 0; c < channels; ++c) os << ",max_code_lsb_ch" << c;
-  os << ",mean_code_lsb";
-  for (int c = 0; c < channels; ++c) os << ",mean_code_lsb_ch" << c;
-  os << ",psnr_db,max_real_lsb,pct_over_1lsb,cycles_per_pixel,area,meets_budget,pareto,chosen\n";
-  for (std::size_t i = 0; i < r.points.size(); ++i) {
-    const ExplorePoint& p = r.points[i];
-    const ErrorStats& e = p.figures.error;
-    os << i << ',' << csv_quote(p.phase) << ',' << csv_quote(p.stage) << ',' << csv_quote(p.knob)
-       << ',' << csv_quote(p.value) << ',' << (p.valid ? 1 : 0) << ','
-       << csv_quote(p.valid ? p.config.to_string() : p.invalid_reason);
-    if (!p.valid) {
-      os << std::string(static_cast<size_t>(2 * channels + 10), ',') << (r.chosen == i ? 1 : 0)
-         << '\n';
-      continue;
-    }
-    os << ',' << e.max_code_lsb;
-    for (int c = 0; c < channels; ++c) os << ',' << e.max_code_lsb_channel[static_cast<size_t>(c)];
-    os << ',' << e.mean_code_lsb;
-    for (int c = 0; c < channels; ++c) os << ',' << e.mean_code_lsb_channel[static_cast<size_t>(c)];
-    os << ',' << (std::isinf(e.psnr_db) ? std::string("inf") : std::to_string(e.psnr_db)) << ','
-       << e.max_real_lsb << ',' << over_1lsb_pct(e) << ',' << p.figures.cycles_per_pixel << ','
-       << p.figures.area.cells << ',' << (p.meets_budget ? 1 : 0) << ',' << (p.pareto ? 1 : 0)
-       << ',' << (r.chosen == i ? 1 : 0) << '\n';
-  }
-  write_text_file(path, os.str());
-}
-
 void print_table(std::ostream& os, const std::vector<const ExplorePoint*>& rows, int channels,
                  const std::optional<std::size_t>& chosen, const std::vector<ExplorePoint>& all) {
   os << std::left << std::setw(12) << "phase" << std::setw(22) << "knob" << std::setw(8) << "value"
@@ -331,6 +295,7 @@ void sweep_and_measure(const ExploreJobOptions& o, ExploreScenes& scenes, Explor
   ExploreOptions eo;
   eo.budget_lsb = o.budget_lsb;
   eo.jobs = o.jobs;
+  eo.structure = !o.widths_only;
   ProgressBar bar;
   const AreaFunction area = area_model(run.start, o.area_cache);
   const MeasureFunction measure = o.estimate_only ? MeasureFunction() : front_measure(o);
@@ -400,7 +365,8 @@ void print_points(std::ostream& os, const ExploreJobOptions& o, const ExploreRun
   std::sort(front.begin(), front.end(), [](const ExplorePoint* a, const ExplorePoint* b) {
     return a->front_area() < b->front_area();
   });
-  os << "\nPareto front (max LSB, mean LSB vs area and cycles/pixel), by area"
+  os << "\nPareto front (max LSB, mean LSB vs area and throughput: Mpixel/s where measured, "
+        "else cycles/pixel\nbetween points of one pipelining), by area"
      << (o.estimate_only ? " - ESTIMATED areas (--estimate-only): not measured by Yosys"
                          : "; area: Yosys-measured cells")
      << "\n";
@@ -546,7 +512,7 @@ int run_explore(const ExploreJobOptions& o) {
     std::cout << "clock        " << clock_verdict(run.result, o).line << "\n";
   if (!o.json_path.empty())
     write_text_file(o.json_path, explore_json(o, run, verified).dump(2) + '\n');
-  if (!o.csv_path.empty()) write_csv(o.csv_path, run.result, run.channels());
+  if (!o.csv_path.empty()) write_explore_csv(o.csv_path, run.result, run.channels(), o);
   const bool all_verified = std::all_of(verified.begin(), verified.end(),
                                         [](const Verification& v) { return v.verified; });
   return run.chosen() && all_verified ? 0 : 1;

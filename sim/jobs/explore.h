@@ -25,6 +25,7 @@ struct ExploreJobOptions {
   std::string area_cache = binary_dir() + "/area-cache";
   int out_bits = 8;
   bool verify = false;
+  bool widths_only = false;    // sweep the widths alone: the start's structure throughout
   bool estimate_only = false;  // no Yosys for the front: estimates only, labelled so
   bool no_pnr = false;         // measure the front without nextpnr (no Fmax, no Mpixel/s)
   std::string liberty;         // --liberty FILE for the front's library flow; empty: osu018
