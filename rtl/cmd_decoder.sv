@@ -84,7 +84,9 @@ module cmd_decoder #(
   always_comb begin
     for (int k = 0; k < PORT_WORDS; k++) sel[k] = word_sel == PosW'(k);
   end
-  assign cmd_word = pick_word(sel, cmd_data_i);
+  onehot_mux #(.N(PORT_WORDS), .W(WordW)) u_pick_word (
+    .sel_i(sel), .in_i(cmd_data_i), .out_o(cmd_word)
+  );
 
   // Every word of the beat is decoded as the header it would be, in parallel (g_word), and the
   // selected word's results are picked with one-hot AND-OR: the words a header takes (hdr_n_w),
@@ -106,23 +108,6 @@ module cmd_decoder #(
       else going = 1'b0;
     end
   endfunction
-  // The one-hot select's value of per-word values packed k * width up. (Functions, not
-  // always_comb loops ORing into their own result: those never settle in Icarus 11.)
-  function automatic logic [WordW-1:0] pick_word(input logic [PORT_WORDS-1:0] s,
-                                                input logic [PORT_WORDS*WordW-1:0] v);
-    pick_word = '0;
-    for (int j = 0; j < PORT_WORDS; j++) if (s[j]) pick_word = pick_word | v[j*WordW +: WordW];
-  endfunction
-  function automatic logic [NW-1:0] pick_count(input logic [PORT_WORDS-1:0] s,
-                                               input logic [PORT_WORDS*NW-1:0] v);
-    pick_count = '0;
-    for (int j = 0; j < PORT_WORDS; j++) if (s[j]) pick_count = pick_count | v[j*NW +: NW];
-  endfunction
-  function automatic logic [PosW-1:0] pick_pos(input logic [PORT_WORDS-1:0] s,
-                                               input logic [PORT_WORDS*PosW-1:0] v);
-    pick_pos = '0;
-    for (int j = 0; j < PORT_WORDS; j++) if (s[j]) pick_pos = pick_pos | v[j*PosW +: PosW];
-  endfunction
   for (genvar k = 0; k < PORT_WORDS; k++) begin : g_word
     localparam logic [NW-1:0] After = NW'(PORT_WORDS - 1 - k);  // beat words after word k
     localparam bit HostMore = START_WORDS > PORT_WORDS - 1 - k;  // a host SPAN's words: more
@@ -132,6 +117,7 @@ module cmd_decoder #(
     logic          host_span;
     logic          more;      // payload words past the beat (count compared before the opcode
                               // picks it: a host SPAN's START_WORDS is a constant)
+    logic          count_big; // count has a bit at or above NW: more than any After
     logic [NW-1:0] word_n;    // hdr_n of a header here
     logic [NW-1:0] span_run;  // SPAN headers back to back from here
     logic [NW-1:0] queue_n;   // ... into the span queue, as it has room for
@@ -143,19 +129,24 @@ module cmd_decoder #(
     assign is_tab       = op == shade_pkg::OpTable;
     assign tab_cur      = MAT_BANKED && cmd_data_i[k*WordW + shade_pkg::TableMatBit];
     assign host_span    = HOST_SETUP && is_span_w[k];
-    assign more         = host_span ? HostMore : count > 16'(After);
+    // count > After without a 16-bit compare (a carry chain at the head of the iCE40's critical
+    // path, issue 44): After < 2^NW, so only count's low NW bits need comparing.
+    assign count_big    = |(count >> NW);
+    assign more         = host_span ? HostMore : count_big || count[NW-1:0] > After;
     assign span_run     = run_length(is_span_w, k);
     assign queue_n      = 16'(span_run) < sq_room_i ? span_run : NW'(sq_room_i);
     always_comb begin
       word_n = NW'(1);
       if (op == shade_pkg::OpNop) word_n = NW'(PORT_WORDS - k);
-      else if (is_tri_w[k] || host_span)  // 1 + min(payload words, After)
-        word_n = NW'(1) + (more ? After : host_span ? NW'(START_WORDS) : NW'(count));
+      else if (is_tri_w[k] || host_span)  // 1 + min(payload words, After): count + 1 is
+                                          // added beside the compare, not after it
+        word_n = more ? NW'(PORT_WORDS - k) : host_span ? NW'(START_WORDS + 1)
+                                                        : NW'(count) + NW'(1);
       else if (QUEUED && is_span_w[k]) word_n = queue_n == '0 ? NW'(1) : queue_n;
     end
     assign hdr_n_w[k*NW +: NW] = word_n;
     // A header's words run to the beat's end (PORT_WORDS: pos_q wraps to 0).
-    assign done_w[k] = (NW + 1)'(k) + (NW + 1)'(word_n) == (NW + 1)'(PORT_WORDS);
+    assign done_w[k] = word_n == NW'(PORT_WORDS - k);
     assign npos_w[k*PosW +: PosW] = PosW'(NW'(k) + word_n);
     // What a header here waits for (hdr_ready below): one of these, or nothing.
     assign wait_dp_w[k]   = is_mat_w[k] && !MAT_BANKED || is_tab && !tab_cur;
@@ -168,8 +159,8 @@ module cmd_decoder #(
   logic [NW-1:0] hdr_n_sel;
   logic          hdr_span, hdr_tri, hdr_mat, hdr_dp, hdr_mat_bank, hdr_cur, hdr_none;
   assign done      = |(sel & done_w);
-  assign npos      = pick_pos(sel, npos_w);
-  assign hdr_n_sel = pick_count(sel, hdr_n_w);
+  onehot_mux #(.N(PORT_WORDS), .W(PosW)) u_pick_pos (.sel_i(sel), .in_i(npos_w), .out_o(npos));
+  onehot_mux #(.N(PORT_WORDS), .W(NW)) u_pick_n (.sel_i(sel), .in_i(hdr_n_w), .out_o(hdr_n_sel));
   assign {hdr_span, hdr_tri, hdr_mat} = {|(sel & is_span_w), |(sel & is_tri_w), |(sel & is_mat_w)};
   assign {hdr_dp, hdr_mat_bank, hdr_cur, hdr_none} =
          {|(sel & wait_dp_w), |(sel & wait_mat_w), |(sel & wait_cur_w), |(sel & wait_none_w)};

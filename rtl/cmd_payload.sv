@@ -67,13 +67,6 @@ module cmd_payload #(
   // (After) come with it (cmd_decoder's hdr_n - 1), and a TRIANGLE's or host SPAN's rest comes
   // as a tail per beat. One per word (word k at k * StW), picked by hdr_sel_i below.
   logic [PORT_WORDS*StW-1:0] start_w;
-  // The one-hot select's value. (A function, not an always_comb loop ORing into its own result:
-  // that never settles in Icarus 11.)
-  function automatic logic [StW-1:0] pick_start(input logic [PORT_WORDS-1:0] s,
-                                                input logic [PORT_WORDS*StW-1:0] v);
-    pick_start = '0;
-    for (int j = 0; j < PORT_WORDS; j++) if (s[j]) pick_start = pick_start | v[j*StW +: StW];
-  endfunction
   for (genvar k = 0; k < PORT_WORDS; k++) begin : g_start
     localparam int          Aft   = PORT_WORDS - 1 - k;
     localparam logic [15:0] After = 16'(Aft);
@@ -136,7 +129,11 @@ module cmd_payload #(
   logic [IdxW-1:0]  hdr_idx;
   logic [StW-IdxW-5:0] hdr_rest;  // pay_rem onwards
   logic [StW-IdxW+15:0] pay_next;
-  assign {hdr_in, hdr_op, hdr_idx, hdr_rest} = pick_start(hdr_sel_i, start_w);
+  logic [StW-1:0]   hdr_start;  // the header's word's start_w
+  onehot_mux #(.N(PORT_WORDS), .W(StW)) u_pick_start (
+    .sel_i(hdr_sel_i), .in_i(start_w), .out_o(hdr_start)
+  );
+  assign {hdr_in, hdr_op, hdr_idx, hdr_rest} = hdr_start;
   // (Each field a signal of its own: Yosys 0.23 sizes expressions inside a concatenation wrongly.)
   logic [15:0]   pay_idx_p, pay_rem_p;  // after the payload words taken
   logic [NW-1:0] tail_p;

@@ -12,8 +12,10 @@ lane_fanout.sv
 pixel_combine.sv
 exponent_lut.sv
 schlick_divider.sv
+wpow_split_square.sv
 wpow_unit.sv
 specular_unit.sv
+onehot_mux.sv
 cmd_payload.sv
 cmd_decoder.sv
 coef_bank.sv

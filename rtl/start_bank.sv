@@ -84,13 +84,6 @@ module start_bank #(
   logic [NWords*WordW-1:0] head;  // the oldest entry's payload words
   // verilator lint_on UNUSEDSIGNAL
   logic                    tail_we;  // the tail's words are written
-  // The beat word a one-hot select picks. (A function, not an always_comb loop ORing into its
-  // own result: that never settles in Icarus 11.)
-  function automatic logic [WordW-1:0] pick_word(input logic [PORT_WORDS-1:0] s,
-                                                input logic [PORT_WORDS*WordW-1:0] v);
-    pick_word = '0;
-    for (int j = 0; j < PORT_WORDS; j++) if (s[j]) pick_word = pick_word | v[j*WordW +: WordW];
-  endfunction
   assign tail_we = cmd_valid_i && filling_i;
   // Payload word w of every entry, only as wide as the values reach; one process per word.
   // A cycle may write the same word of two entries: a tail word of the newest entry and, from
@@ -101,8 +94,10 @@ module start_bank #(
     logic [PORT_WORDS-1:0] hit_t, hit_h;    // beat word k is w, from the tail, after the header
     logic                  load_t, load_h;  // from the tail (entry newest), from the header (wr_q)
     logic [WW-1:0]         value_t, value_h;
+    logic [PORT_WORDS*WW-1:0] low;          // each beat word's low WW bits
     logic [WW-1:0]         q [DEPTH];
     for (genvar k = 0; k < PORT_WORDS; k++) begin : g_beat_word
+      assign low[k*WW +: WW] = cmd_data_i[k*WordW +: WW];
       assign hit_t[k] = NW'(k) < tail_n_i && AW'(pay_idx_i) == AW'(w - k);
       if (k < w + 1) begin : g_before  // no header before it with w after that
         assign hit_h[k] = 1'b0;
@@ -113,8 +108,8 @@ module start_bank #(
     // The enables last: span_fire_i comes late (after the engines' load, through free_o).
     assign load_t  = tail_we && |hit_t;
     assign load_h  = span_fire_i && |hit_h;
-    assign value_t = WW'(pick_word(hit_t, cmd_data_i));
-    assign value_h = WW'(pick_word(hit_h, cmd_data_i));
+    onehot_mux #(.N(PORT_WORDS), .W(WW)) u_pick_t (.sel_i(hit_t), .in_i(low), .out_o(value_t));
+    onehot_mux #(.N(PORT_WORDS), .W(WW)) u_pick_h (.sel_i(hit_h), .in_i(low), .out_o(value_h));
     always_ff @(posedge clk_i) begin
       if (load_t) q[newest] <= value_t;
       if (load_h) q[wr_q] <= value_h;

@@ -19,9 +19,8 @@
 //   TIMING 0 (pipelined): K * SQUARE_STAGES + 1 registers (base, one or two per squarer), all
 //            enabled by en_i (advance): spec_o shows the result of the series sampled at the
 //            LATENCY-th most recent en_i edge. One pixel per cycle; busy_o = 0. With
-//            SQUARE_STAGES 2 squaring k takes two: b = h 2^H + l (H = BW / 2) first gives
-//            {h^2, l^2} (side by side, they do not overlap) and h l, or {b << B, 0} where the
-//            stage passes b through; the next cycle sums {h^2, l^2} + h l 2^(H+1) = b^2.
+//            SQUARE_STAGES 2 each squaring takes two (wpow_split_square: its partial squares
+//            registered, then their sum).
 //   TIMING 1 (iterative): one working register and one squarer. en_i while !busy_o loads the
 //            base (cycle c); cycles c+1 .. c+K run the K steps (bypass or square), busy_o high
 //            then (en_i ignored); the result is on spec_o from cycle c+K+1 until the edge that
@@ -165,92 +164,7 @@ module wpow_unit #(
   // ---- 1..K. SQUARE ----------------------------------------------------------------------------
   logic [BW-1:0] b_out;
 
-  if (TIMING == 0 && K > 0 && SQUARE_STAGES == 2) begin : g_split
-    // As g_pipelined, with each squaring in two stages: its middle (the parts below, registered)
-    // and stage k (their sum). b = h 2^H + l, so b^2 = h^2 2^2H + l^2 + h l 2^(H+1), and of it
-    // the squaring keeps b^2 >> B (2H is B or B + 1). Split at 2^B: h^2 lies wholly above it;
-    // l^2 and h l 2^(H+1) are each a high part (l^2 >> B, h l >> (B - H - 1)) and a low one,
-    // and the low parts' sum carries at most 1 into bit B. The middle holds h^2, the two high
-    // parts and that carry (30 bits for B = 16, not the 51 of h^2, l^2 and h l), and stage k
-    // adds them: h^2 2^(2H-B) + (l^2 >> B) + (h l >> (B-H-1)) + carry = b^2 >> B exactly.
-    // Where the stage passes b through, the middle holds b as h^2 2^(2H-B) + (l^2 >> B).
-    localparam int H    = BW / 2;          // l = b[H-1:0], h = b[BW-1:H]
-    localparam int HW   = BW - H;
-    localparam int HhW  = 2 * HW;          // h^2
-    localparam int LlHi = 2 * H - B;       // l^2 >> B: 0 or 1 bit (kept as 1 bit, maybe 0)
-    localparam int CrLo = B - H - 1;       // h l's bits below 2^B once shifted by H + 1
-    localparam int CrHiW = BW - CrLo;      // h l >> CrLo
-    localparam int MidW = HhW + 1 + CrHiW + 1;  // {h^2, l^2 >> B, h l >> CrLo, carry}
-    logic [(K+1)*BW-1:0] b_q;
-    logic [K*MidW-1:0]   mid_q;
-    logic [K:0]          bk_q;             // the bank of the pixel in stage k
-    logic [K-1:0]        bm_q;             // ... in stage k's middle
-    // x^2 of an HW-bit x (l is given zero-extended). Synthesis sums it as a square, as square()
-    // does; simulators multiply.
-    function automatic logic [HhW-1:0] sq(input logic [HW-1:0] x);
-`ifdef SYNTHESIS
-      logic [HW-1:0] row;  // x_i & x_j for j > i, from bit i + j + 1 on
-      sq = '0;
-      for (int i = 0; i < HW; i++) begin
-        row = {HW{x[i]}} & (x >> (i + 1));
-        sq = sq + (HhW'(x[i]) << (2 * i)) + (HhW'(row) << (2 * i + 2));
-      end
-`else
-      sq = HhW'(x) * HhW'(x);
-`endif
-    endfunction
-    // The middle's parts of b's square.
-    function automatic logic [MidW-1:0] square_parts(input logic [BW-1:0] b);
-      logic [HW-1:0]    h;
-      logic [HhW-1:0]   ll;   // l^2, 2H bits used
-      logic [BW-1:0]    hl;   // h l: HW + H = BW bits
-      // verilator lint_off UNUSEDSIGNAL
-      logic [B:0]       low;  // the low parts' sum: only its carry into bit B is kept
-      // verilator lint_on UNUSEDSIGNAL
-      logic [B-1:0]     hl_lo;  // h l's low CrLo bits, shifted by H + 1: below 2^B
-      logic             ll_hi;
-      h     = b[BW-1:H];
-      ll    = sq(HW'(b[H-1:0]));
-      hl    = BW'(h) * BW'(b[H-1:0]);
-      ll_hi = LlHi > 0 ? ll[B] : 1'b0;
-      hl_lo = B'(hl << (H + 1));
-      low   = (B+1)'(ll[B-1:0]) + (B+1)'(hl_lo);
-      square_parts = {sq(h), ll_hi, CrHiW'(hl >> CrLo), low[B]};
-    endfunction
-    // b itself, in the middle's form (a stage that does not square).
-    function automatic logic [MidW-1:0] pass_parts(input logic [BW-1:0] b);
-      pass_parts = {HhW'(b) >> LlHi, LlHi > 0 ? b[0] : 1'b0, CrHiW'(0), 1'b0};
-    endfunction
-    function automatic logic [BW-1:0] parts_sum(input logic [MidW-1:0] m);
-      // verilator lint_off UNUSEDSIGNAL
-      logic [HhW:0] sum;  // b^2 >> B <= 2^B: the bits above BW stay 0
-      // verilator lint_on UNUSEDSIGNAL
-      sum = ((HhW+1)'(m[MidW-1 -: HhW]) << LlHi) + (HhW+1)'(m[CrHiW + 1]) +
-            (HhW+1)'(m[1 +: CrHiW]) + (HhW+1)'(m[0]);
-      parts_sum = sum[BW-1:0];
-    endfunction
-    always_ff @(posedge clk_i) begin
-      if (en_i) begin
-        b_q[0 +: BW] <= base_d;
-        bk_q[0] <= in_bank;
-        for (int k = 1; k <= K; k++) begin
-          // Stage k squares iff s >= K - k + 1 (as g_pipelined).
-          mid_q[(k-1)*MidW +: MidW] <= sq_q[bk_q[k-1]] >= SqW'(K - k + 1)
-                                           ? square_parts(b_q[(k-1)*BW +: BW])
-                                           : pass_parts(b_q[(k-1)*BW +: BW]);
-          bm_q[k-1] <= bk_q[k-1];
-          b_q[k*BW +: BW] <= parts_sum(mid_q[(k-1)*MidW +: MidW]);
-          bk_q[k] <= bm_q[k-1];
-        end
-      end
-    end
-    // verilator lint_off UNUSEDSIGNAL
-    logic unused_last_bank;  // the last stage's bank: nothing after it reads a parameter
-    assign unused_last_bank = bk_q[K];
-    // verilator lint_on UNUSEDSIGNAL
-    assign b_out  = b_q[K*BW +: BW];
-    assign busy_o = 1'b0;
-  end else if (TIMING == 0 || K == 0) begin : g_pipelined
+  if (TIMING == 0 || K == 0) begin : g_pipelined
     // Flat vectors, stage k at [k*BW +: BW] / [k]: Icarus 11 left the last stage of unpacked
     // arrays X here (every pipelined W_m colour X), and Yosys 0.23 cannot parse a
     // multi-dimensional packed array.
@@ -260,17 +174,40 @@ module wpow_unit #(
       if (en_i) begin
         b_q[0 +: BW] <= base_d;
         bk_q[0] <= in_bank;
-        for (int k = 1; k <= K; k++) begin
-          // Stage k squares iff k > K - s, i.e. s >= K - k + 1.
-          b_q[k*BW +: BW] <= sq_q[bk_q[k-1]] >= SqW'(K - k + 1) ? square(b_q[(k-1)*BW +: BW])
-                                                              : b_q[(k-1)*BW +: BW];
-          bk_q[k] <= bk_q[k-1];
+      end
+    end
+    for (genvar k = 1; k <= K; k++) begin : g_stage
+      logic squares;  // stage k squares iff k > K - s, i.e. s >= K - k + 1
+      assign squares = sq_q[bk_q[k-1]] >= SqW'(K - k + 1);
+      if (SQUARE_STAGES == 2) begin : g_split
+        logic [BW-1:0] sum;
+        logic          bm_q;  // the bank of the pixel in the squaring's middle register
+        wpow_split_square #(.B(B), .BW(BW)) u_square (
+          .clk_i, .en_i, .b_i(b_q[(k-1)*BW +: BW]), .square_i(squares), .b_o(sum)
+        );
+        always_ff @(posedge clk_i) begin
+          if (en_i) begin
+            bm_q            <= bk_q[k-1];
+            b_q[k*BW +: BW] <= sum;
+            bk_q[k]         <= bm_q;
+          end
+        end
+      end else begin : g_whole
+        always_ff @(posedge clk_i) begin
+          if (en_i) begin
+            b_q[k*BW +: BW] <= squares ? square(b_q[(k-1)*BW +: BW]) : b_q[(k-1)*BW +: BW];
+            bk_q[k]         <= bk_q[k-1];
+          end
         end
       end
     end
     // verilator lint_off UNUSEDSIGNAL
     logic unused_last_bank;  // the last stage's bank: nothing after it reads a parameter
     assign unused_last_bank = bk_q[K];
+    if (K == 0) begin : g_no_stage
+      logic unused_squarings;  // reason: m = 1 has no squaring stage to read them
+      assign unused_squarings = ^sq_q[0] ^ ^sq_q[BANKS-1];
+    end
     // verilator lint_on UNUSEDSIGNAL
     assign b_out  = b_q[K*BW +: BW];
     assign busy_o = 1'b0;

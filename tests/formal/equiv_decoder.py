@@ -184,7 +184,9 @@ def main():
     wrap = os.path.join(work, "wrap.sv")
     with open(wrap, "w") as f:
         f.write(side(cfg, "ref_", "ref") + side(cfg, "", "new"))
-    new_files = " ".join(os.path.join(rtl, m + ".sv") for m in ["shade_pkg"] + mods)
+    # The new side's leaves: the package and the one-hot pick the three modules share.
+    new_files = " ".join(os.path.join(rtl, m + ".sv")
+                         for m in ["shade_pkg", "onehot_mux"] + mods)
     ys = "\n".join([
         # SYNTHESIS: no $fatal range checks, no SVA (as every Yosys run of rtl/ reads it).
         f"read_verilog -sv -DSYNTHESIS {new_files}",
