@@ -199,7 +199,8 @@ TEST(Cli, CyclesSpanSetupAndDiffuseColourOptionsEqualTheDerivedUnits) {
         Case{"--diffuse-colour series --span-setup unit --tri-queue 2",
              "--diffuse-colour series --span-setup unit --tri-queue 2 --port-words 4"}}) {
     const std::string unit = (dir / "u.json").string();
-    const Result derived = run("config " + multi + " " + c.config_options + " --json " + unit);
+    const Result derived =
+        run("config --clock-mhz 0 " + multi + " " + c.config_options + " --json " + unit);
     // Host setup held at 4 words with the colour in eight series misses 1.10 (1 + 11 words a
     // span): config says so and exits 1, and still writes the unit.
     const bool cycles_miss_only =
@@ -370,7 +371,7 @@ TEST(Cli, BadInputGivesClearErrors) {
 TEST(Cli, ConfigDerivesAUnitThatRenderAndCyclesUseWithConfig) {
   const auto dir = temp_dir("config");
   const std::string cfg = (dir / "sphere_unit.json").string();
-  const Result r = run("config " + kScenes + "sphere.json --json " + cfg);
+  const Result r = run("config --clock-mhz 0 " + kScenes + "sphere.json --json " + cfg);
   ASSERT_EQ(r.status, 0) << r.output;
   // sphere.json has no specular term: no specular unit (issue 21), and the output says why.
   for (const char* field : {"channels = 1", "lights = 1", "xy_bits = 8",
@@ -426,7 +427,7 @@ TEST(Cli, ConfigExitsNonZeroNamingThePartThatMissesTheBudget) {
   spec["materials"][0]["unit"] = "schlick";  // n = 60: Schlick's divider is ~31 LSB off
   const std::string schlick = (dir / "schlick.json").string();
   std::ofstream(schlick) << spec.dump();
-  Result r = run("config " + schlick);
+  Result r = run("config --clock-mhz 0 " + schlick);
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("approximates t^n too coarsely"), std::string::npos) << r.output;
   // The search tried Schlick's fields (a fitted n', a wider divider) and names what limits it.
@@ -439,7 +440,7 @@ TEST(Cli, ConfigExitsNonZeroNamingThePartThatMissesTheBudget) {
   spec["materials"][0]["exponent"] = 1;
   const std::string n1 = (dir / "n1.json").string();
   std::ofstream(n1) << spec.dump();
-  r = run("config " + n1);
+  r = run("config --clock-mhz 0 " + n1);
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("fraction bits for the N.L gate"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("max 1 LSB"), std::string::npos) << r.output;
@@ -455,7 +456,7 @@ TEST(Cli, ConfigSaysAnEmptyImageHasNoErrorOrPsnr) {
   away["camera"]["target"] = {0, 0, -10};
   const std::string path = (dir / "away.json").string();
   std::ofstream(path) << away.dump();
-  const Result r = run("config " + path + " --json " + (dir / "u.json").string());
+  const Result r = run("config --clock-mhz 0 " + path + " --json " + (dir / "u.json").string());
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("the image is empty (no pixel covered)"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("PSNR 0.0"), std::string::npos) << r.output;
@@ -481,7 +482,7 @@ TEST(Cli, ConfigBudgetOneHoldsOnEveryShippedAndHardScene) {
       {"material_switch.json", "misses the cycles target"}};
   for (const auto& scene : scenes) {
     const std::string unit = (dir / "unit.json").string();
-    const Result c = run("config " + scene + " --budget 1 --json " + unit);
+    const Result c = run("config --clock-mhz 0 " + scene + " --budget 1 --json " + unit);
     const std::string name = std::filesystem::path(scene).filename().string();
     const bool shipped = scene.find("/hard/") == std::string::npos;
     const auto pinned = misses.find(name);
@@ -530,7 +531,7 @@ TEST(Cli, TheNDotLGateIsHeldByConfigAndNamedByRender) {
   EXPECT_NE(w.find("more fraction bits in series and coef"), std::string::npos) << w;
   // config derives a unit that holds the gate: the double reference finds it within 1 LSB.
   const std::string held = (dir / "held.json").string();
-  const Result c = run("config " + n1 + " --budget 1 --json " + held);
+  const Result c = run("config --clock-mhz 0 " + n1 + " --budget 1 --json " + held);
   ASSERT_EQ(c.status, 0) << c.output;
   const auto good = run_json(
       "render " + n1 + " -q --config " + held + " --budget 1 --out " + (dir / "b").string(),
@@ -667,8 +668,8 @@ TEST(Cli, UnwritableOutputsFailBeforeAnyWork) {
       {"explore " + sphere + " --json", "/proc/x", "/proc/x"},
       {"explore " + sphere + " -o", "/proc/x", "/proc/x"},
       {"area " + sphere + " --json", "/proc/x", "/proc/x"},
-      {"config " + sphere + " --json", (dir / "a_file" / "c.json").string(), bad_dir},
-      {"config " + sphere + " --json", dir.string(), dir.string() + " is a folder"},
+      {"config --clock-mhz 0 " + sphere + " --json", (dir / "a_file" / "c.json").string(), bad_dir},
+      {"config --clock-mhz 0 " + sphere + " --json", dir.string(), dir.string() + " is a folder"},
       {"cosim --config grey_s428w --json", "/proc/x", "/proc/x"},
       {"cosim --config grey_s428w --save-dir", "/proc/x", "/proc/x"},
       {"cosim --config grey_s428w --waves", "/proc/x/w.fst", "/proc/x"},

@@ -2,7 +2,8 @@
 // the unit meets leaves it unpipelined and times exactly the unit config writes (shadesim area
 // on that file finds the same cached flow and Fmax); a clock no unit meets times every rung of the
 // pipelining ladder, keeps the fastest unit, names the critical path and exits 1, and the unit
-// still runs the scene within the cycles target by shadesim cycles. Needs Yosys, OpenSTA and the
+// still runs the scene within the cycles target by shadesim cycles. Without --clock-mhz the
+// target is the default, 250 MHz; --clock-mhz 0 times nothing. Needs Yosys, OpenSTA and the
 // osu018 cells.
 #include <gtest/gtest.h>
 
@@ -59,6 +60,24 @@ TEST(ConfigClock, AMetClockTimesTheUnitConfigWritesAndAMissedOneNamesItsPath) {
   const auto a = read_json(dir / "a.json");
   EXPECT_TRUE(a["liberty"]["from_cache"].get<bool>()) << a["liberty"].dump();
   EXPECT_DOUBLE_EQ(a["liberty"]["fmax_mhz"].get<double>(), fmax);
+
+  // No --clock-mhz: the default target, 250 MHz in osu018 (as --help says). The unit timed is
+  // the same cached one; whether it meets is its measured Fmax against 250. --clock-mhz 0: no
+  // clock target, nothing timed.
+  const Result by_default =
+      run("config " + kSphere + cache + " --json " + (dir / "udefault.json").string());
+  const auto udefault = read_json(dir / "udefault.json");
+  const auto& cdefault = udefault["derivation"]["clock"];
+  EXPECT_DOUBLE_EQ(cdefault["target_mhz"].get<double>(), 250.0) << cdefault.dump();
+  EXPECT_DOUBLE_EQ(cdefault["tried"][0]["fmax_mhz"].get<double>(), fmax);
+  EXPECT_EQ(cdefault["meets"].get<bool>(), fmax >= 250.0) << cdefault.dump();
+  EXPECT_EQ(by_default.status, fmax >= 250.0 ? 0 : 1) << by_default.output;
+  const Result none =
+      run("config " + kSphere + " --clock-mhz 0 --json " + (dir / "unone.json").string());
+  ASSERT_EQ(none.status, 0) << none.output;
+  EXPECT_FALSE(read_json(dir / "unone.json")["derivation"].contains("clock"));
+  const Result help = run("config --help");
+  EXPECT_NE(help.output.find("250 MHz by default"), std::string::npos) << help.output;
 
   // 5 GHz: no unit meets it. Every rung of the sphere's ladder (combine_stages 0, 1, 2; it has
   // no squarer) is timed, the fastest kept, its path named.

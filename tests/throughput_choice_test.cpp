@@ -334,7 +334,7 @@ TEST_F(ThroughputChoiceScenes, ConfigExitsOneNamingTheCyclesMiss) {
   const std::string path = scene("lut1px_config", 1, 1, 1, false, "lut", sphere(24), 5);
   const auto dir = temp_dir("throughput_choice", "config");
   const std::string out = (dir / "u.json").string();
-  const Result r = run("config " + path + " --json " + out);
+  const Result r = run("config --clock-mhz 0 " + path + " --json " + out);
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("shadesim config: the unit misses the cycles target on 1 scene(s):"),
             std::string::npos)

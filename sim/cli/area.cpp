@@ -49,8 +49,9 @@ void register_area(CLI::App& app, int& exit_code) {
       "scripts).\n"
       "A cold run takes minutes (several Yosys runs side by side); a cache hit is instant.");
   sub->add_option("--config", o->config_path,
-                  "the unit: own (the default: SCENE's own unit, as `shadesim config` derives "
-                  "it), default\n(the default widths, SCENE's structure), a named build "
+                  "the unit: own (the default: SCENE's own unit, as `shadesim config "
+                  "--clock-mhz 0` derives it: unpipelined), default\n(the default widths, SCENE's "
+                  "structure), a named build "
                   "(shadesim cosim --list) or a UnitConfig\nFILE.json")
       ->check(unit_choice_validator());
   sub->add_option("scene", o->scene, "scene JSON file: measure the unit --config names for it")

@@ -62,9 +62,10 @@ void register_config(CLI::App& app, int& exit_code) {
       "               Where none meets it: the fastest, and each scene over the target named\n"
       "               with the resource that limits it (--port-words, --tri-queue,\n"
       "               --span-setup hold a knob)\n"
-      "  combine_stages, square_stages  0 and 1; with --clock-mhz, the first rung of the\n"
-      "               pipelining ladder that meets the clock (combine_stages 1, 2, then a W_m\n"
-      "               unit's square_stages 2), else the fastest (each timed; see --clock-mhz)\n"
+      "  combine_stages, square_stages  the first rung of the pipelining ladder that meets\n"
+      "               the clock (250 MHz in osu018 unless --clock-mhz says otherwise): none,\n"
+      "               combine_stages 1, 2, then a W_m unit's square_stages 2; else the fastest\n"
+      "               (each timed; see --clock-mhz). With --clock-mhz 0: none (0 and 1)\n"
       "  diffuse_colour  multiply with 3 channels (one N.L series per light, times kd_c L_c per\n"
       "               pixel and channel), series with 1 (--diffuse-colour to choose)\n"
       "  spec_colour  integer bits: every ks_c L_c (and kd_c L_c multiplied) unsaturated;\n"
@@ -118,14 +119,16 @@ void register_config(CLI::App& app, int& exit_code) {
       "W_16, else the first of W_32 and two interpolating LUTs that meets the budget");
   sub->add_option(
          "--clock-mhz", o->clock_mhz,
-         "a clock the unit must close (default: none; then no synthesis runs). The derived\n"
+         "the clock the unit must close: 250 MHz by default (50 with --clock-target ice40);\n"
+         "0: none, and then no synthesis runs. The derived\n"
          "unit is timed where --clock-target says; where it misses, it climbs the pipelining\n"
          "ladder, each rung timed: a register stage in the pixel combine (combine_stages 1),\n"
          "a second that splits its colour products (2), then, on a pipelined W_m unit, each\n"
          "squaring split over two cycles (square_stages 2). config keeps the first rung that\n"
          "meets the clock (each adds registers), else the fastest, names the path that limits\n"
-         "it and exits 1. Runs shadesim area's flows (cached in --area-cache)")
-      ->check(positive_number());
+         "it and exits 1. Runs shadesim area's flows (cached in --area-cache: minutes on a\n"
+         "new unit, instant after)")
+      ->check(non_negative_number());
   sub->add_option("--clock-target", o->clock_target,
                   "where the clock is timed: osu018 (Yosys onto the library, OpenSTA; --liberty\n"
                   "for another) or ice40 (an HX8K through nextpnr-ice40)")

@@ -22,8 +22,9 @@ inline void add_config_option(CLI::App& sub, std::string& text,
                               const std::vector<std::string>& also_excluded) {
   CLI::Option* config = sub.add_option(
       "--config", text,
-      "the unit: own (the scene's own unit, as `shadesim config` derives it: the default when no\n"
-      "width or structure option is given), default (the width defaults listed here, with the\n"
+      "the unit: own (the scene's own unit, as `shadesim config --clock-mhz 0` derives it,\n"
+      "unpipelined: the default when no width or structure option is given), default (the width "
+      "defaults listed here, with the\n"
       "scene's channels, lights and specular unit: what the width options change), a named build\n"
       "(shadesim cosim --list) or a UnitConfig FILE.json (omitted fields take the defaults).\n"
       "Own, a build or a file is exactly the unit: width options are refused beside it.");

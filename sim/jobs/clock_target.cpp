@@ -15,6 +15,8 @@ ClockSite parse_clock_site(const std::string& text, const std::string& what) {
   throw std::invalid_argument(what + ": expected osu018 or ice40, got '" + text + "'");
 }
 
+double default_clock_mhz(ClockSite site) { return site == ClockSite::kIce40 ? 50.0 : 250.0; }
+
 std::string site_name(const ClockTarget& target) {
   if (target.site == ClockSite::kIce40) return "iCE40 HX8K (Yosys synth_ice40, nextpnr-ice40)";
   return (target.liberty.empty() ? std::string("osu018 0.18 um") : target.liberty) +

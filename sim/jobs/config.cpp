@@ -176,9 +176,9 @@ int run_config(const ConfigOptions& o) {
   DerivedConfig derived = derive_config(o.scenes, d);
   std::optional<ClockOutcome> clock;
   ClockTarget target;
-  if (o.clock_mhz > 0) {
-    target.mhz = o.clock_mhz;
-    target.site = parse_clock_site(o.clock_target, "--clock-target");
+  target.site = parse_clock_site(o.clock_target, "--clock-target");
+  target.mhz = o.clock_mhz < 0 ? default_clock_mhz(target.site) : o.clock_mhz;
+  if (target.mhz > 0) {
     target.liberty = o.liberty;
     target.cache_dir = o.area_cache;
     clock = meet_clock(o.scenes, d, target, derived);

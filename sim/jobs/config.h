@@ -23,8 +23,8 @@ struct ConfigOptions {
   double max_cycles_per_pixel = 1.10;
   std::string json_path;
   // --clock-mhz: time the unit where it will be built and pipeline it to reach the clock
-  // (sim/jobs/clock_target.h); 0: no clock target.
-  double clock_mhz = 0;
+  // (sim/jobs/clock_target.h); 0: no clock target; negative: the site's default_clock_mhz.
+  double clock_mhz = -1;
   std::string clock_target = "osu018";  // or ice40
   std::string liberty;                  // another library than osu018
   std::string area_cache = binary_dir() + "/area-cache";
