@@ -120,8 +120,8 @@ void register_config(CLI::App& app, int& exit_code) {
   sub->add_option(
          "--clock-mhz", o->clock_mhz,
          "the clock the unit must close: 250 MHz by default (50 with --clock-target ice40);\n"
-         "0: none, and then no synthesis runs. The derived\n"
-         "unit is timed where --clock-target says; where it misses, it climbs the pipelining\n"
+         "0: none, and then no synthesis runs. The derived unit is timed where\n"
+         "--clock-target says; where it misses, it climbs the pipelining\n"
          "ladder, each rung timed: a register stage in the pixel combine (combine_stages 1),\n"
          "a second that splits its colour products (2), then, on a pipelined W_m unit, each\n"
          "squaring split over two cycles (square_stages 2). config keeps the first rung that\n"
