@@ -93,6 +93,7 @@ set(SHADESIM_GTEST_TIERS
   phong_blinn_fit_test      quick
   pixel_combine_test        quick
   power_test                quick
+  prepared_scene_test       quick
   raster_test               quick
   reference_test            quick
   render_test               quick

@@ -100,7 +100,7 @@ std::optional<std::string> drift_warning(const ConfigMeasurements& m, const Unit
 }
 
 // Pixels whose N.L gate flips over the budget, with the fraction bits that hold them.
-std::optional<std::string> gate_flip_warning(const PreparedFrame& frame, const UnitConfig& unit,
+std::optional<std::string> gate_flip_warning(const PreparedScene& frame, const UnitConfig& unit,
                                              double budget_lsb) {
   const GateFlips f = measure_gate_flips(frame, unit, code_budget(budget_lsb));
   if (f.pixels == 0) return std::nullopt;
@@ -115,15 +115,13 @@ std::optional<std::string> gate_flip_warning(const PreparedFrame& frame, const U
 }
 
 // The error of the scene on `unit`, in output codes.
-int code_error(const std::string& path, const UnitConfig& unit, std::optional<double> budget_lsb,
-               int max_depth) {
-  return scene_error(path, unit, budget_lsb, max_depth).max_code_lsb;
+int code_error(const PreparedScene& frame, const UnitConfig& unit) {
+  return scene_error(frame, unit).max_code_lsb;
 }
 
 // The formats that alone bring the exact-pow unit within `allowed`, widened one at a time.
-std::string formats_that_hold(const std::string& path, const UnitConfig& exact,
-                              const UnitConfig& lossless, std::optional<double> budget_lsb,
-                              int max_depth, int allowed) {
+std::string formats_that_hold(const PreparedScene& frame, const UnitConfig& exact,
+                              const UnitConfig& lossless, int allowed) {
   struct Trial {
     const char* name;
     UnitConfig unit;
@@ -142,7 +140,7 @@ std::string formats_that_hold(const std::string& path, const UnitConfig& exact,
   trials.push_back({"the specular output", out});
   std::string held;
   for (const Trial& t : trials) {
-    const int e = code_error(path, t.unit, budget_lsb, max_depth);
+    const int e = code_error(frame, t.unit);
     if (e <= allowed)
       held += fmt::format("{}{} lossless: {} LSB", held.empty() ? "" : "; ", t.name, e);
   }
@@ -164,17 +162,15 @@ UnitConfig lossless_formats(const UnitConfig& unit, double colour_max) {
   return wide;
 }
 
-std::vector<std::string> format_warnings(const std::string& scene_path, const UnitConfig& unit,
-                                         std::optional<double> budget_lsb, int max_depth,
-                                         const PreparedFrame& frame) {
+std::vector<std::string> format_warnings(const PreparedScene& frame, const UnitConfig& unit,
+                                         const CommandStream& stream) {
   std::optional<ConfigMeasurements> measured;
   try {
-    measured = measure_scene_on(scene_path, unit, budget_lsb, max_depth);
+    measured = measure_scene_on(frame, unit);
   } catch (const std::exception& e) {
     return {std::string("could not measure the scene against the unit's formats: ") + e.what()};
   }
   const ConfigMeasurements& m = *measured;
-  const CommandStream& stream = frame.encoded.stream;
   std::vector<std::string> out;
   const auto range = series_range_warning(m, unit);
   if (range) out.push_back(*range);
@@ -187,9 +183,9 @@ std::vector<std::string> format_warnings(const std::string& scene_path, const Un
   return out;
 }
 
-std::string explain_miss(const std::string& scene_path, const UnitConfig& unit,
-                         std::optional<double> budget_lsb, int max_depth, const ErrorStats& error) {
-  const ConfigMeasurements m = measure_scene_on(scene_path, unit, budget_lsb, max_depth);
+std::string explain_miss(const PreparedScene& frame, const UnitConfig& unit,
+                         const ErrorStats& error) {
+  const ConfigMeasurements m = measure_scene_on(frame, unit);
   const int allowed = code_budget(m.budget_lsb);
   std::string head = fmt::format(
       "max {} LSB over the {:g} LSB budget ({} in output codes; {} of "
@@ -199,7 +195,7 @@ std::string explain_miss(const std::string& scene_path, const UnitConfig& unit,
   const bool hardware = specular_unit(unit.specular.kind).hardware;
   if (hardware) {
     exact.specular.kind = SpecularUnitKind::kIdeal;
-    const int e = code_error(scene_path, exact, budget_lsb, max_depth);
+    const int e = code_error(frame, exact);
     if (e <= allowed) {
       return head + fmt::format(
                         "the specular unit ({}) approximates t^n too coarsely: exact pow on the "
@@ -209,21 +205,15 @@ std::string explain_miss(const std::string& scene_path, const UnitConfig& unit,
     }
   }
   const UnitConfig lossless = lossless_formats(exact, m.colour_max);
-  const int e_lossless = code_error(scene_path, lossless, budget_lsb, max_depth);
+  const int e_lossless = code_error(frame, lossless);
   const std::string exact_text = hardware ? " with exact pow" : "";
   if (e_lossless <= allowed) {
     return head +
-           fmt::format(
-               "the unit's formats: on formats that lose nothing{} it is {} LSB ({})", exact_text,
-               e_lossless,
-               formats_that_hold(scene_path, exact, lossless, budget_lsb, max_depth, allowed));
+           fmt::format("the unit's formats: on formats that lose nothing{} it is {} LSB ({})",
+                       exact_text, e_lossless, formats_that_hold(frame, exact, lossless, allowed));
   }
-  FrameOptions fo;
-  fo.base = unit;
-  fo.fixed_unit = true;
-  fo.budget_lsb = budget_lsb;
-  fo.max_depth = max_depth;
-  const SetupStats setup = prepare_frame(scene_path, fo).setup.stats;
+  const SetupStats& setup = frame.setup().stats;
+  const int max_depth = frame.key().max_depth;
   return head + fmt::format(
                     "neither the specular unit nor the formats: on formats that lose nothing{} "
                     "it is still {} LSB, so the Taylor setup ({} triangle(s) over the budget at "
@@ -231,14 +221,13 @@ std::string explain_miss(const std::string& scene_path, const UnitConfig& unit,
                     exact_text, e_lossless, setup.over_budget, max_depth, setup.worst_error_lsb);
 }
 
-std::vector<std::string> accuracy_warnings(const std::string& scene_path, const UnitConfig& unit,
-                                           std::optional<double> budget_lsb, int max_depth,
-                                           const PreparedFrame& frame, const ErrorStats& error) {
-  std::vector<std::string> out = format_warnings(scene_path, unit, budget_lsb, max_depth, frame);
-  const double budget = budget_lsb.value_or(frame.scene.error_budget_lsb);
+std::vector<std::string> accuracy_warnings(const PreparedScene& frame, const UnitConfig& unit,
+                                           const CommandStream& stream, const ErrorStats& error) {
+  std::vector<std::string> out = format_warnings(frame, unit, stream);
+  const double budget = frame.key().budget_lsb.value_or(frame.scene().error_budget_lsb);
   if (error.pixels > 0 && error.max_code_lsb > code_budget(budget)) {
     try {
-      out.push_back(explain_miss(scene_path, unit, budget_lsb, max_depth, error));
+      out.push_back(explain_miss(frame, unit, error));
     } catch (const std::exception& e) {
       out.push_back(
           fmt::format("max {} LSB over the {:g} LSB budget; its cause could not be "

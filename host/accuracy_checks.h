@@ -21,27 +21,27 @@
 #include <string>
 #include <vector>
 
-#include "host/frame.h"
 #include "host/metrics.h"
+#include "host/prepared_scene.h"
+#include "model/command_stream.h"
 #include "model/unit_config.h"
 
 namespace shadesim {
 
-// The formats of `unit` checked against the scene (frame: the scene prepared on `unit`).
-std::vector<std::string> format_warnings(const std::string& scene_path, const UnitConfig& unit,
-                                         std::optional<double> budget_lsb, int max_depth,
-                                         const PreparedFrame& frame);
+// The formats of `unit` checked against the prepared scene; `stream`: the scene's stream on
+// `unit`. The budget and depth limit are the frame's (PreparedScene::key, unset: the scene's).
+std::vector<std::string> format_warnings(const PreparedScene& frame, const UnitConfig& unit,
+                                         const CommandStream& stream);
 
 // Why `unit`, whose image has `error`, misses the budget: the specular unit's approximation,
 // a named format, or (neither) the Taylor setup and the N.L gate, each with the error measured
 // on the variant that shows it. Call it only for an image over the budget.
-std::string explain_miss(const std::string& scene_path, const UnitConfig& unit,
-                         std::optional<double> budget_lsb, int max_depth, const ErrorStats& error);
+std::string explain_miss(const PreparedScene& frame, const UnitConfig& unit,
+                         const ErrorStats& error);
 
 // format_warnings, and explain_miss where `error` is over the budget.
-std::vector<std::string> accuracy_warnings(const std::string& scene_path, const UnitConfig& unit,
-                                           std::optional<double> budget_lsb, int max_depth,
-                                           const PreparedFrame& frame, const ErrorStats& error);
+std::vector<std::string> accuracy_warnings(const PreparedScene& frame, const UnitConfig& unit,
+                                           const CommandStream& stream, const ErrorStats& error);
 
 // A unit with the same structure and specular unit whose series, coefficient, colour and
 // specular output formats lose nothing on a scene with colours up to colour_max.

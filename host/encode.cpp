@@ -127,6 +127,7 @@ TriangleCmd triangle_command(const UnitConfig& config, int scene_lights,
                              Pixel origin) {
   const Quadratic zero{};
   TriangleCmd t;
+  t.coef.reserve(static_cast<size_t>(config.series_per_triangle() * kTermsPerSeries));
   t.xo = origin.x;
   t.yo = origin.y;
   const double ox = t.xo + 0.5, oy = t.yo + 0.5;
@@ -260,7 +261,7 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
     frame.stream.config.span_setup = SpanSetupSite::kUnit;
     frame.stream = with_host_setup(frame.stream);
   }
-  stats.words = frame.stream.encode().size();
+  stats.words = frame.stream.word_count();
   frame.stream.validate("encoder");
   return frame;
 }

@@ -44,4 +44,15 @@ int xy_bits_for_image(int width, int height);
 // Throws SceneError for bad scene/mesh input and std::invalid_argument for impossible options.
 PreparedFrame prepare_frame(const std::string& scene_path, const FrameOptions& options);
 
+// The unit prepare_frame shades `scene` on: `options.base` as it is (fixed_unit), or with the
+// scene's structure and specular unit. Throws std::invalid_argument naming `scene_path` when the
+// unit cannot shade the scene or its materials ask for different specular units.
+UnitConfig frame_unit(const Scene& scene, const std::string& scene_path,
+                      const FrameOptions& options);
+
+// The steps of a frame that no unit width changes: transform and clip, triangle setup with
+// subdivision, visibility. Fills project, setup, visibility and their timings.
+void prepare_geometry(const Scene& scene, const SetupOptions& setup_options, ProjectStats& project,
+                      SetupResult& setup, Visibility& visibility, FrameTimings& timings);
+
 }  // namespace shadesim

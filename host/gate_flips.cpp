@@ -4,9 +4,11 @@
 #include <array>
 #include <cstdint>
 #include <cstdlib>
+#include <functional>
 #include <vector>
 
 #include "host/encode.h"
+#include "host/metrics.h"
 #include "model/shade_unit.h"
 
 namespace shadesim {
@@ -17,17 +19,27 @@ struct ShadedFrame {
   std::vector<std::array<uint16_t, kMaxChannels>> colour;
   std::vector<uint8_t> gates;
   std::vector<bool> shaded;
+  std::vector<PixelOut> pixels;  // in the unit's order, as scene_error compares them
 };
 
-ShadedFrame shade(const PreparedFrame& frame, const UnitConfig& unit) {
+// The unit-independent part of a frame.
+struct Geometry {
+  const Scene& scene;
+  const SetupResult& setup;
+  const Visibility& visibility;
+};
+
+ShadedFrame shade(const Geometry& frame, const UnitConfig& unit) {
   const int width = frame.scene.width;
   const size_t n = static_cast<size_t>(width) * static_cast<size_t>(frame.scene.height);
   ShadedFrame out{std::vector<std::array<uint16_t, kMaxChannels>>(n), std::vector<uint8_t>(n, 0),
                   std::vector<bool>(n, false)};
   const EncodedFrame encoded = encode_frame(frame.scene, unit, frame.setup, frame.visibility);
   ShadeUnit model(unit);
+  out.pixels.reserve(encoded.stats.pixels);
   for (const Command& cmd : encoded.stream.commands) {
     model.consume(cmd, [&](const PixelOut& p) {
+      out.pixels.push_back(p);
       const size_t at = static_cast<size_t>(p.y) * static_cast<size_t>(width) + p.x;
       out.colour[at] = p.colour;
       out.gates[at] = p.spec_gates;
@@ -74,10 +86,15 @@ UnitConfig with_more_fraction_bits(const UnitConfig& unit, int bits) {
   return u;
 }
 
-GateFlips measure_gate_flips(const PreparedFrame& frame, const UnitConfig& unit, int budget_codes) {
+namespace {
+
+GateFlips measure_on(const Geometry& frame, const UnitConfig& unit, int budget_codes,
+                     const std::function<void(const ShadedFrame&)>& on_unit) {
   const int most = most_fraction_bits(unit);
   const ShadedFrame widest = shade(frame, with_more_fraction_bits(unit, most));
-  GateFlips f = count_flips(shade(frame, unit), widest, unit.channels, budget_codes);
+  const ShadedFrame shaded = shade(frame, unit);
+  if (on_unit) on_unit(shaded);
+  GateFlips f = count_flips(shaded, widest, unit.channels, budget_codes);
   f.fixed = unit;
   if (f.pixels == 0) return f;
   auto holds = [&](int bits) {
@@ -101,6 +118,28 @@ GateFlips measure_gate_flips(const PreparedFrame& frame, const UnitConfig& unit,
   f.fix_bits = hi;
   f.fixed = with_more_fraction_bits(unit, hi);
   return f;
+}
+
+}  // namespace
+
+GateFlips measure_gate_flips(const Scene& scene, const SetupResult& setup,
+                             const Visibility& visibility, const UnitConfig& unit,
+                             int budget_codes) {
+  return measure_on(Geometry{scene, setup, visibility}, unit, budget_codes, nullptr);
+}
+
+GateFlips measure_gate_flips(const PreparedScene& frame, const UnitConfig& unit, int budget_codes) {
+  const Scene& scene = frame.scene();
+  const auto record_error = [&](const ShadedFrame& shaded) {
+    frame.error_on(unit, [&] {
+      return compare_to_reference(shaded.pixels, frame.reference(unit.channels).values,
+                                  frame.visibility().owner, scene.width, scene.height,
+                                  unit.channels, unit.out_bits)
+          .stats;
+    });
+  };
+  return measure_on(Geometry{scene, frame.setup(), frame.visibility()}, unit, budget_codes,
+                    record_error);
 }
 
 }  // namespace shadesim

@@ -10,6 +10,7 @@
 #include <cstddef>
 
 #include "host/frame.h"
+#include "host/prepared_scene.h"
 #include "model/unit_config.h"
 
 namespace shadesim {
@@ -27,7 +28,16 @@ struct GateFlips {
 // and overflow unchanged), at most to UnitConfig's limits.
 UnitConfig with_more_fraction_bits(const UnitConfig& unit, int bits);
 
-// `frame`'s setup and visibility shaded on `unit` (re-encoded for it) against the widest copy.
-GateFlips measure_gate_flips(const PreparedFrame& frame, const UnitConfig& unit, int budget_codes);
+// A frame's setup and visibility shaded on `unit` (re-encoded for it) against the widest copy.
+GateFlips measure_gate_flips(const Scene& scene, const SetupResult& setup,
+                             const Visibility& visibility, const UnitConfig& unit,
+                             int budget_codes);
+inline GateFlips measure_gate_flips(const PreparedFrame& frame, const UnitConfig& unit,
+                                    int budget_codes) {
+  return measure_gate_flips(frame.scene, frame.setup, frame.visibility, unit, budget_codes);
+}
+// The same on a prepared scene; the shading of `unit` also gives its error against the frame's
+// reference, which scene_error then finds measured (PreparedScene::error_on).
+GateFlips measure_gate_flips(const PreparedScene& frame, const UnitConfig& unit, int budget_codes);
 
 }  // namespace shadesim

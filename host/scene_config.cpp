@@ -10,6 +10,7 @@
 
 #include "host/frame.h"
 #include "host/gate_flips.h"
+#include "host/parallel.h"
 #include "host/scene_error.h"
 #include "host/specular_candidates.h"
 #include "host/specular_setup.h"
@@ -85,7 +86,7 @@ double unit_slope(const UnitConfig& config, double n) {
 
 struct SceneInfo {
   std::string path;
-  Scene scene;
+  const Scene& scene;  // the prepared frame's (FrameSet)
 };
 
 // Numbers measured on one scene's trial frame, merged over scenes.
@@ -148,10 +149,11 @@ void walk_stream(const CommandStream& stream, Walk& w) {
 
 // derive_widths' steps, in the order it runs them: each reads only what the steps before it set.
 
-std::vector<SceneInfo> load_scenes(const std::vector<std::string>& scene_paths) {
-  if (scene_paths.empty()) throw std::invalid_argument("derive_config: no scenes given");
+std::vector<SceneInfo> load_scenes(const FrameSet& frames) {
+  if (frames.size() == 0) throw std::invalid_argument("derive_config: no scenes given");
   std::vector<SceneInfo> scenes;
-  for (const auto& p : scene_paths) scenes.push_back({p, load_scene(p)});
+  for (size_t i = 0; i < frames.size(); ++i)
+    scenes.push_back({frames.path(i), frames.at(i).scene()});
   return scenes;
 }
 
@@ -159,6 +161,13 @@ struct Budget {
   double lsb = 0;
   std::string from;  // "--budget" or the scene it is taken from
 };
+
+void check_budget(double lsb) {
+  if (!(lsb > 0) || !std::isfinite(lsb)) {
+    throw std::invalid_argument("derive_config: budget must be a positive number of LSBs, got " +
+                                fmt(lsb));
+  }
+}
 
 // The strictest scene's budget unless one is given: one unit must meet every scene's.
 Budget choose_budget(const std::vector<SceneInfo>& scenes, const DeriveOptions& options) {
@@ -171,10 +180,7 @@ Budget choose_budget(const std::vector<SceneInfo>& scenes, const DeriveOptions& 
       if (s.scene.error_budget_lsb < budget.lsb) budget = {s.scene.error_budget_lsb, s.path};
     }
   }
-  if (!(budget.lsb > 0) || !std::isfinite(budget.lsb)) {
-    throw std::invalid_argument("derive_config: budget must be a positive number of LSBs, got " +
-                                fmt(budget.lsb));
-  }
+  check_budget(budget.lsb);
   return budget;
 }
 
@@ -437,8 +443,7 @@ std::string derive_xy_bits(const std::vector<SceneInfo>& scenes, UnitConfig& cfg
 // The scene prepared on a trial unit of cfg's structure that loses nothing. A sliver triangle
 // (origin far outside it, huge gradient) can need more coefficient integer bits than the first
 // trial holds: the second trades fraction bits the ranges do not need for integer bits.
-PreparedFrame trial_frame(const std::string& path, const DeriveOptions& options,
-                          const UnitConfig& cfg) {
+EncodedFrame trial_frame(const FrameSet& frames, size_t scene, const UnitConfig& cfg) {
   UnitConfig trial = cfg;
   trial.series = FixedFormat{kTrialSeriesIwl + kTrialSeriesFrac, kTrialSeriesIwl, true,
                              cfg.series.quant, cfg.series.overflow};
@@ -453,24 +458,19 @@ PreparedFrame trial_frame(const std::string& path, const DeriveOptions& options,
     trial.coef =
         FixedFormat{kTrialCoefWl, coef_iwl, true, Quantization::kRoundNearest, Overflow::kSaturate};
     trial.validate();
-    FrameOptions fo;
-    fo.base = trial;
-    fo.fixed_unit = true;
-    fo.budget_lsb = options.budget_lsb;
-    fo.max_depth = options.max_depth;
-    PreparedFrame frame = prepare_frame(path, fo);
-    const size_t over = frame.encoded.stats.coefficients_out_of_range;
+    EncodedFrame frame = frames.at(scene).encode(trial);
+    const size_t over = frame.stats.coefficients_out_of_range;
     if (over == 0) return frame;
     out_of_range = std::to_string(over) + " Taylor coefficient(s) exceed the trial format " +
                    trial.coef.to_string();
   }
-  throw std::invalid_argument(path + ": " + out_of_range + "; cannot measure their range");
+  throw std::invalid_argument(frames.path(scene) + ": " + out_of_range +
+                              "; cannot measure their range");
 }
 
-Walk measure_on_trial_unit(const std::vector<SceneInfo>& scenes, const DeriveOptions& options,
-                           const UnitConfig& cfg) {
+Walk measure_on_trial_unit(const FrameSet& frames, const UnitConfig& cfg) {
   Walk w;
-  for (const auto& s : scenes) walk_stream(trial_frame(s.path, options, cfg).encoded.stream, w);
+  for (size_t i = 0; i < frames.size(); ++i) walk_stream(trial_frame(frames, i, cfg).stream, w);
   return w;
 }
 
@@ -730,18 +730,18 @@ std::vector<FieldReason> field_reasons(const UnitConfig& cfg, const Budget& budg
 
 }  // namespace
 
-ConfigMeasurements measure_scene_on(const std::string& scene_path, const UnitConfig& unit,
-                                    std::optional<double> budget_lsb, int max_depth) {
-  const std::vector<SceneInfo> scenes = load_scenes({scene_path});
+ConfigMeasurements measure_scene_on(const PreparedScene& frame, const UnitConfig& unit) {
+  const FrameSet frames(frame);
+  const std::vector<SceneInfo> scenes = load_scenes(frames);
   DeriveOptions options;
-  options.budget_lsb = budget_lsb;
-  options.max_depth = max_depth;
+  options.budget_lsb = frame.key().budget_lsb;
+  options.max_depth = frame.key().max_depth;
   const Budget budget = choose_budget(scenes, options);
   ConfigMeasurements ms;
   set_budget(budget.lsb, ms);
   ms.max_width = scenes.front().scene.width;
   ms.max_height = scenes.front().scene.height;
-  record_walk(measure_on_trial_unit(scenes, options, unit), ms);
+  record_walk(measure_on_trial_unit(frames, unit), ms);
   ms.gain = series_gain(scenes, unit).total;
   ms.colour_max = light_colours(scenes, unit).max();
   ms.product_max = colour_product_max(ms.colour_max, ms.series_max);
@@ -762,9 +762,8 @@ int drift_fraction_bits(int longest_span, double gain, double share_lsb, int out
 
 // Every field for one specular substitute (options.ideal_substitute); derive_config below tries
 // the fallbacks.
-DerivedConfig derive_widths(const std::vector<std::string>& scene_paths,
-                            const DeriveOptions& options) {
-  const std::vector<SceneInfo> scenes = load_scenes(scene_paths);
+DerivedConfig derive_widths(const FrameSet& frames, const DeriveOptions& options) {
+  const std::vector<SceneInfo> scenes = load_scenes(frames);
   const Budget budget = choose_budget(scenes, options);
   DerivedConfig out;
   ConfigMeasurements& ms = out.measured;
@@ -781,16 +780,17 @@ DerivedConfig derive_widths(const std::vector<std::string>& scene_paths,
   why.xy_bits = derive_xy_bits(scenes, cfg, ms);
   why.spec_colour = derive_spec_colour(scenes, ms, cfg);
   why.specular_out = derive_specular_out(scenes, ms, cfg);
-  const Walk w = measure_on_trial_unit(scenes, options, cfg);
+  const Walk w = measure_on_trial_unit(frames, cfg);
   record_walk(w, ms);
   why.offset_bits = derive_offset_bits(w, cfg);
   why.series = derive_series(scenes, w, ms, cfg);
   why.coef = derive_coef(w, ms, cfg);
   why.coef_term_iwl = derive_term_widths(w, cfg);
   cfg.validate();
-  const ThroughputChoice throughput = choose_throughput(scene_paths, options, cfg);
+  const ThroughputChoice throughput = choose_throughput(frames, options, cfg);
   cfg = throughput.config;
   out.cycles_misses = throughput.misses;
+  out.cycles = throughput.cycles;
   out.reasons = field_reasons(cfg, budget, why, throughput);
   return out;
 }
@@ -798,30 +798,25 @@ DerivedConfig derive_widths(const std::vector<std::string>& scene_paths,
 namespace {
 
 // The largest error of `config` over the scenes, in output codes.
-int max_code_error(const std::vector<std::string>& scene_paths, const UnitConfig& config,
-                   const DeriveOptions& options) {
+int max_code_error(const FrameSet& frames, const UnitConfig& config, const DeriveOptions& options) {
+  (void)options;
   int worst = 0;
-  for (const auto& path : scene_paths) {
-    worst = std::max(worst,
-                     scene_error(path, config, options.budget_lsb, options.max_depth).max_code_lsb);
+  for (size_t i = 0; i < frames.size(); ++i) {
+    worst = std::max(worst, scene_error(frames.at(i), config).max_code_lsb);
   }
   return worst;
 }
 
 // The N.L gate's step (host/gate_flips.h): where the derived widths flip a scene's gate with an
 // output over the budget, series and coef get the fraction bits that hold every scene's gate.
-void hold_the_gate(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
-                   DerivedConfig& d) {
+void hold_the_gate(const FrameSet& frames, const DeriveOptions& options, DerivedConfig& d) {
   int bits = 0;
   std::string why;
-  for (const auto& path : scene_paths) {
-    FrameOptions fo;
-    fo.base = d.config;
-    fo.fixed_unit = true;
-    fo.budget_lsb = options.budget_lsb;
-    fo.max_depth = options.max_depth;
+  (void)options;
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const std::string& path = frames.path(i);
     const GateFlips f =
-        measure_gate_flips(prepare_frame(path, fo), d.config, code_budget(d.measured.budget_lsb));
+        measure_gate_flips(frames.at(i), d.config, code_budget(d.measured.budget_lsb));
     if (f.pixels == 0 || f.fix_bits <= bits) continue;  // fix_bits -1: no width holds it
     bits = f.fix_bits;
     why = "; +" + std::to_string(bits) +
@@ -842,11 +837,11 @@ void hold_the_gate(const std::vector<std::string>& scene_paths, const DeriveOpti
 // The throughput structure chosen again for d.config's widths: the gate's fraction bits widen
 // the coefficient and start words, so the port may no longer carry them in time. Replaces the
 // knobs, their reasons and the cycles misses.
-void rechoose_throughput(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
-                         DerivedConfig& d) {
-  const ThroughputChoice t = choose_throughput(scene_paths, options, d.config);
+void rechoose_throughput(const FrameSet& frames, const DeriveOptions& options, DerivedConfig& d) {
+  const ThroughputChoice t = choose_throughput(frames, options, d.config);
   d.config = t.config;
   d.cycles_misses = t.misses;
+  d.cycles = t.cycles;
   for (FieldReason& fresh : throughput_reasons(d.config, t)) {
     const auto at = std::find_if(d.reasons.begin(), d.reasons.end(),
                                  [&](const FieldReason& r) { return r.field == fresh.field; });
@@ -896,13 +891,13 @@ std::vector<Pipelining> pipelining_ladder(const UnitConfig& unit) {
   return ladder;
 }
 
-void pipeline_unit(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
-                   const Pipelining& p, const std::string& why, DerivedConfig& derived) {
+void pipeline_unit(const FrameSet& frames, const DeriveOptions& options, const Pipelining& p,
+                   const std::string& why, DerivedConfig& derived) {
   derived.config.combine_stages = p.combine_stages;
   if (derived.config.specular.kind == SpecularUnitKind::kWpow)
     derived.config.specular.wpow.square_stages = p.square_stages;
   derived.config.validate();
-  rechoose_throughput(scene_paths, options, derived);
+  rechoose_throughput(frames, options, derived);
   derived.reasons.erase(
       std::remove_if(derived.reasons.begin(), derived.reasons.end(),
                      [](const FieldReason& r) { return r.field == "combine_stages"; }),
@@ -913,13 +908,12 @@ void pipeline_unit(const std::vector<std::string>& scene_paths, const DeriveOpti
 namespace {
 
 // derive_widths, with the gate held (and the throughput structure chosen for its widths).
-DerivedConfig derive_held(const std::vector<std::string>& scene_paths,
-                          const DeriveOptions& options) {
-  DerivedConfig d = derive_widths(scene_paths, options);
+DerivedConfig derive_held(const FrameSet& frames, const DeriveOptions& options) {
+  DerivedConfig d = derive_widths(frames, options);
   if (!options.hold_gate) return d;
   const std::string before = config_to_json(d.config);
-  hold_the_gate(scene_paths, options, d);
-  if (config_to_json(d.config) != before) rechoose_throughput(scene_paths, options, d);
+  hold_the_gate(frames, options, d);
+  if (config_to_json(d.config) != before) rechoose_throughput(frames, options, d);
   return d;
 }
 
@@ -948,23 +942,24 @@ struct UnitTrial {
   }
 };
 
-UnitTrial try_unit(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
-                   DerivedConfig derived) {
+UnitTrial try_unit(const FrameSet& frames, const DeriveOptions& options, DerivedConfig derived) {
   UnitTrial t;
-  t.error = max_code_error(scene_paths, derived.config, options);
-  for (const auto& path : scene_paths) {
-    const SceneCycles c = scene_cycles(path, derived.config, options.budget_lsb, options.max_depth);
+  t.error = max_code_error(frames, derived.config, options);
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const SceneCycles c = derived.cycles.size() == frames.size()
+                              ? derived.cycles[i]
+                              : scene_cycles(frames.at(i), derived.config);
     if (c.per_pixel() >= t.cycles.per_pixel()) t.cycles = c;
   }
   t.derived = std::move(derived);
   return t;
 }
 
-bool exact_pow_misses(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
-                      const UnitConfig& unit, int allowed) {
+bool exact_pow_misses(const FrameSet& frames, const DeriveOptions& options, const UnitConfig& unit,
+                      int allowed) {
   UnitConfig exact = unit;
   exact.specular.kind = SpecularUnitKind::kIdeal;
-  return max_code_error(scene_paths, exact, options) > allowed;
+  return max_code_error(frames, exact, options) > allowed;
 }
 
 // Budget first: a unit within the budget is taken unless it costs more cycles than the target
@@ -978,25 +973,35 @@ double cycles_allowance(const DeriveOptions& options, const SceneCycles& first) 
 
 // Tries `units` in order; `best` (the first unit, over the budget) becomes the unit taken. Returns
 // the note on the specular line: what was tried, what was taken and what it traded.
-std::string search_units(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
+std::string search_units(const FrameSet& frames, const DeriveOptions& options,
                          const std::vector<SpecularConfig>& units, int allowed, UnitTrial& best,
                          std::string& tried) {
   const UnitTrial first = best;
   const double allowance = cycles_allowance(options, first.cycles);
   std::optional<UnitTrial> within, slow;
   UnitTrial closest = first, last = first;
-  DeriveOptions o = options;
-  for (const SpecularConfig& unit : units) {
-    o.specular_trial = unit;
-    if (first.derived.substitute) o.ideal_substitute = unit;
-    UnitTrial t = try_unit(scene_paths, o, derive_held(scene_paths, o));
+  // Candidates are tried a batch at a time, one per thread, and read in order: the one taken and
+  // the text are those of a one-by-one search whatever the thread count.
+  const size_t batch = static_cast<size_t>(thread_count(options.threads));
+  std::vector<UnitTrial> trials;
+  for (size_t i = 0; i < units.size() && !within; ++i) {
+    if (i % batch == 0) {
+      const size_t n = std::min(batch, units.size() - i);
+      trials = parallel_map<UnitTrial>(n, options.threads, [&](size_t k) {
+        DeriveOptions o = options;
+        o.specular_trial = units[i + k];
+        if (first.derived.substitute) o.ideal_substitute = units[i + k];
+        return try_unit(frames, o, derive_held(frames, o));
+      });
+    }
+    UnitTrial& t = trials[i % batch];
     tried += ", " + t.describe();
     if (t.error < closest.error) closest = t;
     if (t.derived.config.specular.kind == closest.derived.config.specular.kind) last = t;
     if (t.error > allowed) continue;
     if (t.cycles.per_pixel() <= allowance) {
       within = std::move(t);
-      break;
+      continue;
     }
     tried += " (over " + fmt(allowance) + ")";
     if (!slow) slow = std::move(t);
@@ -1026,33 +1031,49 @@ std::string search_units(const std::vector<std::string>& scene_paths, const Deri
 
 }  // namespace
 
-DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
-                            const DeriveOptions& options) {
-  DerivedConfig first = derive_held(scene_paths, options);
+DerivedConfig derive_config(const FrameSet& frames, const DeriveOptions& options) {
+  DerivedConfig first = derive_held(frames, options);
   const std::vector<SpecularConfig> rest = units_to_try(first, options);
   if (rest.empty() && !substituted(first, options)) return first;
   // The specular unit must meet the budget on the scenes (measured, not bounded: a unit's
   // approximation of t^n is not in the width rules), else the next candidate, each with the
   // widths derived for it. The reason lists every unit tried.
   const int allowed = code_budget(first.measured.budget_lsb);
-  UnitTrial best = try_unit(scene_paths, options, first);
+  UnitTrial best = try_unit(frames, options, first);
   std::string tried = best.describe();
   std::string note;
   if (best.error <= allowed) {
     note = "measured against the budget on the scenes: " + tried + " (within " +
            std::to_string(allowed) + " LSB)";
-  } else if (exact_pow_misses(scene_paths, options, first.config, allowed)) {
+  } else if (exact_pow_misses(frames, options, first.config, allowed)) {
     // No unit will meet it: the formats, the Taylor setup or the N.L gate do not (shadesim
     // config says which and exits 1).
     note = "misses the " + fmt(first.measured.budget_lsb) + " LSB budget on the scenes (" + tried +
            "), and so does exact pow on its formats: no other unit is tried";
   } else {
-    note = search_units(scene_paths, options, rest, allowed, best, tried);
+    note = search_units(frames, options, rest, allowed, best, tried);
   }
   for (auto& r : best.derived.reasons) {
     if (r.field == "specular") r.reason += "; " + note;
   }
   return best.derived;
+}
+
+PrepareKey prepare_key(const DeriveOptions& options) {
+  return {options.budget_lsb, options.max_depth, options.out_bits};
+}
+
+void check_derive_options(const std::vector<std::string>& scene_paths,
+                          const DeriveOptions& options) {
+  if (scene_paths.empty()) throw std::invalid_argument("derive_config: no scenes given");
+  if (options.budget_lsb) check_budget(*options.budget_lsb);
+}
+
+DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
+                            const DeriveOptions& options) {
+  check_derive_options(scene_paths, options);
+  PreparedScenes frames;
+  return derive_config(FrameSet(frames, scene_paths, prepare_key(options)), options);
 }
 
 }  // namespace shadesim

@@ -58,6 +58,8 @@
 #include <string>
 #include <vector>
 
+#include "host/prepared_scene.h"
+#include "host/scene_error.h"
 #include "host/specular_candidates.h"
 #include "model/unit_config.h"
 
@@ -102,6 +104,9 @@ struct DeriveOptions {
   // series with one (a multiply would remove nothing there).
   std::optional<DiffuseColour> diffuse_colour;
   double max_cycles_per_pixel = 1.10;
+  // Threads that evaluate candidate units side by side (0: the hardware's). The unit and every
+  // reason are the same for any count.
+  int threads = 0;
 };
 
 struct FieldReason {
@@ -141,6 +146,9 @@ struct DerivedConfig {
   // One per scene over DeriveOptions::max_cycles_per_pixel on `config`: the scene, its cycles per
   // pixel, the target and the resource that limits it (cycles_miss, host/throughput_choice.h).
   std::vector<std::string> cycles_misses;
+  // Each scene's cycles on `config` (the throughput choice measured them; the closed-form cycle
+  // model, as scene_cycles counts them).
+  std::vector<SceneCycles> cycles;
 };
 
 // The largest output-code error a budget allows: codes differ by whole LSBs, and rounding the
@@ -152,6 +160,16 @@ inline int code_budget(double budget_lsb) { return static_cast<int>(std::ceil(bu
 // (different specular units: the message names the scenes and units) or impossible budgets.
 DerivedConfig derive_config(const std::vector<std::string>& scene_paths,
                             const DeriveOptions& options);
+// The same on scenes already prepared under prepare_key(options); every candidate unit only
+// re-encodes and re-shades them.
+DerivedConfig derive_config(const FrameSet& frames, const DeriveOptions& options);
+
+// What a derivation's frames are prepared under: its budget, depth limit and output width.
+PrepareKey prepare_key(const DeriveOptions& options);
+// Throws std::invalid_argument for no scenes or a budget that is not a positive number: checked
+// before any scene is prepared under it.
+void check_derive_options(const std::vector<std::string>& scene_paths,
+                          const DeriveOptions& options);
 
 // A unit's pipelining, the knobs a clock target turns (pixels do not depend on them):
 // UnitConfig::combine_stages and, on a pipelined W_m unit, WpowConfig::square_stages.
@@ -168,15 +186,14 @@ Pipelining pipelining_of(const UnitConfig& unit);
 // `derived` pipelined as `p`: the throughput structure is chosen again for it (a register stage
 // delays each frame's last pixels by a cycle) and a "combine_stages" reason with `why` joins the
 // others. Pixels do not change.
-void pipeline_unit(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
-                   const Pipelining& p, const std::string& why, DerivedConfig& derived);
+void pipeline_unit(const FrameSet& frames, const DeriveOptions& options, const Pipelining& p,
+                   const std::string& why, DerivedConfig& derived);
 
 // What one scene drives on `unit`'s own structure (channels, lights, diffuse colour, specular
 // unit), measured as derive_config measures it: on a trial of that structure whose series and
 // coefficient formats lose nothing. The figures a given unit's formats are checked against
 // (render's warnings); budget_lsb unset: the scene's.
-ConfigMeasurements measure_scene_on(const std::string& scene_path, const UnitConfig& unit,
-                                    std::optional<double> budget_lsb, int max_depth);
+ConfigMeasurements measure_scene_on(const PreparedScene& frame, const UnitConfig& unit);
 
 // The fraction bits F the drift bound asks for: the smallest F with
 // gain * 2^-F (1 + L(L-1)/2) [/ 2 when rounding] <= share_lsb * 2^-out_bits.

@@ -8,7 +8,6 @@
 #include <stdexcept>
 #include <variant>
 
-#include "host/frame.h"
 #include "model/coef_packing.h"
 #include "model/host_setup.h"
 #include "model/start_packing.h"
@@ -45,22 +44,16 @@ struct SceneStreams {
   std::vector<uint64_t> unit_words, host_words;
 };
 
-std::vector<SceneStreams> prepare_streams(const std::vector<std::string>& scene_paths,
-                                          const DeriveOptions& options, const UnitConfig& unit,
+std::vector<SceneStreams> prepare_streams(const FrameSet& frames, const UnitConfig& unit,
                                           bool need_host) {
   UnitConfig base = unit;
   base.span_setup = SpanSetupSite::kUnit;
   base.tri_queue = 1;
   std::vector<SceneStreams> scenes;
-  for (const auto& path : scene_paths) {
-    FrameOptions fo;
-    fo.base = base;
-    fo.fixed_unit = true;
-    fo.budget_lsb = options.budget_lsb;
-    fo.max_depth = options.max_depth;
+  for (size_t i = 0; i < frames.size(); ++i) {
     SceneStreams s;
-    s.path = path;
-    s.unit_stream = prepare_frame(path, fo).encoded.stream;
+    s.path = frames.path(i);
+    s.unit_stream = frames.at(i).encode(base).stream;
     s.unit_words = s.unit_stream.encode();
     // The encoder's own route to a host-setup stream (host/encode.cpp): the same frame, each
     // span's start values formed from the unit-setup stream.
@@ -379,13 +372,13 @@ std::vector<ThroughputKnobs> throughput_candidates(const UnitConfig& unit,
   return out;
 }
 
-ThroughputChoice choose_throughput(const std::vector<std::string>& scene_paths,
-                                   const DeriveOptions& options, const UnitConfig& unit) {
+ThroughputChoice choose_throughput(const FrameSet& frames, const DeriveOptions& options,
+                                   const UnitConfig& unit) {
   const std::vector<ThroughputKnobs> candidates = throughput_candidates(unit, options);
   const bool need_host = std::any_of(candidates.begin(), candidates.end(), [](const auto& k) {
     return k.span_setup == SpanSetupSite::kHost;
   });
-  const std::vector<SceneStreams> scenes = prepare_streams(scene_paths, options, unit, need_host);
+  const std::vector<SceneStreams> scenes = prepare_streams(frames, unit, need_host);
   Measurements m(scenes, unit, candidates);
   ThroughputChoice c;
   const size_t chosen = pick(m, candidates.size(), options.max_cycles_per_pixel, c.meets);
@@ -394,6 +387,8 @@ ThroughputChoice choose_throughput(const std::vector<std::string>& scene_paths,
   c.config.validate();
   for (size_t s = 0; s < scenes.size(); ++s) {
     c.cycles_per_pixel.push_back(m.cpp(chosen, s));
+    const CycleEstimateRun chosen_run = run_on(scenes[s], c.config);
+    c.cycles.push_back({chosen_run.cycles, chosen_run.pixels});
     if (m.cpp(chosen, s) <= options.max_cycles_per_pixel) continue;
     const CycleEstimateRun run = run_on(scenes[s], c.config, true);
     c.misses.push_back(cycles_miss(scenes[s].path, c.config, stream_for(scenes[s], c.config), run,

@@ -69,6 +69,7 @@ struct ThroughputChoice {
   UnitConfig config;                     // the unit with `knobs`
   bool meets = false;                    // every scene within the target
   std::vector<double> cycles_per_pixel;  // per scene, on `config`
+  std::vector<SceneCycles> cycles;       // per scene, on `config`
   std::vector<std::string> misses;       // cycles_miss of each scene over the target
   size_t candidates_measured = 0;
   // Why each knob has its value, with the figures of the candidate one step cheaper in it.
@@ -78,8 +79,8 @@ struct ThroughputChoice {
 // Chooses the knobs for `unit` (its widths final) on the scenes. Each scene is prepared once
 // (unit setup; its host-setup stream is derived from it, as the encoder does) and each candidate
 // re-runs only the cycle model.
-ThroughputChoice choose_throughput(const std::vector<std::string>& scene_paths,
-                                   const DeriveOptions& options, const UnitConfig& unit);
+ThroughputChoice choose_throughput(const FrameSet& frames, const DeriveOptions& options,
+                                   const UnitConfig& unit);
 
 // Cycles per pixel of a run (0 for a frame without pixels).
 double cycles_per_pixel(const CycleEstimateRun& run);

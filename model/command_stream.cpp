@@ -22,14 +22,29 @@ namespace {
 
 constexpr uint64_t kMask16 = CommandWord::kFieldMask;
 
-std::string where(const std::string& source, size_t index, const char* unit) {
-  return source + ":" + unit + " " + std::to_string(index) + ": ";
+// A command's place in its source, formatted only when an error names it: validating a frame's
+// stream must not build a string per command.
+struct Where {
+  const std::string& source;
+  size_t index;
+  const char* unit;  // "command", "word"; nullptr: index is a text line's number
+  std::string text() const {
+    return source + ":" + (unit ? std::string(unit) + " " : std::string()) + std::to_string(index) +
+           ": ";
+  }
+};
+std::string operator+(const Where& w, const char* s) { return w.text() + s; }
+std::string operator+(const Where& w, const std::string& s) { return w.text() + s; }
+std::ostream& operator<<(std::ostream& os, const Where& w) { return os << w.text(); }
+
+Where where(const std::string& source, size_t index, const char* unit) {
+  return {source, index, unit};
 }
 
 bool fits(int64_t raw, const FixedFormat& f) { return raw >= f.raw_min() && raw <= f.raw_max(); }
 
 // One rule for every payload check, so binary and text input fail with the same message.
-void check_payload(const std::string& loc, const char* field, const std::vector<int64_t>& values,
+void check_payload(const Where& loc, const char* field, const std::vector<int64_t>& values,
                    size_t expected_count, const FixedFormat& format) {
   if (values.size() != expected_count) {
     throw CommandStreamError(loc + field + ": expected " + std::to_string(expected_count) +
@@ -44,7 +59,7 @@ void check_payload(const std::string& loc, const char* field, const std::vector<
   }
 }
 
-void validate_command(const Command& cmd, const UnitConfig& cfg, const std::string& loc) {
+void validate_command(const Command& cmd, const UnitConfig& cfg, const Where& loc) {
   const int64_t xy_max = (int64_t{1} << cfg.xy_bits) - 1;
   if (const auto* m = std::get_if<MaterialCmd>(&cmd)) {
     check_payload(loc, "material.ambient", m->ambient, cfg.channels, cfg.series);
@@ -119,7 +134,7 @@ void validate_command(const Command& cmd, const UnitConfig& cfg, const std::stri
 // signed bits (rtl/span_setup.sv wraps them): a stream whose offsets do not fit would shade
 // wrong pixels, so it is rejected naming both commands.
 void check_span_offsets(const SpanCmd& s, const TriangleCmd& t, size_t tri_at,
-                        const UnitConfig& cfg, const std::string& loc) {
+                        const UnitConfig& cfg, const Where& loc) {
   const int64_t dx = int64_t{s.x0} - t.xo, dy = int64_t{s.y} - t.yo;
   if (cfg.offsets_fit(dx, dy)) return;
   const int64_t hi = (int64_t{1} << (cfg.offset_bits - 1)) - 1;
@@ -178,6 +193,27 @@ std::vector<uint64_t> CommandStream::encode() const {
       for (auto v : tb->entries) words.push_back(static_cast<uint64_t>(v));
     } else {
       words.push_back(CommandWord::end_frame().bits);
+    }
+  }
+  return words;
+}
+
+size_t CommandStream::word_count() const {
+  const auto triangle_words = static_cast<size_t>(CoefLayout::of(config).words);
+  const auto span_payload =
+      config.host_setup() ? static_cast<size_t>(StartLayout::of(config).words) : size_t{0};
+  size_t words = 0;
+  for (const auto& cmd : commands) {
+    if (const auto* m = std::get_if<MaterialCmd>(&cmd)) {
+      words += 1 + m->payload_words();
+    } else if (std::holds_alternative<TriangleCmd>(cmd)) {
+      words += 1 + triangle_words;
+    } else if (std::holds_alternative<SpanCmd>(cmd)) {
+      words += 1 + span_payload;
+    } else if (const auto* tb = std::get_if<TableCmd>(&cmd)) {
+      words += 1 + tb->entries.size();
+    } else {
+      words += 1;
     }
   }
   return words;
@@ -527,7 +563,7 @@ CommandStream CommandStream::read_text(std::istream& is, const std::string& sour
       continue;
     }
     cs.commands.push_back(read_command(in));
-    validate_command(cs.commands.back(), cs.config, loc);
+    validate_command(cs.commands.back(), cs.config, Where{source, line_no, nullptr});
   }
   if (!have_header) throw CommandStreamError(source + ": empty command stream (no header line)");
   return cs;

@@ -144,6 +144,8 @@ struct CommandStream {
   void validate(const std::string& source) const;
 
   std::vector<uint64_t> encode() const;
+  // encode().size(), without forming the words.
+  size_t word_count() const;
   static CommandStream decode(const std::vector<uint64_t>& words, const UnitConfig& config,
                               const std::string& source);
 

@@ -109,7 +109,8 @@ TEST_F(Derivation, WarningsCheckTheUnitUnderTestNotATrialUnit) {
   const PreparedFrame frame = prepare_frame(path, fo);
   const ErrorStats e = render_at(path, frame.config);
   ASSERT_GT(e.max_code_lsb, 100);
-  const auto w = accuracy_warnings(path, frame.config, std::nullopt, 12, frame, e);
+  const PreparedScene prepared(path, PrepareKey{std::nullopt, 12, frame.config.out_bits});
+  const auto w = accuracy_warnings(prepared, frame.config, frame.encoded.stream, e);
   auto has = [&w](const std::string& text) {
     return std::any_of(w.begin(), w.end(),
                        [&](const std::string& s) { return s.find(text) != std::string::npos; });
@@ -125,7 +126,8 @@ TEST_F(Derivation, WarningsCheckTheUnitUnderTestNotATrialUnit) {
   own_fo.fixed_unit = true;
   const PreparedFrame own_frame = prepare_frame(path, own_fo);
   const ErrorStats own_e = render_at(path, own);
-  EXPECT_TRUE(accuracy_warnings(path, own, std::nullopt, 12, own_frame, own_e).empty());
+  const PreparedScene own_prepared(path, PrepareKey{std::nullopt, 12, own.out_bits});
+  EXPECT_TRUE(accuracy_warnings(own_prepared, own, own_frame.encoded.stream, own_e).empty());
 }
 
 TEST_F(Derivation, AMissIsExplainedByTheSpecularUnitWhenExactPowMeetsTheBudget) {
@@ -138,7 +140,8 @@ TEST_F(Derivation, AMissIsExplainedByTheSpecularUnitWhenExactPowMeetsTheBudget) 
   UnitConfig exact = unit;
   exact.specular.kind = SpecularUnitKind::kIdeal;
   ASSERT_LE(render_at(path, exact).max_code_lsb, 1);  // the premise, measured
-  const std::string why = explain_miss(path, unit, std::nullopt, 12, e);
+  const std::string why =
+      explain_miss(PreparedScene(path, PrepareKey{std::nullopt, 12, unit.out_bits}), unit, e);
   EXPECT_NE(why.find("approximates t^n too coarsely"), std::string::npos) << why;
 }
 
@@ -147,9 +150,10 @@ TEST_F(Derivation, AMissNeitherUnitNorFormatsCauseIsTheTaylorSetup) {
   // exact pow and formats that lose nothing alike.
   const std::string path = write_scene("coarse", 1.0, material("ideal", 60), 4);
   UnitConfig unit;
-  const ErrorStats e = scene_error(path, unit, std::nullopt, 0);
+  const ErrorStats e = render_at(path, unit, std::nullopt, 0);
   ASSERT_GT(e.max_code_lsb, 1);
-  const std::string why = explain_miss(path, unit, std::nullopt, 0, e);
+  const std::string why =
+      explain_miss(PreparedScene(path, PrepareKey{std::nullopt, 0, unit.out_bits}), unit, e);
   EXPECT_NE(why.find("neither the specular unit nor the formats"), std::string::npos) << why;
   EXPECT_NE(why.find("--max-depth 0"), std::string::npos) << why;
 }
@@ -163,7 +167,7 @@ TEST_F(Derivation, WhereExactPowMissesTooNoOtherUnitIsTried) {
   const DerivedConfig d = derive_config({path}, o);
   EXPECT_NE(specular_reason(d).find("no other unit is tried"), std::string::npos)
       << specular_reason(d);
-  EXPECT_GT(scene_error(path, d.config, std::nullopt, 0).max_code_lsb, 1);
+  EXPECT_GT(render_at(path, d.config, std::nullopt, 0).max_code_lsb, 1);
 }
 
 TEST_F(Derivation, ANamedLutIsSearchedToTheBudget) {
@@ -217,8 +221,8 @@ TEST_F(Derivation, BudgetsOtherThanOneLsb) {
   const DerivedConfig l = derive_config({path}, loose);
   EXPECT_LT(l.config.series.frac_bits(), t.config.series.frac_bits());
   EXPECT_LT(l.config.coef.frac_bits(), t.config.coef.frac_bits());
-  EXPECT_LE(scene_error(path, t.config, 0.5, 12).max_code_lsb, code_budget(0.5));
-  EXPECT_LE(scene_error(path, l.config, 3.0, 12).max_code_lsb, code_budget(3.0));
+  EXPECT_LE(render_at(path, t.config, 0.5, 12).max_code_lsb, code_budget(0.5));
+  EXPECT_LE(render_at(path, l.config, 3.0, 12).max_code_lsb, code_budget(3.0));
 }
 
 }  // namespace

@@ -118,17 +118,17 @@ TEST(SceneConfig, IdealBecomesTheFirstHardwareUnitThatMeetsTheBudget) {
   const std::string why = reason_of(torus, "specular").reason;
   EXPECT_NE(why.find("ideal"), std::string::npos) << why;
   EXPECT_NE(why.find("not hardware"), std::string::npos) << why;
-  EXPECT_LE(scene_error(scene("torus.json"), torus.config, {}, 12).max_code_lsb, 1);
+  EXPECT_LE(render_at(scene("torus.json"), torus.config).max_code_lsb, 1);
   // specular: W_16 alone misses the budget (measured on its own derived unit), so the unit moves
   // to the first fallback that meets it, and the reason names both with their errors.
   DeriveOptions w16_only;
   w16_only.ideal_fallbacks.clear();
   const DerivedConfig w16 = derive_config({scene("specular.json")}, w16_only);
   EXPECT_EQ(w16.config.specular.wpow.max_m, 16);
-  EXPECT_GT(scene_error(scene("specular.json"), w16.config, {}, 12).max_code_lsb, 1);
+  EXPECT_GT(render_at(scene("specular.json"), w16.config).max_code_lsb, 1);
   const DerivedConfig spec = derive_config({scene("specular.json")}, {});
   EXPECT_NE(spec.config.specular.describe(), w16.config.specular.describe());
-  EXPECT_LE(scene_error(scene("specular.json"), spec.config, {}, 12).max_code_lsb, 1);
+  EXPECT_LE(render_at(scene("specular.json"), spec.config).max_code_lsb, 1);
   const std::string tried = reason_of(spec, "specular").reason;
   EXPECT_NE(tried.find(w16.config.specular.describe()), std::string::npos) << tried;
   EXPECT_NE(tried.find("the first within 1 LSB"), std::string::npos) << tried;
@@ -406,8 +406,7 @@ TEST(SceneConfig, ColourScenesMultiplyTheDiffuseColourAndMeetTheBudget) {
   EXPECT_TRUE(d.config.diffuse_multiply());
   EXPECT_EQ(d.config.diffuse_series(), d.config.lights);
   EXPECT_EQ(d.config.series_per_triangle(), d.config.lights + d.config.specular_series());
-  EXPECT_LE(scene_error(multi, d.config, std::nullopt, 12).max_code_lsb,
-            code_budget(d.measured.budget_lsb));
+  EXPECT_LE(render_at(multi, d.config).max_code_lsb, code_budget(d.measured.budget_lsb));
   EXPECT_NE(reason_of(d, "diffuse_colour").reason.find("N.L"), std::string::npos);
 
   DeriveOptions in_series;

@@ -23,6 +23,7 @@
 #include "host/scene_error.h"
 #include "model/cycle_estimate.h"
 #include "tests/support/cli_run.h"
+#include "tests/support/render_at.h"
 
 namespace shadesim {
 namespace {
@@ -147,7 +148,7 @@ Knobs knobs_of(const UnitConfig& u) {
 }
 
 double direct_cpp(const std::string& path, const UnitConfig& u) {
-  return scene_cycles_per_pixel(path, u, std::nullopt, DeriveOptions{}.max_depth);
+  return cycles_at(path, u, std::nullopt, DeriveOptions{}.max_depth).per_pixel();
 }
 
 // The expected choice for `unit`'s widths: every candidate measured directly; the cheapest
@@ -183,7 +184,9 @@ void expect_the_expected_choice(const std::string& path, const DerivedConfig& d)
   EXPECT_EQ(d.cycles_misses.empty(), e.meets) << path;
   EXPECT_DOUBLE_EQ(direct_cpp(path, d.config), e.cpp) << path;
   // The choice's own figure (re-used streams) equals the direct one.
-  const ThroughputChoice again = choose_throughput({path}, DeriveOptions{}, d.config);
+  PreparedScenes prepared;
+  const ThroughputChoice again = choose_throughput(
+      FrameSet(prepared, {path}, prepare_key(DeriveOptions{})), DeriveOptions{}, d.config);
   ASSERT_EQ(again.cycles_per_pixel.size(), 1u);
   EXPECT_DOUBLE_EQ(again.cycles_per_pixel[0], e.cpp) << path;
 }

@@ -242,7 +242,9 @@ void print_estimate_check(std::ostream& os, const UnitConfig& unit, const AreaRe
 // counts them: no gaps, no back-pressure); nullopt without a scene.
 std::optional<double> cycles_per_pixel(const AreaJobOptions& o, const UnitConfig& unit) {
   if (o.scene.empty()) return std::nullopt;
-  return scene_cycles(o.scene, unit, std::nullopt, FrameOptions{}.max_depth).per_pixel();
+  const PreparedScene frame(o.scene,
+                            PrepareKey{std::nullopt, FrameOptions{}.max_depth, unit.out_bits});
+  return scene_cycles(frame, unit).per_pixel();
 }
 
 void write_json_report(const AreaJobOptions& o, const std::string& source, const UnitConfig& unit,

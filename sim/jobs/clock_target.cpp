@@ -79,7 +79,7 @@ std::string clock_figures(const ClockTiming& t, const ClockTarget& target) {
 // Times each rung of the unit's pipelining ladder (pipelining_ladder) until one meets the
 // clock; keeps that one (every rung adds registers, so the first that meets is the cheapest),
 // else the fastest, and states every rung's figures in the "combine_stages" reason.
-ClockOutcome meet_clock(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
+ClockOutcome meet_clock(const FrameSet& frames, const DeriveOptions& options,
                         const ClockTarget& target, DerivedConfig& derived) {
   ClockOutcome out;
   const std::string at = fmt::format("{:g} MHz on {}", target.mhz, site_name(target));
@@ -87,7 +87,7 @@ ClockOutcome meet_clock(const std::vector<std::string>& scene_paths, const Deriv
   std::vector<DerivedConfig> units;
   for (const Pipelining& p : ladder) {
     DerivedConfig piped = derived;
-    if (!units.empty()) pipeline_unit(scene_paths, options, p, "", piped);
+    if (!units.empty()) pipeline_unit(frames, options, p, "", piped);
     out.tried.push_back(time_unit(piped.config, target));
     units.push_back(std::move(piped));
     if (out.tried.back().meets(target.mhz)) {
@@ -121,7 +121,7 @@ ClockOutcome meet_clock(const std::vector<std::string>& scene_paths, const Deriv
         {"combine_stages", "0",
          "the clock: " + clock_figures(plain, target) + " meets " + at + " unpipelined"});
   } else {
-    pipeline_unit(scene_paths, options, ladder[out.chosen], why, derived);
+    pipeline_unit(frames, options, ladder[out.chosen], why, derived);
   }
   return out;
 }

@@ -46,7 +46,7 @@ struct ClockOutcome {
 // (pipelining_ladder: the pixel combine's stages, then the W_m squarings'), timing each rung
 // until one meets it. `derived` becomes the chosen unit, with a "combine_stages" reason stating
 // the figures.
-ClockOutcome meet_clock(const std::vector<std::string>& scene_paths, const DeriveOptions& options,
+ClockOutcome meet_clock(const FrameSet& frames, const DeriveOptions& options,
                         const ClockTarget& target, DerivedConfig& derived);
 
 std::string site_name(const ClockTarget& target);  // "osu018 0.18 um (OpenSTA)", ...

@@ -25,11 +25,6 @@
 namespace shadesim {
 namespace {
 
-// The scene on exactly `config`, through the model and the reference, with render's metrics.
-ErrorStats shade(const std::string& path, const UnitConfig& config, const DeriveOptions& d) {
-  return scene_error(path, config, d.budget_lsb, d.max_depth);
-}
-
 DeriveOptions derive_options(const ConfigOptions& o) {
   DeriveOptions d;
   if (!std::isnan(o.budget_lsb)) d.budget_lsb = o.budget_lsb;
@@ -66,11 +61,12 @@ void print_derivation(const DerivedConfig& derived) {
 // One scene on the derived unit: its error printed, and as JSON. A hardware specular unit gets
 // the exact-pow yardstick on the same widths: what of the error is the unit's own. A scene over
 // the budget adds why to `missed`.
-nlohmann::json check_scene(const std::string& path, const DerivedConfig& derived,
-                           const DeriveOptions& d, std::vector<std::string>& missed) {
+nlohmann::json check_scene(const PreparedScene& frame, const DerivedConfig& derived,
+                           std::vector<std::string>& missed) {
+  const std::string& path = frame.path();
   const UnitConfig& cfg = derived.config;
   const double budget = derived.measured.budget_lsb;
-  const ErrorStats e = shade(path, cfg, d);
+  const ErrorStats e = scene_error(frame, cfg);
   if (e.pixels == 0) {
     // As render: an image with no pixel has no error and no PSNR to report.
     std::cout << "  " << path
@@ -88,7 +84,7 @@ nlohmann::json check_scene(const std::string& path, const DerivedConfig& derived
   if (specular_unit(cfg.specular.kind).hardware) {
     UnitConfig ideal = cfg;
     ideal.specular.kind = SpecularUnitKind::kIdeal;
-    const ErrorStats y = shade(path, ideal, d);
+    const ErrorStats y = scene_error(frame, ideal);
     with_ideal = y;
     std::cout << "    with ideal (exact pow, not hardware) on the same widths: max "
               << y.max_code_lsb << " LSB, max real " << std::setprecision(3) << y.max_real_lsb
@@ -101,7 +97,7 @@ nlohmann::json check_scene(const std::string& path, const DerivedConfig& derived
     yardstick = {{"max_code_lsb", y.max_code_lsb}, {"max_real_lsb", y.max_real_lsb}};
   }
   if (e.max_code_lsb > code_budget(budget))
-    missed.push_back(path + ": " + explain_miss(path, cfg, d.budget_lsb, d.max_depth, e));
+    missed.push_back(path + ": " + explain_miss(frame, cfg, e));
   return {{"scene", path},
           {"with_ideal_specular", yardstick},
           {"within_budget", e.max_code_lsb <= code_budget(budget)},
@@ -173,7 +169,12 @@ bool report_cycles_misses(const DerivedConfig& derived) {
 
 int run_config(const ConfigOptions& o) {
   const DeriveOptions d = derive_options(o);
-  DerivedConfig derived = derive_config(o.scenes, d);
+  check_derive_options(o.scenes, d);
+  // Each scene is prepared once: the derivation's candidates, the clock's rungs and the error
+  // checks below all re-encode and re-shade the same frames.
+  PreparedScenes prepared;
+  const FrameSet frames(prepared, o.scenes, prepare_key(d));
+  DerivedConfig derived = derive_config(frames, d);
   std::optional<ClockOutcome> clock;
   ClockTarget target;
   target.site = parse_clock_site(o.clock_target, "--clock-target");
@@ -181,7 +182,7 @@ int run_config(const ConfigOptions& o) {
   if (target.mhz > 0) {
     target.liberty = o.liberty;
     target.cache_dir = o.area_cache;
-    clock = meet_clock(o.scenes, d, target, derived);
+    clock = meet_clock(frames, d, target, derived);
   }
   print_derivation(derived);
   std::cout << "\nerror on this unit (8-bit codes vs the reference rounded by the same rule; real "
@@ -189,7 +190,8 @@ int run_config(const ConfigOptions& o) {
                "rounding the reference)\n";
   nlohmann::json scenes = nlohmann::json::array();
   std::vector<std::string> missed;
-  for (const auto& path : o.scenes) scenes.push_back(check_scene(path, derived, d, missed));
+  for (size_t i = 0; i < frames.size(); ++i)
+    scenes.push_back(check_scene(frames.at(i), derived, missed));
   if (!o.json_path.empty()) {
     nlohmann::json j = config_json(o, derived, scenes, missed);
     if (clock) j["derivation"]["clock"] = clock_json(target, *clock);

@@ -15,6 +15,7 @@
 #include "host/frame.h"
 #include "host/image.h"
 #include "host/metrics.h"
+#include "host/prepared_scene.h"
 #include "host/reference.h"
 #include "model/shade_unit.h"
 #include "model/specular_units.h"
@@ -120,18 +121,22 @@ RenderImages render_images(const std::filesystem::path& dir) {
 // summary and --json both report from here, so each figure is computed once.
 struct RenderRun {
   FrameOptions fo;
-  PreparedFrame frame;
+  // Prepared once: the accuracy checks re-shade the same frame on variants of the unit.
+  std::unique_ptr<PreparedScene> prepared;
+  UnitConfig unit;
+  EncodedFrame encoded;
+  FrameTimings timings;
   ErrorMap err;
   double model_s = 0, reference_s = 0;
   RenderImages images;
   std::string unit_label;
   std::vector<std::string> warnings;
 
-  const Scene& scene() const { return frame.scene; }
-  const UnitConfig& config() const { return frame.config; }
-  const ProjectStats& projected() const { return frame.project; }
-  const SetupStats& setup() const { return frame.setup.stats; }
-  const EncodeStats& stream() const { return frame.encoded.stats; }
+  const Scene& scene() const { return prepared->scene(); }
+  const UnitConfig& config() const { return unit; }
+  const ProjectStats& projected() const { return prepared->project(); }
+  const SetupStats& setup() const { return prepared->setup().stats; }
+  const EncodeStats& stream() const { return encoded.stats; }
   const ErrorStats& error() const { return err.stats; }
   double model_mpixel_per_s() const { return model_s > 0 ? error().pixels / model_s / 1e6 : 0.0; }
 };
@@ -139,27 +144,32 @@ struct RenderRun {
 RenderRun shade_and_compare(const RenderOptions& o) {
   RenderRun r;
   r.fo = frame_options(o);
-  r.frame = prepare_frame_on(o.scene, r.fo, o.config);
   const FrameOptions& fo = r.fo;
-  const PreparedFrame& frame = r.frame;
-  const Scene& scene = frame.scene;
-  const UnitConfig& cfg = frame.config;
+  r.prepared = std::make_unique<PreparedScene>(
+      o.scene, PrepareKey{fo.budget_lsb, fo.max_depth, fo.base.out_bits});
+  const PreparedScene& frame = *r.prepared;
+  const Scene& scene = frame.scene();
+  r.unit = frame_unit_on(scene, o.scene, fo, o.config);
+  const UnitConfig& cfg = r.unit;
+  r.timings = frame.timings();
+  const auto te = std::chrono::steady_clock::now();
+  r.encoded = encode_frame(scene, cfg, frame.setup(), frame.visibility());
+  r.timings.encode_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - te).count();
 
   ShadeUnit unit(cfg);
   std::vector<PixelOut> pixels;
-  pixels.reserve(frame.encoded.stats.pixels);
+  pixels.reserve(r.encoded.stats.pixels);
   const auto t0 = std::chrono::steady_clock::now();
-  for (const auto& cmd : frame.encoded.stream.commands) {
+  for (const auto& cmd : r.encoded.stream.commands) {
     unit.consume(cmd, [&pixels](const PixelOut& p) { pixels.push_back(p); });
   }
   r.model_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   const auto t1 = std::chrono::steady_clock::now();
-  const ReferenceImage ref =
-      render_reference(frame.setup.triangles, frame.visibility, scene, cfg.channels);
+  const ReferenceImage& ref = frame.reference(cfg.channels);
   r.reference_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
 
-  r.err = compare_to_reference(pixels, ref.values, frame.visibility.owner, scene.width,
+  r.err = compare_to_reference(pixels, ref.values, frame.visibility().owner, scene.width,
                                scene.height, cfg.channels, cfg.out_bits);
 
   // Images: model, reference, error heat map, and the three side by side.
@@ -174,14 +184,14 @@ RenderRun shade_and_compare(const RenderOptions& o) {
   write_png(r.images.reference, ref_png);
   write_png(r.images.error, heat);
   write_png(r.images.compare, hstack({model_png, ref_png, heat}, 4));
-  if (!o.stream_path.empty()) frame.encoded.stream.save(o.stream_path);
+  if (!o.stream_path.empty()) r.encoded.stream.save(o.stream_path);
 
   r.unit_label = cfg.specular.describe() + (cfg.specular.kind == SpecularUnitKind::kIdeal
                                                 ? " (exact pow of the fixed-point t; not hardware)"
                                             : cfg.specular.kind == SpecularUnitKind::kNone
                                                 ? " (no specular term: highlights not shaded)"
                                                 : "");
-  r.warnings = accuracy_warnings(o.scene, cfg, fo.budget_lsb, fo.max_depth, frame, r.err.stats);
+  r.warnings = accuracy_warnings(frame, cfg, r.encoded.stream, r.err.stats);
   return r;
 }
 
@@ -193,7 +203,7 @@ void print_render(const RenderOptions& o, const RenderRun& r) {
   const SetupStats& st = r.setup();
   const EncodeStats& stream = r.stream();
   const ErrorStats& es = r.error();
-  const FrameTimings& timings = r.frame.timings;
+  const FrameTimings& timings = r.timings;
   std::cout << "scene        " << o.scene << "  (" << scene.width << "x" << scene.height << ", "
             << scene.lights.size() << " light(s), eye "
             << (scene.eye_at_infinity ? "at infinity" : "finite") << ")\n"
@@ -247,7 +257,7 @@ void write_render_json(const RenderOptions& o, const RenderRun& r) {
   const SetupStats& st = r.setup();
   const EncodeStats& stream = r.stream();
   const ErrorStats& es = r.error();
-  const FrameTimings& timings = r.frame.timings;
+  const FrameTimings& timings = r.timings;
   nlohmann::json j;
   j["scene"] = o.scene;
   j["width"] = r.scene().width;

@@ -54,4 +54,15 @@ inline PreparedFrame prepare_frame_on(const std::string& scene, const FrameOptio
   }
 }
 
+// frame_unit, with the --config unit named in a scene-does-not-fit error.
+inline UnitConfig frame_unit_on(const Scene& scene, const std::string& scene_path,
+                                const FrameOptions& fo, const std::string& choice) {
+  if (choice == kDefaultUnit) return frame_unit(scene, scene_path, fo);
+  try {
+    return frame_unit(scene, scene_path, fo);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string(e.what()) + " (the unit of --config " + choice + ")");
+  }
+}
+
 }  // namespace shadesim
