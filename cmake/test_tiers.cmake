@@ -73,6 +73,7 @@ set(SHADESIM_GTEST_TIERS
   coverage_test             quick
   cycle_estimate_test       quick
   cycle_model_test          quick
+  derivation_cache_test     quick
   derivation_test           quick
   edge_stimulus_test        quick
   encode_test               quick
@@ -124,6 +125,8 @@ set(SHADESIM_GTEST_CASE_TIERS
   cli_test       "^Cli\\.ReplayLinesRunWhenPastedAndReproduceTheFailure$"           regress
   # regress of every shipped scene's own unit against cycles and the README's table
   cli_test       "^Cli\\.CyclesRegressAndTheReadmeAgreeOnEveryShippedScene$"         regress
+  # regress of sphere's own unit on the Verilated RTL, its unit line
+  derivation_cache_test "^DerivationCache\\.RegressSaysItsOwnUnitWasReused$"       rtl
   # Yosys: a direct run against shadesim area's cell count
   area_test      "^Area\\.CellCountEqualsADirectYosysRunAndTheCacheIsReused$"      rtl
   # Yosys on tiny modules (GE's closed forms) and a small LUT unit (its table RAM bits)

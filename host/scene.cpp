@@ -325,7 +325,7 @@ Transform read_transform(const Reader& r, const json& j, const std::string& path
 }
 
 Object read_object(const Reader& r, const json& j, const std::string& path,
-                   const std::vector<Material>& materials, const std::string& scene_dir) {
+                   const std::vector<Material>& materials, const std::string& scene_path) {
   if (!j.is_object()) r.fail_expected(path, "an object", j);
   const std::string type = r.string(j, path, "type", std::nullopt);
   Object object;
@@ -369,7 +369,7 @@ Object read_object(const Reader& r, const json& j, const std::string& path,
     r.check_keys(j, path, {"name", "type", "material", "file", "transform"});
     std::string file = r.string(j, path, "file", std::nullopt);
     if (file.empty()) r.fail(join(path, "file"), "expected a mesh file path, got an empty string");
-    if (file.front() != '/') file = scene_dir + "/" + file;
+    file = mesh_file_path(scene_path, file);
     try {
       mesh = load_mesh_file(file);
     } catch (const SceneError& e) {
@@ -397,6 +397,10 @@ bool Scene::is_grey() const {
   for (const Material& m : materials)
     if (!grey(m.ambient) || !grey(m.diffuse) || !grey(m.specular)) return false;
   return true;
+}
+
+std::string mesh_file_path(const std::string& scene_path, const std::string& file) {
+  return file.empty() || file.front() == '/' ? file : directory_of(scene_path) + "/" + file;
 }
 
 Scene load_scene(const std::string& path) { return parse_scene(read_file(path), path); }
@@ -448,11 +452,9 @@ Scene parse_scene(const std::string& text, const std::string& path) {
     scene.materials.push_back(m);
   }
 
-  const std::string scene_dir = directory_of(path);
   const json& objects = r.array(root, "", "objects", "objects");
   for (size_t i = 0; i < objects.size(); ++i) {
-    scene.objects.push_back(
-        read_object(r, objects[i], index("objects", i), scene.materials, scene_dir));
+    scene.objects.push_back(read_object(r, objects[i], index("objects", i), scene.materials, path));
   }
   return scene;
 }

@@ -90,4 +90,8 @@ Scene load_scene(const std::string& path);
 // are found relative to its folder.
 Scene parse_scene(const std::string& text, const std::string& path);
 
+// The file a mesh object's "file" names, as load_scene opens it: an absolute path as written, a
+// relative one from the scene file's folder. (The derivation cache keys on that file's bytes.)
+std::string mesh_file_path(const std::string& scene_path, const std::string& file);
+
 }  // namespace shadesim

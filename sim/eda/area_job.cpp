@@ -31,8 +31,9 @@ UnitConfig unit_to_measure(const AreaJobOptions& o, std::string* source) {
   const std::string choice = o.config_path.empty() ? kOwnUnit : o.config_path;
   if (o.scene.empty() && (choice == kOwnUnit || choice == kDefaultUnit))
     throw std::invalid_argument("area: --config " + choice + " is a scene's unit: give the SCENE");
-  const RtlConfig unit = resolve_unit(choice, o.scene);
-  *source = choice == kOwnUnit       ? o.scene + " (its own configuration)"
+  std::string origin;
+  const RtlConfig unit = resolve_unit(choice, o.scene, "--config", &origin);
+  *source = choice == kOwnUnit       ? o.scene + " (its own configuration; " + origin + ")"
             : choice == kDefaultUnit ? o.scene + " (the default widths)"
                                      : choice;
   return unit.unit;

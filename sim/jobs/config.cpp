@@ -21,6 +21,7 @@
 #include "model/specular_units.h"
 #include "model/text_file.h"
 #include "sim/jobs/clock_target.h"
+#include "sim/jobs/derivation_cache.h"
 
 namespace shadesim {
 namespace {
@@ -46,9 +47,10 @@ DeriveOptions derive_options(const ConfigOptions& o) {
   return d;
 }
 
-// The unit, and each field with how it was derived.
-void print_derivation(const DerivedConfig& derived) {
-  std::cout << "unit         " << derived.config.to_string() << "\n\n";
+// The unit (with whether its derivation was reused: `origin`), and each field with how it was
+// derived.
+void print_derivation(const DerivedConfig& derived, const std::string& origin) {
+  std::cout << "unit         " << derived.config.to_string() << "  (" << origin << ")\n\n";
   size_t width = 0;
   for (const auto& r : derived.reasons)
     width = std::max(width, r.field.size() + r.value.size() + 3);
@@ -170,11 +172,12 @@ bool report_cycles_misses(const DerivedConfig& derived) {
 int run_config(const ConfigOptions& o) {
   const DeriveOptions d = derive_options(o);
   check_derive_options(o.scenes, d);
-  // Each scene is prepared once: the derivation's candidates, the clock's rungs and the error
-  // checks below all re-encode and re-shade the same frames.
+  // Each scene is prepared once: the derivation's candidates (on a cache miss), the clock's
+  // rungs and the error checks below all re-encode and re-shade the same frames.
   PreparedScenes prepared;
   const FrameSet frames(prepared, o.scenes, prepare_key(d));
-  DerivedConfig derived = derive_config(frames, d);
+  const CachedDerivation cached = cached_derive_config(frames, d, default_unit_cache_dir());
+  DerivedConfig derived = cached.derived;
   std::optional<ClockOutcome> clock;
   ClockTarget target;
   target.site = parse_clock_site(o.clock_target, "--clock-target");
@@ -184,7 +187,7 @@ int run_config(const ConfigOptions& o) {
     target.cache_dir = o.area_cache;
     clock = meet_clock(frames, d, target, derived);
   }
-  print_derivation(derived);
+  print_derivation(derived, cached.origin());
   std::cout << "\nerror on this unit (8-bit codes vs the reference rounded by the same rule; real "
                "= before "
                "rounding the reference)\n";

@@ -118,10 +118,11 @@ nlohmann::json triangles_json(const std::vector<TriangleCost>& all, const Triang
           {"each", each}};
 }
 
-// The frame on the unit --config names, with the throughput and structure options applied.
-PreparedFrame cycles_frame(const CyclesOptions& o) {
+// The frame on the unit --config names, with the throughput and structure options applied;
+// `note` gets what the unit line says of --config (unit_choice_note).
+PreparedFrame cycles_frame(const CyclesOptions& o, std::string& note) {
   FrameOptions fo;
-  use_unit_choice(o.config, o.scene, o.widths, fo);
+  note = use_unit_choice(o.config, o.scene, o.widths, fo);
   // The throughput knobs given on the command line win over the unit's: "this unit, with a
   // wider port" is the question they answer.
   if (o.port_words > 0) fo.base.port_words = o.port_words;
@@ -259,13 +260,13 @@ std::string payload_line(const UnitConfig& config, const TriangleWords& tw) {
 }
 
 void print_cycles(const CyclesOptions& o, const PreparedFrame& frame, const CyclesCount& c,
-                  const TriangleSummary& tris, double host_s) {
+                  const TriangleSummary& tris, double host_s, const std::string& unit_note) {
   const SlotTiming& slot = c.timing.slot;
   const CycleRun& run = c.run;
   const TriangleWords tw(frame.config);
   std::cout << "scene        " << o.scene << " (" << frame.scene.width << "x" << frame.scene.height
             << ")\n"
-            << "unit         " << frame.config.to_string() << "  (--config " << o.config << ")\n"
+            << "unit         " << frame.config.to_string() << "  (" << unit_note << ")\n"
             << "specular     " << frame.config.specular.describe() << ": latency " << slot.latency
             << ", " << slot.interval << " cycle(s) per pixel\n"
             << "command port " << c.timing.port_words << " word(s) per beat, triangle queue "
@@ -404,11 +405,12 @@ std::vector<std::string> cycles_warnings(const CyclesOptions& o, const PreparedF
 
 int run_cycles(const CyclesOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
-  const PreparedFrame frame = cycles_frame(o);
+  std::string unit_note;
+  const PreparedFrame frame = cycles_frame(o, unit_note);
   const double host_s = seconds_since(t0);
   const CyclesCount c = count_cycles(o, frame);
   const TriangleSummary tris(c.estimate.triangles, o.worst);
-  print_cycles(o, frame, c, tris, host_s);
+  print_cycles(o, frame, c, tris, host_s, unit_note);
   const std::vector<std::string> warnings = cycles_warnings(o, frame, c);
   for (const auto& w : warnings) std::cout << "warning      " << w << '\n';
   if (!o.json_path.empty()) {

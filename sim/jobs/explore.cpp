@@ -20,6 +20,7 @@
 #include "model/text_file.h"
 #include "model/unit_config_file.h"
 #include "sim/eda/area.h"
+#include "sim/jobs/derivation_cache.h"
 #include "sim/jobs/elapsed.h"
 #include "sim/jobs/explore.h"
 #include "sim/jobs/explore_csv.h"
@@ -280,8 +281,9 @@ void choose_start(const ExploreJobOptions& o, ExploreRun& run) {
     d.budget_lsb = o.budget_lsb > 0 ? std::optional<double>(o.budget_lsb) : std::nullopt;
     d.out_bits = o.out_bits;
     d.max_depth = o.max_depth;
-    run.start = derive_config(o.scenes, d).config;
-    run.start_source = "the scenes' own configuration (shadesim config)";
+    const CachedDerivation own = cached_derive_config(o.scenes, d, default_unit_cache_dir());
+    run.start = own.derived.config;
+    run.start_source = "the scenes' own configuration (shadesim config; " + own.origin() + ")";
   }
   if (!o.specular.empty()) {
     run.start.specular.kind = parse_specular_unit(o.specular, "--specular");

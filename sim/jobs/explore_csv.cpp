@@ -19,7 +19,8 @@ std::string csv_quote(const std::string& s) {
   return q + "\"";
 }
 
-double over_1lsb_pct(const ErrorStats& e) {
+// (Named apart from explore.cpp's over_1lsb_pct: the two can share a unity file.)
+double csv_over_1lsb_pct(const ErrorStats& e) {
   return e.pixels ? 100.0 * static_cast<double>(e.pixels_over_1lsb) / static_cast<double>(e.pixels)
                   : 0.0;
 }
@@ -68,7 +69,7 @@ void write_explore_csv(const std::string& path, const ExploreResult& r, int chan
     os << ',' << e.mean_code_lsb;
     for (int c = 0; c < channels; ++c) os << ',' << e.mean_code_lsb_channel[static_cast<size_t>(c)];
     os << ',' << (std::isinf(e.psnr_db) ? std::string("inf") : std::to_string(e.psnr_db)) << ','
-       << e.max_real_lsb << ',' << over_1lsb_pct(e) << ',' << p.figures.cycles_per_pixel << ','
+       << e.max_real_lsb << ',' << csv_over_1lsb_pct(e) << ',' << p.figures.cycles_per_pixel << ','
        << p.figures.area.cells << ',' << (p.meets_budget ? 1 : 0) << ',' << (p.pareto ? 1 : 0)
        << ',' << (r.chosen == i ? 1 : 0);
     library_fields(os, p, o);

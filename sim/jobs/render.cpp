@@ -83,10 +83,12 @@ std::string specular_models(const Scene& scene) {
   return text;
 }
 
-// The frame options and output directory both render modes share.
-FrameOptions frame_options(const RenderOptions& o) {
+// The frame options and output directory both render modes share. `note`, when given, gets
+// what the unit line says of --config (unit_choice_note: whether own was derived or reused).
+FrameOptions frame_options(const RenderOptions& o, std::string* note = nullptr) {
   FrameOptions fo;
-  use_unit_choice(o.config, o.scene, o.widths, fo);
+  const std::string said = use_unit_choice(o.config, o.scene, o.widths, fo);
+  if (note) *note = said;
   if (!std::isnan(o.budget_lsb)) fo.budget_lsb = o.budget_lsb;
   fo.max_depth = o.max_depth;
   if (!o.specular.empty()) fo.specular_override = parse_specular_unit(o.specular, "--specular");
@@ -130,6 +132,7 @@ struct RenderRun {
   double model_s = 0, reference_s = 0;
   RenderImages images;
   std::string unit_label;
+  std::string unit_note;  // "--config own: cached derivation, PATH"
   std::vector<std::string> warnings;
 
   const Scene& scene() const { return prepared->scene(); }
@@ -143,7 +146,7 @@ struct RenderRun {
 
 RenderRun shade_and_compare(const RenderOptions& o) {
   RenderRun r;
-  r.fo = frame_options(o);
+  r.fo = frame_options(o, &r.unit_note);
   const FrameOptions& fo = r.fo;
   r.prepared = std::make_unique<PreparedScene>(
       o.scene, PrepareKey{fo.budget_lsb, fo.max_depth, fo.base.out_bits});
@@ -207,7 +210,7 @@ void print_render(const RenderOptions& o, const RenderRun& r) {
   std::cout << "scene        " << o.scene << "  (" << scene.width << "x" << scene.height << ", "
             << scene.lights.size() << " light(s), eye "
             << (scene.eye_at_infinity ? "at infinity" : "finite") << ")\n"
-            << "unit         " << cfg.to_string() << "  (--config " << o.config << ")\n"
+            << "unit         " << cfg.to_string() << "  (" << r.unit_note << ")\n"
             << "specular     " << r.unit_label << "\n"
             << "triangles    " << pr.triangles_in << " in mesh, " << pr.emitted
             << " after culling; " << st.triangles_out << " after setup (" << st.inputs_split

@@ -5,21 +5,25 @@
 #include "host/frame.h"
 #include "host/scene_config.h"
 #include "sim/eda/rtl_build.h"
+#include "sim/jobs/derivation_cache.h"
 
 namespace shadesim {
 
 namespace fs = std::filesystem;
 
-RtlConfig own_unit(const std::string& scene) {
+RtlConfig own_unit(const std::string& scene, std::string* origin) {
   RtlConfig c;
   c.name = std::string(kOwnUnit) + ":" + fs::path(scene).stem().string();
-  c.unit = derive_config({scene}, DeriveOptions{}).config;
+  const CachedDerivation d =
+      cached_derive_config({scene}, DeriveOptions{}, default_unit_cache_dir());
+  c.unit = d.derived.config;
+  if (origin) *origin = d.origin();
   return c;
 }
 
-RtlConfig resolve_unit(const std::string& text, const std::string& scene,
-                       const std::string& option) {
-  if (text == kOwnUnit) return own_unit(scene);
+RtlConfig resolve_unit(const std::string& text, const std::string& scene, const std::string& option,
+                       std::string* origin) {
+  if (text == kOwnUnit) return own_unit(scene, origin);
   if (text == kDefaultUnit) {
     RtlConfig c;
     c.name = kDefaultUnit;

@@ -21,26 +21,36 @@ inline constexpr const char* kOwnUnit = "own";
 inline constexpr const char* kDefaultUnit = "default";
 
 // The unit `text` names for `scene`, with its label ("own:sphere", "default", the build name, the
-// file). Throws std::invalid_argument naming `option` for an unknown name or a bad file.
+// file). Throws std::invalid_argument naming `option` for an unknown name or a bad file. For
+// own, `origin` (when given) gets how the unit came (own_unit).
 RtlConfig resolve_unit(const std::string& text, const std::string& scene,
-                       const std::string& option = "--config");
+                       const std::string& option = "--config", std::string* origin = nullptr);
 
 // The scene's own unit: the smallest unit that shades it within its error budget, with real
-// specular hardware, or none when the scene has no specular term (host/scene_config.h).
-RtlConfig own_unit(const std::string& scene);
+// specular hardware, or none when the scene has no specular term (host/scene_config.h). Derived
+// once per content and reused (sim/jobs/derivation_cache.h); `origin` (when given) gets which,
+// for the unit line: "cached derivation, PATH" or "derived, cached as PATH".
+RtlConfig own_unit(const std::string& scene, std::string* origin = nullptr);
 
-// Sets `fo`'s unit from the --config in effect; returns its label (own:<scene>, default, the
-// build's name or the file).
+// What a unit line says of the --config in effect: "--config own: cached derivation, PATH",
+// "--config default", "--config lut_d".
+inline std::string unit_choice_note(const std::string& choice, const std::string& origin) {
+  return "--config " + choice + (origin.empty() ? "" : ": " + origin);
+}
+
+// Sets `fo`'s unit from the --config in effect; returns what its unit line says of it
+// (unit_choice_note).
 inline std::string use_unit_choice(const std::string& choice, const std::string& scene,
                                    const WidthOptions& widths, FrameOptions& fo) {
   if (choice == kDefaultUnit) {
     fo.base = widths.to_config();
-    return kDefaultUnit;
+    return unit_choice_note(choice, "");
   }
-  const RtlConfig unit = resolve_unit(choice, scene);
+  std::string origin;
+  const RtlConfig unit = resolve_unit(choice, scene, "--config", &origin);
   fo.base = unit.unit;
   fo.fixed_unit = true;
-  return unit.name;
+  return unit_choice_note(choice, origin);
 }
 
 // prepare_frame, with the --config unit named in a scene-does-not-fit error.

@@ -200,8 +200,9 @@ std::string from_base(const fs::path& base, const std::string& path) {
   return base.empty() || fs::path(path).is_absolute() ? path : (base / path).string();
 }
 
-RtlConfig resolve_config(const RunSpec& s, const fs::path& base) {
-  if (s.config_kind == kOwnUnit) return own_unit(from_base(base, s.scene));
+// `origin`: for an own unit, whether it was derived now or reused (own_unit).
+RtlConfig resolve_config(const RunSpec& s, const fs::path& base, std::string* origin) {
+  if (s.config_kind == kOwnUnit) return own_unit(from_base(base, s.scene), origin);
   if (s.config_kind == kDefaultUnit) return resolve_unit(kDefaultUnit, from_base(base, s.scene));
   if (s.config_kind == "named") return named_build(named_builds_path(), s.config);
   return resolve_rtl_config(from_base(base, s.config), "--config");
@@ -522,7 +523,8 @@ std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& ou
     } else {
       first_of_pair[pair] = jobs.size();
       try {
-        j.build = build_for_run(resolve_config(spec, base), !settings.fault.empty());
+        std::string origin;
+        j.build = build_for_run(resolve_config(spec, base, &origin), !settings.fault.empty());
         j.build.name = spec.config;
         if (netlists) {
           // A token until resolve_netlists (the build's key needs the netlist's contents).
@@ -530,6 +532,7 @@ std::vector<Job> plan_jobs(const std::vector<RunSpec>& specs, const fs::path& ou
         }
         j.rec.unit = nlohmann::json::parse(config_to_json(j.build.unit));
         j.rec.unit_text = j.build.unit.to_string() + fault_text(j.build.faults);
+        if (!origin.empty()) j.rec.unit_text += "  (" + origin + ")";
         std::ofstream(j.unit_path) << config_to_json(j.build.unit) << '\n';
         FrameOptions fo;
         fo.base = j.build.unit;

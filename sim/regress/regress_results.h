@@ -47,7 +47,8 @@ std::string file_label(const std::string& config);
 struct RunRecord {
   RunSpec spec;
   std::string scene_name;  // the scene's stem
-  std::string unit_text;   // the unit in one line, with its injected faults
+  std::string unit_text;   // the unit in one line, with its injected faults (and
+                           // for own: derived or a cached derivation)
   nlohmann::json unit;     // config_to_json of the unit (null when it could not be made)
   std::string status = "pending";
   std::string message;
