@@ -187,6 +187,9 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
   EncodedFrame frame;
   frame.stream.config = config;
   auto& cmds = frame.stream.commands;
+  // Every span, a TRIANGLE per triangle (more where one re-origins), the materials' switches:
+  // reserved once, so a large frame's commands are not copied by doubling growth.
+  cmds.reserve(vis.spans.size() + setup.triangles.size() + scene.materials.size() + 2);
   EncodeStats& stats = frame.stats;
   const CoefficientWriter writer(config, stats);
   int current_material = -1;
@@ -259,7 +262,7 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
   // Host span setup: the same frame, each span's start values in place of the coefficients.
   if (config.host_setup()) {
     frame.stream.config.span_setup = SpanSetupSite::kUnit;
-    frame.stream = with_host_setup(frame.stream);
+    frame.stream = with_host_setup(std::move(frame.stream));
   }
   stats.words = frame.stream.word_count();
   frame.stream.validate("encoder");

@@ -72,6 +72,8 @@ TriangleSeries setup_with(const ScreenTriangle& tri, const Lighting& li, Specula
   auto expand_about = [&](double x0, double y0) {
     s.diffuse.clear();
     s.specular.clear();
+    s.diffuse.reserve(lights);
+    s.specular.reserve(lights);
     for (std::size_t l = 0; l < lights; ++l) {
       s.diffuse.push_back(taylor_diffuse(*N, li.L[l], x0, y0));
       if (model == SpecularModel::kPhong) {
@@ -309,6 +311,9 @@ SetupResult subdivide_and_setup(const std::vector<ScreenTriangle>& in, const Sce
   SetupResult out;
   out.stats.triangles_in = in.size();
   out.first_out.reserve(in.size() + 1);
+  out.triangles.reserve(in.size());  // at least one out per input: less doubling growth
+  out.series.reserve(in.size());
+  out.error_lsb.reserve(in.size());
   for (std::size_t i = 0; i < in.size(); ++i) {
     out.first_out.push_back(out.triangles.size());
     const std::size_t splits_before = out.stats.splits;

@@ -169,6 +169,7 @@ void CommandStream::validate(const std::string& source) const {
 
 std::vector<uint64_t> CommandStream::encode() const {
   std::vector<uint64_t> words;
+  words.reserve(word_count());  // a 4K frame's words: no doubling growth on top of the stream
   const CoefLayout layout = CoefLayout::of(config);
   const StartLayout start_layout = StartLayout::of(config);
   for (const auto& cmd : commands) {

@@ -1,5 +1,6 @@
 #include "model/host_setup.h"
 
+#include <optional>
 #include <utility>
 #include <variant>
 
@@ -37,6 +38,39 @@ CommandStream with_host_setup(const CommandStream& unit_stream) {
     }
     out.commands.push_back(cmd);
   }
+  return out;
+}
+
+CommandStream with_host_setup(CommandStream&& unit_stream) {
+  CommandStream out = std::move(unit_stream);
+  const UnitConfig c = out.config;
+  out.config.span_setup = SpanSetupSite::kHost;
+  const SpanSetup setup(c.coef, c.series, c.offset_bits);
+  const int series = c.series_per_triangle();
+  // Commands move down over the TRIANGLEs they drop (write <= read), so the triangle a span
+  // needs is kept aside: its slot may be overwritten before the triangle's last span is read.
+  std::optional<TriangleCmd> tri;
+  size_t write = 0;
+  for (size_t read = 0; read < out.commands.size(); ++read) {
+    Command& cmd = out.commands[read];
+    if (auto* t = std::get_if<TriangleCmd>(&cmd)) {
+      tri = std::move(*t);
+      continue;
+    }
+    if (auto* s = std::get_if<SpanCmd>(&cmd)) {
+      if (!tri) throw CommandStreamError("host setup: span before any tri command");
+      s->starts.clear();
+      s->starts.reserve(static_cast<size_t>(StartLayout::kValuesPerSeries * series));
+      for (int i = 0; i < series; ++i) {
+        const SeriesStart st = setup(&tri->coef[static_cast<size_t>(i) * kTermsPerSeries],
+                                     s->x0 - tri->xo, s->y - tri->yo);
+        s->starts.insert(s->starts.end(), {st.v, st.d, st.d2});
+      }
+    }
+    if (write != read) out.commands[write] = std::move(cmd);
+    ++write;
+  }
+  out.commands.resize(write);  // no shrink_to_fit: it would copy every command once more
   return out;
 }
 

@@ -12,5 +12,7 @@ namespace shadesim {
 // offsets from its origin - so every pixel is the unit-setup stream's, bit for bit. The result's
 // config is unit_stream's with span_setup kHost.
 CommandStream with_host_setup(const CommandStream& unit_stream);
+// The same, converting `unit_stream` in place: a large frame never holds both streams.
+CommandStream with_host_setup(CommandStream&& unit_stream);
 
 }  // namespace shadesim

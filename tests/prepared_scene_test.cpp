@@ -13,6 +13,7 @@
 #include "host/scene_config.h"
 #include "host/scene_error.h"
 #include "model/command_stream.h"
+#include "model/host_setup.h"
 #include "tests/support/render_at.h"
 
 namespace shadesim {
@@ -50,6 +51,20 @@ TEST(PreparedScene, EncodesEveryUnitAsAFreshFrameDoes) {
       EXPECT_EQ(got.stats.words, got.stream.encode().size()) << name;
       EXPECT_EQ(got.stream.word_count(), got.stream.encode().size()) << name;
     }
+  }
+}
+
+TEST(HostSetup, ConvertingInPlaceGivesTheCopysWords) {
+  for (const std::string& name : kScenes) {
+    UnitConfig unit = derive_config({scene(name)}, DeriveOptions{}).config;
+    unit.span_setup = SpanSetupSite::kUnit;
+    unit.tri_queue = 1;
+    const CommandStream unit_stream = frame_at(scene(name), unit).encoded.stream;
+    CommandStream consumed = unit_stream;
+    const CommandStream copied = with_host_setup(unit_stream);
+    const CommandStream in_place = with_host_setup(std::move(consumed));
+    EXPECT_EQ(in_place.encode(), copied.encode()) << name;
+    EXPECT_EQ(config_to_json(in_place.config), config_to_json(copied.config)) << name;
   }
 }
 
