@@ -18,7 +18,9 @@ rm -rf "$work"
 mkdir -p "$work"
 log=$work/log.txt
 
-# Each script's tiny run and the line its report ends with (an extended regex).
+# Each script's tiny run and the line its report ends with (an extended regex); `also`: other
+# lines it must print.
+also=()
 case $script in
   throughput-table)  # cycles per pixel of one scene's own unit per variant (no RTL, no Yosys)
     args=("$here/scenes/sphere.json")
@@ -39,8 +41,13 @@ case $script in
   bench-explore)  # the width-point benchmark and explore on the sphere, twice each (with one
     export RUNS=2  # repetition Google Benchmark prints no median, and the script prints nothing)
     args=()
-    also='^BM_ExplorePoint.*_median '
+    also=('^BM_ExplorePoint.*_median ')
     expect='^median .* points; target ' ;;
+  bench-scaling)  # the smallest points (64x64, 320x180; 1k and 3k triangles at 320x180) once,
+    args=(--quick)  # every command; the model benchmark at a short minimum time
+    also=('^res-64x64 +64x64 +[0-9]+ +[0-9]+ +[0-9]+ \| +[0-9.]+ +[0-9]+ \| '
+          '^tri-3k +320x180 ' '^model: [0-9.]+ M pixels/s per core ')
+    expect='^bench-scaling: 4 scene\(s\), 0 timeout\(s\)$' ;;
   bench-new-config)  # one never-built configuration of the sphere, quick Verilator build
     args=(--scene "$here/scenes/sphere.json" --repeats 1 --opt quick)
     expect='^new configuration on sphere.json, cpp backend: median ' ;;
@@ -53,8 +60,9 @@ status=0
 echo "scripts/$script ${args[*]}: exit $status in $(($(date +%s) - start)) s (log: $log)"
 tail -n 15 "$log"
 [ "$status" -eq 0 ] || { echo "FAIL: scripts/$script exited $status"; exit 1; }
-[ -z "${also:-}" ] || grep -Eq "$also" "$log" ||
-  { echo "FAIL: scripts/$script printed no line matching /$also/"; exit 1; }
+for re in "${also[@]}"; do  # further lines the report must have
+  grep -Eq "$re" "$log" || { echo "FAIL: scripts/$script printed no line matching /$re/"; exit 1; }
+done
 grep -Eq "$expect" "$log" ||
   { echo "FAIL: scripts/$script printed no line matching /$expect/"; exit 1; }
 if [ "$script" = bench ]; then  # every benchmark executable ran
