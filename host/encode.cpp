@@ -19,7 +19,12 @@ class CoefficientWriter {
  public:
   CoefficientWriter(const UnitConfig& config, EncodeStats& stats)
       : coef_wl_(config.coef.wl), stats_(stats) {
-    for (int k = 0; k < kTermsPerSeries; ++k) terms_[static_cast<size_t>(k)] = config.coef_term(k);
+    for (int k = 0; k < kTermsPerSeries; ++k) {
+      const FixedFormat& term = terms_[static_cast<size_t>(k)] = config.coef_term(k);
+      const double lsb = std::ldexp(1.0, -term.frac_bits());
+      in_range_[static_cast<size_t>(k)] = {(term.raw_min() - 0.5) * lsb,
+                                           (term.raw_max() + 0.5) * lsb};
+    }
   }
 
   // Appends a*q + b (q about the origin pixel's centre) as T0..T5, each in its term's format.
@@ -28,8 +33,8 @@ class CoefficientWriter {
       const FixedFormat& term = terms_[static_cast<size_t>(k)];
       const double value = a * q.t[k] + (k == 0 ? b : 0.0);
       if (!std::isfinite(value)) throw std::runtime_error("encoder: non-finite Taylor coefficient");
-      const double lsb = std::ldexp(1.0, -term.frac_bits());
-      if (value >= (term.raw_max() + 0.5) * lsb || value < (term.raw_min() - 0.5) * lsb) {
+      const auto& [lo, hi] = in_range_[static_cast<size_t>(k)];
+      if (value >= hi || value < lo) {
         // A term narrower than coef saturates; one in coef's own format follows coef's rule.
         ++(term.wl < coef_wl_ ? stats_.narrow_terms_saturated : stats_.coefficients_out_of_range);
       }
@@ -39,6 +44,8 @@ class CoefficientWriter {
 
  private:
   std::array<FixedFormat, kTermsPerSeries> terms_;
+  // Per term, the values that round into its range: [lo, hi).
+  std::array<std::pair<double, double>, kTermsPerSeries> in_range_;
   int coef_wl_;
   EncodeStats& stats_;
 };

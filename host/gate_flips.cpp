@@ -9,6 +9,7 @@
 
 #include "host/encode.h"
 #include "host/metrics.h"
+#include "host/parallel.h"
 #include "model/shade_unit.h"
 
 namespace shadesim {
@@ -88,11 +89,15 @@ UnitConfig with_more_fraction_bits(const UnitConfig& unit, int bits) {
 
 namespace {
 
-GateFlips measure_on(const Geometry& frame, const UnitConfig& unit, int budget_codes,
+GateFlips measure_on(const Geometry& frame, const UnitConfig& unit, int budget_codes, int threads,
                      const std::function<void(const ShadedFrame&)>& on_unit) {
   const int most = most_fraction_bits(unit);
-  const ShadedFrame widest = shade(frame, with_more_fraction_bits(unit, most));
-  const ShadedFrame shaded = shade(frame, unit);
+  // The yardstick and the unit are two independent shadings of the frame: side by side.
+  const std::vector<UnitConfig> units = {with_more_fraction_bits(unit, most), unit};
+  std::vector<ShadedFrame> both = parallel_map<ShadedFrame>(
+      units.size(), threads, [&](size_t i) { return shade(frame, units[i]); });
+  const ShadedFrame& widest = both[0];
+  const ShadedFrame& shaded = both[1];
   if (on_unit) on_unit(shaded);
   GateFlips f = count_flips(shaded, widest, unit.channels, budget_codes);
   f.fixed = unit;
@@ -125,10 +130,11 @@ GateFlips measure_on(const Geometry& frame, const UnitConfig& unit, int budget_c
 GateFlips measure_gate_flips(const Scene& scene, const SetupResult& setup,
                              const Visibility& visibility, const UnitConfig& unit,
                              int budget_codes) {
-  return measure_on(Geometry{scene, setup, visibility}, unit, budget_codes, nullptr);
+  return measure_on(Geometry{scene, setup, visibility}, unit, budget_codes, 1, nullptr);
 }
 
-GateFlips measure_gate_flips(const PreparedScene& frame, const UnitConfig& unit, int budget_codes) {
+GateFlips measure_gate_flips(const PreparedScene& frame, const UnitConfig& unit, int budget_codes,
+                             int threads) {
   const Scene& scene = frame.scene();
   const auto record_error = [&](const ShadedFrame& shaded) {
     frame.error_on(unit, [&] {
@@ -138,7 +144,7 @@ GateFlips measure_gate_flips(const PreparedScene& frame, const UnitConfig& unit,
           .stats;
     });
   };
-  return measure_on(Geometry{scene, frame.setup(), frame.visibility()}, unit, budget_codes,
+  return measure_on(Geometry{scene, frame.setup(), frame.visibility()}, unit, budget_codes, threads,
                     record_error);
 }
 

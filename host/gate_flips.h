@@ -37,7 +37,9 @@ inline GateFlips measure_gate_flips(const PreparedFrame& frame, const UnitConfig
   return measure_gate_flips(frame.scene, frame.setup, frame.visibility, unit, budget_codes);
 }
 // The same on a prepared scene; the shading of `unit` also gives its error against the frame's
-// reference, which scene_error then finds measured (PreparedScene::error_on).
-GateFlips measure_gate_flips(const PreparedScene& frame, const UnitConfig& unit, int budget_codes);
+// reference, which scene_error then finds measured (PreparedScene::error_on). With threads 2
+// (0: the hardware's) the unit and its yardstick are shaded side by side, holding two streams.
+GateFlips measure_gate_flips(const PreparedScene& frame, const UnitConfig& unit, int budget_codes,
+                             int threads = 1);
 
 }  // namespace shadesim

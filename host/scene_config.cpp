@@ -798,8 +798,7 @@ DerivedConfig derive_widths(const FrameSet& frames, const DeriveOptions& options
 namespace {
 
 // The largest error of `config` over the scenes, in output codes.
-int max_code_error(const FrameSet& frames, const UnitConfig& config, const DeriveOptions& options) {
-  (void)options;
+int max_code_error(const FrameSet& frames, const UnitConfig& config) {
   int worst = 0;
   for (size_t i = 0; i < frames.size(); ++i) {
     worst = std::max(worst, scene_error(frames.at(i), config).max_code_lsb);
@@ -812,11 +811,10 @@ int max_code_error(const FrameSet& frames, const UnitConfig& config, const Deriv
 void hold_the_gate(const FrameSet& frames, const DeriveOptions& options, DerivedConfig& d) {
   int bits = 0;
   std::string why;
-  (void)options;
   for (size_t i = 0; i < frames.size(); ++i) {
     const std::string& path = frames.path(i);
-    const GateFlips f =
-        measure_gate_flips(frames.at(i), d.config, code_budget(d.measured.budget_lsb));
+    const GateFlips f = measure_gate_flips(
+        frames.at(i), d.config, code_budget(d.measured.budget_lsb), thread_count(options.threads));
     if (f.pixels == 0 || f.fix_bits <= bits) continue;  // fix_bits -1: no width holds it
     bits = f.fix_bits;
     why = "; +" + std::to_string(bits) +
@@ -944,7 +942,7 @@ struct UnitTrial {
 
 UnitTrial try_unit(const FrameSet& frames, const DeriveOptions& options, DerivedConfig derived) {
   UnitTrial t;
-  t.error = max_code_error(frames, derived.config, options);
+  t.error = max_code_error(frames, derived.config);
   for (size_t i = 0; i < frames.size(); ++i) {
     const SceneCycles c = derived.cycles.size() == frames.size()
                               ? derived.cycles[i]
@@ -959,7 +957,7 @@ bool exact_pow_misses(const FrameSet& frames, const DeriveOptions& options, cons
                       int allowed) {
   UnitConfig exact = unit;
   exact.specular.kind = SpecularUnitKind::kIdeal;
-  return max_code_error(frames, exact, options) > allowed;
+  return max_code_error(frames, exact) > allowed;
 }
 
 // Budget first: a unit within the budget is taken unless it costs more cycles than the target

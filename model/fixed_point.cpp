@@ -39,6 +39,22 @@ int64_t FixedFormat::quantize(Int128 raw, int src_frac) const {
 int64_t FixedFormat::from_double(double x) const {
   if (std::isnan(x)) throw std::invalid_argument("FixedFormat::from_double: NaN");
   if (std::isinf(x)) return x > 0 ? raw_max() : raw_min();
+  // The encoder's hot path, the same rule: x 2^F is exact (a power-of-two scale that neither
+  // overflows nor underflows here), floor() is truncation's shift, and adding 1/2 is exact
+  // while |x 2^F| < 2^52 (at or beyond it x 2^F is already an integer). Anything else takes
+  // the general route below.
+  const int frac = frac_bits();
+  if (frac >= 0 && frac <= 62) {
+    const double scaled = x * static_cast<double>(int64_t{1} << frac);
+    constexpr double kExactHalf = 4503599627370496.0;  // 2^52
+    constexpr double kInt64 = 4611686018427387904.0;   // 2^62
+    if (std::fabs(scaled) < kInt64) {
+      const double integer = quant == Quantization::kRoundNearest && std::fabs(scaled) < kExactHalf
+                                 ? std::floor(scaled + 0.5)
+                                 : std::floor(scaled);
+      return fit(Int128{static_cast<int64_t>(integer)});
+    }
+  }
   // x = mantissa * 2^-src_frac exactly, with a 53-bit integer mantissa.
   int exponent = 0;
   const double fraction = std::frexp(x, &exponent);
