@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -187,17 +188,55 @@ void check_scene_fits(const Scene& scene, const UnitConfig& config) {
   }
 }
 
-EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const SetupResult& setup,
-                          const Visibility& vis) {
+namespace {
+
+// Where encode_frame_chunks collects commands until a chunk is due.
+class ChunkWriter {
+ public:
+  ChunkWriter(const UnitConfig& config, EncodeStats& stats, const ChunkSink& sink,
+              size_t chunk_commands)
+      : config_(config), stats_(stats), sink_(sink), chunk_commands_(chunk_commands) {
+    chunk_.reserve(chunk_commands_ + 64);
+  }
+  std::vector<Command>& commands() { return chunk_; }
+  // After a triangle's last span: the chunk goes when full. Chunks end only there, so a span
+  // and its TRIANGLE always share one (host setup and validation read them together).
+  void triangle_done() {
+    if (chunk_.size() >= chunk_commands_) flush();
+  }
+  void flush() {
+    CommandStream stream;
+    stream.config = config_;
+    stream.config.span_setup = SpanSetupSite::kUnit;
+    stream.commands = std::move(chunk_);
+    chunk_ = {};
+    chunk_.reserve(chunk_commands_ + 64);
+    // Host span setup: the same commands, each span's start values in place of the
+    // coefficients.
+    if (config_.host_setup()) stream = with_host_setup(std::move(stream));
+    stream.config = config_;
+    stats_.words += stream.word_count();
+    stream.validate("encoder");
+    sink_(std::move(stream));
+  }
+
+ private:
+  const UnitConfig& config_;
+  EncodeStats& stats_;
+  const ChunkSink& sink_;
+  size_t chunk_commands_;
+  std::vector<Command> chunk_;
+};
+
+}  // namespace
+
+EncodeStats encode_frame_chunks(const Scene& scene, const UnitConfig& config,
+                                const SetupResult& setup, const Visibility& vis,
+                                const ChunkSink& sink, size_t chunk_commands) {
   check_scene_fits(scene, config);
   const int scene_lights = static_cast<int>(scene.lights.size());
-  EncodedFrame frame;
-  frame.stream.config = config;
-  auto& cmds = frame.stream.commands;
-  // Every span, a TRIANGLE per triangle (more where one re-origins), the materials' switches:
-  // reserved once, so a large frame's commands are not copied by doubling growth.
-  cmds.reserve(vis.spans.size() + setup.triangles.size() + scene.materials.size() + 2);
-  EncodeStats& stats = frame.stats;
+  EncodeStats stats;
+  ChunkWriter out(config, stats, sink, std::max<size_t>(1, chunk_commands));
   const CoefficientWriter writer(config, stats);
   int current_material = -1;
 
@@ -209,7 +248,7 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
   // A shared table (no reload) is loaded once, before the first pixel.
   for (auto& t : shared_lut_tables(config)) {
     stats.table_words += t.entries.size();
-    cmds.emplace_back(std::move(t));
+    out.commands().emplace_back(std::move(t));
   }
 
   size_t i = 0;
@@ -225,10 +264,10 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
     if (tri.material != current_material) {
       MaterialCmd m = material_command(scene, config, material, plan);
       material_gate_only[static_cast<size_t>(tri.material)] = m.gate_only;
-      cmds.emplace_back(std::move(m));
+      out.commands().emplace_back(std::move(m));
       for (const auto& t : plan.tables) {
         stats.table_words += t.entries.size();
-        cmds.emplace_back(t);
+        out.commands().emplace_back(t);
       }
       stats.table_load_cycles += plan.load_cycles;
       current_material = tri.material;
@@ -253,26 +292,38 @@ EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const Se
       const OriginGroup group = next_origin_group(vis.spans, i, end, centroid, config.offset_bits);
       if (!first_group) ++stats.reorigins;
       first_group = false;
-      cmds.emplace_back(triangle_command(config, scene_lights, series, scene, material,
-                                         material_gate_only[static_cast<size_t>(tri.material)],
-                                         plan, writer, group.origin));
+      out.commands().emplace_back(triangle_command(
+          config, scene_lights, series, scene, material,
+          material_gate_only[static_cast<size_t>(tri.material)], plan, writer, group.origin));
       ++stats.triangles;
       for (; i < group.end; ++i) {
         const Span& s = vis.spans[i];
-        cmds.emplace_back(SpanCmd{s.y, s.x0, s.length, s.last_in_row, {}});
+        out.commands().emplace_back(SpanCmd{s.y, s.x0, s.length, s.last_in_row, {}});
         ++stats.spans;
         stats.pixels += static_cast<size_t>(s.length);
       }
     }
+    out.triangle_done();
   }
-  cmds.emplace_back(EndFrameCmd{});
-  // Host span setup: the same frame, each span's start values in place of the coefficients.
-  if (config.host_setup()) {
-    frame.stream.config.span_setup = SpanSetupSite::kUnit;
-    frame.stream = with_host_setup(std::move(frame.stream));
-  }
-  stats.words = frame.stream.word_count();
-  frame.stream.validate("encoder");
+  out.commands().emplace_back(EndFrameCmd{});
+  out.flush();
+  return stats;
+}
+
+EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const SetupResult& setup,
+                          const Visibility& vis) {
+  EncodedFrame frame;
+  frame.stream.config = config;
+  auto& cmds = frame.stream.commands;
+  // Every span, a TRIANGLE per triangle (more where one re-origins), the materials' switches:
+  // reserved once, so a large frame's commands are not copied by doubling growth.
+  cmds.reserve(vis.spans.size() + setup.triangles.size() + scene.materials.size() + 2);
+  frame.stats = encode_frame_chunks(
+      scene, config, setup, vis,
+      [&cmds](CommandStream&& chunk) {
+        std::move(chunk.commands.begin(), chunk.commands.end(), std::back_inserter(cmds));
+      },
+      kEncodeChunkCommands);
   return frame;
 }
 

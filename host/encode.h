@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 
 #include "host/scene.h"
 #include "host/screen.h"
@@ -50,5 +51,17 @@ void check_scene_fits(const Scene& scene, const UnitConfig& config);
 // colours, and a grey scene on an RGB unit repeats its one channel.
 EncodedFrame encode_frame(const Scene& scene, const UnitConfig& config, const SetupResult& setup,
                           const Visibility& vis);
+
+// The same frame a chunk at a time: each chunk a CommandStream on `config` (host setup applied,
+// validated) of about `chunk_commands` commands, ending after a triangle's last span (the last
+// one with END_FRAME). Concatenated, the chunks are encode_frame's stream, bit for bit; a
+// consumer that shades, walks or counts them as they come never holds the whole frame. Returns
+// the frame's stats.
+using ChunkSink = std::function<void(CommandStream&&)>;
+inline constexpr size_t kEncodeChunkCommands = 16384;
+EncodeStats encode_frame_chunks(const Scene& scene, const UnitConfig& config,
+                                const SetupResult& setup, const Visibility& vis,
+                                const ChunkSink& sink,
+                                size_t chunk_commands = kEncodeChunkCommands);
 
 }  // namespace shadesim

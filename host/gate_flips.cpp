@@ -35,18 +35,18 @@ ShadedFrame shade(const Geometry& frame, const UnitConfig& unit) {
   const size_t n = static_cast<size_t>(width) * static_cast<size_t>(frame.scene.height);
   ShadedFrame out{std::vector<std::array<uint16_t, kMaxChannels>>(n), std::vector<uint8_t>(n, 0),
                   std::vector<bool>(n, false)};
-  const EncodedFrame encoded = encode_frame(frame.scene, unit, frame.setup, frame.visibility);
   ShadeUnit model(unit);
-  out.pixels.reserve(encoded.stats.pixels);
-  for (const Command& cmd : encoded.stream.commands) {
-    model.consume(cmd, [&](const PixelOut& p) {
-      out.pixels.push_back(p);
-      const size_t at = static_cast<size_t>(p.y) * static_cast<size_t>(width) + p.x;
-      out.colour[at] = p.colour;
-      out.gates[at] = p.spec_gates;
-      out.shaded[at] = true;
-    });
-  }
+  const auto take = [&](const PixelOut& p) {
+    out.pixels.push_back(p);
+    const size_t at = static_cast<size_t>(p.y) * static_cast<size_t>(width) + p.x;
+    out.colour[at] = p.colour;
+    out.gates[at] = p.spec_gates;
+    out.shaded[at] = true;
+  };
+  // Shaded as it is encoded: the frame's whole stream is never held.
+  encode_frame_chunks(frame.scene, unit, frame.setup, frame.visibility, [&](CommandStream&& chunk) {
+    for (const Command& cmd : chunk.commands) model.consume(cmd, take);
+  });
   return out;
 }
 

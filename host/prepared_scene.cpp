@@ -38,17 +38,32 @@ const ReferenceImage& PreparedScene::reference(int channels) const {
   return *slot;
 }
 
-EncodedFrame PreparedScene::encode(const UnitConfig& unit) const {
-  if (unit.out_bits != key_.out_bits) {
+namespace {
+
+// `unit` as prepare_frame takes a fixed unit, checked against the scene and the key.
+UnitConfig checked_unit(const std::string& path, const Scene& scene, const PrepareKey& key,
+                        const UnitConfig& unit) {
+  if (unit.out_bits != key.out_bits) {
     throw std::invalid_argument(
-        path_ + ": prepared for " + std::to_string(key_.out_bits) +
+        path + ": prepared for " + std::to_string(key.out_bits) +
         "-bit output, asked to encode for out_bits=" + std::to_string(unit.out_bits));
   }
   FrameOptions fo;
   fo.base = unit;
   fo.fixed_unit = true;
-  const UnitConfig config = frame_unit(scene_, path_, fo);
+  return frame_unit(scene, path, fo);
+}
+
+}  // namespace
+
+EncodedFrame PreparedScene::encode(const UnitConfig& unit) const {
+  const UnitConfig config = checked_unit(path_, scene_, key_, unit);
   return encode_frame(scene_, config, setup_, visibility_);
+}
+
+EncodeStats PreparedScene::encode_chunks(const UnitConfig& unit, const ChunkSink& sink) const {
+  const UnitConfig config = checked_unit(path_, scene_, key_, unit);
+  return encode_frame_chunks(scene_, config, setup_, visibility_, sink);
 }
 
 PreparedFrame PreparedScene::frame_on(const UnitConfig& unit) const {

@@ -56,6 +56,9 @@ class PreparedScene {
   // naming the scene when the unit cannot shade it (lights, channels, xy_bits) or when its
   // out_bits differ from the key's (setup's budget would be in other LSBs).
   EncodedFrame encode(const UnitConfig& unit) const;
+  // The same stream a chunk at a time (encode_frame_chunks): for a consumer that need not hold
+  // the whole frame. Returns its stats.
+  EncodeStats encode_chunks(const UnitConfig& unit, const ChunkSink& sink) const;
 
   // The whole PreparedFrame on exactly `unit`, for code written against it: copies the geometry.
   PreparedFrame frame_on(const UnitConfig& unit) const;

@@ -443,7 +443,9 @@ std::string derive_xy_bits(const std::vector<SceneInfo>& scenes, UnitConfig& cfg
 // The scene prepared on a trial unit of cfg's structure that loses nothing. A sliver triangle
 // (origin far outside it, huge gradient) can need more coefficient integer bits than the first
 // trial holds: the second trades fraction bits the ranges do not need for integer bits.
-EncodedFrame trial_frame(const FrameSet& frames, size_t scene, const UnitConfig& cfg) {
+// The walk takes the stream a chunk at a time as it is encoded, never the whole frame; `w`
+// gains the scene's figures once a trial format holds every coefficient.
+void walk_trial_frame(const FrameSet& frames, size_t scene, const UnitConfig& cfg, Walk& w) {
   UnitConfig trial = cfg;
   trial.series = FixedFormat{kTrialSeriesIwl + kTrialSeriesFrac, kTrialSeriesIwl, true,
                              cfg.series.quant, cfg.series.overflow};
@@ -458,9 +460,15 @@ EncodedFrame trial_frame(const FrameSet& frames, size_t scene, const UnitConfig&
     trial.coef =
         FixedFormat{kTrialCoefWl, coef_iwl, true, Quantization::kRoundNearest, Overflow::kSaturate};
     trial.validate();
-    EncodedFrame frame = frames.at(scene).encode(trial);
-    const size_t over = frame.stats.coefficients_out_of_range;
-    if (over == 0) return frame;
+    Walk scene_walk = w;
+    const size_t over =
+        frames.at(scene)
+            .encode_chunks(trial, [&](CommandStream&& chunk) { walk_stream(chunk, scene_walk); })
+            .coefficients_out_of_range;
+    if (over == 0) {
+      w = scene_walk;
+      return;
+    }
     out_of_range = std::to_string(over) + " Taylor coefficient(s) exceed the trial format " +
                    trial.coef.to_string();
   }
@@ -470,7 +478,7 @@ EncodedFrame trial_frame(const FrameSet& frames, size_t scene, const UnitConfig&
 
 Walk measure_on_trial_unit(const FrameSet& frames, const UnitConfig& cfg) {
   Walk w;
-  for (size_t i = 0; i < frames.size(); ++i) walk_stream(trial_frame(frames, i, cfg).stream, w);
+  for (size_t i = 0; i < frames.size(); ++i) walk_trial_frame(frames, i, cfg, w);
   return w;
 }
 

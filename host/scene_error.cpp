@@ -7,8 +7,13 @@ namespace shadesim {
 
 ErrorStats scene_error(const PreparedScene& frame, const UnitConfig& config) {
   return frame.error_on(config, [&] {
-    const EncodedFrame encoded = frame.encode(config);
-    const auto pixels = ShadeUnit(config).run(encoded.stream);
+    // Shaded as it is encoded: the frame's whole stream is never held.
+    ShadeUnit unit(config);
+    std::vector<PixelOut> pixels;
+    frame.encode_chunks(config, [&](CommandStream&& chunk) {
+      for (const Command& cmd : chunk.commands)
+        unit.consume(cmd, [&pixels](const PixelOut& p) { pixels.push_back(p); });
+    });
     const ReferenceImage& ref = frame.reference(config.channels);
     const Scene& scene = frame.scene();
     return compare_to_reference(pixels, ref.values, frame.visibility().owner, scene.width,

@@ -244,27 +244,6 @@ void explain(const std::vector<ThroughputKnobs>& candidates, size_t chosen,
   c.span_setup = site;
 }
 
-struct StreamCounts {
-  uint64_t triangles = 0, spans = 0, materials = 0, table_words = 0, pixels = 0;
-};
-
-StreamCounts count(const CommandStream& stream) {
-  StreamCounts n;
-  for (const Command& cmd : stream.commands) {
-    if (std::holds_alternative<TriangleCmd>(cmd)) {
-      ++n.triangles;
-    } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
-      ++n.spans;
-      n.pixels += static_cast<uint64_t>(s->length);
-    } else if (std::holds_alternative<MaterialCmd>(cmd)) {
-      ++n.materials;
-    } else if (const auto* t = std::get_if<TableCmd>(&cmd)) {
-      n.table_words += t->entries.size();
-    }
-  }
-  return n;
-}
-
 // The resource behind a breakdown row, in words a designer acts on.
 std::string resource(const std::string& row, const UnitConfig& unit, const StreamCounts& n,
                      const CycleEstimateRun& run) {
@@ -399,11 +378,42 @@ ThroughputChoice choose_throughput(const FrameSet& frames, const DeriveOptions& 
   return c;
 }
 
+StreamCounts& StreamCounts::operator+=(const StreamCounts& o) {
+  triangles += o.triangles;
+  spans += o.spans;
+  materials += o.materials;
+  table_words += o.table_words;
+  pixels += o.pixels;
+  return *this;
+}
+
+StreamCounts count(const CommandStream& stream) {
+  StreamCounts n;
+  for (const Command& cmd : stream.commands) {
+    if (std::holds_alternative<TriangleCmd>(cmd)) {
+      ++n.triangles;
+    } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
+      ++n.spans;
+      n.pixels += static_cast<uint64_t>(s->length);
+    } else if (std::holds_alternative<MaterialCmd>(cmd)) {
+      ++n.materials;
+    } else if (const auto* t = std::get_if<TableCmd>(&cmd)) {
+      n.table_words += t->entries.size();
+    }
+  }
+  return n;
+}
+
 double cycles_per_pixel(const CycleEstimateRun& run) {
   return run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;
 }
 
 std::string cycles_limit(const UnitConfig& unit, const CommandStream& stream,
+                         const CycleEstimateRun& run) {
+  return cycles_limit(unit, count(stream), run);
+}
+
+std::string cycles_limit(const UnitConfig& unit, const StreamCounts& n,
                          const CycleEstimateRun& run) {
   if (!run.breakdown) throw std::logic_error("cycles_limit: the run has no breakdown");
   // The largest row other than pixels (rows() returns a value: keep it while pointing into it).
@@ -412,7 +422,6 @@ std::string cycles_limit(const UnitConfig& unit, const CommandStream& stream,
   for (const auto& r : rows) {
     if (std::string(r.name) != "pixel" && (!row || r.cycles > row->cycles)) row = &r;
   }
-  const StreamCounts n = count(stream);
   const double per_pixel =
       run.pixels ? static_cast<double>(row->cycles) / static_cast<double>(run.pixels) : 0.0;
   return resource(row->name, unit, n, run) + "; " + row->name + " " + grouped(row->cycles) +
@@ -421,11 +430,16 @@ std::string cycles_limit(const UnitConfig& unit, const CommandStream& stream,
 
 std::string cycles_miss(const std::string& scene, const UnitConfig& unit,
                         const CommandStream& stream, const CycleEstimateRun& run, double target) {
+  return cycles_miss(scene, unit, count(stream), run, target);
+}
+
+std::string cycles_miss(const std::string& scene, const UnitConfig& unit, const StreamCounts& n,
+                        const CycleEstimateRun& run, double target) {
   const double cpp = cycles_per_pixel(run);
   if (cpp <= target) return "";
   return scene + ": " + fixed(cpp) + " cycles/px (" + grouped(run.cycles) + " cycles, " +
          grouped(run.pixels) + " pixels; cycle model, no gaps) over the " + target_text(target) +
-         " target; " + cycles_limit(unit, stream, run);
+         " target; " + cycles_limit(unit, n, run);
 }
 
 }  // namespace shadesim

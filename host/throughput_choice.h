@@ -82,6 +82,13 @@ struct ThroughputChoice {
 ThroughputChoice choose_throughput(const FrameSet& frames, const DeriveOptions& options,
                                    const UnitConfig& unit);
 
+// What a stream carries, for the resource a miss names; summed over chunks with +=.
+struct StreamCounts {
+  uint64_t triangles = 0, spans = 0, materials = 0, table_words = 0, pixels = 0;
+  StreamCounts& operator+=(const StreamCounts& o);
+};
+StreamCounts count(const CommandStream& stream);
+
 // Cycles per pixel of a run (0 for a frame without pixels).
 double cycles_per_pixel(const CycleEstimateRun& run);
 
@@ -91,10 +98,15 @@ double cycles_per_pixel(const CycleEstimateRun& run);
 // port (...); command_words 41,016 of 56,120 cycles, 4.7 cycles/px".
 std::string cycles_limit(const UnitConfig& unit, const CommandStream& stream,
                          const CycleEstimateRun& run);
+std::string cycles_limit(const UnitConfig& unit, const StreamCounts& counts,
+                         const CycleEstimateRun& run);
 
 // "" when the run is within `target` cycles per pixel; else one line naming the scene, its
 // cycles per pixel, the target and cycles_limit. `config` and `cycles` both say it with this.
 std::string cycles_miss(const std::string& scene, const UnitConfig& unit,
                         const CommandStream& stream, const CycleEstimateRun& run, double target);
+// The same from a streamed frame's counts (a frame whose stream was never held whole).
+std::string cycles_miss(const std::string& scene, const UnitConfig& unit,
+                        const StreamCounts& counts, const CycleEstimateRun& run, double target);
 
 }  // namespace shadesim

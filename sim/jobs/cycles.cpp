@@ -118,9 +118,53 @@ nlohmann::json triangles_json(const std::vector<TriangleCost>& all, const Triang
           {"each", each}};
 }
 
+// What `cycles` keeps of a frame: its unit, its command words and what they carry. The frame's
+// stream is encoded a chunk at a time straight into words, and its set-up triangles are freed
+// before the words are counted: a 3840x2160 frame never holds its whole command stream.
+struct CyclesFrame {
+  int width = 0, height = 0;
+  UnitConfig config;
+  EncodeStats stats;
+  StreamCounts counts;
+  std::vector<uint64_t> words;
+};
+
+CyclesFrame stream_frame(const std::string& scene_path, const FrameOptions& fo,
+                         const std::string& choice) {
+  CyclesFrame f;
+  const Scene scene = load_scene(scene_path);
+  f.width = scene.width;
+  f.height = scene.height;
+  f.config = frame_unit_on(scene, scene_path, fo, choice);
+  // Each chunk's words kept apart while the geometry lives, joined once it is gone: the words
+  // are never copied by doubling growth next to the set-up triangles.
+  std::vector<std::vector<uint64_t>> chunks;
+  {
+    SetupOptions setup_options;
+    setup_options.budget_lsb = fo.budget_lsb;
+    setup_options.max_depth = fo.max_depth;
+    setup_options.output_bits = f.config.out_bits;
+    ProjectStats project;
+    SetupResult setup;
+    Visibility visibility;
+    FrameTimings timings;
+    prepare_geometry(scene, setup_options, project, setup, visibility, timings);
+    f.stats = encode_frame_chunks(scene, f.config, setup, visibility, [&](CommandStream&& chunk) {
+      f.counts += count(chunk);
+      chunks.push_back(chunk.encode());
+    });
+  }
+  f.words.reserve(f.stats.words);
+  for (auto& c : chunks) {
+    f.words.insert(f.words.end(), c.begin(), c.end());
+    c = {};
+  }
+  return f;
+}
+
 // The frame on the unit --config names, with the throughput and structure options applied;
 // `note` gets what the unit line says of --config (unit_choice_note).
-PreparedFrame cycles_frame(const CyclesOptions& o, std::string& note) {
+CyclesFrame cycles_frame(const CyclesOptions& o, std::string& note) {
   FrameOptions fo;
   note = use_unit_choice(o.config, o.scene, o.widths, fo);
   // The throughput knobs given on the command line win over the unit's: "this unit, with a
@@ -144,7 +188,7 @@ PreparedFrame cycles_frame(const CyclesOptions& o, std::string& note) {
     if (o.channels > 0) fo.base.channels = o.channels;
     if (o.lights > 0) fo.base.lights = o.lights;
   }
-  return prepare_frame_on(o.scene, fo, o.config);
+  return stream_frame(o.scene, fo, o.config);
 }
 
 // Everything one `cycles` run counts.
@@ -160,7 +204,7 @@ struct CyclesCount {
   double estimate_s = 0, model_s = 0;
 };
 
-CyclesCount count_cycles(const CyclesOptions& o, const PreparedFrame& frame) {
+CyclesCount count_cycles(const CyclesOptions& o, CyclesFrame& frame) {
   CyclesCount c;
   Stimulus stim;
   stim.seed = o.seed;
@@ -168,7 +212,7 @@ CyclesCount count_cycles(const CyclesOptions& o, const PreparedFrame& frame) {
   stim.max_gap = o.max_gap;
   stim.stall_pct = o.stall_pct;
   c.timing = CycleConfig::of(frame.config);
-  c.words = frame.encoded.stream.encode();
+  c.words = std::move(frame.words);
   c.no_stimulus = o.gap_pct == 0 && o.stall_pct == 0;
   // The closed form: every figure without gaps or back-pressure, and the per-triangle costs
   // (defined on that schedule, so given with any stimulus).
@@ -259,13 +303,12 @@ std::string payload_line(const UnitConfig& config, const TriangleWords& tw) {
   return payload.str();
 }
 
-void print_cycles(const CyclesOptions& o, const PreparedFrame& frame, const CyclesCount& c,
+void print_cycles(const CyclesOptions& o, const CyclesFrame& frame, const CyclesCount& c,
                   const TriangleSummary& tris, double host_s, const std::string& unit_note) {
   const SlotTiming& slot = c.timing.slot;
   const CycleRun& run = c.run;
   const TriangleWords tw(frame.config);
-  std::cout << "scene        " << o.scene << " (" << frame.scene.width << "x" << frame.scene.height
-            << ")\n"
+  std::cout << "scene        " << o.scene << " (" << frame.width << "x" << frame.height << ")\n"
             << "unit         " << frame.config.to_string() << "  (" << unit_note << ")\n"
             << "specular     " << frame.config.specular.describe() << ": latency " << slot.latency
             << ", " << slot.interval << " cycle(s) per pixel\n"
@@ -275,11 +318,10 @@ void print_cycles(const CyclesOptions& o, const PreparedFrame& frame, const Cycl
             << " material buffer(s)\n"
             << "stimulus     seed " << o.seed << ", input gaps " << o.gap_pct << "% (max "
             << o.max_gap << "), back-pressure " << o.stall_pct << "%\n"
-            << "stream       " << c.words.size() << " words: " << frame.encoded.stats.triangles
-            << " tri (" << frame.encoded.stats.reorigins << " re-origin(s), offset_bits "
-            << frame.encoded.stream.config.offset_bits << "), " << frame.encoded.stats.spans
-            << " spans, " << frame.encoded.stats.materials << " material loads, "
-            << frame.encoded.stats.table_words << " table words\n"
+            << "stream       " << c.words.size() << " words: " << frame.stats.triangles << " tri ("
+            << frame.stats.reorigins << " re-origin(s), offset_bits " << frame.config.offset_bits
+            << "), " << frame.stats.spans << " spans, " << frame.stats.materials
+            << " material loads, " << frame.stats.table_words << " table words\n"
             << payload_line(frame.config, tw) << "pixels       " << run.pixels
             << (c.timing.lanes > 1
                     ? " in " + std::to_string(run.breakdown.pixel) + " beats of up to " +
@@ -335,7 +377,7 @@ void print_cycles(const CyclesOptions& o, const PreparedFrame& frame, const Cycl
   std::cout << "\n";
 }
 
-nlohmann::json cycles_json(const CyclesOptions& o, const PreparedFrame& frame, const CyclesCount& c,
+nlohmann::json cycles_json(const CyclesOptions& o, const CyclesFrame& frame, const CyclesCount& c,
                            const TriangleSummary& tris, double host_s) {
   const TriangleWords tw(frame.config);
   const CycleRun& run = c.run;
@@ -385,13 +427,12 @@ nlohmann::json cycles_json(const CyclesOptions& o, const PreparedFrame& frame, c
 // The cycles target's warning: the unit's no-gap figure (gaps and back-pressure are the
 // testbench's, not the unit's) over --max-cycles-per-pixel, naming the resource that limits it
 // in config's words (cycles_miss). Empty within the target.
-std::vector<std::string> cycles_warnings(const CyclesOptions& o, const PreparedFrame& frame,
+std::vector<std::string> cycles_warnings(const CyclesOptions& o, const CyclesFrame& frame,
                                          const CyclesCount& c) {
   if (shadesim::cycles_per_pixel(c.estimate) <= o.max_cycles_per_pixel) return {};
   const CycleEstimateRun run =
       c.estimate.breakdown ? c.estimate : CycleEstimate(c.timing).run(c.words, true);
-  std::string w =
-      cycles_miss(o.scene, frame.config, frame.encoded.stream, run, o.max_cycles_per_pixel);
+  std::string w = cycles_miss(o.scene, frame.config, frame.counts, run, o.max_cycles_per_pixel);
   if (!c.no_stimulus) {
     std::ostringstream os;
     os << std::fixed << std::setprecision(3) << cycles_per_pixel(c.run);
@@ -406,11 +447,7 @@ std::vector<std::string> cycles_warnings(const CyclesOptions& o, const PreparedF
 int run_cycles(const CyclesOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   std::string unit_note;
-  PreparedFrame frame = cycles_frame(o, unit_note);
-  // The stream is all `cycles` reads from here on: a 4K frame's set-up triangles and
-  // visibility are freed before its words are formed.
-  frame.setup = SetupResult{};
-  frame.visibility = Visibility{};
+  CyclesFrame frame = cycles_frame(o, unit_note);
   const double host_s = seconds_since(t0);
   const CyclesCount c = count_cycles(o, frame);
   const TriangleSummary tris(c.estimate.triangles, o.worst);

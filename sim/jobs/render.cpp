@@ -144,21 +144,11 @@ struct RenderRun {
   double model_mpixel_per_s() const { return model_s > 0 ? error().pixels / model_s / 1e6 : 0.0; }
 };
 
-RenderRun shade_and_compare(const RenderOptions& o) {
-  RenderRun r;
-  r.fo = frame_options(o, &r.unit_note);
-  const FrameOptions& fo = r.fo;
-  r.prepared = std::make_unique<PreparedScene>(
-      o.scene, PrepareKey{fo.budget_lsb, fo.max_depth, fo.base.out_bits});
-  const PreparedScene& frame = *r.prepared;
+// The model's pixels against the reference, and the images: the pixels and images go before the
+// accuracy checks re-shade the frame (a 1080p frame's peak memory).
+void shade_and_write(const RenderOptions& o, const PreparedScene& frame, RenderRun& r) {
   const Scene& scene = frame.scene();
-  r.unit = frame_unit_on(scene, o.scene, fo, o.config);
   const UnitConfig& cfg = r.unit;
-  r.timings = frame.timings();
-  const auto te = std::chrono::steady_clock::now();
-  r.encoded = encode_frame(scene, cfg, frame.setup(), frame.visibility());
-  r.timings.encode_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - te).count();
-
   ShadeUnit unit(cfg);
   std::vector<PixelOut> pixels;
   pixels.reserve(r.encoded.stats.pixels);
@@ -188,7 +178,24 @@ RenderRun shade_and_compare(const RenderOptions& o) {
   write_png(r.images.error, heat);
   write_png(r.images.compare, hstack({model_png, ref_png, heat}, 4));
   if (!o.stream_path.empty()) r.encoded.stream.save(o.stream_path);
+}
 
+RenderRun shade_and_compare(const RenderOptions& o) {
+  RenderRun r;
+  r.fo = frame_options(o, &r.unit_note);
+  const FrameOptions& fo = r.fo;
+  r.prepared = std::make_unique<PreparedScene>(
+      o.scene, PrepareKey{fo.budget_lsb, fo.max_depth, fo.base.out_bits});
+  const PreparedScene& frame = *r.prepared;
+  const Scene& scene = frame.scene();
+  r.unit = frame_unit_on(scene, o.scene, fo, o.config);
+  const UnitConfig& cfg = r.unit;
+  r.timings = frame.timings();
+  const auto te = std::chrono::steady_clock::now();
+  r.encoded = encode_frame(scene, cfg, frame.setup(), frame.visibility());
+  r.timings.encode_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - te).count();
+
+  shade_and_write(o, frame, r);
   r.unit_label = cfg.specular.describe() + (cfg.specular.kind == SpecularUnitKind::kIdeal
                                                 ? " (exact pow of the fixed-point t; not hardware)"
                                             : cfg.specular.kind == SpecularUnitKind::kNone
