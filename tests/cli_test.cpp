@@ -702,6 +702,34 @@ TEST(Cli, UnwritableOutputsFailBeforeAnyWork) {
   std::filesystem::remove_all(dir);
 }
 
+// Processes started at once with outputs under one new folder (the shards of a Slurm job array:
+// `regress --shard K/N --out run/shardK`) all write there. The output check makes and removes no
+// folder: one process's check removed the new folder another had just seen and was writing its
+// plan into ("cannot create directories: No such file or directory"; this test failed 12 runs of
+// 15 with that check). regress --emit-jobs writes its plan right after the check, runs nothing.
+TEST(Cli, OutputsUnderOneNewFolderFromProcessesStartedAtOnce) {
+  const auto dir = temp_dir("siblings");
+  const std::string shadesim = std::string(SHADESIM_BINARY_DIR) + "/shadesim";
+  for (int round = 0; round < 10; ++round) {
+    const auto parent = dir / ("new" + std::to_string(round));
+    std::string cmd;
+    for (int k = 0; k < 4; ++k) {
+      const std::string name = "shard" + std::to_string(k);
+      const std::string out = (parent / name).string();
+      cmd += "(r=$(" + shadesim + " regress " + kScenes + "sphere.json --backends cpp --out " +
+             out + " --emit-jobs " + (dir / (name + ".txt")).string() + " 2>&1) || echo \"" + out +
+             ": $r\") & ";
+    }
+    const Result r = run_shell(cmd + "wait");
+    EXPECT_EQ(r.output, "") << "round " << round;
+    for (int k = 0; k < 4; ++k) {
+      const auto plan = parent / ("shard" + std::to_string(k)) / "plans" / "emitted.json";
+      EXPECT_TRUE(std::filesystem::exists(plan)) << plan;
+    }
+  }
+  std::filesystem::remove_all(dir);
+}
+
 // A budget of 0 or below is refused in words, not as CLI11's "not in range 0.000000 to <the
 // 309 digits of DBL_MAX>".
 TEST(Cli, NonPositiveBudgetSaysWhatIsExpected) {

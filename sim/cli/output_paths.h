@@ -21,10 +21,16 @@
 namespace shadesim {
 
 // Why `path` cannot be written as a file (folder = false) or as a folder to write into
-// (folder = true); "" when it can. Tries it for real: creates the missing folders, opens the file
-// for appending (or creates and deletes a probe file in the folder), then removes whatever it
-// created, so an existing file is left unchanged and a new path leaves nothing behind.
-inline std::string output_path_problem_once(const std::string& path, bool folder) {
+// (folder = true); "" when it can. Tries it for real without creating or removing any folder:
+// where folders are missing, a probe file is created and deleted in the nearest one that exists
+// (the missing ones will be made there); else the file is opened for appending, or a probe file
+// is created and deleted in the folder. An existing file is left unchanged and a new path leaves
+// nothing behind.
+// No folder is made and removed again: several processes started at once with outputs under
+// one new folder (the shards of a Slurm job array, `--out run/shardN`) would each remove the
+// folder the others had just seen, or made, and were about to write into (their
+// create_directories then failed with "No such file or directory").
+inline std::string output_path_problem(const std::string& path, bool folder) {
   namespace fs = std::filesystem;
   if (path.empty()) return "an empty path";
   std::error_code ec;
@@ -42,43 +48,19 @@ inline std::string output_path_problem_once(const std::string& path, bool folder
   if (fs::exists(target, ec) && fs::is_directory(target, ec) != folder) {
     return path + (folder ? " is a file, not a folder" : " is a folder, not a file");
   }
-  auto clean_up = [&] {
-    for (const fs::path& d : missing) fs::remove(d, ec);  // deepest first; only if empty
-  };
-  if (!missing.empty()) {
-    fs::create_directories(missing.front(), ec);
-    if (ec) {
-      const std::string why = ec.message();
-      clean_up();
-      return "cannot create the folder " + missing.back().string() + ": " + why;
-    }
-  }
-  const fs::path file =
-      folder ? target / (".shadesim-write-check-" + std::to_string(getpid())) : target;
+  const std::string probe = ".shadesim-write-check-" + std::to_string(getpid());
+  const fs::path file = !missing.empty() ? existing / probe : folder ? target / probe : target;
   const bool existed = fs::exists(file, ec);
   std::FILE* f = std::fopen(file.c_str(), "a");
   if (f == nullptr) {
     const std::string why = std::strerror(errno);
-    clean_up();
+    if (!missing.empty()) return "cannot create the folder " + missing.back().string() + ": " + why;
     return "cannot write " + (folder ? "into the folder " + target.string() : target.string()) +
            ": " + why;
   }
   std::fclose(f);
   if (!existed) fs::remove(file, ec);
-  clean_up();
   return "";
-}
-
-// output_path_problem_once, looked at again when it fails: two runs checking the same new folder
-// at once (ctest -j) see it created and removed by each other's probe, which is no problem of
-// the path. A real problem is there every time.
-inline std::string output_path_problem(const std::string& path, bool folder) {
-  std::string problem = output_path_problem_once(path, folder);
-  for (int again = 0; again < 5 && !problem.empty(); ++again) {
-    usleep(2000 * (again + 1));
-    problem = output_path_problem_once(path, folder);
-  }
-  return problem;
 }
 
 // Throws std::invalid_argument "OPTION: cannot write ..." when `path` cannot be written.
