@@ -684,6 +684,7 @@ std::vector<FieldReason> throughput_reasons(const UnitConfig& cfg, const Through
   std::vector<FieldReason> r = {
       {"port_words", std::to_string(cfg.port_words), t.port_words + only},
       {"tri_queue", std::to_string(cfg.tri_queue), t.tri_queue},
+      {"lanes", std::to_string(cfg.lanes), t.lanes},
       {"material_buffers", std::to_string(cfg.material_buffers), t.material_buffers},
       {"span_setup", to_string(cfg.span_setup), t.span_setup}};
   if (cfg.host_setup())
@@ -794,6 +795,9 @@ DerivedConfig derive_widths(const FrameSet& frames, const DeriveOptions& options
   why.series = derive_series(scenes, w, ms, cfg);
   why.coef = derive_coef(w, ms, cfg);
   why.coef_term_iwl = derive_term_widths(w, cfg);
+  // Lanes change no pixel (the series wrap; docs/throughput.md), so the widths above hold for
+  // any count; the structure below is chosen for them.
+  cfg.lanes = options.lanes;
   cfg.validate();
   const ThroughputChoice throughput = choose_throughput(frames, options, cfg);
   cfg = throughput.config;
@@ -969,12 +973,13 @@ bool exact_pow_misses(const FrameSet& frames, const DeriveOptions& options, cons
 }
 
 // Budget first: a unit within the budget is taken unless it costs more cycles than the target
-// and the first unit's plus 1 % (and 2 cycles of pipeline fill per frame, which decide a frame
-// of a few pixels). When none within the budget stays within that, the first within the budget
-// is taken all the same and the cycles it trades are stated.
+// (that of the first unit's worst scene: per beat on several lanes) and the first unit's plus 1 %
+// (and 2 cycles of pipeline fill per frame, which decide a frame of a few pixels). When none within
+// the budget stays within that, the first within the budget is taken all the same and the cycles it
+// trades are stated.
 double cycles_allowance(const DeriveOptions& options, const SceneCycles& first) {
   const double pixels = std::max<double>(1.0, static_cast<double>(first.pixels));
-  return std::max(options.max_cycles_per_pixel, first.per_pixel() * 1.01 + 2.0 / pixels);
+  return std::max(cycles_target(options, first), first.per_pixel() * 1.01 + 2.0 / pixels);
 }
 
 // Tries `units` in order; `best` (the first unit, over the budget) becomes the unit taken. Returns
@@ -1073,6 +1078,9 @@ void check_derive_options(const std::vector<std::string>& scene_paths,
                           const DeriveOptions& options) {
   if (scene_paths.empty()) throw std::invalid_argument("derive_config: no scenes given");
   if (options.budget_lsb) check_budget(*options.budget_lsb);
+  if (options.lanes != 1 && options.lanes != 2 && options.lanes != 4)
+    throw std::invalid_argument("derive_config: lanes must be 1, 2 or 4, got " +
+                                std::to_string(options.lanes));
 }
 
 DerivedConfig derive_config(const std::vector<std::string>& scene_paths,

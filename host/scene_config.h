@@ -37,11 +37,13 @@
 //                      sum of |monomials| 1+|dx|+|dy|+dx^2+|dx dy|+dy^2 at any pixel from its
 //                      triangle's origin, times G, within another quarter of the budget.
 //   out_bits           as requested.
+//   lanes              as requested (DeriveOptions::lanes).
 //   port_words, tri_queue, span_setup, start_depth, material_buffers, a Schlick or W_m
-//                      unit's timing: the cheapest structure whose frames all run at <=
-//                      DeriveOptions::max_cycles_per_pixel by the cycle model, else the fastest
-//                      with each miss named (host/throughput_choice.h has the cost order);
-//                      pixels do not depend on them.
+//                      unit's timing: the cheapest structure whose frames all run within the
+//                      cycles target (DeriveOptions::max_cycles_per_pixel, by default 1.10 cycles
+//                      per beat of the lanes) by the cycle model, else the fastest with each miss
+//                      named (host/throughput_choice.h has the cost order); pixels do not depend
+//                      on them.
 //   diffuse_colour     multiply with three channels (one N.L series per light, a multiply per
 //                      light and channel in the unit), series with one.
 // G = sum over lights of (1 + max spec colour x the specular unit's slope with respect to its
@@ -97,7 +99,7 @@ struct DeriveOptions {
   // Throughput structure (pixels do not depend on it): requests. Unset, each is derived with
   // the start bank's depth, the material buffers and a Schlick or W_m unit's timing
   // (host/throughput_choice.h): the cheapest structure that runs every scene within
-  // max_cycles_per_pixel by the cycle model (no gaps, no back-pressure). Set, it is held.
+  // its cycles target (below) by the cycle model (no gaps, no back-pressure). Set, it is held.
   // Host span setup takes tri_queue 1.
   std::optional<int> port_words;
   std::optional<int> tri_queue;
@@ -105,7 +107,14 @@ struct DeriveOptions {
   // Diffuse colour: unset derives it - multiply (one N.L series per light) with three channels,
   // series with one (a multiply would remove nothing there).
   std::optional<DiffuseColour> diffuse_colour;
-  double max_cycles_per_pixel = 1.10;
+  // Pixel lanes of the derived unit (UnitConfig::lanes: 1, 2 or 4 pixels of one span a clock;
+  // pixels do not depend on them): the throughput structure is chosen to feed them.
+  int lanes = 1;
+  // The cycles per pixel every scene must stay within. Unset: kMaxCyclesPerBeat (1.10) cycles
+  // per beat of `lanes` pixels (cycles_target, host/throughput_choice.h): 1.10 cycles/px with
+  // one lane. Not 1.10 / lanes: lanes stay within a span, so a scene of short spans cannot reach
+  // it (sphere_1024 takes 0.304 cycles/px at the least with 4 lanes, over 0.275).
+  std::optional<double> max_cycles_per_pixel;
   // Threads that evaluate candidate units side by side (0: the hardware's). The unit and every
   // reason are the same for any count.
   int threads = 0;
@@ -146,7 +155,7 @@ struct DerivedConfig {
   std::vector<FieldReason> reasons;
   ConfigMeasurements measured;
   bool substitute = false;  // the scenes name ideal; config.specular is the hardware in its place
-  // One per scene over DeriveOptions::max_cycles_per_pixel on `config`: the scene, its cycles per
+  // One per scene over its cycles target (cycles_target) on `config`: the scene, its cycles per
   // pixel, the target and the resource that limits it (cycles_miss, host/throughput_choice.h).
   std::vector<std::string> cycles_misses;
   // Each scene's cycles on `config` (the throughput choice measured them; the closed-form cycle

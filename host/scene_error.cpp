@@ -1,5 +1,7 @@
 #include "host/scene_error.h"
 
+#include <variant>
+
 #include "model/cycle_estimate.h"
 #include "model/shade_unit.h"
 
@@ -23,9 +25,19 @@ ErrorStats scene_error(const PreparedScene& frame, const UnitConfig& config) {
 }
 
 SceneCycles scene_cycles(const PreparedScene& frame, const UnitConfig& config) {
-  const CycleEstimateRun run =
-      CycleEstimate(CycleConfig::of(config)).run(frame.encode(config).stream.encode());
-  return {run.cycles, run.pixels};
+  const CommandStream stream = frame.encode(config).stream;
+  const CycleEstimateRun run = CycleEstimate(CycleConfig::of(config)).run(stream.encode());
+  return {run.cycles, run.pixels, pixel_beats(stream, config.lanes)};
+}
+
+uint64_t pixel_beats(const CommandStream& stream, int lanes) {
+  uint64_t beats = 0;
+  for (const Command& cmd : stream.commands) {
+    if (const auto* span = std::get_if<SpanCmd>(&cmd))
+      beats +=
+          CycleEstimate::beats(static_cast<uint64_t>(span->length), static_cast<uint64_t>(lanes));
+  }
+  return beats;
 }
 
 }  // namespace shadesim

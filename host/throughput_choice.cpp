@@ -30,22 +30,37 @@ std::string grouped(uint64_t n) {
   return s;
 }
 
-// 1.1 -> "1.10", 1.125 -> "1.125": the target as the options spell it, at least two decimals.
+// 1.1 -> "1.10", 1.125 -> "1.125": the target as the options spell it, at least two decimals;
+// at most four, so a per-beat target (1.10 x beats / pixels) reads as the figures beside it.
 std::string target_text(double target) {
-  std::string s = fixed(target, 6);
+  std::string s = fixed(target, 4);
   while (s.size() > s.find('.') + 3 && s.back() == '0') s.pop_back();
   return s;
 }
 
-// One scene's command words for each site, encoded once: the knobs change no word of them.
+// One scene's command words for each site, encoded once: the knobs change no word of them, nor
+// its beats on the unit's lanes, nor so its cycles target.
 struct SceneStreams {
   std::string path;
   CommandStream unit_stream, host_stream;
   std::vector<uint64_t> unit_words, host_words;
+  SceneCycles frame;  // its pixels and pixel beats (no cycles)
+  double target = 0;  // cycles per pixel
 };
 
-std::vector<SceneStreams> prepare_streams(const FrameSet& frames, const UnitConfig& unit,
-                                          bool need_host) {
+// A stream's pixels and pixel beats on `lanes` lanes (no cycles): what its target is made of.
+SceneCycles pixels_and_beats(const CommandStream& stream, int lanes) {
+  SceneCycles f;
+  for (const Command& cmd : stream.commands) {
+    if (const auto* span = std::get_if<SpanCmd>(&cmd))
+      f.pixels += static_cast<uint64_t>(span->length);
+  }
+  f.pixel_beats = pixel_beats(stream, lanes);
+  return f;
+}
+
+std::vector<SceneStreams> prepare_streams(const FrameSet& frames, const DeriveOptions& options,
+                                          const UnitConfig& unit, bool need_host) {
   UnitConfig base = unit;
   base.span_setup = SpanSetupSite::kUnit;
   base.tri_queue = 1;
@@ -55,6 +70,8 @@ std::vector<SceneStreams> prepare_streams(const FrameSet& frames, const UnitConf
     s.path = frames.path(i);
     s.unit_stream = frames.at(i).encode(base).stream;
     s.unit_words = s.unit_stream.encode();
+    s.frame = pixels_and_beats(s.unit_stream, unit.lanes);
+    s.target = cycles_target(options, s.frame);
     // The encoder's own route to a host-setup stream (host/encode.cpp): the same frame, each
     // span's start values formed from the unit-setup stream.
     if (need_host) {
@@ -92,22 +109,33 @@ class Measurements {
     }
     return *v;
   }
-  // Within the target on every scene; stops at the first scene over it.
-  bool meets(size_t candidate, double target) {
+  // Within its target on every scene; stops at the first scene over it.
+  bool meets(size_t candidate) {
     for (size_t s = 0; s < scenes_.size(); ++s) {
-      if (cpp(candidate, s) > target) return false;
+      if (cpp(candidate, s) > scenes_[s].target) return false;
     }
     return true;
   }
-  // The scene with the most cycles per pixel (every scene measured).
+  // Cycles per pixel relative to the scene's target: scenes of different targets (per beat, on
+  // several lanes) compare by it; with one target for all it orders them as their cycles do.
+  double load(size_t candidate, size_t scene) {
+    return cpp(candidate, scene) / scenes_[scene].target;
+  }
+  // The scene with the highest load (every scene measured).
   size_t worst_scene(size_t candidate) {
     size_t worst = 0;
     for (size_t s = 0; s < scenes_.size(); ++s) {
-      if (cpp(candidate, s) > cpp(candidate, worst)) worst = s;
+      if (load(candidate, s) > load(candidate, worst)) worst = s;
     }
     return worst;
   }
-  double worst(size_t candidate) { return cpp(candidate, worst_scene(candidate)); }
+  double worst(size_t candidate) { return load(candidate, worst_scene(candidate)); }
+  // Whether the candidate's worst scene is over its target.
+  bool over(size_t candidate) {
+    const size_t s = worst_scene(candidate);
+    return cpp(candidate, s) > scenes_[s].target;
+  }
+  double worst_target(size_t candidate) { return scenes_[worst_scene(candidate)].target; }
   // "1.234 cycles/px on SCENE" for the candidate's worst scene.
   std::string worst_text(size_t candidate) {
     const size_t s = worst_scene(candidate);
@@ -139,9 +167,9 @@ std::optional<size_t> index_of(const std::vector<ThroughputKnobs>& candidates,
 
 // The chosen candidate: the first (cheapest) within the target on every scene, else the cheapest
 // within kFastestTolerance of the fastest. Sets `meets`.
-size_t pick(Measurements& m, size_t count, double target, bool& meets) {
+size_t pick(Measurements& m, size_t count, bool& meets) {
   for (size_t i = 0; i < count; ++i) {
-    if (m.meets(i, target)) {
+    if (m.meets(i)) {
       meets = true;
       return i;
     }
@@ -159,25 +187,41 @@ size_t pick(Measurements& m, size_t count, double target, bool& meets) {
 struct Step {
   Measurements& m;
   const std::vector<ThroughputKnobs>& candidates;
-  double target;
 
   // "; NAME takes X cycles/px on SCENE (over T)", or "" where no such candidate is allowed.
   std::string operator()(const ThroughputKnobs& cheaper, const std::string& name) {
     const std::optional<size_t> i = index_of(candidates, cheaper);
     if (!i) return "";
-    const bool over = m.worst(*i) > target;
     return "; " + name + " takes " + m.worst_text(*i) +
-           (over ? " (over " + target_text(target) + ")" : "");
+           (m.over(*i) ? " (over " + target_text(m.worst_target(*i)) + ")" : "");
   }
 };
 
+// The cycles target as the span_setup reason states it: "1.10 cycles/px" (one lane, or as given),
+// or per beat on several lanes with each scene's figure: "1.10 cycles per beat of 4 lanes
+// (0.3339 cycles/px on SCENE: 230,466 beats for 759,144 pixels)".
+std::string target_words(const DeriveOptions& options, const UnitConfig& unit,
+                         const std::vector<SceneStreams>& scenes) {
+  if (options.max_cycles_per_pixel)
+    return target_text(*options.max_cycles_per_pixel) + " cycles/px (--max-cycles-per-pixel)";
+  if (unit.lanes == 1) return target_text(kMaxCyclesPerBeat) + " cycles/px";
+  std::string per_scene;
+  for (const SceneStreams& s : scenes) {
+    per_scene += (per_scene.empty() ? "" : "; ") + target_text(s.target) + " cycles/px on " +
+                 s.path + ": " + grouped(s.frame.pixel_beats) + " beats for " +
+                 grouped(s.frame.pixels) + " pixels";
+  }
+  return target_text(kMaxCyclesPerBeat) + " cycles per beat of " + std::to_string(unit.lanes) +
+         " lanes (" + per_scene + ")";
+}
+
 // The reasons of each knob of `chosen`.
 void explain(const std::vector<ThroughputKnobs>& candidates, size_t chosen,
-             const DeriveOptions& options, const UnitConfig& unit, Measurements& m,
-             ThroughputChoice& c) {
+             const std::vector<SceneStreams>& scenes, const DeriveOptions& options,
+             const UnitConfig& unit, Measurements& m, ThroughputChoice& c) {
   const ThroughputKnobs& k = candidates[chosen];
-  const double target = options.max_cycles_per_pixel;
-  Step step{m, candidates, target};
+  const std::string target = target_words(options, unit, scenes);
+  Step step{m, candidates};
   const bool host = k.span_setup == SpanSetupSite::kHost;
   ThroughputKnobs cheaper = k;
   // Port words.
@@ -219,14 +263,13 @@ void explain(const std::vector<ThroughputKnobs>& candidates, size_t chosen,
                                std::to_string(m.runs()) + " cycle-model runs";
   std::string site = options.span_setup ? "as requested (--span-setup); " : "";
   if (c.meets) {
-    site += "the cheapest structure within " + target_text(target) +
-            " cycles/px on every scene (cycle model, no gaps): " + k.to_string(unit) + ", worst " +
+    site += "the cheapest structure within " + target +
+            " on every scene (cycle model, no gaps): " + k.to_string(unit) + ", worst " +
             m.worst_text(chosen) + "; of " + measured;
   } else {
-    site +=
-        "no structure meets " + target_text(target) +
-        " cycles/px on every scene (cycle model, no gaps); the fastest kept: " + k.to_string(unit) +
-        ", worst " + m.worst_text(chosen) + "; of " + measured;
+    site += "no structure meets " + target +
+            " on every scene (cycle model, no gaps); the fastest kept: " + k.to_string(unit) +
+            ", worst " + m.worst_text(chosen) + "; of " + measured;
   }
   if (!host && !options.span_setup) {
     // Host setup's fastest candidate: what unit setup was bought for.
@@ -283,7 +326,45 @@ std::string resource(const std::string& row, const UnitConfig& unit, const Strea
   return "input: " + row + " (gaps or back-pressure)";
 }
 
+// What lanes leave to the structure on a stream: "759,144 pixels in 230,466 beats of up to 4
+// (96,358 spans of 7.9 px on average: lanes stay within a span), 0.304 cycles/px at the least".
+std::string lanes_floor(const StreamCounts& n, int lanes) {
+  const uint64_t beats = n.beats;
+  const auto ratio = [](uint64_t a, uint64_t b) {
+    return b ? static_cast<double>(a) / static_cast<double>(b) : 0.0;
+  };
+  return grouped(n.pixels) + " pixels in " + grouped(beats) + " beats of up to " +
+         std::to_string(lanes) + " (" + grouped(n.spans) + " spans of " +
+         fixed(ratio(n.pixels, n.spans), 1) + " px on average: lanes stay within a span), " +
+         fixed(ratio(beats, n.pixels)) + " cycles/px at the least";
+}
+
+// The lanes' reason: as the unit has them (derive_config sets DeriveOptions::lanes), and on
+// several lanes each scene's floor of one beat a cycle against kMaxCyclesPerBeat / lanes.
+std::string lanes_why(const UnitConfig& unit, const std::vector<SceneStreams>& scenes) {
+  if (unit.lanes == 1) return "one pixel a clock (--lanes 2 or 4: more pixels of a span a clock)";
+  const double per_lane = kMaxCyclesPerBeat / unit.lanes;
+  std::string why =
+      std::to_string(unit.lanes) + " pixels of one span a clock, as requested (--lanes)";
+  for (const SceneStreams& s : scenes) {
+    const bool over =
+        static_cast<double>(s.frame.pixel_beats) > per_lane * static_cast<double>(s.frame.pixels);
+    why += "; " + s.path + ": " + lanes_floor(count(s.unit_stream, unit.lanes), unit.lanes) +
+           (over ? ", over " : ", within ") + target_text(kMaxCyclesPerBeat) + " / " +
+           std::to_string(unit.lanes) + " = " + fixed(per_lane);
+  }
+  return why;
+}
+
 }  // namespace
+
+double cycles_target(const DeriveOptions& options, const SceneCycles& frame) {
+  if (options.max_cycles_per_pixel) return *options.max_cycles_per_pixel;
+  if (frame.pixels == 0) return kMaxCyclesPerBeat;
+  // The ratio first: with one lane it is exactly 1, and the target exactly kMaxCyclesPerBeat.
+  return kMaxCyclesPerBeat *
+         (static_cast<double>(frame.pixel_beats) / static_cast<double>(frame.pixels));
+}
 
 UnitConfig ThroughputKnobs::applied_to(const UnitConfig& unit) const {
   UnitConfig c = unit;
@@ -357,23 +438,25 @@ ThroughputChoice choose_throughput(const FrameSet& frames, const DeriveOptions& 
   const bool need_host = std::any_of(candidates.begin(), candidates.end(), [](const auto& k) {
     return k.span_setup == SpanSetupSite::kHost;
   });
-  const std::vector<SceneStreams> scenes = prepare_streams(frames, unit, need_host);
+  const std::vector<SceneStreams> scenes = prepare_streams(frames, options, unit, need_host);
   Measurements m(scenes, unit, candidates);
   ThroughputChoice c;
-  const size_t chosen = pick(m, candidates.size(), options.max_cycles_per_pixel, c.meets);
+  const size_t chosen = pick(m, candidates.size(), c.meets);
   c.knobs = candidates[chosen];
   c.config = c.knobs.applied_to(unit);
   c.config.validate();
   for (size_t s = 0; s < scenes.size(); ++s) {
     c.cycles_per_pixel.push_back(m.cpp(chosen, s));
+    c.targets.push_back(scenes[s].target);
     const CycleEstimateRun chosen_run = run_on(scenes[s], c.config);
-    c.cycles.push_back({chosen_run.cycles, chosen_run.pixels});
-    if (m.cpp(chosen, s) <= options.max_cycles_per_pixel) continue;
+    c.cycles.push_back({chosen_run.cycles, chosen_run.pixels, scenes[s].frame.pixel_beats});
+    if (m.cpp(chosen, s) <= scenes[s].target) continue;
     const CycleEstimateRun run = run_on(scenes[s], c.config, true);
     c.misses.push_back(cycles_miss(scenes[s].path, c.config, stream_for(scenes[s], c.config), run,
-                                   options.max_cycles_per_pixel));
+                                   scenes[s].target));
   }
-  explain(candidates, chosen, options, unit, m, c);
+  explain(candidates, chosen, scenes, options, unit, m, c);
+  c.lanes = lanes_why(unit, scenes);
   c.candidates_measured = m.runs();
   return c;
 }
@@ -384,10 +467,11 @@ StreamCounts& StreamCounts::operator+=(const StreamCounts& o) {
   materials += o.materials;
   table_words += o.table_words;
   pixels += o.pixels;
+  beats += o.beats;
   return *this;
 }
 
-StreamCounts count(const CommandStream& stream) {
+StreamCounts count(const CommandStream& stream, int lanes) {
   StreamCounts n;
   for (const Command& cmd : stream.commands) {
     if (std::holds_alternative<TriangleCmd>(cmd)) {
@@ -395,6 +479,8 @@ StreamCounts count(const CommandStream& stream) {
     } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
       ++n.spans;
       n.pixels += static_cast<uint64_t>(s->length);
+      n.beats += CycleEstimate::beats(static_cast<uint64_t>(s->length),
+                                      static_cast<uint64_t>(std::max(1, lanes)));
     } else if (std::holds_alternative<MaterialCmd>(cmd)) {
       ++n.materials;
     } else if (const auto* t = std::get_if<TableCmd>(&cmd)) {
@@ -410,7 +496,7 @@ double cycles_per_pixel(const CycleEstimateRun& run) {
 
 std::string cycles_limit(const UnitConfig& unit, const CommandStream& stream,
                          const CycleEstimateRun& run) {
-  return cycles_limit(unit, count(stream), run);
+  return cycles_limit(unit, count(stream, unit.lanes), run);
 }
 
 std::string cycles_limit(const UnitConfig& unit, const StreamCounts& n,
@@ -430,16 +516,22 @@ std::string cycles_limit(const UnitConfig& unit, const StreamCounts& n,
 
 std::string cycles_miss(const std::string& scene, const UnitConfig& unit,
                         const CommandStream& stream, const CycleEstimateRun& run, double target) {
-  return cycles_miss(scene, unit, count(stream), run, target);
+  return cycles_miss(scene, unit, count(stream, unit.lanes), run, target);
 }
 
 std::string cycles_miss(const std::string& scene, const UnitConfig& unit, const StreamCounts& n,
                         const CycleEstimateRun& run, double target) {
   const double cpp = cycles_per_pixel(run);
   if (cpp <= target) return "";
-  return scene + ": " + fixed(cpp) + " cycles/px (" + grouped(run.cycles) + " cycles, " +
-         grouped(run.pixels) + " pixels; cycle model, no gaps) over the " + target_text(target) +
-         " target; " + cycles_limit(unit, n, run);
+  const std::string head = scene + ": " + fixed(cpp) + " cycles/px (" + grouped(run.cycles) +
+                           " cycles, " + grouped(run.pixels) +
+                           " pixels; cycle model, no gaps) over the " + target_text(target) +
+                           " target; ";
+  // Beats alone over the target: no structure helps, whatever the largest bubble row says.
+  const double floor =
+      run.pixels ? static_cast<double>(n.beats) / static_cast<double>(run.pixels) : 0.0;
+  if (floor > target) return head + "pixel lanes: " + lanes_floor(n, unit.lanes);
+  return head + cycles_limit(unit, n, run);
 }
 
 }  // namespace shadesim

@@ -7,7 +7,8 @@
 // (CycleEstimate, exactly the clocked model's count), on every scene.
 //
 // The rule (shadesim config --help states the same): the cheapest candidate that runs every
-// scene at <= DeriveOptions::max_cycles_per_pixel. Candidates in cost order, cheapest first
+// scene within its cycles target (cycles_target: DeriveOptions::max_cycles_per_pixel, or by
+// default 1.10 cycles per beat of the unit's lanes). Candidates in cost order, cheapest first
 // (what each knob adds, measured in docs/area-history.md):
 //   1. span setup on the host before the unit (the unit's span setup, coefficient banks and span
 //      queue are 12,964 + 6,782 + 3,197 GE of specular's unit with unit setup; the host's start
@@ -22,16 +23,21 @@
 // steering into every entry; docs/area-history.md has no measurement of either alone), so the order
 // is the stated convention, and every knob's reason gives the figure of the step cheaper in it. A
 // knob given in DeriveOptions (port_words, tri_queue, span_setup) is held at its value. Lanes stay
-// as the unit has them. Where no candidate meets the target: the fastest (the lowest worst cycles
-// per pixel over the scenes; of those within kFastestTolerance of it, the cheapest), and every
-// scene over the target is named with the resource that limits it (cycles_miss).
+// as the unit has them (derive_config sets DeriveOptions::lanes); with more lanes the port and
+// the start bank or triangle queue must bring a span's words in fewer cycles, and the same
+// candidates cover it (sphere_1024 at 4 lanes needs a 4-word port and start_depth 2). Where no
+// candidate meets the target: the fastest (the lowest worst cycles per pixel over the scenes,
+// each relative to its target; of those within kFastestTolerance of it, the cheapest), and every
+// scene over its target is named with the resource that limits it (cycles_miss).
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "host/scene_config.h"
+#include "host/scene_error.h"
 #include "model/command_stream.h"
 #include "model/cycle_estimate.h"
 #include "model/unit_config.h"
@@ -41,6 +47,18 @@ namespace shadesim {
 // Where nothing meets the target, candidates this close to the fastest (relative, in worst
 // cycles per pixel) count as fast as it, so a cycle or two on a tiny frame buys no hardware.
 constexpr double kFastestTolerance = 0.01;
+
+// The default cycles target, per beat: a beat is the up to `lanes` pixels of one span that leave
+// the unit together (a span of len pixels takes ceil(len / lanes) beats; lanes stay within a
+// span). With one lane a beat is a pixel, and this is 1.10 cycles per pixel.
+constexpr double kMaxCyclesPerBeat = 1.10;
+
+// A frame's cycles target in cycles per pixel: DeriveOptions::max_cycles_per_pixel where given,
+// else kMaxCyclesPerBeat x its beats / pixels on the unit's lanes (`frame`: its beats, pixels).
+// Not kMaxCyclesPerBeat / lanes: a frame's beats / pixels is the least any structure reaches, and
+// above 1 / lanes wherever a span's length is no multiple of the lanes (sphere_1024 on 4 lanes:
+// 230,466 beats for 759,144 pixels, 0.304 cycles/px at best, over 1.10 / 4 = 0.275).
+double cycles_target(const DeriveOptions& options, const SceneCycles& frame);
 
 // One candidate's knobs.
 struct ThroughputKnobs {
@@ -70,10 +88,12 @@ struct ThroughputChoice {
   bool meets = false;                    // every scene within the target
   std::vector<double> cycles_per_pixel;  // per scene, on `config`
   std::vector<SceneCycles> cycles;       // per scene, on `config`
-  std::vector<std::string> misses;       // cycles_miss of each scene over the target
+  std::vector<double> targets;           // per scene, cycles per pixel (cycles_target)
+  std::vector<std::string> misses;       // cycles_miss of each scene over its target
   size_t candidates_measured = 0;
-  // Why each knob has its value, with the figures of the candidate one step cheaper in it.
-  std::string port_words, tri_queue, start_depth, span_setup, material_buffers, timing;
+  // Why each knob has its value, with the figures of the candidate one step cheaper in it (lanes:
+  // as the unit has them, with the cycles target they set).
+  std::string port_words, tri_queue, start_depth, span_setup, material_buffers, timing, lanes;
 };
 
 // Chooses the knobs for `unit` (its widths final) on the scenes. Each scene is prepared once
@@ -85,9 +105,10 @@ ThroughputChoice choose_throughput(const FrameSet& frames, const DeriveOptions& 
 // What a stream carries, for the resource a miss names; summed over chunks with +=.
 struct StreamCounts {
   uint64_t triangles = 0, spans = 0, materials = 0, table_words = 0, pixels = 0;
+  uint64_t beats = 0;  // pixel beats at the lanes counted for (lanes stay within a span)
   StreamCounts& operator+=(const StreamCounts& o);
 };
-StreamCounts count(const CommandStream& stream);
+StreamCounts count(const CommandStream& stream, int lanes);
 
 // Cycles per pixel of a run (0 for a frame without pixels).
 double cycles_per_pixel(const CycleEstimateRun& run);

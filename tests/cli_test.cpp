@@ -628,10 +628,11 @@ TEST(Cli, UsageErrorsExitTwoNamingTheOption) {
   const std::string sphere = kScenes + "sphere.json";
   // {arguments, what the message must name}
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"render " + sphere + " --frobnicate", "--frobnicate"},            // unknown option
-      {"render " + sphere + " --out-bits x", "--out-bits"},              // not a number
-      {"cycles " + sphere + " --port-words 3", "--port-words"},          // not in the set
-      {"render " + sphere + " --config /nonexistent.json", "--config"},  // no such file
+      {"render " + sphere + " --frobnicate", "--frobnicate"},    // unknown option
+      {"render " + sphere + " --out-bits x", "--out-bits"},      // not a number
+      {"cycles " + sphere + " --port-words 3", "--port-words"},  // not in the set
+      {"config --clock-mhz 0 " + sphere + " --lanes 3", "--lanes: 3 not in {1,2,4}"},
+      {"render " + sphere + " --config /nonexistent.json", "--config"},              // no such file
       {"render " + sphere + " --config " + sphere + " --series s4.30", "--series"},  // excluded
       {"render", "scene"},           // missing positional
       {"frobnicate", "frobnicate"},  // unknown subcommand

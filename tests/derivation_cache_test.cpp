@@ -169,7 +169,10 @@ TEST_F(DerivationCache, EveryDeriveOptionIsInTheKey) {
       {"tri_queue", [](DeriveOptions& o) { o.tri_queue = 1; }},
       {"span_setup", [](DeriveOptions& o) { o.span_setup = SpanSetupSite::kUnit; }},
       {"diffuse_colour", [](DeriveOptions& o) { o.diffuse_colour = DiffuseColour::kSeries; }},
-      {"max_cycles_per_pixel", [](DeriveOptions& o) { o.max_cycles_per_pixel = 1.2; }}};
+      {"lanes", [](DeriveOptions& o) { o.lanes = 4; }},
+      {"max_cycles_per_pixel", [](DeriveOptions& o) { o.max_cycles_per_pixel = 1.2; }},
+      // Given as the default's figure, it is still a request: a target per pixel, not per beat.
+      {"max_cycles_per_pixel given", [](DeriveOptions& o) { o.max_cycles_per_pixel = 1.10; }}};
   std::set<std::string> seen = {base};
   for (const auto& [field, change] : changes) {
     DeriveOptions o;

@@ -52,9 +52,14 @@ void register_config(CLI::App& app, int& exit_code) {
       "  coef_term_iwl  coefficient packing: T0 keeps coef's integer bits (it wraps); T1..T5 the\n"
       "               fewest saturating integer bits holding every measured |T_t| + 1 LSB\n"
       "  out_bits     as requested (--out-bits)\n"
+      "  lanes        as requested (--lanes): pixels of one span a clock\n"
       "  port_words, tri_queue, span_setup, start_depth, material_buffers, and a Schlick or\n"
-      "               W_m unit's timing: the cheapest structure that runs every scene at <= 1.10\n"
-      "               cycles per pixel by the cycle model, no gaps (--max-cycles-per-pixel).\n"
+      "               W_m unit's timing: the cheapest structure that runs every scene within\n"
+      "               1.10 cycles per beat by the cycle model, no gaps (a beat: up to `lanes`\n"
+      "               pixels of one span; one lane, 1.10 cycles per pixel; with 4 lanes\n"
+      "               bench/scenes/sphere_1024.json's 230,466 beats for 759,144 pixels make\n"
+      "               0.334, not 1.10 / 4 = 0.275, below its 0.304 floor), or within\n"
+      "               --max-cycles-per-pixel where given.\n"
       "               Cheapest first: host span setup (the host sends each span's start values:\n"
       "               no span setup, no coefficient banks, tri_queue 1) before unit setup,\n"
       "               iterative before pipelined, fewer port words (1, 2, 4, 8), a shallower\n"
@@ -106,12 +111,19 @@ void register_config(CLI::App& app, int& exit_code) {
          "--diffuse-colour", o->diffuse_colour,
          "diffuse colour rolled into the series or multiplied per pixel (default: derived)")
       ->check(CLI::IsMember({"series", "multiply"}));
+  sub->add_option("--lanes", o->lanes,
+                  "pixel lanes of the unit: pixels of one span a clock; the throughput structure\n"
+                  "is derived to feed them (pixels do not depend on them)")
+      ->check(one_of({1, 2, 4}))
+      ->capture_default_str();
   sub->add_option(
          "--max-cycles-per-pixel", o->max_cycles_per_pixel,
          "the cycles per pixel every scene must stay within (cycle model, no gaps): the\n"
-         "throughput structure is the cheapest that meets it; config exits 1 where none does")
-      ->check(positive_number())
-      ->capture_default_str();
+         "throughput structure is the cheapest that meets it; config exits 1 where none does.\n"
+         "Default: 1.10 cycles per beat of the lanes, each scene's 1.10 x beats / pixels (1.10\n"
+         "with one lane; not 1.10 / lanes, which spans shorter than the lanes or of no multiple\n"
+         "of them put out of reach)")
+      ->check(positive_number());
   sub->add_option(
       "--ideal-unit", o->ideal_unit,
       "hardware unit for scenes that name ideal, and no other: wpow (W_16 B=16 pipelined),\n"

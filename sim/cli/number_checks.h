@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace shadesim {
 
@@ -32,5 +33,24 @@ inline CLI::Validator number_at_least(bool allow_zero) {
 inline CLI::Validator positive_number() { return detail::number_at_least(false); }
 // >= 0 and finite.
 inline CLI::Validator non_negative_number() { return detail::number_at_least(true); }
+
+// One of `allowed`: "3 not in {1,2,4}" as CLI::IsMember says it, and for text that is no whole
+// number "x not in {1,2,4}" too (IsMember on an int option says only "x").
+inline CLI::Validator one_of(const std::vector<int>& allowed) {
+  std::string set;
+  for (const int a : allowed) set += (set.empty() ? "" : ",") + std::to_string(a);
+  set = "{" + set + "}";
+  return CLI::Validator(
+      [allowed, set](std::string& text) -> std::string {
+        int v = 0;
+        if (CLI::detail::lexical_cast(text, v)) {
+          for (const int a : allowed) {
+            if (v == a) return "";
+          }
+        }
+        return text + " not in " + set;
+      },
+      set);
+}
 
 }  // namespace shadesim

@@ -32,7 +32,8 @@ DeriveOptions derive_options(const ConfigOptions& o) {
   d.out_bits = o.out_bits;
   if (o.port_words > 0) d.port_words = o.port_words;
   if (o.tri_queue > 0) d.tri_queue = o.tri_queue;
-  d.max_cycles_per_pixel = o.max_cycles_per_pixel;
+  d.lanes = o.lanes;
+  if (!std::isnan(o.max_cycles_per_pixel)) d.max_cycles_per_pixel = o.max_cycles_per_pixel;
   if (!o.span_setup.empty()) d.span_setup = parse_span_setup(o.span_setup, "--span-setup");
   if (!o.diffuse_colour.empty())
     d.diffuse_colour = parse_diffuse_colour(o.diffuse_colour, "--diffuse-colour");

@@ -20,7 +20,10 @@ struct ConfigOptions {
   std::string ideal_unit;      // empty: W_16, then the fallbacks that meet the budget
   std::string span_setup;      // empty: derived
   std::string diffuse_colour;  // empty: derived
-  double max_cycles_per_pixel = 1.10;
+  int lanes = 1;               // pixel lanes of the unit; the structure is derived for them
+  // NaN: not given, the default target (1.10 cycles per beat of the lanes; cycles_target in
+  // host/throughput_choice.h)
+  double max_cycles_per_pixel = std::nan("");
   std::string json_path;
   // --clock-mhz: time the unit where it will be built and pipeline it to reach the clock
   // (sim/jobs/clock_target.h); 0: no clock target; negative: the site's default_clock_mhz.

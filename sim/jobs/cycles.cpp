@@ -150,7 +150,7 @@ CyclesFrame stream_frame(const std::string& scene_path, const FrameOptions& fo,
     FrameTimings timings;
     prepare_geometry(scene, setup_options, project, setup, visibility, timings);
     f.stats = encode_frame_chunks(scene, f.config, setup, visibility, [&](CommandStream&& chunk) {
-      f.counts += count(chunk);
+      f.counts += count(chunk, f.config.lanes);
       chunks.push_back(chunk.encode());
     });
   }

@@ -70,7 +70,8 @@ nlohmann::json derive_options_json(const DeriveOptions& o) {
       {"span_setup", optional_json(o.span_setup, [](SpanSetupSite s) { return to_string(s); })},
       {"diffuse_colour",
        optional_json(o.diffuse_colour, [](DiffuseColour d) { return to_string(d); })},
-      {"max_cycles_per_pixel", o.max_cycles_per_pixel},
+      {"lanes", o.lanes},
+      {"max_cycles_per_pixel", optional_json(o.max_cycles_per_pixel, self)},
       // Not `threads`: the derivation is the same for any thread count (prepared_scene_test).
   };
 }

@@ -43,7 +43,7 @@ nlohmann::json derived_to_json(const DerivedConfig& d) {
   for (const FieldReason& r : d.reasons)
     reasons.push_back({{"field", r.field}, {"value", r.value}, {"reason", r.reason}});
   nlohmann::json cycles = nlohmann::json::array();
-  for (const SceneCycles& c : d.cycles) cycles.push_back({c.cycles, c.pixels});
+  for (const SceneCycles& c : d.cycles) cycles.push_back({c.cycles, c.pixels, c.pixel_beats});
   nlohmann::json measured = nlohmann::json::object();
   each_measurement(d.measured, [&](const char* name, const auto& v) {
     if constexpr (std::is_floating_point_v<std::decay_t<decltype(v)>>) {
@@ -77,7 +77,8 @@ DerivedConfig derived_from_json(const nlohmann::json& j, const std::string& sour
     d.substitute = dj.at("substitute").get<bool>();
     d.cycles_misses = dj.at("cycles_misses").get<std::vector<std::string>>();
     for (const auto& c : dj.at("cycles"))
-      d.cycles.push_back({c.at(0).get<uint64_t>(), c.at(1).get<uint64_t>()});
+      d.cycles.push_back(
+          {c.at(0).get<uint64_t>(), c.at(1).get<uint64_t>(), c.at(2).get<uint64_t>()});
   } catch (const nlohmann::json::exception& e) {
     throw std::runtime_error(source + ": derivation: " + e.what());
   } catch (const std::runtime_error& e) {
