@@ -16,7 +16,7 @@
 #include <string>
 
 #include "host/frame.h"
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
 #include "model/command_stream.h"
 #include "model/cycle_estimate.h"
 #include "model/cycle_model.h"

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "host/frame.h"
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
 #include "model/cycle_model.h"
 #include "sim/harness/cycle_run.h"
 #include "sim/harness/random_stream.h"

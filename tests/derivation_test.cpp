@@ -12,9 +12,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "host/accuracy_checks.h"
+#include "derive/accuracy_checks.h"
 #include "host/frame.h"
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
 #include "host/scene_error.h"
 #include "tests/support/render_at.h"
 

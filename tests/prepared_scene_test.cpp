@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "host/gate_flips.h"
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
 #include "host/scene_error.h"
 #include "model/command_stream.h"
 #include "tests/support/render_at.h"

@@ -2,7 +2,7 @@
 // computed here independently (image sizes and lights read from the scene JSON, the longest span
 // and pixel offsets walked from the host's own visibility and stream, the drift bound's closed
 // form), and the derived unit shades the scenes within the budget.
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -13,7 +13,7 @@
 #include <stdexcept>
 
 #include "host/frame.h"
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
 #include "host/scene_error.h"
 #include "model/command_stream.h"
 #include "model/text_file.h"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
 #include "model/unit_config.h"
 
 namespace shadesim {

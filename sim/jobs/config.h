@@ -15,7 +15,7 @@ struct ConfigOptions {
   std::vector<std::string> scenes;
   double budget_lsb = std::nan("");
   int out_bits = 8;
-  int port_words = 0;          // 0: derived (host/throughput_choice.h)
+  int port_words = 0;          // 0: derived (derive/throughput_choice.h)
   int tri_queue = 0;           // 0: derived
   std::string ideal_unit;      // empty: W_16, then the fallbacks that meet the budget
   std::string span_setup;      // empty: derived

@@ -15,7 +15,7 @@
 #include <sstream>
 
 #include "host/frame.h"
-#include "host/throughput_choice.h"
+#include "derive/throughput_choice.h"
 #include "model/coef_packing.h"
 #include "model/cycle_estimate.h"
 #include "model/cycle_model.h"

@@ -3,7 +3,7 @@
 #include <filesystem>
 
 #include "host/frame.h"
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
 #include "sim/eda/rtl_build.h"
 #include "sim/jobs/derivation_cache.h"
 

@@ -34,7 +34,7 @@
 #include <thread>
 
 #include "host/frame.h"
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
 #include "model/text_file.h"
 #include "sim/eda/area.h"
 #include "sim/eda/coverage.h"

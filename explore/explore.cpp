@@ -1,4 +1,4 @@
-#include "host/explore.h"
+#include "explore/explore.h"
 
 #include <algorithm>
 #include <atomic>
@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "host/encode.h"
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
 #include "host/specular_setup.h"
 #include "model/command_stream.h"
 #include "model/cycle_estimate.h"

@@ -12,7 +12,7 @@
 //                      <= budget), the first of DeriveOptions::ideal_fallbacks that meets it, each
 //                      with its own widths; a named lut, schlick or wpow unit whose defaults miss
 //                      gets the first of its kind's fields that meets it
-//                      (host/specular_candidates.h). Budget first: the first within the budget
+//                      (derive/specular_candidates.h). Budget first: the first within the budget
 //                      whose cycles stay within max(target, the first unit's + 1 %), else the
 //                      first within the budget all the same (its cycles stated), else the
 //                      closest, with what limits it named.
@@ -40,7 +40,7 @@
 //   port_words, tri_queue, span_setup, start_depth, material_buffers, a Schlick or W_m
 //                      unit's timing: the cheapest structure whose frames all run at <=
 //                      DeriveOptions::max_cycles_per_pixel by the cycle model, else the fastest
-//                      with each miss named (host/throughput_choice.h has the cost order);
+//                      with each miss named (derive/throughput_choice.h has the cost order);
 //                      pixels do not depend on them.
 //   diffuse_colour     multiply with three channels (one N.L series per light, a multiply per
 //                      light and channel in the unit), series with one.
@@ -60,7 +60,7 @@
 
 #include "host/prepared_scene.h"
 #include "host/scene_error.h"
-#include "host/specular_candidates.h"
+#include "derive/specular_candidates.h"
 #include "model/unit_config.h"
 
 namespace shadesim {
@@ -81,10 +81,10 @@ struct DeriveOptions {
     return s;
   }();
   // Tried in order when ideal_substitute misses the budget: W_16 with zeta fitted, W_32, then
-  // LUTs with linear interpolation (host/specular_candidates.h; docs/specular.md measures their
+  // LUTs with linear interpolation (derive/specular_candidates.h; docs/specular.md measures their
   // error and area).
   std::vector<SpecularConfig> ideal_fallbacks = ideal_stand_ins();
-  // Scenes naming a hardware unit: search that kind's fields (host/specular_candidates.h) where
+  // Scenes naming a hardware unit: search that kind's fields (derive/specular_candidates.h) where
   // its defaults miss the budget; false keeps the defaults.
   bool search_named_units = true;
   // Set by derive_config's search: the specular unit to derive the widths for, in place of the
@@ -96,7 +96,7 @@ struct DeriveOptions {
   bool hold_gate = true;
   // Throughput structure (pixels do not depend on it): requests. Unset, each is derived with
   // the start bank's depth, the material buffers and a Schlick or W_m unit's timing
-  // (host/throughput_choice.h): the cheapest structure that runs every scene within
+  // (derive/throughput_choice.h): the cheapest structure that runs every scene within
   // max_cycles_per_pixel by the cycle model (no gaps, no back-pressure). Set, it is held.
   // Host span setup takes tri_queue 1.
   std::optional<int> port_words;
@@ -147,7 +147,7 @@ struct DerivedConfig {
   ConfigMeasurements measured;
   bool substitute = false;  // the scenes name ideal; config.specular is the hardware in its place
   // One per scene over DeriveOptions::max_cycles_per_pixel on `config`: the scene, its cycles per
-  // pixel, the target and the resource that limits it (cycles_miss, host/throughput_choice.h).
+  // pixel, the target and the resource that limits it (cycles_miss, derive/throughput_choice.h).
   std::vector<std::string> cycles_misses;
   // Each scene's cycles on `config` (the throughput choice measured them; the closed-form cycle
   // model, as scene_cycles counts them).

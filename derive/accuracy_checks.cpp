@@ -1,4 +1,4 @@
-#include "host/accuracy_checks.h"
+#include "derive/accuracy_checks.h"
 
 #include <fmt/format.h>
 
@@ -7,7 +7,7 @@
 #include <variant>
 
 #include "host/gate_flips.h"
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
 #include "host/scene_error.h"
 #include "model/command_stream.h"
 #include "model/specular_units.h"

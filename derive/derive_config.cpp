@@ -1,4 +1,4 @@
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
 
 #include <algorithm>
 #include <array>
@@ -12,9 +12,9 @@
 #include "host/gate_flips.h"
 #include "host/parallel.h"
 #include "host/scene_error.h"
-#include "host/specular_candidates.h"
+#include "derive/specular_candidates.h"
 #include "host/specular_setup.h"
-#include "host/throughput_choice.h"
+#include "derive/throughput_choice.h"
 #include "model/coef_packing.h"
 #include "model/command_stream.h"
 #include "model/cycle_estimate.h"
@@ -668,7 +668,7 @@ std::string packing_why(const UnitConfig& cfg) {
          " unpacked)";
 }
 
-// The throughput structure's reasons (host/throughput_choice.h), in config_to_json's order;
+// The throughput structure's reasons (derive/throughput_choice.h), in config_to_json's order;
 // material_buffers and start_depth are listed whether or not the JSON writes them (it leaves
 // out their defaults), so a later choice can replace every one (rechoose_throughput).
 std::vector<FieldReason> throughput_reasons(const UnitConfig& cfg, const ThroughputChoice& t) {

@@ -31,7 +31,7 @@
 #include <string>
 #include <vector>
 
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
 #include "model/command_stream.h"
 #include "model/cycle_estimate.h"
 #include "model/unit_config.h"

@@ -1,4 +1,4 @@
-#include "host/throughput_choice.h"
+#include "derive/throughput_choice.h"
 
 #include <algorithm>
 #include <cmath>
