@@ -15,8 +15,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "host/frame.h"
 #include "derive/derive_config.h"
+#include "host/frame.h"
 #include "model/command_stream.h"
 #include "model/cycle_estimate.h"
 #include "model/cycle_model.h"

@@ -8,8 +8,8 @@
 //   ExploreHostSetup: the once-per-scene part, for comparison.
 #include <benchmark/benchmark.h>
 
-#include "explore/explore.h"
 #include "derive/derive_config.h"
+#include "explore/explore.h"
 
 namespace shadesim {
 namespace {

@@ -6,8 +6,10 @@
 #include <cmath>
 #include <variant>
 
+#include "derive/budget.h"
+#include "derive/trial_unit.h"
+#include "derive/width_rules.h"
 #include "host/gate_flips.h"
-#include "derive/derive_config.h"
 #include "host/scene_error.h"
 #include "model/command_stream.h"
 #include "model/specular_units.h"

@@ -6,7 +6,7 @@
 // they are chosen on cycles alone: by the cycle model with no gaps and no back-pressure
 // (CycleEstimate, exactly the clocked model's count), on every scene.
 //
-// The rule (shadesim config --help states the same): the cheapest candidate that runs every
+// The rule (kThroughputRule: config --help's text): the cheapest candidate that runs every
 // scene at <= DeriveOptions::max_cycles_per_pixel. Candidates in cost order, cheapest first
 // (what each knob adds, measured in docs/area-history.md):
 //   1. span setup on the host before the unit (the unit's span setup, coefficient banks and span
@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "derive/cycles_limit.h"
 #include "derive/derive_config.h"
 #include "model/command_stream.h"
 #include "model/cycle_estimate.h"
@@ -82,19 +83,7 @@ struct ThroughputChoice {
 ThroughputChoice choose_throughput(const FrameSet& frames, const DeriveOptions& options,
                                    const UnitConfig& unit);
 
-// Cycles per pixel of a run (0 for a frame without pixels).
-double cycles_per_pixel(const CycleEstimateRun& run);
-
-// What limits a frame's cycles on `unit`, from the no-gap run's breakdown (`run` from
-// CycleEstimate::run(words, true) on `stream`): the largest row other than pixels, named as the
-// resource behind it, with its numbers. E.g. "setup-bound: 1 + 96 words per triangle on a 4-word
-// port (...); command_words 41,016 of 56,120 cycles, 4.7 cycles/px".
-std::string cycles_limit(const UnitConfig& unit, const CommandStream& stream,
-                         const CycleEstimateRun& run);
-
-// "" when the run is within `target` cycles per pixel; else one line naming the scene, its
-// cycles per pixel, the target and cycles_limit. `config` and `cycles` both say it with this.
-std::string cycles_miss(const std::string& scene, const UnitConfig& unit,
-                        const CommandStream& stream, const CycleEstimateRun& run, double target);
+// The rule above as shadesim config --help states it.
+extern const DerivationRule kThroughputRule;
 
 }  // namespace shadesim

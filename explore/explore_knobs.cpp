@@ -3,8 +3,8 @@
 // colour, pipelining), whose pixels or cycles change but whose worth is area against clock.
 #include <algorithm>
 
+#include "derive/pipelining.h"
 #include "explore/explore.h"
-#include "derive/derive_config.h"
 #include "model/specular_units.h"
 
 namespace shadesim {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "host/frame.h"
 #include "derive/derive_config.h"
+#include "host/frame.h"
 #include "model/cycle_model.h"
 #include "sim/harness/cycle_run.h"
 #include "sim/harness/random_stream.h"

@@ -13,8 +13,9 @@
 #include <string>
 
 #include "derive/accuracy_checks.h"
-#include "host/frame.h"
+#include "derive/budget.h"
 #include "derive/derive_config.h"
+#include "host/frame.h"
 #include "host/scene_error.h"
 #include "tests/support/render_at.h"
 

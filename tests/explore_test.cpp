@@ -14,10 +14,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "derive/derive_config.h"
 #include "host/frame.h"
 #include "host/metrics.h"
 #include "host/reference.h"
-#include "derive/derive_config.h"
 #include "model/command_stream.h"
 #include "model/shade_unit.h"
 #include "model/unit_config_file.h"

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "host/gate_flips.h"
 #include "derive/derive_config.h"
+#include "host/gate_flips.h"
 #include "host/scene_error.h"
 #include "model/command_stream.h"
 #include "tests/support/render_at.h"

@@ -18,8 +18,8 @@
 #include <tuple>
 #include <vector>
 
-#include "host/frame.h"
 #include "derive/derive_config.h"
+#include "host/frame.h"
 #include "host/scene_error.h"
 #include "model/cycle_estimate.h"
 #include "tests/support/cli_run.h"

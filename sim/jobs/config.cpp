@@ -11,10 +11,11 @@
 #include <sstream>
 
 #include "derive/accuracy_checks.h"
+#include "derive/budget.h"
+#include "derive/derive_config.h"
 #include "host/frame.h"
 #include "host/metrics.h"
 #include "host/reference.h"
-#include "derive/derive_config.h"
 #include "host/scene_error.h"
 #include "model/command_stream.h"
 #include "model/shade_unit.h"
