@@ -15,8 +15,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "derive/derive_config.h"
 #include "host/frame.h"
-#include "host/scene_config.h"
 #include "model/command_stream.h"
 #include "model/cycle_estimate.h"
 #include "model/cycle_model.h"

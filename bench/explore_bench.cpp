@@ -8,8 +8,8 @@
 //   ExploreHostSetup: the once-per-scene part, for comparison.
 #include <benchmark/benchmark.h>
 
-#include "host/explore.h"
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
+#include "explore/explore.h"
 
 namespace shadesim {
 namespace {

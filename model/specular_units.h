@@ -10,7 +10,7 @@
 //     its RTL twin, checked against it in co-simulation),
 //   - spec-error's cost columns and Pareto front (sim/jobs/spec_error.cpp),
 //   - the area estimate's size of the specular slot (sim/eda/area.cpp),
-//   - the unit's knobs in `shadesim explore` (host/explore.cpp).
+//   - the unit's knobs in `shadesim explore` (explore/explore.cpp).
 // A unit's field is added to its config struct (model/exponent_lut_config.h,
 // schlick_divider_config.h, wpow_unit_config.h) and one row here.
 #pragma once

@@ -16,7 +16,11 @@
 #include <utility>
 #include <vector>
 
+#include "derive/derive_config.h"
+#include "derive/pipelining.h"
+#include "derive/reasons.h"
 #include "host/image.h"
+#include "host/prepared_scene.h"
 #include "tests/support/cli_run.h"
 
 namespace shadesim {
@@ -591,12 +595,61 @@ TEST(Cli, ConfigAndConfigFileErrorsNameTheProblem) {
   std::filesystem::remove_all(dir);
 }
 
-TEST(Cli, ConfigHelpStatesEachRule) {
+// Runs of whitespace as one space: --help wraps each rule's text to its width.
+std::string one_spaced(const std::string& text) {
+  std::istringstream words(text);
+  std::string out;
+  for (std::string word; words >> word;) out += (out.empty() ? "" : " ") + word;
+  return out;
+}
+
+// config --help prints the rules from where the derivation applies them (derivation_rules,
+// derive/reasons.h): every rule, with its fields, and a rule for every field a derivation gives
+// a reason for, the clock's pipelining among them.
+TEST(Cli, ConfigHelpPrintsEveryRuleAndEveryDerivedFieldHasOne) {
   const Result r = run("config --help");
-  EXPECT_EQ(r.status, 0);
-  for (const char* rule : {"channels", "lights", "xy_bits", "1 + L(L-1)/2", "modulo 2^iwl", "dx^2",
-                           "out_bits", "ideal", "W_16 B=16 pipelined"}) {
-    EXPECT_NE(r.output.find(rule), std::string::npos) << rule << "\n" << r.output;
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string help = one_spaced(r.output);
+  std::set<std::string> ruled;
+  for (const DerivationRule& rule : derivation_rules()) {
+    EXPECT_NE(help.find(one_spaced(std::string(rule.fields) + " " + rule.text)), std::string::npos)
+        << rule.fields << "\n"
+        << r.output;
+    std::string fields = rule.fields;
+    for (size_t at = 0; at != std::string::npos;) {
+      const size_t comma = fields.find(", ", at);
+      ruled.insert(fields.substr(at, comma == std::string::npos ? comma : comma - at));
+      at = comma == std::string::npos ? comma : comma + 2;
+    }
+  }
+  for (const char* text : {"1 + L(L-1)/2", "modulo 2^iwl", "dx^2", "W_16 B=16 pipelined"})
+    EXPECT_NE(help.find(text), std::string::npos) << text << "\n" << r.output;
+
+  // A stand-in clock (no synthesis): 100 MHz more per combine stage, so the climb takes rung 2.
+  RungTimer timer;
+  timer.mhz = 250;
+  timer.at = "250 MHz on a stand-in";
+  timer.time = [](const UnitConfig& unit) {
+    ClockTiming t;
+    t.unit = unit;
+    t.fmax_mhz = 100.0 + 100.0 * unit.combine_stages;
+    t.area = 1000.0 + unit.combine_stages;
+    return t;
+  };
+  timer.figures = [](const ClockTiming& t) { return "Fmax " + std::to_string(*t.fmax_mhz); };
+  for (const char* scene : {"sphere.json", "specular.json", "multi.json"}) {
+    PreparedScenes store;
+    const DeriveOptions options;
+    const FrameSet frames(store, {kScenes + scene}, prepare_key(options));
+    DerivedConfig derived = derive_config(frames, options);
+    EXPECT_TRUE(climb_ladder(frames, options, timer, derived).meets) << scene;
+    std::set<std::string> fields;
+    for (const FieldReason& reason : derived.reasons) {
+      fields.insert(reason.field);
+      EXPECT_EQ(ruled.count(reason.field), 1u) << scene << ": " << reason.field << " has no rule";
+    }
+    for (const char* field : {"budget", "series", "specular", "port_words", "combine_stages"})
+      EXPECT_EQ(fields.count(field), 1u) << scene << ": no reason for " << field;
   }
 }
 

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "derive/derive_config.h"
 #include "host/frame.h"
-#include "host/scene_config.h"
 #include "model/cycle_model.h"
 #include "sim/harness/cycle_run.h"
 #include "sim/harness/random_stream.h"

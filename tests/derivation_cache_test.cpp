@@ -18,7 +18,7 @@
 #include <sstream>
 #include <string>
 
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
 #include "model/command_stream.h"
 #include "model/unit_config_file.h"
 #include "sim/jobs/derivation_key.h"

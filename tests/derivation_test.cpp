@@ -12,9 +12,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "host/accuracy_checks.h"
+#include "derive/accuracy_checks.h"
+#include "derive/budget.h"
+#include "derive/derive_config.h"
 #include "host/frame.h"
-#include "host/scene_config.h"
 #include "host/scene_error.h"
 #include "tests/support/render_at.h"
 

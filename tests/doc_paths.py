@@ -3,8 +3,8 @@
 
   tests/doc_paths.py [SOURCE_DIR]
 
-Reads every *.md file, and the comments of the sources under rtl/ sim/ model/ host/ tests/
-scripts/ cmake/ bench/ and of every CMakeLists.txt (// and /* */ in C++ and SystemVerilog, # in
+Reads every *.md file, and the comments of the sources under rtl/ sim/ model/ host/ derive/
+explore/ tests/ scripts/ cmake/ bench/ and of every CMakeLists.txt (// and /* */ in C++ and SystemVerilog, # in
 shell, Python and CMake). A path is a token with a '/' that either ends in a file extension
 (notes/rtl.md) or starts with a top-level entry of the repository (scenes/hard/). It must exist
 relative to the repository root, to the file naming it, or to an installed package's files
@@ -44,7 +44,8 @@ if "--shadesim" in ARGS:
     del ARGS[i:i + 2]
 ROOT = os.path.abspath(ARGS[0] if ARGS and ARGS[0] != "--self-test" else
                        os.path.join(os.path.dirname(__file__), ".."))
-SOURCE_DIRS = ["rtl", "sim", "model", "host", "tests", "scripts", "cmake", "bench"]
+SOURCE_DIRS = ["rtl", "sim", "model", "host", "derive", "explore", "tests", "scripts", "cmake",
+               "bench"]
 C_LIKE = {".h", ".hpp", ".cpp", ".cc", ".c", ".sv", ".svh", ".v", ".vlt"}
 HASH = {".py", ".sh", ".cmake", ".txt", ".yml", ".yaml"}
 SKIP_DIRS = {".git", "build", "out", "Testing", "__pycache__"}

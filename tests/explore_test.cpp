@@ -1,7 +1,7 @@
 // shadesim explore: the sweep finds narrower widths within the budget (checked by an
 // independent render of the chosen point), the error split by source bounds the total and agrees
 // with independent double computations, the JSON/CSV outputs are well formed, bad input errors.
-#include "host/explore.h"
+#include "explore/explore.h"
 
 #include <gtest/gtest.h>
 
@@ -14,10 +14,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "derive/derive_config.h"
 #include "host/frame.h"
 #include "host/metrics.h"
 #include "host/reference.h"
-#include "host/scene_config.h"
 #include "model/command_stream.h"
 #include "model/shade_unit.h"
 #include "model/unit_config_file.h"

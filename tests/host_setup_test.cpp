@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "host/explore.h"
+#include "derive/derive_config.h"
+#include "explore/explore.h"
 #include "host/frame.h"
-#include "host/scene_config.h"
 #include "model/cycle_estimate.h"
 #include "model/rtl_parameters.h"
 #include "model/shade_unit.h"

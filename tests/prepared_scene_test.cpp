@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "derive/derive_config.h"
 #include "host/gate_flips.h"
-#include "host/scene_config.h"
 #include "host/scene_error.h"
 #include "model/command_stream.h"
 #include "model/host_setup.h"

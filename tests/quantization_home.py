@@ -3,9 +3,10 @@
 
   tests/quantization_home.py [SOURCE_DIR]
 
-Reads the C++ under model/ host/ sim/ bench/ tests/golden/ tests/support/ (comments and string
-literals removed), except model/fixed_point.h and model/fixed_point.cpp, and exits 1 naming
-file:line and the pattern for every line that hand-rolls wrap or saturation. The patterns:
+Reads the C++ under model/ host/ derive/ explore/ sim/ bench/ tests/golden/ tests/support/
+(comments and string literals removed), except model/fixed_point.h and model/fixed_point.cpp,
+and exits 1 naming file:line and the pattern for every line that hand-rolls wrap or saturation.
+The patterns:
 
   shift-pair sign extension   x << (64 - wl) ... >> ..., or x << s) >> s      (wrap to wl bits)
   xor-subtract sign extension (x ^ sign) - sign                                (wrap to wl bits)
@@ -32,7 +33,7 @@ import subprocess
 import sys
 import tempfile
 
-SCAN_DIRS = ["model", "host", "sim", "bench", "tests/golden", "tests/support"]
+SCAN_DIRS = ["model", "host", "derive", "explore", "sim", "bench", "tests/golden", "tests/support"]
 HOME = {"model/fixed_point.h", "model/fixed_point.cpp"}
 EXTS = (".h", ".hpp", ".cpp", ".cc")
 

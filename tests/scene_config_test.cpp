@@ -2,8 +2,6 @@
 // computed here independently (image sizes and lights read from the scene JSON, the longest span
 // and pixel offsets walked from the host's own visibility and stream, the drift bound's closed
 // form), and the derived unit shades the scenes within the budget.
-#include "host/scene_config.h"
-
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -13,6 +11,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "derive/budget.h"
+#include "derive/derive_config.h"
 #include "host/frame.h"
 #include "host/metrics.h"
 #include "host/reference.h"

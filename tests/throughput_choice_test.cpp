@@ -1,9 +1,9 @@
-// The throughput structure config derives (host/throughput_choice.h), checked against the cycle
+// The throughput structure config derives (derive/throughput_choice.h), checked against the cycle
 // model run directly on every candidate: each candidate's own frame prepared from the scene
 // (scene_cycles_per_pixel: prepare_frame on exactly that unit, then CycleEstimate), not the
 // streams the choice re-uses, and the candidate space and cost order written out here again from
 // the rule, not taken from throughput_candidates.
-#include "host/throughput_choice.h"
+#include "derive/throughput_choice.h"
 
 #include <gtest/gtest.h>
 
@@ -19,8 +19,8 @@
 #include <variant>
 #include <vector>
 
+#include "derive/derive_config.h"
 #include "host/frame.h"
-#include "host/scene_config.h"
 #include "host/scene_error.h"
 #include "model/cycle_estimate.h"
 #include "tests/support/cli_run.h"

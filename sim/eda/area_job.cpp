@@ -12,8 +12,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "derive/derive_config.h"
 #include "host/frame.h"
-#include "host/scene_config.h"
 #include "host/scene_error.h"
 #include "model/command_stream.h"
 #include "model/text_file.h"

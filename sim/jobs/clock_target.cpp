@@ -76,54 +76,14 @@ std::string clock_figures(const ClockTiming& t, const ClockTarget& target) {
 
 }  // namespace
 
-// Times each rung of the unit's pipelining ladder (pipelining_ladder) until one meets the
-// clock; keeps that one (every rung adds registers, so the first that meets is the cheapest),
-// else the fastest, and states every rung's figures in the "combine_stages" reason.
 ClockOutcome meet_clock(const FrameSet& frames, const DeriveOptions& options,
                         const ClockTarget& target, DerivedConfig& derived) {
-  ClockOutcome out;
-  const std::string at = fmt::format("{:g} MHz on {}", target.mhz, site_name(target));
-  const std::vector<Pipelining> ladder = pipelining_ladder(derived.config);
-  std::vector<DerivedConfig> units;
-  for (const Pipelining& p : ladder) {
-    DerivedConfig piped = derived;
-    if (!units.empty()) pipeline_unit(frames, options, p, "", piped);
-    out.tried.push_back(time_unit(piped.config, target));
-    units.push_back(std::move(piped));
-    if (out.tried.back().meets(target.mhz)) {
-      out.meets = true;
-      break;
-    }
-  }
-  out.chosen = out.tried.size() - 1;
-  if (!out.meets) {
-    for (size_t i = 0; i < out.tried.size(); ++i) {
-      if (out.tried[i].fmax_mhz.value_or(0) > out.tried[out.chosen].fmax_mhz.value_or(0))
-        out.chosen = i;
-    }
-  }
-  const ClockTiming& plain = out.tried[0];
-  const ClockTiming& chosen = out.tried[out.chosen];
-  std::string why = "the clock: unpipelined " + clock_figures(plain, target);
-  for (size_t i = 1; i < out.tried.size(); ++i) {
-    why += "; " + ladder[i].describe() + " " + clock_figures(out.tried[i], target);
-    if (plain.area > 0)
-      why += fmt::format(" ({:+.1f} % area)", 100.0 * (out.tried[i].area / plain.area - 1));
-  }
-  why += out.meets ? "; meets " + at : "; misses " + at;
-  if (!out.meets) {
-    out.miss =
-        fmt::format("no unit meets {}: the fastest, {} ({}), is limited by its {}", at,
-                    clock_figures(chosen, target), ladder[out.chosen].describe(), chosen.limit);
-  }
-  if (out.chosen == 0 && out.tried.size() == 1) {
-    derived.reasons.push_back(
-        {"combine_stages", "0",
-         "the clock: " + clock_figures(plain, target) + " meets " + at + " unpipelined"});
-  } else {
-    pipeline_unit(frames, options, ladder[out.chosen], why, derived);
-  }
-  return out;
+  RungTimer timer;
+  timer.mhz = target.mhz;
+  timer.at = fmt::format("{:g} MHz on {}", target.mhz, site_name(target));
+  timer.time = [&target](const UnitConfig& unit) { return time_unit(unit, target); };
+  timer.figures = [&target](const ClockTiming& t) { return clock_figures(t, target); };
+  return climb_ladder(frames, options, timer, derived);
 }
 
 }  // namespace shadesim

@@ -3,11 +3,10 @@
 // pipelining config may add to reach the clock (sim/jobs/clock_target.cpp).
 #pragma once
 
-#include <optional>
 #include <string>
-#include <vector>
 
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
+#include "derive/pipelining.h"
 #include "model/unit_config.h"
 
 namespace shadesim {
@@ -25,27 +24,11 @@ struct ClockTarget {
   std::string cache_dir;  // shadesim area's cache
 };
 
-// One unit's clock where it is built.
-struct ClockTiming {
-  UnitConfig unit;
-  std::optional<double> fmax_mhz;  // none: the unit was not timed (no fit on the HX8K)
-  double area = 0;                 // um^2 in the library, LUT4s on the iCE40
-  std::string limit;               // the critical path (library) or why no Fmax (iCE40)
-  bool meets(double mhz) const { return fmax_mhz && *fmax_mhz >= mhz; }
-};
 ClockTiming time_unit(const UnitConfig& unit, const ClockTarget& target);
 
-// What config did for the clock, for its report and --json.
-struct ClockOutcome {
-  std::vector<ClockTiming> tried;  // the derived unit, then each rung of its ladder timed
-  size_t chosen = 0;               // index into `tried`: the cheapest that meets, else fastest
-  bool meets = false;
-  std::string miss;  // when none meets: the fastest's Fmax and the path that limits it
-};
-// Times `derived.config`; where it misses the clock, climbs its pipelining ladder
-// (pipelining_ladder: the pixel combine's stages, then the W_m squarings'), timing each rung
-// until one meets it. `derived` becomes the chosen unit, with a "combine_stages" reason stating
-// the figures.
+// Times `derived.config` where `target` says; where it misses the clock, climbs its pipelining
+// ladder (climb_ladder, derive/pipelining.h), each rung timed by time_unit. `derived` becomes the
+// chosen unit, with a "combine_stages" reason stating the figures.
 ClockOutcome meet_clock(const FrameSet& frames, const DeriveOptions& options,
                         const ClockTarget& target, DerivedConfig& derived);
 

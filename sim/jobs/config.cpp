@@ -1,5 +1,5 @@
 // shadesim config's engine (its options: sim/cli/config.cpp): derive the smallest unit that shades
-// the scenes within the error budget (host/scene_config.h), print each field with how it was
+// the scenes within the error budget (derive/derive_config.h), print each field with how it was
 // derived, and the error the bit-accurate model reaches on each scene with it.
 #include "sim/jobs/config.h"
 
@@ -10,11 +10,12 @@
 #include <optional>
 #include <sstream>
 
-#include "host/accuracy_checks.h"
+#include "derive/accuracy_checks.h"
+#include "derive/budget.h"
+#include "derive/derive_config.h"
 #include "host/frame.h"
 #include "host/metrics.h"
 #include "host/reference.h"
-#include "host/scene_config.h"
 #include "host/scene_error.h"
 #include "model/command_stream.h"
 #include "model/shade_unit.h"

@@ -15,14 +15,14 @@ struct ConfigOptions {
   std::vector<std::string> scenes;
   double budget_lsb = std::nan("");
   int out_bits = 8;
-  int port_words = 0;          // 0: derived (host/throughput_choice.h)
+  int port_words = 0;          // 0: derived (derive/throughput_choice.h)
   int tri_queue = 0;           // 0: derived
   std::string ideal_unit;      // empty: W_16, then the fallbacks that meet the budget
   std::string span_setup;      // empty: derived
   std::string diffuse_colour;  // empty: derived
   int lanes = 1;               // pixel lanes of the unit; the structure is derived for them
   // NaN: not given, the default target (1.10 cycles per beat of the lanes; cycles_target in
-  // host/throughput_choice.h)
+  // derive/throughput_choice.h)
   double max_cycles_per_pixel = std::nan("");
   std::string json_path;
   // --clock-mhz: time the unit where it will be built and pipeline it to reach the clock

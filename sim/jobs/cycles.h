@@ -30,7 +30,7 @@ struct CyclesOptions {
   bool clocked = false;  // also the clocked model when the closed form applies; must agree
   int worst = 5;         // setup-bound triangles listed
   // The target the no-gap figure is judged against: over it, a warning names the resource that
-  // limits the unit (host/throughput_choice.h, the words `config` uses).
+  // limits the unit (derive/cycles_limit.h, the words `config` uses).
   double max_cycles_per_pixel = 1.10;
   // > 0: the unit's clock in MHz; the report adds Mpixel/s = clock / cycles per pixel.
   double clock_mhz = 0;

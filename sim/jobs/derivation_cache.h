@@ -25,7 +25,7 @@
 #include <string>
 #include <vector>
 
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
 
 namespace shadesim {
 

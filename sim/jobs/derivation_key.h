@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
 
 namespace shadesim {
 

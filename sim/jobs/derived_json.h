@@ -1,4 +1,4 @@
-// A whole DerivedConfig (host/scene_config.h) as JSON and back, for the derivation cache
+// A whole DerivedConfig (derive/derive_config.h) as JSON and back, for the derivation cache
 // (sim/jobs/derivation_cache.h): the unit, and all `shadesim config` prints beside it (each
 // field's reason, the measurements, the cycles misses), so a cached derivation prints as a fresh
 // one does.
@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
 
 namespace shadesim {
 

@@ -1,7 +1,7 @@
 // shadesim explore's engine (its options: sim/cli/explore.cpp): width sweeps of the bit-accurate
 // model against error, cycles per pixel and area; the cheapest widths meeting an error budget; the
 // Pareto front; the error of the chosen point split by source.
-#include "host/explore.h"
+#include "explore/explore.h"
 
 #include <unistd.h>
 
@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "host/scene_config.h"
+#include "derive/derive_config.h"
 #include "model/command_stream.h"
 #include "model/text_file.h"
 #include "model/unit_config_file.h"

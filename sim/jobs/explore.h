@@ -1,6 +1,6 @@
 // shadesim explore's engine: width sweeps of the bit-accurate model against error, cycles per
 // pixel and area, the cheapest widths meeting a budget and the Pareto front (sim/jobs/explore.cpp;
-// the search itself is host/explore.h). The command line that fills ExploreJobOptions:
+// the search itself is explore/explore.h). The command line that fills ExploreJobOptions:
 // sim/cli/explore.cpp.
 #pragma once
 

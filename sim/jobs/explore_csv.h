@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "host/explore.h"
+#include "explore/explore.h"
 #include "sim/jobs/explore.h"
 
 namespace shadesim {

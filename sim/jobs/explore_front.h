@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "host/explore.h"
+#include "explore/explore.h"
 #include "sim/jobs/explore.h"
 
 namespace shadesim {

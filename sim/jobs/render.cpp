@@ -11,7 +11,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "host/accuracy_checks.h"
+#include "derive/accuracy_checks.h"
 #include "host/frame.h"
 #include "host/image.h"
 #include "host/metrics.h"

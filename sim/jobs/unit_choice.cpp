@@ -2,8 +2,8 @@
 
 #include <filesystem>
 
+#include "derive/derive_config.h"
 #include "host/frame.h"
-#include "host/scene_config.h"
 #include "sim/eda/rtl_build.h"
 #include "sim/jobs/derivation_cache.h"
 

@@ -27,7 +27,7 @@ RtlConfig resolve_unit(const std::string& text, const std::string& scene,
                        const std::string& option = "--config", std::string* origin = nullptr);
 
 // The scene's own unit: the smallest unit that shades it within its error budget, with real
-// specular hardware, or none when the scene has no specular term (host/scene_config.h). Derived
+// specular hardware, or none when the scene has no specular term (derive/derive_config.h). Derived
 // once per content and reused (sim/jobs/derivation_cache.h); `origin` (when given) gets which,
 // for the unit line: "cached derivation, PATH" or "derived, cached as PATH".
 RtlConfig own_unit(const std::string& scene, std::string* origin = nullptr);

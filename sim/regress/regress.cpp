@@ -33,8 +33,8 @@
 #include <sstream>
 #include <thread>
 
+#include "derive/derive_config.h"
 #include "host/frame.h"
-#include "host/scene_config.h"
 #include "model/text_file.h"
 #include "sim/eda/area.h"
 #include "sim/eda/coverage.h"

@@ -6,7 +6,7 @@
 // they are chosen on cycles alone: by the cycle model with no gaps and no back-pressure
 // (CycleEstimate, exactly the clocked model's count), on every scene.
 //
-// The rule (shadesim config --help states the same): the cheapest candidate that runs every
+// The rule (kThroughputRule: config --help's text): the cheapest candidate that runs every
 // scene within its cycles target (cycles_target: DeriveOptions::max_cycles_per_pixel, or by
 // default 1.10 cycles per beat of the unit's lanes). Candidates in cost order, cheapest first
 // (what each knob adds, measured in docs/area-history.md):
@@ -36,8 +36,8 @@
 #include <string>
 #include <vector>
 
-#include "host/scene_config.h"
-#include "host/scene_error.h"
+#include "derive/cycles_limit.h"
+#include "derive/derive_config.h"
 #include "model/command_stream.h"
 #include "model/cycle_estimate.h"
 #include "model/unit_config.h"
@@ -102,32 +102,7 @@ struct ThroughputChoice {
 ThroughputChoice choose_throughput(const FrameSet& frames, const DeriveOptions& options,
                                    const UnitConfig& unit);
 
-// What a stream carries, for the resource a miss names; summed over chunks with +=.
-struct StreamCounts {
-  uint64_t triangles = 0, spans = 0, materials = 0, table_words = 0, pixels = 0;
-  uint64_t beats = 0;  // pixel beats at the lanes counted for (lanes stay within a span)
-  StreamCounts& operator+=(const StreamCounts& o);
-};
-StreamCounts count(const CommandStream& stream, int lanes);
-
-// Cycles per pixel of a run (0 for a frame without pixels).
-double cycles_per_pixel(const CycleEstimateRun& run);
-
-// What limits a frame's cycles on `unit`, from the no-gap run's breakdown (`run` from
-// CycleEstimate::run(words, true) on `stream`): the largest row other than pixels, named as the
-// resource behind it, with its numbers. E.g. "setup-bound: 1 + 96 words per triangle on a 4-word
-// port (...); command_words 41,016 of 56,120 cycles, 4.7 cycles/px".
-std::string cycles_limit(const UnitConfig& unit, const CommandStream& stream,
-                         const CycleEstimateRun& run);
-std::string cycles_limit(const UnitConfig& unit, const StreamCounts& counts,
-                         const CycleEstimateRun& run);
-
-// "" when the run is within `target` cycles per pixel; else one line naming the scene, its
-// cycles per pixel, the target and cycles_limit. `config` and `cycles` both say it with this.
-std::string cycles_miss(const std::string& scene, const UnitConfig& unit,
-                        const CommandStream& stream, const CycleEstimateRun& run, double target);
-// The same from a streamed frame's counts (a frame whose stream was never held whole).
-std::string cycles_miss(const std::string& scene, const UnitConfig& unit,
-                        const StreamCounts& counts, const CycleEstimateRun& run, double target);
+// The rule above as shadesim config --help states it.
+extern const DerivationRule kThroughputRule;
 
 }  // namespace shadesim

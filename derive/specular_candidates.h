@@ -2,7 +2,7 @@
 // the materials name (a LUT's entries, entry bits, interpolation and addressing; Schlick's
 // widths and fitted n'; W_m's squarings, base bits and fitted zeta), or for `ideal` the
 // hardware units standing in for exact pow. derive_config measures each on the scenes and keeps
-// the first within the budget (host/scene_config.h).
+// the first within the budget (derive/derive_config.h).
 #pragma once
 
 #include <vector>

@@ -90,7 +90,7 @@ struct Knob {
   bool choice = false;  // a choice (trn/rnd, wrap/sat), not a width: "wider" means the start's
 };
 
-// The knobs for `start` (host/explore_knobs.cpp): coefficient integer and fraction bits; series
+// The knobs for `start` (explore/explore_knobs.cpp): coefficient integer and fraction bits; series
 // fraction and integer bits, truncate/round, wrap/saturate; the selected specular unit's widths
 // and its output fraction bits; specular colour fraction bits; with `structure`, the structure,
 // not searched: span setup site, the host's start depth, the diffuse colour (where the start has

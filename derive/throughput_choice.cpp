@@ -1,4 +1,4 @@
-#include "host/throughput_choice.h"
+#include "derive/throughput_choice.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,35 +8,13 @@
 #include <stdexcept>
 #include <variant>
 
+#include "derive/helpers.h"
 #include "model/coef_packing.h"
 #include "model/host_setup.h"
 #include "model/start_packing.h"
 
 namespace shadesim {
 namespace {
-
-std::string fixed(double x, int precision = 3) {
-  std::ostringstream os;
-  os << std::fixed;
-  os.precision(precision);
-  os << x;
-  return os.str();
-}
-
-// 12345678 -> "12,345,678": the figures users compare with `cycles`' rows.
-std::string grouped(uint64_t n) {
-  std::string s = std::to_string(n);
-  for (int i = static_cast<int>(s.size()) - 3; i > 0; i -= 3) s.insert(static_cast<size_t>(i), ",");
-  return s;
-}
-
-// 1.1 -> "1.10", 1.125 -> "1.125": the target as the options spell it, at least two decimals;
-// at most four, so a per-beat target (1.10 x beats / pixels) reads as the figures beside it.
-std::string target_text(double target) {
-  std::string s = fixed(target, 4);
-  while (s.size() > s.find('.') + 3 && s.back() == '0') s.pop_back();
-  return s;
-}
 
 // One scene's command words for each site, encoded once: the knobs change no word of them, nor
 // its beats on the unit's lanes, nor so its cycles target.
@@ -287,58 +265,6 @@ void explain(const std::vector<ThroughputKnobs>& candidates, size_t chosen,
   c.span_setup = site;
 }
 
-// The resource behind a breakdown row, in words a designer acts on.
-std::string resource(const std::string& row, const UnitConfig& unit, const StreamCounts& n,
-                     const CycleEstimateRun& run) {
-  const std::string port = (unit.port_words == 8 ? "an " : "a ") + std::to_string(unit.port_words) +
-                           "-word port" + (unit.port_words == 8 ? " (the widest)" : "");
-  const double per_span =
-      n.spans ? static_cast<double>(n.pixels) / static_cast<double>(n.spans) : 0;
-  if (row == "command_words" && unit.host_setup()) {
-    return "setup-bound: 1 + " + std::to_string(StartLayout::of(unit).words) +
-           " words per span (host span setup's start values) on " + port + ", " + grouped(n.spans) +
-           " spans of " + fixed(per_span, 1) + " px on average";
-  }
-  if (row == "command_words") {
-    size_t bound = 0;
-    for (const TriangleCost& t : run.triangles) bound += t.setup_bound();
-    return "setup-bound: 1 + " + std::to_string(CoefLayout::of(unit).words) +
-           " payload words per triangle on " + port + ", " + grouped(bound) + " of " +
-           grouped(run.triangles.size()) + " triangles with more decoder than engine cycles";
-  }
-  if (row == "table") {
-    return "table reload: " + grouped(n.table_words) + " TABLE words, one entry a cycle, for " +
-           grouped(n.pixels) + " pixels";
-  }
-  if (row == "unit_stall") {
-    return "the specular unit's initiation interval: " + unit.specular.describe() + " takes " +
-           std::to_string(SlotTiming::of(unit.specular).interval) + " cycles per pixel";
-  }
-  if (row == "material") {
-    return "material loads: " + grouped(n.materials) +
-           " MATERIAL commands, each waiting for the datapath (" +
-           std::to_string(unit.material_buffers) + " material buffer(s))";
-  }
-  if (row == "setup_load") {
-    return "fixed overhead: span setup and engine load latency not hidden, " + grouped(n.pixels) +
-           " pixels in " + grouped(n.spans) + " spans of " + fixed(per_span, 1) + " px on average";
-  }
-  return "input: " + row + " (gaps or back-pressure)";
-}
-
-// What lanes leave to the structure on a stream: "759,144 pixels in 230,466 beats of up to 4
-// (96,358 spans of 7.9 px on average: lanes stay within a span), 0.304 cycles/px at the least".
-std::string lanes_floor(const StreamCounts& n, int lanes) {
-  const uint64_t beats = n.beats;
-  const auto ratio = [](uint64_t a, uint64_t b) {
-    return b ? static_cast<double>(a) / static_cast<double>(b) : 0.0;
-  };
-  return grouped(n.pixels) + " pixels in " + grouped(beats) + " beats of up to " +
-         std::to_string(lanes) + " (" + grouped(n.spans) + " spans of " +
-         fixed(ratio(n.pixels, n.spans), 1) + " px on average: lanes stay within a span), " +
-         fixed(ratio(beats, n.pixels)) + " cycles/px at the least";
-}
-
 // The lanes' reason: as the unit has them (derive_config sets DeriveOptions::lanes), and on
 // several lanes each scene's floor of one beat a cycle against kMaxCyclesPerBeat / lanes.
 std::string lanes_why(const UnitConfig& unit, const std::vector<SceneStreams>& scenes) {
@@ -461,77 +387,16 @@ ThroughputChoice choose_throughput(const FrameSet& frames, const DeriveOptions& 
   return c;
 }
 
-StreamCounts& StreamCounts::operator+=(const StreamCounts& o) {
-  triangles += o.triangles;
-  spans += o.spans;
-  materials += o.materials;
-  table_words += o.table_words;
-  pixels += o.pixels;
-  beats += o.beats;
-  return *this;
-}
-
-StreamCounts count(const CommandStream& stream, int lanes) {
-  StreamCounts n;
-  for (const Command& cmd : stream.commands) {
-    if (std::holds_alternative<TriangleCmd>(cmd)) {
-      ++n.triangles;
-    } else if (const auto* s = std::get_if<SpanCmd>(&cmd)) {
-      ++n.spans;
-      n.pixels += static_cast<uint64_t>(s->length);
-      n.beats += CycleEstimate::beats(static_cast<uint64_t>(s->length),
-                                      static_cast<uint64_t>(std::max(1, lanes)));
-    } else if (std::holds_alternative<MaterialCmd>(cmd)) {
-      ++n.materials;
-    } else if (const auto* t = std::get_if<TableCmd>(&cmd)) {
-      n.table_words += t->entries.size();
-    }
-  }
-  return n;
-}
-
-double cycles_per_pixel(const CycleEstimateRun& run) {
-  return run.pixels ? static_cast<double>(run.cycles) / static_cast<double>(run.pixels) : 0.0;
-}
-
-std::string cycles_limit(const UnitConfig& unit, const CommandStream& stream,
-                         const CycleEstimateRun& run) {
-  return cycles_limit(unit, count(stream, unit.lanes), run);
-}
-
-std::string cycles_limit(const UnitConfig& unit, const StreamCounts& n,
-                         const CycleEstimateRun& run) {
-  if (!run.breakdown) throw std::logic_error("cycles_limit: the run has no breakdown");
-  // The largest row other than pixels (rows() returns a value: keep it while pointing into it).
-  const std::vector<CycleBreakdown::Row> rows = run.breakdown->rows();
-  const CycleBreakdown::Row* row = nullptr;
-  for (const auto& r : rows) {
-    if (std::string(r.name) != "pixel" && (!row || r.cycles > row->cycles)) row = &r;
-  }
-  const double per_pixel =
-      run.pixels ? static_cast<double>(row->cycles) / static_cast<double>(run.pixels) : 0.0;
-  return resource(row->name, unit, n, run) + "; " + row->name + " " + grouped(row->cycles) +
-         " of " + grouped(run.cycles) + " cycles, " + fixed(per_pixel) + " cycles/px";
-}
-
-std::string cycles_miss(const std::string& scene, const UnitConfig& unit,
-                        const CommandStream& stream, const CycleEstimateRun& run, double target) {
-  return cycles_miss(scene, unit, count(stream, unit.lanes), run, target);
-}
-
-std::string cycles_miss(const std::string& scene, const UnitConfig& unit, const StreamCounts& n,
-                        const CycleEstimateRun& run, double target) {
-  const double cpp = cycles_per_pixel(run);
-  if (cpp <= target) return "";
-  const std::string head = scene + ": " + fixed(cpp) + " cycles/px (" + grouped(run.cycles) +
-                           " cycles, " + grouped(run.pixels) +
-                           " pixels; cycle model, no gaps) over the " + target_text(target) +
-                           " target; ";
-  // Beats alone over the target: no structure helps, whatever the largest bubble row says.
-  const double floor =
-      run.pixels ? static_cast<double>(n.beats) / static_cast<double>(run.pixels) : 0.0;
-  if (floor > target) return head + "pixel lanes: " + lanes_floor(n, unit.lanes);
-  return head + cycles_limit(unit, n, run);
-}
+const DerivationRule kThroughputRule = {
+    "port_words, tri_queue, span_setup, start_depth, material_buffers",
+    "and a Schlick or W_m unit's timing: the cheapest structure that runs every scene at <= the "
+    "cycles target (--max-cycles-per-pixel; by default 1.10 cycles per beat of the unit's lanes, "
+    "1.10 cycles per pixel with one lane) by the cycle model, no gaps; pixels do not depend on "
+    "them. Cheapest first: host span setup (the host sends each span's start values: no span "
+    "setup, no coefficient banks, tri_queue 1) before unit setup, iterative before pipelined, "
+    "fewer port words (1, 2, 4, 8), a shallower start bank (1, 2) or triangle queue (1..8), 1 "
+    "material buffer before 2. Where none meets the target: the fastest, and each scene over it "
+    "named with the resource that limits it (--port-words, --tri-queue, --span-setup hold a "
+    "knob)"};
 
 }  // namespace shadesim

@@ -1,7 +1,7 @@
 // Where a unit cannot shade a scene within its error budget, say so and why, measured on the unit
 // under test (never a silently wrong image). Two kinds of check:
 //   formats  each format of the unit against what the scene drives on the unit's own structure
-//            (measure_scene_on, host/scene_config.h):
+//            (measure_scene_on, derive/trial_unit.h):
 //              series range  series values and colour products beyond the series' integer
 //                            range wrap or saturate (an overbright light, say);
 //              colour words  ks_c L_c (and kd_c L_c multiplied) beyond spec_colour's range

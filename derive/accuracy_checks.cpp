@@ -1,4 +1,4 @@
-#include "host/accuracy_checks.h"
+#include "derive/accuracy_checks.h"
 
 #include <fmt/format.h>
 
@@ -6,8 +6,10 @@
 #include <cmath>
 #include <variant>
 
+#include "derive/budget.h"
+#include "derive/trial_unit.h"
+#include "derive/width_rules.h"
 #include "host/gate_flips.h"
-#include "host/scene_config.h"
 #include "host/scene_error.h"
 #include "model/command_stream.h"
 #include "model/specular_units.h"

@@ -1,4 +1,4 @@
-#include "host/explore.h"
+#include "explore/explore.h"
 
 #include <algorithm>
 #include <atomic>
@@ -10,8 +10,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "derive/pipelining.h"
 #include "host/encode.h"
-#include "host/scene_config.h"
 #include "host/specular_setup.h"
 #include "model/command_stream.h"
 #include "model/cycle_estimate.h"

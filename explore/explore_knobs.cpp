@@ -1,10 +1,10 @@
-// explore's knobs (host/explore.h): the widths the error search narrows, and the structure it
+// explore's knobs (explore/explore.h): the widths the error search narrows, and the structure it
 // sweeps beside them for the table and the Pareto front (span setup site, start depth, diffuse
 // colour, pipelining), whose pixels or cycles change but whose worth is area against clock.
 #include <algorithm>
 
-#include "host/explore.h"
-#include "host/scene_config.h"
+#include "derive/pipelining.h"
+#include "explore/explore.h"
 #include "model/specular_units.h"
 
 namespace shadesim {
@@ -162,7 +162,7 @@ void diffuse_colour_knob(const UnitConfig& start, std::vector<Knob>& k) {
       [](const UnitConfig& c) { return c.diffuse_multiply() ? 1 : 0; }));
 }
 
-// The rungs of the start's pipelining ladder (host/scene_config.h: combine_stages 0, 1, 2, then
+// The rungs of the start's pipelining ladder (derive/derive_config.h: combine_stages 0, 1, 2, then
 // square_stages 2 on a pipelined W_m), labelled "c<combine_stages>" and " sq2". A start off the
 // ladder (a config file's) is swept too, last.
 void pipelining_knob(const UnitConfig& start, std::vector<Knob>& k) {

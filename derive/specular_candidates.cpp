@@ -1,4 +1,4 @@
-#include "host/specular_candidates.h"
+#include "derive/specular_candidates.h"
 
 namespace shadesim {
 namespace {
