@@ -1,17 +1,13 @@
 #include "derive/throughput_choice.h"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 #include <variant>
 
 #include "derive/helpers.h"
-#include "model/coef_packing.h"
 #include "model/host_setup.h"
-#include "model/start_packing.h"
 
 namespace shadesim {
 namespace {
