@@ -66,18 +66,6 @@ EncodeStats PreparedScene::encode_chunks(const UnitConfig& unit, const ChunkSink
   return encode_frame_chunks(scene_, config, setup_, visibility_, sink);
 }
 
-PreparedFrame PreparedScene::frame_on(const UnitConfig& unit) const {
-  PreparedFrame f;
-  f.encoded = encode(unit);
-  f.config = unit;
-  f.scene = scene_;
-  f.project = project_;
-  f.setup = setup_;
-  f.visibility = visibility_;
-  f.timings = timings_;
-  return f;
-}
-
 const PreparedScene& PreparedScenes::at(const std::string& path, const PrepareKey& key) {
   const std::lock_guard<std::mutex> lock(mutex_);
   std::shared_ptr<PreparedScene>& slot = scenes_[{path, key}];

@@ -60,9 +60,6 @@ class PreparedScene {
   // the whole frame. Returns its stats.
   EncodeStats encode_chunks(const UnitConfig& unit, const ChunkSink& sink) const;
 
-  // The whole PreparedFrame on exactly `unit`, for code written against it: copies the geometry.
-  PreparedFrame frame_on(const UnitConfig& unit) const;
-
   // scene_error's result for `unit`, measured once: the derivation and config's checks ask for
   // the same unit more than once. `measure` runs outside the lock.
   template <class Measure>
