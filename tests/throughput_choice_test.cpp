@@ -23,6 +23,7 @@
 #include "host/frame.h"
 #include "host/scene_error.h"
 #include "model/cycle_estimate.h"
+#include "model/unit_config_file.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/render_at.h"
 
@@ -349,6 +350,34 @@ TEST_F(ThroughputChoiceScenes, CyclesWarnsOverTheTargetAndIsSilentWithin) {
               1e-9);
   EXPECT_NE(clock_text.find(" Mpixel/s at 200.0 MHz"), std::string::npos) << clock_text;
   EXPECT_FALSE(over_json.contains("mpixel_per_s"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_F(ThroughputChoiceScenes, CyclesJudgesAMultiLaneUnitPerBeatAsConfigDoes) {
+  // Without --max-cycles-per-pixel, cycles' target is config's: 1.10 cycles per beat of the
+  // unit's lanes, counted here from a fresh frame's spans (default_target). A one-word port on
+  // four lanes runs over it, so the warning is there; a given target still wins.
+  const std::string path = scene("sphere_lanes_cli", 96, 72, 1, false, "none", sphere(24));
+  const auto dir = temp_dir("throughput_choice", "cycles_lanes");
+  const std::string out = (dir / "c.json").string();
+  const auto json_of = [&](const std::string& args) {
+    const Result r = run("cycles " + path + " --config default " + args + " --json " + out);
+    EXPECT_EQ(r.status, 0) << r.output;
+    std::ifstream in(out);
+    return nlohmann::json::parse(in);
+  };
+  for (const int lanes : {1, 4}) {
+    const nlohmann::json j = json_of("--lanes " + std::to_string(lanes) + " --port-words 1");
+    const UnitConfig u = parse_unit_config(j["config"].dump(), "cycles --json");
+    ASSERT_EQ(u.lanes, lanes);
+    const double target = default_target(path, u);
+    EXPECT_DOUBLE_EQ(j["max_cycles_per_pixel"].get<double>(), target) << lanes;
+    if (lanes == 1) EXPECT_DOUBLE_EQ(target, kTarget);
+    const bool over = j["cycles_per_pixel"].get<double>() > target;
+    EXPECT_EQ(j["warnings"].size(), over ? 1u : 0u) << j["warnings"].dump();
+  }
+  const nlohmann::json given = json_of("--lanes 4 --port-words 1 --max-cycles-per-pixel 9");
+  EXPECT_DOUBLE_EQ(given["max_cycles_per_pixel"].get<double>(), 9.0);
   std::filesystem::remove_all(dir);
 }
 

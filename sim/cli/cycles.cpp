@@ -90,9 +90,9 @@ void register_cycles(CLI::App& app, int& exit_code) {
          "--max-cycles-per-pixel", o->max_cycles_per_pixel,
          "warn when the unit takes more cycles per pixel than this with no gaps and no\n"
          "back-pressure (the unit's own figure; with gaps or back-pressure that figure is\n"
-         "judged, not the run's), naming the resource that limits it")
-      ->check(positive_number())
-      ->capture_default_str();
+         "judged, not the run's), naming the resource that limits it. Default: config's, 1.10\n"
+         "cycles per beat of the unit's lanes (1.10 x beats / pixels; 1.10 with one lane)")
+      ->check(positive_number());
   sub->add_option("--clock-mhz", o->clock_mhz,
                   "the unit's clock in MHz (e.g. the Fmax `shadesim area` prints): the report\n"
                   "adds pixels per second, the clock over the cycles per pixel")

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "derive/cycles_limit.h"
+#include "derive/throughput_choice.h"
 #include "host/frame.h"
 #include "model/coef_packing.h"
 #include "model/cycle_estimate.h"
@@ -424,15 +425,24 @@ nlohmann::json cycles_json(const CyclesOptions& o, const CyclesFrame& frame, con
             {"cycle_model", c.clocked ? nlohmann::json(c.model_s) : nlohmann::json(nullptr)}}}};
 }
 
+// The frame's cycles target: --max-cycles-per-pixel where given, else config's own default for
+// the unit's lanes (1.10 cycles per beat: 1.10 cycles per pixel with one lane), so `cycles`
+// judges a unit as `config` chose it.
+double cycles_target_of(const CyclesOptions& o, const CyclesFrame& frame) {
+  DeriveOptions d;
+  if (!std::isnan(o.max_cycles_per_pixel)) d.max_cycles_per_pixel = o.max_cycles_per_pixel;
+  return cycles_target(d, SceneCycles{0, frame.counts.pixels, frame.counts.beats});
+}
+
 // The cycles target's warning: the unit's no-gap figure (gaps and back-pressure are the
-// testbench's, not the unit's) over --max-cycles-per-pixel, naming the resource that limits it
-// in config's words (cycles_miss). Empty within the target.
+// testbench's, not the unit's) over the target, naming the resource that limits it in config's
+// words (cycles_miss). Empty within the target.
 std::vector<std::string> cycles_warnings(const CyclesOptions& o, const CyclesFrame& frame,
-                                         const CyclesCount& c) {
-  if (shadesim::cycles_per_pixel(c.estimate) <= o.max_cycles_per_pixel) return {};
+                                         const CyclesCount& c, double target) {
+  if (shadesim::cycles_per_pixel(c.estimate) <= target) return {};
   const CycleEstimateRun run =
       c.estimate.breakdown ? c.estimate : CycleEstimate(c.timing).run(c.words, true);
-  std::string w = cycles_miss(o.scene, frame.config, frame.counts, run, o.max_cycles_per_pixel);
+  std::string w = cycles_miss(o.scene, frame.config, frame.counts, run, target);
   if (!c.no_stimulus) {
     std::ostringstream os;
     os << std::fixed << std::setprecision(3) << cycles_per_pixel(c.run);
@@ -452,11 +462,12 @@ int run_cycles(const CyclesOptions& o) {
   const CyclesCount c = count_cycles(o, frame);
   const TriangleSummary tris(c.estimate.triangles, o.worst);
   print_cycles(o, frame, c, tris, host_s, unit_note);
-  const std::vector<std::string> warnings = cycles_warnings(o, frame, c);
+  const double target = cycles_target_of(o, frame);
+  const std::vector<std::string> warnings = cycles_warnings(o, frame, c, target);
   for (const auto& w : warnings) std::cout << "warning      " << w << '\n';
   if (!o.json_path.empty()) {
     nlohmann::json j = cycles_json(o, frame, c, tris, host_s);
-    j["max_cycles_per_pixel"] = o.max_cycles_per_pixel;
+    j["max_cycles_per_pixel"] = target;
     if (o.clock_mhz > 0) {
       j["clock_mhz"] = o.clock_mhz;
       j["mpixel_per_s"] = o.clock_mhz / cycles_per_pixel(c.run);

@@ -2,6 +2,7 @@
 // they go (sim/jobs/cycles.cpp). The command line that fills CyclesOptions: sim/cli/cycles.cpp.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -30,8 +31,9 @@ struct CyclesOptions {
   bool clocked = false;  // also the clocked model when the closed form applies; must agree
   int worst = 5;         // setup-bound triangles listed
   // The target the no-gap figure is judged against: over it, a warning names the resource that
-  // limits the unit (derive/cycles_limit.h, the words `config` uses).
-  double max_cycles_per_pixel = 1.10;
+  // limits the unit (derive/cycles_limit.h, the words `config` uses). NaN: config's default,
+  // 1.10 cycles per beat of the unit's lanes (cycles_target, derive/throughput_choice.h).
+  double max_cycles_per_pixel = std::nan("");
   // > 0: the unit's clock in MHz; the report adds Mpixel/s = clock / cycles per pixel.
   double clock_mhz = 0;
 };
