@@ -20,6 +20,7 @@
 
 #include "derive/derive_config.h"
 #include "model/command_stream.h"
+#include "model/text_file.h"
 #include "model/unit_config_file.h"
 #include "sim/jobs/derivation_key.h"
 #include "tests/support/cli_run.h"
@@ -31,13 +32,9 @@ namespace fs = std::filesystem;
 
 const fs::path kScenes = fs::path(SHADESIM_SOURCE_DIR) / "scenes";
 
-std::string read_all(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-void write_all(const fs::path& p, const std::string& text) {
-  std::ofstream(p, std::ios::binary) << text;
-}
+// The project's reader and writer: a missing file fails the test naming it, not as "".
+std::string read_all(const fs::path& p) { return read_text_file(p.string()); }
+void write_all(const fs::path& p, const std::string& text) { write_text_file(p.string(), text); }
 
 // Everything config prints of a derivation, as one comparable text.
 std::string printed(const DerivedConfig& d) {
