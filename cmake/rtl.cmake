@@ -1,7 +1,7 @@
 # RTL (rtl/*.sv) checks and co-simulation tests.
 #
 # The RTL builds themselves are not CMake targets: shadesim Verilates each unit configuration on
-# demand into <build>/rtl-cache (sim/eda/rtl_build.h), with its Verilog parameters from the one
+# demand into <build>/rtl-cache (sim/eda/verilator/rtl_build.h), with its Verilog parameters from the one
 # mapping in model/rtl_parameters.cpp. The named builds the tests share are listed in
 # sim/harness/builds.json; the `rtl_builds` target below builds them (and the traced builds the
 # waveform tests use) once, in parallel, so every test finds them in the cache.
@@ -62,7 +62,7 @@ set(RTL_CACHE ${CMAKE_BINARY_DIR}/rtl-cache)
 # each run's length), and a quick build compiles in about a third of a fast one's time.
 # The named builds regress_shipped_scenes_named_builds runs every shipped scene on (1.4 M
 # cycles and more each, so regress wants them fast) are made fast first. A fast build leaves the
-# SVA out (checks_assertions, sim/eda/rtl_recipe.h), so the quick runs on them have builds of
+# SVA out (checks_assertions, sim/eda/verilator/rtl_recipe.h), so the quick runs on them have builds of
 # their own. The fault-hook variants are what the rtl_cosim_catches_fault_* tests run (and the
 # waveform test's failing run); every other run uses each build without its hooks.
 set(RTL_SHIPPED_SCENE_BUILDS lut_d schlick_iter_d schlick_pipe_d wpow16_d lut_n schlick_iter_n
@@ -94,7 +94,7 @@ foreach(name ${RTL_BUILD_NAMES})
             ${SHADESIM_CLI} ${RTL_SOURCES})
 endforeach()
 # The fault hooks bound into a four-lane RGB unit, as a build with fault hooks Verilates them
-# (-fno-dfg: sim/eda/rtl_recipe.cpp says why).
+# (-fno-dfg: sim/eda/verilator/rtl_recipe.cpp says why).
 add_test(NAME rtl_lint_fault_hooks
   COMMAND ${VERILATOR_BIN} --lint-only -Wall -fno-dfg -GLANES=4 -GCHANNELS=3 -GLIGHTS=2
           --top-module shade_unit ${RTL_SIM_SOURCES} ${CMAKE_SOURCE_DIR}/sim/harness/faults/fault_bind.sv)

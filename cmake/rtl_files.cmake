@@ -1,5 +1,5 @@
 # rtl_files(<out> [DIR <dir>] [UNTIL <file>]): shade_unit's RTL sources, absolute, in dependency
-# order, from the one list rtl/files.f (which sim/eda/rtl_build.cpp and sim/eda/area.cpp read
+# order, from the one list rtl/files.f (which sim/eda/verilator/rtl_build.cpp and sim/eda/yosys/area.cpp read
 # too); DIR reads another folder's files.f (sim/harness/faults: the fault hooks). UNTIL stops
 # after that file (the specular units' own tests need the leaves up to specular_unit.sv). A
 # change to the list re-runs the configure.

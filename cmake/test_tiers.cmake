@@ -29,7 +29,7 @@ set(SHADESIM_TIERS quick rtl regress fuzz slow)
 set(SHADESIM_TIER_RULES
   # the tier check itself, source checks and the scripts' own tests: seconds, no tools
   "^test_tiers_check(_self_test)?$"                                 quick
-  "^(doc_paths|quantization_home)(_self_test)?$"                    quick
+  "^(doc_paths|quantization_home|include_layers)(_self_test)?$"     quick
   "^(plot_colours|cpp_format|rtl_line_length)$"                     quick
   "^mutate_rtl_self_test$"                                          quick
   "^check_commits_self_test$"                                      quick

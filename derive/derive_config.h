@@ -18,7 +18,7 @@
 
 namespace shadesim {
 
-// A field added here must join derive_options_json (sim/jobs/derivation_key.cpp): the derivation
+// A field added here must join derive_options_json (sim/engines/derivation_key.cpp): the derivation
 // cache keys on every field.
 struct DeriveOptions {
   std::optional<double> budget_lsb;  // unset: the smallest error_budget_lsb of the scenes
@@ -78,7 +78,7 @@ struct FieldReason {
 };
 
 // What derive_config measured over all scenes (on the trial unit). A field added here joins
-// each_measurement (sim/jobs/derived_json.cpp), or a cached derivation reads it back as 0.
+// each_measurement (sim/engines/derived_json.cpp), or a cached derivation reads it back as 0.
 struct ConfigMeasurements {
   double budget_lsb = 0;
   int max_width = 0, max_height = 0;

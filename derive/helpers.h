@@ -6,6 +6,7 @@
 #include <string>
 
 #include "host/vec3.h"
+#include "model/digit_grouping.h"
 
 namespace shadesim {
 
@@ -24,13 +25,6 @@ inline std::string fixed(double x, int precision = 3) {
   os.precision(precision);
   os << x;
   return os.str();
-}
-
-// 12345678 -> "12,345,678": the figures users compare with `cycles`' rows.
-inline std::string grouped(uint64_t n) {
-  std::string s = std::to_string(n);
-  for (int i = static_cast<int>(s.size()) - 3; i > 0; i -= 3) s.insert(static_cast<size_t>(i), ",");
-  return s;
 }
 
 // 1.1 -> "1.10", 1.125 -> "1.125": the target as the options spell it, at least two decimals.

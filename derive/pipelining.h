@@ -1,6 +1,6 @@
 // A unit's pipelining, the knobs a clock target turns (pixels do not depend on them), and the
 // climb up its ladder: each rung timed where the unit will be built, the first that meets the
-// clock kept (kPipeliningRule). The caller times a rung (sim/jobs/clock_target.cpp: by
+// clock kept (kPipeliningRule). The caller times a rung (sim/engines/clock_target.cpp: by
 // synthesis, through shadesim area's flows), so derive/ runs no EDA tool itself.
 #pragma once
 

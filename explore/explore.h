@@ -23,8 +23,8 @@
 
 namespace shadesim {
 
-// Area of one configuration, as the area model (sim/eda/area.h) reports it. An AreaFunction is
-// called from the worker threads at once: it must be safe to call concurrently.
+// Area of one configuration, as the area model (sim/eda/yosys/area.h) reports it. An AreaFunction
+// is called from the worker threads at once: it must be safe to call concurrently.
 struct AreaFigure {
   double cells = 0;    // the figure the search minimises
   double lut4 = 0;     // iCE40 LUT4s, where the area model gives them (else 0)
@@ -110,7 +110,7 @@ struct MeasuredArea {
   std::string note;                // why there is no Fmax
   std::string critical_path;       // nextpnr's post-route one, "net A -> net B (...)"; or empty
   // The unit on a standard-cell library (osu018 unless told otherwise), timed by OpenSTA
-  // (sim/eda/liberty_flow.h); none where that flow was not run.
+  // (sim/eda/sta/liberty_flow.h); none where that flow was not run.
   std::string library;                     // "osu018", else the liberty's library name
   std::optional<double> library_fmax_mhz;  // 1000 / (analysis period - worst slack)
   std::optional<double> library_area_um2;  // table RAM macros apart

@@ -8,8 +8,8 @@
 //   - SpecularConfig::validate and describe (model/specular_config.cpp),
 //   - SlotTiming::of (model/cycle_model.cpp; rtl/shade_pkg.sv spec_latency / spec_interval is
 //     its RTL twin, checked against it in co-simulation),
-//   - spec-error's cost columns and Pareto front (sim/jobs/spec_error.cpp),
-//   - the area estimate's size of the specular slot (sim/eda/area.cpp),
+//   - spec-error's cost columns and Pareto front (sim/engines/spec_error.cpp),
+//   - the area estimate's size of the specular slot (sim/eda/yosys/area.cpp),
 //   - the unit's knobs in `shadesim explore` (explore/explore.cpp).
 // A unit's field is added to its config struct (model/exponent_lut_config.h,
 // schlick_divider_config.h, wpow_unit_config.h) and one row here.
@@ -82,8 +82,8 @@ struct SpecularUnitDescriptor {
   int (*interval)(const SpecularConfig&);  // cycles per pixel
   SpecularCost (*cost)(const SpecularConfig&);
   std::string (*describe)(const SpecularConfig&);  // the text after the name, e.g. " A=10 B=8 trn"
-  // What the slot's cells grow with, for the area estimate's scaling (sim/eda/area.h), given the
-  // series width the slot reads; 0 for no hardware.
+  // What the slot's cells grow with, for the area estimate's scaling (sim/eda/yosys/area.h), given
+  // the series width the slot reads; 0 for no hardware.
   double (*slot_size)(const SpecularConfig&, int series_wl);
   // Rules across the unit's fields, after each field's range: throws std::invalid_argument
   // "<unit>.<key> ..."; nullptr = none.

@@ -1,5 +1,5 @@
 // shade_unit's RTL sources in dependency order, leaves first: the one list every tool reads
-// (cmake/rtl.cmake, cmake/rtl_units.cmake, cmake/icarus.cmake, sim/eda/rtl_build.cpp, sim/eda/area.cpp).
+// (cmake/rtl.cmake, cmake/rtl_units.cmake, cmake/icarus.cmake, sim/eda/verilator/rtl_build.cpp, sim/eda/yosys/area.cpp).
 // One file name per line, relative to this folder; lines starting with // are comments.
 shade_pkg.sv
 fixed_round.sv

@@ -881,7 +881,8 @@ TEST(Cli, RegressHelpPrintsTheQuickBuildThreshold) {
   EXPECT_EQ(r.output.compare(at + key.size() + figure.size(), 7, " cycles"), 0) << r.output;
   std::ifstream doc(std::string(SHADESIM_SOURCE_DIR) + "/docs/builds.md");
   const std::string text((std::istreambuf_iterator<char>(doc)), std::istreambuf_iterator<char>());
-  EXPECT_NE(text.find("sim/eda/rtl_build.h`: " + figure + " cycles"), std::string::npos) << figure;
+  EXPECT_NE(text.find("sim/eda/verilator/rtl_build.h`: " + figure + " cycles"), std::string::npos)
+      << figure;
 }
 
 TEST(Cli, CosimRefusesAFaultOnARowWithNoPixels) {

@@ -1,4 +1,4 @@
-// shadesim config --clock-mhz (sim/jobs/clock_target.h) on the sphere, timed in osu018: a clock
+// shadesim config --clock-mhz (sim/engines/clock_target.h) on the sphere, timed in osu018: a clock
 // the unit meets leaves it unpipelined and times exactly the unit config writes (shadesim area
 // on that file finds the same cached flow and Fmax); a clock no unit meets times every rung of the
 // pipelining ladder, keeps the fastest unit, names the critical path and exits 1, and the unit
@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "sim/eda/liberty_flow.h"
+#include "sim/eda/sta/liberty_flow.h"
 #include "tests/support/cli_run.h"
 
 namespace shadesim {

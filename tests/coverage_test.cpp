@@ -1,6 +1,7 @@
-// regress --coverage's reading of Verilator coverage files (sim/eda/coverage.h), on hand-made .dat
-// files whose figures are counted by hand here, and its reading of the RTL's exclusion pragmas.
-#include "sim/eda/coverage.h"
+// regress --coverage's reading of Verilator coverage files (sim/eda/verilator/coverage.h), on
+// hand-made .dat files whose figures are counted by hand here, and its reading of the RTL's
+// exclusion pragmas.
+#include "sim/eda/verilator/coverage.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -1,10 +1,10 @@
-// The derivation cache (sim/jobs/derivation_cache.h): a second derivation of the same content is
+// The derivation cache (sim/engines/derivation_cache.h): a second derivation of the same content is
 // read back, and what it gives equals a fresh derive_config; any change to what the derivation
 // reads (a scene byte, a mesh byte, an option) misses; an entry that cannot be used is named in a
 // warning and replaced by a fresh derivation; and the commands say on their unit line that the
 // own unit was reused. Every expected unit comes from derive_config run here, never from the
 // cache or a copied constant. Scenes and caches live in a temporary folder per test.
-#include "sim/jobs/derivation_cache.h"
+#include "sim/engines/derivation_cache.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -22,7 +22,7 @@
 #include "model/command_stream.h"
 #include "model/text_file.h"
 #include "model/unit_config_file.h"
-#include "sim/jobs/derivation_key.h"
+#include "sim/engines/derivation_key.h"
 #include "tests/support/cli_run.h"
 
 namespace shadesim {

@@ -21,7 +21,7 @@
 #include "model/command_stream.h"
 #include "model/shade_unit.h"
 #include "model/unit_config_file.h"
-#include "sim/eda/liberty_flow.h"
+#include "sim/eda/sta/liberty_flow.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/render_at.h"
 

@@ -1,7 +1,8 @@
-// The liberty flow of shadesim area (sim/eda/liberty_flow.h) and its parts:
+// The liberty flow of shadesim area (sim/eda/sta/liberty_flow.h) and its parts:
 //   - the Liberty reader and function evaluator on a small library written here (areas, pins,
 //     clocks, flip-flop groups; truth tables worked out by hand);
-//   - fanout buffering (sim/eda/fanout_buffer.h) on netlists built here: a 20-sink net becomes a
+//   - fanout buffering (sim/eda/sta/fanout_buffer.h) on netlists built here: a 20-sink net becomes
+//   a
 //     tree, every sink still reaches the driver, no net drives more than the limit, a clock net and
 //     an output port stay where they were;
 //   - the OpenSTA report reader on a saved report (tests/data/liberty/sta_report_sphere.txt, the
@@ -11,7 +12,7 @@
 //     flip-flops by construction, its Fmax against this test's own OpenSTA run of the netlist;
 //   - errors: a missing default library names its Debian package, a missing --liberty file and
 //     a missing sta name themselves.
-#include "sim/eda/liberty_flow.h"
+#include "sim/eda/sta/liberty_flow.h"
 
 #include <gtest/gtest.h>
 
@@ -25,9 +26,9 @@
 #include <set>
 #include <sstream>
 
-#include "sim/eda/fanout_buffer.h"
-#include "sim/eda/liberty.h"
-#include "sim/eda/sta_report.h"
+#include "sim/eda/sta/fanout_buffer.h"
+#include "sim/eda/sta/liberty.h"
+#include "sim/eda/sta/sta_report.h"
 #include "tests/support/cli_run.h"
 
 namespace shadesim {

@@ -1,7 +1,7 @@
-// Power from a scene's switching activity (sim/eda/activity.h, sim/eda/power.h), validated where
-// toggles can be counted by hand: tests/data/power/power_fixture.sv, a 4-bit counter (bit i
-// toggles once every 2^i cycles) and a 4-stage shift register fed 1,1,0,0,..., driven by
-// power_fixture_tb.cpp as the harness drives shade_unit, and mapped onto osu018
+// Power from a scene's switching activity (sim/eda/power/activity.h, sim/eda/power/power.h),
+// validated where toggles can be counted by hand: tests/data/power/power_fixture.sv, a 4-bit
+// counter (bit i toggles once every 2^i cycles) and a 4-stage shift register fed 1,1,0,0,...,
+// driven by power_fixture_tb.cpp as the harness drives shade_unit, and mapped onto osu018
 // (power_fixture_osu018.v). Expected values are hand counts and closed forms in this file:
 //   - Verilator's toggle coverage counts exactly the toggles (the counts below, for 64 cycles
 //     after 4 reset edges);
@@ -11,7 +11,7 @@
 //   - unmatched and re-encoded flip-flops are counted and get the default;
 //   - on a real unit, the covered co-simulation's input-port toggles equal the harness's
 //     stimulus replayed without the RTL.
-#include "sim/eda/power.h"
+#include "sim/eda/power/power.h"
 
 #include <gtest/gtest.h>
 
@@ -25,11 +25,12 @@
 
 #include "host/frame.h"
 #include "model/unit_config_file.h"
-#include "sim/eda/activity.h"
-#include "sim/eda/power_netlist.h"
-#include "sim/eda/process.h"
+#include "sim/eda/common/process.h"
+#include "sim/eda/power/activity.h"
+#include "sim/eda/power/power_netlist.h"
+#include "sim/engines/scene_activity.h"
+#include "sim/engines/unit_choice.h"
 #include "sim/harness/cosim.h"
-#include "sim/jobs/unit_choice.h"
 #include "tests/support/cli_run.h"
 
 namespace shadesim {
@@ -204,9 +205,9 @@ void expect_near_rel(double got, double want, double rel, const char* what) {
 // The trace's counts are the hand counts, per instance of g_div and inside g_blk; the duty of
 // a few bits by hand over [40, 680] (64 cycles from the first sample, 10 units each): count_q's
 // bits are 1 for 32 of the 64 counter values, g_div[1]'s enable for 16, rst_ni always.
-// And why not Verilator's toggle coverage (sim/eda/activity.h): on the same run it counts count_q
-// right, but merges the two g_div instances into one point (32 + 16) and has no point for the
-// register declared in a generate block. (One test: one Verilator build of the fixture.)
+// And why not Verilator's toggle coverage (sim/eda/power/activity.h): on the same run it counts
+// count_q right, but merges the two g_div instances into one point (32 + 16) and has no point for
+// the register declared in a generate block. (One test: one Verilator build of the fixture.)
 TEST(Activity, TheTraceGivesTheHandCountedTogglesWhereToggleCoverageCannot) {
   const fs::path dir = temp_dir("power", "trace");
   const std::string fst = fixture_trace(dir);

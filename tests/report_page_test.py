@@ -83,7 +83,7 @@ def main():
     r = run([shadesim, "spec-error", "--exponents", "20,60,200", "--points", "16", "--no-papers",
              "--json", os.path.join(inputs, "spec-error.json")])
     check(r.returncode == 0, "spec-error --json: " + r.stderr.strip())
-    # explore's format (sim/jobs/explore.cpp), three points.
+    # explore's format (sim/engines/explore.cpp), three points.
     def point(i, stage, area, mx, mean, pareto):
         return {"index": i, "phase": "stage", "stage": stage, "knob": stage, "value": str(i), "valid": True,
                 "config_text": f"grey/1L point {i}", "error": {"max_code_lsb": mx, "mean_code_lsb": mean},
@@ -110,7 +110,7 @@ def main():
         json.dump({"channels": 1, "series": "s4.28"}, f)  # not a report: ignored, listed
     with open(os.path.join(inputs, "junit.xml"), "w") as f:
         f.write('<testsuite name="shadesim.regress"></testsuite>\n')  # read from regress --json instead
-    # render --all-units's format (sim/jobs/render.cpp run_all_units).
+    # render --all-units's format (sim/engines/render.cpp run_all_units).
     with open(os.path.join(inputs, "units.json"), "w") as f:
         json.dump({"scene": "scenes/specular.json",
                    "units": [{"unit": "wpow", "configuration": "wpow m=16 B=16", "max_code_lsb": 2,

@@ -1,4 +1,6 @@
-// shadesim area (--config FILE.json | SCENE): its options; the engine is sim/eda/area_job.h.
+// shadesim area (--config FILE.json | SCENE): its options; the engine is sim/engines/area.h.
+#include "sim/engines/area.h"
+
 #include <CLI/CLI.hpp>
 #include <memory>
 #include <stdexcept>
@@ -7,13 +9,12 @@
 #include "sim/cli/commands.h"
 #include "sim/cli/config_option.h"
 #include "sim/cli/output_paths.h"
-#include "sim/eda/area_job.h"
-#include "sim/eda/liberty_flow.h"
+#include "sim/eda/sta/liberty_flow.h"
 
 namespace shadesim {
 
 void register_area(CLI::App& app, int& exit_code) {
-  auto o = std::make_shared<AreaJobOptions>();
+  auto o = std::make_shared<AreaCommandOptions>();
   CLI::App* sub = app.add_subcommand(
       "area",
       "Area and timing of one unit configuration, synthesised from rtl/*.sv with Yosys:\n"
@@ -23,7 +24,7 @@ void register_area(CLI::App& app, int& exit_code) {
       "               CMOS cost in Yosys and are not included)\n"
       "  flip-flops   the flip-flops among them (with those the table RAM was mapped to)\n"
       "  GE           NAND2 gate equivalents: (transistors less Yosys's flip-flop cost) / 4 + 6\n"
-      "               per flip-flop, the table RAM's flip-flops left out (sim/eda/area.h)\n"
+      "               per flip-flop, the table RAM's flip-flops left out (sim/eda/yosys/area.h)\n"
       "  RAM bits     table memories (exponent LUT entries), apart: an SRAM macro, not logic\n"
       "  per module   cells, transistors, FFs, GE and RAM bits per instance of span_setup, "
       "series_engine, specular_unit, "
@@ -36,7 +37,7 @@ void register_area(CLI::App& app, int& exit_code) {
       "               buffered (at most 8 cell inputs a net), and timed by OpenSTA: area (um^2,\n"
       "               NAND2 equivalents), cells, flip-flops, Fmax = 1000 / (4 ns - worst slack)\n"
       "               and its critical path; with a SCENE, Mpixel/s = Fmax / cycles per pixel\n"
-      "               (table RAM apart: an SRAM macro; sim/eda/liberty_flow.h)\n"
+      "               (table RAM apart: an SRAM macro; sim/eda/sta/liberty_flow.h)\n"
       "  iCE40        SB_LUT4 / SB_DFF* / SB_CARRY / SB_RAM40_4K counts from synth_ice40, whether\n"
       "               that fits an HX8K (7,680 logic cells), and where it does, Fmax of clk_i "
       "from\n"

@@ -1,7 +1,8 @@
 // Subcommand registration. Each subcommand's options live in their own sim/cli/*.cpp, which
-// registers it here: its callback fills the engine's plain options struct (sim/jobs/, sim/regress/,
-// sim/report/, sim/eda/) and stores the engine's exit code in `exit_code` (non-zero on a failed
-// check); bad input throws std::exception, which main() reports as "shadesim: error: ...".
+// registers it here: its callback fills the engine's plain options struct (sim/engines/,
+// sim/regress/, sim/report/, sim/eda/) and stores the engine's exit code in `exit_code` (non-zero
+// on a failed check); bad input throws std::exception, which main() reports as "shadesim: error:
+// ...".
 #pragma once
 
 #include <CLI/CLI.hpp>

@@ -1,5 +1,5 @@
-// shadesim config SCENE...: its options; the engine is sim/jobs/config.h.
-#include "sim/jobs/config.h"
+// shadesim config SCENE...: its options; the engine is sim/engines/config.h.
+#include "sim/engines/config.h"
 
 #include <CLI/CLI.hpp>
 #include <memory>
@@ -8,8 +8,8 @@
 
 #include "derive/reasons.h"
 #include "sim/cli/commands.h"
-#include "sim/cli/number_checks.h"
 #include "sim/cli/output_paths.h"
+#include "sim/harness/number_checks.h"
 
 namespace shadesim {
 namespace {

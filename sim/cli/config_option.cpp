@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "sim/eda/rtl_build.h"
+#include "sim/eda/verilator/rtl_build.h"
 
 namespace shadesim {
 

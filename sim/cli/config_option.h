@@ -1,5 +1,5 @@
 // --config for the commands that shade on a unit (render, cycles): own, default, a named build
-// or a UnitConfig file (sim/jobs/unit_choice.h says what each means). Own, a build or a file fix
+// or a UnitConfig file (sim/engines/unit_choice.h says what each means). Own, a build or a file fix
 // the unit, so the options that would change it are excluded; a scene that needs more than the unit
 // gives is an error naming the field.
 #pragma once
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "sim/cli/width_options.h"
-#include "sim/jobs/unit_choice.h"
+#include "sim/engines/unit_choice.h"
 
 namespace shadesim {
 

@@ -1,4 +1,6 @@
-// shadesim cosim / rtl-build / rtl-params: their options; the engines are sim/eda/cosim_job.h.
+// shadesim cosim / rtl-build / rtl-params: their options; the engines are sim/engines/cosim.h.
+#include "sim/engines/cosim.h"
+
 #include <CLI/CLI.hpp>
 #include <memory>
 #include <string>
@@ -6,10 +8,9 @@
 #include <vector>
 
 #include "sim/cli/commands.h"
-#include "sim/cli/number_checks.h"
 #include "sim/cli/output_paths.h"
-#include "sim/eda/cosim_job.h"
-#include "sim/eda/rtl_build.h"
+#include "sim/eda/verilator/rtl_build.h"
+#include "sim/harness/number_checks.h"
 
 namespace shadesim {
 namespace {
@@ -80,7 +81,7 @@ void register_cosim_command(CLI::App& app, int& exit_code) {
 }
 
 void register_rtl_build(CLI::App& app, int& exit_code) {
-  auto b = std::make_shared<RtlBuildJobOptions>();
+  auto b = std::make_shared<RtlBuildCommandOptions>();
   CLI::App* build = app.add_subcommand(
       "rtl-build",
       "Verilate and compile co-simulation executables into the build cache ahead of time (the\n"

@@ -1,5 +1,5 @@
-// shadesim cycles SCENE: its options; the engine is sim/jobs/cycles.h.
-#include "sim/jobs/cycles.h"
+// shadesim cycles SCENE: its options; the engine is sim/engines/cycles.h.
+#include "sim/engines/cycles.h"
 
 #include <CLI/CLI.hpp>
 #include <memory>
@@ -7,10 +7,10 @@
 
 #include "sim/cli/commands.h"
 #include "sim/cli/config_option.h"
-#include "sim/cli/number_checks.h"
 #include "sim/cli/output_paths.h"
 #include "sim/cli/stimulus_options.h"
 #include "sim/cli/width_options.h"
+#include "sim/harness/number_checks.h"
 
 namespace shadesim {
 

@@ -1,14 +1,14 @@
-// shadesim explore SCENE...: its options; the engine is sim/jobs/explore.h.
-#include "sim/jobs/explore.h"
+// shadesim explore SCENE...: its options; the engine is sim/engines/explore.h.
+#include "sim/engines/explore.h"
 
 #include <CLI/CLI.hpp>
 #include <memory>
 
 #include "sim/cli/commands.h"
 #include "sim/cli/config_option.h"
-#include "sim/cli/number_checks.h"
 #include "sim/cli/output_paths.h"
-#include "sim/eda/liberty_flow.h"
+#include "sim/eda/sta/liberty_flow.h"
+#include "sim/harness/number_checks.h"
 
 namespace shadesim {
 

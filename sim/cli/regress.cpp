@@ -8,10 +8,10 @@
 
 #include "sim/cli/commands.h"
 #include "sim/cli/config_option.h"
-#include "sim/cli/number_checks.h"
 #include "sim/cli/output_paths.h"
 #include "sim/cli/stimulus_options.h"
-#include "sim/eda/rtl_build.h"
+#include "sim/eda/verilator/rtl_build.h"
+#include "sim/harness/number_checks.h"
 #include "sim/harness/random_stream.h"
 
 namespace shadesim {

@@ -1,14 +1,14 @@
-// shadesim render SCENE: its options; the engine is sim/jobs/render.h.
-#include "sim/jobs/render.h"
+// shadesim render SCENE: its options; the engine is sim/engines/render.h.
+#include "sim/engines/render.h"
 
 #include <CLI/CLI.hpp>
 #include <memory>
 
 #include "sim/cli/commands.h"
 #include "sim/cli/config_option.h"
-#include "sim/cli/number_checks.h"
 #include "sim/cli/output_paths.h"
 #include "sim/cli/width_options.h"
+#include "sim/harness/number_checks.h"
 
 namespace shadesim {
 

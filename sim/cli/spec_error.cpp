@@ -1,5 +1,5 @@
-// shadesim spec-error: its options; the engine is sim/jobs/spec_error.h.
-#include "sim/jobs/spec_error.h"
+// shadesim spec-error: its options; the engine is sim/engines/spec_error.h.
+#include "sim/engines/spec_error.h"
 
 #include <CLI/CLI.hpp>
 #include <memory>

@@ -1,5 +1,5 @@
 // The unit's widths as command-line options, shared by every subcommand that builds a unit; they
-// fill a WidthOptions (sim/jobs/unit_widths.h).
+// fill a WidthOptions (sim/engines/unit_widths.h).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "model/specular_units.h"
-#include "sim/jobs/unit_widths.h"
+#include "sim/engines/unit_widths.h"
 
 namespace shadesim {
 

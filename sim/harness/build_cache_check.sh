@@ -1,5 +1,5 @@
 #!/bin/sh
-# The on-demand RTL build cache (sim/eda/rtl_build.h), on a small private cache:
+# The on-demand RTL build cache (sim/eda/verilator/rtl_build.h), on a small private cache:
 #   1. two concurrent builds of one key both succeed and name the same executable;
 #   2. the next run reuses it (cached, no Verilator);
 #   3. a changed parameter is a new key (a build);
@@ -9,7 +9,7 @@
 #   5. a changed model or harness library (SHADESIM_HARNESS_LIB_DIR: a copy with one object
 #      added) keeps every build key, relinks every cached build and Verilates or compiles none;
 #   6. a fast build leaves the RTL's SVA out and a quick one keeps them (checks_assertions,
-#      sim/eda/rtl_recipe.h): two keys, and only the quick model's Verilator command has --assert.
+#      sim/eda/verilator/rtl_recipe.h): two keys, and only the quick model's Verilator command has --assert.
 # usage: build_cache_check.sh SHADESIM WORKDIR
 set -eu
 shadesim="$1"; work="$2"

@@ -74,7 +74,7 @@ if(MODE STREQUAL "json")
     message(FATAL_ERROR "saved_stream '${saved}' does not exist")
   endif()
   string(JSON replay GET "${j}" replay)
-  # The line carries the build cache the run used (sim/eda/replay.h), so it runs when pasted.
+  # The line carries the build cache the run used (sim/eda/verilator/replay.h), so it runs when pasted.
   set(expected "^shadesim cosim --backend cpp --cache ${CACHE} --config grey_s428w --fault lsb@17")
   if(NOT replay MATCHES "${expected} --stream ")
     message(FATAL_ERROR "unexpected replay line: ${replay}")

@@ -1,8 +1,8 @@
 // The per-build part of a co-simulation executable: this build's Verilated shade_unit behind
 // CppDut or ScDut (sim/harness/verilated_dut.h, sc_dut.h), and a main that hands it to the loop
-// and driver compiled once in the harness libraries. sim/eda/rtl_build.cpp compiles it with the
-// build's Verilated model, its flavour's defines (SHADESIM_COSIM_SYSTEMC, _TRACE, _COVERAGE)
-// and its generated cosim_build.h (the parameters it was Verilated with).
+// and driver compiled once in the harness libraries. sim/eda/verilator/rtl_build.cpp compiles it
+// with the build's Verilated model, its flavour's defines (SHADESIM_COSIM_SYSTEMC, _TRACE,
+// _COVERAGE) and its generated cosim_build.h (the parameters it was Verilated with).
 //
 // Port types follow the parameters (Verilator picks CData ... QData, or VlWide above 64 bits;
 // bool ... uint64_t or sc_bv in SystemC): the overloads below take each of them.

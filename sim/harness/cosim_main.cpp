@@ -1,8 +1,8 @@
 // The co-simulation executable of one RTL build: the Verilated shade_unit (C++, SystemC, or C++
 // with FST tracing) against the bit-accurate model (every pixel) and the cycle model (every
 // pixel's exit cycle and cmd_ready_o on every cycle); sim/harness/cosim.h states the contract.
-// shadesim builds one per parameter set into its cache (sim/eda/rtl_build.h) and runs it through
-// `shadesim cosim`, which passes the unit as a file. This file is the executable's shared
+// shadesim builds one per parameter set into its cache (sim/eda/verilator/rtl_build.h) and runs it
+// through `shadesim cosim`, which passes the unit as a file. This file is the executable's shared
 // driver: it hands the command line to the parser (sim/harness/cosim_options.cpp, the only file
 // that reads it) and the options to the engine (sim/harness/cosim_run.cpp), all three compiled
 // once into libshadesim_harness; each build adds its Verilated model through

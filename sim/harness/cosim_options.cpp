@@ -5,8 +5,8 @@
 #include <iostream>
 #include <string>
 
-#include "sim/cli/number_checks.h"
 #include "sim/harness/fault_site.h"
+#include "sim/harness/number_checks.h"
 
 namespace shadesim::cosim_exe {
 namespace {

@@ -43,7 +43,7 @@ struct Options {
       0;  // cycles without pix_valid_o that count as a hang; 0: from the cycle model
   std::string coverage_path;  // covered builds: FILE.dat (several jobs: FILE_<i>.dat)
   // Traced builds, one job: after it passes, the run again with every cycle dumped into this FST
-  // file (the switching activity of sim/eda/activity.h).
+  // file (the switching activity of sim/eda/power/activity.h).
   std::string trace_run_path;
   bool list = false;
   bool list_json = false;  // --list --json: the list as JSON, on stdout

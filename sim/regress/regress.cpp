@@ -1,8 +1,8 @@
 // shadesim regress's engine (its options: sim/cli/regress.cpp): the main job. Every scene x
 // configuration x simulation backend: the host encodes the scene for the configuration's unit,
-// shadesim builds the configuration's RTL on demand (sim/eda/rtl_build.h) and its co-simulation
-// executable replays the stream against the bit-accurate model and the cycle model; this command
-// collects, tabulates and reports.
+// shadesim builds the configuration's RTL on demand (sim/eda/verilator/rtl_build.h) and its
+// co-simulation executable replays the stream against the bit-accurate model and the cycle model;
+// this command collects, tabulates and reports.
 //
 // By default each scene runs on its own configuration (the smallest unit that shades it); the
 // named builds (sim/harness/builds.json) with --configs, any other unit with --config FILE.json.
@@ -36,14 +36,14 @@
 #include "derive/derive_config.h"
 #include "host/frame.h"
 #include "model/text_file.h"
-#include "sim/eda/area.h"
-#include "sim/eda/coverage.h"
-#include "sim/eda/process.h"
-#include "sim/eda/replay.h"
-#include "sim/eda/rtl_build.h"
+#include "sim/eda/common/process.h"
+#include "sim/eda/verilator/coverage.h"
+#include "sim/eda/verilator/replay.h"
+#include "sim/eda/verilator/rtl_build.h"
+#include "sim/eda/yosys/area.h"
+#include "sim/engines/fixed_text.h"
+#include "sim/engines/unit_choice.h"
 #include "sim/harness/random_stream.h"
-#include "sim/jobs/fixed_text.h"
-#include "sim/jobs/unit_choice.h"
 #include "sim/regress/interrupt.h"
 #include "sim/regress/regress_results.h"
 
@@ -113,8 +113,9 @@ RtlBuildOptions build_options(const RegressOptions& o) {
 
 fs::path run_dir(const fs::path& out, const RunSpec& s) { return out / "runs" / s.id(); }
 
-// --netlist: each configuration's gate-level netlist (sim/eda/area.h unit_netlist), synthesised in
-// the background while the host sets up the scenes, at most `workers` Yosys runs at once.
+// --netlist: each configuration's gate-level netlist (sim/eda/yosys/area.h unit_netlist),
+// synthesised in the background while the host sets up the scenes, at most `workers` Yosys runs at
+// once.
 class NetlistSource {
  public:
   NetlistSource(const RegressOptions& o, int workers) : workers_(std::max(1, workers)) {
@@ -384,25 +385,11 @@ std::string number_text(double v) {
   return os.str();
 }
 
-std::string shell_quote(const std::string& s) {
-  if (!s.empty() &&
-      s.find_first_not_of(
-          "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./:=,+-@%") ==
-          std::string::npos) {
-    return s;
-  }
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
 // This shadesim, as a path that works from the current folder on every host with the same
 // checkout: relative when it is below the current folder, absolute otherwise.
 std::string self_path() {
+  const fs::path self = self_executable("--emit-jobs");
   std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (ec)
-    throw std::runtime_error("--emit-jobs: cannot find the shadesim executable: " + ec.message());
   const fs::path rel = fs::relative(self, fs::current_path(), ec);
   if (!ec && !rel.empty() && *rel.begin() != "..") return rel.string();
   return self.string();
@@ -437,7 +424,7 @@ void emit_jobs(const RegressOptions& o, const RunSettings& settings, const fs::p
     if (o.netlist && !o.netlist_cache.empty())
       a.insert(a.end(), {"--netlist-cache", o.netlist_cache});
     std::string line;
-    for (const auto& w : a) line += (line.empty() ? "" : " ") + (w == "&&" ? w : shell_quote(w));
+    for (const auto& w : a) line += (line.empty() ? "" : " ") + (w == "&&" ? w : shell_word(w));
     lines << line << '\n';
   }
   write_text_file(o.emit_jobs, lines.str());
@@ -1158,7 +1145,7 @@ int run_regress(const RegressOptions& o) {
   if (InterruptGuard::requested()) {
     std::cout << "regress: interrupted by signal " << InterruptGuard::signal_number() << ": "
               << c.interrupted << " run(s) recorded as interrupted; run them with: " << self_path()
-              << " regress --resume " << shell_quote(sel.out.string()) << std::endl;
+              << " regress --resume " << shell_word(sel.out.string()) << std::endl;
     return 128 + InterruptGuard::signal_number();
   }
   if (c.passed == 0 && !c.failed()) {

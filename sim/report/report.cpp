@@ -11,9 +11,10 @@
 #include <sstream>
 
 #include "model/text_file.h"
-#include "sim/eda/process.h"
-#include "sim/eda/rtl_build.h"
-#include "sim/eda/tool_versions.h"
+#include "sim/eda/common/process.h"
+#include "sim/eda/common/shell.h"
+#include "sim/eda/common/tool_versions.h"
+#include "sim/eda/verilator/rtl_build.h"
 #include "sim/report/report_inputs.h"
 #include "sim/report/report_page.h"
 
@@ -67,9 +68,7 @@ std::vector<std::string> shipped_scenes() {
 
 // --run: the other commands on the shipped scenes, writing where the report reads by default.
 std::vector<std::string> run_steps(const std::vector<std::string>& steps, const fs::path& log_dir) {
-  std::error_code ec;
-  const std::string self = fs::read_symlink("/proc/self/exe", ec).string();
-  if (ec) throw std::runtime_error("--run: cannot find this shadesim executable: " + ec.message());
+  const std::string self = self_executable("--run").string();
   fs::create_directories(log_dir);
   const fs::path out = kDefaultInputs;
   const std::vector<std::string> scenes = shipped_scenes();

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/eda/tool_versions.h"
+#include "sim/eda/common/tool_versions.h"
 #include "sim/report/report_inputs.h"
 
 namespace shadesim {

@@ -1,0 +1,34 @@
+// shadesim area's generic flow (sim/eda/yosys/area.cpp), for the files that run and cache it: the
+// Yosys scripts (flat, table memories, kept-hierarchy breakdown, the simulation netlist's write)
+// and reading their figures into an AreaReport. The figures' conventions (GE, RAM bits) are in
+// sim/eda/yosys/area.h.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "sim/eda/yosys/area.h"
+
+namespace shadesim::generic_flow {
+
+// @WORK@ stands for the run's work folder (flow_tools::yosys_script).
+extern const char* const kFlatScript;       // synth -flatten; abc -g ...; stat; ltp
+extern const char* const kMemoryScript;     // synth to `fine`; dump of the $mem cells
+extern const char* const kBreakdownScript;  // the datapath and control modules kept
+extern const char* const kNetlistWrite;     // regress --netlist's netlist: the flat result
+
+// The syntheses' figures in `work` into r: cells, flip-flops, GE and RAM bits, logic depth and
+// (with `breakdown`) the per-module rows; then check_series.
+void read_syntheses(const std::filesystem::path& work, bool breakdown, AreaReport& r);
+
+// Sets r.warnings: series Yosys removed (figures understated), a RAM bit count that differs
+// from the parameters'.
+void check_series(AreaReport& r);
+
+// Diffuse series of a unit's parameters: one per light and channel, or one per light with
+// DIFFUSE_MULTIPLY.
+int64_t diffuse_series_of(const std::map<std::string, int64_t>& parameters);
+
+}  // namespace shadesim::generic_flow
