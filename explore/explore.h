@@ -23,8 +23,8 @@
 
 namespace shadesim {
 
-// Area of one configuration, as the area model (sim/eda/yosys/area.h) reports it. An AreaFunction
-// is called from the worker threads at once: it must be safe to call concurrently.
+// Area of one configuration, as the area model (sim/engines/area_report.h) reports it. An
+// AreaFunction is called from the worker threads at once: it must be safe to call concurrently.
 struct AreaFigure {
   double cells = 0;    // the figure the search minimises
   double lut4 = 0;     // iCE40 LUT4s, where the area model gives them (else 0)

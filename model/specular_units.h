@@ -82,8 +82,8 @@ struct SpecularUnitDescriptor {
   int (*interval)(const SpecularConfig&);  // cycles per pixel
   SpecularCost (*cost)(const SpecularConfig&);
   std::string (*describe)(const SpecularConfig&);  // the text after the name, e.g. " A=10 B=8 trn"
-  // What the slot's cells grow with, for the area estimate's scaling (sim/eda/yosys/area.h), given
-  // the series width the slot reads; 0 for no hardware.
+  // What the slot's cells grow with, for the area estimate's scaling (sim/engines/area_report.h),
+  // given the series width the slot reads; 0 for no hardware.
   double (*slot_size)(const SpecularConfig&, int series_wl);
   // Rules across the unit's fields, after each field's range: throws std::invalid_argument
   // "<unit>.<key> ..."; nullptr = none.

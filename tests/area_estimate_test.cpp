@@ -1,11 +1,11 @@
-// estimate_area (sim/eda/yosys/area.h): the contract explore relies on, on reports built here (no
-// Yosys): an anchor's own configuration gets the anchor's measured cells back; a configuration that
-// is wider in one stage gets more; no anchor with the unit's specular kind is an error, not a
+// estimate_area (sim/engines/area_report.h): the contract explore relies on, on reports built here
+// (no Yosys): an anchor's own configuration gets the anchor's measured cells back; a configuration
+// that is wider in one stage gets more; no anchor with the unit's specular kind is an error, not a
 // guess.
 #include <gtest/gtest.h>
 
 #include "model/rtl_parameters.h"
-#include "sim/eda/yosys/area.h"
+#include "sim/engines/area_report.h"
 
 namespace shadesim {
 namespace {

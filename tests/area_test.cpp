@@ -3,13 +3,11 @@
 // cache answers a repeated run without Yosys and misses on a changed parameter; bad input and
 // a missing tool give clear errors. Small units (1 channel, 1 light, narrow widths) and no
 // place and route keep it quick.
-// Gate equivalents (sim/eda/yosys/area.h): against closed forms on tiny modules (NAND2 = 4
+// Gate equivalents (sim/engines/area_report.h): against closed forms on tiny modules (NAND2 = 4
 // transistors; Yosys 0.23's CMOS costs (its cost.h): NOT 2, NAND/NOR 4, AND/OR 6, XOR/XNOR/MUX 12,
 // a plain flip-flop 16, other flip-flops nothing; every flip-flop 6 GE), shadesim area's GE against
 // the same formula applied by this test to a direct Yosys stat, and a LUT unit's table RAM bits
 // against 2^A x B.
-#include "sim/eda/yosys/area.h"
-
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -25,6 +23,7 @@
 #include <sstream>
 
 #include "sim/eda/common/rtl_files.h"
+#include "sim/engines/area_report.h"
 #include "tests/support/cli_run.h"
 
 namespace shadesim {
@@ -69,7 +68,7 @@ TEST(Area, CellCountEqualsADirectYosysRunAndTheCacheIsReused) {
 
   // The direct run: rtl/files.f's sources, the chparam list above, synth -flatten and the gate
   // mapping. ABC's result depends on the netlist's order, so read the files in the list's order
-  // (sim/eda/yosys/area.h).
+  // (sim/engines/area_report.h).
   std::vector<std::string> sources;
   for (const auto& f : rtl_file_list(std::string(SHADESIM_SOURCE_DIR) + "/rtl"))
     sources.push_back(f.string());

@@ -1,6 +1,6 @@
 // shadesim area's engine (its options: sim/cli/area.cpp): area and timing of one unit configuration
 // from Yosys (generic cells, CMOS transistor estimate, iCE40 LUT4/DFF/CARRY) and nextpnr-ice40
-// (Fmax on an HX8K where it fits), with the per-module breakdown. sim/eda/yosys/area.h has the
+// (Fmax on an HX8K where it fits), with the per-module breakdown. sim/engines/area_report.h has the
 // flow.
 #include "sim/engines/area.h"
 
@@ -20,7 +20,7 @@
 #include "model/digit_grouping.h"
 #include "model/text_file.h"
 #include "model/unit_config_file.h"
-#include "sim/eda/yosys/area.h"
+#include "sim/engines/area_report.h"
 #include "sim/engines/unit_choice.h"
 #include "sim/engines/unit_power.h"
 
@@ -56,21 +56,17 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
      << "  flip-flops   " << std::setw(10) << grouped(r.flip_flops)
      << (r.ram_bits > 0 ? "   of which " + grouped(r.ram_bits) + " hold table RAM bits" : "")
      << "\n";
-  if (r.has_gate_equivalents()) {
-    os << "  GE           " << std::setw(10) << grouped(r.gate_equivalents())
-       << "   NAND2 gate equivalents, a convention (not a library's figure): (transistors less\n"
-       << "                          Yosys's flip-flop cost, " << grouped(r.logic_transistors)
-       << ") / 4\n"
-       << "                          + 6 per flip-flop outside the table RAM ("
-       << grouped(r.flip_flops - r.ram_bits) << ")\n"
-       << "  RAM bits     " << std::setw(10) << grouped(r.ram_bits)
-       << "   table memories ($mem cells' SIZE x WIDTH before memory_map; parameters: "
-       << grouped(r.ram_bits_expected) << "),\n"
-       << "                          apart from GE: an SRAM macro (iCE40: block RAM), not "
-          "flip-flops\n";
-  } else {
-    os << "  GE                    -   (cache entry measured before GE; run without the cache)\n";
-  }
+  os << "  GE           " << std::setw(10) << grouped(r.gate_equivalents())
+     << "   NAND2 gate equivalents, a convention (not a library's figure): (transistors less\n"
+     << "                          Yosys's flip-flop cost, " << grouped(r.logic_transistors)
+     << ") / 4\n"
+     << "                          + 6 per flip-flop outside the table RAM ("
+     << grouped(r.flip_flops - r.ram_bits) << ")\n"
+     << "  RAM bits     " << std::setw(10) << grouped(r.ram_bits)
+     << "   table memories ($mem cells' SIZE x WIDTH before memory_map; parameters: "
+     << grouped(r.ram_bits_expected) << "),\n"
+     << "                          apart from GE: an SRAM macro (iCE40: block RAM), not "
+        "flip-flops\n";
   os << "\n";
   if (!r.modules.empty()) {
     os << "where the area goes (same flow, datapath modules kept: " << grouped(r.breakdown_cells)
@@ -82,8 +78,7 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
        << std::setw(8) << "GE %" << std::setw(10) << "RAM bits" << '\n';
   }
   int64_t breakdown_ge = 0;
-  for (const auto& m : r.modules)
-    breakdown_ge += m.has_gate_equivalents() ? m.gate_equivalents() : 0;
+  for (const auto& m : r.modules) breakdown_ge += m.gate_equivalents();
   for (const auto& m : r.modules) {
     const double pct = r.breakdown_cells ? 100.0 * static_cast<double>(m.cells()) /
                                                static_cast<double>(r.breakdown_cells)
@@ -93,13 +88,11 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
        << std::setw(11) << grouped(m.cells_each) << std::setw(11) << grouped(m.cells())
        << std::setw(7) << std::fixed << std::setprecision(1) << pct << "%" << std::setw(13)
        << grouped(m.transistors()) << std::setw(8) << grouped(m.flip_flops_each * m.instances);
-    if (m.has_gate_equivalents()) {
-      const double ge_pct = breakdown_ge > 0 ? 100.0 * static_cast<double>(m.gate_equivalents()) /
-                                                   static_cast<double>(breakdown_ge)
-                                             : 0.0;
-      os << std::setw(10) << grouped(m.gate_equivalents()) << std::setw(7) << ge_pct << "%"
-         << std::setw(10) << grouped(m.ram_bits_each * m.instances);
-    }
+    const double ge_pct = breakdown_ge > 0 ? 100.0 * static_cast<double>(m.gate_equivalents()) /
+                                                 static_cast<double>(breakdown_ge)
+                                           : 0.0;
+    os << std::setw(10) << grouped(m.gate_equivalents()) << std::setw(7) << ge_pct << "%"
+       << std::setw(10) << grouped(m.ram_bits_each * m.instances);
     os << '\n';
   }
   if (breakdown_ge > 0) {
@@ -107,15 +100,10 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
        << " GE in all; RAM bits\n   from the parameters, apart from GE)\n";
   }
   os << "\ntiming\n  logic depth  ";
-  if (r.logic_depth.gates >= 0) {
-    os << std::setw(10) << r.logic_depth.gates
-       << "   levels of 2-input gates, MUXes and inverters on the longest path\n"
-       << "                          (Yosys ltp -noff on the flat netlist), from "
-       << r.logic_depth.from << "\n                          to " << r.logic_depth.to << "\n";
-  } else {
-    os << std::setw(10) << "-"
-       << "   (cache entry measured before logic depth; run without the cache)\n";
-  }
+  os << std::setw(10) << r.logic_depth.gates
+     << "   levels of 2-input gates, MUXes and inverters on the longest path\n"
+     << "                          (Yosys ltp -noff on the flat netlist), from "
+     << r.logic_depth.from << "\n                          to " << r.logic_depth.to << "\n";
   os << "\niCE40 (synth_ice40)\n"
      << "  LUT4         " << std::setw(10) << grouped(r.ice40.lut4) << '\n'
      << "  DFF          " << std::setw(10) << grouped(r.ice40.dff) << '\n'
@@ -198,8 +186,8 @@ void print_liberty_timing(std::ostream& os, const LibertyReport& l,
      << (l.from_cache ? " when measured (this run: a cache hit)" : "") << "\n";
 }
 
-// The fast estimate (sim/eda/yosys/area.h) of this unit from the OTHER measured units in the cache,
-// beside the measurement: its error against a held-out Yosys run.
+// The fast estimate (sim/engines/area_report.h) of this unit from the OTHER measured units in the
+// cache, beside the measurement: its error against a held-out Yosys run.
 void print_estimate_check(std::ostream& os, const UnitConfig& unit, const AreaReport& measured,
                           const std::string& cache_dir) {
   std::vector<AreaReport> others;
@@ -219,11 +207,10 @@ void print_estimate_check(std::ostream& os, const UnitConfig& unit, const AreaRe
                                             static_cast<double>(measured.cells)
                                       : 0.0;
     os << grouped(e.cells) << " cells, " << grouped(e.lut4) << " LUT4";
-    if (e.gate_equivalents >= 0) os << ", " << grouped(e.gate_equivalents) << " GE";
+    os << ", " << grouped(e.gate_equivalents) << " GE";
     os << ": " << e.label() << "; " << std::showpos << std::setprecision(1) << err << std::noshowpos
        << " % cells against this measurement";
-    if (e.gate_equivalents >= 0 && measured.has_gate_equivalents() &&
-        measured.gate_equivalents() > 0) {
+    if (measured.gate_equivalents() > 0) {
       os << ", " << std::showpos
          << 100.0 * static_cast<double>(e.gate_equivalents - measured.gate_equivalents()) /
                 static_cast<double>(measured.gate_equivalents())

@@ -1,6 +1,6 @@
 // shadesim area's engine: area and timing of one unit from Yosys, nextpnr-ice40 and, on a
-// standard-cell library, OpenSTA (sim/engines/area.cpp; the flows are sim/eda/yosys/area.h). The
-// command line that fills AreaCommandOptions: sim/cli/area.cpp.
+// standard-cell library, OpenSTA (sim/engines/area.cpp; the flows are sim/engines/area_report.h).
+// The command line that fills AreaCommandOptions: sim/cli/area.cpp.
 #pragma once
 
 #include <string>

@@ -5,7 +5,7 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "sim/eda/yosys/area.h"
+#include "sim/engines/area_report.h"
 
 namespace shadesim {
 

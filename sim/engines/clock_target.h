@@ -1,5 +1,5 @@
 // shadesim config --clock-mhz: the unit timed where it will be built (a standard-cell library
-// through OpenSTA, or an iCE40 HX8K through nextpnr; sim/eda/yosys/area.h runs both), and the
+// through OpenSTA, or an iCE40 HX8K through nextpnr; sim/engines/area_report.h runs both), and the
 // pipelining config may add to reach the clock (sim/engines/clock_target.cpp).
 #pragma once
 

@@ -22,7 +22,7 @@
 #include "model/command_stream.h"
 #include "sim/eda/verilator/replay.h"
 #include "sim/eda/verilator/rtl_build.h"
-#include "sim/eda/yosys/area.h"
+#include "sim/eda/yosys/unit_netlist.h"
 
 namespace shadesim {
 namespace {

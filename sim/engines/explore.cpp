@@ -19,7 +19,7 @@
 #include "model/command_stream.h"
 #include "model/text_file.h"
 #include "model/unit_config_file.h"
-#include "sim/eda/yosys/area.h"
+#include "sim/engines/area_report.h"
 #include "sim/engines/derivation_cache.h"
 #include "sim/engines/elapsed.h"
 #include "sim/engines/explore.h"
@@ -34,10 +34,10 @@ namespace {
 
 // ---------------------------------------------------------------- area
 
-// The area every point shows: sim/eda/yosys/area.h's estimate_area(), which scales a Yosys-measured
-// anchor of the same specular unit module by module. The anchors are the measured units in the
-// area cache; when none has the start's specular unit, the start is synthesised once (minutes,
-// cached for every later run).
+// The area every point shows: sim/engines/area_report.h's estimate_area(), which scales a
+// Yosys-measured anchor of the same specular unit module by module. The anchors are the measured
+// units in the area cache; when none has the start's specular unit, the start is synthesised once
+// (minutes, cached for every later run).
 AreaFunction area_model(const UnitConfig& start, const std::string& cache_dir) {
   std::vector<AreaReport> anchors = load_area_reports(cache_dir);
   // The sweep's span_setup knob needs a unit-setup anchor too: a host-setup unit has no span

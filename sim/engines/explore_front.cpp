@@ -6,7 +6,7 @@
 #include <iostream>
 
 #include "sim/eda/common/flow_tools.h"
-#include "sim/eda/yosys/area.h"
+#include "sim/engines/area_report.h"
 
 namespace shadesim {
 namespace {

@@ -26,7 +26,7 @@ struct RtlConfig {
   UnitConfig unit;
   InjectedFaults faults;
   std::vector<std::string> backends;  // named builds: the backends the tests use
-  // Non-empty: the gate-level netlist of `unit` (sim/eda/yosys/area.h unit_netlist: Yosys's flat
+  // Non-empty: the gate-level netlist of `unit` (sim/eda/yosys/unit_netlist.h: Yosys's flat
   // netlist, parameters baked in) is Verilated in place of rtl/; the build is keyed by its
   // contents. No fault hooks and no coverage in such a build.
   std::string netlist;

@@ -40,7 +40,7 @@
 #include "sim/eda/verilator/coverage.h"
 #include "sim/eda/verilator/replay.h"
 #include "sim/eda/verilator/rtl_build.h"
-#include "sim/eda/yosys/area.h"
+#include "sim/eda/yosys/unit_netlist.h"
 #include "sim/engines/fixed_text.h"
 #include "sim/engines/unit_choice.h"
 #include "sim/harness/random_stream.h"
@@ -113,7 +113,7 @@ RtlBuildOptions build_options(const RegressOptions& o) {
 
 fs::path run_dir(const fs::path& out, const RunSpec& s) { return out / "runs" / s.id(); }
 
-// --netlist: each configuration's gate-level netlist (sim/eda/yosys/area.h unit_netlist),
+// --netlist: each configuration's gate-level netlist (sim/eda/yosys/unit_netlist.h),
 // synthesised in the background while the host sets up the scenes, at most `workers` Yosys runs at
 // once.
 class NetlistSource {

@@ -29,7 +29,8 @@ inline std::string shell_word(const std::string& text) {
 inline std::filesystem::path self_executable(const std::string& what) {
   std::error_code ec;
   std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (ec) throw std::runtime_error(what + ": cannot find this shadesim executable: " + ec.message());
+  if (ec)
+    throw std::runtime_error(what + ": cannot find this shadesim executable: " + ec.message());
   return self;
 }
 

@@ -1,7 +1,7 @@
 // shadesim area's generic flow: the unit flattened and mapped onto 2-input gates and MUXes
 // (generic cells, the CMOS transistor estimate, GE, logic depth), its table memories, and the
-// per-module breakdown. The conventions are in sim/eda/yosys/area.h; the run and the cache in
-// sim/eda/yosys/synthesis_cache.cpp.
+// per-module breakdown. The conventions are in sim/eda/yosys/generic_area.h; the run and the cache
+// in sim/engines/area_synthesis.cpp.
 #include <cmath>
 #include <functional>
 #include <map>
@@ -62,7 +62,7 @@ namespace {
 
 // Per-module rows from the kept-hierarchy stat: each module with its submodules folded in,
 // instance counts from the top down, then the top's own glue.
-void read_breakdown(const StatReport& stat, const fs::path& p, AreaReport& r) {
+void read_breakdown(const StatReport& stat, const fs::path& p, GenericArea& r) {
   struct Totals {
     int64_t cells = 0, transistors = 0, ffs = 0, logic = 0;
   };
@@ -121,10 +121,10 @@ int64_t diffuse_series_of(const std::map<std::string, int64_t>& p) {
 // Every series the unit uses must survive synthesis (the ideal slot outputs 0, so its specular
 // series legitimately go). Fewer means Yosys's netlist is not the unit the co-simulation checks
 // and its area is understated: say so.
-void check_series(AreaReport& r) {
+void check_series(GenericArea& r) {
   if (r.modules.empty()) {
     r.warnings.clear();
-    if (r.has_gate_equivalents() && r.ram_bits != r.ram_bits_expected) {
+    if (r.ram_bits != r.ram_bits_expected) {
       r.warnings.push_back("Yosys found " + std::to_string(r.ram_bits) +
                            " table memory bits, the parameters give " +
                            std::to_string(r.ram_bits_expected));
@@ -147,7 +147,7 @@ void check_series(AreaReport& r) {
   }
   kept /= per_series;
   r.warnings.clear();
-  if (r.has_gate_equivalents() && r.ram_bits != r.ram_bits_expected) {
+  if (r.ram_bits != r.ram_bits_expected) {
     r.warnings.push_back("Yosys found " + std::to_string(r.ram_bits) +
                          " table memory bits, the parameters give " +
                          std::to_string(r.ram_bits_expected) +
@@ -162,7 +162,7 @@ void check_series(AreaReport& r) {
   }
 }
 
-void read_syntheses(const fs::path& work, bool breakdown, AreaReport& r) {
+void read_syntheses(const fs::path& work, bool breakdown, GenericArea& r) {
   {
     const fs::path p = work / "flat_stat.json";
     const StatReport stat = read_stat_json(p, true);
@@ -191,15 +191,11 @@ int64_t gate_equivalents(int64_t logic_transistors, int64_t flip_flops, int64_t 
 }
 
 int64_t ModuleArea::gate_equivalents_each() const {
-  return has_gate_equivalents()
-             ? shadesim::gate_equivalents(logic_transistors_each, flip_flops_each, ram_bits_each)
-             : -1;
+  return shadesim::gate_equivalents(logic_transistors_each, flip_flops_each, ram_bits_each);
 }
 
-int64_t AreaReport::gate_equivalents() const {
-  return has_gate_equivalents()
-             ? shadesim::gate_equivalents(logic_transistors, flip_flops, ram_bits)
-             : -1;
+int64_t GenericArea::gate_equivalents() const {
+  return shadesim::gate_equivalents(logic_transistors, flip_flops, ram_bits);
 }
 
 int64_t ram_bits_per_specular_unit(const std::vector<VerilogParameter>& parameters) {

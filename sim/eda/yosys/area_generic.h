@@ -1,7 +1,7 @@
 // shadesim area's generic flow (sim/eda/yosys/area.cpp), for the files that run and cache it: the
 // Yosys scripts (flat, table memories, kept-hierarchy breakdown, the simulation netlist's write)
-// and reading their figures into an AreaReport. The figures' conventions (GE, RAM bits) are in
-// sim/eda/yosys/area.h.
+// and reading their figures into a GenericArea. The figures' conventions (GE, RAM bits) are in
+// sim/eda/yosys/generic_area.h.
 #pragma once
 
 #include <cstdint>
@@ -9,7 +9,7 @@
 #include <map>
 #include <string>
 
-#include "sim/eda/yosys/area.h"
+#include "sim/eda/yosys/generic_area.h"
 
 namespace shadesim::generic_flow {
 
@@ -21,11 +21,11 @@ extern const char* const kNetlistWrite;     // regress --netlist's netlist: the 
 
 // The syntheses' figures in `work` into r: cells, flip-flops, GE and RAM bits, logic depth and
 // (with `breakdown`) the per-module rows; then check_series.
-void read_syntheses(const std::filesystem::path& work, bool breakdown, AreaReport& r);
+void read_syntheses(const std::filesystem::path& work, bool breakdown, GenericArea& r);
 
 // Sets r.warnings: series Yosys removed (figures understated), a RAM bit count that differs
 // from the parameters'.
-void check_series(AreaReport& r);
+void check_series(GenericArea& r);
 
 // Diffuse series of a unit's parameters: one per light and channel, or one per light with
 // DIFFUSE_MULTIPLY.

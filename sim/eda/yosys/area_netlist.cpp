@@ -1,5 +1,6 @@
-// unit_netlist (sim/eda/yosys/area.h): the generic flow's flat netlist of a unit, written out for
-// simulation in place of the RTL (regress --netlist), cached and checked against the RTL's ports.
+// unit_netlist (sim/engines/area_report.h): the generic flow's flat netlist of a unit, written out
+// for simulation in place of the RTL (regress --netlist), cached and checked against the RTL's
+// ports.
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -14,8 +15,8 @@
 #include "sim/eda/common/content_hash.h"
 #include "sim/eda/common/flow_tools.h"
 #include "sim/eda/common/process.h"
-#include "sim/eda/yosys/area.h"
 #include "sim/eda/yosys/area_generic.h"
+#include "sim/eda/yosys/unit_netlist.h"
 
 namespace shadesim {
 namespace fs = std::filesystem;

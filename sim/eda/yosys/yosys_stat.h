@@ -37,7 +37,7 @@ struct LogicDepth {
   static constexpr const char* kMethod =
       "Yosys ltp -noff on the flat netlist after abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX: cells on "
       "the longest register-to-register (or port) path, each gate, MUX and inverter one level";
-  int64_t gates = -1;  // -1: not measured (a cache entry from before)
+  int64_t gates = -1;  // -1 until a report is read
   std::string from, to;
 };
 // The depth in a `tee -o` of `ltp -noff`; throws std::runtime_error naming the file.

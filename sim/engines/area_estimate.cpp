@@ -1,4 +1,4 @@
-// estimate_area (sim/eda/yosys/area.h): a unit's area scaled module by module from a measured
+// estimate_area (sim/engines/area_report.h): a unit's area scaled module by module from a measured
 // anchor, for the points of a width sweep that are never synthesised.
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <stdexcept>
 
 #include "model/specular_units.h"
-#include "sim/eda/yosys/area.h"
 #include "sim/eda/yosys/area_generic.h"
+#include "sim/engines/area_report.h"
 
 namespace shadesim {
 namespace {
@@ -177,10 +177,8 @@ AreaEstimate estimate_area(const UnitConfig& unit, const std::vector<AreaReport>
   e.cells = static_cast<int64_t>(std::llround(flat));
   e.lut4 = static_cast<int64_t>(std::llround(flat * static_cast<double>(best->ice40.lut4) /
                                              static_cast<double>(best->cells)));
-  if (best->has_gate_equivalents()) {
-    e.gate_equivalents = static_cast<int64_t>(std::llround(
-        flat * static_cast<double>(best->gate_equivalents()) / static_cast<double>(best->cells)));
-  }
+  e.gate_equivalents = static_cast<int64_t>(std::llround(
+      flat * static_cast<double>(best->gate_equivalents()) / static_cast<double>(best->cells)));
   e.anchor_key = best->key;
   e.differing_parameters = best_diff % 1000;  // (without the other site's penalty)
   return e;

@@ -5,8 +5,8 @@
 #include <stdexcept>
 
 #include "model/text_file.h"
-#include "sim/eda/yosys/area.h"
 #include "sim/eda/yosys/area_generic.h"
+#include "sim/engines/area_report.h"
 
 namespace shadesim {
 namespace {
@@ -37,12 +37,10 @@ std::string area_report_to_json(const AreaReport& r) {
                        {"flip_flops_each", m.flip_flops_each},
                        {"cells", m.cells()},
                        {"transistors", m.transistors()}});
-    if (m.has_gate_equivalents()) {
-      modules.back()["logic_transistors_each"] = m.logic_transistors_each;
-      modules.back()["ram_bits_each"] = m.ram_bits_each;
-      modules.back()["gate_equivalents_each"] = m.gate_equivalents_each();
-      modules.back()["gate_equivalents"] = m.gate_equivalents();
-    }
+    modules.back()["logic_transistors_each"] = m.logic_transistors_each;
+    modules.back()["ram_bits_each"] = m.ram_bits_each;
+    modules.back()["gate_equivalents_each"] = m.gate_equivalents_each();
+    modules.back()["gate_equivalents"] = m.gate_equivalents();
   }
   Json ice40 = {{"lut4", r.ice40.lut4},           {"dff", r.ice40.dff},
                 {"carry", r.ice40.carry},         {"ram4k", r.ice40.ram4k},
@@ -69,17 +67,15 @@ std::string area_report_to_json(const AreaReport& r) {
             {"seconds", r.seconds},
             {"cpu_seconds", r.cpu_seconds},
             {"warnings", r.warnings}};
-  if (r.has_gate_equivalents()) {
-    // GE: NAND2 gate equivalents = logic_transistors / 4 + 6 per flip-flop outside the RAM
-    // (sim/eda/yosys/area.h); ram_bits: the table memories, apart.
-    j["logic_transistors"] = r.logic_transistors;
-    j["ram_bits"] = r.ram_bits;
-    j["ram_bits_expected"] = r.ram_bits_expected;
-    j["gate_equivalents"] = r.gate_equivalents();
-    j["gate_equivalents_convention"] =
-        "NAND2 GE = (stat -tech cmos transistors less its flip-flop cost) / 4 + 6 per flip-flop; "
-        "table memory bits apart (ram_bits), not flip-flops";
-  }
+  // GE: NAND2 gate equivalents = logic_transistors / 4 + 6 per flip-flop outside the RAM
+  // (sim/eda/yosys/generic_area.h); ram_bits: the table memories, apart.
+  j["logic_transistors"] = r.logic_transistors;
+  j["ram_bits"] = r.ram_bits;
+  j["ram_bits_expected"] = r.ram_bits_expected;
+  j["gate_equivalents"] = r.gate_equivalents();
+  j["gate_equivalents_convention"] =
+      "NAND2 GE = (stat -tech cmos transistors less its flip-flop cost) / 4 + 6 per flip-flop; "
+      "table memory bits apart (ram_bits), not flip-flops";
   if (r.liberty) j["liberty"] = Json::parse(liberty_report_to_json(*r.liberty));
   return j.dump(2) + "\n";
 }
@@ -107,21 +103,14 @@ AreaReport area_report_from_json(const std::string& text, const std::string& sou
     for (const auto& m : j.at("modules")) {
       r.modules.push_back({m.at("module"), m.at("instances"), m.at("cells_each"),
                            m.at("transistors_each"), m.at("flip_flops_each")});
-      // Entries written before GE were measured have no logic transistors: GE unknown.
-      if (m.contains("logic_transistors_each")) {
-        r.modules.back().logic_transistors_each = m.at("logic_transistors_each");
-        r.modules.back().ram_bits_each = m.at("ram_bits_each");
-      }
+      r.modules.back().logic_transistors_each = m.at("logic_transistors_each");
+      r.modules.back().ram_bits_each = m.at("ram_bits_each");
     }
-    if (j.contains("logic_transistors")) {
-      r.logic_transistors = j.at("logic_transistors");
-      r.ram_bits = j.at("ram_bits");
-      r.ram_bits_expected = j.at("ram_bits_expected");
-    }
-    if (j.contains("logic_depth")) {
-      const Json& d = j.at("logic_depth");
-      r.logic_depth = {d.at("gates").get<int64_t>(), d.at("from"), d.at("to")};
-    }
+    r.logic_transistors = j.at("logic_transistors");
+    r.ram_bits = j.at("ram_bits");
+    r.ram_bits_expected = j.at("ram_bits_expected");
+    const Json& d = j.at("logic_depth");
+    r.logic_depth = {d.at("gates").get<int64_t>(), d.at("from"), d.at("to")};
     const Json& a = j.at("ice40");
     r.ice40.lut4 = a.at("lut4");
     r.ice40.dff = a.at("dff");

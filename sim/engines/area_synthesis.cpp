@@ -1,6 +1,6 @@
-// unit_area (sim/eda/yosys/area.h): one shadesim area run. Looks the unit up in the cache, runs the
-// flows that are missing side by side (generic, iCE40, and the liberty flow when asked for),
-// then nextpnr where the unit fits an HX8K, and writes the cache entries.
+// unit_area (sim/engines/area_report.h): one shadesim area run. Looks the unit up in the cache,
+// runs the flows that are missing side by side (generic, iCE40, and the liberty flow when asked
+// for), then nextpnr where the unit fits an HX8K, and writes the cache entries.
 #include <unistd.h>
 
 #include <chrono>
@@ -17,8 +17,8 @@
 #include "sim/eda/common/build_paths.h"
 #include "sim/eda/common/content_hash.h"
 #include "sim/eda/common/flow_tools.h"
-#include "sim/eda/yosys/area.h"
 #include "sim/eda/yosys/area_generic.h"
+#include "sim/engines/area_report.h"
 
 namespace shadesim {
 namespace {
@@ -42,13 +42,11 @@ AreaInputs area_inputs(const std::vector<VerilogParameter>& parameters, const Ar
   return in;
 }
 
-// Cache key: everything the figures depend on. The file names are in the script text. (The
-// fields and their order are those of the keys before the flows had files of their own, so
-// earlier entries still answer.)
+// Cache key: everything the figures depend on. The file names are in the script text.
 std::string area_key(const FlowInputs& in, bool breakdown, bool pnr,
                      const std::string& nextpnr_version) {
   ContentHash h;
-  h.add("shadesim-area-v2");  // 2: gate equivalents and RAM bits measured
+  h.add("shadesim-area-v3");
   h.add(in.chparam);
   for (const auto& f : in.files) {
     h.add(f.filename().string());
