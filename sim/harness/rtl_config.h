@@ -34,7 +34,8 @@ struct RtlConfig {
 // The build a run simulates: a named build's fault hooks only when the run injects a fault. A
 // run without one simulates the same unit without them, at the speed of a build that never had
 // them: the hooks' force muxes on every cycle and the optimisation they switch off (-fno-dfg,
-// sim/eda/rtl_recipe.cpp) slowed every run of grey_s428w (docs/benchmarks.md has the figures).
+// sim/eda/rtl_recipe.cpp) slowed every run of grey_s428w (docs/history/benchmarks.md has the
+// figures).
 inline RtlConfig build_for_run(RtlConfig build, bool injects_fault) {
   if (!injects_fault) build.faults = InjectedFaults{};
   return build;
