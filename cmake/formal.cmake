@@ -37,7 +37,7 @@ foreach(bug queue_off_by_one pix_handshake pix_valid_drop)
 endforeach()
 # The command decoder (+ payload FSM, + start bank with host setup) against its pre-issue-44
 # copies in tests/data/decoder_ref/ (tests/formal/equiv_decoder.py, docs/rtl.md "The command
-# decoder's timing"): the outputs equal every cycle from reset for every input, proven by pdr.
+# decoder's structure"): the outputs equal every cycle from reset for every input, proven by pdr.
 # CI proves sphere's and specular's own units and one- to eight-word ports with unit setup, queue,
 # two material buffers and host setup (about 2 min); -DSHADESIM_FORMAL_ALL=ON adds torus's and
 # multi's own units and the eight-word port with host setup (about 2 more). p8_host (7 minutes) and

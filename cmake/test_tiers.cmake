@@ -31,6 +31,8 @@ set(SHADESIM_TIER_RULES
   "^test_tiers_check(_self_test)?$"                                 quick
   "^(doc_paths|quantization_home|include_layers)(_self_test)?$"     quick
   "^(plot_colours|cpp_format|rtl_line_length)$"                     quick
+  "^python_lint(_self_test)?$"                                     quick
+  "^architecture_folders(_self_test)?$"                             quick
   "^mutate_rtl_self_test$"                                          quick
   "^check_commits_self_test$"                                      quick
   # random scenes on their own unit (scripts/random-scenes): 50 small ones, the kept regressions

@@ -9,7 +9,7 @@
 // The rule (kThroughputRule: config --help's text): the cheapest candidate that runs every
 // scene within its cycles target (cycles_target: DeriveOptions::max_cycles_per_pixel, or by
 // default 1.10 cycles per beat of the unit's lanes). Candidates in cost order, cheapest first
-// (what each knob adds, measured in docs/area-history.md):
+// (what each knob adds, measured in docs/history/area.md):
 //   1. span setup on the host before the unit (the unit's span setup, coefficient banks and span
 //      queue are 12,964 + 6,782 + 3,197 GE of specular's unit with unit setup; the host's start
 //      bank 5,508);
@@ -20,7 +20,7 @@
 //   5. one material buffer before two (two banks of the per-material registers, and of a LUT's
 //      table RAM).
 // Lexicographic: no area model weighs a port word against a bank entry (a wider port adds write
-// steering into every entry; docs/area-history.md has no measurement of either alone), so the order
+// steering into every entry; docs/history/area.md has no measurement of either alone), so the order
 // is the stated convention, and every knob's reason gives the figure of the step cheaper in it. A
 // knob given in DeriveOptions (port_words, tri_queue, span_setup) is held at its value. Lanes stay
 // as the unit has them (derive_config sets DeriveOptions::lanes); with more lanes the port and

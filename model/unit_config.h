@@ -98,7 +98,7 @@ struct UnitConfig {
   // runs; one entry halves the bank's registers and costs cycles. `shadesim cycles SCENE
   // --config OWN.json` on the shipped scenes' own units (`shadesim config SCENE --json OWN.json`)
   // gives 1.001 cycles/px for specular and torus and 1.044 for suzanne at two, 1.233, 1.133 and
-  // 1.220 at one (docs/area-history.md).
+  // 1.220 at one (docs/history/area.md).
   int start_depth = kStartDepth;
   static constexpr int kStartDepth = 2;
   DiffuseColour diffuse_colour = DiffuseColour::kSeries;

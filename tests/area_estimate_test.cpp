@@ -51,7 +51,7 @@ TEST(AreaEstimate, WiderStagesCostMoreAndNarrowerLess) {
 
 // A host-setup unit's start bank holds start_depth entries of every start value: one entry
 // costs less than the anchor's two (Yosys measured 1,803 against 3,922 GE for the start_bank of
-// grey_p1_host_d1's unit at depth 1 and 2, docs/area-history.md), and so does the whole unit.
+// grey_p1_host_d1's unit at depth 1 and 2, docs/history/area.md), and so does the whole unit.
 TEST(AreaEstimate, AOneEntryStartBankCostsLessThanTwo) {
   UnitConfig two;
   two.span_setup = SpanSetupSite::kHost;

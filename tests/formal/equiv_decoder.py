@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Sequential equivalence of the command decoder with its pre-issue-44 form (docs/rtl.md, "The
-command decoder's timing"): rtl/cmd_decoder.sv with its payload FSM (rtl/cmd_payload.sv), and
+command decoder's structure"): rtl/cmd_decoder.sv with its payload FSM (rtl/cmd_payload.sv), and
 with host span setup also rtl/start_bank.sv, against the copies of commit 56aaa48 kept in
 tests/data/decoder_ref/ (verbatim; their modules are renamed ref_* as they are read), on one
 configuration.

@@ -42,8 +42,8 @@ struct Flavour {
 // one without coverage. A fast build is made for runs long enough to repay -O2 (a scene, a
 // benchmark), and the checks slow it: Verilator samples every signal an assertion reads on each
 // evaluation and checks the properties and the `unique case` items on every cycle
-// (docs/benchmarks.md has the figures). Quick builds - every random-scenario co-simulation, the
-// tests' and scripts/mutate-rtl's - and covered builds keep them; the formal proofs
+// (docs/history/benchmarks.md has the figures). Quick builds - every random-scenario co-simulation,
+// the tests' and scripts/mutate-rtl's - and covered builds keep them; the formal proofs
 // (docs/formal.md) hold them for every input.
 bool checks_assertions(const Flavour& f, RtlOptimization o);
 
