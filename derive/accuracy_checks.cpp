@@ -7,12 +7,11 @@
 #include <variant>
 
 #include "derive/budget.h"
+#include "derive/miss_causes.h"
 #include "derive/trial_unit.h"
 #include "derive/width_rules.h"
 #include "host/gate_flips.h"
-#include "host/scene_error.h"
 #include "model/command_stream.h"
-#include "model/specular_units.h"
 
 namespace shadesim {
 namespace {
@@ -116,39 +115,6 @@ std::optional<std::string> gate_flip_warning(const PreparedScene& frame, const U
                          f.fixed.series.to_string(), f.fixed.coef.to_string());
 }
 
-// The error of the scene on `unit`, in output codes.
-int code_error(const PreparedScene& frame, const UnitConfig& unit) {
-  return scene_error(frame, unit).max_code_lsb;
-}
-
-// The formats that alone bring the exact-pow unit within `allowed`, widened one at a time.
-std::string formats_that_hold(const PreparedScene& frame, const UnitConfig& exact,
-                              const UnitConfig& lossless, int allowed) {
-  struct Trial {
-    const char* name;
-    UnitConfig unit;
-  };
-  std::vector<Trial> trials;
-  UnitConfig series = exact;
-  series.series = lossless.series;
-  series.coef = lossless.coef;
-  series.coef_term_iwl.clear();
-  trials.push_back({"series and coef", series});
-  UnitConfig colour = exact;
-  colour.spec_colour = lossless.spec_colour;
-  trials.push_back({"spec_colour", colour});
-  UnitConfig out = exact;
-  out.specular.out = lossless.specular.out;
-  trials.push_back({"the specular output", out});
-  std::string held;
-  for (const Trial& t : trials) {
-    const int e = code_error(frame, t.unit);
-    if (e <= allowed)
-      held += fmt::format("{}{} lossless: {} LSB", held.empty() ? "" : "; ", t.name, e);
-  }
-  return held.empty() ? "no one format alone holds it; together they do" : held;
-}
-
 }  // namespace
 
 UnitConfig lossless_formats(const UnitConfig& unit, double colour_max) {
@@ -187,40 +153,7 @@ std::vector<std::string> format_warnings(const PreparedScene& frame, const UnitC
 
 std::string explain_miss(const PreparedScene& frame, const UnitConfig& unit,
                          const ErrorStats& error) {
-  const ConfigMeasurements m = measure_scene_on(frame, unit);
-  const int allowed = code_budget(m.budget_lsb);
-  std::string head = fmt::format(
-      "max {} LSB over the {:g} LSB budget ({} in output codes; {} of "
-      "{} pixels off by more than 1): ",
-      error.max_code_lsb, m.budget_lsb, allowed, error.pixels_over_1lsb, error.pixels);
-  UnitConfig exact = unit;
-  const bool hardware = specular_unit(unit.specular.kind).hardware;
-  if (hardware) {
-    exact.specular.kind = SpecularUnitKind::kIdeal;
-    const int e = code_error(frame, exact);
-    if (e <= allowed) {
-      return head + fmt::format(
-                        "the specular unit ({}) approximates t^n too coarsely: exact pow on the "
-                        "same formats is {} LSB (shadesim config searches the unit's fields; "
-                        "shadesim spec-error shows its error curve)",
-                        unit.specular.describe(), e);
-    }
-  }
-  const UnitConfig lossless = lossless_formats(exact, m.colour_max);
-  const int e_lossless = code_error(frame, lossless);
-  const std::string exact_text = hardware ? " with exact pow" : "";
-  if (e_lossless <= allowed) {
-    return head +
-           fmt::format("the unit's formats: on formats that lose nothing{} it is {} LSB ({})",
-                       exact_text, e_lossless, formats_that_hold(frame, exact, lossless, allowed));
-  }
-  const SetupStats& setup = frame.setup().stats;
-  const int max_depth = frame.key().max_depth;
-  return head + fmt::format(
-                    "neither the specular unit nor the formats: on formats that lose nothing{} "
-                    "it is still {} LSB, so the Taylor setup ({} triangle(s) over the budget at "
-                    "--max-depth {}, worst {:.3g} LSB) or the N.L gate near the terminator",
-                    exact_text, e_lossless, setup.over_budget, max_depth, setup.worst_error_lsb);
+  return explain_miss_cause(frame, unit, error).text;
 }
 
 std::vector<std::string> accuracy_warnings(const PreparedScene& frame, const UnitConfig& unit,
