@@ -55,11 +55,11 @@ std::string held_text(const std::string& held) {
   return held.empty() ? "no one format alone holds it; together they do" : held;
 }
 
-// The frame prepared again `kDeeperSubdivision` levels deeper (at most setup's 30); nullptr
-// where the frame is at that limit already.
+// The frame prepared again `kDeeperSubdivision` levels deeper (at most kDeepestSubdivision);
+// nullptr where the frame is at that limit already.
 std::unique_ptr<PreparedScene> deeper_frame(const PreparedScene& frame) {
   PrepareKey key = frame.key();
-  const int deeper = std::min(30, key.max_depth + kDeeperSubdivision);
+  const int deeper = std::min(kDeepestSubdivision, key.max_depth + kDeeperSubdivision);
   if (deeper <= key.max_depth) return nullptr;
   key.max_depth = deeper;
   return std::make_unique<PreparedScene>(frame.path(), key);
@@ -134,10 +134,10 @@ MissExplanation explain_miss_cause(const PreparedScene& frame, const UnitConfig&
   const UnitConfig lossless = lossless_formats(exact, m.colour_max);
   const int e_lossless = code_error(frame, lossless);
   if (e_lossless <= allowed && !hardware) {
-    return named(MissCause::kFormats, e_lossless,
-                 fmt::format("the unit's formats: on formats that lose nothing it is {} LSB ({})",
-                             e_lossless,
-                             held_text(formats_that_hold(frame, unit, lossless, allowed))));
+    return named(
+        MissCause::kFormats, e_lossless,
+        fmt::format("the unit's formats: on formats that lose nothing it is {} LSB ({})",
+                    e_lossless, held_text(formats_that_hold(frame, unit, lossless, allowed))));
   }
   if (e_lossless <= allowed) {
     // Exact pow alone misses: is it the formats alone, with the unit kept?
@@ -163,7 +163,8 @@ MissExplanation explain_miss_cause(const PreparedScene& frame, const UnitConfig&
   const std::string exact_text = hardware ? " with exact pow" : "";
   const int max_depth = frame.key().max_depth;
   const SetupStats& setup = frame.setup().stats;
-  std::string deeper_text = "setup is at its deepest (--max-depth 30)";
+  std::string deeper_text =
+      fmt::format("setup is at its deepest (--max-depth {})", kDeepestSubdivision);
   int least = e_lossless;
   if (const auto deep = deeper_frame(frame)) {
     const int e_deep = code_error(*deep, lossless);

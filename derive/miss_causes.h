@@ -32,8 +32,10 @@ struct MissExplanation {
   bool verified() const { return cause != MissCause::kUnknown; }
 };
 
-// How much deeper than the frame's depth limit the Taylor setup cause is tried (at most 30).
+// How much deeper than the frame's depth limit the Taylor setup cause is tried, at most to the
+// deepest the CLI's --max-depth takes (so the cause names a depth a user can ask for).
 constexpr int kDeeperSubdivision = 4;
+constexpr int kDeepestSubdivision = 16;
 
 // Why `unit`, whose image on `frame` has `error` (over the budget), misses it.
 MissExplanation explain_miss_cause(const PreparedScene& frame, const UnitConfig& unit,
