@@ -38,7 +38,9 @@ std::vector<std::string> format_warnings(const PreparedScene& frame, const UnitC
 std::string explain_miss(const PreparedScene& frame, const UnitConfig& unit,
                          const ErrorStats& error);
 
-// format_warnings, and explain_miss where `error` is over the budget.
+// format_warnings, and explain_miss where `error` is over the budget; then each format warning
+// that names a width also says what the frame re-shaded with that width is (within the budget,
+// or still over it: not the whole miss).
 std::vector<std::string> accuracy_warnings(const PreparedScene& frame, const UnitConfig& unit,
                                            const CommandStream& stream, const ErrorStats& error);
 

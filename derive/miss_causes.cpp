@@ -65,6 +65,56 @@ std::unique_ptr<PreparedScene> deeper_frame(const PreparedScene& frame) {
   return std::make_unique<PreparedScene>(frame.path(), key);
 }
 
+// Where neither the unit nor the formats explain a miss: deeper subdivision, then the gate, each
+// on `lossless` (exact pow, formats that lose nothing: e_lossless codes off), else unknown.
+MissExplanation geometry_cause(const PreparedScene& frame, const UnitConfig& lossless,
+                               int e_lossless, int allowed, const std::string& exact_text,
+                               const std::string& head) {
+  const int max_depth = frame.key().max_depth;
+  const SetupStats& setup = frame.setup().stats;
+  std::string deeper_text =
+      fmt::format("setup is at its deepest (--max-depth {})", kDeepestSubdivision);
+  MissExplanation out;
+  auto named = [&](MissCause cause, int e, const std::string& why) {
+    out.cause = cause;
+    out.error_removed = e;
+    out.text = head + why;
+    return out;
+  };
+  int least = e_lossless;
+  if (const auto deep = deeper_frame(frame)) {
+    const int e_deep = code_error(*deep, lossless);
+    least = std::min(least, e_deep);
+    if (e_deep <= allowed) {
+      return named(MissCause::kTaylorSetup, e_deep,
+                   fmt::format("the Taylor setup: {} triangle(s) over the budget at --max-depth "
+                               "{} (worst {:.3g} LSB); prepared again at --max-depth {}, on "
+                               "formats that lose nothing{} it is {} LSB",
+                               setup.over_budget, max_depth, setup.worst_error_lsb,
+                               deep->key().max_depth, exact_text, e_deep));
+    }
+    deeper_text = fmt::format("at --max-depth {} it is {} LSB", deep->key().max_depth, e_deep);
+  }
+  const int e_gate = error_against_taylor_gate(frame, lossless);
+  least = std::min(least, e_gate);
+  if (e_gate <= allowed) {
+    return named(MissCause::kGate, e_gate,
+                 fmt::format("the N.L gate near the terminator: on formats that lose nothing{} it "
+                             "is still {} LSB, and against a reference gated by the Taylor "
+                             "series' N.L as the unit gates (the exact N.L has the other sign "
+                             "there) {} LSB; {}",
+                             exact_text, e_lossless, e_gate, deeper_text));
+  }
+  out.cause = MissCause::kUnknown;
+  out.error_removed = least;
+  out.text = head + fmt::format(
+                        "the cause is unknown: on formats that lose nothing{} it is still {} LSB; "
+                        "{} ({} triangle(s) over the budget at --max-depth {}); against a "
+                        "reference gated as the unit gates it is {} LSB",
+                        exact_text, e_lossless, deeper_text, setup.over_budget, max_depth, e_gate);
+  return out;
+}
+
 }  // namespace
 
 const char* to_string(MissCause cause) {
@@ -159,44 +209,9 @@ MissExplanation explain_miss_cause(const PreparedScene& frame, const UnitConfig&
                     "widens the format and searches the units again)",
                     unit.specular.describe(), e_exact, e_unit, e_lossless, held_text(held)));
   }
-  // Neither the unit nor the formats: the frame's geometry. Deeper subdivision, then the gate.
-  const std::string exact_text = hardware ? " with exact pow" : "";
-  const int max_depth = frame.key().max_depth;
-  const SetupStats& setup = frame.setup().stats;
-  std::string deeper_text =
-      fmt::format("setup is at its deepest (--max-depth {})", kDeepestSubdivision);
-  int least = e_lossless;
-  if (const auto deep = deeper_frame(frame)) {
-    const int e_deep = code_error(*deep, lossless);
-    least = std::min(least, e_deep);
-    if (e_deep <= allowed) {
-      return named(MissCause::kTaylorSetup, e_deep,
-                   fmt::format("the Taylor setup: {} triangle(s) over the budget at --max-depth "
-                               "{} (worst {:.3g} LSB); prepared again at --max-depth {}, on "
-                               "formats that lose nothing{} it is {} LSB",
-                               setup.over_budget, max_depth, setup.worst_error_lsb,
-                               deep->key().max_depth, exact_text, e_deep));
-    }
-    deeper_text = fmt::format("at --max-depth {} it is {} LSB", deep->key().max_depth, e_deep);
-  }
-  const int e_gate = error_against_taylor_gate(frame, lossless);
-  least = std::min(least, e_gate);
-  if (e_gate <= allowed) {
-    return named(MissCause::kGate, e_gate,
-                 fmt::format("the N.L gate near the terminator: on formats that lose nothing{} it "
-                             "is still {} LSB, and against a reference gated by the Taylor "
-                             "series' N.L as the unit gates (the exact N.L has the other sign "
-                             "there) {} LSB; {}",
-                             exact_text, e_lossless, e_gate, deeper_text));
-  }
-  out.cause = MissCause::kUnknown;
-  out.error_removed = least;
-  out.text = head + fmt::format(
-                        "the cause is unknown: on formats that lose nothing{} it is still {} LSB; "
-                        "{} ({} triangle(s) over the budget at --max-depth {}); against a "
-                        "reference gated as the unit gates it is {} LSB",
-                        exact_text, e_lossless, deeper_text, setup.over_budget, max_depth, e_gate);
-  return out;
+  // Neither the unit nor the formats: the frame's geometry.
+  return geometry_cause(frame, lossless, e_lossless, allowed, hardware ? " with exact pow" : "",
+                        head);
 }
 
 }  // namespace shadesim

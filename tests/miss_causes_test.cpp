@@ -2,6 +2,8 @@
 // meets the budget, and a format that holds the scenes back is widened by the derivation. Each
 // premise and each fix is measured independently here: render_at shades the scene end to end on
 // a unit whose formats the test writes itself (the widest by hand, not lossless_formats).
+#include "derive/miss_causes.h"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -10,9 +12,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "derive/accuracy_checks.h"
 #include "derive/derive_config.h"
 #include "derive/format_widening.h"
-#include "derive/miss_causes.h"
 #include "host/prepared_scene.h"
 #include "tests/support/render_at.h"
 
@@ -31,28 +33,26 @@ class MissCauses : public ::testing::Test {
 
   // A 96x96 sphere of `tessellation` under one RGB light, one material naming `unit`.
   std::string write_scene(const std::string& name, const std::string& unit, double exponent,
-                          int tessellation) const {
-    const nlohmann::json material = {{"name", "m"},        {"ambient", 0.05},
-                                     {"diffuse", 0.5},     {"specular", 0.6},
-                                     {"exponent", exponent}, {"unit", unit}};
-    const nlohmann::json s = {
-        {"image", {{"width", 96}, {"height", 96}}},
-        {"camera",
-         {{"type", "perspective"},
-          {"position", {0, 0, 5}},
-          {"target", {0, 0, 0}},
-          {"up", {0, 1, 0}},
-          {"fov_y", 40}}},
-        {"lights", {{{"direction", {0.5, 0.6, 1}}, {"colour", {3, 1.5, 0.75}}}}},
-        {"ambient_light", 1.0},
-        {"eye", "finite"},
-        {"materials", {material}},
-        {"objects",
-         {{{"name", "ball"},
-           {"type", "sphere"},
-           {"material", "m"},
-           {"radius", 1.0},
-           {"tessellation", tessellation}}}}};
+                          int tessellation, const nlohmann::json& colour = {3, 1.5, 0.75}) const {
+    const nlohmann::json material = {{"name", "m"},     {"ambient", 0.05},      {"diffuse", 0.5},
+                                     {"specular", 0.6}, {"exponent", exponent}, {"unit", unit}};
+    const nlohmann::json s = {{"image", {{"width", 96}, {"height", 96}}},
+                              {"camera",
+                               {{"type", "perspective"},
+                                {"position", {0, 0, 5}},
+                                {"target", {0, 0, 0}},
+                                {"up", {0, 1, 0}},
+                                {"fov_y", 40}}},
+                              {"lights", {{{"direction", {0.5, 0.6, 1}}, {"colour", colour}}}},
+                              {"ambient_light", 1.0},
+                              {"eye", "finite"},
+                              {"materials", {material}},
+                              {"objects",
+                               {{{"name", "ball"},
+                                 {"type", "sphere"},
+                                 {"material", "m"},
+                                 {"radius", 1.0},
+                                 {"tessellation", tessellation}}}}};
     const std::string path = (dir_ / (name + ".json")).string();
     std::ofstream(path) << s.dump();
     return path;
@@ -165,6 +165,31 @@ TEST_F(MissCauses, ACauseNoRemovalMendsIsSaidToBeUnknown) {
   EXPECT_FALSE(why.verified());
   EXPECT_NE(why.text.find("the cause is unknown"), std::string::npos) << why.text;
   EXPECT_GT(why.error_removed, 1);
+}
+
+TEST_F(MissCauses, AFormatWarningOnAMissSaysWhatItsWidthReShadesTo) {
+  // A light of 30 saturates the default u1.12 colour words; render's warning names u5.12 and,
+  // the image being over the budget, the error of the frame re-shaded with it, which render_at
+  // measures here end to end.
+  const std::string path = write_scene("bright", "ideal", 60, 24, {30, 15, 7.5});
+  UnitConfig unit;
+  unit.channels = 3;
+  const PreparedFrame f = frame_at(path, unit);
+  const ErrorStats e = render_at(path, unit);
+  ASSERT_GT(e.max_code_lsb, 1);
+  const PreparedScene frame(path, PrepareKey{std::nullopt, 12, unit.out_bits});
+  const auto warnings = accuracy_warnings(frame, f.config, f.encoded.stream, e);
+  std::string colour;
+  for (const auto& w : warnings)
+    if (w.rfind("spec_colour", 0) == 0) colour = w;
+  ASSERT_NE(colour.find("u5.12 would hold them"), std::string::npos) << colour;
+  const std::string said = "re-shaded with it the frame is ";
+  const size_t at = colour.find(said);
+  ASSERT_NE(at, std::string::npos) << colour;
+  UnitConfig fixed = f.config;
+  fixed.spec_colour = FixedFormat{17, 5, false, Quantization::kRoundNearest, Overflow::kSaturate};
+  EXPECT_EQ(std::stoi(colour.substr(at + said.size())), render_at(path, fixed).max_code_lsb)
+      << colour;
 }
 
 }  // namespace
