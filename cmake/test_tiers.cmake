@@ -93,6 +93,7 @@ set(SHADESIM_GTEST_TIERS
   lanes_test                quick
   liberty_flow_test         quick
   lockstep_test             quick
+  miss_causes_test          quick
   mutation_test             quick
   phong_blinn_fit_test      quick
   pixel_combine_test        quick

@@ -7,15 +7,29 @@
 #include <variant>
 
 #include "derive/budget.h"
+#include "derive/miss_causes.h"
 #include "derive/trial_unit.h"
 #include "derive/width_rules.h"
 #include "host/gate_flips.h"
 #include "host/scene_error.h"
 #include "model/command_stream.h"
-#include "model/specular_units.h"
 
 namespace shadesim {
 namespace {
+
+// One format warning, and the unit with the width it names (none where it names no width that
+// holds): what accuracy_warnings re-shades to check the warning as a cause of a miss.
+struct Finding {
+  std::string text;
+  std::optional<UnitConfig> fixed;
+};
+
+// `f` with its integer bits set to `iwl`, its fraction bits kept.
+FixedFormat with_iwl(FixedFormat f, int iwl) {
+  f.wl += iwl - f.iwl;
+  f.iwl = iwl;
+  return f;
+}
 
 // The longest span the series format's drift bound allows within `share_lsb` output LSBs at
 // `gain` (the inverse of drift_fraction_bits).
@@ -39,24 +53,28 @@ int signed_bits(double lo, double hi) {
   return iwl;
 }
 
-std::optional<std::string> series_range_warning(const ConfigMeasurements& m,
-                                                const UnitConfig& unit) {
+std::optional<Finding> series_range_warning(const ConfigMeasurements& m, const UnitConfig& unit) {
   const double half = std::ldexp(1.0, unit.series.iwl - 1);
   const double hi = std::max(m.series_max, m.product_max);
   if (m.series_min >= -half && hi < half) return std::nullopt;
   const int need = std::max(2, signed_bits(m.series_min, hi));
-  return fmt::format(
+  UnitConfig fixed = unit;
+  fixed.series = with_iwl(unit.series, need);
+  fixed.coef = with_iwl(unit.coef, std::max(unit.coef.iwl, need));
+  fixed.coef_term_iwl.clear();
+  const std::string text = fmt::format(
       "series {}: series values at the pixels reach [{:.4g}, {:.4g}]{}, beyond its range "
       "[-{:g}, {:g}): pixels there wrap or saturate; {} integer bits would hold them (e.g. "
       "--series s{}.{})",
       unit.series.to_string(), m.series_min, m.series_max,
       m.product_max >= half ? fmt::format(" and colour products {:.4g}", m.product_max) : "", half,
       half, need, need, unit.series.frac_bits());
+  return Finding{text, fixed};
 }
 
 // Colour words at the top of spec_colour: the encoder saturated them.
-std::optional<std::string> colour_warning(const ConfigMeasurements& m, const UnitConfig& unit,
-                                          const CommandStream& stream) {
+std::optional<Finding> colour_warning(const ConfigMeasurements& m, const UnitConfig& unit,
+                                      const CommandStream& stream) {
   const bool read = unit.specular.kind != SpecularUnitKind::kNone || unit.diffuse_multiply();
   const FixedFormat& f = unit.spec_colour;
   const double top = std::ldexp(static_cast<double>(f.raw_max()), -f.frac_bits());
@@ -72,16 +90,19 @@ std::optional<std::string> colour_warning(const ConfigMeasurements& m, const Uni
   }
   int iwl = f.iwl;
   while (std::ldexp(1.0, iwl) - std::ldexp(1.0, -f.frac_bits()) < m.colour_max) ++iwl;
-  return fmt::format(
+  UnitConfig fixed = unit;
+  fixed.spec_colour = with_iwl(f, iwl);
+  const std::string text = fmt::format(
       "spec_colour {}: the colour words (ks_c L_c{}) reach {:.4g}, above its top {:.4g}: {} of "
       "{} colour words in the stream saturate, so lit pixels are too dark; u{}.{} would hold "
       "them (--spec-colour)",
       f.to_string(), unit.diffuse_multiply() ? ", kd_c L_c" : "", m.colour_max, top, saturated,
       words, iwl, f.frac_bits());
+  return Finding{text, fixed};
 }
 
-std::optional<std::string> drift_warning(const ConfigMeasurements& m, const UnitConfig& unit,
-                                         const CommandStream& stream) {
+std::optional<Finding> drift_warning(const ConfigMeasurements& m, const UnitConfig& unit,
+                                     const CommandStream& stream) {
   const int within =
       longest_span_within_drift(unit.series, m.gain, m.drift_share_lsb, unit.out_bits);
   size_t beyond = 0;
@@ -95,15 +116,19 @@ std::optional<std::string> drift_warning(const ConfigMeasurements& m, const Unit
   if (beyond == 0) return std::nullopt;
   const int frac = drift_fraction_bits(longest, m.gain, m.drift_share_lsb, unit.out_bits,
                                        unit.series.quant == Quantization::kRoundNearest);
-  return fmt::format(
+  UnitConfig fixed = unit;
+  if (frac > unit.series.frac_bits())
+    fixed = with_more_fraction_bits(unit, frac - unit.series.frac_bits());
+  const std::string text = fmt::format(
       "series {}: {} span(s) longer than {} px (the longest {}) exceed its drift bound within "
       "{:g} LSB (budget/4, gain {:.4g}): {} series fraction bits would hold them",
       unit.series.to_string(), beyond, within, longest, m.drift_share_lsb, m.gain, frac);
+  return Finding{text, fixed};
 }
 
 // Pixels whose N.L gate flips over the budget, with the fraction bits that hold them.
-std::optional<std::string> gate_flip_warning(const PreparedScene& frame, const UnitConfig& unit,
-                                             double budget_lsb) {
+std::optional<Finding> gate_flip_warning(const PreparedScene& frame, const UnitConfig& unit,
+                                         double budget_lsb) {
   const GateFlips f = measure_gate_flips(frame, unit, code_budget(budget_lsb));
   if (f.pixels == 0) return std::nullopt;
   const std::string w = fmt::format(
@@ -111,42 +136,50 @@ std::optional<std::string> gate_flip_warning(const PreparedScene& frame, const U
       "formats (their N.L is within the series' truncation and the coefficients' rounding of "
       "0), up to {} LSB off, over the {:g} LSB budget: ",
       f.pixels, f.max_lsb, budget_lsb);
-  if (f.fix_bits < 0) return w + "no narrower series and coef than the widest hold them";
-  return w + fmt::format("{} more fraction bits in series and coef ({}, {}) hold them", f.fix_bits,
-                         f.fixed.series.to_string(), f.fixed.coef.to_string());
+  if (f.fix_bits < 0)
+    return Finding{w + "no narrower series and coef than the widest hold them", std::nullopt};
+  return Finding{w + fmt::format("{} more fraction bits in series and coef ({}, {}) hold them",
+                                 f.fix_bits, f.fixed.series.to_string(), f.fixed.coef.to_string()),
+                 f.fixed};
 }
 
-// The error of the scene on `unit`, in output codes.
-int code_error(const PreparedScene& frame, const UnitConfig& unit) {
-  return scene_error(frame, unit).max_code_lsb;
-}
-
-// The formats that alone bring the exact-pow unit within `allowed`, widened one at a time.
-std::string formats_that_hold(const PreparedScene& frame, const UnitConfig& exact,
-                              const UnitConfig& lossless, int allowed) {
-  struct Trial {
-    const char* name;
-    UnitConfig unit;
-  };
-  std::vector<Trial> trials;
-  UnitConfig series = exact;
-  series.series = lossless.series;
-  series.coef = lossless.coef;
-  series.coef_term_iwl.clear();
-  trials.push_back({"series and coef", series});
-  UnitConfig colour = exact;
-  colour.spec_colour = lossless.spec_colour;
-  trials.push_back({"spec_colour", colour});
-  UnitConfig out = exact;
-  out.specular.out = lossless.specular.out;
-  trials.push_back({"the specular output", out});
-  std::string held;
-  for (const Trial& t : trials) {
-    const int e = code_error(frame, t.unit);
-    if (e <= allowed)
-      held += fmt::format("{}{} lossless: {} LSB", held.empty() ? "" : "; ", t.name, e);
+// The scene's format findings on `unit` (format_warnings' texts).
+std::vector<Finding> format_findings(const PreparedScene& frame, const UnitConfig& unit,
+                                     const CommandStream& stream) {
+  std::optional<ConfigMeasurements> measured;
+  try {
+    measured = measure_scene_on(frame, unit);
+  } catch (const std::exception& e) {
+    return {{std::string("could not measure the scene against the unit's formats: ") + e.what(),
+             std::nullopt}};
   }
-  return held.empty() ? "no one format alone holds it; together they do" : held;
+  const ConfigMeasurements& m = *measured;
+  std::vector<Finding> out;
+  const auto range = series_range_warning(m, unit);
+  if (range) out.push_back(*range);
+  if (auto w = colour_warning(m, unit, stream)) out.push_back(*w);
+  if (auto w = drift_warning(m, unit, stream)) out.push_back(*w);
+  // Out of range, the series wraps or saturates everywhere: that warning says it all.
+  if (!range) {
+    if (auto w = gate_flip_warning(frame, unit, m.budget_lsb)) out.push_back(*w);
+  }
+  return out;
+}
+
+// A finding on an image over the budget names a cause of the miss: the frame re-shaded with
+// the width it names says whether that alone meets the budget.
+std::string verified(const PreparedScene& frame, const Finding& f, int allowed) {
+  if (!f.fixed) return f.text;
+  int e = 0;
+  try {
+    f.fixed->validate();
+    e = scene_error(frame, *f.fixed).max_code_lsb;
+  } catch (const std::exception& ex) {
+    return f.text + "; that width could not be re-shaded: " + ex.what();
+  }
+  return f.text + fmt::format("; re-shaded with it the frame is {} LSB{}", e,
+                              e <= allowed ? ", within the budget"
+                                           : ", still over the budget: not the whole miss");
 }
 
 }  // namespace
@@ -166,68 +199,24 @@ UnitConfig lossless_formats(const UnitConfig& unit, double colour_max) {
 
 std::vector<std::string> format_warnings(const PreparedScene& frame, const UnitConfig& unit,
                                          const CommandStream& stream) {
-  std::optional<ConfigMeasurements> measured;
-  try {
-    measured = measure_scene_on(frame, unit);
-  } catch (const std::exception& e) {
-    return {std::string("could not measure the scene against the unit's formats: ") + e.what()};
-  }
-  const ConfigMeasurements& m = *measured;
   std::vector<std::string> out;
-  const auto range = series_range_warning(m, unit);
-  if (range) out.push_back(*range);
-  if (auto w = colour_warning(m, unit, stream)) out.push_back(*w);
-  if (auto w = drift_warning(m, unit, stream)) out.push_back(*w);
-  // Out of range, the series wraps or saturates everywhere: that warning says it all.
-  if (!range) {
-    if (auto w = gate_flip_warning(frame, unit, m.budget_lsb)) out.push_back(*w);
-  }
+  for (const Finding& f : format_findings(frame, unit, stream)) out.push_back(f.text);
   return out;
 }
 
 std::string explain_miss(const PreparedScene& frame, const UnitConfig& unit,
                          const ErrorStats& error) {
-  const ConfigMeasurements m = measure_scene_on(frame, unit);
-  const int allowed = code_budget(m.budget_lsb);
-  std::string head = fmt::format(
-      "max {} LSB over the {:g} LSB budget ({} in output codes; {} of "
-      "{} pixels off by more than 1): ",
-      error.max_code_lsb, m.budget_lsb, allowed, error.pixels_over_1lsb, error.pixels);
-  UnitConfig exact = unit;
-  const bool hardware = specular_unit(unit.specular.kind).hardware;
-  if (hardware) {
-    exact.specular.kind = SpecularUnitKind::kIdeal;
-    const int e = code_error(frame, exact);
-    if (e <= allowed) {
-      return head + fmt::format(
-                        "the specular unit ({}) approximates t^n too coarsely: exact pow on the "
-                        "same formats is {} LSB (shadesim config searches the unit's fields; "
-                        "shadesim spec-error shows its error curve)",
-                        unit.specular.describe(), e);
-    }
-  }
-  const UnitConfig lossless = lossless_formats(exact, m.colour_max);
-  const int e_lossless = code_error(frame, lossless);
-  const std::string exact_text = hardware ? " with exact pow" : "";
-  if (e_lossless <= allowed) {
-    return head +
-           fmt::format("the unit's formats: on formats that lose nothing{} it is {} LSB ({})",
-                       exact_text, e_lossless, formats_that_hold(frame, exact, lossless, allowed));
-  }
-  const SetupStats& setup = frame.setup().stats;
-  const int max_depth = frame.key().max_depth;
-  return head + fmt::format(
-                    "neither the specular unit nor the formats: on formats that lose nothing{} "
-                    "it is still {} LSB, so the Taylor setup ({} triangle(s) over the budget at "
-                    "--max-depth {}, worst {:.3g} LSB) or the N.L gate near the terminator",
-                    exact_text, e_lossless, setup.over_budget, max_depth, setup.worst_error_lsb);
+  return explain_miss_cause(frame, unit, error).text;
 }
 
 std::vector<std::string> accuracy_warnings(const PreparedScene& frame, const UnitConfig& unit,
                                            const CommandStream& stream, const ErrorStats& error) {
-  std::vector<std::string> out = format_warnings(frame, unit, stream);
   const double budget = frame.key().budget_lsb.value_or(frame.scene().error_budget_lsb);
-  if (error.pixels > 0 && error.max_code_lsb > code_budget(budget)) {
+  const bool over = error.pixels > 0 && error.max_code_lsb > code_budget(budget);
+  std::vector<std::string> out;
+  for (const Finding& f : format_findings(frame, unit, stream))
+    out.push_back(over ? verified(frame, f, code_budget(budget)) : f.text);
+  if (over) {
     try {
       out.push_back(explain_miss(frame, unit, error));
     } catch (const std::exception& e) {

@@ -13,8 +13,8 @@
 //            Each names the format, how many values, spans or pixels it affects, and the width
 //            that would hold the scene.
 //   the miss an image over the budget always gets one warning with its measured error and the
-//            part that causes it, found by shading the scene again on variants of the unit:
-//            exact pow in place of its specular unit, then formats that lose nothing.
+//            cause, named only where re-shading the frame with it removed meets the budget
+//            (derive/miss_causes.h), else said to be unknown.
 #pragma once
 
 #include <optional>
@@ -33,13 +33,14 @@ namespace shadesim {
 std::vector<std::string> format_warnings(const PreparedScene& frame, const UnitConfig& unit,
                                          const CommandStream& stream);
 
-// Why `unit`, whose image has `error`, misses the budget: the specular unit's approximation,
-// a named format, or (neither) the Taylor setup and the N.L gate, each with the error measured
-// on the variant that shows it. Call it only for an image over the budget.
+// Why `unit`, whose image has `error`, misses the budget (explain_miss_cause's text,
+// derive/miss_causes.h). Call it only for an image over the budget.
 std::string explain_miss(const PreparedScene& frame, const UnitConfig& unit,
                          const ErrorStats& error);
 
-// format_warnings, and explain_miss where `error` is over the budget.
+// format_warnings, and explain_miss where `error` is over the budget; then each format warning
+// that names a width also says what the frame re-shaded with that width is (within the budget,
+// or still over it: not the whole miss).
 std::vector<std::string> accuracy_warnings(const PreparedScene& frame, const UnitConfig& unit,
                                            const CommandStream& stream, const ErrorStats& error);
 

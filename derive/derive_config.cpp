@@ -24,6 +24,24 @@ const DerivationRule kLanesRule = {
 
 namespace {
 
+// The search's widening (DeriveOptions::widen) on top of the rules' widths, said on each line.
+void widen_formats(const FormatWidening& w, UnitConfig& cfg, FieldWhys& why) {
+  if (!w.any()) return;
+  cfg = widened(cfg, w);
+  const std::string measured =
+      " fraction bits: exact pow on the rules' formats misses the budget "
+      "on the scenes (" +
+      std::to_string(w.exact_before) + " LSB), and with " + w.describe() + " meets it (" +
+      std::to_string(w.exact_after) + " LSB, measured)";
+  auto add = [&measured](std::string& text, int bits) {
+    if (bits > 0) text += "; widened by " + std::to_string(bits) + measured;
+  };
+  add(why.spec_colour, w.spec_colour);
+  add(why.specular_out, w.specular_out);
+  add(why.series, w.series_coef);
+  add(why.coef, w.series_coef);
+}
+
 // Every field for one specular substitute (options.ideal_substitute); derive_config below tries
 // the fallbacks.
 DerivedConfig derive_widths(const FrameSet& frames, const DeriveOptions& options) {
@@ -50,6 +68,7 @@ DerivedConfig derive_widths(const FrameSet& frames, const DeriveOptions& options
   why.series = derive_series(scenes, w, ms, cfg);
   why.coef = derive_coef(w, ms, cfg);
   why.coef_term_iwl = derive_term_widths(w, cfg);
+  widen_formats(options.widen, cfg, why);
   // Lanes change no pixel (the series wrap; docs/throughput.md), so the widths above hold for
   // any count; the structure below is chosen for them.
   cfg.lanes = options.lanes;

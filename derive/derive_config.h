@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "derive/format_widening.h"
 #include "derive/specular_candidates.h"
 #include "host/prepared_scene.h"
 #include "host/scene_error.h"
@@ -43,6 +44,10 @@ struct DeriveOptions {
   // Set by derive_config's search: the specular unit to derive the widths for, in place of the
   // one the scenes name (or ideal's substitute).
   std::optional<SpecularConfig> specular_trial;
+  // Set by derive_config's search where exact pow misses the budget on the derived formats and
+  // formats that lose nothing meet it: the fraction bits measured to hold the scenes, added to
+  // the width rules' (derive/format_widening.h).
+  FormatWidening widen;
   int max_depth = 12;  // setup's subdivision depth limit, as FrameOptions
   // Widen series and coef where the N.L gate flips over the budget (host/gate_flips.h); off for
   // a caller that only reads the measurements.

@@ -118,10 +118,10 @@ void rechoose_throughput(const FrameSet& frames, const DeriveOptions& options, D
 }
 
 std::vector<DerivationRule> derivation_rules() {
-  return {kBudgetRule,     kChannelsRule,    kLightsRule,    kXyBitsRule,     kOffsetBitsRule,
-          kSeriesRule,     kCoefRule,        kGateRule,      kGainRule,       kCoefTermsRule,
-          kSpecColourRule, kOutBitsRule,     kLanesRule,     kThroughputRule, kDiffuseColourRule,
-          kSpecularRule,   kSpecularOutRule, kPipeliningRule};
+  return {kBudgetRule,     kChannelsRule, kLightsRule,      kXyBitsRule,     kOffsetBitsRule,
+          kSeriesRule,     kCoefRule,     kGateRule,        kGainRule,       kCoefTermsRule,
+          kSpecColourRule, kOutBitsRule,  kLanesRule,       kThroughputRule, kDiffuseColourRule,
+          kSpecularRule,   kWideningRule, kSpecularOutRule, kPipeliningRule};
 }
 
 }  // namespace shadesim

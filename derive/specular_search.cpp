@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "derive/budget.h"
+#include "derive/format_widening.h"
 #include "derive/helpers.h"
 #include "derive/specular_candidates.h"
 #include "derive/throughput_choice.h"
@@ -170,7 +171,51 @@ std::string search_units(const FrameSet& frames, const DeriveOptions& options,
          ", reach " + std::to_string(last.error) + " LSB";
 }
 
+// Exact pow misses on the first unit's formats and meets the budget with `widen`: the unit
+// derived again on the widened formats, then, where it still misses, the units searched on them.
+std::string search_widened(const FrameSet& frames, const DeriveOptions& options,
+                           const DeriveUnit& derive_unit, const std::vector<SpecularConfig>& units,
+                           int allowed, const FormatWidening& widen, UnitTrial& best,
+                           std::string& tried) {
+  const std::string first_tried = tried;
+  DeriveOptions wide = options;
+  wide.widen = widen;
+  best = try_unit(frames, wide, derive_unit(wide));
+  tried = best.describe();
+  const std::string head = "on the rules' formats " + first_tried + ", and exact pow misses too (" +
+                           std::to_string(widen.exact_before) + " LSB); with " + widen.describe() +
+                           " exact pow meets it (" + std::to_string(widen.exact_after) +
+                           " LSB, measured), so the formats are widened and the units tried "
+                           "again on them: ";
+  if (best.error <= allowed) return head + tried + " (within " + std::to_string(allowed) + " LSB)";
+  if (units.empty()) return head + tried + " (no other unit to try)";
+  return head + search_units(frames, wide, derive_unit, units, allowed, best, tried);
+}
+
+// A unit with no other specular unit to try (none, ideal kept, a named unit not searched): its
+// formats widened where they hold the scenes back (kWideningRule), else `first` as it is.
+DerivedConfig widened_where_held(const FrameSet& frames, const DeriveOptions& options,
+                                 const DeriveUnit& derive_unit, DerivedConfig first) {
+  if (options.specular_trial) return first;
+  const int allowed = code_budget(first.measured.budget_lsb);
+  if (max_code_error(frames, first.config) <= allowed) return first;
+  const auto widen = widening_that_holds(frames, first.config, allowed);
+  if (!widen) return first;
+  DeriveOptions wide = options;
+  wide.widen = *widen;
+  return derive_unit(wide);
+}
+
 }  // namespace
+
+const DerivationRule kWideningRule = {
+    "spec_colour, specular out, series, coef",
+    "where the specular unit misses the budget on the scenes and so does exact pow on its "
+    "formats, but exact pow on formats that lose nothing meets it (measured), the formats hold "
+    "the scenes back: the one format that alone meets it with the fewest more fraction bits "
+    "(spec_colour, then the specular output, then series and coef; else all three by the same "
+    "bits), measured by re-shading the scenes, is widened, and the specular unit is derived and "
+    "searched again on the widened formats"};
 
 const DerivationRule kSpecularRule = {
     "specular",
@@ -227,7 +272,8 @@ DerivedConfig search_specular_unit(const FrameSet& frames, const DeriveOptions& 
                                    const DeriveUnit& derive_unit) {
   DerivedConfig first = derive_unit(options);
   const std::vector<SpecularConfig> rest = units_to_try(first, options);
-  if (rest.empty() && !substituted(first, options)) return first;
+  if (rest.empty() && !substituted(first, options))
+    return widened_where_held(frames, options, derive_unit, first);
   // The specular unit must meet the budget on the scenes (measured, not bounded: a unit's
   // approximation of t^n is not in the width rules), else the next candidate, each with the
   // widths derived for it. The reason lists every unit tried.
@@ -238,13 +284,18 @@ DerivedConfig search_specular_unit(const FrameSet& frames, const DeriveOptions& 
   if (best.error <= allowed) {
     note = "measured against the budget on the scenes: " + tried + " (within " +
            std::to_string(allowed) + " LSB)";
-  } else if (exact_pow_misses(frames, options, first.config, allowed)) {
-    // No unit will meet it: the formats, the Taylor setup or the N.L gate do not (shadesim
-    // config says which and exits 1).
-    note = "misses the " + fmt(first.measured.budget_lsb) + " LSB budget on the scenes (" + tried +
-           "), and so does exact pow on its formats: no other unit is tried";
-  } else {
+  } else if (!exact_pow_misses(frames, options, first.config, allowed)) {
     note = search_units(frames, options, derive_unit, rest, allowed, best, tried);
+  } else if (const auto widen = options.specular_trial
+                                    ? std::nullopt
+                                    : widening_that_holds(frames, first.config, allowed)) {
+    note = search_widened(frames, options, derive_unit, rest, allowed, *widen, best, tried);
+  } else {
+    // No unit and no widening will meet it: the Taylor setup or the N.L gate do not, or the
+    // cause is unknown (shadesim config says which, measured, and exits 1).
+    note = "misses the " + fmt(first.measured.budget_lsb) + " LSB budget on the scenes (" + tried +
+           "), and so does exact pow on its formats and on formats that lose nothing: no other "
+           "unit is tried";
   }
   for (auto& r : best.derived.reasons) {
     if (r.field == "specular") r.reason += "; " + note;

@@ -34,6 +34,6 @@ using DeriveUnit = std::function<DerivedConfig(const DeriveOptions& options)>;
 DerivedConfig search_specular_unit(const FrameSet& frames, const DeriveOptions& options,
                                    const DeriveUnit& derive_unit);
 
-extern const DerivationRule kSpecularRule;
+extern const DerivationRule kSpecularRule, kWideningRule;
 
 }  // namespace shadesim

@@ -52,6 +52,11 @@ void check_shading_inputs(const std::vector<ScreenTriangle>& triangles,
                                 " quadratic sets for " + std::to_string(triangles.size()) +
                                 " triangles");
   }
+  if (variant.gate_quadratics && variant.gate_quadratics->size() != triangles.size()) {
+    throw std::invalid_argument(
+        "render_variant: " + std::to_string(variant.gate_quadratics->size()) +
+        " gate quadratic sets for " + std::to_string(triangles.size()) + " triangles");
+  }
   if (!variant.specular.empty() && variant.specular.size() != scene.materials.size()) {
     throw std::invalid_argument("render_variant: " + std::to_string(variant.specular.size()) +
                                 " specular functions for " +
@@ -78,8 +83,9 @@ LightDirections light_directions(const Scene& scene) {
 
 // One pixel's colour, unclamped, at (x, y) in triangle t: the exact cosines from the
 // interpolated normal and to-eye vectors, or the variant's quadratics `q` when given.
-Vec3 shade_pixel(const ScreenTriangle& t, const TriangleSeries* q, double x, double y,
-                 const Scene& scene, const LightDirections& d, const ShadingVariant& variant) {
+Vec3 shade_pixel(const ScreenTriangle& t, const TriangleSeries* q, const TriangleSeries* gate_q,
+                 double x, double y, const Scene& scene, const LightDirections& d,
+                 const ShadingVariant& variant) {
   const Material& mat = scene.materials[static_cast<std::size_t>(t.material)];
   const auto w = barycentric(t, x, y);
   const Vec3 n = t.v[0].normal * w[0] + t.v[1].normal * w[1] + t.v[2].normal * w[2];
@@ -111,7 +117,8 @@ Vec3 shade_pixel(const ScreenTriangle& t, const TriangleSeries* q, double x, dou
     const double diffuse = std::max(0.0, t_d);
     // No specular where N.L <= 0: a highlight never shines through the terminator.
     double specular = 0.0;
-    if (t_d > 0) {
+    const bool gate = gate_q ? !gate_q->degenerate && gate_q->diffuse[l].eval(x, y) > 0 : t_d > 0;
+    if (gate) {
       specular = variant.specular.empty()
                      ? std::pow(q ? clamp01(t_s) : std::max(0.0, t_s), mat.exponent)
                      : variant.specular[static_cast<std::size_t>(t.material)](t_s);
@@ -151,8 +158,11 @@ static ReferenceImage render_shading(const std::vector<ScreenTriangle>& triangle
       }
       const TriangleSeries* q =
           variant.quadratics ? &(*variant.quadratics)[static_cast<std::size_t>(o)] : nullptr;
-      const Vec3 colour = shade_pixel(triangles[static_cast<std::size_t>(o)], q, px + 0.5, py + 0.5,
-                                      scene, directions, variant);
+      const TriangleSeries* gate_q = variant.gate_quadratics
+                                         ? &(*variant.gate_quadratics)[static_cast<std::size_t>(o)]
+                                         : nullptr;
+      const Vec3 colour = shade_pixel(triangles[static_cast<std::size_t>(o)], q, gate_q, px + 0.5,
+                                      py + 0.5, scene, directions, variant);
       double* out = &img.values[pixel * static_cast<std::size_t>(channels)];
       out[0] = clamp01(colour.x);
       if (channels == 3) {

@@ -53,6 +53,10 @@ struct ShadingVariant {
   const std::vector<TriangleSeries>* quadratics = nullptr;
   // Per material index, f(t) replacing max(0, t)^n (it must clamp t itself). Empty: pow.
   std::vector<std::function<double(double)>> specular;
+  // Parallel to the triangles: the specular gate from these quadratics' N.L (q_d > 0), as the
+  // unit gates it, with every cosine otherwise as set above. nullptr: the gate from the cosine
+  // the shading uses. What a miss at the terminator owes to the gate alone (derive/miss_causes).
+  const std::vector<TriangleSeries>* gate_quadratics = nullptr;
 };
 
 // render_reference with `variant`; the default variant gives render_reference's image exactly.

@@ -13,6 +13,7 @@
 #include "derive/accuracy_checks.h"
 #include "derive/budget.h"
 #include "derive/derive_config.h"
+#include "derive/miss_causes.h"
 #include "host/frame.h"
 #include "host/metrics.h"
 #include "host/reference.h"
@@ -64,9 +65,11 @@ void print_derivation(const DerivedConfig& derived, const std::string& origin) {
 
 // One scene on the derived unit: its error printed, and as JSON. A hardware specular unit gets
 // the exact-pow yardstick on the same widths: what of the error is the unit's own. A scene over
-// the budget adds why to `missed`.
+// the budget adds why to `missed`, and its cause (verified by re-shading the frame with it
+// removed, or "unknown": derive/miss_causes.h) to the JSON. `cycles`: what the derivation
+// measured on the unit, as `cycles` counts them (scripts/random-scenes compares the two).
 nlohmann::json check_scene(const PreparedScene& frame, const DerivedConfig& derived,
-                           std::vector<std::string>& missed) {
+                           const SceneCycles& cycles, std::vector<std::string>& missed) {
   const std::string& path = frame.path();
   const UnitConfig& cfg = derived.config;
   const double budget = derived.measured.budget_lsb;
@@ -100,9 +103,18 @@ nlohmann::json check_scene(const PreparedScene& frame, const DerivedConfig& deri
     }
     yardstick = {{"max_code_lsb", y.max_code_lsb}, {"max_real_lsb", y.max_real_lsb}};
   }
-  if (e.max_code_lsb > code_budget(budget))
-    missed.push_back(path + ": " + explain_miss(frame, cfg, e));
+  nlohmann::json cause = nullptr;
+  if (e.max_code_lsb > code_budget(budget)) {
+    const MissExplanation why = explain_miss_cause(frame, cfg, e);
+    missed.push_back(path + ": " + why.text);
+    cause = {{"cause", to_string(why.cause)},
+             {"verified", why.verified()},
+             {"max_code_lsb_without", why.error_removed}};
+  }
   return {{"scene", path},
+          {"miss_cause", cause},
+          {"cycles_per_pixel", cycles.per_pixel()},
+          {"cycles", cycles.cycles},
           {"with_ideal_specular", yardstick},
           {"within_budget", e.max_code_lsb <= code_budget(budget)},
           {"pixels", e.pixels},
@@ -187,7 +199,10 @@ int run_config(const ConfigOptions& o) {
   if (target.mhz > 0) {
     target.liberty = o.liberty;
     target.cache_dir = o.area_cache;
+    const std::string before = config_to_json(derived.config);
     clock = meet_clock(frames, d, target, derived);
+    // A pipelined unit's cycles are not those the derivation measured on the unpipelined one.
+    if (config_to_json(derived.config) != before) derived.cycles.clear();
   }
   print_derivation(derived, cached.origin());
   std::cout << "\nerror on this unit (8-bit codes vs the reference rounded by the same rule; real "
@@ -195,8 +210,12 @@ int run_config(const ConfigOptions& o) {
                "rounding the reference)\n";
   nlohmann::json scenes = nlohmann::json::array();
   std::vector<std::string> missed;
-  for (size_t i = 0; i < frames.size(); ++i)
-    scenes.push_back(check_scene(frames.at(i), derived, missed));
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const SceneCycles cycles = derived.cycles.size() == frames.size()
+                                   ? derived.cycles[i]
+                                   : scene_cycles(frames.at(i), derived.config);
+    scenes.push_back(check_scene(frames.at(i), derived, cycles, missed));
+  }
   if (!o.json_path.empty()) {
     nlohmann::json j = config_json(o, derived, scenes, missed);
     if (clock) j["derivation"]["clock"] = clock_json(target, *clock);
