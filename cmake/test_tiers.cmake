@@ -109,6 +109,7 @@ set(SHADESIM_GTEST_TIERS
   series_test               quick
   setup_test                quick
   spec_error_test           quick
+  sta_constraints_test      quick
   specular_units_test       quick
   taylor_test               quick
   throughput_choice_test    quick

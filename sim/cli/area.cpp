@@ -36,7 +36,7 @@ void register_area(CLI::App& app, int& exit_code) {
       "               buffered (at most 8 cell inputs a net), and timed by OpenSTA: area (um^2,\n"
       "               NAND2 equivalents), cells, flip-flops, Fmax = 1000 / (4 ns - worst slack)\n"
       "               and its critical path; with a SCENE, Mpixel/s = Fmax / cycles per pixel\n"
-      "               (table RAM apart: an SRAM macro; sim/eda/liberty_flow.h)\n"
+      "               (a table memory mapped as a register file, timed; sim/eda/liberty_flow.h)\n"
       "  iCE40        SB_LUT4 / SB_DFF* / SB_CARRY / SB_RAM40_4K counts from synth_ice40, whether\n"
       "               that fits an HX8K (7,680 logic cells), and where it does, Fmax of clk_i "
       "from\n"

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "sim/eda/area.h"
+#include "sim/eda/sta/sta_constraints.h"
 
 namespace shadesim {
 
@@ -31,6 +32,11 @@ std::string clock_path_limit(const LibertyReport& l) {
 }
 
 }  // namespace
+
+double required_mhz(const ClockTarget& target) {
+  // nextpnr's Fmax is post-route; OpenSTA's is a synthesis estimate, which the guard band covers.
+  return target.site == ClockSite::kLiberty ? required_fmax_mhz(target.mhz) : target.mhz;
+}
 
 ClockTiming time_unit(const UnitConfig& unit, const ClockTarget& target) {
   AreaOptions ao;
@@ -80,7 +86,11 @@ ClockOutcome meet_clock(const FrameSet& frames, const DeriveOptions& options,
                         const ClockTarget& target, DerivedConfig& derived) {
   RungTimer timer;
   timer.mhz = target.mhz;
-  timer.at = fmt::format("{:g} MHz on {}", target.mhz, site_name(target));
+  timer.required_mhz = required_mhz(target);
+  timer.at = target.site == ClockSite::kLiberty
+                 ? fmt::format("{:g} MHz (Fmax {:.1f} MHz with the pre-route guard band) on {}",
+                               target.mhz, timer.required_mhz, site_name(target))
+                 : fmt::format("{:g} MHz on {}", target.mhz, site_name(target));
   timer.time = [&target](const UnitConfig& unit) { return time_unit(unit, target); };
   timer.figures = [&target](const ClockTiming& t) { return clock_figures(t, target); };
   return climb_ladder(frames, options, timer, derived);
