@@ -137,6 +137,8 @@ set(SHADESIM_GTEST_CASE_TIERS
   # power: Verilator on the hand-counted fixture, OpenSTA on its mapped netlist, a traced
   # co-simulation of sphere's own unit
   power_test     "^Activity\\."                                                  rtl
+  # sim/eda/area_power.cpp end to end: sphere's osu018 netlist, its traced co-simulation, OpenSTA
+  power_test     "^AreaPower\\."                                                 rtl
   power_test     "^Power\\.(TheAnnotation|SwitchingPower|AShiftRegister|Unmatched)" rtl
   # Yosys and OpenSTA on a tiny adder with osu018 (the liberty flow end to end)
   liberty_flow_test "^LibertyFlow\\.ATinyAdderMatchesYosysAreaAndItsOwnTiming$"    rtl

@@ -375,7 +375,8 @@ TEST(LibertyFlow, ATinyAdderMatchesYosysAreaAndItsOwnTiming) {
   ASSERT_TRUE(
       std::regex_search(sta.output, m, std::regex(R"(-([0-9.]+)\s+[0-9.]+\s+library setup time)")));
   const double setup = std::stod(m[1].str());
-  EXPECT_NEAR(r.fmax_mhz, 1000.0 / (arrival + setup), 0.01 * r.fmax_mhz);
+  // The flow's clock carries docs/area.md's 0.2 ns setup uncertainty; this run's clock none.
+  EXPECT_NEAR(r.fmax_mhz, 1000.0 / (arrival + setup + 0.2), 0.01 * r.fmax_mhz);
   EXPECT_NEAR(r.path_arrival_ns, arrival, 0.0015);
   EXPECT_NE(r.path_from.find("_q["), std::string::npos) << r.path_from;  // a_q or b_q
   // The endpoint: the sum register, named by its Q net (Yosys keeps the output port's name for it).

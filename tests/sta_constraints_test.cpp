@@ -39,7 +39,6 @@ std::string read(const fs::path& p) {
   return ss.str();
 }
 
-
 // ---- a small reader of the liberty's NLDM tables, independent of sim/eda/liberty.cpp --------
 
 // The text of the group starting at `open` (the index of its '{'), braces matched.
@@ -120,12 +119,11 @@ Table pin_table(const std::string& lib, const std::string& cell, const std::stri
   throw std::runtime_error(cell + "/" + pin + ": no " + table + " related to " + related);
 }
 
-double pin_cap(const std::string& lib, const std::string& cell, const std::string& pin,
-               bool rise) {
+double pin_cap(const std::string& lib, const std::string& cell, const std::string& pin, bool rise) {
   const std::string p = find_group(find_group(lib, "cell (" + cell + ")"), "pin(" + pin + ")");
   std::smatch m;
-  std::regex_search(p, m,
-                    std::regex(std::string(rise ? "rise" : "fall") + R"(_capacitance : ([0-9.e-]+))"));
+  std::regex_search(
+      p, m, std::regex(std::string(rise ? "rise" : "fall") + R"(_capacitance : ([0-9.e-]+))"));
   return std::stod(m[1].str());
 }
 
@@ -159,8 +157,9 @@ endmodule
 )";
 
 TEST(StaConstraints, OpenStaMatchesTheLibertyTablesWorkedByHand) {
-  SHADESIM_NEEDS_TOOLS(run_shell("command -v sta").status == 0 && fs::exists(kDefaultLiberty),
-                       "sta or " << kDefaultLiberty << " (Debian packages opensta, qflow-tech-osu018)");
+  SHADESIM_NEEDS_TOOLS(
+      run_shell("command -v sta").status == 0 && fs::exists(kDefaultLiberty),
+      "sta or " << kDefaultLiberty << " (Debian packages opensta, qflow-tech-osu018)");
   const fs::path dir = temp_dir("sta_constraints", "nldm");
   std::ofstream(dir / "n.v") << kNetlist;
   const std::string lib = read(kDefaultLiberty);
@@ -191,10 +190,10 @@ TEST(StaConstraints, OpenStaMatchesTheLibertyTablesWorkedByHand) {
   double reg_slack = 1e9, out_slack = 1e9, in_slack = 1e9;
   for (const bool q_rise : {true, false}) {
     // a/Q into u1/A, u1/Y into u2/A (the opposite edge), u2/Y into b/D (a/Q's edge again).
-    const Edge q = arc(lib, "DFFPOSX1", "Q", "CLK", q_rise, pin_cap(lib, "INVX1", "A", q_rise),
-                       clock_slew, 0);
-    const Edge y1 = arc(lib, "INVX1", "Y", "A", !q_rise, pin_cap(lib, "INVX1", "A", !q_rise),
-                        q.slew, q.time);
+    const Edge q =
+        arc(lib, "DFFPOSX1", "Q", "CLK", q_rise, pin_cap(lib, "INVX1", "A", q_rise), clock_slew, 0);
+    const Edge y1 =
+        arc(lib, "INVX1", "Y", "A", !q_rise, pin_cap(lib, "INVX1", "A", !q_rise), q.slew, q.time);
     const Edge y2 = arc(lib, "INVX1", "Y", "A", q_rise, pin_cap(lib, "DFFPOSX1", "D", q_rise),
                         y1.slew, y1.time);
     reg_slack =
@@ -206,11 +205,11 @@ TEST(StaConstraints, OpenStaMatchesTheLibertyTablesWorkedByHand) {
     // d_i: the input delay, then BUFX2 (its input ideal) into a/D. SDC's driving cell adds only
     // the load's share of the cell's delay (its delay at the load less its delay unloaded: the
     // input delay already holds the launch) and the cell's slew at the load.
-    const Edge i = arc(lib, "BUFX2", "Y", "A", q_rise, pin_cap(lib, "DFFPOSX1", "D", q_rise), 0,
-                       in_delay);
+    const Edge i =
+        arc(lib, "BUFX2", "Y", "A", q_rise, pin_cap(lib, "DFFPOSX1", "D", q_rise), 0, in_delay);
     const Edge unloaded = arc(lib, "BUFX2", "Y", "A", q_rise, 0, 0, 0);
-    in_slack = std::min(in_slack, period - unc - setup(lib, q_rise, clock_slew, i.slew) -
-                                      (i.time - unloaded.time));
+    in_slack = std::min(
+        in_slack, period - unc - setup(lib, q_rise, clock_slew, i.slew) - (i.time - unloaded.time));
   }
   EXPECT_NEAR(paths[0].slack_ns, reg_slack, 0.002) << sta.output;
   EXPECT_NEAR(paths[1].slack_ns, out_slack, 0.002) << sta.output;

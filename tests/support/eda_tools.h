@@ -10,10 +10,8 @@
 // names them and their Debian packages.
 #if SHADESIM_TEST_DATA_OPTIONAL
 #define SHADESIM_NEEDS_TOOLS(present, what) \
-  if (!(present))                           \
-  GTEST_SKIP() << what << " absent (allowed by SHADESIM_ALLOW_MISSING_TOOLS)"
+  if (!(present)) GTEST_SKIP() << what << " absent (allowed by SHADESIM_ALLOW_MISSING_TOOLS)"
 #else
 #define SHADESIM_NEEDS_TOOLS(present, what) \
-  if (!(present))                           \
-  FAIL() << what << " absent: scripts/setup installs it"
+  if (!(present)) FAIL() << what << " absent: scripts/setup installs it"
 #endif
