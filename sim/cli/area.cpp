@@ -35,6 +35,8 @@ void register_area(CLI::App& app, int& exit_code) {
       "               --liberty FILE for another) by Yosys dfflibmap + abc -liberty, fanout-\n"
       "               buffered (at most 8 cell inputs a net), and timed by OpenSTA: area (um^2,\n"
       "               NAND2 equivalents), cells, flip-flops, Fmax = 1000 / (4 ns - worst slack)\n"
+      "               under stated constraints (clock uncertainty, the ports' drive and load;\n"
+      "               sim/eda/sta/sta_constraints.h)\n"
       "               and its critical path; with a SCENE, Mpixel/s = Fmax / cycles per pixel\n"
       "               (a table memory mapped as a register file, timed; sim/eda/liberty_flow.h)\n"
       "  iCE40        SB_LUT4 / SB_DFF* / SB_CARRY / SB_RAM40_4K counts from synth_ice40, whether\n"

@@ -166,6 +166,14 @@ void print_liberty_area(std::ostream& os, const LibertyReport& l) {
      << "  flip-flops   " << std::setw(10) << grouped(l.flip_flops) << "\n";
 }
 
+// describe_constraints, a clause a line.
+std::string wrapped_constraints(const ResolvedConstraints& c) {
+  std::string text = describe_constraints(c);
+  for (size_t at; (at = text.find("; ")) != std::string::npos;)
+    text.replace(at, 2, ";\n                          ");
+  return text;
+}
+
 void print_liberty_timing(std::ostream& os, const LibertyReport& l,
                           std::optional<double> cycles_per_pixel) {
   os << std::fixed << std::setprecision(1) << "  Fmax         " << std::setw(10) << l.fmax_mhz
@@ -173,7 +181,7 @@ void print_liberty_timing(std::ostream& os, const LibertyReport& l,
      << l.worst_slack_ns << " ns):\n                          arrival " << l.path_arrival_ns
      << " ns (clock-to-Q included) + setup " << l.path_setup_ns << " ns + clock uncertainty "
      << l.constraints.policy.clock_uncertainty_ns << " ns\n"
-     << "  constraints  " << describe_constraints(l.constraints) << "\n"
+     << "  constraints  " << wrapped_constraints(l.constraints) << "\n"
      << "  meets        " << std::setw(10) << std::setprecision(1)
      << l.fmax_mhz * (1.0 - l.constraints.policy.guard_band)
      << "   MHz at most, pre-route: Fmax less the " << std::setprecision(0)

@@ -27,8 +27,11 @@ std::string site_name(const ClockTarget& target) {
 namespace {
 
 std::string clock_path_limit(const LibertyReport& l) {
-  return fmt::format("critical path {} -> {} ({}): arrival {:.3f} ns + setup {:.3f} ns",
-                     l.path_from, l.path_to, l.path_group, l.path_arrival_ns, l.path_setup_ns);
+  return fmt::format(
+      "critical path {} -> {} ({}): arrival {:.3f} ns + setup {:.3f} ns + clock uncertainty "
+      "{:g} ns",
+      l.path_from, l.path_to, l.path_group, l.path_arrival_ns, l.path_setup_ns,
+      l.constraints.policy.clock_uncertainty_ns);
 }
 
 }  // namespace
