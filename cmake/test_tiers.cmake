@@ -112,6 +112,7 @@ set(SHADESIM_GTEST_TIERS
   series_test               quick
   setup_test                quick
   spec_error_test           quick
+  sta_constraints_test      quick
   specular_units_test       quick
   taylor_test               quick
   throughput_choice_test    quick
@@ -139,6 +140,8 @@ set(SHADESIM_GTEST_CASE_TIERS
   # power: Verilator on the hand-counted fixture, OpenSTA on its mapped netlist, a traced
   # co-simulation of sphere's own unit
   power_test     "^Activity\\."                                                  rtl
+  # sim/engines/unit_power.cpp end to end: sphere's osu018 netlist, its traced co-simulation, OpenSTA
+  power_test     "^AreaPower\\."                                                 rtl
   power_test     "^Power\\.(TheAnnotation|SwitchingPower|AShiftRegister|Unmatched)" rtl
   # Yosys and OpenSTA on a tiny adder with osu018 (the liberty flow end to end)
   liberty_flow_test "^LibertyFlow\\.ATinyAdderMatchesYosysAreaAndItsOwnTiming$"    rtl

@@ -68,7 +68,7 @@ ClockOutcome climb_ladder(const FrameSet& frames, const DeriveOptions& options,
     if (!units.empty()) pipeline_unit(frames, options, p, "", piped);
     out.tried.push_back(timer.time(piped.config));
     units.push_back(std::move(piped));
-    if (out.tried.back().meets(timer.mhz)) {
+    if (out.tried.back().meets(timer.required_mhz > 0 ? timer.required_mhz : timer.mhz)) {
       out.meets = true;
       break;
     }

@@ -51,7 +51,9 @@ struct ClockOutcome {
 
 // How the climb times a rung where the unit will be built.
 struct RungTimer {
-  double mhz = 0;  // the clock to meet
+  double mhz = 0;           // the clock to meet
+  double required_mhz = 0;  // the Fmax a rung needs to meet it (the clock with a guard band);
+                            // 0: mhz itself
   std::string at;  // "250 MHz on osu018 0.18 um (...)": the clock and the site, for the reasons
   std::function<ClockTiming(const UnitConfig& unit)> time;
   std::function<std::string(const ClockTiming& t)> figures;  // "Fmax 251.3 MHz, 51234 um^2"

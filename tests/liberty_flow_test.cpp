@@ -30,6 +30,7 @@
 #include "sim/eda/sta/liberty.h"
 #include "sim/eda/sta/sta_report.h"
 #include "tests/support/cli_run.h"
+#include "tests/support/eda_tools.h"
 
 namespace shadesim {
 namespace {
@@ -328,20 +329,21 @@ endmodule
 )";
 
 TEST(LibertyFlow, ATinyAdderMatchesYosysAreaAndItsOwnTiming) {
-  if (which("yosys").empty() || which("sta").empty() || !fs::exists(kDefaultLiberty))
-    GTEST_SKIP() << "needs yosys, sta (opensta) and " << kDefaultLiberty;
+  SHADESIM_NEEDS_TOOLS(
+      !which("yosys").empty() && !which("sta").empty() && fs::exists(kDefaultLiberty),
+      "yosys, sta or " << kDefaultLiberty
+                       << " (Debian packages yosys, opensta, qflow-tech-osu018)");
   const auto dir = temp_dir("liberty", "e2e");
   write(dir / "tiny.sv", kTinyUnit);
   FlowInputs in;
   in.yosys = which("yosys");
   in.files = {dir / "tiny.sv"};
   in.yosys_version = "test";
-  const LibertyRun run = prepare_liberty_run(in, LibertyOptions{}, false);
+  const LibertyRun run = prepare_liberty_run(in, LibertyOptions{});
   fs::create_directories(dir / "work");
   const LibertyReport r = run_liberty_flow(run, dir / "work", (dir / "cache").string());
   EXPECT_EQ(r.library, "osu018_stdcells");
   EXPECT_EQ(r.flip_flops, 13);
-  EXPECT_EQ(r.table_macros, 0);
   EXPECT_TRUE(fs::exists(r.netlist_path));
 
   // Area: Yosys's own sum of the liberty's cell areas over the flow's netlist.
@@ -374,7 +376,8 @@ TEST(LibertyFlow, ATinyAdderMatchesYosysAreaAndItsOwnTiming) {
   ASSERT_TRUE(
       std::regex_search(sta.output, m, std::regex(R"(-([0-9.]+)\s+[0-9.]+\s+library setup time)")));
   const double setup = std::stod(m[1].str());
-  EXPECT_NEAR(r.fmax_mhz, 1000.0 / (arrival + setup), 0.01 * r.fmax_mhz);
+  // The flow's clock carries docs/area.md's 0.2 ns setup uncertainty; this run's clock none.
+  EXPECT_NEAR(r.fmax_mhz, 1000.0 / (arrival + setup + 0.2), 0.01 * r.fmax_mhz);
   EXPECT_NEAR(r.path_arrival_ns, arrival, 0.0015);
   EXPECT_NE(r.path_from.find("_q["), std::string::npos) << r.path_from;  // a_q or b_q
   // The endpoint: the sum register, named by its Q net (Yosys keeps the output port's name for it).
@@ -415,7 +418,7 @@ TEST(LibertyFlow, AMissingLibraryOrToolIsNamed) {
   o.liberty_path = (dir / "tiny.lib").string();
   o.sta = "/nonexistent/sta";
   try {
-    prepare_liberty_run(FlowInputs{}, o, false);
+    prepare_liberty_run(FlowInputs{}, o);
     ADD_FAILURE() << "no error";
   } catch (const MissingToolError& e) {
     EXPECT_NE(std::string(e.what()).find("opensta"), std::string::npos) << e.what();

@@ -28,8 +28,10 @@
 #include "sim/eda/common/process.h"
 #include "sim/eda/power/activity.h"
 #include "sim/eda/power/power_netlist.h"
+#include "sim/engines/area_report.h"
 #include "sim/engines/scene_activity.h"
 #include "sim/engines/unit_choice.h"
+#include "sim/engines/unit_power.h"
 #include "sim/harness/cosim.h"
 #include "tests/support/cli_run.h"
 
@@ -415,6 +417,65 @@ TEST(Activity, TheTracedCosimulationsPortTogglesEqualTheHarnessStimulus) {
   }
   EXPECT_EQ(ps.ports.size(), 3u + 64u * static_cast<size_t>(unit.port_words));
   EXPECT_EQ(a.idle_noise_toggles, ps.idle_noise);
+}
+
+// sim/engines/unit_power.cpp end to end on sphere's own unit (its osu018 netlist from the build's
+// area cache, shared with silicon_table_sphere and config_clock_test): the cycles and pixels it
+// divides by are the harness's replay and the model's frame; the clock is the netlist's Fmax;
+// pJ/pixel is the definition worked here; and energy per pixel, leakage apart, does not depend on
+// the clock: the same run at half the clock gives half the dynamic power and the same dynamic
+// energy (a wrong period or a wrong cycle count breaks it). A second call is a cache hit. Needs
+// Yosys, OpenSTA and the traced build of the unit (minutes once, cached).
+TEST(AreaPower, SpheresEnergyPerPixelEndToEnd) {
+  SHADESIM_NEEDS_POWER_TOOLS();
+  const std::string scene = std::string(SHADESIM_SOURCE_DIR) + "/scenes/sphere.json";
+  const UnitConfig unit = own_unit(scene).unit;
+  AreaOptions ao;
+  ao.cache_dir = std::string(SHADESIM_BINARY_DIR) + "/area-cache";
+  ao.breakdown = false;
+  ao.place_and_route = false;
+  ao.liberty = LibertyOptions{};
+  ao.liberty->liberty_path = kLiberty;
+  const AreaReport area = unit_area(unit, ao);
+  ASSERT_TRUE(area.liberty);
+  const LibertyReport& lib = *area.liberty;
+  const fs::path dir = temp_dir("power", "area_power");
+  const AreaPower p = scene_power(unit, scene, lib, dir.string(), nullptr);
+  EXPECT_FALSE(p.from_cache);
+  const PowerReport& r = p.report;
+
+  FrameOptions fo;
+  fo.base = unit;
+  fo.fixed_unit = true;
+  const PreparedFrame f = prepare_frame(scene, fo);
+  EXPECT_EQ(r.pixels, f.encoded.stats.pixels);
+  EXPECT_EQ(r.cycles, port_stimulus(f.encoded.stream.config, f.encoded.stream).run_cycles);
+  EXPECT_EQ(r.clock_mhz, lib.fmax_mhz);
+  EXPECT_EQ(static_cast<int64_t>(r.flip_flops), lib.flip_flops);
+  // pJ = mW x ns: the run lasts cycles x 1000 / f ns.
+  const double run_ns = static_cast<double>(r.cycles) * 1000.0 / lib.fmax_mhz;
+  EXPECT_NEAR(r.pj_per_pixel, r.scene.total_mw * run_ns / static_cast<double>(r.pixels),
+              1e-9 * r.pj_per_pixel);
+  EXPECT_GT(r.scene.total_mw, r.clock_only.total_mw);  // the data toggles on top of the clock
+
+  // Half the clock: the dynamic power halves, the dynamic energy per pixel stays.
+  LibertyReport slow = lib;
+  slow.fmax_mhz = lib.fmax_mhz / 2;
+  const AreaPower half = scene_power(unit, scene, slow, dir.string(), nullptr);
+  const double dynamic = r.scene.internal_mw + r.scene.switching_mw;
+  EXPECT_NEAR(half.report.scene.internal_mw + half.report.scene.switching_mw, dynamic / 2,
+              1e-4 * dynamic);
+  EXPECT_NEAR(half.report.scene.leakage_mw, r.scene.leakage_mw, 1e-9 + 1e-6 * r.scene.leakage_mw);
+
+  const AreaPower again = scene_power(unit, scene, lib, dir.string(), nullptr);
+  EXPECT_TRUE(again.from_cache);
+  EXPECT_DOUBLE_EQ(again.report.pj_per_pixel, r.pj_per_pixel);
+  std::ostringstream text;
+  print_area_power(text, p);
+  char figure[32];
+  std::snprintf(figure, sizeof figure, "%.1f pJ/pixel", r.pj_per_pixel);
+  EXPECT_NE(text.str().find(figure), std::string::npos) << text.str();
+  fs::remove_all(dir);
 }
 
 // Not a test: a scene on a mapped netlist by hand (docs/power.md), run with

@@ -148,12 +148,14 @@ void print_liberty_area(std::ostream& os, const LibertyReport& l) {
      << grouped(b.buffers) << " " << b.buffer_cell << " fanout buffers on "
      << grouped(b.nets_buffered) << " nets over " << b.max_fanout << " cell inputs\n"
      << "  flip-flops   " << std::setw(10) << grouped(l.flip_flops) << "\n";
-  if (l.table_macros > 0) {
-    os << "  table RAM    " << std::setw(10) << l.table_macros << "   SRAM macro ("
-       << kTableRamModule << ": the exponent LUT's tables with their\n"
-       << "                          decoders and read multiplexers) outside the area; no path "
-          "through it is timed\n";
-  }
+}
+
+// describe_constraints, a clause a line.
+std::string wrapped_constraints(const ResolvedConstraints& c) {
+  std::string text = describe_constraints(c);
+  for (size_t at; (at = text.find("; ")) != std::string::npos;)
+    text.replace(at, 2, ";\n                          ");
+  return text;
 }
 
 void print_liberty_timing(std::ostream& os, const LibertyReport& l,
@@ -161,7 +163,13 @@ void print_liberty_timing(std::ostream& os, const LibertyReport& l,
   os << std::fixed << std::setprecision(1) << "  Fmax         " << std::setw(10) << l.fmax_mhz
      << "   MHz = 1000 / (" << std::setprecision(3) << l.period_ns << " ns period - worst slack "
      << l.worst_slack_ns << " ns):\n                          arrival " << l.path_arrival_ns
-     << " ns (clock-to-Q included) + setup " << l.path_setup_ns << " ns\n";
+     << " ns (clock-to-Q included) + setup " << l.path_setup_ns << " ns + clock uncertainty "
+     << l.constraints.policy.clock_uncertainty_ns << " ns\n"
+     << "  constraints  " << wrapped_constraints(l.constraints) << "\n"
+     << "  meets        " << std::setw(10) << std::setprecision(1)
+     << l.fmax_mhz * (1.0 - l.constraints.policy.guard_band)
+     << "   MHz at most, pre-route: Fmax less the " << std::setprecision(0)
+     << 100.0 * l.constraints.policy.guard_band << " % guard band\n";
   if (cycles_per_pixel && *cycles_per_pixel > 0) {
     os << "  Mpixel/s     " << std::setw(10) << std::setprecision(1)
        << l.fmax_mhz / *cycles_per_pixel << "   Fmax / " << std::setprecision(3)

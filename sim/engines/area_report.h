@@ -94,10 +94,10 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& options);
 // the cells. Throws std::runtime_error when no anchor has the
 // unit's specular kind (run unit_area on one such configuration first).
 struct AreaEstimate {
-  int64_t cells = 0;              // estimated flat generic cells
+  int64_t cells = 0;             // estimated flat generic cells
   int64_t gate_equivalents = 0;  // the anchor's GE scaled like its cells
-  int64_t lut4 = 0;               // estimated iCE40 LUT4s
-  std::string anchor_key;         // the measured report it was scaled from
+  int64_t lut4 = 0;              // estimated iCE40 LUT4s
+  std::string anchor_key;        // the measured report it was scaled from
   int differing_parameters = 0;
   std::string label() const;  // "estimate (scaled from Yosys run KEY, N parameters differ)"
 };

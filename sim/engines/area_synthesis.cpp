@@ -209,8 +209,7 @@ AreaReport unit_area(const UnitConfig& unit, const AreaOptions& o) {
   if (o.place_and_route) r.nextpnr_version = flow_tools::tool_version(in.nextpnr, {"--version"});
   r.key = area_key(in.flow, o.breakdown, o.place_and_route, r.nextpnr_version);
   std::optional<LibertyRun> lib_run;
-  if (o.liberty)
-    lib_run = prepare_liberty_run(in.flow, *o.liberty, ram_bits_of_parameters(r.parameters) > 0);
+  if (o.liberty) lib_run = prepare_liberty_run(in.flow, *o.liberty);
 
   // Each part from the cache where it can be.
   std::optional<AreaReport> cached;

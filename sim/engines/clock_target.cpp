@@ -5,6 +5,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "sim/eda/sta/sta_constraints.h"
 #include "sim/engines/area_report.h"
 
 namespace shadesim {
@@ -26,11 +27,19 @@ std::string site_name(const ClockTarget& target) {
 namespace {
 
 std::string clock_path_limit(const LibertyReport& l) {
-  return fmt::format("critical path {} -> {} ({}): arrival {:.3f} ns + setup {:.3f} ns",
-                     l.path_from, l.path_to, l.path_group, l.path_arrival_ns, l.path_setup_ns);
+  return fmt::format(
+      "critical path {} -> {} ({}): arrival {:.3f} ns + setup {:.3f} ns + clock uncertainty "
+      "{:g} ns",
+      l.path_from, l.path_to, l.path_group, l.path_arrival_ns, l.path_setup_ns,
+      l.constraints.policy.clock_uncertainty_ns);
 }
 
 }  // namespace
+
+double required_mhz(const ClockTarget& target) {
+  // nextpnr's Fmax is post-route; OpenSTA's is a synthesis estimate, which the guard band covers.
+  return target.site == ClockSite::kLiberty ? required_fmax_mhz(target.mhz) : target.mhz;
+}
 
 ClockTiming time_unit(const UnitConfig& unit, const ClockTarget& target) {
   AreaOptions ao;
@@ -80,7 +89,11 @@ ClockOutcome meet_clock(const FrameSet& frames, const DeriveOptions& options,
                         const ClockTarget& target, DerivedConfig& derived) {
   RungTimer timer;
   timer.mhz = target.mhz;
-  timer.at = fmt::format("{:g} MHz on {}", target.mhz, site_name(target));
+  timer.required_mhz = required_mhz(target);
+  timer.at = target.site == ClockSite::kLiberty
+                 ? fmt::format("{:g} MHz (Fmax {:.1f} MHz with the pre-route guard band) on {}",
+                               target.mhz, timer.required_mhz, site_name(target))
+                 : fmt::format("{:g} MHz on {}", target.mhz, site_name(target));
   timer.time = [&target](const UnitConfig& unit) { return time_unit(unit, target); };
   timer.figures = [&target](const ClockTiming& t) { return clock_figures(t, target); };
   return climb_ladder(frames, options, timer, derived);

@@ -24,6 +24,11 @@ struct ClockTarget {
   std::string cache_dir;  // shadesim area's cache
 };
 
+// The Fmax a unit needs to meet `target`: in a library, its clock over (1 - the guard band of
+// sim/eda/sta/sta_constraints.h), since OpenSTA's figure is pre-route; on the iCE40 (nextpnr,
+// post-route) the clock itself.
+double required_mhz(const ClockTarget& target);
+
 ClockTiming time_unit(const UnitConfig& unit, const ClockTarget& target);
 
 // Times `derived.config` where `target` says; where it misses the clock, climbs its pipelining

@@ -1,7 +1,8 @@
 // An RTL build as the harness sees it: a unit configuration, whether it can inject the
 // deliberate faults (sim/harness/fault_site.h), and a name for reports. The named builds the tests
 // share live in sim/harness/builds.json; any other UnitConfig is built on demand
-// (sim/eda/verilator/rtl_build.h). Verilog parameters come from the one mapping in model/rtl_parameters.h.
+// (sim/eda/verilator/rtl_build.h). Verilog parameters come from the one mapping in
+// model/rtl_parameters.h.
 #pragma once
 
 #include <string>
@@ -25,17 +26,17 @@ struct RtlConfig {
   UnitConfig unit;
   InjectedFaults faults;
   std::vector<std::string> backends;  // named builds: the backends the tests use
-  // Non-empty: the gate-level netlist of `unit` (sim/engines/area_report.h unit_netlist: Yosys's flat netlist,
-  // parameters baked in) is Verilated in place of rtl/; the build is keyed by its contents.
-  // No fault hooks and no coverage in such a build.
+  // Non-empty: the gate-level netlist of `unit` (sim/engines/area_report.h unit_netlist: Yosys's
+  // flat netlist, parameters baked in) is Verilated in place of rtl/; the build is keyed by its
+  // contents. No fault hooks and no coverage in such a build.
   std::string netlist;
 };
 
 // The build a run simulates: a named build's fault hooks only when the run injects a fault. A
 // run without one simulates the same unit without them, at the speed of a build that never had
 // them: the hooks' force muxes on every cycle and the optimisation they switch off (-fno-dfg,
-// sim/eda/verilator/rtl_recipe.cpp) slowed every run of grey_s428w (docs/history/benchmarks.md has the
-// figures).
+// sim/eda/verilator/rtl_recipe.cpp) slowed every run of grey_s428w (docs/history/benchmarks.md has
+// the figures).
 inline RtlConfig build_for_run(RtlConfig build, bool injects_fault) {
   if (!injects_fault) build.faults = InjectedFaults{};
   return build;

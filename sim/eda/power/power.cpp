@@ -320,7 +320,7 @@ std::vector<std::string> method_notes(const PowerOptions& o, const Annotation& a
       std::to_string(an.constants) + " input pins tied to constants: activity 0",
       "OpenSTA 2019 charges rise + fall internal energy on every transition of a clock-related "
       "arc (clock pins, clock-to-Q): about twice its later versions' figure for those",
-      "left out: glitches, wires (no wire load), a clock tree, SRAM macros, any corner but the "
+      "left out: glitches, wires (no wire load), a clock tree, any corner but the "
       "library's typical"};
 }
 

@@ -20,9 +20,11 @@ using flow_tools::write_atomically;
 using Json = nlohmann::json;
 
 // The Yosys flow after read_verilog and chparam. @LIB@: the liberty, @ABC@: the ABC script,
-// @D@: ABC's delay target in ps, @WORK@: the work folder; @SYNTH@: kSynthWhole or kSynthTables.
+// @D@: ABC's delay target in ps, @WORK@: the work folder. A table memory (the exponent LUT's
+// mem_q) goes through synth's memory_map like any register array: a register file of the
+// library's flip-flops with its write decoding and read multiplexers, timed like the rest.
 constexpr const char* kLibertyYosys =
-    "@SYNTH@"
+    "synth -flatten -top shade_unit\n"
     "dfflibmap -liberty @LIB@\n"
     "abc -D @D@ -liberty @LIB@ -script @ABC@\n"
     "opt_clean\n"
@@ -31,14 +33,6 @@ constexpr const char* kLibertyYosys =
     "opt_clean\n"
     "rename -top shade_unit\n"
     "write_json @WORK@/liberty_mapped.json\n";
-constexpr const char* kSynthWhole = "synth -flatten -top shade_unit\n";
-// The table memories become one blackbox instance (the SRAM macro) between synth's halves.
-constexpr const char* kSynthTables =
-    "synth -flatten -top shade_unit -run :fine\n"
-    "select -set tables t:$mem_v2 t:$mem %u n:*mem_q %i\n"
-    "submod -name shade_table_ram @tables\n"
-    "blackbox shade_table_ram\n"
-    "synth -top shade_unit -run fine:\n";
 // ABC: structural choices, delay-oriented mapping to the library, then ABC's own buffering and
 // gate sizing against the same target, and a timing summary in the log. &synch2 (delay-aware
 // synthesis with choices), not dc2: dc2's area rewriting turned Yosys's parallel-prefix adders
@@ -77,9 +71,10 @@ std::string run_opensta_script(const std::string& sta, const fs::path& tcl,
   return out;
 }
 
-// Clock-to-Q + setup of the library's plain flip-flop, by OpenSTA: one flip-flop's Q loaded with
-// the D pins of max_fanout others (the most load a net keeps after buffering), into one's setup.
-double flip_flop_overhead(const LibertyRun& run, const PlainFlipFlop& ff, const fs::path& work) {
+// Clock-to-Q (the path's arrival) and setup of the library's plain flip-flop, by OpenSTA under an
+// ideal clock: one flip-flop's Q loaded with the D pins of max_fanout others (the most load a net
+// keeps after buffering), into one's setup.
+StaPath flip_flop_overhead(const LibertyRun& run, const PlainFlipFlop& ff, const fs::path& work) {
   const std::string c = ff.cell->name;
   std::ostringstream v;
   v << "module shade_unit (clk_i, d_i);\n  input clk_i;\n  input d_i;\n  wire m;\n"
@@ -89,14 +84,13 @@ double flip_flop_overhead(const LibertyRun& run, const PlainFlipFlop& ff, const 
   v << "endmodule\n";
   write_atomically(work / "overhead.v", v.str());
   write_atomically(work / "overhead.tcl",
-                   sta_setup_tcl(run.options.liberty_path, (work / "overhead.v").string(),
-                                 run.options.period_ns) +
-                       "report_checks -to b0/" + ff.d +
+                   sta_read_tcl(run.options.liberty_path, (work / "overhead.v").string()) +
+                       "create_clock -name clk -period " + std::to_string(run.options.period_ns) +
+                       " [get_ports clk_i]\n" + "report_checks -to b0/" + ff.d +
                        " -path_delay max -fields {capacitance slew net} -digits 3\n");
   const std::string out =
       run_opensta_script(run.sta, work / "overhead.tcl", "OpenSTA flip-flop overhead");
-  const StaPath p = worst_path(parse_sta_paths(out, (work / "overhead.out").string()));
-  return p.arrival_ns + p.setup_ns;
+  return worst_path(parse_sta_paths(out, (work / "overhead.out").string()));
 }
 
 LibertyPathCell liberty_path_cell(const StaStage& s) {
@@ -138,10 +132,6 @@ void read_liberty_area(const Json& netlist, const LibertyLibrary& lib, const std
                        LibertyReport& r) {
   for (const auto& [name, cell] : netlist.at("modules").at("shade_unit").at("cells").items()) {
     const std::string type = cell.at("type");
-    if (type == kTableRamModule) {
-      ++r.table_macros;
-      continue;
-    }
     const auto it = lib.cells.find(type);
     if (it == lib.cells.end())
       throw std::runtime_error(source + ": cell " + name + " is a " + type + ", not a cell of " +
@@ -164,7 +154,6 @@ Json read_yosys_json_netlist(const fs::path& p) {
 Json map_and_buffer(const LibertyRun& run, const LibertyLibrary& lib, const fs::path& work,
                     LibertyReport& r) {
   const std::map<std::string, std::string> values = {
-      {"@SYNTH@", run.table_ram ? kSynthTables : kSynthWhole},
       {"@LIB@", run.options.liberty_path},
       {"@ABC@", (work / "liberty.abc").string()},
       {"@WORK@", work.string()},
@@ -200,21 +189,22 @@ std::string resolve_liberty(const std::string& requested, const std::string& def
   throw std::runtime_error(path + ": no such Liberty file (--liberty expects a .lib file)");
 }
 
-LibertyRun prepare_liberty_run(const FlowInputs& flow, const LibertyOptions& o, bool table_ram) {
+LibertyRun prepare_liberty_run(const FlowInputs& flow, const LibertyOptions& o) {
   LibertyRun run;
   run.flow = flow;
   run.options = o;
   run.options.liberty_path = fs::absolute(resolve_liberty(o.liberty_path)).string();
   run.sta = flow_tools::find_tool(o.sta, "opensta");
   run.sta_version = flow_tools::tool_version(run.sta, {"-version"});
-  run.table_ram = table_ram;
   ContentHash h;
-  h.add("shadesim-liberty-v1").add(flow.chparam);
+  h.add("shadesim-liberty-v2").add(flow.chparam);
   for (const auto& f : flow.files) h.add(f.filename().string()).add(read_text_file(f.string()));
   h.add(flow.yosys_version).add(run.sta_version);
   h.add(read_text_file(run.options.liberty_path));
-  h.add(run.table_ram ? kSynthTables : kSynthWhole).add(kLibertyYosys).add(kAbcScript);
-  h.add(kWriteVerilog).add(kReportTcl).add(sta_setup_tcl("", "", 0)).add(kBufferRule);
+  h.add(kLibertyYosys).add(kAbcScript);
+  h.add(kWriteVerilog).add(kReportTcl).add(sta_read_tcl("", "")).add(kBufferRule);
+  h.add(constraints_template()).add(std::to_string(o.constraints.clock_uncertainty_ns));
+  h.add(std::to_string(o.constraints.load_pins));  // the guard band is the caller's comparison
   h.add(std::to_string(o.period_ns)).add(std::to_string(o.max_fanout));
   run.key = h.hex();
   return run;
@@ -249,16 +239,22 @@ LibertyReport run_liberty_flow(const LibertyRun& run, const fs::path& work,
   r.nand2_cell = nand2.name;
   r.nand2_area_um2 = nand2.area;
   const PlainFlipFlop ff = plain_flip_flop(lib);
-  if (ff.cell) {
-    r.overhead_cell = ff.cell->name;
-    r.flip_flop_overhead_ns = flip_flop_overhead(run, ff, work);
-  }
+  if (!ff.cell)
+    throw std::runtime_error(lib.path + ": library " + lib.name +
+                             " has no plain flip-flop (D, clock, Q, no set or reset): the flow "
+                             "measures the registers' overhead and the ports' constraints on it");
+  r.overhead_cell = ff.cell->name;
+  const StaPath overhead = flip_flop_overhead(run, ff, work);
+  r.flip_flop_overhead_ns = overhead.arrival_ns + overhead.setup_ns;
+  r.constraints =
+      resolve_constraints(run.options.constraints, lib, overhead.arrival_ns, overhead.setup_ns);
   r.abc_delay_ps = 1000.0 * (r.period_ns - r.flip_flop_overhead_ns);
   const Json netlist = map_and_buffer(run, lib, work, r);
   read_liberty_area(netlist, lib, (work / "liberty_buffered.json").string(), r);
   const fs::path netlist_v = work / "liberty_netlist.v";
-  write_atomically(work / "liberty_sta.tcl",
-                   sta_setup_tcl(r.liberty_path, netlist_v.string(), r.period_ns) + kReportTcl);
+  write_atomically(
+      work / "liberty_sta.tcl",
+      sta_setup_tcl(r.liberty_path, netlist_v.string(), r.period_ns, r.constraints) + kReportTcl);
   const std::string out = run_opensta_script(run.sta, work / "liberty_sta.tcl", "OpenSTA timing");
   read_liberty_timing(out, (work / "liberty_sta.out").string(),
                       flip_flop_q_nets(netlist_v.string(), lib), r);
@@ -279,16 +275,17 @@ LibertyReport run_liberty_flow(const LibertyRun& run, const fs::path& work,
   return r;
 }
 
-std::string sta_setup_tcl(const std::string& liberty, const std::string& netlist_v,
-                          double period_ns) {
+std::string sta_read_tcl(const std::string& liberty, const std::string& netlist_v) {
   std::ostringstream t;
   t << "read_liberty {" << liberty << "}\n"
     << "read_verilog {" << netlist_v << "}\n"
-    << "link_design shade_unit\n"
-    << "create_clock -name clk -period " << period_ns << " [get_ports clk_i]\n"
-    << "set_input_delay 0 -clock clk [delete_from_list [all_inputs] [get_ports clk_i]]\n"
-    << "set_output_delay 0 -clock clk [all_outputs]\n";
+    << "link_design shade_unit\n";
   return t.str();
+}
+
+std::string sta_setup_tcl(const std::string& liberty, const std::string& netlist_v,
+                          double period_ns, const ResolvedConstraints& constraints) {
+  return sta_read_tcl(liberty, netlist_v) + constraints_tcl(constraints, period_ns);
 }
 
 }  // namespace shadesim

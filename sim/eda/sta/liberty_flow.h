@@ -12,12 +12,14 @@
 //             buffer (sim/eda/sta/fanout_buffer.h: ABC does not buffer the flip-flops' outputs),
 //             then Yosys writes the Verilog (write_verilog -noattr -noexpr).
 //   OpenSTA   read_liberty; read_verilog; link_design shade_unit; a clock of
-//             LibertyOptions::period_ns (4 ns) on clk_i
-//             (ideal: no clock tree), input and output delays 0 on the other ports;
+//             LibertyOptions::period_ns (4 ns) on clk_i under the constraints of
+//             sim/eda/sta/sta_constraints.h (clock uncertainty, the ports' driving cell, load
+//             and delays);
 //             report_checks -path_delay max (the worst path of each group), report_worst_slack.
 //
 // Fmax = 1000 / (period - worst slack) MHz: the critical path's arrival (from the launching
-// clock edge, so clock-to-Q included) plus the endpoint's setup (or recovery) time, at a fixed
+// clock edge, so clock-to-Q included) plus the endpoint's setup (or recovery) time and the
+// clock uncertainty, at a fixed
 // analysis period so the figure does not depend on a guessed target. ABC's delay target D is
 // that period less the library's flip-flop overhead, measured by OpenSTA on two of the library's
 // plain flip-flops in a row (clock-to-Q into setup; osu018 DFFPOSX1: 0.3 ns), so ABC aims at the
@@ -28,12 +30,10 @@
 // No wire load (osu018 has no wire-load model), no placement, the library's one (typical)
 // corner.
 //
-// Table memories (the exponent LUT's mem_q) are SRAM macros outside the cell area: after synth's
-// coarse half their $mem cells (storage, write decoding, read multiplexing, and whatever address
-// register Yosys's memory_dff merged into them) go into one blackbox module, shade_table_ram,
-// instantiated once; its area is not counted (LibertyReport::table_macros says there is one),
-// and OpenSTA times no path through it (a blackbox has no arcs). Units without a table run
-// synth in one piece.
+// Table memories (the exponent LUT's mem_q) are register files of the library's cells: synth's
+// memory_map turns each into flip-flops, write decoding and read multiplexers, mapped, counted
+// and timed like the rest of the unit, so the paths into the table's address and out of its
+// data are in Fmax (issue 51: until then the table was an untimed blackbox "SRAM macro").
 //
 // The power flow's seam: LibertyReport::netlist_path is the buffered netlist (kept in the cache
 // as liberty-netlist-<key>.v), flip_flop_q_nets() maps its flip-flop instances to their output
@@ -50,18 +50,19 @@
 #include "sim/eda/common/flow_tools.h"
 #include "sim/eda/sta/fanout_buffer.h"
 #include "sim/eda/sta/liberty.h"
+#include "sim/eda/sta/sta_constraints.h"
 
 namespace shadesim {
 
 constexpr const char* kDefaultLiberty = "/usr/share/qflow/tech/osu018/osu018_stdcells.lib";
 constexpr const char* kDefaultLibertyPackage = "qflow-tech-osu018";
-constexpr const char* kTableRamModule = "shade_table_ram";
 
 struct LibertyOptions {
-  std::string liberty_path;  // empty: the flow is not run
-  std::string sta = "sta";   // program name (on PATH) or path
-  double period_ns = 4.0;    // the analysis clock (see Fmax above)
-  int max_fanout = 8;        // the buffering rule's limit of cell input pins per net
+  std::string liberty_path;    // empty: the flow is not run
+  std::string sta = "sta";     // program name (on PATH) or path
+  double period_ns = 4.0;      // the analysis clock (see Fmax above)
+  int max_fanout = 8;          // the buffering rule's limit of cell input pins per net
+  StaConstraints constraints;  // the clock's uncertainty, the ports' drive and load (sta/)
 };
 
 // One cell (or port) on the critical path, and the net it drives.
@@ -82,12 +83,12 @@ struct LibertyReport {
   std::string nand2_cell;  // the NAND2 the equivalents count in (osu018: NAND2X1)
   double nand2_area_um2 = 0;
   int64_t cells = 0, flip_flops = 0;
-  int64_t table_macros = 0;  // shade_table_ram instances (not in the area, not timed)
   FanoutBufferResult buffering;
   // Timing.
   double period_ns = 0, worst_slack_ns = 0, fmax_mhz = 0;
   std::string overhead_cell;  // the flip-flop the overhead was measured on
   double flip_flop_overhead_ns = 0, abc_delay_ps = 0;
+  ResolvedConstraints constraints;  // what the timing ran under (sim/eda/sta/sta_constraints.h)
   std::string path_from, path_to, path_group;  // register (Q net) or port names
   double path_arrival_ns = 0, path_setup_ns = 0;
   std::vector<LibertyPathCell> path;
@@ -110,12 +111,10 @@ struct LibertyRun {
   FlowInputs flow;
   LibertyOptions options;
   std::string sta, sta_version;
-  bool table_ram = false;  // the unit has table memories (they become the blackbox)
   std::string key;
 };
 // Finds sta (MissingToolError naming opensta), hashes the liberty's content and the scripts.
-// `table_ram`: the unit has table memories (ram_bits_of_parameters > 0).
-LibertyRun prepare_liberty_run(const FlowInputs& flow, const LibertyOptions& o, bool table_ram);
+LibertyRun prepare_liberty_run(const FlowInputs& flow, const LibertyOptions& o);
 
 // Where the flow keeps Yosys's log of the mapping in cache_dir (liberty-log-<key>.txt), for
 // the power flow's fsm_recoded_registers().
@@ -137,10 +136,11 @@ LibertyReport liberty_report_from_json(const std::string& text, const std::strin
 std::map<std::string, std::string> flip_flop_q_nets(const std::string& netlist_v,
                                                     const LibertyLibrary& lib);
 
-// The Tcl that reads `liberty` and `netlist_v`, links shade_unit and sets this flow's clock
-// (period_ns on clk_i, ideal) and zero input / output delays: the preamble every analysis of the
-// netlist shares.
+// The Tcl that reads `liberty` and `netlist_v` and links shade_unit.
+std::string sta_read_tcl(const std::string& liberty, const std::string& netlist_v);
+// sta_read_tcl, then the clock (period_ns on clk_i) and the ports under `constraints`
+// (sim/eda/sta/constraints.tcl): the preamble every timing of the netlist shares.
 std::string sta_setup_tcl(const std::string& liberty, const std::string& netlist_v,
-                          double period_ns);
+                          double period_ns, const ResolvedConstraints& constraints);
 
 }  // namespace shadesim

@@ -91,7 +91,6 @@ std::string liberty_report_to_json(const LibertyReport& r) {
                   {"nand2_area_um2", r.nand2_area_um2},
                   {"cells", r.cells},
                   {"flip_flops", r.flip_flops},
-                  {"table_macros", r.table_macros},
                   {"period_ns", r.period_ns},
                   {"worst_slack_ns", r.worst_slack_ns},
                   {"fmax_mhz", r.fmax_mhz},
@@ -99,6 +98,7 @@ std::string liberty_report_to_json(const LibertyReport& r) {
                   {"flip_flop_overhead_ns", r.flip_flop_overhead_ns},
                   {"overhead_cell", r.overhead_cell},
                   {"abc_delay_ps", r.abc_delay_ps},
+                  {"constraints", constraints_to_json(r.constraints)},
                   {"buffering", buffering_json(r.buffering)},
                   {"netlist_path", r.netlist_path},
                   {"key", r.key},
@@ -120,7 +120,6 @@ LibertyReport liberty_report_from_json(const std::string& text, const std::strin
     r.nand2_area_um2 = j.at("nand2_area_um2");
     r.cells = j.at("cells");
     r.flip_flops = j.at("flip_flops");
-    r.table_macros = j.at("table_macros");
     r.period_ns = j.at("period_ns");
     r.worst_slack_ns = j.at("worst_slack_ns");
     r.fmax_mhz = j.at("fmax_mhz");
@@ -128,6 +127,7 @@ LibertyReport liberty_report_from_json(const std::string& text, const std::strin
     r.flip_flop_overhead_ns = j.at("flip_flop_overhead_ns");
     r.overhead_cell = j.at("overhead_cell");
     r.abc_delay_ps = j.at("abc_delay_ps");
+    r.constraints = constraints_from_json(j.at("constraints"), source);
     r.buffering = buffering_of(j.at("buffering"));
     r.netlist_path = j.at("netlist_path");
     r.key = j.at("key");

@@ -72,8 +72,8 @@ struct GenericArea {
   int64_t flip_flops = 0;            // every flip-flop, the RAM's included
   // GE inputs (see Gate equivalents above).
   int64_t logic_transistors = 0;
-  int64_t ram_bits = 0;           // table memory bits (Yosys: $mem cells' SIZE x WIDTH)
-  int64_t ram_bits_expected = 0;  // the same from the parameters (the cross-check)
+  int64_t ram_bits = 0;              // table memory bits (Yosys: $mem cells' SIZE x WIDTH)
+  int64_t ram_bits_expected = 0;     // the same from the parameters (the cross-check)
   int64_t gate_equivalents() const;  // NAND2 GE of the logic, RAM apart
   // Where the area goes (empty without the breakdown run): the same flow with span_setup,
   // series_engine, specular_unit and pixel_combine kept as modules. shade_unit's row is its own
