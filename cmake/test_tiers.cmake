@@ -89,6 +89,7 @@ set(SHADESIM_GTEST_TIERS
   image_test                quick
   junit_test                quick
   lanes_test                quick
+  layout_test               quick
   liberty_flow_test         quick
   lockstep_test             quick
   mutation_test             quick

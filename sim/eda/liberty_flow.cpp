@@ -280,7 +280,7 @@ LibertyReport run_liberty_flow(const LibertyRun& run, const fs::path& work,
 }
 
 std::string sta_setup_tcl(const std::string& liberty, const std::string& netlist_v,
-                          double period_ns) {
+                          double period_ns, const std::string& spef) {
   std::ostringstream t;
   t << "read_liberty {" << liberty << "}\n"
     << "read_verilog {" << netlist_v << "}\n"
@@ -288,6 +288,7 @@ std::string sta_setup_tcl(const std::string& liberty, const std::string& netlist
     << "create_clock -name clk -period " << period_ns << " [get_ports clk_i]\n"
     << "set_input_delay 0 -clock clk [delete_from_list [all_inputs] [get_ports clk_i]]\n"
     << "set_output_delay 0 -clock clk [all_outputs]\n";
+  if (!spef.empty()) t << "read_spef {" << spef << "}\n";
   return t.str();
 }
 

@@ -139,8 +139,9 @@ std::map<std::string, std::string> flip_flop_q_nets(const std::string& netlist_v
 
 // The Tcl that reads `liberty` and `netlist_v`, links shade_unit and sets this flow's clock
 // (period_ns on clk_i, ideal) and zero input / output delays: the preamble every analysis of the
-// netlist shares.
+// netlist shares. With `spef` (shadesim layout's routed parasitics), read_spef after the link:
+// the same constraints, post-route.
 std::string sta_setup_tcl(const std::string& liberty, const std::string& netlist_v,
-                          double period_ns);
+                          double period_ns, const std::string& spef = "");
 
 }  // namespace shadesim
