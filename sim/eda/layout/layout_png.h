@@ -14,7 +14,6 @@ namespace shadesim {
 
 // The layout at `max_side` pixels on its longer side (the die's aspect kept), top row = top of
 // the die.
-Image draw_layout(const DefSummary& def, const std::map<std::string, LefSize>& sizes,
-                  int max_side);
+Image draw_layout(const DefSummary& def, const std::map<std::string, LefSize>& sizes, int max_side);
 
 }  // namespace shadesim

@@ -81,7 +81,8 @@ LayoutReport layout_report_from_json(const std::string& text, const std::string&
     r.pins = j.at("pins");
     r.nets = j.at("nets");
     r.wire_length_um = j.at("wire_length_um");
-    r.wire_length_by_layer_um = j.at("wire_length_by_layer_um").get<std::map<std::string, double>>();
+    r.wire_length_by_layer_um =
+        j.at("wire_length_by_layer_um").get<std::map<std::string, double>>();
     r.vias = j.at("vias");
     const auto& t = j.at("timing");
     r.worst_slack_ns = t.at("worst_slack_ns");

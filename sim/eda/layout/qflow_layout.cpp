@@ -86,8 +86,7 @@ void check_routed(const fs::path& work) {
   const std::string text = fs::exists(log) ? read_text_file(log.string()) : "";
   const auto at = text.rfind("Final:");
   if (at == std::string::npos || text.find("No failed routes", at) == std::string::npos)
-    throw std::runtime_error("layout route: qrouter did not route every net; see " +
-                             log.string() +
+    throw std::runtime_error("layout route: qrouter did not route every net; see " + log.string() +
                              (at == std::string::npos ? "" : ": " + first_line(text.substr(at))));
 }
 
@@ -193,16 +192,15 @@ LayoutTools find_layout_tools(const LayoutFlowOptions& o) {
                              "(Debian package qflow-tech-osu018; scripts/setup installs it)");
   }
   std::ostringstream v;
-  v << "qflow " << area_tools::tool_version("/usr/bin/dpkg-query",
-                                            {"-W", "-f=${Version}", "qflow"})
-    << "\nqrouter " << area_tools::tool_version("/usr/bin/dpkg-query",
-                                                {"-W", "-f=${Version}", "qrouter"})
-    << "\ngraywolf " << area_tools::tool_version("/usr/bin/dpkg-query",
-                                                 {"-W", "-f=${Version}", "graywolf"})
-    << "\nmagic " << area_tools::tool_version("/usr/bin/dpkg-query",
-                                              {"-W", "-f=${Version}", "magic"})
-    << "\nnetgen " << area_tools::tool_version("/usr/bin/dpkg-query",
-                                               {"-W", "-f=${Version}", "netgen-lvs"})
+  v << "qflow " << area_tools::tool_version("/usr/bin/dpkg-query", {"-W", "-f=${Version}", "qflow"})
+    << "\nqrouter "
+    << area_tools::tool_version("/usr/bin/dpkg-query", {"-W", "-f=${Version}", "qrouter"})
+    << "\ngraywolf "
+    << area_tools::tool_version("/usr/bin/dpkg-query", {"-W", "-f=${Version}", "graywolf"})
+    << "\nmagic "
+    << area_tools::tool_version("/usr/bin/dpkg-query", {"-W", "-f=${Version}", "magic"})
+    << "\nnetgen "
+    << area_tools::tool_version("/usr/bin/dpkg-query", {"-W", "-f=${Version}", "netgen-lvs"})
     << "\nsta " << area_tools::tool_version(t.sta, {"-version"});
   t.versions = v.str();
   return t;
@@ -232,9 +230,9 @@ LayoutReport run_qflow_layout(const LibertyReport& lib, const LayoutFlowOptions&
   const fs::path syn = work / "synthesis", lay = work / "layout";
   const std::vector<std::pair<std::string, fs::path>> steps = {
       {"synthesize", syn / "shade_unit.blif"}, {"place", lay / "shade_unit.cel"},
-      {"route", lay / "shade_unit.def"},       {"backanno", syn / "shade_unit.spef"},
-      {"migrate", lay / "shade_unit.mag"},     {"lvs", work / "log" / "lvs.log"},
-      {"drc", lay / "shade_unit.gds"}};
+      {"pins", lay / "shade_unit.cel"},        {"route", lay / "shade_unit.def"},
+      {"backanno", syn / "shade_unit.spef"},   {"migrate", lay / "shade_unit.mag"},
+      {"lvs", work / "log" / "lvs.log"},       {"drc", lay / "shade_unit.gds"}};
   for (const auto& [step, file] : steps) {
     r.step_seconds[step] = run_step(step, work, o, file, progress);
     if (step == "route") check_routed(work);
@@ -251,8 +249,8 @@ LayoutReport run_qflow_layout(const LibertyReport& lib, const LayoutFlowOptions&
   r.lvs_errors = lvs.total_errors;
   // Timing: blif2Verilog's netlist with rc2dly's SPEF, fixed (sim/eda/layout/spef.h).
   const std::string netlist = read_text_file((syn / "shade_unit.rtlnopwr.v").string());
-  const std::string spef =
-      fix_qflow_spef(read_text_file((syn / "shade_unit.spef").string()), verilog_nets(netlist).bus_ports);
+  const std::string spef = fix_qflow_spef(read_text_file((syn / "shade_unit.spef").string()),
+                                          verilog_nets(netlist).bus_ports);
   r.netlist_path = (out_dir / "shade_unit.v").string();
   r.spef_path = (out_dir / "shade_unit.spef").string();
   r.def_path = (out_dir / "shade_unit.def").string();
@@ -268,7 +266,8 @@ LayoutReport run_qflow_layout(const LibertyReport& lib, const LayoutFlowOptions&
       run_sta(tools, lib, r.netlist_path, r.spef_path, o.period_ns, work / "post_route.tcl");
   r.spef_warnings = count_spef_warnings(post);
   read_timing(post, (work / "post_route.out").string(), library, r);
-  const std::string pre = run_sta(tools, lib, r.netlist_path, "", o.period_ns, work / "no_wires.tcl");
+  const std::string pre =
+      run_sta(tools, lib, r.netlist_path, "", o.period_ns, work / "no_wires.tcl");
   const StaPath p = worst_path(parse_sta_paths(pre, (work / "no_wires.out").string()));
   r.preroute_slack_ns = p.slack_ns;
   r.preroute_fmax_mhz = 1000.0 / (o.period_ns - p.slack_ns);

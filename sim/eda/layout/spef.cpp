@@ -42,8 +42,7 @@ std::string fix_qflow_spef(const std::string& text, const std::set<std::string>&
     std::istringstream words(line);
     std::vector<std::string> t;
     for (std::string w; words >> w;) t.push_back(w);
-    if (!t.empty() && t[0].size() > 1 && t[0][0] == '*' && !std::isdigit(t[0][1]))
-      section = t[0];
+    if (!t.empty() && t[0].size() > 1 && t[0][0] == '*' && !std::isdigit(t[0][1])) section = t[0];
     if (t.size() == 3 && t[0] == "*C_UNIT" && t[2] == "FF") {
       out << "*C_UNIT " << t[1] << " PF\n";
     } else if (section == "*NAME_MAP" && t.size() == 2 && t[0][0] == '*') {
