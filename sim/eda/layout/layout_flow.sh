@@ -1,8 +1,8 @@
 #!/bin/bash
 # shadesim layout's steps on a prepared qflow project folder (sim/eda/layout/qflow_layout.cpp
-# prepares it: source/, synthesis/import.ys, project_vars.sh, magic_drc.tcl). By hand:
+# prepares it: source/, import.ys in synthesis, project_vars.sh, magic_drc.tcl). By hand:
 #   sim/eda/layout/layout_flow.sh WORK synthesize place pins route backanno migrate lvs drc
-# Each step's log is in WORK/log/ (qflow's) or WORK/log/drc_magic.log.
+# Each step's log is in WORK/log/ (qflow's) or drc_magic.log in WORK/log.
 set -euo pipefail
 work=$1
 shift

@@ -42,7 +42,20 @@ std::string substitute(std::string text, const std::map<std::string, std::string
   return text;
 }
 
-// The qflow project: source/ with the netlist, synthesis/import.ys, project_vars.sh and
+// A script's text less its comment lines ('#' first): what the key hashes, so that rewording a
+// comment does not throw the cache away.
+std::string without_comments(const std::string& text) {
+  std::istringstream in(text);
+  std::string out;
+  for (std::string line; std::getline(in, line);) {
+    const auto first = line.find_first_not_of(" \t");
+    if (first != std::string::npos && line[first] == '#') continue;
+    out += line + '\n';
+  }
+  return out;
+}
+
+// The qflow project: source/ with the netlist, import.ys (in synthesis), project_vars.sh and
 // magic_drc.tcl filled in.
 void prepare_project(const LibertyReport& lib, const LayoutFlowOptions& o, const fs::path& work) {
   for (const char* d : {"source", "synthesis", "layout", "log"}) fs::create_directories(work / d);
@@ -211,7 +224,7 @@ std::string layout_key(const LibertyReport& lib, const LayoutFlowOptions& o,
   ContentHash h;
   h.add("shadesim-layout-v1").add(lib.key).add(tools.versions).add(kPostRouteReport);
   h.add(sta_setup_tcl("", "", 0, ""));
-  for (const char* s : kScripts) h.add(read_text_file(scripts_dir(o) + "/" + s));
+  for (const char* s : kScripts) h.add(without_comments(read_text_file(scripts_dir(o) + "/" + s)));
   std::ostringstream opts;
   opts << o.density << ' ' << o.period_ns << ' ' << o.picture_side << ' ' << o.tech_dir;
   h.add(opts.str()).add(read_text_file(o.tech_dir + "/osu018_stdcells.lef"));
