@@ -1,4 +1,6 @@
 // shadesim layout (--config FILE.json | SCENE): its options; the engine is sim/jobs/layout.h.
+#include "sim/jobs/layout.h"
+
 #include <CLI/CLI.hpp>
 #include <memory>
 #include <stdexcept>
@@ -6,7 +8,6 @@
 #include "sim/cli/commands.h"
 #include "sim/cli/config_option.h"
 #include "sim/cli/output_paths.h"
-#include "sim/jobs/layout.h"
 
 namespace shadesim {
 
@@ -33,8 +34,7 @@ void register_layout(CLI::App& app, int& exit_code) {
       ->check(CLI::ExistingFile);
   sub->add_option("--cache", o->cache_dir, "cache folder (shared with shadesim area)")
       ->capture_default_str();
-  sub->add_option("--json", o->json_path, "also write every figure as JSON")
-      ->check(output_file());
+  sub->add_option("--json", o->json_path, "also write every figure as JSON")->check(output_file());
   sub->add_option("--density", o->density,
                   "qflow's initial_density: the cells' share of the core rows (the rest FILL)")
       ->check(CLI::Range(0.1, 0.95))

@@ -75,13 +75,14 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
      << "layout       osu018 0.18 um, qflow (graywolf, qrouter, rc2dly, magic, netgen)"
      << (r.from_cache ? "  [cached " : "  [key ") << r.key << "]\n\n"
      << "area\n"
-     << "  die          " << r.die_width_um << " x " << r.die_height_um << " um = "
-     << std::setprecision(4) << r.die_area_um2 / 1e6 << " mm^2" << std::setprecision(1)
+     << "  die          " << r.die_width_um << " x " << r.die_height_um
+     << " um = " << std::setprecision(4) << r.die_area_um2 / 1e6 << " mm^2" << std::setprecision(1)
      << " (at initial density " << std::setprecision(2) << r.density << std::setprecision(1)
      << ")\n"
      << "  core         " << area_tools::thousands(std::llround(r.core_area_um2))
-     << " um^2 (the placed rows' extent); cells " << area_tools::thousands(std::llround(r.cell_area_um2))
-     << " um^2: utilisation " << 100 * r.utilisation << " %\n"
+     << " um^2 (the placed rows' extent); cells "
+     << area_tools::thousands(std::llround(r.cell_area_um2)) << " um^2: utilisation "
+     << 100 * r.utilisation << " %\n"
      << "  cells        " << area_tools::thousands(r.cells) << " (+ "
      << area_tools::thousands(r.fill_cells) << " FILL), " << r.pins << " pins, "
      << area_tools::thousands(r.nets) << " nets\n"
@@ -98,19 +99,24 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
      << " connected nets: " << r.unannotated_nets << " unannotated; " << r.spef_warnings
      << " OpenSTA warnings on the SPEF\n";
   for (const auto& n : r.unannotated) os << "               unannotated: " << n << "\n";
-  os << std::setprecision(3) << "  clock        " << 1000.0 / r.period_ns << " MHz ("
-     << r.period_ns << " ns): worst slack " << r.worst_slack_ns << " ns, "
+  os << std::setprecision(3) << "  clock        " << 1000.0 / r.period_ns << " MHz (" << r.period_ns
+     << " ns): worst slack " << r.worst_slack_ns << " ns, "
      << (r.worst_slack_ns >= 0 ? "met" : "MISSED") << "\n"
      << std::setprecision(1) << "  Fmax         " << r.fmax_mhz << " MHz post-route; "
-     << r.preroute_fmax_mhz << " MHz on the same netlist without wires; shadesim area: "
-     << lib.fmax_mhz << " MHz\n"
+     << r.preroute_fmax_mhz
+     << " MHz on the same netlist without wires; shadesim area: " << lib.fmax_mhz << " MHz\n"
      << std::setprecision(3) << "  critical     " << r.path_from << " -> " << r.path_to << " ("
      << r.path_group << "): arrival " << r.path_arrival_ns << " ns + setup " << r.path_setup_ns
      << " ns, of which wires " << r.path_wire_delay_ns << " ns\n"
      << "     delay     time  cell      pin                   net (fanout)\n";
   for (const auto& c : r.path) {
     os << "  " << std::setw(8) << c.delay_ns << std::setw(9) << c.time_ns << "  " << std::left
-       << std::setw(9) << c.cell << " " << std::setw(21) << c.instance << " " << c.net
+       << std::setw(9) << c.cell << " ";
+    if (c.net.empty()) {
+      os << c.instance << std::right << "\n";  // an input pin: its wire's delay, no net row
+      continue;
+    }
+    os << std::setw(21) << c.instance << " " << c.net
        << (c.fanout >= 0 ? " (" + std::to_string(c.fanout) + ")" : "") << std::right << "\n";
   }
   os << "checks\n"
@@ -147,8 +153,7 @@ int run_layout(const LayoutJobOptions& o) {
   fo.period_ns = 1000.0 / o.clock_mhz;
   const LayoutReport r = cached_or_run(lib, fo, o.cache_dir);
   print_report(std::cout, source, unit, lib, r);
-  const double wall =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::cout << "this run     " << std::fixed << std::setprecision(1) << wall << " s wall\n";
   if (!o.json_path.empty()) {
     nlohmann::json j = nlohmann::json::parse(layout_report_to_json(r));

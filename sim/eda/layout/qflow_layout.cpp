@@ -190,14 +190,30 @@ void read_layout(const LibertyReport& lib, const LayoutFlowOptions& o, const fs:
 
 }  // namespace
 
+namespace {
+
+// area_tools::find_tool, its message naming this command.
+std::string find_layout_tool(const std::string& name, const std::string& package) {
+  try {
+    return area_tools::find_tool(name, package);
+  } catch (const MissingToolError& e) {
+    std::string what = e.what();
+    const auto at = what.find("shadesim area");
+    if (at != std::string::npos) what.replace(at, 13, "shadesim layout");
+    throw MissingToolError(what);
+  }
+}
+
+}  // namespace
+
 LayoutTools find_layout_tools(const LayoutFlowOptions& o) {
   LayoutTools t;
-  t.qflow = area_tools::find_tool("qflow", "qflow");
-  t.graywolf = area_tools::find_tool("graywolf", "graywolf");
-  t.qrouter = area_tools::find_tool("qrouter", "qrouter");
-  t.magic = area_tools::find_tool("magic", "magic");
-  t.netgen = area_tools::find_tool("netgen-lvs", "netgen-lvs");
-  t.sta = area_tools::find_tool("sta", "opensta");
+  t.qflow = find_layout_tool("qflow", "qflow");
+  t.graywolf = find_layout_tool("graywolf", "graywolf");
+  t.qrouter = find_layout_tool("qrouter", "qrouter");
+  t.magic = find_layout_tool("magic", "magic");
+  t.netgen = find_layout_tool("netgen-lvs", "netgen-lvs");
+  t.sta = find_layout_tool("sta", "opensta");
   for (const char* f : {"/osu018_stdcells.lef", "/osu018.magicrc", "/osu018.sh"}) {
     if (!fs::exists(o.tech_dir + f))
       throw MissingToolError(o.tech_dir + f +
