@@ -32,8 +32,9 @@ LAYERS = {
     # Power is OpenSTA's report_power on the liberty flow's netlist, under activity read from
     # an FST trace (the trace's cycle protocol is the harness's).
     "sim/eda/power": ["sim/eda/sta", "sim/eda/common", "sim/harness", "model"],
+    # Layout draws its picture with the host's PNG writer.
     "sim/eda/layout": ["sim/eda/sta", "sim/eda/power", "sim/eda/yosys", "sim/eda/common",
-                       "model"],
+                       "host", "model"],
     # The engines of the commands, on every tool driver.
     "sim/engines": ["sim/eda/common", "sim/eda/verilator", "sim/eda/yosys", "sim/eda/ice40",
                     "sim/eda/sta", "sim/eda/power", "sim/eda/layout", "sim/harness", "explore",

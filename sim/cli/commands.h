@@ -19,6 +19,7 @@ void register_explore(CLI::App& app, int& exit_code);
 void register_cosim(CLI::App& app, int& exit_code);
 void register_area(CLI::App& app, int& exit_code);
 void register_merge(CLI::App& app, int& exit_code);
+void register_layout(CLI::App& app, int& exit_code);
 
 inline void register_commands(CLI::App& app, int& exit_code) {
   register_render(app, exit_code);
@@ -31,6 +32,7 @@ inline void register_commands(CLI::App& app, int& exit_code) {
   register_cosim(app, exit_code);
   register_area(app, exit_code);
   register_merge(app, exit_code);
+  register_layout(app, exit_code);
 }
 
 }  // namespace shadesim

@@ -284,8 +284,10 @@ std::string sta_read_tcl(const std::string& liberty, const std::string& netlist_
 }
 
 std::string sta_setup_tcl(const std::string& liberty, const std::string& netlist_v,
-                          double period_ns, const ResolvedConstraints& constraints) {
-  return sta_read_tcl(liberty, netlist_v) + constraints_tcl(constraints, period_ns);
+                          double period_ns, const ResolvedConstraints& constraints,
+                          const std::string& spef) {
+  return sta_read_tcl(liberty, netlist_v) + constraints_tcl(constraints, period_ns) +
+         (spef.empty() ? "" : "read_spef {" + spef + "}\n");
 }
 
 }  // namespace shadesim

@@ -139,8 +139,10 @@ std::map<std::string, std::string> flip_flop_q_nets(const std::string& netlist_v
 // The Tcl that reads `liberty` and `netlist_v` and links shade_unit.
 std::string sta_read_tcl(const std::string& liberty, const std::string& netlist_v);
 // sta_read_tcl, then the clock (period_ns on clk_i) and the ports under `constraints`
-// (sim/eda/sta/constraints.tcl): the preamble every timing of the netlist shares.
+// (sim/eda/sta/constraints.tcl): the preamble every timing of the netlist shares. With `spef`
+// (shadesim layout's routed parasitics), read_spef after them: the same constraints, post-route.
 std::string sta_setup_tcl(const std::string& liberty, const std::string& netlist_v,
-                          double period_ns, const ResolvedConstraints& constraints);
+                          double period_ns, const ResolvedConstraints& constraints,
+                          const std::string& spef = "");
 
 }  // namespace shadesim
