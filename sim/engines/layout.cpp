@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "model/digit_grouping.h"
 #include "model/text_file.h"
 #include "model/unit_config_file.h"
 #include "sim/eda/common/flow_tools.h"
@@ -40,10 +41,6 @@ LibertyReport liberty_netlist(const UnitConfig& unit, const LayoutJobOptions& o)
   ao.progress = &std::cerr;
   const AreaReport a = unit_area(unit, ao);
   if (!a.liberty) throw std::runtime_error("layout: shadesim area gave no liberty netlist");
-  if (a.liberty->table_macros > 0)
-    throw std::runtime_error(
-        "layout: this unit's exponent LUT is a table RAM macro (" + std::string(kTableRamModule) +
-        "), which has no layout in osu018; layout handles units without a table");
   return *a.liberty;
 }
 
@@ -79,21 +76,21 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
      << " um = " << std::setprecision(4) << r.die_area_um2 / 1e6 << " mm^2" << std::setprecision(1)
      << " (at initial density " << std::setprecision(2) << r.density << std::setprecision(1)
      << ")\n"
-     << "  core         " << flow_tools::thousands(std::llround(r.core_area_um2))
+     << "  core         " << grouped(std::llround(r.core_area_um2))
      << " um^2 (the placed rows' extent); cells "
-     << flow_tools::thousands(std::llround(r.cell_area_um2)) << " um^2: utilisation "
+     << grouped(std::llround(r.cell_area_um2)) << " um^2: utilisation "
      << 100 * r.utilisation << " %\n"
-     << "  cells        " << flow_tools::thousands(r.cells) << " (+ "
-     << flow_tools::thousands(r.fill_cells) << " FILL), " << r.pins << " pins, "
-     << flow_tools::thousands(r.nets) << " nets\n"
+     << "  cells        " << grouped(r.cells) << " (+ "
+     << grouped(r.fill_cells) << " FILL), " << r.pins << " pins, "
+     << grouped(r.nets) << " nets\n"
      << "routing\n"
-     << "  wire length  " << flow_tools::thousands(std::llround(r.wire_length_um)) << " um (";
+     << "  wire length  " << grouped(std::llround(r.wire_length_um)) << " um (";
   bool first = true;
   for (const auto& [layer, um] : r.wire_length_by_layer_um) {
-    os << (first ? "" : ", ") << layer << " " << flow_tools::thousands(std::llround(um));
+    os << (first ? "" : ", ") << layer << " " << grouped(std::llround(um));
     first = false;
   }
-  os << ")\n  vias         " << flow_tools::thousands(r.vias) << "\n"
+  os << ")\n  vias         " << grouped(r.vias) << "\n"
      << "post-route timing (OpenSTA with the routed SPEF, shadesim area's constraints)\n"
      << "  annotated    " << r.spef_nets << " SPEF nets for " << r.netlist_nets
      << " connected nets: " << r.unannotated_nets << " unannotated; " << r.spef_warnings
