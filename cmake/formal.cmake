@@ -17,8 +17,8 @@ set(_formal_dir ${CMAKE_SOURCE_DIR}/tests/formal)
 set(_formal_work ${CMAKE_BINARY_DIR}/formal)
 function(_formal_test name)
   add_test(NAME rtl_formal_${name} COMMAND ${ARGN})
-  # 10 to 70 s each: started among the first tests (ctest -j orders by COST), not at the end.
-  set_tests_properties(rtl_formal_${name} PROPERTIES LABELS formal COST 60)
+  # 2 to 55 s each: their COST (cmake/test_costs.cmake) starts them among the first tests.
+  set_tests_properties(rtl_formal_${name} PROPERTIES LABELS formal)
 endfunction()
 
 # One configuration per specular kind: lanes 1 and 2, queue 1 and 2, material buffers 1 and 2.

@@ -35,6 +35,7 @@ set(SHADESIM_TIER_RULES
   "^architecture_folders(_self_test)?$"                             quick
   "^mutate_rtl_self_test$"                                          quick
   "^check_commits_self_test$"                                      quick
+  "^ci_schedule_self_test$"                                         quick
   # random scenes on their own unit (scripts/random-scenes): 50 small ones, the kept regressions
   "^random_scenes_(quick|self_test)$"                               quick
   # the bench scripts once at a tiny size (tests/bench_scripts_check.sh): throughput-table needs
