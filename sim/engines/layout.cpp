@@ -77,12 +77,10 @@ void print_report(std::ostream& os, const std::string& source, const UnitConfig&
      << " (at initial density " << std::setprecision(2) << r.density << std::setprecision(1)
      << ")\n"
      << "  core         " << grouped(std::llround(r.core_area_um2))
-     << " um^2 (the placed rows' extent); cells "
-     << grouped(std::llround(r.cell_area_um2)) << " um^2: utilisation "
-     << 100 * r.utilisation << " %\n"
-     << "  cells        " << grouped(r.cells) << " (+ "
-     << grouped(r.fill_cells) << " FILL), " << r.pins << " pins, "
-     << grouped(r.nets) << " nets\n"
+     << " um^2 (the placed rows' extent); cells " << grouped(std::llround(r.cell_area_um2))
+     << " um^2: utilisation " << 100 * r.utilisation << " %\n"
+     << "  cells        " << grouped(r.cells) << " (+ " << grouped(r.fill_cells) << " FILL), "
+     << r.pins << " pins, " << grouped(r.nets) << " nets\n"
      << "routing\n"
      << "  wire length  " << grouped(std::llround(r.wire_length_um)) << " um (";
   bool first = true;
