@@ -18,6 +18,7 @@
 #include "host/frame.h"
 #include "host/scene_error.h"
 #include "tests/support/render_at.h"
+#include "tests/support/sphere_scene.h"
 
 namespace shadesim {
 namespace {
@@ -35,23 +36,7 @@ class Derivation : public ::testing::Test {
   // A 96x96 sphere of `tessellation` under one light with one material.
   std::string write_scene(const std::string& name, const nlohmann::json& light_colour,
                           const nlohmann::json& material, int tessellation = 24) const {
-    nlohmann::json s = {{"image", {{"width", 96}, {"height", 96}}},
-                        {"camera",
-                         {{"type", "perspective"},
-                          {"position", {0, 0, 5}},
-                          {"target", {0, 0, 0}},
-                          {"up", {0, 1, 0}},
-                          {"fov_y", 40}}},
-                        {"lights", {{{"direction", {0.5, 0.6, 1}}, {"colour", light_colour}}}},
-                        {"ambient_light", 1.0},
-                        {"eye", "finite"},
-                        {"materials", {material}},
-                        {"objects",
-                         {{{"name", "ball"},
-                           {"type", "sphere"},
-                           {"material", material["name"]},
-                           {"radius", 1.0},
-                           {"tessellation", tessellation}}}}};
+    nlohmann::json s = test::sphere_scene(light_colour, material, tessellation);
     const std::string path = (dir_ / (name + ".json")).string();
     std::ofstream(path) << s.dump();
     return path;

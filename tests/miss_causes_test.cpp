@@ -17,6 +17,7 @@
 #include "derive/format_widening.h"
 #include "host/prepared_scene.h"
 #include "tests/support/render_at.h"
+#include "tests/support/sphere_scene.h"
 
 namespace shadesim {
 namespace {
@@ -36,23 +37,7 @@ class MissCauses : public ::testing::Test {
                           int tessellation, const nlohmann::json& colour = {3, 1.5, 0.75}) const {
     const nlohmann::json material = {{"name", "m"},     {"ambient", 0.05},      {"diffuse", 0.5},
                                      {"specular", 0.6}, {"exponent", exponent}, {"unit", unit}};
-    const nlohmann::json s = {{"image", {{"width", 96}, {"height", 96}}},
-                              {"camera",
-                               {{"type", "perspective"},
-                                {"position", {0, 0, 5}},
-                                {"target", {0, 0, 0}},
-                                {"up", {0, 1, 0}},
-                                {"fov_y", 40}}},
-                              {"lights", {{{"direction", {0.5, 0.6, 1}}, {"colour", colour}}}},
-                              {"ambient_light", 1.0},
-                              {"eye", "finite"},
-                              {"materials", {material}},
-                              {"objects",
-                               {{{"name", "ball"},
-                                 {"type", "sphere"},
-                                 {"material", "m"},
-                                 {"radius", 1.0},
-                                 {"tessellation", tessellation}}}}};
+    const nlohmann::json s = test::sphere_scene(colour, material, tessellation);
     const std::string path = (dir_ / (name + ".json")).string();
     std::ofstream(path) << s.dump();
     return path;
