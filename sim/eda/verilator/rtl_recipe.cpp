@@ -208,7 +208,8 @@ Toolchain find_toolchain(const fs::path& cache_dir) {
       stat_text(resolved(t.verilator)) + " " + stat_text(vbin) + " " + stat_text(resolved(t.cxx));
   const fs::path memo = cache_dir / "tools.txt";
   {
-    std::istringstream is(read_text(memo));
+    // No memo yet (a new cache): ask the tools below.
+    std::istringstream is(fs::exists(memo) ? read_text(memo) : std::string());
     std::string sig, vv, cv, root;
     if (std::getline(is, sig) && sig == signature && std::getline(is, vv) && std::getline(is, cv) &&
         std::getline(is, root) && !root.empty()) {
