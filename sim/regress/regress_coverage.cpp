@@ -115,7 +115,8 @@ bool report_coverage(const std::vector<RunRecord>& records, const fs::path& out,
             << (std::to_string(sum.lines_hit) + "/" + std::to_string(sum.lines)) << std::setw(10)
             << regress_coverage_impl::percent(sum.lines_hit, sum.lines) << std::setw(10)
             << (std::to_string(sum.toggles_hit) + "/" + std::to_string(sum.toggles))
-            << std::setw(10) << regress_coverage_impl::percent(sum.toggles_hit, sum.toggles) << '\n';
+            << std::setw(10) << regress_coverage_impl::percent(sum.toggles_hit, sum.toggles)
+            << '\n';
   for (const auto& f : sum.packages) {
     std::cout << "  no points (a package: constants and constant functions, nothing to run): "
               << fs::relative(f, source_dir()).string() << '\n';
@@ -156,6 +157,5 @@ bool report_coverage(const std::vector<RunRecord>& records, const fs::path& out,
             << " %" << (met ? "" : ": FAIL") << '\n';
   return met;
 }
-
 
 }  // namespace shadesim

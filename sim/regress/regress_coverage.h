@@ -1,5 +1,6 @@
 // --coverage's report: the runs' coverage files merged into OUT/coverage/, the figures printed and
-// written (regress --json, OUT/coverage/summary.json), and the --coverage-min check.
+// written (regress --json, and summary.json in the output folder's coverage/), and the
+// --coverage-min check.
 #pragma once
 
 #include <filesystem>

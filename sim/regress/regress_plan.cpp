@@ -59,7 +59,6 @@ nlohmann::json settings_json(const RunSettings& s) {
   return j;
 }
 
-
 std::vector<std::string> default_scenes() {
   // Run from the project folder, the shipped scenes are ./scenes; elsewhere, the checkout's.
   fs::path dir = "scenes";
@@ -143,7 +142,6 @@ void write_plan(const fs::path& out, const std::string& name, const RunSettings&
   write_file_atomically((out / "plans" / (name + ".json")).string(), plan.dump(2) + '\n');
 }
 
-
 // --resume DIR: the runs DIR's plans selected, with their settings (which must agree).
 LoadedPlans load_plans(const fs::path& dir) {
   if (!fs::is_directory(dir))
@@ -212,12 +210,10 @@ LoadedPlans load_plans(const fs::path& dir) {
   return lp;
 }
 
-
-
 // One self-contained command per run: it plans exactly that run (one scene, one configuration,
 // one backend, its seed) into the same OUT/runs/<id>/ the whole regression would use.
 void emit_job_lines(const RegressOptions& o, const RunSettings& settings, const fs::path& out,
-               const std::vector<RunSpec>& all, const std::vector<RunSpec>& selected) {
+                    const std::vector<RunSpec>& all, const std::vector<RunSpec>& selected) {
   const std::string exe = self_path();
   std::ostringstream lines;
   for (const auto& s : selected) {
@@ -270,7 +266,6 @@ std::string self_path() {
   if (!ec && !rel.empty() && *rel.begin() != "..") return rel.string();
   return self.string();
 }
-
 
 // --resume DIR: the runs DIR's plans name that have no result there (or ended in an error).
 Selection select_resumed(const RegressOptions& o) {
@@ -328,7 +323,6 @@ Selection select_planned(const RegressOptions& o) {
   }
   return sel;
 }
-
 
 // The plan, written into OUT/plans/ before anything runs, and what it holds.
 void write_and_announce_plan(const RegressOptions& o, const Selection& sel) {

@@ -38,14 +38,13 @@ std::vector<std::string> default_scenes();
 // The whole job list, before any host work: scenes x configurations x backends. Each scene and
 // configuration gets the next seed (both backends the same one), so a run's seed depends only on
 // its place in this list, never on what another run found.
-std::vector<RunSpec> full_run_list(const RegressOptions& o,
-                                   const std::vector<std::string>& scenes);
+std::vector<RunSpec> full_run_list(const RegressOptions& o, const std::vector<std::string>& scenes);
 
 // What a regress process was asked to run, written into OUT/plans/ before it runs anything:
 // merge compares it with the results to name what is missing; --resume runs the rest of it.
-void write_plan(const std::filesystem::path& out, const std::string& name, const RunSettings& settings,
-                const std::string& shard, const std::vector<RunSpec>& all,
-                const std::vector<RunSpec>& selected);
+void write_plan(const std::filesystem::path& out, const std::string& name,
+                const RunSettings& settings, const std::string& shard,
+                const std::vector<RunSpec>& all, const std::vector<RunSpec>& selected);
 
 struct LoadedPlans {
   RunSettings settings;
@@ -58,8 +57,9 @@ LoadedPlans load_plans(const std::filesystem::path& dir);
 
 // One self-contained command per run: it plans exactly that run (one scene, one configuration,
 // one backend, its seed) into the same OUT/runs/<id>/ the whole regression would use.
-void emit_job_lines(const RegressOptions& o, const RunSettings& settings, const std::filesystem::path& out,
-               const std::vector<RunSpec>& all, const std::vector<RunSpec>& selected);
+void emit_job_lines(const RegressOptions& o, const RunSettings& settings,
+                    const std::filesystem::path& out, const std::vector<RunSpec>& all,
+                    const std::vector<RunSpec>& selected);
 
 // What one regress process runs: the selected runs (and, with --resume, the results already
 // there), where results go and the settings every run uses.
