@@ -457,4 +457,14 @@ PlainFlipFlop plain_flip_flop(const LibertyLibrary& lib) {
   return best;
 }
 
+PlainFlipFlop required_plain_flip_flop(const LibertyLibrary& lib, const std::string& needed_for) {
+  PlainFlipFlop ff = plain_flip_flop(lib);
+  if (!ff.cell) {
+    throw std::runtime_error(
+        lib.path + ": library " + lib.name +
+        " has no plain flip-flop (D, clock, Q, no set or reset): " + needed_for);
+  }
+  return ff;
+}
+
 }  // namespace shadesim

@@ -72,5 +72,8 @@ struct PlainFlipFlop {
   std::string d, clock, q;  // pin names
 };
 PlainFlipFlop plain_flip_flop(const LibertyLibrary& lib);
+// The same, or std::runtime_error naming the library and `needed_for` (what the caller measures
+// on it) when it has none.
+PlainFlipFlop required_plain_flip_flop(const LibertyLibrary& lib, const std::string& needed_for);
 
 }  // namespace shadesim

@@ -238,11 +238,8 @@ LibertyReport run_liberty_flow(const LibertyRun& run, const fs::path& work,
   const LibertyCell& nand2 = nand2_cell(lib);
   r.nand2_cell = nand2.name;
   r.nand2_area_um2 = nand2.area;
-  const PlainFlipFlop ff = plain_flip_flop(lib);
-  if (!ff.cell)
-    throw std::runtime_error(lib.path + ": library " + lib.name +
-                             " has no plain flip-flop (D, clock, Q, no set or reset): the flow "
-                             "measures the registers' overhead and the ports' constraints on it");
+  const PlainFlipFlop ff = required_plain_flip_flop(
+      lib, "the flow measures the registers' overhead and the ports' constraints on it");
   r.overhead_cell = ff.cell->name;
   const StaPath overhead = flip_flop_overhead(run, ff, work);
   r.flip_flop_overhead_ns = overhead.arrival_ns + overhead.setup_ns;

@@ -44,11 +44,8 @@ ResolvedConstraints resolve_constraints(const StaConstraints& policy, const Libe
   const LibertyCell& buffer = smallest_buffer(lib);
   c.driving_cell = buffer.name;
   c.driving_pin = buffer.outputs()[0]->name;
-  const PlainFlipFlop ff = plain_flip_flop(lib);
-  if (!ff.cell)
-    throw std::runtime_error(lib.path + ": library " + lib.name +
-                             " has no plain flip-flop (D, clock, Q, no set or reset) to take the "
-                             "ports' load and delays from");
+  const PlainFlipFlop ff =
+      required_plain_flip_flop(lib, "the ports' load and delays are taken from one");
   c.load_cell = ff.cell->name;
   c.load_pin = ff.d;
   c.output_load_pf = policy.load_pins * ff.cell->pin(ff.d)->capacitance;
