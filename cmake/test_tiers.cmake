@@ -81,6 +81,7 @@ set(SHADESIM_GTEST_TIERS
   cycle_model_test          quick
   derivation_cache_test     quick
   derivation_test           quick
+  digit_grouping_test       quick
   edge_stimulus_test        quick
   encode_test               quick
   explore_test              quick
