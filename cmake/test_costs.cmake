@@ -16,12 +16,12 @@ set(SHADESIM_TEST_COSTS
   "^rtl_netlist_cosim$"                                                 87
   "^rtl_formal_lut_l2_q2$"                                              54
   "^ExploreCli\\.MeasuredFrontHasTheLibraryFmax"                        48
-  "^fuzz_mesh$"                                                         28
+  "^fuzz_mesh$"                                                         18
   "^CycleEstimate\\.EqualsClockedModelOnRandomStreams$"                 27
   "^ConfigClock\\.AMetClockTimesTheUnitConfigWrites"                    24
   "^AreaPower\\."                                                        30
   "^rtl_formal_wpow_l2_q1_mb2$"                                         22
-  "^fuzz_scene$"                                                        21
+  "^fuzz_scene$"                                                        12
   "^Area\\.CellCountEqualsADirectYosysRun"                              20
   "^rtl_formal_equiv_decoder_specular$"                                 18
   "^rtl_formal_conservation_"                                           16
