@@ -11,10 +11,10 @@
 #
 #   NAME REGEX (ctest name; GoogleTest cases: Suite.Case)             SECONDS
 set(SHADESIM_TEST_COSTS
-  "^layout_sphere$"                                                     250
   "^regress_coverage$"                                                  134
   "^rtl_netlist_cosim$"                                                 87
   "^rtl_formal_lut_l2_q2$"                                              54
+  "^layout_small_unit$"                                                 70
   "^ExploreCli\\.MeasuredFrontHasTheLibraryFmax"                        48
   "^fuzz_mesh$"                                                         18
   "^CycleEstimate\\.EqualsClockedModelOnRandomStreams$"                 27

@@ -44,8 +44,8 @@ set(SHADESIM_TIER_RULES
   "^bench_script_throughput_table$"                                 quick
   # docs/area.md's silicon table on the sphere (Yosys and OpenSTA, cached after the first run)
   "^silicon_table_sphere$"                                          rtl
-  # shadesim layout on sphere's own unit: qflow, magic, netgen, OpenSTA (cached after one run)
-  "^layout_sphere$"                                                 rtl
+  # shadesim layout on a small unit: qflow, magic, netgen, OpenSTA (cached after one run)
+  "^layout_small_unit$"                                               rtl
   "^bench_script_bench_cosim_ab$"                                   regress
   "^bench_script_"                                                  rtl
   # shadesim report's page in headless Chromium, from hand-written inputs (no RTL, no Yosys)

@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
-# ctest layout_sphere: shadesim layout on sphere's own unit (the smallest shipped unit), checked
-# against what must hold of any sound layout, not against figures the run printed before:
+# ctest layout_small_unit: shadesim layout on a small unit (tests/data/layout/small_unit.json:
+# sphere's own unit, grey, one light, no specular unit, host setup, with 4-bit pixels and
+# narrower words: 1,290 cells against sphere's 1,958, so qrouter, most of the run, takes about
+# half the time), checked against what must hold of any sound layout, not against figures the
+# run printed before:
 #   - magic DRC 0 errors, netgen LVS clean, every routed net annotated, 0 OpenSTA SPEF warnings;
 #   - a positive post-route slack at 250 MHz, and the post-route Fmax no higher than the same
 #     netlist's without wires (wires only add load and delay);
@@ -14,18 +17,18 @@ src=$2
 for t in qflow:qflow graywolf:graywolf qrouter:qrouter magic:magic netgen-lvs:netgen-lvs \
   sta:opensta jq:jq python3:python3; do
   if ! command -v "${t%%:*}" >/dev/null; then
-    echo "layout_sphere: ${t%%:*} is missing (Debian package ${t#*:}; scripts/setup installs it)"
+    echo "layout_small_unit: ${t%%:*} is missing (Debian package ${t#*:}; scripts/setup installs it)"
     exit 77
   fi
 done
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 status=0
-"$build/shadesim" layout "$src/scenes/sphere.json" --cache "$build/area-cache" \
+"$build/shadesim" layout --config "$src/tests/data/layout/small_unit.json" --cache "$build/area-cache" \
   --json "$out/l.json" || status=$?
-[ -f "$out/l.json" ] || { echo "layout_sphere: no JSON (exit $status)"; exit 1; }
+[ -f "$out/l.json" ] || { echo "layout_small_unit: no JSON (exit $status)"; exit 1; }
 fail() {
-  echo "layout_sphere: $*"
+  echo "layout_small_unit: $*"
   exit 1
 }
 q() { jq -r "$1" "$out/l.json"; }
@@ -40,7 +43,7 @@ j = json.load(open(sys.argv[1]))
 t = j["timing"]
 def check(ok, what):
     if not ok:
-        sys.exit("layout_sphere: " + what)
+        sys.exit("layout_small_unit: " + what)
 check(abs(j["clock_mhz"] - 250) < 1e-9, "not timed at 250 MHz: %s" % j["clock_mhz"])
 check(t["worst_slack_ns"] > 0, "post-route slack %s ns at 250 MHz" % t["worst_slack_ns"])
 check(t["fmax_mhz"] <= t["no_wires_fmax_mhz"] + 1e-9,
@@ -55,6 +58,6 @@ png = open(j["files"]["png"], "rb").read(24)
 check(png[:8] == b"\x89PNG\r\n\x1a\n" and png[12:16] == b"IHDR", "not a PNG")
 w, h = struct.unpack(">II", png[16:24])
 check(200 <= w <= 4000 and 200 <= h <= 4000, "PNG of %d x %d" % (w, h))
-print("layout_sphere: DRC 0, LVS clean, slack %.3f ns, %.1f MHz, PNG %d x %d"
+print("layout_small_unit: DRC 0, LVS clean, slack %.3f ns, %.1f MHz, PNG %d x %d"
       % (t["worst_slack_ns"], t["fmax_mhz"], w, h))
 PY
