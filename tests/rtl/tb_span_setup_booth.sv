@@ -8,6 +8,7 @@
 // fail.
 module tb_span_setup_booth;
   localparam int TW = 10;  // t's bits: every value, read as signed
+  localparam int ShownErrors = 5;  // a broken unit stops here: the rest would fail alike
   int errors = 0;
   int checked = 0;
 
@@ -45,10 +46,12 @@ module tb_span_setup_booth;
           if (got_wrap_s != TW'(want) || got_wrap_p != TW'(want) ||
               got_exact_s != (PW + 3)'(want) || got_exact_p != PW'(want)) begin
             errors = errors + 1;
-            if (errors <= 5)
-              $display({"booth: OFS_W=%0d t=%0d d=%0d: want %0d, wrap mul_s %0d mul_p %0d, ",
-                        "exact mul_s %0d mul_p %0d"}, w, t, d, want, $signed(got_wrap_s),
-                       $signed(got_wrap_p), $signed(got_exact_s), $signed(got_exact_p));
+            $display({"booth: OFS_W=%0d t=%0d d=%0d: want %0d, wrap mul_s %0d mul_p %0d, ",
+                      "exact mul_s %0d mul_p %0d"}, w, t, d, want, $signed(got_wrap_s),
+                     $signed(got_wrap_p), $signed(got_exact_s), $signed(got_exact_p));
+            if (errors == ShownErrors)
+              view_check_verdict("booth", checked, "products checked up to that mismatch",
+                                 errors);
           end
         end
       end
