@@ -31,6 +31,10 @@ set(SHADESIM_TEST_COSTS
   "^icarus_model_schlick_pipe_d$"                                       14
   "^ExploreCli\\.JsonAndCsvAreWellFormedAndAgree$"                      13
   "^regress_slurm_job_array$"                                           12
+  "^bench_script_bench_new_config$"                                       25
+  "^bench_script_bench_cosim_ab$"                                         15
+  "^bench_script_bench_cycles$"                                           15
+  "^bench_script_bench_explore$"                                          14
   "^bench_script_bench$"                                                12
   "^bench_script_bench_cosim$"                                          2
   "^fuzz_mesh_regressions$"                                             11
