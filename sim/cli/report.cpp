@@ -37,7 +37,7 @@ void register_report(CLI::App& app, int& exit_code) {
          "first produce the inputs on the shipped scenes (run from the project folder), into "
          "out/:\n"
          "all, or a comma list of render, cycles, area (every scenes/*.json; area synthesises\n"
-         "each own unit: minutes a unit the first time), spec-error, explore "
+         "each own unit: 38 minutes for the five the first time), spec-error, explore "
          "(scenes/sphere.json),\n"
          "regress (needs Verilator; minutes the first time), layout (scenes/sphere.json only; "
          "about\n"

@@ -272,9 +272,9 @@ std::string report_shape_problem(ReportKind kind, const nlohmann::json& doc) {
   if (bad.empty()) return "";
   return std::string("has the keys of ") + writer_of(kind) + " but " + bad + " (" +
          (area ? "shadesim area --json: gate_equivalents, and liberty's area_um2, period_ns, "
-                 "fmax_mhz and constraints, as docs/area.md lists them"
+                 "fmax_mhz and constraints, as docs/report.md lists them"
                : "shadesim layout --json: die.area_um2, timing.fmax_mhz, drc.errors, lvs.clean, "
-                 "as docs/layout.md and docs/report.md list them") +
+                 "as docs/report.md lists them") +
          ")";
 }
 
