@@ -28,6 +28,7 @@ set(SHADESIM_TEST_COSTS
   "^Area\\.TableRamBitsAreApartFromGateEquivalents$"                    15
   "^regress_shipped_scenes$"                                            15
   "^fuzz_unit_config$"                                                  14
+  "^report_page$"                                                       15
   "^icarus_model_schlick_pipe_d$"                                       14
   "^ExploreCli\\.JsonAndCsvAreWellFormedAndAgree$"                      13
   "^regress_slurm_job_array$"                                           12

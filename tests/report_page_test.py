@@ -3,10 +3,15 @@
 
   tests/report_page_test.py SHADESIM SOURCE_DIR WORK_DIR
 
-Makes small inputs itself: render and cycles of scenes/sphere.json, a short spec-error run, and
-hand-written explore, regress and render --all-units JSON in their commands' formats (the first
-two need Yosys or the RTL, minutes, which this test does not spend), a unit configuration and a
-JUnit file (both listed as not read, with why). Writes the page, loads it in Debian's chromium
+Makes small inputs itself: render and cycles of scenes/sphere.json (on the unit
+tests/data/report/sphere_unit.json), a short spec-error run, and hand-written explore, regress
+and render --all-units JSON in their commands' formats (the first two need Yosys or the RTL,
+minutes, which this test does not spend), a unit configuration and a JUnit file (both listed as
+not read, with why). The silicon inputs are hand-written too (tests/data/report: area and layout
+--json of that unit, with a stand-in layout PNG, and an area --json of another unit without a
+scene; synthesis and layout take minutes): the Silicon section must put them beside the render's
+error and the cycles, embed the PNG, judge the clock against the guard band, and say what is
+missing. Writes the page, loads it in Debian's chromium
 (--headless) and asserts that the screenshot is not blank (pixel spread and colours, decoded with
 matplotlib), that the console logged no error, and that every section heading, the embedded
 images, the failure's replay command, the cycles breakdown, the verdict line (FAIL: 1 of 2
@@ -14,6 +19,7 @@ regression runs failed) and the heat map's colour scale are in the DOM. First it
 the console check itself on a page with a script error, so the check can fail. Then: a report
 without inputs says so in every section and names the folder; a malformed input is named.
 """
+import base64
 import json
 import os
 import re
@@ -22,7 +28,8 @@ import subprocess
 import sys
 
 SECTIONS = ["Inputs", "Scenes: model, reference, error", "Specular units: error against cost",
-            "Width exploration", "Cycles per pixel", "Regression", "Tool versions"]
+            "Width exploration", "Cycles per pixel", "Silicon: area, clock, energy, layout", "Regression",
+            "Tool versions"]
 failures = []
 
 
@@ -61,6 +68,54 @@ def not_blank(png):
     return float(img.std()), colours
 
 
+def row_cells(dom, first_cell):
+    """The cells of the table row whose first cell is first_cell, or None."""
+    m = re.search(r"<tr><td>" + re.escape(first_cell) + r"</td>(.*?)</tr>", dom)
+    return re.findall(r"<td>(.*?)</td>", m.group(1)) if m else None
+
+
+def kv(dom, start, heading):
+    """The value of a key/value row after position start, or None."""
+    m = re.compile(r"<tr><th>" + re.escape(heading) + r"</th><td>(.*?)</td></tr>").search(dom, start)
+    return m.group(1) if m else None
+
+
+def check_silicon(dom, sphere, data):
+    """The Silicon section against the hand-written area and layout JSON (values typed in here)."""
+    part = dom[dom.find('id="silicon'):]
+    part = part[:part.find("</section>")]
+    with open(os.path.join(sphere, "render.json")) as f:
+        max_lsb = json.load(f)["error"]["max_code_lsb"]
+    # Summary columns: unit, max LSB, cycles/px, GE, um^2, Fmax, clock, pJ/px, die, util, post Fmax,
+    # DRC, LVS. Sphere's max LSB is the render's, matched to the area JSON by the unit's config.
+    row = row_cells(part, "the unit of sphere")
+    check(row is not None and row[0] == str(max_lsb) and row[1] != "-",
+          f"sphere's unit row has the render's max error ({max_lsb} LSB) and the cycles/px: {row}")
+    # Typed from tests/data/report/sphere_*.json; 351.2 MHz less 5 % is 333.6 >= 250, 0.555 is 55.5 %.
+    check(row is not None and row[2:] == ["3090", "74861", "351.2", "met 250 MHz", "134.8", "0.1395",
+                                          "55.5 %", "331.3", "0", "clean"],
+          f"sphere's unit row: GE, um^2, Fmax, met, pJ/px, die, utilisation, post-route Fmax, DRC, LVS: {row}")
+    sphere_at = part.find("<h3>the unit of sphere</h3>")
+    check(sphere_at >= 0, "sphere's unit has its own details")
+    for heading, want in [("clock uncertainty (ns)", "0.2"), ("guard band", "5 %"), ("inputs driven by", "BUFX2"),
+                          ("wire length (um)", "101969"), ("vias", "11897"), ("core area (um^2)", "134912"),
+                          ("LVS (netgen)", "clean (Circuits match uniquely.)"), ("DRC errors (magic)", "0"),
+                          ("Fmax, same netlist without wires (MHz)", "351.2")]:
+        got = kv(part, sphere_at, heading)
+        check(got == want, f"sphere's unit: {heading} = {want} (got {got})")
+    with open(os.path.join(data, "sphere_layout.png"), "rb") as f:
+        png = base64.b64encode(f.read()).decode()
+    check('src="data:image/png;base64,' + png + '"' in part, "the layout's PNG is embedded in the Silicon section")
+    # The other unit: no scene, no layout; 256.4 MHz less 5 % is 243.6, under 250.
+    row = row_cells(part, "unit specular_unit.json")
+    check(row is not None and row[:2] == ["-", "-"] and row[5] == "missed 250 MHz" and row[6:] == ["-"] * 6,
+          f"the other unit: no error, no cycles, misses the clock with the guard band, no layout: {row}")
+    other = part[part.find("<h3>unit specular_unit.json</h3>"):sphere_at if sphere_at > 0 else None]
+    check("no layout --json given" in other and "no render --json of this unit" in other and
+          "energy: not in this area --json" in other, "the other unit says what is missing")
+    check("243.6 MHz after the 5 % guard band" in other, "the other unit's clock verdict gives its margin")
+
+
 def main():
     shadesim, src, work = sys.argv[1], sys.argv[2], os.path.abspath(sys.argv[3])
     shutil.rmtree(work, ignore_errors=True)
@@ -75,10 +130,14 @@ def main():
     check(bool(console), "the console check sees a script error on a page that has one")
 
     sphere = os.path.join(inputs, "sphere")
-    r = run([shadesim, "render", os.path.join(src, "scenes/sphere.json"), "--out", sphere,
+    data = os.path.join(src, "tests", "data", "report")
+    # The unit the hand-written area and layout JSON describe: render and cycles run on it.
+    unit = os.path.join(data, "sphere_unit.json")
+    r = run([shadesim, "render", os.path.join(src, "scenes/sphere.json"), "--config", unit, "--out", sphere,
              "--json", os.path.join(sphere, "render.json"), "-q"])
     check(r.returncode == 0, "render scenes/sphere.json --json: " + r.stderr.strip())
-    r = run([shadesim, "cycles", os.path.join(src, "scenes/sphere.json"), "--json", os.path.join(sphere, "cycles.json")])
+    r = run([shadesim, "cycles", os.path.join(src, "scenes/sphere.json"), "--config", unit,
+             "--json", os.path.join(sphere, "cycles.json")])
     check(r.returncode == 0, "cycles scenes/sphere.json --json: " + r.stderr.strip())
     r = run([shadesim, "spec-error", "--exponents", "20,60,200", "--points", "16", "--no-papers",
              "--json", os.path.join(inputs, "spec-error.json")])
@@ -116,8 +175,10 @@ def main():
                    "units": [{"unit": "wpow", "configuration": "wpow m=16 B=16", "max_code_lsb": 2,
                               "mean_code_lsb": 0.22, "psnr_db": 52.8, "table_load_cycles": 0}]}, f)
 
+    silicon = [os.path.join(data, f) for f in ("sphere_area.json", "sphere_layout.json",
+                                               "specular_area_no_scene.json")]
     page_dir = os.path.join(work, "page")
-    r = run([shadesim, "report", "--out", page_dir, inputs])
+    r = run([shadesim, "report", "--out", page_dir, inputs] + silicon)
     print(r.stdout)
     check(r.returncode == 0, f"report exits 0 on good inputs (got {r.returncode}; {r.stderr.strip()})")
     html_path = os.path.join(page_dir, "index.html")
@@ -133,7 +194,8 @@ def main():
     headings = re.findall(r"<h2>(.*?)</h2>", dom)
     for s in SECTIONS:
         check(s in headings, f"section '{s}' in the DOM")
-    check(dom.count('src="data:image/png;base64,') >= 3, "render image and both plots are embedded in the DOM")
+    check(dom.count('src="data:image/png;base64,') >= 4,
+          "render image, both plots and the layout picture are embedded in the DOM")
     # Headings in words, not JSON keys; no cycles per pixel for the run that stopped early.
     check(re.search(r"<th>\w+_\w+", dom) is None, "no table heading is a raw JSON key (snake_case)")
     failing_row = re.search(r"<tr>(?:<td>[^<]*</td>)*?<td>mismatch</td>.*?</tr>", dom)
@@ -162,6 +224,8 @@ def main():
     check("junit.xml" in dom and "JUnit XML is not read" in dom, "a JUnit file is listed with where its runs are read")
     check("specular: every specular unit" in dom and "wpow m=16 B=16" in dom, "render --all-units's table is on the page")
 
+    check_silicon(dom, sphere, data)
+
     # Nothing to read: every section says so, and the folder is named.
     empty = os.path.join(work, "empty")
     os.makedirs(empty)
@@ -170,7 +234,7 @@ def main():
           "an empty folder: exit 1, the folder named (" + r.stdout.strip().replace("\n", " | ") + ")")
     with open(os.path.join(work, "page-empty", "index.html")) as f:
         empty_html = f.read()
-    check(empty_html.count("No input") == 5, f"each of the 5 report sections says it has no input "
+    check(empty_html.count("No input") == 6, f"each of the 6 report sections says it has no input "
           f"({empty_html.count('No input')})")
 
     # A malformed input is named, with what was expected.
@@ -180,6 +244,23 @@ def main():
     r = run([shadesim, "report", "--out", os.path.join(work, "page-broken"), broken])
     check(r.returncode == 1 and broken + ": not valid JSON" in r.stdout and "expected the JSON of" in r.stdout,
           "a malformed file: exit 1, named, with what was expected")
+
+    # A layout --json with a figure of the wrong type and one missing: named, with what was
+    # expected, exit 1, and the page still written.
+    malformed = os.path.join(data, "layout_malformed.json")
+    page_bad = os.path.join(work, "page-malformed")
+    r = run([shadesim, "report", "--out", page_bad, malformed])
+    check(r.returncode == 1 and malformed + ": has the keys of layout --json" in r.stdout and
+          "timing.fmax_mhz is string, expected a number" in r.stdout and
+          "lvs.clean is missing, expected true or false" in r.stdout,
+          "a malformed layout --json: exit 1, named, the fields and what was expected (" +
+          r.stdout.strip().replace("\n", " | ") + ")")
+    bad_html = os.path.join(page_bad, "index.html")
+    with open(bad_html) if os.path.exists(bad_html) else open(os.devnull) as f:
+        bad_dom = f.read()
+    inputs_part = bad_dom[bad_dom.find('id="inputs"'):bad_dom.find('id="scenes')]
+    check("layout_malformed.json" in inputs_part and "timing.fmax_mhz is string" in inputs_part,
+          "the malformed layout --json is listed under Inputs on the page written anyway")
 
     print(f"\nreport_page_test: {len(failures)} failure(s)")
     return 1 if failures else 0

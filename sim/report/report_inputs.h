@@ -10,7 +10,16 @@
 
 namespace shadesim {
 
-enum class ReportKind { kRender, kRenderUnits, kSpecError, kExplore, kCycles, kRegress };
+enum class ReportKind {
+  kRender,
+  kRenderUnits,
+  kSpecError,
+  kExplore,
+  kCycles,
+  kRegress,
+  kArea,
+  kLayout
+};
 
 // The command whose --json wrote a report of this kind, e.g. "render --json".
 const char* writer_of(ReportKind kind);
@@ -37,6 +46,11 @@ struct ReportInputs {
 
 // What kind of report a parsed JSON document is, from its keys; empty when none.
 std::optional<ReportKind> classify_report(const nlohmann::json& doc);
+
+// Why a report of this kind cannot be shown (a figure the page reads is there but of the wrong
+// type, or a required one is missing), naming the field and what was expected; empty when it can.
+// Only the silicon reports are checked this deeply: the page reads their figures one by one.
+std::string report_shape_problem(ReportKind kind, const nlohmann::json& doc);
 
 // Reads every path: a file is read and classified; a folder contributes its *.json files and
 // those one folder down (out/<scene>/render.json, out/regress/regress.json; deeper files such as
