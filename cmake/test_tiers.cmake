@@ -33,6 +33,7 @@ set(SHADESIM_TIER_RULES
   "^(plot_colours|cpp_format|rtl_line_length)$"                     quick
   "^python_lint(_self_test)?$"                                     quick
   "^architecture_folders(_self_test)?$"                             quick
+  "^tool_script_literals(_self_test)?$"                             quick
   "^mutate_rtl_self_test$"                                          quick
   "^check_commits_self_test$"                                      quick
   "^ci_schedule_self_test$"                                         quick

@@ -7,7 +7,8 @@
 // transistors; Yosys 0.23's CMOS costs (its cost.h): NOT 2, NAND/NOR 4, AND/OR 6, XOR/XNOR/MUX 12,
 // a plain flip-flop 16, other flip-flops nothing; every flip-flop 6 GE), shadesim area's GE against
 // the same formula applied by this test to a direct Yosys stat, and a LUT unit's table RAM bits
-// against 2^A x B.
+// against 2^A x B. The tools' script files: read without their comment lines, filled in, and a
+// missing one named.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -22,7 +23,9 @@
 #include <regex>
 #include <sstream>
 
+#include "sim/eda/common/build_paths.h"
 #include "sim/eda/common/rtl_files.h"
+#include "sim/eda/common/tool_script.h"
 #include "sim/engines/area_report.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/eda_tools.h"
@@ -398,6 +401,28 @@ TEST(Area, NextpnrCriticalPathIsTheLastReportsSourceAndSink) {
   EXPECT_EQ(ice40_flow::read_critical_path(log),
             "net u_unit.spec_q[3] -> net u_unit.prod[0] (1.3 ns logic, 2.1 ns routing)");
   EXPECT_EQ(ice40_flow::read_critical_path("Info: Max frequency for clock 'c': 9 MHz\n"), "");
+}
+
+// The scripts beside the drivers reach the tools as commands only; a missing one is named.
+TEST(Area, ToolScriptsAreReadWithoutCommentsAndAMissingOneIsNamed) {
+  EXPECT_EQ(script_commands("# what it does\n  # indented\nsynth -top t\n\ntee -o x.json stat\n"),
+            "synth -top t\n\ntee -o x.json stat\n");
+  EXPECT_EQ(fill_placeholders("a @W@/x @W@/y @L@", {{"@W@", "/tmp/w"}, {"@L@", "L"}}),
+            "a /tmp/w/x /tmp/w/y L");
+  // A value holding its own field is filled in once, not again and again.
+  EXPECT_EQ(fill_placeholders("@W@ @W@", {{"@W@", "[@W@]"}}), "[@W@] [@W@]");
+  // flat.ys's first command, as this test's own hand-written Yosys run has it (above).
+  const std::string flat = tool_script("sim/eda/yosys/flat.ys");
+  EXPECT_EQ(flat.rfind("synth -flatten -top shade_unit\n", 0), 0u) << flat;
+  EXPECT_EQ(flat.find('#'), std::string::npos) << flat;
+  try {
+    tool_script("sim/eda/yosys/no_such_script.ys");
+    ADD_FAILURE() << "a missing script was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(source_dir() + "/sim/eda/yosys/no_such_script.ys"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(Area, BadInputGivesAClearError) {

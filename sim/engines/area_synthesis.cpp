@@ -53,10 +53,10 @@ std::string area_key(const FlowInputs& in, bool breakdown, bool pnr,
     h.add(read_text_file(f.string()));
   }
   h.add(in.yosys_version);
-  h.add(generic_flow::kFlatScript);
-  h.add(ice40_flow::kSynthScript);
-  h.add(generic_flow::kMemoryScript);
-  if (breakdown) h.add(generic_flow::kBreakdownScript);
+  h.add(generic_flow::flat_script());
+  h.add(ice40_flow::synth_script());
+  h.add(generic_flow::memory_script());
+  if (breakdown) h.add(generic_flow::breakdown_script());
   if (pnr) {
     h.add(nextpnr_version);
     ice40_flow::add_place_and_route_recipe(h);
@@ -162,12 +162,12 @@ SynthesisJob yosys_job(const FlowInputs& in, const fs::path& work, const std::st
 std::vector<SynthesisJob> synthesis_jobs(const FlowInputs& in, const fs::path& work,
                                          const AreaOptions& o) {
   std::vector<SynthesisJob> jobs;
-  jobs.push_back(yosys_job(in, work, "flat", generic_flow::kFlatScript, "flat synthesis"));
-  jobs.push_back(yosys_job(in, work, "ice40", ice40_flow::kSynthScript, "synth_ice40"));
-  jobs.push_back(yosys_job(in, work, "memory", generic_flow::kMemoryScript, "table memories"));
+  jobs.push_back(yosys_job(in, work, "flat", generic_flow::flat_script(), "flat synthesis"));
+  jobs.push_back(yosys_job(in, work, "ice40", ice40_flow::synth_script(), "synth_ice40"));
+  jobs.push_back(yosys_job(in, work, "memory", generic_flow::memory_script(), "table memories"));
   if (o.breakdown) {
     jobs.push_back(
-        yosys_job(in, work, "breakdown", generic_flow::kBreakdownScript, "per-module synthesis"));
+        yosys_job(in, work, "breakdown", generic_flow::breakdown_script(), "per-module synthesis"));
   }
   return jobs;
 }

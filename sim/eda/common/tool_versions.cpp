@@ -11,7 +11,7 @@ namespace {
 
 // The first line a command prints that holds a version number (d.d; else the first non-empty
 // line: wrappers such as Debian's chromium script may print a warning first), or "not found".
-std::string first_line(const std::vector<std::string>& argv) {
+std::string version_line(const std::vector<std::string>& argv) {
   ProcessResult r;
   try {
     r = run_process(argv, "");
@@ -44,16 +44,16 @@ std::vector<std::string> on_path(std::vector<std::string> argv) {
 
 std::vector<ToolVersion> find_tool_versions() {
   return {
-      {"verilator", first_line(on_path({"verilator", "--version"}))},
-      {"g++", first_line(on_path({"g++", "--version"}))},
-      {"yosys", first_line(on_path({"yosys", "-V"}))},
-      {"iverilog", first_line(on_path({"iverilog", "-V"}))},
-      {"systemc", first_line(on_path({"pkg-config", "--modversion", "systemc"}))},
+      {"verilator", version_line(on_path({"verilator", "--version"}))},
+      {"g++", version_line(on_path({"g++", "--version"}))},
+      {"yosys", version_line(on_path({"yosys", "-V"}))},
+      {"iverilog", version_line(on_path({"iverilog", "-V"}))},
+      {"systemc", version_line(on_path({"pkg-config", "--modversion", "systemc"}))},
       {"python3 + matplotlib (scripts/plot's /usr/bin/python3)",
-       first_line(on_path({"/usr/bin/python3", "-c",
-                           "import sys, matplotlib; print(sys.version.split()[0], 'matplotlib', "
-                           "matplotlib.__version__)"}))},
-      {"chromium", first_line(on_path({"chromium", "--version"}))},
+       version_line(on_path({"/usr/bin/python3", "-c",
+                             "import sys, matplotlib; print(sys.version.split()[0], 'matplotlib', "
+                             "matplotlib.__version__)"}))},
+      {"chromium", version_line(on_path({"chromium", "--version"}))},
       {"shadesim built with", std::string("C++ ") + __VERSION__},
   };
 }

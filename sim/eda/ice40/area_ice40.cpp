@@ -8,6 +8,7 @@
 
 #include "model/digit_grouping.h"
 #include "model/text_file.h"
+#include "sim/eda/common/tool_script.h"
 #include "sim/eda/yosys/yosys_stat.h"
 
 namespace shadesim::ice40_flow {
@@ -24,13 +25,9 @@ constexpr const char* kPnrArgs = "--hx8k --package ct256 --freq 60 --timing-allo
 // shifts one input pin into every input port and folds every output port into one output pin
 // through a chain of registers, so no I/O count limits placement (a four-word command port
 // alone is 256 pins, more than an HX8K has) and every output still matters. Only the unit's
-// own logic lies between two registers of the shell on a path longer than one LUT.
-constexpr const char* kShellScript =
-    "synth_ice40 -top fmax_shell -run :check\n"
-    "hierarchy -check\n"
-    "check -noinit\n"
-    "blackbox =A:whitebox\n"
-    "write_json @WORK@/shell.json\n";
+// own logic lies between two registers of the shell on a path longer than one LUT. Its Yosys
+// script is fmax_shell.ys beside this file.
+std::string fmax_shell_script() { return tool_script("sim/eda/ice40/fmax_shell.ys"); }
 constexpr const char* kShellVersion = "fmax_shell v2";
 
 int64_t parameter_value(const std::vector<VerilogParameter>& ps, const char* name) {
@@ -116,20 +113,11 @@ void check_fit(Ice40Area& a) {
 
 }  // namespace
 
-// synth_ice40's own steps up to its `check`, then that step without `autoname`, which only names
-// wires (nextpnr does not need the names) and took most of Yosys's 14.6 minutes and 15 GB on
-// multi's unit with 17-bit offsets.
-const char* const kSynthScript =
-    "synth_ice40 -top shade_unit -run :check\n"
-    "hierarchy -check\n"
-    "tee -q -o @WORK@/ice40_stat.json stat -json\n"
-    "check -noinit\n"
-    "blackbox =A:whitebox\n"
-    "write_json @WORK@/ice40.json\n";
+std::string synth_script() { return tool_script("sim/eda/ice40/synth_ice40.ys"); }
 
 void add_place_and_route_recipe(ContentHash& key) {
   key.add(kPnrArgs);
-  key.add(kShellVersion).add(kShellScript);
+  key.add(kShellVersion).add(fmax_shell_script());
 }
 
 void read_synthesis(const fs::path& work, Ice40Area& a) {
@@ -187,8 +175,8 @@ bool place_and_route(const FlowInputs& in, const std::string& nextpnr,
   std::vector<fs::path> shell_files = in.files;
   shell_files.push_back(work / "fmax_shell.sv");
   const fs::path script = work / "shell.ys";
-  flow_tools::write_atomically(script,
-                               flow_tools::yosys_script(shell_files, "", kShellScript, work));
+  flow_tools::write_atomically(
+      script, flow_tools::yosys_script(shell_files, "", fmax_shell_script(), work));
   flow_tools::run_tool({in.yosys, "-q", "-l", (work / "shell.log").string(), script.string()},
                        work / "shell.out", "yosys synth_ice40 of the unit in its Fmax shell",
                        progress);

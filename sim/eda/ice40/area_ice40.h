@@ -33,8 +33,9 @@ struct Ice40Area {
 
 namespace ice40_flow {
 
-// The synth_ice40 Yosys flow (after read_verilog and chparam); it writes @WORK@/ice40_stat.json.
-extern const char* const kSynthScript;
+// The synth_ice40 Yosys flow (after read_verilog and chparam): the commands of synth_ice40.ys
+// beside this header; it writes @WORK@/ice40_stat.json.
+std::string synth_script();
 // Adds to a cache key everything of place and route the figures depend on besides nextpnr's
 // version (its arguments, the shell and its script; the fields of the keys before the split).
 void add_place_and_route_recipe(ContentHash& key);

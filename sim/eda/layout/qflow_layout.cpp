@@ -12,6 +12,7 @@
 #include "sim/eda/common/build_paths.h"
 #include "sim/eda/common/content_hash.h"
 #include "sim/eda/common/flow_tools.h"
+#include "sim/eda/common/tool_script.h"
 #include "sim/eda/layout/layout_png.h"
 #include "sim/eda/layout/layout_reports.h"
 #include "sim/eda/layout/spef.h"
@@ -26,33 +27,11 @@ using flow_tools::write_atomically;
 
 constexpr const char* kScripts[] = {"import.ys", "project_vars.sh", "magic_drc.tcl",
                                     "layout_flow.sh"};
-// The post-route report: input pins too, so each wire's delay (driver pin to load pin) shows.
-constexpr const char* kPostRouteReport =
-    "report_checks -path_delay max -fields {capacitance slew net input_pins} -digits 3\n"
-    "report_worst_slack -digits 3\n";
+// The post-route report (its header says what it asks for).
+std::string post_route_report() { return tool_script("sim/eda/layout/post_route_report.tcl"); }
 
 std::string scripts_dir(const LayoutFlowOptions& o) {
   return o.scripts_dir.empty() ? source_dir() + "/sim/eda/layout" : o.scripts_dir;
-}
-
-std::string substitute(std::string text, const std::map<std::string, std::string>& values) {
-  for (const auto& [from, to] : values) {
-    for (size_t at; (at = text.find(from)) != std::string::npos;) text.replace(at, from.size(), to);
-  }
-  return text;
-}
-
-// A script's text less its comment lines ('#' first): what the key hashes, so that rewording a
-// comment does not throw the cache away.
-std::string without_comments(const std::string& text) {
-  std::istringstream in(text);
-  std::string out;
-  for (std::string line; std::getline(in, line);) {
-    const auto first = line.find_first_not_of(" \t");
-    if (first != std::string::npos && line[first] == '#') continue;
-    out += line + '\n';
-  }
-  return out;
 }
 
 // The qflow project: source/ with the netlist, import.ys (in synthesis), project_vars.sh and
@@ -73,11 +52,11 @@ void prepare_project(const LibertyReport& lib, const LayoutFlowOptions& o, const
       {"@GDS@", (work / "layout" / "shade_unit.gds").string()}};
   const std::string dir = scripts_dir(o);
   write_atomically(work / "synthesis" / "import.ys",
-                   substitute(read_text_file(dir + "/import.ys"), values));
+                   fill_placeholders(read_text_file(dir + "/import.ys"), values));
   write_atomically(work / "project_vars.sh",
-                   substitute(read_text_file(dir + "/project_vars.sh"), values));
+                   fill_placeholders(read_text_file(dir + "/project_vars.sh"), values));
   write_atomically(work / "magic_drc.tcl",
-                   substitute(read_text_file(dir + "/magic_drc.tcl"), values));
+                   fill_placeholders(read_text_file(dir + "/magic_drc.tcl"), values));
 }
 
 // One step through layout_flow.sh; throws naming the step's log when `must_exist` is missing.
@@ -117,7 +96,7 @@ std::string run_sta(const LayoutTools& tools, const LibertyReport& lib, const fs
                     const fs::path& spef, double period_ns, const fs::path& tcl) {
   write_atomically(tcl, sta_setup_tcl(lib.liberty_path, netlist.string(), period_ns,
                                       lib.constraints, spef.empty() ? "" : spef.string()) +
-                            kPostRouteReport);
+                            post_route_report());
   const fs::path log = fs::path(tcl).replace_extension(".out");
   flow_tools::run_tool({tools.sta, "-no_splash", "-exit", tcl.string()}, log,
                        "layout OpenSTA " + tcl.stem().string(), nullptr);
@@ -238,9 +217,9 @@ LayoutTools find_layout_tools(const LayoutFlowOptions& o) {
 std::string layout_key(const LibertyReport& lib, const LayoutFlowOptions& o,
                        const LayoutTools& tools) {
   ContentHash h;
-  h.add("shadesim-layout-v1").add(lib.key).add(tools.versions).add(kPostRouteReport);
+  h.add("shadesim-layout-v1").add(lib.key).add(tools.versions).add(post_route_report());
   h.add(sta_read_tcl("", ""));  // lib.key covers the constraints
-  for (const char* s : kScripts) h.add(without_comments(read_text_file(scripts_dir(o) + "/" + s)));
+  for (const char* s : kScripts) h.add(script_commands(read_text_file(scripts_dir(o) + "/" + s)));
   std::ostringstream opts;
   opts << o.density << ' ' << o.period_ns << ' ' << o.picture_side << ' ' << o.tech_dir;
   h.add(opts.str()).add(read_text_file(o.tech_dir + "/osu018_stdcells.lef"));

@@ -12,6 +12,7 @@
 
 #include "model/text_file.h"
 #include "sim/eda/common/process.h"
+#include "sim/eda/common/tool_script.h"
 #include "sim/eda/power/power_netlist.h"
 
 namespace shadesim {
@@ -155,35 +156,16 @@ std::string number(double v) {
   return os.str();
 }
 
+// The power scripts beside this file; their headers say what each does.
 std::string script_head(const std::string& liberty, const std::string& netlist,
                         const std::string& top, double clock_mhz, const PowerOptions& o) {
-  std::ostringstream s;
-  s << "read_liberty {" << liberty << "}\nread_verilog {" << netlist << "}\nlink_design " << top
-    << "\ncreate_clock -name clk -period " << number(1000.0 / clock_mhz) << " [get_ports "
-    << pattern(o.clock_port) << "]\n"
-    << "set_input_delay 0 -clock clk [delete_from_list [all_inputs] [get_ports "
-    << pattern(o.clock_port) << "]]\nset_output_delay 0 -clock clk [all_outputs]\n";
-  return s.str();
+  return fill_placeholders(tool_script("sim/eda/power/power_setup.tcl"),
+                           {{"@LIBERTY@", liberty},
+                            {"@NETLIST@", netlist},
+                            {"@TOP@", top},
+                            {"@PERIOD@", number(1000.0 / clock_mhz)},
+                            {"@CLOCK@", pattern(o.clock_port)}});
 }
-
-// Procedures that count what they could not find (a pin or port the netlist reader saw must
-// exist in OpenSTA's view of the same netlist).
-const char* kScriptProcs =
-    "set shadesim_missing 0\n"
-    "proc shadesim_pin {name activity duty} {\n"
-    "  set p [get_pins -quiet $name]\n"
-    "  if {[llength $p] == 1} { sta::set_power_pin_activity $p $activity $duty } else {\n"
-    "    incr ::shadesim_missing; puts \"shadesim: no pin $name\" }\n"
-    "}\n"
-    "proc shadesim_port {name activity duty} {\n"
-    "  set p [get_ports -quiet $name]\n"
-    "  if {[llength $p] == 1} { sta::set_power_input_port_activity $p $activity $duty } else {\n"
-    "    incr ::shadesim_missing; puts \"shadesim: no port $name\" }\n"
-    "}\n";
-
-const char* kScriptTail =
-    "report_power -digits 6\n"
-    "puts \"shadesim: missing $shadesim_missing\"\n";
 
 struct Annotation {
   std::string script;
@@ -374,11 +356,12 @@ Annotation annotate_scene(const std::string& netlist_v, const std::string& liber
   match_flops(flops, activity, o);
   const std::string power_v = write_power_netlist(netlist_v, top, flops, work / "power_netlist.v");
   Annotation an;
-  an.script = script_head(liberty, power_v, top, clock_mhz, o) + kScriptProcs;
+  an.script = script_head(liberty, power_v, top, clock_mhz, o) +
+              tool_script("sim/eda/power/power_procs.tcl");
   annotate_constants(n, cells, an);
   annotate_flops(flops, n, cells, activity, o, an);
   annotate_inputs(n, activity, o, an);
-  an.script += kScriptTail;
+  an.script += tool_script("sim/eda/power/power_report.tcl");
   return an;
 }
 
@@ -414,11 +397,11 @@ PowerReport netlist_power(const std::string& netlist_v, const std::string& liber
   const std::string scene_out = run_sta(sta, work / "power.tcl", an.script);
   check_nothing_missing(scene_out, "power.tcl");
   const auto global_run = [&](const char* name, double a) {
-    return parse_report_power(run_sta(sta, work / name,
-                                      script_head(liberty, netlist_v, top, clock_mhz, o) +
-                                          "set_power_activity -global -activity " + number(a) +
-                                          " -duty " + number(o.duty) +
-                                          "\nreport_power -digits 6\n"));
+    return parse_report_power(
+        run_sta(sta, work / name,
+                script_head(liberty, netlist_v, top, clock_mhz, o) +
+                    fill_placeholders(tool_script("sim/eda/power/power_global.tcl"),
+                                      {{"@ACTIVITY@", number(a)}, {"@DUTY@", number(o.duty)}})));
   };
   PowerReport r = report_of(an, activity, clock_mhz, o);
   r.scene = parse_report_power(scene_out);

@@ -10,6 +10,7 @@
 
 #include "model/text_file.h"
 #include "sim/eda/common/content_hash.h"
+#include "sim/eda/common/tool_script.h"
 #include "sim/eda/sta/sta_report.h"
 
 namespace shadesim {
@@ -19,44 +20,13 @@ namespace fs = std::filesystem;
 using flow_tools::write_atomically;
 using Json = nlohmann::json;
 
-// The Yosys flow after read_verilog and chparam. @LIB@: the liberty, @ABC@: the ABC script,
-// @D@: ABC's delay target in ps, @WORK@: the work folder. A table memory (the exponent LUT's
-// mem_q) goes through synth's memory_map like any register array: a register file of the
-// library's flip-flops with its write decoding and read multiplexers, timed like the rest.
-constexpr const char* kLibertyYosys =
-    "synth -flatten -top shade_unit\n"
-    "dfflibmap -liberty @LIB@\n"
-    "abc -D @D@ -liberty @LIB@ -script @ABC@\n"
-    "opt_clean\n"
-    "setundef -zero\n"
-    "splitnets -ports\n"
-    "opt_clean\n"
-    "rename -top shade_unit\n"
-    "write_json @WORK@/liberty_mapped.json\n";
-// ABC: structural choices, delay-oriented mapping to the library, then ABC's own buffering and
-// gate sizing against the same target, and a timing summary in the log. &synch2 (delay-aware
-// synthesis with choices), not dc2: dc2's area rewriting turned Yosys's parallel-prefix adders
-// back into ripple chains, about 4 ns per 24-bit add. Specular's unpipelined unit was 147.0 MHz
-// under dc2 (scripts/silicon-table at c2ac218) and is 168.3 MHz under &synch2 at 4.6 % more
-// area (docs/area.md's table).
-constexpr const char* kAbcScript =
-    "strash\n&get -n\n&fraig -x\n&put\nscorr\nstrash\n&get -n\n&synch2\n&dch -f\n&nf -D @D@\n&put\n"
-    "buffer -p\nupsize -D @D@\ndnsize -D @D@\nstime -p\n";
-constexpr const char* kWriteVerilog =
-    "read_liberty -lib @LIB@\n"
-    "read_json @WORK@/liberty_buffered.json\n"
-    "write_verilog -noattr -noexpr @WORK@/liberty_netlist.v\n";
-constexpr const char* kReportTcl =
-    "report_checks -path_delay max -fields {capacitance slew net} -digits 3\n"
-    "report_worst_slack -digits 3\n";
+// The scripts beside this file; their headers say what each does and which @NAME@ fields it has.
+std::string liberty_map_ys() { return tool_script("sim/eda/sta/liberty_map.ys"); }
+std::string liberty_abc() { return tool_script("sim/eda/sta/liberty.abc"); }
+std::string liberty_write_ys() { return tool_script("sim/eda/sta/liberty_write.ys"); }
+std::string liberty_report_tcl() { return tool_script("sim/eda/sta/liberty_report.tcl"); }
+std::string flip_flop_overhead_tcl() { return tool_script("sim/eda/sta/flip_flop_overhead.tcl"); }
 constexpr const char* kBufferRule = "fanout tree v1: strongest buffer, even groups, clocks left";
-
-std::string liberty_substitute(std::string text, const std::map<std::string, std::string>& values) {
-  for (const auto& [from, to] : values) {
-    for (size_t at; (at = text.find(from)) != std::string::npos;) text.replace(at, from.size(), to);
-  }
-  return text;
-}
 
 // Runs OpenSTA on `tcl`; its errors do not change its exit status, so they are looked for.
 std::string run_opensta_script(const std::string& sta, const fs::path& tcl,
@@ -85,9 +55,9 @@ StaPath flip_flop_overhead(const LibertyRun& run, const PlainFlipFlop& ff, const
   write_atomically(work / "overhead.v", v.str());
   write_atomically(work / "overhead.tcl",
                    sta_read_tcl(run.options.liberty_path, (work / "overhead.v").string()) +
-                       "create_clock -name clk -period " + std::to_string(run.options.period_ns) +
-                       " [get_ports clk_i]\n" + "report_checks -to b0/" + ff.d +
-                       " -path_delay max -fields {capacitance slew net} -digits 3\n");
+                       fill_placeholders(flip_flop_overhead_tcl(),
+                                         {{"@PERIOD@", std::to_string(run.options.period_ns)},
+                                          {"@D_PIN@", ff.d}}));
   const std::string out =
       run_opensta_script(run.sta, work / "overhead.tcl", "OpenSTA flip-flop overhead");
   return worst_path(parse_sta_paths(out, (work / "overhead.out").string()));
@@ -158,10 +128,10 @@ Json map_and_buffer(const LibertyRun& run, const LibertyLibrary& lib, const fs::
       {"@ABC@", (work / "liberty.abc").string()},
       {"@WORK@", work.string()},
       {"@D@", std::to_string(std::llround(r.abc_delay_ps))}};
-  write_atomically(work / "liberty.abc", liberty_substitute(kAbcScript, values));
+  write_atomically(work / "liberty.abc", fill_placeholders(liberty_abc(), values));
   write_atomically(work / "liberty.ys",
                    flow_tools::yosys_script(run.flow.files, run.flow.chparam,
-                                            liberty_substitute(kLibertyYosys, values), work));
+                                            fill_placeholders(liberty_map_ys(), values), work));
   flow_tools::run_tool(
       {run.flow.yosys, "-q", "-l", (work / "liberty.log").string(), (work / "liberty.ys").string()},
       work / "liberty.out", "yosys liberty mapping", nullptr);
@@ -169,7 +139,7 @@ Json map_and_buffer(const LibertyRun& run, const LibertyLibrary& lib, const fs::
   r.buffering = buffer_fanout(netlist, "shade_unit", lib, run.options.max_fanout,
                               (work / "liberty_mapped.json").string());
   write_atomically(work / "liberty_buffered.json", netlist.dump());
-  write_atomically(work / "liberty_write.ys", liberty_substitute(kWriteVerilog, values));
+  write_atomically(work / "liberty_write.ys", fill_placeholders(liberty_write_ys(), values));
   flow_tools::run_tool({run.flow.yosys, "-q", "-l", (work / "liberty_write.log").string(),
                         (work / "liberty_write.ys").string()},
                        work / "liberty_write.out", "yosys write of the buffered netlist", nullptr);
@@ -201,8 +171,8 @@ LibertyRun prepare_liberty_run(const FlowInputs& flow, const LibertyOptions& o) 
   for (const auto& f : flow.files) h.add(f.filename().string()).add(read_text_file(f.string()));
   h.add(flow.yosys_version).add(run.sta_version);
   h.add(read_text_file(run.options.liberty_path));
-  h.add(kLibertyYosys).add(kAbcScript);
-  h.add(kWriteVerilog).add(kReportTcl).add(sta_read_tcl("", "")).add(kBufferRule);
+  h.add(liberty_map_ys()).add(liberty_abc());
+  h.add(liberty_write_ys()).add(liberty_report_tcl()).add(sta_read_tcl("", "")).add(kBufferRule);
   h.add(constraints_template()).add(std::to_string(o.constraints.clock_uncertainty_ns));
   h.add(std::to_string(o.constraints.load_pins));  // the guard band is the caller's comparison
   h.add(std::to_string(o.period_ns)).add(std::to_string(o.max_fanout));
@@ -249,9 +219,9 @@ LibertyReport run_liberty_flow(const LibertyRun& run, const fs::path& work,
   const Json netlist = map_and_buffer(run, lib, work, r);
   read_liberty_area(netlist, lib, (work / "liberty_buffered.json").string(), r);
   const fs::path netlist_v = work / "liberty_netlist.v";
-  write_atomically(
-      work / "liberty_sta.tcl",
-      sta_setup_tcl(r.liberty_path, netlist_v.string(), r.period_ns, r.constraints) + kReportTcl);
+  write_atomically(work / "liberty_sta.tcl",
+                   sta_setup_tcl(r.liberty_path, netlist_v.string(), r.period_ns, r.constraints) +
+                       liberty_report_tcl());
   const std::string out = run_opensta_script(run.sta, work / "liberty_sta.tcl", "OpenSTA timing");
   read_liberty_timing(out, (work / "liberty_sta.out").string(),
                       flip_flop_q_nets(netlist_v.string(), lib), r);
@@ -273,11 +243,8 @@ LibertyReport run_liberty_flow(const LibertyRun& run, const fs::path& work,
 }
 
 std::string sta_read_tcl(const std::string& liberty, const std::string& netlist_v) {
-  std::ostringstream t;
-  t << "read_liberty {" << liberty << "}\n"
-    << "read_verilog {" << netlist_v << "}\n"
-    << "link_design shade_unit\n";
-  return t.str();
+  return fill_placeholders(tool_script("sim/eda/sta/sta_read.tcl"),
+                           {{"@LIBERTY@", liberty}, {"@NETLIST@", netlist_v}});
 }
 
 std::string sta_setup_tcl(const std::string& liberty, const std::string& netlist_v,

@@ -7,6 +7,7 @@
 
 #include "model/text_file.h"
 #include "sim/eda/common/build_paths.h"
+#include "sim/eda/common/tool_script.h"
 
 namespace shadesim {
 namespace {
@@ -26,13 +27,6 @@ const LibertyCell& smallest_buffer(const LibertyLibrary& lib) {
   }
   if (!best) throw std::runtime_error(lib.path + ": library " + lib.name + " has no buffer cell");
   return *best;
-}
-
-std::string filled(std::string text, const std::map<std::string, std::string>& values) {
-  for (const auto& [from, to] : values) {
-    for (size_t at; (at = text.find(from)) != std::string::npos;) text.replace(at, from.size(), to);
-  }
-  return text;
 }
 
 }  // namespace
@@ -64,15 +58,15 @@ std::string constraints_template() {
 
 std::string constraints_tcl(const ResolvedConstraints& c, double period_ns,
                             const std::string& clock) {
-  return filled(constraints_template(),
-                {{"@PERIOD@", fmt::format("{:g}", period_ns)},
-                 {"@CLOCK@", clock},
-                 {"@UNCERTAINTY@", fmt::format("{:g}", c.policy.clock_uncertainty_ns)},
-                 {"@INPUT_DELAY@", fmt::format("{:.4f}", c.input_delay_ns)},
-                 {"@DRIVING_CELL@", c.driving_cell},
-                 {"@DRIVING_PIN@", c.driving_pin},
-                 {"@OUTPUT_DELAY@", fmt::format("{:.4f}", c.output_delay_ns)},
-                 {"@OUTPUT_LOAD@", fmt::format("{:.6f}", c.output_load_pf)}});
+  return fill_placeholders(constraints_template(),
+                           {{"@PERIOD@", fmt::format("{:g}", period_ns)},
+                            {"@CLOCK@", clock},
+                            {"@UNCERTAINTY@", fmt::format("{:g}", c.policy.clock_uncertainty_ns)},
+                            {"@INPUT_DELAY@", fmt::format("{:.4f}", c.input_delay_ns)},
+                            {"@DRIVING_CELL@", c.driving_cell},
+                            {"@DRIVING_PIN@", c.driving_pin},
+                            {"@OUTPUT_DELAY@", fmt::format("{:.4f}", c.output_delay_ns)},
+                            {"@OUTPUT_LOAD@", fmt::format("{:.6f}", c.output_load_pf)}});
 }
 
 std::string describe_constraints(const ResolvedConstraints& c) {

@@ -1,7 +1,7 @@
 // shadesim area's generic flow: the unit flattened and mapped onto 2-input gates and MUXes
 // (generic cells, the CMOS transistor estimate, GE, logic depth), its table memories, and the
-// per-module breakdown. The conventions are in sim/eda/yosys/generic_area.h; the run and the cache
-// in sim/engines/area_synthesis.cpp.
+// per-module breakdown. Its Yosys scripts are the .ys files beside this one; the conventions are in
+// sim/eda/yosys/generic_area.h; the run and the cache in sim/engines/area_synthesis.cpp.
 #include <cmath>
 #include <functional>
 #include <map>
@@ -9,6 +9,7 @@
 
 #include "model/exponent_lut.h"
 #include "model/specular_units.h"
+#include "sim/eda/common/tool_script.h"
 #include "sim/eda/yosys/area_generic.h"
 #include "sim/eda/yosys/yosys_stat.h"
 
@@ -17,46 +18,10 @@ namespace generic_flow {
 
 namespace fs = std::filesystem;
 
-// The Yosys scripts, minus the file list and the chparam arguments (both part of the key);
-// @WORK@ stands for the run's work folder.
-// Flat: the unit as it would be built; flattening lets Yosys drop what a module's neighbour
-// never reads (e.g. the product bits above a wrapping series), so this is the headline figure.
-const char* const kFlatScript =
-    "synth -flatten -top shade_unit\n"
-    "abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX\n"
-    "opt_clean\n"
-    "tee -q -o @WORK@/flat_stat.json stat -json -tech cmos\n"
-    "tee -q -o @WORK@/flat_ltp.txt ltp -noff\n";
-// Table memories: synth's first half (to `fine`, where memory_map would turn them into
-// flip-flops), then a dump of the $mem cells: their SIZE x WIDTH are the RAM bits kept out of GE
-// (area.h). A run of its own: splitting the flat flow's synth at `fine` changes ABC's result by
-// a few cells, and the flat figures must equal one plain synth.
-const char* const kMemoryScript =
-    "synth -flatten -top shade_unit -run :fine\n"
-    "tee -q -o @WORK@/flat_mem.txt dump t:$mem_v2 t:$mem\n";
-// The netlist regress --netlist simulates: the flat flow's own result, written out.
-const char* const kNetlistWrite =
-    "rename -top shade_unit\n"
-    "write_verilog -noattr @WORK@/netlist.v\n";
-// Breakdown: the same flow with the datapath modules kept as modules (their fixed_round /
-// fixed_sat helpers are flattened into them), so stat says where the area goes. Across a kept
-// boundary Yosys cannot drop unread logic, so this total is at least the flat one.
-// `rename -top`: when hierarchy re-derives the chparam'd top (a submodule's ports became known
-// only after its own derivation, as pixel_combine's gate_only_i), the top is left as
-// $paramod...\shade_unit and `-top shade_unit` below would not find it.
-const char* const kBreakdownScript =
-    "hierarchy -top shade_unit\n"
-    "rename -top shade_unit\n"
-    "setattr -mod -set keep_hierarchy 1 *span_setup *series_engine *specular_unit *pixel_combine\n"
-    // shade_unit's control modules (rtl/files.f), each its own row.
-    "setattr -mod -set keep_hierarchy 1 *cmd_decoder *coef_bank *span_queue *material_bank\n"
-    "setattr -mod -set keep_hierarchy 1 *start_bank\n"
-    // (setup_ctrl's one parameter stays in its name: $paramod\setup_ctrl\XY_BITS=...)
-    "setattr -mod -set keep_hierarchy 1 *setup_ctrl* *engine_ctrl *slot_meta *out_reg\n"
-    "synth -flatten -top shade_unit\n"
-    "abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX\n"
-    "opt_clean\n"
-    "tee -q -o @WORK@/breakdown_stat.json stat -json -tech cmos -top shade_unit\n";
+std::string flat_script() { return tool_script("sim/eda/yosys/flat.ys"); }
+std::string memory_script() { return tool_script("sim/eda/yosys/memory.ys"); }
+std::string breakdown_script() { return tool_script("sim/eda/yosys/breakdown.ys"); }
+std::string netlist_write_script() { return tool_script("sim/eda/yosys/netlist_write.ys"); }
 
 namespace {
 

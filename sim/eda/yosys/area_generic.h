@@ -1,7 +1,7 @@
 // shadesim area's generic flow (sim/eda/yosys/area.cpp), for the files that run and cache it: the
-// Yosys scripts (flat, table memories, kept-hierarchy breakdown, the simulation netlist's write)
-// and reading their figures into a GenericArea. The figures' conventions (GE, RAM bits) are in
-// sim/eda/yosys/generic_area.h.
+// Yosys scripts (flat, table memories, kept-hierarchy breakdown, the simulation netlist's write:
+// .ys files beside this header) and reading their figures into a GenericArea. The figures'
+// conventions (GE, RAM bits) are in sim/eda/yosys/generic_area.h.
 #pragma once
 
 #include <cstdint>
@@ -13,11 +13,12 @@
 
 namespace shadesim::generic_flow {
 
-// @WORK@ stands for the run's work folder (flow_tools::yosys_script).
-extern const char* const kFlatScript;       // synth -flatten; abc -g ...; stat; ltp
-extern const char* const kMemoryScript;     // synth to `fine`; dump of the $mem cells
-extern const char* const kBreakdownScript;  // the datapath and control modules kept
-extern const char* const kNetlistWrite;     // regress --netlist's netlist: the flat result
+// The commands of the Yosys scripts beside this header (tool_script); each file's header says
+// what it does. @WORK@ stands for the run's work folder (flow_tools::yosys_script).
+std::string flat_script();           // flat.ys: synth -flatten; abc -g ...; stat; ltp
+std::string memory_script();         // memory.ys: synth to `fine`; dump of the $mem cells
+std::string breakdown_script();      // breakdown.ys: the datapath and control modules kept
+std::string netlist_write_script();  // netlist_write.ys: regress --netlist's netlist
 
 // The syntheses' figures in `work` into r: cells, flip-flops, GE and RAM bits, logic depth and
 // (with `breakdown`) the per-module rows; then check_series.

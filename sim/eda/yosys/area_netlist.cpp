@@ -24,8 +24,8 @@ using flow_tools::rtl_sources;
 using flow_tools::run_tool;
 using flow_tools::write_atomically;
 using flow_tools::yosys_script;
-using generic_flow::kFlatScript;
-using generic_flow::kNetlistWrite;
+using generic_flow::flat_script;
+using generic_flow::netlist_write_script;
 
 namespace {
 
@@ -119,7 +119,8 @@ UnitNetlist unit_netlist(const UnitConfig& unit, const NetlistOptions& o) {
     h.add(f.filename().string());
     h.add(read_text_file(f.string()));
   }
-  h.add(version).add(kFlatScript).add(kNetlistWrite);
+  const std::string flat = flat_script(), write = netlist_write_script();
+  h.add(version).add(flat).add(write);
   UnitNetlist n;
   n.key = h.hex();
   const fs::path cache = fs::absolute(o.cache_dir);
@@ -144,8 +145,7 @@ UnitNetlist unit_netlist(const UnitConfig& unit, const NetlistOptions& o) {
   if (!::mkdtemp(tmpl.data())) throw std::runtime_error(tmpl + ": cannot create a work folder");
   const fs::path work = tmpl;
   const auto t0 = std::chrono::steady_clock::now();
-  const std::string flow = std::string(kFlatScript) + kNetlistWrite;
-  write_atomically(work / "netlist.ys", yosys_script(files, chparam, flow, work));
+  write_atomically(work / "netlist.ys", yosys_script(files, chparam, flat + write, work));
   run_tool({yosys, "-q", "-l", (work / "netlist.log").string(), (work / "netlist.ys").string()},
            work / "netlist.out", "yosys netlist of " + unit.to_string(), o.progress);
   check_netlist_ports(work / "netlist.v", params);
