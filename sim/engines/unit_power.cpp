@@ -16,8 +16,8 @@ namespace shadesim {
 namespace fs = std::filesystem;
 namespace {
 
-// The version of this step's own recipe: bump it when the activity run or the OpenSTA setup
-// changes, so old entries are not taken for new ones.
+// The version of this step's own recipe: bump it when the activity run changes, so old entries
+// are not taken for new ones (the OpenSTA scripts' commands are hashed themselves).
 constexpr const char* kPowerRecipe =
     "area power v1: scene_activity (traced cpp build, no gaps) + "
     "netlist_power (default activity 0.1, duty 0.5)";
@@ -25,7 +25,11 @@ constexpr const char* kPowerRecipe =
 std::string power_key(const UnitConfig& unit, const std::string& scene,
                       const LibertyReport& liberty) {
   ContentHash h;
-  h.add(kPowerRecipe).add(liberty.key).add(config_to_json(unit)).add(read_text_file(scene));
+  h.add(kPowerRecipe)
+      .add(power_scripts_commands())
+      .add(liberty.key)
+      .add(config_to_json(unit))
+      .add(read_text_file(scene));
   std::ostringstream mhz;
   mhz << std::setprecision(17) << liberty.fmax_mhz;
   return h.add(mhz.str()).hex();

@@ -443,6 +443,14 @@ PowerFigures figures_from(const nlohmann::json& j) {
 
 }  // namespace power_impl
 
+std::string power_scripts_commands() {
+  std::string commands;
+  for (const char* script : {"sim/eda/power/power_setup.tcl", "sim/eda/power/power_procs.tcl",
+                             "sim/eda/power/power_report.tcl", "sim/eda/power/power_global.tcl"})
+    commands += tool_script(script);
+  return commands;
+}
+
 std::string power_report_to_json(const PowerReport& r) {
   nlohmann::json j;
   j["clock_mhz"] = r.clock_mhz;

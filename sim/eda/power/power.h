@@ -99,6 +99,10 @@ PowerReport netlist_power(const std::string& netlist_v, const std::string& liber
                           const std::string& top, const SceneActivity& activity, double clock_mhz,
                           const std::string& work_dir, const PowerOptions& options = {});
 
+// The commands of netlist_power's OpenSTA scripts (sim/eda/power/*.tcl), for the cache keys of
+// what it measures: a changed command is a new key.
+std::string power_scripts_commands();
+
 // Registers Yosys's fsm pass re-encoded, from its log ("Recoding FSM `$fsm$\NAME$N' ..."): NAME.
 std::vector<std::string> fsm_recoded_registers(const std::string& yosys_log);
 

@@ -3,8 +3,8 @@
 # in OpenSTA's view of the same netlist). sim/eda/power/power.cpp follows them with one
 # `shadesim_pin NAME ACTIVITY DUTY` or `shadesim_port ...` line per annotated pin and port, then
 # power_report.tcl. No fields.
-# The power cache key does not hash this file: bump kPowerRecipe (sim/engines/unit_power.cpp)
-# when a command changes.
+# The power cache key hashes this file's commands (power_scripts_commands in
+# sim/eda/power/power.h, used by sim/engines/unit_power.cpp).
 set shadesim_missing 0
 proc shadesim_pin {name activity duty} {
   set p [get_pins -quiet $name]

@@ -4,8 +4,8 @@
 # netlist, @TOP@ its top module, @PERIOD@ the clock period in ns, @CLOCK@ the clock port (in
 # braces, brackets escaped). By hand: fill in (sed) this, then power_global.tcl (or
 # power_procs.tcl, the annotations and power_report.tcl), and run `sta -no_splash -exit FILE`.
-# The power cache key does not hash this file: bump kPowerRecipe (sim/engines/unit_power.cpp)
-# when a command changes.
+# The power cache key hashes this file's commands (power_scripts_commands in
+# sim/eda/power/power.h, used by sim/engines/unit_power.cpp).
 read_liberty {@LIBERTY@}
 read_verilog {@NETLIST@}
 link_design @TOP@

@@ -173,6 +173,7 @@ LibertyRun prepare_liberty_run(const FlowInputs& flow, const LibertyOptions& o) 
   h.add(read_text_file(run.options.liberty_path));
   h.add(liberty_map_ys()).add(liberty_abc());
   h.add(liberty_write_ys()).add(liberty_report_tcl()).add(sta_read_tcl("", "")).add(kBufferRule);
+  h.add(flip_flop_overhead_tcl());
   h.add(constraints_template()).add(std::to_string(o.constraints.clock_uncertainty_ns));
   h.add(std::to_string(o.constraints.load_pins));  // the guard band is the caller's comparison
   h.add(std::to_string(o.period_ns)).add(std::to_string(o.max_fanout));
