@@ -1,4 +1,4 @@
-# Test tiers (issue 20): every ctest test carries exactly one of these labels, assigned here and
+# Test tiers: every ctest test carries exactly one of these labels, assigned here and
 # nowhere else (docs/testing.md says what each tier holds and how long it takes).
 #
 #   quick    model, host, CLI and unit tests, source checks: no Verilator, Icarus or Yosys run,

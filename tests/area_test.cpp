@@ -360,7 +360,7 @@ TEST(Area, TableRamBitsAreApartFromGateEquivalents) {
   EXPECT_TRUE(j["warnings"].empty()) << j["warnings"].dump();
   EXPECT_NE(area.output.find("RAM bits"), std::string::npos) << area.output;
   // The library mapping keeps the table as a register file of the library's flip-flops (timed
-  // like the rest, issue 51): more library flip-flops than the generic count less the 3 bits of
+  // like the rest): more library flip-flops than the generic count less the 3 bits of
   // each of the 16 entries that reach the 3-bit output fraction, which a macro kept apart would
   // take out.
   if (j.contains("liberty")) {

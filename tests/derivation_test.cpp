@@ -1,4 +1,4 @@
-// Issue 43: the derivation's formats and specular search, and the warnings on the unit under
+// The derivation's formats and specular search, and the warnings on the unit under
 // test, on scenes nobody tuned for (made here). Expected values are computed here from the scene
 // numbers (colour products, the colour rule's closed form) or measured independently by shading
 // the scene on the chosen unit against the double reference (render_at).

@@ -1,4 +1,4 @@
-// Host span setup (UnitConfig::span_setup kHost, issue 21): the host sends every span's start
+// Host span setup (UnitConfig::span_setup kHost): the host sends every span's start
 // values instead of the triangle's coefficients. What each check is, and is not:
 //   pixels      the same frame shaded with unit setup must come out bit for bit the same. The
 //               host computes its start values with the model's own SpanSetup, so this is a

@@ -183,7 +183,7 @@ TEST(Reference, FiniteEyeUsesInterpolatedEyeVector) {
   EXPECT_NEAR(img.at(20, 15, 0), std::pow(dot(normalize(mean), H), 30), 1e-13);
 }
 
-// Issue 10: no specular where N.L <= 0 (LM3DGP's Phong chapter), though N.H > 0 there.
+// No specular where N.L <= 0 (LM3DGP's Phong chapter), though N.H > 0 there.
 TEST(Reference, SpecularIsGatedByNDotL) {
   Material m;
   m.ambient = {0, 0, 0};

@@ -414,7 +414,7 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
   rec.seconds = field(j, "seconds", 0.0);
   rec.cycles_per_second = field(j, "cycles_per_second", 0.0);
   rec.replay = field(j, "replay", std::string());
-  // A run that shaded nothing compared nothing: it is not a pass (issue 23; the co-simulation
+  // A run that shaded nothing compared nothing: it is not a pass (the co-simulation
   // exits 1 for it, with no mismatch to name).
   if ((r.exit_code == 0 || r.exit_code == 1) && field(j, "passed", false) &&
       (rec.cycles == 0 || field(j, "pixels", uint64_t{0}) == 0)) {

@@ -16,9 +16,9 @@ namespace {
 namespace fs = std::filesystem;
 
 // HX8K in its largest package (206 I/O). --freq is the target nextpnr's timing-driven placement
-// and routing work toward: 60 MHz, above issue 44's 50, so the critical paths get its effort (at
-// the 12 MHz used before, every path had slack and none was worked on); the reported Fmax is
-// what the routed design reaches either way.
+// and routing work toward: 60 MHz, above the iCE40's 50 MHz clock target (default_clock_mhz),
+// so the critical paths get its effort (at a target every path meets with slack, none is worked
+// on); the reported Fmax is what the routed design reaches either way.
 constexpr const char* kPnrArgs = "--hx8k --package ct256 --freq 60 --timing-allow-fail";
 // Fmax is measured out of context: the unit inside fmax_shell (fmax_shell_verilog below), which
 // shifts one input pin into every input port and folds every output port into one output pin

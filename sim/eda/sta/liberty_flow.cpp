@@ -35,9 +35,9 @@ constexpr const char* kLibertyYosys =
     "write_json @WORK@/liberty_mapped.json\n";
 // ABC: structural choices, delay-oriented mapping to the library, then ABC's own buffering and
 // gate sizing against the same target, and a timing summary in the log. &synch2 (delay-aware
-// synthesis with choices), not dc2: dc2's area rewriting turned Yosys's parallel-prefix adders
-// back into ripple chains, about 4 ns per 24-bit add. Specular's unpipelined unit was 147.0 MHz
-// under dc2 (scripts/silicon-table at c2ac218) and is 168.3 MHz under &synch2 at 4.6 % more
+// synthesis with choices), not dc2: dc2's area rewriting turns Yosys's parallel-prefix adders
+// back into ripple chains, about 4 ns per 24-bit add. Specular's unpipelined unit reaches 147.0
+// MHz under dc2 (scripts/silicon-table at c2ac218) and 168.3 MHz under &synch2 at 4.6 % more
 // area (docs/area.md's table).
 constexpr const char* kAbcScript =
     "strash\n&get -n\n&fraig -x\n&put\nscorr\nstrash\n&get -n\n&synch2\n&dch -f\n&nf -D @D@\n&put\n"
