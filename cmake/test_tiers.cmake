@@ -32,6 +32,7 @@ set(SHADESIM_TIER_RULES
   "^(doc_paths|quantization_home|include_layers)(_self_test)?$"     quick
   "^(plot_colours|cpp_format|rtl_line_length)$"                     quick
   "^python_lint(_self_test)?$"                                     quick
+  "^clang_tidy_self_test$"                                          quick
   "^architecture_folders(_self_test)?$"                             quick
   "^mutate_rtl_self_test$"                                          quick
   "^check_commits_self_test$"                                      quick
