@@ -809,7 +809,7 @@ TEST(Cli, NonPositiveBudgetSaysWhatIsExpected) {
 std::string write_empty_scene(const std::filesystem::path& dir) {
   auto scene = nlohmann::json::parse(std::ifstream(kScenes + "sphere.json"));
   scene["camera"]["target"] = {0, 0, 10};  // the camera sits at z = 5, the ball at the origin
-  const std::string path = (dir / "empty.json").string();
+  std::string path = (dir / "empty.json").string();  // returned: moved
   std::ofstream(path) << scene.dump();
   return path;
 }

@@ -37,7 +37,7 @@ class Derivation : public ::testing::Test {
   std::string write_scene(const std::string& name, const nlohmann::json& light_colour,
                           const nlohmann::json& material, int tessellation = 24) const {
     nlohmann::json s = test::sphere_scene(light_colour, material, tessellation);
-    const std::string path = (dir_ / (name + ".json")).string();
+    std::string path = (dir_ / (name + ".json")).string();  // returned: moved
     std::ofstream(path) << s.dump();
     return path;
   }

@@ -38,7 +38,7 @@ class MissCauses : public ::testing::Test {
     const nlohmann::json material = {{"name", "m"},     {"ambient", 0.05},      {"diffuse", 0.5},
                                      {"specular", 0.6}, {"exponent", exponent}, {"unit", unit}};
     const nlohmann::json s = test::sphere_scene(colour, material, tessellation);
-    const std::string path = (dir_ / (name + ".json")).string();
+    std::string path = (dir_ / (name + ".json")).string();  // returned: moved
     std::ofstream(path) << s.dump();
     return path;
   }

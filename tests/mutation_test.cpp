@@ -367,7 +367,7 @@ bool has_assimp_models() { return fs::exists("/usr/share/assimp/models/BLEND/Suz
 // A private copy of the scene directory's mesh files, so mutants written to the temporary
 // directory still find the meshes they name by relative path.
 std::string mutant_dir() {
-  const std::string dir = testing::TempDir() + "shadesim_mutants/";
+  std::string dir = testing::TempDir() + "shadesim_mutants/";  // returned: moved
   fs::create_directories(dir);
   for (const auto& entry :
        fs::directory_iterator(std::string(SHADESIM_SOURCE_DIR) + "/scenes/hard")) {
@@ -448,7 +448,7 @@ std::vector<SeedStream> seed_streams() {
     nlohmann::json j;
     std::ifstream(std::string(SHADESIM_SOURCE_DIR) + "/scenes/" + scene) >> j;
     j["image"] = {{"width", w}, {"height", h}};
-    const std::string path = dir + "small_" + scene;
+    std::string path = dir + "small_" + scene;  // returned: moved
     std::ofstream(path) << j.dump(1);
     return path;
   };
@@ -643,8 +643,8 @@ std::string config_mismatch(const nlohmann::json& said, const nlohmann::json& he
   if (said.is_object()) {
     for (const auto& item : said.items()) {
       if (!held.is_object() || !held.contains(item.key())) continue;  // unknown keys are ignored
-      const std::string m =
-          config_mismatch(item.value(), held.at(item.key()), path + "." + item.key());
+      // Returned: moved, so not const.
+      std::string m = config_mismatch(item.value(), held.at(item.key()), path + "." + item.key());
       if (!m.empty()) return m;
     }
     return "";

@@ -17,7 +17,7 @@ std::string write_builds(const std::string& name, const std::string& text) {
   const auto dir = std::filesystem::temp_directory_path() /
                    ("shadesim-rtl-config-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
-  const std::string path = (dir / name).string();
+  std::string path = (dir / name).string();  // returned: moved
   std::ofstream(path) << text;
   return path;
 }

@@ -152,7 +152,7 @@ class SceneConfigFiles : public ::testing::Test {
   std::string with_unit(const std::string& name, const std::string& unit) const {
     auto j = scene_json(scene(name));
     for (auto& m : j["materials"]) m["unit"] = unit;
-    const std::string path =
+    std::string path =  // returned: moved
         (dir_ / (std::filesystem::path(name).stem().string() + "_" + unit + ".json")).string();
     std::ofstream(path) << j.dump(1);
     return path;

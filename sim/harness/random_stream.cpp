@@ -298,7 +298,7 @@ MaterialCmd RandomStreamBuilder::random_material() {
     const bool negative = shape_.edge && chance(0.3);
     m.ambient.push_back(config_.series.from_double(negative ? uni(-0.6, 0.0) : uni(0.0, 0.25)));
   }
-  m.spec_colour.assign(static_cast<size_t>(config_.lights * config_.channels), 0);
+  m.spec_colour.assign(static_cast<size_t>(config_.lights) * config_.channels, 0);
   if (spec_colours_) {
     for (auto& v : m.spec_colour) {
       v = config_.spec_colour.from_double(shape_.edge ? uni(0.2, 0.9) : uni(0.0, 0.5));

@@ -261,6 +261,7 @@ template <typename F>
 void parallel_for(size_t n, int workers, F work) {
   std::atomic<size_t> next{0};
   std::vector<std::thread> pool;
+  pool.reserve(static_cast<size_t>(std::max(workers, 0)));
   for (int w = 0; w < workers; ++w) {
     pool.emplace_back([&]() {
       for (size_t i = next++; i < n; i = next++) work(i);

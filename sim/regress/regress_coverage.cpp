@@ -1,10 +1,14 @@
 // --coverage's report (sim/regress/regress_coverage.h).
 #include "sim/regress/regress_coverage.h"
 
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <string>
 
+#include "sim/eda/common/build_paths.h"
 #include "sim/eda/verilator/coverage.h"
+#include "sim/eda/verilator/rtl_build.h"
 #include "sim/engines/fixed_text.h"
 #include "sim/regress/regress_plan.h"
 
