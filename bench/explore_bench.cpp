@@ -28,7 +28,7 @@ ExploreScenes& scenes() {
 
 void BM_ExplorePoint(benchmark::State& state) {
   ExploreScenes& s = scenes();
-  const UnitConfig base = start();
+  const UnitConfig& base = start();
   int i = 0;
   uint64_t pixels = 0;
   for (auto _ : state) {

@@ -220,7 +220,7 @@ set(_fixed_sat_check ${CMAKE_SOURCE_DIR}/tests/rtl/fixed_sat_check.py ${CMAKE_SO
 add_test(NAME icarus_fixed_sat_exhaustive COMMAND ${_fixed_sat_check} ${ICARUS_DIR}/fixed_sat)
 add_test(NAME icarus_fixed_sat_catches_broken
   COMMAND ${_fixed_sat_check} ${ICARUS_DIR}/fixed_sat_broken --break)
-# Every parameter check of rtl/ at its edges (issue 24): shade_unit elaborates at each legal
+# Every parameter check of rtl/ at its edges: shade_unit elaborates at each legal
 # extreme of the model's ranges and stops with that check's message one step past it.
 add_test(NAME icarus_param_extremes
   COMMAND ${CMAKE_SOURCE_DIR}/tests/rtl/param_extremes.py ${SHADESIM_CLI} ${IVERILOG} ${VVP}

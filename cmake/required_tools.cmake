@@ -1,4 +1,4 @@
-# No silent skips (issue 9): every test the project has needs a tool, and a missing tool fails
+# No silent skips: every test the project has needs a tool, and a missing tool fails
 # the configure with the Debian package to install, unless the user opts out explicitly. What an
 # opt-out leaves out is registered as a ctest that reports itself Skipped, so the test summary
 # names it ("The following tests did not run: ... left_out_...").

@@ -183,7 +183,7 @@ foreach(name grey_s428w rgb2_s320s)
               --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
   endforeach()
 endforeach()
-# Wider command ports and triangle queues (issue 8): every scenario, three seeds; SystemC on
+# Wider command ports and triangle queues: every scenario, three seeds; SystemC on
 # the four-word port (its sc_bv command port; queues run under SystemC in grey_p4_q2_l4_m2 below
 # and wpow16_d_p8_q2_l4_m2 with the specular builds); the deliberate faults caught at the right
 # scanline through a four-word port. _pack: packed coefficients (rgb2_pack_p8_q3, a LUT build,
@@ -203,7 +203,7 @@ foreach(name grey_p4)
               --save-dir ${CMAKE_BINARY_DIR}/rtl_failures)
   endforeach()
 endforeach()
-# Pixel lanes (issue 8): every scenario, three seeds, on wrapping and saturating series; the
+# Pixel lanes: every scenario, three seeds, on wrapping and saturating series; the
 # SystemC backend on four lanes; the deliberate faults caught at the right scanline through a
 # four-word port with four lanes. The specular-unit lane builds run with the others below.
 foreach(name grey_p4_q2_l2 grey_p4_q2_l4_m2 rgb2_p8_q3_l4)
@@ -316,8 +316,8 @@ add_test(NAME rtl_build_cache
 set_tests_properties(rtl_build_cache PROPERTIES TIMEOUT 1200)
 
 # A named build's SystemC executable is made by every `cmake --build` (rtl_builds): one that no
-# rtl_cosim_sc_<build>_* test runs is build time for nothing (rgb2_p8_q3_l4's was, until
-# 2026-12-06). Refused here, naming the build.
+# rtl_cosim_sc_<build>_* test runs is build time for nothing, and easily left so when a build's
+# tests change. Refused here, naming the build.
 get_property(_rtl_tests DIRECTORY PROPERTY TESTS)
 foreach(name ${RTL_BUILD_NAMES})
   if("systemc" IN_LIST RTL_BUILD_${name}_BACKENDS)

@@ -1,4 +1,4 @@
-# Test tiers (issue 20): every ctest test carries exactly one of these labels, assigned here and
+# Test tiers: every ctest test carries exactly one of these labels, assigned here and
 # nowhere else (docs/testing.md says what each tier holds and how long it takes).
 #
 #   quick    model, host, CLI and unit tests, source checks: no Verilator, Icarus or Yosys run,
@@ -32,6 +32,7 @@ set(SHADESIM_TIER_RULES
   "^(doc_paths|quantization_home|include_layers)(_self_test)?$"     quick
   "^(plot_colours|cpp_format|rtl_line_length)$"                     quick
   "^python_lint(_self_test)?$"                                     quick
+  "^clang_tidy_self_test$"                                          quick
   "^architecture_folders(_self_test)?$"                             quick
   "^tool_script_literals(_self_test)?$"                             quick
   "^mutate_rtl_self_test$"                                          quick

@@ -34,7 +34,7 @@ double cycles_per_pixel(const CycleEstimateRun& run);
 // port (...); command_words 41,016 of 56,120 cycles, 4.7 cycles/px".
 std::string cycles_limit(const UnitConfig& unit, const CommandStream& stream,
                          const CycleEstimateRun& run);
-std::string cycles_limit(const UnitConfig& unit, const StreamCounts& counts,
+std::string cycles_limit(const UnitConfig& unit, const StreamCounts& n,
                          const CycleEstimateRun& run);
 
 // "" when the run is within `target` cycles per pixel; else one line naming the scene, its
@@ -42,7 +42,7 @@ std::string cycles_limit(const UnitConfig& unit, const StreamCounts& counts,
 std::string cycles_miss(const std::string& scene, const UnitConfig& unit,
                         const CommandStream& stream, const CycleEstimateRun& run, double target);
 // The same from a streamed frame's counts (a frame whose stream was never held whole).
-std::string cycles_miss(const std::string& scene, const UnitConfig& unit,
-                        const StreamCounts& counts, const CycleEstimateRun& run, double target);
+std::string cycles_miss(const std::string& scene, const UnitConfig& unit, const StreamCounts& n,
+                        const CycleEstimateRun& run, double target);
 
 }  // namespace shadesim

@@ -1,4 +1,4 @@
-// Widening a format the scenes measure too coarse (issue 50, item 8). The width rules bound each
+// Widening a format the scenes measure too coarse. The width rules bound each
 // format's error within its share of the budget, but a frame of many pixels still finds the
 // code boundaries those shares sit on: where exact pow misses the budget on the derived formats
 // and formats that lose nothing meet it, the formats hold the scenes back, and more fraction

@@ -19,6 +19,7 @@ std::vector<int> range_of(int lo, int hi) {
 
 std::vector<std::string> numbers(const std::vector<int>& v) {
   std::vector<std::string> s;
+  s.reserve(v.size());
   for (int x : v) s.push_back(std::to_string(x));
   return s;
 }
@@ -174,6 +175,7 @@ void pipelining_knob(const UnitConfig& start, std::vector<Knob>& k) {
   if (std::none_of(ladder.begin(), ladder.end(), [&](const Pipelining& p) { return same(p, own); }))
     ladder.push_back(own);
   std::vector<std::string> labels;
+  labels.reserve(ladder.size());
   for (const Pipelining& p : ladder) {
     labels.push_back("c" + std::to_string(p.combine_stages) +
                      (p.square_stages != 1 ? " sq" + std::to_string(p.square_stages) : ""));

@@ -90,7 +90,7 @@ MaterialCmd material_command(const Scene& scene, const UnitConfig& config, const
     bool diffuse = false, specular = false;
     for (int c = 0; c < config.channels; ++c) {
       diffuse = diffuse || diffuse_scale(scene, m, l, c) > 0;
-      specular = specular || cmd.spec_colour[static_cast<size_t>(l * config.channels + c)] != 0;
+      specular = specular || cmd.spec_colour[static_cast<size_t>(l) * config.channels + c] != 0;
     }
     if (specular && !diffuse) cmd.gate_only |= 1u << l;
   }
@@ -135,7 +135,7 @@ TriangleCmd triangle_command(const UnitConfig& config, int scene_lights,
                              Pixel origin) {
   const Quadratic zero{};
   TriangleCmd t;
-  t.coef.reserve(static_cast<size_t>(config.series_per_triangle() * kTermsPerSeries));
+  t.coef.reserve(static_cast<size_t>(config.series_per_triangle()) * kTermsPerSeries);
   t.xo = origin.x;
   t.yo = origin.y;
   const double ox = t.xo + 0.5, oy = t.yo + 0.5;

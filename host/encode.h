@@ -31,7 +31,7 @@ struct EncodeStats {
   std::size_t table_words = 0;    // of which exponent-table entries
   int64_t table_load_cycles = 0;  // table reload cost of the material switches
   // Coefficients outside the coef format's range. With :wrap they are exact modulo 2^iwl and
-  // harmless while pixel values stay in range; with :sat they were clipped and pixels are wrong.
+  // harmless while pixel values stay in range; with :sat they are clipped and pixels are wrong.
   std::size_t coefficients_out_of_range = 0;
   // Coefficients that did not fit their term's narrowed format (UnitConfig::coef_term_iwl).
   std::size_t narrow_terms_saturated = 0;

@@ -40,7 +40,7 @@ UnitConfig frame_unit(const Scene& scene, const std::string& scene_path,
       }
     }
   }
-  const UnitConfig config = options.fixed_unit ? base : config_for_scene(scene, base);
+  UnitConfig config = options.fixed_unit ? base : config_for_scene(scene, base);  // returned: moved
   check_scene_fits(scene, config);
   if (xy_bits_for_image(scene.width, scene.height) > config.xy_bits) {
     throw std::invalid_argument(

@@ -1,4 +1,4 @@
-// The N.L gate near the terminator (issue 23). The unit opens light l's specular term where its
+// The N.L gate near the terminator. The unit opens light l's specular term where its
 // fixed-point N.L series is > 0. Where the exact N.L is within the series' error of 0, series
 // truncation and coefficient rounding can put that sign the other way. The whole specular term
 // then appears or vanishes: ks t^n, 33 LSB at n = 1 on a bright highlight. No budget share of

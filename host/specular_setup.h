@@ -70,13 +70,13 @@ struct SpecularSeriesPlan {
 };
 
 // Throws std::invalid_argument when the exponent is not in (0, 1023] (the u10.16 word).
-SpecularSeriesPlan plan_specular(const UnitConfig& config, double exponent);
+SpecularSeriesPlan plan_specular(const UnitConfig& config, double n);
 
 // The function of t the configured unit approximates t^n with, in double (no widths): what it
 // would give with exact arithmetic. ideal and per-exponent LUT: clamp01(t)^n (the table's
 // sampling is a width, not a function); shared LUT: exp_float(t, k); Schlick: schlick_float(t, n');
 // W_m: wpow_float(t, zeta, m_eff) - with the same fitted parameters plan_specular() uses; none: 0.
-std::function<double(double)> unit_float_function(const UnitConfig& config, double exponent);
+std::function<double(double)> unit_float_function(const UnitConfig& config, double n);
 
 // The shared LUT's table (load once at stream start); empty unless lut + shared addressing.
 std::vector<TableCmd> shared_lut_tables(const UnitConfig& config);

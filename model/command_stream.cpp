@@ -93,7 +93,7 @@ void validate_command(const Command& cmd, const UnitConfig& cfg, const Where& lo
                                "tri: a unit with span_setup host takes no TRIANGLE (each "
                                "SPAN carries its start values)");
     }
-    const size_t expected = static_cast<size_t>(cfg.series_per_triangle() * kTermsPerSeries);
+    const size_t expected = static_cast<size_t>(cfg.series_per_triangle()) * kTermsPerSeries;
     check_payload(loc, "tri.coef", t->coef, expected, cfg.coef);
     if (!cfg.coef_term_iwl.empty()) {
       for (size_t i = 0; i < t->coef.size(); ++i) {

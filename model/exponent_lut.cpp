@@ -28,9 +28,9 @@ ExponentLut::ExponentLut(const LutConfig& config, const FixedFormat& series, con
                  std::vector<int64_t>(static_cast<size_t>(entries()), 0));
 }
 
-void ExponentLut::load_params(const std::vector<int64_t>& p) {
-  const int64_t shift = p.empty() ? 0 : p[0];
-  if (p.size() > 1 || shift < 0 || shift > series_.frac_bits()) {
+void ExponentLut::load_params(const std::vector<int64_t>& unit_params) {
+  const int64_t shift = unit_params.empty() ? 0 : unit_params[0];
+  if (unit_params.size() > 1 || shift < 0 || shift > series_.frac_bits()) {
     throw std::invalid_argument("lut: MATERIAL unit_params must be [shift] with shift 0.." +
                                 std::to_string(series_.frac_bits()));
   }

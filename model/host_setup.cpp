@@ -27,7 +27,7 @@ CommandStream with_host_setup(const CommandStream& unit_stream) {
       if (tri == nullptr) throw CommandStreamError("host setup: span before any tri command");
       SpanCmd span = *s;
       span.starts.clear();
-      span.starts.reserve(static_cast<size_t>(StartLayout::kValuesPerSeries * series));
+      span.starts.reserve(static_cast<size_t>(StartLayout::kValuesPerSeries) * series);
       for (int i = 0; i < series; ++i) {
         const SeriesStart st = setup(&tri->coef[static_cast<size_t>(i) * kTermsPerSeries],
                                      s->x0 - tri->xo, s->y - tri->yo);
@@ -60,7 +60,7 @@ CommandStream with_host_setup(CommandStream&& unit_stream) {
     if (auto* s = std::get_if<SpanCmd>(&cmd)) {
       if (!tri) throw CommandStreamError("host setup: span before any tri command");
       s->starts.clear();
-      s->starts.reserve(static_cast<size_t>(StartLayout::kValuesPerSeries * series));
+      s->starts.reserve(static_cast<size_t>(StartLayout::kValuesPerSeries) * series);
       for (int i = 0; i < series; ++i) {
         const SeriesStart st = setup(&tri->coef[static_cast<size_t>(i) * kTermsPerSeries],
                                      s->x0 - tri->xo, s->y - tri->yo);

@@ -107,6 +107,7 @@ std::map<std::string, int64_t> parameter_map(const std::vector<VerilogParameter>
 
 std::vector<std::string> verilator_parameter_args(const std::vector<VerilogParameter>& params) {
   std::vector<std::string> args;
+  args.reserve(params.size());
   for (const auto& p : params) args.push_back("-G" + p.name + "=" + p.literal());
   return args;
 }
@@ -114,6 +115,7 @@ std::vector<std::string> verilator_parameter_args(const std::vector<VerilogParam
 std::vector<std::string> iverilog_parameter_args(const std::vector<VerilogParameter>& params,
                                                  const std::string& root_module) {
   std::vector<std::string> args;
+  args.reserve(params.size());
   for (const auto& p : params) {
     args.push_back("-P" + root_module + "." + p.name + "=" + p.literal());
   }

@@ -14,10 +14,10 @@ SchlickDivider::SchlickDivider(const SchlickConfig& config, const FixedFormat& s
   operand_.overflow = Overflow::kSaturate;
 }
 
-void SchlickDivider::load_params(const std::vector<int64_t>& p) {
-  if (!p.empty()) {
+void SchlickDivider::load_params(const std::vector<int64_t>& unit_params) {
+  if (!unit_params.empty()) {
     throw std::invalid_argument("schlick: MATERIAL unit_params must be empty (got " +
-                                std::to_string(p.size()) + " words)");
+                                std::to_string(unit_params.size()) + " words)");
   }
 }
 

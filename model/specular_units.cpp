@@ -268,22 +268,22 @@ std::string SpecularField::text(const SpecularConfig& c) const {
   return is_enum() ? value_name(get(c)) : std::to_string(get(c));
 }
 
-int SpecularField::parse(const std::string& s, const std::string& what) const {
+int SpecularField::parse(const std::string& text, const std::string& what) const {
   if (is_enum()) {
     for (int v = lo; v <= hi; ++v) {
-      if (s == value_name(v)) return v;
+      if (text == value_name(v)) return v;
     }
-    throw std::invalid_argument(what + ": unknown value '" + s + "'; expected " + expected());
+    throw std::invalid_argument(what + ": unknown value '" + text + "'; expected " + expected());
   }
   size_t used = 0;
   long long v = 0;
   try {
-    v = std::stoll(s, &used);
+    v = std::stoll(text, &used);
   } catch (const std::logic_error&) {
     used = 0;
   }
-  if (used == 0 || used != s.size() || v < -1000000 || v > 1000000) {
-    throw std::invalid_argument(what + ": expected an integer (" + expected() + "), got '" + s +
+  if (used == 0 || used != text.size() || v < -1000000 || v > 1000000) {
+    throw std::invalid_argument(what + ": expected an integer (" + expected() + "), got '" + text +
                                 "'");
   }
   return static_cast<int>(v);

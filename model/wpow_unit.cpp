@@ -20,19 +20,20 @@ WpowUnit::WpowUnit(const WpowConfig& config, const FixedFormat& series, const Fi
   base_.overflow = Overflow::kSaturate;
 }
 
-void WpowUnit::load_params(const std::vector<int64_t>& p) {
-  if (p.empty()) {
+void WpowUnit::load_params(const std::vector<int64_t>& unit_params) {
+  if (unit_params.empty()) {
     shift_ = 0;
     squarings_ = stages_;
     return;
   }
-  if (p.size() != 2 || p[0] < 0 || p[0] > series_.frac_bits() || p[1] < 0 || p[1] > stages_) {
+  if (unit_params.size() != 2 || unit_params[0] < 0 || unit_params[0] > series_.frac_bits() ||
+      unit_params[1] < 0 || unit_params[1] > stages_) {
     throw std::invalid_argument("wpow: MATERIAL unit_params must be [shift 0.." +
                                 std::to_string(series_.frac_bits()) + ", squarings 0.." +
                                 std::to_string(stages_) + "]");
   }
-  shift_ = static_cast<int>(p[0]);
-  squarings_ = static_cast<int>(p[1]);
+  shift_ = static_cast<int>(unit_params[0]);
+  squarings_ = static_cast<int>(unit_params[1]);
 }
 
 int64_t WpowUnit::evaluate(int64_t series_raw) const {

@@ -7,7 +7,7 @@
 // header brings START_WORDS payload words, taken like a TRIANGLE's (with the header, then a
 // tail per beat) into the start bank. The payload FSM is a module of its own (cmd_payload.sv).
 //
-// Timing (issue 44, docs/rtl.md): the header's word is selected from flops (pos_q, and the
+// Timing (docs/rtl.md): the header's word is selected from flops (pos_q, and the
 // payload FSM's registered tail), every word of the beat is decoded as a header at once and the
 // header's word's results picked one-hot, and the ready conditions come last; the 64-bit word
 // multiplexer (word_o) feeds no counter.
@@ -130,7 +130,7 @@ module cmd_decoder #(
     assign tab_cur      = MAT_BANKED && cmd_data_i[k*WordW + shade_pkg::TableMatBit];
     assign host_span    = HOST_SETUP && is_span_w[k];
     // count > After without a 16-bit compare (a carry chain at the head of the iCE40's critical
-    // path, issue 44): After < 2^NW, so only count's low NW bits need comparing.
+    // path): After < 2^NW, so only count's low NW bits need comparing.
     assign count_big    = |(count >> NW);
     assign more         = host_span ? HostMore : count_big || count[NW-1:0] > After;
     assign span_run     = run_length(is_span_w, k);

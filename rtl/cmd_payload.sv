@@ -4,7 +4,7 @@
 // as configuration writes for the specular slots (MATERIAL exponent at index 0, unit parameters
 // from 1, TABLE entries at base + index).
 //
-// Timing (issue 44): what a header starts is worked out for every word of the beat at once, from
+// Timing (docs/rtl.md): what a header starts is worked out for every word of the beat at once, from
 // that word alone (g_start), and the header's word (hdr_sel_i, one-hot) picks one; the beat's
 // first item does not wait for the header's word to be multiplexed and decoded. The tail's length
 // and whether a header follows it in the beat are kept as registered copies of what pay_rem_q

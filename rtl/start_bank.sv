@@ -76,7 +76,7 @@ module start_bank #(
   // Beat word k carries payload word idx: a tail word of the newest entry (words 0 ..
   // tail_n_i - 1: a tail starts its beat, cmd_decoder's a_tail_starts_beat) at idx = pay_idx_i +
   // k, or one after the SPAN header taken now (entry wr_q) at idx = k - hdr_pos_i - 1 (AW bits).
-  // Timing (issue 44): for each payload word w and beat word k, whether k is w's (hit_t, hit_h),
+  // Timing (docs/rtl.md): for each payload word w and beat word k, whether k is w's (hit_t, hit_h),
   // as compares of pay_idx_i and hdr_pos_i (from the decoder's flops) with constants, instead of
   // working out idx for every k and comparing it with every w.
   // verilator lint_off UNUSEDSIGNAL

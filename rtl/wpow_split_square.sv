@@ -1,5 +1,5 @@
 // wpow_split_square: one squaring of wpow_unit (b -> b^2 >> B, truncated) over two cycles, for
-// SQUARE_STAGES 2 (issue 44: a whole squaring in one cycle was the osu018 unit's critical path).
+// SQUARE_STAGES 2 (one squaring in a cycle is the osu018 unit's critical path otherwise).
 // The register between the two halves is this module's; wpow_unit registers the sum.
 //
 // b = h 2^H + l (H = BW / 2), so b^2 = h^2 2^2H + l^2 + h l 2^(H+1), and the squaring keeps

@@ -1,4 +1,4 @@
-// End-to-end accuracy asserted (issue 9, part 10): the README's render figures are test bounds,
+// End-to-end accuracy asserted: the README's render figures are test bounds,
 // and the MATERIAL words of scenes/multi.json are the products worked out from its JSON by hand.
 #include <gtest/gtest.h>
 

@@ -351,7 +351,7 @@ TEST(Area, TableRamBitsAreApartFromGateEquivalents) {
   const long ffs = j["flip_flops"].get<long>();
   EXPECT_GE(ffs, 16 * 5);  // synth maps the table to flip-flops; GE leaves them out
   EXPECT_EQ(j["gate_equivalents"].get<long>(),
-            std::lround(j["logic_transistors"].get<long>() / 4.0) + 6 * (ffs - 16 * 5));
+            std::lround(j["logic_transistors"].get<long>() / 4.0) + 6 * (ffs - 16L * 5));
   long row_ram = 0;
   for (const auto& row : j["modules"]) {
     row_ram += row["ram_bits_each"].get<long>() * row["instances"].get<long>();
@@ -363,12 +363,12 @@ TEST(Area, TableRamBitsAreApartFromGateEquivalents) {
   EXPECT_TRUE(j["warnings"].empty()) << j["warnings"].dump();
   EXPECT_NE(area.output.find("RAM bits"), std::string::npos) << area.output;
   // The library mapping keeps the table as a register file of the library's flip-flops (timed
-  // like the rest, issue 51): more library flip-flops than the generic count less the 3 bits of
+  // like the rest): more library flip-flops than the generic count less the 3 bits of
   // each of the 16 entries that reach the 3-bit output fraction, which a macro kept apart would
   // take out.
   if (j.contains("liberty")) {
     EXPECT_FALSE(j["liberty"].contains("table_macros")) << j["liberty"].dump();
-    EXPECT_GT(j["liberty"]["flip_flops"].get<long>(), ffs - 16 * 3);
+    EXPECT_GT(j["liberty"]["flip_flops"].get<long>(), ffs - 16L * 3);
     EXPECT_EQ(area.output.find("\n  table RAM "), std::string::npos) << area.output;  // no macro
   }
   fs::remove_all(dir);

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs one of the bench scripts once at a tiny size and checks that it ends with its figures
-# (issue 43, item 7: no test ran them, so one stayed broken for several commits unnoticed).
+# (a bench script nothing runs breaks unnoticed).
 # The figures themselves are not judged (machines here are noisy): the script must exit 0 and
 # print its closing line.
 #

@@ -108,7 +108,7 @@ nlohmann::json run_json(const std::string& args, const std::filesystem::path& js
 }
 
 TEST(Cli, RenderWarnsWhereTheWidthsCannotHoldTheScene) {
-  // Never a silently wrong image (issue 23): an overbright light drives the series past the
+  // Never a silently wrong image: an overbright light drives the series past the
   // default s4.28's range, and a 4096-pixel span outgrows its drift bound.
   const auto dir = temp_dir("warnings");
   auto bright = nlohmann::json::parse(std::ifstream(kScenes + "sphere.json"));
@@ -125,9 +125,9 @@ TEST(Cli, RenderWarnsWhereTheWidthsCannotHoldTheScene) {
   EXPECT_NE(b["warnings"][0].get<std::string>().find("beyond its range"), std::string::npos);
   EXPECT_NE(b["warnings"][1].get<std::string>().find("the unit's formats"), std::string::npos);
   EXPECT_GT(b["error"]["max_code_lsb"].get<int>(), 100);  // the wrong image the warning names
-  // Issue 43: an overbright RGB light, finite eye. At default widths kd_c L_c = 15 rolled into
-  // the series overflows s4.28; the range warning must name the series (it was once measured on
-  // a unit of another structure and stayed silent). Its own unit holds the scene.
+  // An overbright RGB light, finite eye. At default widths kd_c L_c = 15 rolled into the series
+  // overflows s4.28; the range warning must name the series (measured on the unit that shades,
+  // not on one of another structure, which stays silent). Its own unit holds the scene.
   auto rgb = nlohmann::json::parse(std::ifstream(kScenes + "specular.json"));
   rgb["lights"][0]["colour"] = {30, 15, 7.5};
   std::ofstream(dir / "rgb.json") << rgb.dump();
@@ -276,7 +276,7 @@ TEST(Cli, CyclesRegressAndTheReadmeAgreeOnEveryShippedScene) {
 #ifndef SHADESIM_HAVE_RTL
   GTEST_SKIP() << "RTL not built (configure with -DSHADESIM_RTL=ON)";
 #endif
-  // One unit, one number (issue 23): `cycles SCENE` (the scene's own unit, no gaps) is the
+  // One unit, one number: `cycles SCENE` (the scene's own unit, no gaps) is the
   // README's figure, and `cycles SCENE --regress-stimulus --seed S` is what `regress SCENE`
   // measured on the RTL for the run with seed S.
   const auto dir = temp_dir("one_number");
@@ -377,7 +377,7 @@ TEST(Cli, ConfigDerivesAUnitThatRenderAndCyclesUseWithConfig) {
   const std::string cfg = (dir / "sphere_unit.json").string();
   const Result r = run("config --clock-mhz 0 " + kScenes + "sphere.json --json " + cfg);
   ASSERT_EQ(r.status, 0) << r.output;
-  // sphere.json has no specular term: no specular unit (issue 21), and the output says why.
+  // sphere.json has no specular term: no specular unit, and the output says why.
   for (const char* field : {"channels = 1", "lights = 1", "xy_bits = 8",
                             "series = ", "coef = ", "specular = none", "no specular term"}) {
     EXPECT_NE(r.output.find(field), std::string::npos) << field << "\n" << r.output;
@@ -400,7 +400,7 @@ TEST(Cli, ConfigDerivesAUnitThatRenderAndCyclesUseWithConfig) {
   EXPECT_EQ(cycles["config"]["xy_bits"], 8);
   EXPECT_EQ(cycles["slot"]["latency"], 0);  // none: no slot between the engines and the output
   // Without --config (and without width options) render and cycles shade on the scene's own
-  // unit, the one config derived above: one unit everywhere (issue 23).
+  // unit, the one config derived above: one unit everywhere.
   const auto plain = run_json("render " + kScenes + "sphere.json -q --out " + (dir / "p").string(),
                               dir / "p.json");
   EXPECT_EQ(plain["unit_choice"], "own");
@@ -425,7 +425,7 @@ TEST(Cli, ConfigDerivesAUnitThatRenderAndCyclesUseWithConfig) {
 
 TEST(Cli, ConfigExitsNonZeroNamingThePartThatMissesTheBudget) {
   // Every shipped scene gets a unit within 1 LSB (README's own-unit table); where none can be
-  // had, config says which part misses and by how much, and exits 1 (issue 23).
+  // had, config says which part misses and by how much, and exits 1.
   const auto dir = temp_dir("config_budget");
   auto spec = nlohmann::json::parse(std::ifstream(kScenes + "specular.json"));
   spec["materials"][0]["unit"] = "schlick";  // n = 60: Schlick's divider is ~31 LSB off
@@ -438,8 +438,8 @@ TEST(Cli, ConfigExitsNonZeroNamingThePartThatMissesTheBudget) {
   EXPECT_NE(r.output.find("schlick Q=20 D=28"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("What limits it is the schlick unit's function"), std::string::npos)
       << r.output;
-  // At n = 1 the N.L gate's step used to miss (33 LSB where series truncation flipped the gate);
-  // config now widens series and coefficients until the gate holds, and says why.
+  // At n = 1 series truncation can flip the N.L gate, a 33 LSB miss; config widens series and
+  // coefficients until the gate holds, and says why.
   spec["materials"][0]["unit"] = "ideal";
   spec["materials"][0]["exponent"] = 1;
   const std::string n1 = (dir / "n1.json").string();
@@ -452,8 +452,8 @@ TEST(Cli, ConfigExitsNonZeroNamingThePartThatMissesTheBudget) {
 }
 
 TEST(Cli, ConfigSaysAnEmptyImageHasNoErrorOrPsnr) {
-  // Issue 43: a camera looking away from every object covers no pixel; config used to print
-  // "PSNR 0.000 dB ... 0 of 0 pixels" for it.
+  // A camera looking away from every object covers no pixel: config says there is no error or
+  // PSNR to give, not "PSNR 0.000 dB ... 0 of 0 pixels".
   const auto dir = temp_dir("config_empty");
   auto away = nlohmann::json::parse(std::ifstream(kScenes + "sphere.json"));
   away["camera"]["position"] = {0, 0, -5};
@@ -511,7 +511,7 @@ TEST(Cli, ConfigBudgetOneHoldsOnEveryShippedAndHardScene) {
 
 TEST(Cli, TheNDotLGateIsHeldByConfigAndNamedByRender) {
   // At n = 1 a highlight is bright right up to the terminator, so a pixel whose fixed-point N.L
-  // takes the other sign than the exact one gains or loses the whole specular term (issue 23).
+  // takes the other sign than the exact one gains or loses the whole specular term.
   const auto dir = temp_dir("gate");
   auto scene = nlohmann::json::parse(std::ifstream(kScenes + "specular.json"));
   scene["materials"][0]["exponent"] = 1;
@@ -758,9 +758,9 @@ TEST(Cli, UnwritableOutputsFailBeforeAnyWork) {
 
 // Processes started at once with outputs under one new folder (the shards of a Slurm job array:
 // `regress --shard K/N --out run/shardK`) all write there. The output check makes and removes no
-// folder: one process's check removed the new folder another had just seen and was writing its
-// plan into ("cannot create directories: No such file or directory"; this test failed 12 runs of
-// 15 with that check). regress --emit-jobs writes its plan right after the check, runs nothing.
+// folder: a check that did would remove the new folder another process had just seen and was
+// writing its plan into ("cannot create directories: No such file or directory"; 12 runs of 15
+// of this test fail so). regress --emit-jobs writes its plan right after the check, runs nothing.
 TEST(Cli, OutputsUnderOneNewFolderFromProcessesStartedAtOnce) {
   const auto dir = temp_dir("siblings");
   const std::string shadesim = std::string(SHADESIM_BINARY_DIR) + "/shadesim";
@@ -809,7 +809,7 @@ TEST(Cli, NonPositiveBudgetSaysWhatIsExpected) {
 std::string write_empty_scene(const std::filesystem::path& dir) {
   auto scene = nlohmann::json::parse(std::ifstream(kScenes + "sphere.json"));
   scene["camera"]["target"] = {0, 0, 10};  // the camera sits at z = 5, the ball at the origin
-  const std::string path = (dir / "empty.json").string();
+  std::string path = (dir / "empty.json").string();  // returned: moved
   std::ofstream(path) << scene.dump();
   return path;
 }
@@ -890,7 +890,7 @@ TEST(Cli, CosimRefusesAFaultOnARowWithNoPixels) {
   GTEST_SKIP() << "RTL not built (configure with -DSHADESIM_RTL=ON)";
 #endif
   // The tiny scenario's stream covers a few rows near the top of the screen, never row 4000:
-  // a fault there could never show, and used to pass silently.
+  // a fault there can never show, and must not pass silently.
   const std::string cosim = "cosim --config grey_s428w --backend cpp --scenario tiny --fault ";
   const Result empty_row = run(cosim + "lsb@4000");
   EXPECT_EQ(empty_row.status, 2) << empty_row.output;

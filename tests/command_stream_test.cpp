@@ -276,7 +276,7 @@ TEST(CommandStream, MissingHeaderAndEmptyStreamAreErrors) {
   EXPECT_THROW(CommandStream::read_text(c, "c.cmd"), CommandStreamError);
 }
 
-// A malformed header JSON (6 of 400 fuzzed inputs, issue 23) is named by file, line and column
+// A malformed header JSON (6 of 400 fuzzed inputs) is named by file, line and column
 // with what was expected there, not by nlohmann's "[json.exception.parse_error.101]" text. The
 // columns are counted by hand: "shadesim-commands 2 " is 20 characters, so the JSON's '{' is
 // column 21.

@@ -142,7 +142,7 @@ TEST(ConfigClock, TheLadderClimbsPastARungInsideTheGuardBand) {
     ClockTiming t;
     t.unit = unit;
     const Pipelining p = pipelining_of(unit);
-    t.fmax_mhz = fmax[static_cast<size_t>(p.combine_stages + (p.square_stages > 1 ? 1 : 0))];
+    t.fmax_mhz = fmax[static_cast<size_t>(p.combine_stages) + (p.square_stages > 1 ? 1 : 0)];
     t.area = 1000.0 + p.combine_stages + p.square_stages;
     return t;
   };

@@ -207,6 +207,7 @@ TEST(CycleEstimate, EqualsClockedModelOnRandomStreams) {
 // Hand-made cases whose figures follow from the recurrences by hand (not from either model).
 std::vector<uint64_t> words_of(const std::vector<CommandWord>& ws) {
   std::vector<uint64_t> out;
+  out.reserve(ws.size());
   for (const CommandWord& w : ws) out.push_back(w.bits);
   return out;
 }

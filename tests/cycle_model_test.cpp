@@ -333,6 +333,7 @@ TEST(CommandPort, OneSpanPerCycleAndPaddingInOneCycle) {
   // P = 8: five one-pixel spans then three padding words: spans accepted on cycles 0..4, the
   // NOP on 5 (the beat then), span k ends on k + 5.
   std::vector<Command> cmds;
+  cmds.reserve(5);
   for (int y = 0; y < 5; ++y) cmds.push_back(span(y, 0, 1, true));
   const CycleRun r = run_cycle_model(words(cmds), Stimulus{}, port(8));
   ASSERT_EQ(r.scanlines.size(), 5u);
@@ -347,6 +348,7 @@ TEST(CommandPort, ASpanQueueTakesARunOfSpansInOneCycle) {
   // per cycle (0..4) and the padding on 5, so the beat is accepted on cycle 5. With tri_queue 2
   // (8 queue entries) all five go on cycle 0 and the padding on 1.
   std::vector<Command> cmds;
+  cmds.reserve(5);
   for (int y = 0; y < 5; ++y) cmds.push_back(span(y, 0, 1, true));
   std::vector<uint64_t> beat = words(cmds);
   beat.resize(8, 0);
@@ -361,6 +363,7 @@ TEST(CommandPort, ASpanQueueTakesARunOfSpansInOneCycle) {
   // A run longer than the queue's room: 8 spans of 100 pixels, P = 8, tri_queue 2. Cycle 0 takes
   // all 8 (the queue is empty: 8 entries of room); nothing pops before the edge.
   std::vector<Command> long_spans;
+  long_spans.reserve(8);
   for (int y = 0; y < 8; ++y) long_spans.push_back(span(y, 0, 100, true));
   const std::vector<uint64_t> full = words(long_spans);
   CycleModel m(CycleConfig(SlotTiming{}, 8, 2));
@@ -474,6 +477,7 @@ TEST(CycleBreakdown, GapsBeforeEveryWordAreChargedToTheInput) {
   s.max_gap = 1;  // one idle cycle before every word: one span per 2 cycles
   const int n = 20;
   std::vector<Command> cmds;
+  cmds.reserve(n);
   for (int i = 0; i < n; ++i) cmds.push_back(span(i, 0, 1, true));
   const CycleRun r = run_cycle_model(words(cmds), s);
   const CycleBreakdown& b = r.breakdown;

@@ -1,4 +1,4 @@
-// Issue 43: the derivation's formats and specular search, and the warnings on the unit under
+// The derivation's formats and specular search, and the warnings on the unit under
 // test, on scenes nobody tuned for (made here). Expected values are computed here from the scene
 // numbers (colour products, the colour rule's closed form) or measured independently by shading
 // the scene on the chosen unit against the double reference (render_at).
@@ -37,7 +37,7 @@ class Derivation : public ::testing::Test {
   std::string write_scene(const std::string& name, const nlohmann::json& light_colour,
                           const nlohmann::json& material, int tessellation = 24) const {
     nlohmann::json s = test::sphere_scene(light_colour, material, tessellation);
-    const std::string path = (dir_ / (name + ".json")).string();
+    std::string path = (dir_ / (name + ".json")).string();  // returned: moved
     std::ofstream(path) << s.dump();
     return path;
   }

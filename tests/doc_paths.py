@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Every repository path named in the docs and in comments must exist (issue 10, section 3).
+"""Every repository path named in the docs and in comments must exist.
 
   tests/doc_paths.py [SOURCE_DIR]
 
@@ -14,10 +14,10 @@ Outputs (out/, build/), placeholders (scenes/<scene>.json), URLs and absolute pa
 repository paths. A mention of the "design brief" or design.md (not in the repository) counts as
 missing too. Exits 1 naming file:line and the path for each that does not exist.
 
-Markdown links (issue 22): every [text](target) in a *.md file must name an existing file, and
+Markdown links: every [text](target) in a *.md file must name an existing file, and
 its #anchor a heading of that file (GitHub's anchors).
 
-Commands and options (issue 22): in the code of every *.md file (fenced and indented blocks and
+Commands and options: in the code of every *.md file (fenced and indented blocks and
 `inline spans`), each `shadesim COMMAND` must be a subcommand that `shadesim --help` lists, and
 each --option after it (up to the end of the shell command: newline, ;, |, &&, a # comment or
 the next shadesim) must appear in `shadesim COMMAND --help`. The binary is --shadesim PATH (ctest
@@ -58,7 +58,7 @@ EXTERNAL = {
 # Installed packages whose files the docs name by their own relative paths (scripts/setup
 # installs them): a path found there is theirs.
 PACKAGE_ROOTS = ["/usr/share/assimp/models"]  # assimp-testmodels: invalid/OutOfMemory.off
-# Documents that comments used to cite but the repository does not hold: phrase -> what to cite.
+# Documents a comment may cite but the repository does not hold: phrase -> what to cite instead.
 MISSING_DOCUMENTS = {
     "design brief": 'is not in the repository; cite a README section (e.g. "Checked numerical facts")',
     "design.md": 'is not in the repository; cite a README section (e.g. "Checked numerical facts")',

@@ -1,5 +1,5 @@
-// The "edge" scenario of sim/harness/random_stream.h reaches the corners it promises (issue 9
-// part 1), measured on the streams and on what the model makes of them.
+// The "edge" scenario of sim/harness/random_stream.h reaches the corners it promises,
+// measured on the streams and on what the model makes of them.
 #include <gtest/gtest.h>
 
 #include <algorithm>

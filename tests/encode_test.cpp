@@ -151,7 +151,7 @@ TEST(Encode, AStreamWhoseOffsetsDoNotFitIsRejectedNamingTheTriangle) {
   TriangleCmd t;
   t.xo = 10;
   t.yo = 20;
-  t.coef.assign(static_cast<size_t>(cs.config.series_per_triangle() * kTermsPerSeries), 0);
+  t.coef.assign(static_cast<size_t>(cs.config.series_per_triangle()) * kTermsPerSeries, 0);
   cs.commands = {MaterialCmd{}, t, SpanCmd{27, 17, 3, true}, SpanCmd{28, 18, 1, true}};
   auto& m = std::get<MaterialCmd>(cs.commands[0]);
   m.ambient.assign(1, 0);

@@ -184,7 +184,7 @@ const Knob* knob_named(const std::vector<Knob>& knobs, const std::string& name) 
   return nullptr;
 }
 
-// Issue 44: pipelining is a structural knob. Its rungs are the ladder a clock target climbs
+// Pipelining is a structural knob. Its rungs are the ladder a clock target climbs
 // (combine_stages 0, 1, 2, then square_stages 2 where the W_m unit is pipelined); a rung changes
 // neither a pixel (an independent render) nor anything but latency: each register stage delays
 // the frame's last pixel by one cycle, so a one-material frame takes exactly that many cycles
@@ -472,7 +472,7 @@ CsvTable read_csv(const std::filesystem::path& file) {
   return t;
 }
 
-// The JSON's measured library figures, as the CSV names them (issue 44).
+// The JSON's measured library figures, as the CSV names them.
 const char* const kLibraryColumns[] = {"library_area_um2", "library_fmax_mhz",
                                        "library_mpixel_per_s", "meets_clock"};
 

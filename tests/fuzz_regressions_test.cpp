@@ -60,7 +60,7 @@ fs::path mesh_file_of(const fs::path& input, const fs::path& dir) {
   const std::string bytes = read_bytes(input);
   const size_t newline = bytes.find('\n');
   EXPECT_NE(newline, std::string::npos) << input;
-  const fs::path file = dir / ("mesh." + bytes.substr(0, newline));
+  fs::path file = dir / ("mesh." + bytes.substr(0, newline));  // returned: moved
   std::ofstream(file, std::ios::binary) << bytes.substr(newline + 1);
   return file;
 }

@@ -420,7 +420,7 @@ TerminatorCompare compare_terminator(const Rendered& r) {
   const Vec3 Hv = normalize(L + V);
   const Material& m = sc.materials.at(0);
   auto comp = [](const Vec3& v, int ch) { return ch == 0 ? v.x : ch == 1 ? v.y : v.z; };
-  std::vector<int> model(sc.width * sc.height * 3, -1);
+  std::vector<int> model(static_cast<size_t>(sc.width) * sc.height * 3, -1);
   for (const PixelOut& p : r.pixels) {
     for (int ch = 0; ch < f.config.channels; ++ch)
       model[(p.y * sc.width + p.x) * 3 + ch] = p.colour[ch];

@@ -1,4 +1,4 @@
-// Host span setup (UnitConfig::span_setup kHost, issue 21): the host sends every span's start
+// Host span setup (UnitConfig::span_setup kHost): the host sends every span's start
 // values instead of the triangle's coefficients. What each check is, and is not:
 //   pixels      the same frame shaded with unit setup must come out bit for bit the same. The
 //               host computes its start values with the model's own SpanSetup, so this is a
@@ -199,7 +199,7 @@ TEST(HostSetup, InvalidCombinationsAreRejectedWithTheirReason) {
   // A TRIANGLE in a host-setup stream, and a SPAN without its start values.
   CommandStream s;
   s.config = host_unit(UnitConfig{});
-  s.commands.emplace_back(TriangleCmd{0, 0, std::vector<int64_t>(6 * 2, 0)});
+  s.commands.emplace_back(TriangleCmd{0, 0, std::vector<int64_t>(size_t{6} * 2, 0)});
   EXPECT_THROW(s.validate("test"), CommandStreamError);
   s.commands = {SpanCmd{1, 1, 1, false, {}}};
   EXPECT_THROW(s.validate("test"), CommandStreamError);

@@ -1,10 +1,10 @@
 #!/usr/bin/python3
-"""Writes a designer's frame like issue 50's (two RGB lights, two materials, a sphere, a torus
+"""Writes a designer's frame (two RGB lights, two materials, a sphere, a torus
 and Suzanne) at any size and tessellation, for trying `shadesim config` on a frame nobody tuned
 for. Not a tuning input: nothing in the derivation reads it, and no test checks a figure of it.
 
   tests/make_causes_frame.py OUT.json                      640x360, tessellation 100 and 64
-  tests/make_causes_frame.py OUT.json --size 1920x1080 --sphere 300 --torus 200   issue 50's 1080p
+  tests/make_causes_frame.py OUT.json --size 1920x1080 --sphere 300 --torus 200   a 1080p one
   tests/make_causes_frame.py OUT.json --size 160x90 --sphere 40 --torus 24        a small one
 
 Suzanne comes from Debian's assimp-testmodels (/usr/share/assimp/models/BLEND/Suzanne_248.blend).

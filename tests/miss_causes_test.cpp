@@ -1,4 +1,4 @@
-// Issue 50, item 8: a miss's cause is named only where re-shading the frame with it removed
+// A miss's cause is named only where re-shading the frame with it removed
 // meets the budget, and a format that holds the scenes back is widened by the derivation. Each
 // premise and each fix is measured independently here: render_at shades the scene end to end on
 // a unit whose formats the test writes itself (the widest by hand, not lossless_formats).
@@ -38,7 +38,7 @@ class MissCauses : public ::testing::Test {
     const nlohmann::json material = {{"name", "m"},     {"ambient", 0.05},      {"diffuse", 0.5},
                                      {"specular", 0.6}, {"exponent", exponent}, {"unit", unit}};
     const nlohmann::json s = test::sphere_scene(colour, material, tessellation);
-    const std::string path = (dir_ / (name + ".json")).string();
+    std::string path = (dir_ / (name + ".json")).string();  // returned: moved
     std::ofstream(path) << s.dump();
     return path;
   }
@@ -97,7 +97,7 @@ TEST_F(MissCauses, TwoCausesThatAddUpAreNamedTogetherAndTheFormatIsWidened) {
 }
 
 TEST_F(MissCauses, TheDerivationWidensAFormatThatHoldsTheFrameBackAndMeetsTheBudget) {
-  // A frame like issue 50's (tests/make_causes_frame.py's scene, 480x270): on the rules' formats
+  // A designer's frame (tests/make_causes_frame.py's scene, 480x270): on the rules' formats
   // exact pow misses 1 LSB; the spec_colour rule's bound holds, but 34k pixels find its codes'
   // edges. The derivation widens spec_colour and then finds a unit within the budget.
   ASSERT_TRUE(std::filesystem::exists("/usr/share/assimp/models/BLEND/Suzanne_248.blend"))

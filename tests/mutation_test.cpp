@@ -367,7 +367,7 @@ bool has_assimp_models() { return fs::exists("/usr/share/assimp/models/BLEND/Suz
 // A private copy of the scene directory's mesh files, so mutants written to the temporary
 // directory still find the meshes they name by relative path.
 std::string mutant_dir() {
-  const std::string dir = testing::TempDir() + "shadesim_mutants/";
+  std::string dir = testing::TempDir() + "shadesim_mutants/";  // returned: moved
   fs::create_directories(dir);
   for (const auto& entry :
        fs::directory_iterator(std::string(SHADESIM_SOURCE_DIR) + "/scenes/hard")) {
@@ -448,7 +448,7 @@ std::vector<SeedStream> seed_streams() {
     nlohmann::json j;
     std::ifstream(std::string(SHADESIM_SOURCE_DIR) + "/scenes/" + scene) >> j;
     j["image"] = {{"width", w}, {"height", h}};
-    const std::string path = dir + "small_" + scene;
+    std::string path = dir + "small_" + scene;  // returned: moved
     std::ofstream(path) << j.dump(1);
     return path;
   };
@@ -643,8 +643,8 @@ std::string config_mismatch(const nlohmann::json& said, const nlohmann::json& he
   if (said.is_object()) {
     for (const auto& item : said.items()) {
       if (!held.is_object() || !held.contains(item.key())) continue;  // unknown keys are ignored
-      const std::string m =
-          config_mismatch(item.value(), held.at(item.key()), path + "." + item.key());
+      // Returned: moved, so not const.
+      std::string m = config_mismatch(item.value(), held.at(item.key()), path + "." + item.key());
       if (!m.empty()) return m;
     }
     return "";
@@ -742,7 +742,7 @@ CommandStream read_one_line(const std::string& line) {
 }
 
 TEST(Mutation, TextReaderRejectsIntegersThatDoNotFitTheirField) {
-  // Each used to load as its 32-bit truncation: x0 0, y 0, length 1, xo 1, table base 0.
+  // Each read into 32 bits would load as its truncation: x0 0, y 0, length 1, xo 1, table base 0.
   for (const char* line :
        {"span 0 4294967296 5", "span 4294967296 0 5", "span 0 0 4294967297",
         "tri 4294967297 0 | 0 0 0 0 0 0 | 0 0 0 0 0 0", "table 4294967296 1 2"}) {
@@ -751,7 +751,7 @@ TEST(Mutation, TextReaderRejectsIntegersThatDoNotFitTheirField) {
 }
 
 TEST(Mutation, ConfigHeaderRejectsNumbersThatAreNotInts) {
-  // config_from_json used to read every width with get<int>(): these loaded as 1, 12, 1.
+  // Widths read with get<int>() would load these as 1, 12, 1.
   const std::string json = config_to_json(UnitConfig{});
   auto with = [&](const std::string& from, const std::string& to) {
     std::string t = json;
@@ -766,8 +766,8 @@ TEST(Mutation, ConfigHeaderRejectsNumbersThatAreNotInts) {
 }
 
 TEST(Mutation, TextReaderRejectsASpanPastTheScreenWhateverItsLength) {
-  // validate_command used to test x0 + length - 1 > xy_max in int32: 100 + 2147483647 overflowed
-  // (undefined behaviour), so the span validated and the model shaded 2^31 pixels.
+  // x0 + length - 1 > xy_max tested in int32 overflows at 100 + 2147483647 (undefined
+  // behaviour): the span would validate and the model shade 2^31 pixels.
   EXPECT_THROW(read_one_line("span 0 100 2147483647"), CommandStreamError);
 }
 

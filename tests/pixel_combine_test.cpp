@@ -142,7 +142,7 @@ TEST(PixelCombine, MultipliedDiffuseIsTheTruncatedProductAndGatesOnNDotL) {
   }
 }
 
-// The same with a derived unit's colour formats (issue 43): colour words u3.15 hold kd_c L_c and
+// The same with a derived unit's colour formats: colour words u3.15 hold kd_c L_c and
 // ks_c L_c up to 8, and the series s4.20 has fewer fraction bits than the products: N.L truncated
 // to 15 bits times a 15-bit colour has 30, the specular s (16) times its colour 31. Each product
 // is truncated to the series' 20 fraction bits (the series rule) before the exact sum: here in

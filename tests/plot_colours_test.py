@@ -2,10 +2,11 @@
 """scripts/plot gives every unit family (spec-error) and every stage (explore) its own colour,
 and the explore plot names its start once and no cache key on an axis.
 
-Issue 10: spec-error's plot colours used to repeat silently once there were more families than
-the palette held. This draws a spec-error report with many families through scripts/plot's real
-plotting function and checks, on the figure matplotlib built, that no two families' points share
-a colour; and checks distinct_colours itself for every count up to 60.
+spec-error's plot colours must not repeat, however many families there are (a fixed palette
+repeats silently once there are more families than it holds). This draws a spec-error report
+with many families through scripts/plot's real plotting function and checks, on the figure
+matplotlib built, that no two families' points share a colour; and checks distinct_colours
+itself for every count up to 60.
 
   tests/plot_colours_test.py SOURCE_DIR
 """

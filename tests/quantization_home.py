@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Overflow rules (wrap, saturate) are implemented once: in FixedFormat (issue 10, section 2).
+"""Overflow rules (wrap, saturate) are implemented once: in FixedFormat.
 
   tests/quantization_home.py [SOURCE_DIR]
 
@@ -97,10 +97,10 @@ def scan(root):
 
 
 PLANTED = {
-    # SeriesEngine::add before issue 10: the shift pair.
+    # A hand-rolled wrap as a shift pair.
     "model/engine_a.h": "return static_cast<int64_t>(static_cast<uint64_t>(s) << shift_) >> shift_;\n",
     "model/engine_b.h": "int64_t w = int64_t(uint64_t(x) << (64 - wl)) >> (64 - wl);\n",
-    # SeriesBank::wrap and ::saturate before issue 10.
+    # A hand-rolled wrap by mask and a hand-rolled saturate.
     "model/bank_wrap.h": "return static_cast<int64_t>((static_cast<uint64_t>(x + offset_)) & mask_) - offset_;\n",
     "model/bank_sat.h": "int64_t saturate(int64_t x) const { return x > max_ ? max_ : (x < min_ ? min_ : x); }\n",
     "host/xor.cpp": "out.push_back(static_cast<int64_t>((field ^ sign) - sign));\n",

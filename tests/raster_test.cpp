@@ -368,6 +368,7 @@ TEST(Spans, ReconstructOwnerBufferAndFollowStreamOrder) {
   std::uniform_int_distribution<int> coord(-256, 100 * 256);
   std::uniform_real_distribution<double> depth(0, 1);
   std::vector<ScreenTriangle> tris;
+  tris.reserve(200);
   for (int n = 0; n < 200; ++n) {
     tris.push_back(tri(coord(rng) / 256.0, coord(rng) / 256.0, coord(rng) / 256.0,
                        coord(rng) / 256.0, coord(rng) / 256.0, coord(rng) / 256.0, depth(rng)));

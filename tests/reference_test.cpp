@@ -21,7 +21,7 @@ ScreenVertex vert(double x, double y, Vec3 n, Vec3 e = {0, 0, 1}) {
 }
 
 // Default camera looks from (0, 0, 5) at the origin: V = (0, 0, 1).
-Scene one_light_scene(Vec3 dir, Vec3 colour, Material m) {
+Scene one_light_scene(Vec3 dir, Vec3 colour, const Material& m) {
   Scene s;
   s.width = 40;
   s.height = 30;
@@ -113,7 +113,7 @@ TEST(Reference, KnownNormalGivesBlinnValue) {
   const Scene s = one_light_scene(L, {1, 1, 1}, m);
   const Vec3 mean{0.3, 0.1, 0.8};
   const ScreenTriangle t = centred_triangle(mean, {0.2, 0, 0}, {0, 0.2, 0.1}, {0, 0, 1}, {}, {});
-  std::vector<int32_t> own(40 * 30, -1);
+  std::vector<int32_t> own(size_t{40} * 30, -1);
   own[15 * 40 + 20] = 0;
   own[9 * 40 + 11] = 0;  // (11.5, 9.5) is vertex 0
   const ReferenceImage img = render_reference({t}, own, 40, 30, s, 1);
@@ -134,7 +134,7 @@ TEST(Reference, PhongUsesRDotVWithTheEyeAtInfinityAndFinite) {
   const Vec3 mean{0.1, 0.05, 0.9}, e_mean{0.2, -0.1, 0.95};
   const ScreenTriangle t =
       centred_triangle(mean, {0.1, 0, 0}, {0, -0.1, 0}, e_mean, {0.05, 0.02, 0}, {-0.03, 0.04, 0});
-  std::vector<int32_t> own(40 * 30, -1);
+  std::vector<int32_t> own(size_t{40} * 30, -1);
   own[15 * 40 + 20] = 0;
   // Closed form: R.V = 2 (N.L)(N.V) / |N|^2 - L.V, V unit.
   auto r_dot_v = [&](Vec3 n, Vec3 v) { return 2 * dot(n, L) * dot(n, v) / dot(n, n) - dot(L, v); };
@@ -176,14 +176,14 @@ TEST(Reference, FiniteEyeUsesInterpolatedEyeVector) {
   const Vec3 mean{0.1, 0.05, 0.9}, e_mean{0.2, -0.1, 0.95};
   const ScreenTriangle t =
       centred_triangle(mean, {0.1, 0, 0}, {0, -0.1, 0}, e_mean, {0.05, 0.02, 0}, {-0.03, 0.04, 0});
-  std::vector<int32_t> own(40 * 30, -1);
+  std::vector<int32_t> own(size_t{40} * 30, -1);
   own[15 * 40 + 20] = 0;
   const ReferenceImage img = render_reference({t}, own, 40, 30, s, 1);
   const Vec3 H = normalize(e_mean + L);
   EXPECT_NEAR(img.at(20, 15, 0), std::pow(dot(normalize(mean), H), 30), 1e-13);
 }
 
-// Issue 10: no specular where N.L <= 0 (LM3DGP's Phong chapter), though N.H > 0 there.
+// No specular where N.L <= 0 (LM3DGP's Phong chapter), though N.H > 0 there.
 TEST(Reference, SpecularIsGatedByNDotL) {
   Material m;
   m.ambient = {0, 0, 0};
@@ -249,7 +249,7 @@ TEST(Reference, BadInputIsRejected) {
   const Scene s = one_light_scene({0, 0, 1}, {1, 1, 1}, m);
   ScreenTriangle t;
   t.v = {vert(2, 3, {0, 0, 1}), vert(37, 5, {0, 0, 1}), vert(15, 28, {0, 0, 1})};
-  std::vector<int32_t> own(40 * 30, -1);
+  std::vector<int32_t> own(size_t{40} * 30, -1);
   EXPECT_THROW(render_reference({t}, own, 40, 30, s, 2), std::invalid_argument);
   EXPECT_THROW(render_reference({t}, own, 41, 30, s, 3), std::invalid_argument);
   own[5] = 1;

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""shadesim report, end to end, in headless Chromium (issue 10, section 4).
+"""shadesim report, end to end, in headless Chromium.
 
   tests/report_page_test.py SHADESIM SOURCE_DIR WORK_DIR
 

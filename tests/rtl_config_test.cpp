@@ -17,7 +17,7 @@ std::string write_builds(const std::string& name, const std::string& text) {
   const auto dir = std::filesystem::temp_directory_path() /
                    ("shadesim-rtl-config-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
-  const std::string path = (dir / name).string();
+  std::string path = (dir / name).string();  // returned: moved
   std::ofstream(path) << text;
   return path;
 }
@@ -49,7 +49,7 @@ TEST(RtlConfig, MalformedEntriesNameFileBuildAndField) {
   EXPECT_NE(msg.find(not_bool + ": a.fault_hooks: expected true or false, got 1"),
             std::string::npos)
       << msg;
-  // The old per-fault key is no longer read: it must not be ignored silently.
+  // A per-fault key ("faults") is not one the file has: it must not be ignored silently.
   const std::string old_key =
       write_builds("old_key.json", R"({"a": {"unit": {}, "faults": {"lsb_row": 17}}})");
   const std::string old = load_error(old_key);

@@ -1,4 +1,4 @@
-// Regression beyond one machine (issue 11): shards through GNU parallel merged back into what one
+// Regression beyond one machine: shards through GNU parallel merged back into what one
 // unsharded regress reports, a shard killed mid-run (merge names what is missing, --resume
 // finishes it), job lines, the watchdog on an RTL that stops emitting, per-run timeouts, and
 // merge's errors on folders and result files it cannot use.

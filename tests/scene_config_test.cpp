@@ -152,7 +152,7 @@ class SceneConfigFiles : public ::testing::Test {
   std::string with_unit(const std::string& name, const std::string& unit) const {
     auto j = scene_json(scene(name));
     for (auto& m : j["materials"]) m["unit"] = unit;
-    const std::string path =
+    std::string path =  // returned: moved
         (dir_ / (std::filesystem::path(name).stem().string() + "_" + unit + ".json")).string();
     std::ofstream(path) << j.dump(1);
     return path;
@@ -352,10 +352,9 @@ TEST_F(SceneConfigFiles, ADiffuseOnlySceneGetsNoSpecularUnitWhateverItNames) {
 }
 
 TEST(SceneConfig, DiffuseOnlyScenesShadeOnNoSpecularUnitAsOnTheW16One) {
-  // Issue 21: a scene whose materials have no specular term gets specular kind none (no unit, no
-  // specular series); its image is bit-identical to the one of the same unit with the W_16 unit
-  // the derivation used to give it (whose specular contribution was 0). Scenes with a specular
-  // term keep their unit.
+  // A scene whose materials have no specular term gets specular kind none (no unit, no specular
+  // series); its image is bit-identical to the one of the same unit with a W_16 unit (whose
+  // specular contribution is 0 there). Scenes with a specular term keep their unit.
   int diffuse_only = 0;
   for (const std::string& path : shipped_and_hard_scenes()) {
     const DerivedConfig d = derive_config({path}, {});

@@ -41,7 +41,7 @@ class TempDir {
     fs::remove_all(path_, ec);
   }
   std::string write(const std::string& name, const std::string& text) const {
-    const std::string p = (path_ / name).string();
+    std::string p = (path_ / name).string();  // returned: moved
     std::ofstream(p, std::ios::binary) << text;
     return p;
   }

@@ -350,6 +350,7 @@ TEST(Scoreboard, AWrongPixelInLaneThreeIsReported) {
   board.model_beat(50, 8, 2, 4, true);
   // The bus: lane j at bits [24 j, 24 j + 24), channel c at 8 c within it.
   std::vector<uint64_t> lanes;
+  lanes.reserve(want.size());
   for (const PixelOut& p : want)
     lanes.push_back(p.colour[0] | uint64_t{p.colour[1]} << 8 | uint64_t{p.colour[2]} << 16);
   lanes[3] += uint64_t{1} << 8;

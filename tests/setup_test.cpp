@@ -268,9 +268,10 @@ TEST(Setup, MaxDepthStopsAndIsReported) {
 // Vertex normals that oppose each other (+z, -z, +z: what assimp's broken smooth normals gave
 // Cube.off, and what a file may carry): the interpolated normal is zero on the line x = 30 and
 // the exact shading steps there. The first split puts the midpoint of the long edge, normal 0, on
-// that line, and a child's centroid lands on it: expanded there the series was NaN and the
-// encoder refused the frame. Every output series must be finite, and the error setup reports for
-// each piece must be the one measured here independently (brute force, barycentric normals).
+// that line, and a child's centroid lands on it: a series expanded there is NaN unless setup
+// guards it, and the encoder refuses such a frame. Every output series must be finite, and the
+// error setup reports for each piece must be the one measured here independently (brute force,
+// barycentric normals).
 TEST(Setup, NormalFieldThroughZeroGivesFiniteSeriesAndHonestError) {
   const Vec3 up{0, 0, 1}, down{0, 0, -1};
   const ScreenTriangle t = tri(vert(10, 10, up), vert(50, 10, down), vert(10, 50, up));

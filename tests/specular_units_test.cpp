@@ -304,7 +304,7 @@ TEST(SpecularUnits, EachUnitModuleDecodesItsRowsSlotsWithTheModelsDefaults) {
   EXPECT_EQ(std::stoi(m[1]), kSpecSlots);
   ASSERT_TRUE(std::regex_search(pkg, m, std::regex(R"(localparam int SpecSlotW\s*=\s*(\d+);)")));
   EXPECT_EQ(std::stoi(m[1]), kSpecSlotBits);
-  // shade_unit carries no unit field by name any more: only the packed parameter.
+  // shade_unit carries no unit field by name: only the packed parameter.
   const std::string top = read_rtl("shade_unit.sv");
   EXPECT_FALSE(std::regex_search(top, std::regex(R"(parameter\s+int\s+(LUT|SCHLICK|WPOW)_)")));
   EXPECT_NE(top.find("SPEC_PARAMS"), std::string::npos);

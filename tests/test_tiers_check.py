@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Every ctest test carries exactly one tier label (issue 20; cmake/test_tiers.cmake).
+"""Every ctest test carries exactly one tier label (cmake/test_tiers.cmake).
 
   tests/test_tiers_check.py BUILD_DIR     reads `ctest --show-only=json-v1` in BUILD_DIR
   tests/test_tiers_check.py --self-test   the check fails on a test without a tier or with two

@@ -72,7 +72,7 @@ class ThroughputChoiceScenes : public ::testing::Test {
                                  {"exponent", 20},
                                  {"unit", unit}}}},
                               {"objects", {object}}};
-    const std::string path = (*dir_ / (name + ".json")).string();
+    std::string path = (*dir_ / (name + ".json")).string();  // returned: moved
     std::ofstream(path) << s.dump(1);
     return path;
   }

@@ -23,7 +23,7 @@ class UnitConfigFile : public ::testing::Test {
   void TearDown() override { std::filesystem::remove_all(dir_); }
 
   std::string write(const std::string& name, const std::string& text) const {
-    const std::string path = (dir_ / name).string();
+    std::string path = (dir_ / name).string();  // returned: moved
     std::ofstream(path) << text;
     return path;
   }
@@ -34,7 +34,7 @@ class UnitConfigFile : public ::testing::Test {
     try {
       (void)load_unit_config(path, base);
     } catch (const UnitConfigFileError& e) {
-      const std::string msg = e.what();
+      std::string msg = e.what();  // returned: moved
       EXPECT_NE(msg.find(path), std::string::npos) << "the error must name the file: " << msg;
       return msg;
     }

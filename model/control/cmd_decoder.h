@@ -11,7 +11,7 @@
 // tri_payload_o, and pay_rem_q, from which it works out the tail: the RTL keeps that as the
 // registers behind tail_n_o and tail_hdr_o), clock() clocks it with the item's wires. The RTL
 // decodes every word of the beat as a header in parallel and picks the header's word's results
-// (issue 44, docs/rtl.md); decode() decodes the header's word alone, to the same item.
+// (docs/rtl.md, timing); decode() decodes the header's word alone, to the same item.
 // Parameters: PORT_WORDS, QUEUED, MAT_BANKED, HOST_SETUP, START_WORDS (N_MAT_FIXED only reaches
 // u_payload's configuration writes, which are not timing).
 #pragma once

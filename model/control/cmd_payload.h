@@ -7,7 +7,7 @@
 //   in_payload_q, pay_op_q, pay_rem_q   modelled (in_payload_, pay_op_, pay_rem_)
 //   tri_q, tail_q, tail_hdr_q           not modelled: registered copies of what the state above
 //                                       says (tri_payload(), min(pay_rem_, port words), a header
-//                                       after the tail), kept for timing (issue 44, docs/rtl.md);
+//                                       after the tail), kept for timing (docs/rtl.md);
 //                                       CmdDecoder::decode works them out from pay_rem()
 //   pay_idx_q, cfg_base_q, tbl_mat_q    not modelled: they only address the datapath's registers
 //                                       (pay_idx_o, cfg_addr_o, cfg_all_banks_o) and never hold

@@ -63,7 +63,7 @@ class SpanQueue {
   int banks_ = 2;
   unsigned size_ = 0;
   // The ring, sized for the largest queue so it lives in the model, not behind a pointer.
-  std::array<Entry, kSpansPerTriangle * kMaxBanks> q_{};
+  std::array<Entry, std::size_t{kSpansPerTriangle} * kMaxBanks> q_{};
   unsigned head_ = 0, tail_ = 0, count_ = 0;  // head_q, tail_q, count_q
   std::array<int, kMaxBanks> bank_spans_{};   // bank_spans_q: queued spans per bank
   int wr_bank_ = 0;                           // wr_bank_q: the latest TRIANGLE's bank

@@ -35,7 +35,10 @@ bool is_subcommand(const CLI::App& app, const std::string& name) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+// Outside the try: building the CLI, which throws only on a programming error (CLI11 on a
+// duplicate option name), where the uncaught exception's abort names it best, and the printing
+// of a caught error.
+int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape): see above
   CLI::App app{
       "shadesim - cycle-accurate simulator of a hardware per-pixel Phong shading unit\n"
       "(Bishop & Weimer forward-difference Taylor shader; exponent LUT, Schlick divider and\n"

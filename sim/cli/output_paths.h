@@ -1,4 +1,4 @@
-// Output paths checked before any work starts (issue 23): every option that names a file or a
+// Output paths checked before any work starts: every option that names a file or a
 // folder shadesim will write (-o/--out, --json, --junit, --save-stream, --plot, --waves, ...)
 // is tried when the command line is parsed, so `-o /proc/x` or `--json /unwritable/f` fails at
 // once, naming the option and the path, instead of with a raw filesystem error or after the

@@ -104,7 +104,8 @@ double size_of(const std::string& module, const ParamMap& p) {
   }
   // shade_unit glue: coefficient, ambient and specular-colour registers, the metadata line,
   // decoder and span pipeline (a fixed part).
-  const double nser = static_cast<double>(instances_of("series_engine", p) / lanes_of(p));
+  const int64_t series_per_lane = instances_of("series_engine", p) / lanes_of(p);  // exact
+  const double nser = static_cast<double>(series_per_lane);
   const double coef_regs = host_setup_of(p) ? 0 : 6 * nser * c;  // host: no coefficients
   const double xy = static_cast<double>(get(p, "XY_BITS"));
   // Lanes add each lane's fan-out (three constant-multiplier adders per series, ~6 adder bits

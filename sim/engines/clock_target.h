@@ -13,7 +13,7 @@ namespace shadesim {
 
 enum class ClockSite { kLiberty, kIce40 };
 ClockSite parse_clock_site(const std::string& text, const std::string& what);  // osu018 | ice40
-// config's clock target when none is given (issue 44): 250 MHz in a standard-cell library (twice
+// config's clock target when none is given: 250 MHz in a standard-cell library (twice
 // the 117.5 Mpixel/s of Lai et al.'s unit at about one pixel per clock), 50 MHz on the iCE40.
 double default_clock_mhz(ClockSite site);
 

@@ -146,6 +146,7 @@ int exec_cosim(const CosimOptions& o) {
   if (!o.coverage.empty()) args.insert(args.end(), {"--coverage", o.coverage});
   args.insert(args.end(), o.passthrough.begin(), o.passthrough.end());
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   std::cout.flush();
@@ -248,6 +249,7 @@ int run_rtl_build(const RtlBuildCommandOptions& o) {
     }
   };
   std::vector<std::thread> pool;
+  pool.reserve(static_cast<size_t>(std::max(workers, 0)));
   for (int w = 0; w < workers; ++w) pool.emplace_back(work);
   for (auto& t : pool) t.join();
   int failed = 0;

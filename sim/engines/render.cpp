@@ -96,7 +96,7 @@ FrameOptions frame_options(const RenderOptions& o, std::string* note = nullptr) 
 }
 
 std::filesystem::path output_dir(const RenderOptions& o) {
-  const std::filesystem::path dir =
+  std::filesystem::path dir =  // returned: moved
       o.out_dir.empty() ? std::filesystem::path("out") / std::filesystem::path(o.scene).stem()
                         : std::filesystem::path(o.out_dir);
   std::filesystem::create_directories(dir);

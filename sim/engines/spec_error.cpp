@@ -477,6 +477,7 @@ int run_spec_error(const SpecErrorOptions& o) {
   const size_t total = cands.size() * exponents.size();
   SweepProgress progress(total);
   std::vector<Result> results;
+  results.reserve(cands.size());
   for (const Candidate& c : cands)
     results.push_back(measure_candidate(c, exponents, points, progress));
   print_table(std::cout, results, exponent_range(exponents));

@@ -434,7 +434,7 @@ int run_all(const Options& o, const CosimExecutable& exe) {
     print_run_line(job, out.result, exe);
     if (!check_specular_share(out, o)) ++failures;
     if (out.result.passed()) {
-      // No pixel compared is no evidence: a run that shaded nothing is not a pass (issue 23).
+      // No pixel compared is no evidence: a run that shaded nothing is not a pass.
       if (out.result.pixels == 0) {
         std::cout << "  FAIL: the run shaded 0 pixels in " << out.result.cycles
                   << " cycles: nothing was compared (an empty stream?)\n";

@@ -74,7 +74,7 @@ CosimResult run_cpp(const CosimJob& job, const WaveWindow* waves, const BuiltMod
   }
   dut->final();
   if (waves) dut->close_trace();
-  const CosimResult r =
+  CosimResult r =  // returned: moved
       lockstep.result(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   // The counts live in this run's context: write them before it goes, pass or fail.
   if (!job.coverage_path.empty()) dut->write_coverage(job.coverage_path);

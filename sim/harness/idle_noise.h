@@ -1,5 +1,5 @@
 // What the command drivers put on cmd_data_i while cmd_valid_i is low: random words instead of
-// the next beat held early, so an RTL that looks at the data without valid shows it (issue 9).
+// the next beat held early, so an RTL that looks at the data without valid shows it.
 // A pure function of the stimulus seed and the cycle, so a run repeats.
 #pragma once
 

@@ -1,6 +1,6 @@
 // Range checks for numeric options whose message names the bound in words: CLI11's
 // PositiveNumber and NonNegativeNumber print their range as 0 to DBL_MAX in full (a 309-digit
-// number, issue 23). CLI11 adds the option's name: "--budget: must be greater than 0, got 0".
+// number). CLI11 adds the option's name: "--budget: must be greater than 0, got 0".
 #pragma once
 
 #include <CLI/CLI.hpp>

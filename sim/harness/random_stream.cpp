@@ -129,9 +129,9 @@ class RandomStreamBuilder {
   const StreamShape& shape_;
   std::mt19937_64 rng_;
   // The MATERIAL's gate-only mask has a generator of its own, so every other field of a seed's
-  // stream stays what it was before the mask existed.
+  // stream is the same with or without it (saved seeds keep their streams).
   std::mt19937_64 gate_rng_;
-  // So have the edge scenario's corners added after its draws were fixed (exact_ratio,
+  // So have the edge scenario's corners drawn apart from its other draws (exact_ratio,
   // short_table), for the same reason.
   std::mt19937_64 corner_rng_;
   double ratio_den_ = 0.0;  // the pair's denominator, drawn with its numerator
@@ -298,7 +298,7 @@ MaterialCmd RandomStreamBuilder::random_material() {
     const bool negative = shape_.edge && chance(0.3);
     m.ambient.push_back(config_.series.from_double(negative ? uni(-0.6, 0.0) : uni(0.0, 0.25)));
   }
-  m.spec_colour.assign(static_cast<size_t>(config_.lights * config_.channels), 0);
+  m.spec_colour.assign(static_cast<size_t>(config_.lights) * config_.channels, 0);
   if (spec_colours_) {
     for (auto& v : m.spec_colour) {
       v = config_.spec_colour.from_double(shape_.edge ? uni(0.2, 0.9) : uni(0.0, 0.5));

@@ -34,6 +34,8 @@ struct ScBench : sc_core::sc_module {
   sc_core::sc_in<bool> clk;
 
   SC_HAS_PROCESS(ScBench);
+  // SystemC's module-name stack needs sc_module_name by value.
+  // NOLINTNEXTLINE(performance-unnecessary-value-param): see above
   ScBench(sc_core::sc_module_name name, Lockstep& lockstep, ScDut& dut)
       : sc_module(name), lockstep_(lockstep), dut_(dut) {
     SC_METHOD(tick);
@@ -84,7 +86,7 @@ CosimResult run_systemc(const CosimJob& job) {
 
   const auto t0 = std::chrono::steady_clock::now();
   sc_core::sc_start();
-  const CosimResult r =
+  CosimResult r =  // returned: moved
       lockstep.result(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   // The counters live in the model: write them while it exists.
   if (!job.coverage_path.empty()) dut->write_coverage(job.coverage_path);

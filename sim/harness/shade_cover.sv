@@ -1,4 +1,4 @@
-// Named user cover points for issue 9's edge bins, bound into the RTL in covered builds only:
+// Named user cover points for the edge bins, bound into the RTL in covered builds only:
 // sim/eda/verilator/rtl_build.cpp adds this file and --coverage-user to a build that `shadesim regress
 // --coverage` asks for. It is verification, not design: no rtl/ file names it, Icarus and Yosys
 // never read it. `regress --coverage` reports each point as hit or not (verilator_coverage's

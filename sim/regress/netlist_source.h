@@ -24,7 +24,7 @@ class NetlistSource {
   }
   // Starts (once per unit) the netlist of `unit`; the token names it for get().
   std::string start(const UnitConfig& unit) {
-    const std::string token = config_to_json(unit);
+    std::string token = config_to_json(unit);  // returned: moved
     std::lock_guard<std::mutex> lock(m_);
     if (!jobs_.count(token)) {
       jobs_.emplace(token, std::async(std::launch::async, [this, unit] {

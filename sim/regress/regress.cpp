@@ -261,6 +261,7 @@ template <typename F>
 void parallel_for(size_t n, int workers, F work) {
   std::atomic<size_t> next{0};
   std::vector<std::thread> pool;
+  pool.reserve(static_cast<size_t>(std::max(workers, 0)));
   for (int w = 0; w < workers; ++w) {
     pool.emplace_back([&]() {
       for (size_t i = next++; i < n; i = next++) work(i);
@@ -414,7 +415,7 @@ void run_job(Job& job, const RegressOptions& o, const RunSettings& settings) {
   rec.seconds = field(j, "seconds", 0.0);
   rec.cycles_per_second = field(j, "cycles_per_second", 0.0);
   rec.replay = field(j, "replay", std::string());
-  // A run that shaded nothing compared nothing: it is not a pass (issue 23; the co-simulation
+  // A run that shaded nothing compared nothing: it is not a pass (the co-simulation
   // exits 1 for it, with no mismatch to name).
   if ((r.exit_code == 0 || r.exit_code == 1) && field(j, "passed", false) &&
       (rec.cycles == 0 || field(j, "pixels", uint64_t{0}) == 0)) {

@@ -1,6 +1,7 @@
 // --coverage's report (sim/regress/regress_coverage.h).
 #include "sim/regress/regress_coverage.h"
 
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <string>

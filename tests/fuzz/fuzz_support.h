@@ -38,7 +38,7 @@ inline const std::string& private_dir() {
 }
 
 inline std::string write_input(const std::string& file_name, const uint8_t* data, size_t size) {
-  const std::string path = private_dir() + "/" + file_name;
+  std::string path = private_dir() + "/" + file_name;  // returned: moved
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   if (!out) {

@@ -3,6 +3,7 @@
 // each, up to 64 KiB of answer. Files on which assimp crashes or runs away have no answer and are
 // passed over. Usage: mesh_answer_seeds MODELS_DIR OUT_DIR
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -16,7 +17,7 @@ namespace fs = std::filesystem;
 
 // libFuzzer's longest input defaults to the longest seed: a tessellated NFF's megabytes of
 // vertices would make every mutation that long.
-constexpr size_t kMaxSeedBytes = 64 * 1024;
+constexpr size_t kMaxSeedBytes = size_t{64} * 1024;
 
 int main(int argc, char** argv) {
   if (argc != 3) {
@@ -34,7 +35,8 @@ int main(int argc, char** argv) {
   fs::create_directories(out);
   std::vector<fs::path> files;
   for (const auto& entry : fs::recursive_directory_iterator(models)) {
-    if (entry.is_regular_file() && entry.file_size() <= 32 * 1024) files.push_back(entry.path());
+    if (entry.is_regular_file() && entry.file_size() <= std::uintmax_t{32} * 1024)
+      files.push_back(entry.path());
   }
   std::sort(files.begin(), files.end());
   shadesim::MeshImporter importer(10);  // the fuzz harnesses' CPU limit per file

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Formal equivalence of shade_unit across a restructuring of its modules (issue 22): Yosys
+"""Formal equivalence of shade_unit across a restructuring of its modules: Yosys
 equiv_make / equiv_simple / equiv_induct between rtl/ of a reference commit (read with
 `git archive`) and this tree's rtl/, both flattened, for one parameter set.
 

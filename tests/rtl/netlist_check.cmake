@@ -1,4 +1,4 @@
-# The netlist is the circuit (issue 21 part 3): `shadesim regress --netlist` simulates Yosys's
+# The netlist is the circuit: `shadesim regress --netlist` simulates Yosys's
 # gate-level netlist of a unit (the flat netlist `shadesim area` measures) in place of the RTL,
 # bit and cycle exact against the model, on one small unit per specular kind
 # (tests/netlist/*_small.json: ideal and none on sphere, which has no highlights; lut, schlick

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Every parameter check of rtl/ at its edges (issue 24): shade_unit elaborated by Icarus at each
+"""Every parameter check of rtl/ at its edges: shade_unit elaborated by Icarus at each
 legal extreme must run its time-0 checks without a $fatal, and one step past it must stop with
 that check's own message.
 

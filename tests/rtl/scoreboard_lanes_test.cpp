@@ -13,7 +13,7 @@ namespace {
 
 // The pixels of spans (y, x0, len) on one row as the model emits them with `lanes` lanes: pixel
 // k of a span on lane k mod lanes, colour x, end of row on the row's last pixel.
-std::vector<PixelOut> row(std::vector<std::pair<int, int>> spans, int lanes) {
+std::vector<PixelOut> row(const std::vector<std::pair<int, int>>& spans, int lanes) {
   std::vector<PixelOut> out;
   for (const auto& [x0, len] : spans) {
     for (int k = 0; k < len; ++k) {

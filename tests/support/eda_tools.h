@@ -7,7 +7,9 @@
 #include <gtest/gtest.h>
 
 // Use as the first statement of a test body: `present` says whether the tools are there, `what`
-// names them and their Debian packages.
+// names them and their Debian packages, as a stream fragment ("sta or " << path), so it takes no
+// parentheses.
+// NOLINTBEGIN(bugprone-macro-parentheses): see above
 #if SHADESIM_TEST_DATA_OPTIONAL
 #define SHADESIM_NEEDS_TOOLS(present, what) \
   if (!(present)) GTEST_SKIP() << what << " absent (allowed by SHADESIM_ALLOW_MISSING_TOOLS)"
@@ -15,3 +17,4 @@
 #define SHADESIM_NEEDS_TOOLS(present, what) \
   if (!(present)) FAIL() << what << " absent: scripts/setup installs it"
 #endif
+// NOLINTEND(bugprone-macro-parentheses)

@@ -17,9 +17,9 @@ namespace {
 namespace fs = std::filesystem;
 
 // HX8K in its largest package (206 I/O). --freq is the target nextpnr's timing-driven placement
-// and routing work toward: 60 MHz, above issue 44's 50, so the critical paths get its effort (at
-// the 12 MHz used before, every path had slack and none was worked on); the reported Fmax is
-// what the routed design reaches either way.
+// and routing work toward: 60 MHz, above the iCE40's 50 MHz clock target (default_clock_mhz),
+// so the critical paths get its effort (at a target every path meets with slack, none is worked
+// on); the reported Fmax is what the routed design reaches either way.
 constexpr const char* kPnrArgs = "--hx8k --package ct256 --freq 60 --timing-allow-fail";
 // Fmax is measured out of context: the unit inside fmax_shell (fmax_shell_verilog below), which
 // shifts one input pin into every input port and folds every output port into one output pin
@@ -127,12 +127,12 @@ void read_synthesis(const fs::path& work, Ice40Area& a) {
   check_fit(a);
 }
 
-std::string fmax_shell_verilog(const std::vector<VerilogParameter>& ps) {
-  const int64_t cmd_w = parameter_value(ps, "PORT_WORDS") * 64;
-  const int64_t xy = parameter_value(ps, "XY_BITS");
-  const int64_t lanes = parameter_value(ps, "LANES");
+std::string fmax_shell_verilog(const std::vector<VerilogParameter>& parameters) {
+  const int64_t cmd_w = parameter_value(parameters, "PORT_WORDS") * 64;
+  const int64_t xy = parameter_value(parameters, "XY_BITS");
+  const int64_t lanes = parameter_value(parameters, "LANES");
   const int64_t colour_w =
-      lanes * parameter_value(ps, "CHANNELS") * parameter_value(ps, "OUT_BITS");
+      lanes * parameter_value(parameters, "CHANNELS") * parameter_value(parameters, "OUT_BITS");
   const int64_t in_w = cmd_w + 2;                           // cmd_data, cmd_valid, pix_ready
   const int64_t out_w = 1 + 2 * xy + colour_w + lanes + 2;  // ready, x, y, colour, mask, eor, valid
   std::ostringstream v;
@@ -146,9 +146,9 @@ std::string fmax_shell_verilog(const std::vector<VerilogParameter>& ps) {
     << "  always_ff @(posedge clk_i) chain_q <= {chain_q[" << out_w - 2 << ":0], 1'b0} ^ o;\n"
     << "  assign out_o = chain_q[" << out_w - 1 << "];\n"
     << "  shade_unit #(\n";
-  for (size_t i = 0; i < ps.size(); ++i)
-    v << "    ." << ps[i].name << "(" << ps[i].literal() << ")" << (i + 1 < ps.size() ? "," : "")
-      << "\n";
+  for (size_t i = 0; i < parameters.size(); ++i)
+    v << "    ." << parameters[i].name << "(" << parameters[i].literal() << ")"
+      << (i + 1 < parameters.size() ? "," : "") << "\n";
   v << "  ) u_unit (\n"
     << "    .clk_i(clk_i), .rst_ni(rst_ni),\n"
     << "    .cmd_data_i(in_q[" << cmd_w - 1 << ":0]), .cmd_valid_i(in_q[" << cmd_w << "]),\n"

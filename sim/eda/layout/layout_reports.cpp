@@ -30,7 +30,7 @@ double number(const std::string& s, const std::string& source) {
 void read_route(const std::vector<std::string>& t, size_t at, const std::string& source,
                 DefSummary& d) {
   if (at >= t.size()) return;
-  const std::string layer = t[at++];
+  const std::string& layer = t[at++];
   bool have = false;
   double px = 0, py = 0;
   while (at < t.size()) {

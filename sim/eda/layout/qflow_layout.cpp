@@ -100,7 +100,7 @@ std::string run_sta(const LayoutTools& tools, const LibertyReport& lib, const fs
   const fs::path log = fs::path(tcl).replace_extension(".out");
   flow_tools::run_tool({tools.sta, "-no_splash", "-exit", tcl.string()}, log,
                        "layout OpenSTA " + tcl.stem().string(), nullptr);
-  const std::string out = read_text_file(log.string());
+  std::string out = read_text_file(log.string());  // returned: moved
   const auto error = out.find("Error");
   if (error != std::string::npos)
     throw std::runtime_error("OpenSTA failed; log " + log.string() + ": " +

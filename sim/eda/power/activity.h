@@ -19,7 +19,7 @@
 // against the harness's stimulus replayed (port_stimulus). Verilator traces no signal wider
 // than 256 bits or array of more than 32 elements (--trace-max-width, --trace-max-array): such
 // bits are missing from the maps, not zero. While cmd_valid_i is low the harness drives seeded
-// noise on cmd_data_i (sim/harness/idle_noise.h, issue 9): with no gaps that happens only after
+// noise on cmd_data_i (sim/harness/idle_noise.h): with no gaps that happens only after
 // the last command beat, and those toggles are in the counts (`idle_noise_toggles` says how many).
 #pragma once
 

@@ -4,7 +4,9 @@
 // defines SHADESIM_HAVE_FSTAPI when Verilator's include folder and zlib are there.
 #ifdef SHADESIM_HAVE_FSTAPI
 #define FST_CONFIG_INCLUDE "fst_config.h"
+// NOLINTBEGIN(bugprone-suspicious-include): the C sources are this file's content, as above
 #include "gtkwave/fastlz.c"
 #include "gtkwave/fstapi.c"
 #include "gtkwave/lz4.c"
+// NOLINTEND(bugprone-suspicious-include)
 #endif

@@ -275,7 +275,7 @@ std::string run_sta(const std::string& sta, const fs::path& tcl, const std::stri
   fs::path out = tcl;
   out.replace_extension(".out");
   const ProcessResult r = run_process({sta, "-no_splash", "-exit", tcl.string()}, out.string());
-  const std::string output = read_text_file(out.string());
+  std::string output = read_text_file(out.string());  // returned: moved
   if (r.exit_code != 0 || output.find("Error") != std::string::npos)
     throw std::runtime_error("power: sta " + tcl.string() + " failed (exit " +
                              std::to_string(r.exit_code) + "):\n" + output);
@@ -289,6 +289,7 @@ void check_nothing_missing(const std::string& output, const std::string& what) {
 }
 
 std::vector<std::string> method_notes(const PowerOptions& o, const Annotation& an) {
+  // NOLINTBEGIN(bugprone-suspicious-missing-comma): each note is one literal, in pieces
   return {
       "flip-flops: the RTL register bit's toggles per cycle and time at 1 (the trace) on the "
       "cell's state pin, Q and an added input port on Q's net (OpenSTA 2019 would otherwise "
@@ -304,6 +305,7 @@ std::vector<std::string> method_notes(const PowerOptions& o, const Annotation& a
       "arc (clock pins, clock-to-Q): about twice its later versions' figure for those",
       "left out: glitches, wires (no wire load), a clock tree, any corner but the "
       "library's typical"};
+  // NOLINTEND(bugprone-suspicious-missing-comma)
 }
 
 }  // namespace power_impl

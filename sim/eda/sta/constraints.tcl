@@ -1,4 +1,4 @@
-# The conditions every OpenSTA run of a unit is timed under (issue 51). sim/eda/sta/sta_constraints.h
+# The conditions every OpenSTA run of a unit is timed under. sim/eda/sta/sta_constraints.h
 # holds the values and fills in the @NAME@ fields; docs/area.md argues them. To run it by hand,
 # replace the fields and source it after read_liberty, read_verilog and link_design.
 #

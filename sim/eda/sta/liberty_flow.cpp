@@ -33,7 +33,7 @@ std::string run_opensta_script(const std::string& sta, const fs::path& tcl,
                                const std::string& label) {
   const fs::path log = fs::path(tcl).replace_extension(".out");
   flow_tools::run_tool({sta, "-no_splash", "-exit", tcl.string()}, log, label, nullptr);
-  const std::string out = read_text_file(log.string());
+  std::string out = read_text_file(log.string());  // returned: moved
   const auto error = out.find("Error");
   if (error != std::string::npos)
     throw std::runtime_error(label + " failed; log " + log.string() + ": " +
@@ -149,7 +149,7 @@ Json map_and_buffer(const LibertyRun& run, const LibertyLibrary& lib, const fs::
 }  // namespace
 
 std::string resolve_liberty(const std::string& requested, const std::string& default_path) {
-  const std::string path = requested.empty() ? default_path : requested;
+  std::string path = requested.empty() ? default_path : requested;  // returned: moved
   if (fs::is_regular_file(path)) return path;
   if (requested.empty() || requested == default_path)
     throw MissingToolError("the osu018 standard-cell library " + default_path +

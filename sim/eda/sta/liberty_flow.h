@@ -33,7 +33,7 @@
 // Table memories (the exponent LUT's mem_q) are register files of the library's cells: synth's
 // memory_map turns each into flip-flops, write decoding and read multiplexers, mapped, counted
 // and timed like the rest of the unit, so the paths into the table's address and out of its
-// data are in Fmax (issue 51: until then the table was an untimed blackbox "SRAM macro").
+// data are in Fmax (an untimed blackbox "SRAM macro" would leave them out).
 //
 // The power flow's seam: LibertyReport::netlist_path is the buffered netlist (kept in the cache
 // as liberty-netlist-<key>.v), flip_flop_q_nets() maps its flip-flop instances to their output

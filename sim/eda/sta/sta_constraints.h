@@ -1,4 +1,4 @@
-// The conditions every OpenSTA run of a unit is timed under (issue 51), in one place: shadesim
+// The conditions every OpenSTA run of a unit is timed under, in one place: shadesim
 // area's liberty flow, config's clock ladder (sim/engines/clock_target.cpp) and explore's clock
 // column read them here, and so can a layout or a clock predictor. docs/area.md argues the
 // values.

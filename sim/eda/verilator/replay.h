@@ -1,4 +1,4 @@
-// The one home of replay lines' start (issue 23): "shadesim cosim --backend B" and every option
+// The one home of replay lines' start: "shadesim cosim --backend B" and every option
 // that chose which executable ran (--cache, --netlist, --netlist-cache), so a printed replay line
 // runs when pasted. shadesim cosim and regress pass it to the co-simulation (--replay-prefix),
 // whose replay_line (sim/harness/cosim_run.cpp) adds the build, fault, stream and stimulus;

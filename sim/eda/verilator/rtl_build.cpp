@@ -223,7 +223,7 @@ fs::path runtime_dir(const fs::path& cache, const Flavour& f, const Toolchain& t
 
 fs::path ensure_runtime(const fs::path& cache, const Flavour& f, const Toolchain& t, int jobs,
                         bool quiet) {
-  const fs::path dir = runtime_dir(cache, f, t);
+  fs::path dir = runtime_dir(cache, f, t);  // returned: moved
   if (fs::exists(dir)) return dir;
   fs::create_directories(dir.parent_path());
   FileLock lock(dir.string() + ".lock");

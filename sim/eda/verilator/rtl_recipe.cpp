@@ -248,7 +248,7 @@ std::string recipe_text(const Flavour& f, const Toolchain& t) {
   std::string s =
       f.name() + "|" + t.verilator_version + "|" + t.cxx_version + "|" + t.verilator_root;
   for (const auto& d : defines(f)) s += " " + d;
-  if (f.coverage) s += " fast=" + opt_flag(f, RtlOptimization::kFast);  // was -O2 (same key)
+  if (f.coverage) s += " fast=" + opt_flag(f, RtlOptimization::kFast);  // a key per flag
   return s;
 }
 

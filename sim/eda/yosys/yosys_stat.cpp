@@ -157,6 +157,7 @@ int64_t read_memory_bits(const std::string& dump_file) {
       close();
       in_mem = true;
       size = width = -1;
+      // NOLINTNEXTLINE(bugprone-branch-clone): another cell ends a memory, as its end line does
     } else if (std::regex_search(line, m, any_cell)) {
       close();
     } else if (in_mem && std::regex_match(line, m, param)) {
