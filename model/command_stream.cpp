@@ -34,7 +34,6 @@ struct Where {
   }
 };
 std::string operator+(const Where& w, const char* s) { return w.text() + s; }
-std::string operator+(const Where& w, const std::string& s) { return w.text() + s; }
 std::ostream& operator<<(std::ostream& os, const Where& w) { return os << w.text(); }
 
 Where where(const std::string& source, size_t index, const char* unit) {
