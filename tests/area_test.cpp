@@ -185,7 +185,9 @@ TEST(Area, CellCountEqualsADirectYosysRunAndTheCacheIsReused) {
   std::ifstream js2(dir / "again.json");
   const auto j2 = nlohmann::json::parse(js2);
   EXPECT_TRUE(j2["from_cache"].get<bool>());
-  if (liberty) EXPECT_TRUE(j2["liberty"]["from_cache"].get<bool>());
+  if (liberty) {
+    EXPECT_TRUE(j2["liberty"]["from_cache"].get<bool>());
+  }
   EXPECT_EQ(j2["cells"].get<long>(), direct_cells);
   EXPECT_NE(again.output.find("cache hit"), std::string::npos) << again.output;
 
