@@ -168,6 +168,5 @@ std::string key_values(const std::vector<std::pair<std::string, json>>& rows) {
   return h + "</table>\n";
 }
 
-
 }  // namespace page_html
 }  // namespace shadesim
